@@ -1,0 +1,57 @@
+//! `goniolight demo`: the main job on the bundled data.
+//!
+//! Until the renderer lands, the demo runs the interpolation check on the bundled raw lab
+//! measurement (`luminaires/eulumdat-analysis/sample_18.ldt`, 1° × 1°) downsampled to the
+//! 15° × 5° grid of a typical manufacturer file, prints the table, and writes the polar
+//! diagram and the check as JSON.
+
+use std::path::PathBuf;
+
+use clap::Args;
+
+use super::ldt::{print_check, write_plot};
+use super::CliError;
+use crate::io::write_atomic;
+use crate::photometry::{check, Luminaire};
+
+/// The bundled luminaire of the demo.
+pub static DEMO_LUMINAIRE: &[u8] =
+    include_bytes!("../../luminaires/eulumdat-analysis/sample_18.ldt");
+
+/// Options of `demo`.
+#[derive(Debug, Args)]
+pub struct DemoArgs {
+    /// Where to write the outputs.
+    #[arg(long, default_value = "out")]
+    pub out_dir: PathBuf,
+}
+
+/// Runs the demo.
+pub fn run(args: DemoArgs) -> Result<(), CliError> {
+    let lum = Luminaire::from_bytes("luminaires/eulumdat-analysis/sample_18.ldt", DEMO_LUMINAIRE)?;
+    std::fs::create_dir_all(&args.out_dir)
+        .map_err(|e| CliError::failure(anyhow::anyhow!("{}: {e}", args.out_dir.display())))?;
+    let s = lum.summary();
+    println!(
+        "sample_18.ldt: {} C planes × {} γ angles, integrated flux {:.1} lm (declared lamp flux {:.1} lm)",
+        lum.distribution.grid().c_angles().len(),
+        lum.distribution.grid().gamma_angles().len(),
+        s.flux_lm,
+        s.lamp_flux_lm
+    );
+    let (dc, dg) = (15.0, 5.0);
+    let report = check::downsample(&lum.distribution, dc, dg)?;
+    print_check(&report, false);
+    let json = serde_json::to_string_pretty(&report).map_err(CliError::failure)?;
+    let check_path = args.out_dir.join("check.json");
+    write_atomic(&check_path, json.as_bytes()).map_err(CliError::failure)?;
+    let plot_path = args.out_dir.join("polar.png");
+    write_plot(
+        &lum,
+        "sample_18.ldt (lab measurement)",
+        &plot_path,
+        Some((dc, dg)),
+    )?;
+    println!("wrote {} and {}", plot_path.display(), check_path.display());
+    Ok(())
+}

@@ -1,0 +1,82 @@
+//! The command-line interface: clap definitions and dispatch. Commands call the library
+//! and hold no logic of their own beyond reading input and printing results.
+
+mod demo;
+mod ldt;
+
+use clap::{Parser, Subcommand};
+
+use crate::photometry::PhotometryError;
+
+/// goniolight — real luminaires in real-time rendering, radiosity and shadow studies.
+#[derive(Debug, Parser)]
+#[command(name = "goniolight", version, about, long_about = None)]
+pub struct Cli {
+    /// What to do.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// The top-level commands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Luminaire files: information, sampling, interpolation check, plots, conversion.
+    #[command(subcommand)]
+    Ldt(ldt::LdtCommand),
+    /// Run the main job on the bundled data and write its outputs.
+    Demo(demo::DemoArgs),
+}
+
+/// A failed command: the error and whether it was the input's fault (exit 2) or not (1).
+#[derive(Debug)]
+pub struct CliError {
+    /// What went wrong, with context.
+    pub error: anyhow::Error,
+    /// True for bad input or usage.
+    pub bad_input: bool,
+}
+
+impl CliError {
+    /// An error caused by the user's input (exit code 2).
+    pub fn input(error: impl Into<anyhow::Error>) -> CliError {
+        CliError {
+            error: error.into(),
+            bad_input: true,
+        }
+    }
+
+    /// Any other failure (exit code 1).
+    pub fn failure(error: impl Into<anyhow::Error>) -> CliError {
+        CliError {
+            error: error.into(),
+            bad_input: false,
+        }
+    }
+
+    /// The process exit code.
+    pub fn code(&self) -> u8 {
+        if self.bad_input {
+            2
+        } else {
+            1
+        }
+    }
+}
+
+impl From<PhotometryError> for CliError {
+    fn from(e: PhotometryError) -> CliError {
+        let bad_input = e.is_bad_input();
+        CliError {
+            error: e.into(),
+            bad_input,
+        }
+    }
+}
+
+/// Runs a parsed command line.
+pub fn run(cli: Cli) -> Result<(), CliError> {
+    match cli.command {
+        Command::Ldt(cmd) => ldt::run(cmd),
+        Command::Demo(args) => demo::run(args),
+    }
+}

@@ -1,0 +1,11 @@
+//! goniolight: real luminaires (EULUMDAT/IES) in real-time rendering, radiosity and
+//! sun-path shadow studies.
+//!
+//! The library holds all logic; the `goniolight` binary's commands only call it.
+//! See `DESIGN.md` in the repository's shared notes and the README for the data flow.
+
+#![warn(missing_docs)]
+
+pub mod cli;
+pub mod io;
+pub mod photometry;

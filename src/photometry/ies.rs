@@ -1,0 +1,710 @@
+//! IES LM-63 reader (1986/1991/1995/2002/2019, Type C) and writer (LM-63-2002).
+//!
+//! An IES file is converted into the EULUMDAT data model so that both formats share one
+//! distribution, one writer pair and one set of checks.
+
+use super::error::ParseError;
+use super::eulumdat::{Dimensions, Eulumdat, LampSet, Parsed};
+use super::grid::angle_eq;
+use super::symmetry::Symmetry;
+use super::text::{NumberStream, SourceText};
+
+/// Which edition of LM-63 a file declares.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum IesVersion {
+    /// No header line (LM-63-1986).
+    Lm63_1986,
+    /// `IESNA91`.
+    Lm63_1991,
+    /// `IESNA:LM-63-1995`.
+    Lm63_1995,
+    /// `IESNA:LM-63-2002`.
+    Lm63_2002,
+    /// `IES:LM-63-2019`.
+    Lm63_2019,
+}
+
+/// Tilt data of the lamp (how output changes when the luminaire is tilted).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Tilt {
+    /// `TILT=NONE`.
+    None,
+    /// `TILT=INCLUDE`: lamp-to-luminaire geometry, angles and multiplying factors.
+    Include {
+        /// 1 vertical base-up/down, 2 horizontal along 0°, 3 horizontal along 90°.
+        geometry: u8,
+        /// Tilt angles, degrees.
+        angles: Vec<f64>,
+        /// Multiplying factors, one per angle.
+        factors: Vec<f64>,
+    },
+    /// `TILT=<file>`: a separate tilt file (not read).
+    File(String),
+}
+
+/// The shape of the luminous opening, decoded from the signs of width, length and height
+/// (LM-63-2002 §5.11, LM-63-2019 Annex D).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum OpeningShape {
+    /// All zero.
+    Point,
+    /// Width and length positive, no height.
+    Rectangular,
+    /// A box with luminous sides.
+    RectangularWithSides,
+    /// Width = length negative, no height.
+    Circular,
+    /// Width ≠ length, both negative, no height.
+    Ellipse,
+    /// Width and length negative, positive height.
+    VerticalCylinder,
+    /// All three negative.
+    Sphere,
+    /// Width negative, length positive, height negative: a cylinder along the length.
+    HorizontalCylinderAlongLength,
+    /// Width positive, length negative, height negative: a cylinder along the width.
+    HorizontalCylinderAlongWidth,
+    /// A sign pattern outside the standard.
+    Other,
+}
+
+/// The luminous opening: its shape and sizes in metres.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct LuminousOpening {
+    /// The shape.
+    pub shape: OpeningShape,
+    /// Width (or diameter), m.
+    pub width_m: f64,
+    /// Length, m.
+    pub length_m: f64,
+    /// Height, m.
+    pub height_m: f64,
+}
+
+/// An IES file as stored.
+#[derive(Debug, Clone, PartialEq)]
+pub struct IesFile {
+    /// Declared edition.
+    pub version: IesVersion,
+    /// Keyword lines (`[KEY] value`), `[MORE]` folded into the preceding one.
+    pub keywords: Vec<(String, String)>,
+    /// Tilt data.
+    pub tilt: Tilt,
+    /// Number of lamps.
+    pub lamp_count: f64,
+    /// Lumens per lamp; −1 for absolute photometry.
+    pub lumens_per_lamp: f64,
+    /// Candela multiplier.
+    pub multiplier: f64,
+    /// 1 Type C, 2 Type B, 3 Type A.
+    pub photometric_type: u8,
+    /// 1 feet, 2 metres.
+    pub units: u8,
+    /// Width, length, height of the opening in the file's units (signs encode the shape).
+    pub size: [f64; 3],
+    /// Ballast factor.
+    pub ballast_factor: f64,
+    /// Ballast-lamp photometric factor (LM-63-1995 and older) or "future use" (later).
+    pub ballast_lamp_factor: f64,
+    /// Input watts.
+    pub input_watts: f64,
+    /// Vertical (γ) angles, degrees.
+    pub vertical: Vec<f64>,
+    /// Horizontal (C) angles, degrees.
+    pub horizontal: Vec<f64>,
+    /// Candela values as stored, one row per horizontal angle.
+    pub candela: Vec<Vec<f64>>,
+}
+
+impl IesFile {
+    /// The value of keyword `key` (without brackets), if present.
+    pub fn keyword(&self, key: &str) -> Option<&str> {
+        self.keywords
+            .iter()
+            .find(|(k, _)| k.eq_ignore_ascii_case(key))
+            .map(|(_, v)| v.as_str())
+    }
+
+    /// Factor from stored values to candela: multiplier × ballast factor (× the
+    /// ballast-lamp photometric factor for editions that define it).
+    pub fn candela_scale(&self) -> f64 {
+        let old = matches!(
+            self.version,
+            IesVersion::Lm63_1986 | IesVersion::Lm63_1991 | IesVersion::Lm63_1995
+        );
+        self.multiplier * self.ballast_factor * if old { self.ballast_lamp_factor } else { 1.0 }
+    }
+
+    /// Metres per file unit.
+    pub fn metres_per_unit(&self) -> f64 {
+        if self.units == 1 {
+            0.3048
+        } else {
+            1.0
+        }
+    }
+
+    /// The luminous opening in metres.
+    pub fn opening(&self) -> LuminousOpening {
+        let k = self.metres_per_unit();
+        let [w, l, h] = self.size;
+        let sign = |v: f64| {
+            if v > 0.0 {
+                1
+            } else if v < 0.0 {
+                -1
+            } else {
+                0
+            }
+        };
+        let shape = match (sign(w), sign(l), sign(h)) {
+            (0, 0, 0) => OpeningShape::Point,
+            (1, 1, 0) => OpeningShape::Rectangular,
+            (1, 1, 1) => OpeningShape::RectangularWithSides,
+            (-1, -1, 0) if w == l => OpeningShape::Circular,
+            (-1, -1, 0) => OpeningShape::Ellipse,
+            (-1, -1, 1) => OpeningShape::VerticalCylinder,
+            (-1, -1, -1) => OpeningShape::Sphere,
+            (-1, 1, -1) => OpeningShape::HorizontalCylinderAlongLength,
+            (1, -1, -1) => OpeningShape::HorizontalCylinderAlongWidth,
+            _ => OpeningShape::Other,
+        };
+        LuminousOpening {
+            shape,
+            width_m: w.abs() * k,
+            length_m: l.abs() * k,
+            height_m: h.abs() * k,
+        }
+    }
+
+    /// Reads IES bytes; `name` is used in messages.
+    pub fn parse(name: &str, bytes: &[u8]) -> Result<Parsed<IesFile>, ParseError> {
+        let src = SourceText::decode(name, bytes);
+        let mut warnings = src.warnings.clone();
+        let first = src.lines.first().map(|l| l.trim()).unwrap_or("");
+        let (version, mut line) = match first.to_ascii_uppercase().as_str() {
+            "IESNA:LM-63-1995" => (IesVersion::Lm63_1995, 1),
+            "IESNA:LM-63-2002" => (IesVersion::Lm63_2002, 1),
+            "IES:LM-63-2019" | "IESNA:LM-63-2019" => (IesVersion::Lm63_2019, 1),
+            "IESNA91" => (IesVersion::Lm63_1991, 1),
+            s if s.starts_with("IES") => {
+                warnings.push(format!(
+                    "line 1: unknown edition {first:?}: read as LM-63-2002"
+                ));
+                (IesVersion::Lm63_2002, 1)
+            }
+            _ => (IesVersion::Lm63_1986, 0),
+        };
+        // Keyword / label lines up to TILT=.
+        let mut keywords: Vec<(String, String)> = Vec::new();
+        let tilt_spec = loop {
+            let Some(text) = src.lines.get(line) else {
+                return Err(src.error(line, "no TILT= line: not an IES LM-63 file"));
+            };
+            line += 1;
+            let t = text.trim();
+            if let Some(rest) = strip_prefix_ci(t, "TILT=").or_else(|| strip_prefix_ci(t, "TILT ="))
+            {
+                break rest.trim().to_string();
+            }
+            if let Some(body) = t.strip_prefix('[') {
+                let (key, value) = body.split_once(']').unwrap_or((body, ""));
+                let value = value.trim().to_string();
+                if key.eq_ignore_ascii_case("MORE") {
+                    if let Some(last) = keywords.last_mut() {
+                        last.1.push('\n');
+                        last.1.push_str(&value);
+                        continue;
+                    }
+                }
+                keywords.push((key.trim().to_ascii_uppercase(), value));
+            } else if !t.is_empty() {
+                keywords.push(("LABEL".to_string(), t.to_string()));
+            }
+            if line > 1000 {
+                return Err(src.error(line, "no TILT= line within the first 1000 lines"));
+            }
+        };
+        let tilt_line = line;
+        let mut nums = NumberStream::new(&src, line + 1, &[',']);
+        let tilt = match tilt_spec.to_ascii_uppercase().as_str() {
+            "NONE" => Tilt::None,
+            "INCLUDE" => {
+                let geometry = whole(&src, nums.next("lamp-to-luminaire geometry")?, 1, 3)? as u8;
+                let n = whole(&src, nums.next("number of tilt angles")?, 1, 3601)? as usize;
+                let angles = nums
+                    .take(n, "tilt angle")?
+                    .iter()
+                    .map(|t| t.value)
+                    .collect();
+                let factors = nums
+                    .take(n, "tilt multiplying factor")?
+                    .iter()
+                    .map(|t| t.value)
+                    .collect();
+                warnings.push(
+                    "TILT=INCLUDE data read; the distribution is used as measured (tilt factors not applied)"
+                        .to_string(),
+                );
+                Tilt::Include {
+                    geometry,
+                    angles,
+                    factors,
+                }
+            }
+            "" => {
+                return Err(src.error(
+                    tilt_line,
+                    "TILT= has no value (NONE, INCLUDE or a file name)",
+                ))
+            }
+            _ => {
+                warnings.push(format!(
+                    "line {tilt_line}: tilt file {tilt_spec:?} not read; the distribution is used as measured"
+                ));
+                Tilt::File(tilt_spec.clone())
+            }
+        };
+        let lamp_count = nums.next("number of lamps")?;
+        let lumens = nums.next("lumens per lamp")?;
+        let multiplier = nums.next("candela multiplier")?;
+        let n_vert = whole(&src, nums.next("number of vertical angles")?, 2, 3601)? as usize;
+        let n_horiz = whole(&src, nums.next("number of horizontal angles")?, 1, 3601)? as usize;
+        let ptype_tok = nums.next("photometric type")?;
+        let photometric_type = whole(&src, ptype_tok, 1, 3)? as u8;
+        if photometric_type != 1 {
+            return Err(src.error(
+                ptype_tok.line,
+                format!(
+                    "unsupported photometric type {} (Type {}): only Type C is supported",
+                    photometric_type,
+                    if photometric_type == 2 { "B" } else { "A" }
+                ),
+            ));
+        }
+        let units = whole(&src, nums.next("units type")?, 1, 2)? as u8;
+        let size = [
+            nums.next("opening width")?.value,
+            nums.next("opening length")?.value,
+            nums.next("opening height")?.value,
+        ];
+        let ballast_factor = nums.next("ballast factor")?.value;
+        let blpf = nums
+            .next("ballast-lamp photometric factor / future use")?
+            .value;
+        let input_watts = nums.next("input watts")?.value;
+        if lumens.value <= 0.0 && lumens.value != -1.0 {
+            return Err(src.error(
+                lumens.line,
+                format!(
+                    "lumens per lamp must be positive or -1, found {}",
+                    lumens.value
+                ),
+            ));
+        }
+        if lamp_count.value <= 0.0 {
+            return Err(src.error(
+                lamp_count.line,
+                format!(
+                    "number of lamps must be positive, found {}",
+                    lamp_count.value
+                ),
+            ));
+        }
+        if multiplier.value <= 0.0 {
+            return Err(src.error(
+                multiplier.line,
+                format!(
+                    "candela multiplier must be positive, found {}",
+                    multiplier.value
+                ),
+            ));
+        }
+        let v_tok = nums.take(n_vert, "vertical angle")?;
+        let h_tok = nums.take(n_horiz, "horizontal angle")?;
+        check_increasing(&src, &v_tok, 0.0, 180.0, "vertical")?;
+        check_increasing(&src, &h_tok, 0.0, 360.0, "horizontal")?;
+        let mut candela = Vec::with_capacity(n_horiz);
+        for h in &h_tok {
+            let row = nums.take(
+                n_vert,
+                &format!("candela value of horizontal angle {}", h.value),
+            )?;
+            if let Some(t) = row.iter().find(|t| t.value < 0.0) {
+                return Err(src.error(t.line, format!("negative candela value {}", t.value)));
+            }
+            candela.push(row.iter().map(|t| t.value).collect());
+        }
+        if let Some(l) = nums.remaining_content_line() {
+            return Err(src.error(
+                l,
+                format!("more data than {n_vert} vertical × {n_horiz} horizontal angles announce"),
+            ));
+        }
+        if nums.saw_comma {
+            warnings.push("decimal commas read as decimal points".to_string());
+        }
+        let file = IesFile {
+            version,
+            keywords,
+            tilt,
+            lamp_count: lamp_count.value,
+            lumens_per_lamp: lumens.value,
+            multiplier: multiplier.value,
+            photometric_type,
+            units,
+            size,
+            ballast_factor,
+            ballast_lamp_factor: blpf,
+            input_watts,
+            vertical: v_tok.iter().map(|t| t.value).collect(),
+            horizontal: h_tok.iter().map(|t| t.value).collect(),
+            candela,
+        };
+        // Validate the horizontal range now so conversion cannot fail later.
+        horizontal_symmetry(&file.horizontal).map_err(|m| src.error(h_tok[0].line, m))?;
+        Ok(Parsed {
+            data: file,
+            warnings,
+        })
+    }
+
+    /// Converts to the EULUMDAT data model (intensities in cd/klm). For absolute
+    /// photometry (lumens = −1) the lamp flux becomes the integrated luminaire flux and the
+    /// lamp count is negative, as EULUMDAT marks absolute photometry.
+    pub fn to_eulumdat(&self, file_name: &str) -> Eulumdat {
+        let stored_symmetry =
+            horizontal_symmetry(&self.horizontal).expect("validated when parsing");
+        let full = full_circle(&self.horizontal, stored_symmetry);
+        // Irregular half-circles that do not split as EULUMDAT needs are stored in full.
+        let symmetry = if symmetry_fits(stored_symmetry, &full) {
+            stored_symmetry
+        } else {
+            Symmetry::None
+        };
+        let scale = self.candela_scale();
+        // Absolute candela for any full-circle angle, through the IES storage symmetry.
+        let plane_at = |c: f64| -> Vec<f64> {
+            let target = match stored_symmetry {
+                Symmetry::Rotational => 0.0,
+                Symmetry::C90C270 => {
+                    if (90.0..=270.0).contains(&c) {
+                        c
+                    } else {
+                        (180.0 - c).rem_euclid(360.0)
+                    }
+                }
+                s => s.fold(c),
+            };
+            let k = self
+                .horizontal
+                .iter()
+                .position(|&h| angle_eq(h, target))
+                .expect("full circle built from the stored angles");
+            self.candela[k].iter().map(|v| v * scale).collect()
+        };
+        let stored = symmetry.stored_plane_indices(full.len());
+        let absolute: Vec<Vec<f64>> = stored.iter().map(|&i| plane_at(full[i])).collect();
+        let absolute_photometry = self.lumens_per_lamp < 0.0;
+        let lamp_flux = if absolute_photometry {
+            let planes: Vec<(f64, Vec<f64>)> = full.iter().map(|&c| (c, plane_at(c))).collect();
+            super::summary::integrate_flux(&planes, &self.vertical).0
+        } else {
+            self.lamp_count * self.lumens_per_lamp
+        };
+        let to_cdklm = if lamp_flux > 0.0 {
+            1000.0 / lamp_flux
+        } else {
+            0.0
+        };
+        let intensities: Vec<Vec<f64>> = absolute
+            .iter()
+            .map(|r| r.iter().map(|v| v * to_cdklm).collect())
+            .collect();
+        let mm = self.metres_per_unit() * 1000.0;
+        let [w, l, h] = self.size.map(|v| v.abs() * mm);
+        let round = self.size[0] < 0.0;
+        let kw = |k: &str| self.keyword(k).unwrap_or("").replace('\n', " ");
+        let count = self.lamp_count.round() as i32;
+        let mut ldt = Eulumdat {
+            company: kw("MANUFAC"),
+            ityp: if symmetry == Symmetry::Rotational {
+                1
+            } else {
+                3
+            },
+            symmetry,
+            dc: uniform_step(&full),
+            dg: uniform_step(&self.vertical),
+            report_number: kw("TEST"),
+            luminaire_name: kw("LUMINAIRE"),
+            luminaire_number: kw("LUMCAT"),
+            file_name: file_name.to_string(),
+            date_user: if kw("DATE").is_empty() {
+                kw("ISSUEDATE")
+            } else {
+                kw("DATE")
+            },
+            dimensions: Dimensions {
+                length: if round { w } else { l },
+                width: if round { 0.0 } else { w },
+                height: h,
+                area_length: if round { w } else { l },
+                area_width: if round { 0.0 } else { w },
+                area_heights: [0.0; 4],
+            },
+            dff_percent: 0.0,
+            lorl_percent: 100.0,
+            conversion_factor: 1.0,
+            tilt_deg: 0.0,
+            lamp_sets: vec![LampSet {
+                count: if absolute_photometry {
+                    -count.max(1)
+                } else {
+                    count
+                },
+                lamp_type: {
+                    let l = kw("LAMP");
+                    if l.is_empty() {
+                        kw("LAMPCAT")
+                    } else {
+                        l
+                    }
+                },
+                flux_lm: lamp_flux,
+                color: String::new(),
+                cri: String::new(),
+                watts: self.input_watts,
+            }],
+            direct_ratios: [0.0; 10],
+            c_angles: full,
+            gamma_angles: self.vertical.clone(),
+            intensities,
+        };
+        let planes = ldt.expanded();
+        let (flux, down) = super::summary::integrate_flux(&planes, &ldt.gamma_angles);
+        if flux > 0.0 {
+            ldt.lorl_percent = flux / 10.0;
+            ldt.dff_percent = down / flux * 100.0;
+        }
+        ldt
+    }
+}
+
+/// Writes `ldt` as an IES LM-63-2002 file (Type C, metres, TILT=NONE).
+pub fn write_ies(ldt: &Eulumdat) -> String {
+    let planes = ldt.expanded();
+    let lamp_flux = ldt.lamp_flux_lm();
+    let absolute = ldt.is_absolute();
+    let lamps: i32 = ldt
+        .lamp_sets
+        .iter()
+        .map(|s| s.count.abs())
+        .sum::<i32>()
+        .max(1);
+    let horizontal: Vec<f64> = match ldt.symmetry {
+        Symmetry::Rotational => vec![0.0],
+        Symmetry::C0C180 => planes.iter().map(|p| p.0).filter(|&c| c <= 180.0).collect(),
+        Symmetry::Quadrant => planes.iter().map(|p| p.0).filter(|&c| c <= 90.0).collect(),
+        Symmetry::C90C270 => planes
+            .iter()
+            .map(|p| p.0)
+            .filter(|&c| (90.0..=270.0).contains(&c))
+            .collect(),
+        Symmetry::None => planes.iter().map(|p| p.0).chain([360.0]).collect(),
+    };
+    let to_cd = lamp_flux / 1000.0;
+    let row = |c: f64| -> Vec<f64> {
+        let p = planes
+            .iter()
+            .find(|p| angle_eq(p.0, c))
+            .expect("angle taken from the planes");
+        p.1.iter().map(|v| v * to_cd).collect()
+    };
+    let mut out = String::from("IESNA:LM-63-2002\r\n");
+    let mut kw = |k: &str, v: &str| {
+        if !v.trim().is_empty() {
+            out.push_str(&format!("[{k}] {}\r\n", v.trim()));
+        }
+    };
+    kw("TEST", &ldt.report_number);
+    kw("MANUFAC", &ldt.company);
+    kw("LUMCAT", &ldt.luminaire_number);
+    kw("LUMINAIRE", &ldt.luminaire_name);
+    kw(
+        "LAMP",
+        &ldt.lamp_sets
+            .first()
+            .map(|s| s.lamp_type.clone())
+            .unwrap_or_default(),
+    );
+    kw("DATE", &ldt.date_user);
+    kw("OTHER", "written by goniolight from EULUMDAT");
+    out.push_str("TILT=NONE\r\n");
+    let d = &ldt.dimensions;
+    let (w, l) = if d.width == 0.0 && d.length > 0.0 {
+        (-d.length / 1000.0, -d.length / 1000.0)
+    } else {
+        (d.width / 1000.0, d.length / 1000.0)
+    };
+    let lumens = if absolute {
+        -1.0
+    } else {
+        lamp_flux / lamps as f64
+    };
+    let watts: f64 = ldt.lamp_sets.iter().map(|s| s.watts).sum();
+    out.push_str(&format!(
+        "{} {} 1 {} {} 1 2 {} {} {}\r\n1 1 {}\r\n",
+        lamps,
+        fmt(lumens),
+        ldt.gamma_angles.len(),
+        horizontal.len(),
+        fmt(w),
+        fmt(l),
+        fmt(d.height / 1000.0),
+        fmt(watts)
+    ));
+    write_values(&mut out, &ldt.gamma_angles);
+    write_values(&mut out, &horizontal);
+    for &h in &horizontal {
+        write_values(&mut out, &row(h));
+    }
+    out
+}
+
+fn write_values(out: &mut String, values: &[f64]) {
+    for chunk in values.chunks(10) {
+        let line: Vec<String> = chunk.iter().map(|v| fmt(*v)).collect();
+        out.push_str(&line.join(" "));
+        out.push_str("\r\n");
+    }
+}
+
+/// Up to six decimals, trailing zeros dropped.
+fn fmt(v: f64) -> String {
+    let r = (v * 1e6).round() / 1e6;
+    if r == 0.0 {
+        "0".to_string()
+    } else {
+        format!("{r}")
+    }
+}
+
+fn strip_prefix_ci<'a>(s: &'a str, prefix: &str) -> Option<&'a str> {
+    (s.len() >= prefix.len() && s[..prefix.len()].eq_ignore_ascii_case(prefix))
+        .then(|| &s[prefix.len()..])
+}
+
+fn whole(src: &SourceText, t: super::text::Token, lo: i64, hi: i64) -> Result<i64, ParseError> {
+    if t.value.fract() != 0.0 || t.value < lo as f64 || t.value > hi as f64 {
+        return Err(src.error(
+            t.line,
+            format!(
+                "expected a whole number between {lo} and {hi}, found {}",
+                t.value
+            ),
+        ));
+    }
+    Ok(t.value as i64)
+}
+
+fn check_increasing(
+    src: &SourceText,
+    t: &[super::text::Token],
+    lo: f64,
+    hi: f64,
+    what: &str,
+) -> Result<(), ParseError> {
+    for (i, tok) in t.iter().enumerate() {
+        if tok.value < lo || tok.value > hi {
+            return Err(src.error(
+                tok.line,
+                format!("{what} angle {} outside [{lo}°, {hi}°]", tok.value),
+            ));
+        }
+        if i > 0 && tok.value <= t[i - 1].value {
+            return Err(src.error(
+                tok.line,
+                format!(
+                    "{what} angles must increase: {} follows {}",
+                    tok.value,
+                    t[i - 1].value
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The symmetry implied by the horizontal angle range of a Type C file.
+fn horizontal_symmetry(h: &[f64]) -> Result<Symmetry, String> {
+    let first = h[0];
+    let last = h[h.len() - 1];
+    let sym = match (first, last) {
+        _ if h.len() == 1 && first == 0.0 => Symmetry::Rotational,
+        (f, l) if f == 0.0 && l == 90.0 => Symmetry::Quadrant,
+        (f, l) if f == 0.0 && l == 180.0 => Symmetry::C0C180,
+        (f, l) if f == 90.0 && l == 270.0 => Symmetry::C90C270,
+        (f, l) if f == 0.0 && l > 180.0 => Symmetry::None,
+        _ => {
+            return Err(format!(
+                "unsupported horizontal angle range {first}°–{last}° (expected 0, 0–90, 0–180, 90–270 or 0–360)"
+            ))
+        }
+    };
+    Ok(sym)
+}
+
+/// The full circle of C angles in `[0, 360)` implied by the stored horizontal angles.
+fn full_circle(h: &[f64], symmetry: Symmetry) -> Vec<f64> {
+    let mut all: Vec<f64> = match symmetry {
+        Symmetry::Rotational => vec![0.0],
+        Symmetry::None => h.to_vec(),
+        Symmetry::C0C180 => h.iter().flat_map(|&c| [c, 360.0 - c]).collect(),
+        Symmetry::C90C270 => h.iter().flat_map(|&c| [c, 180.0 - c]).collect(),
+        Symmetry::Quadrant => h
+            .iter()
+            .flat_map(|&c| [c, 180.0 - c, 180.0 + c, 360.0 - c])
+            .collect(),
+    };
+    for c in &mut all {
+        *c = c.rem_euclid(360.0);
+        if *c > 360.0 - 1e-9 {
+            *c = 0.0;
+        }
+    }
+    all.sort_by(f64::total_cmp);
+    all.dedup_by(|a, b| angle_eq(*a, *b));
+    all
+}
+
+/// Whether the full circle `full` splits into the stored planes of `symmetry` exactly.
+fn symmetry_fits(symmetry: Symmetry, full: &[f64]) -> bool {
+    if symmetry == Symmetry::Rotational {
+        return true;
+    }
+    if symmetry.check_plane_count(full.len()).is_err() {
+        return false;
+    }
+    let stored = symmetry.stored_plane_indices(full.len());
+    stored
+        .iter()
+        .all(|&i| angle_eq(symmetry.fold(full[i]), full[i]))
+        && full
+            .iter()
+            .all(|&c| stored.iter().any(|&i| angle_eq(full[i], symmetry.fold(c))))
+}
+
+fn uniform_step(a: &[f64]) -> f64 {
+    if a.len() < 2 {
+        return 0.0;
+    }
+    let step = a[1] - a[0];
+    let uniform = a.windows(2).all(|w| ((w[1] - w[0]) - step).abs() < 1e-6);
+    if uniform {
+        step
+    } else {
+        0.0
+    }
+}

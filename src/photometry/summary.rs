@@ -1,0 +1,205 @@
+//! Photometric summary: integrated flux over exact solid-angle bands, light output ratio,
+//! downward flux fraction, peak intensity, beam (50 %) and field (10 %) angles.
+
+use serde::Serialize;
+
+use super::distribution::Distribution;
+use super::grid::Interp;
+
+/// Integrates intensity planes `(C angle, values over γ)` over the sphere.
+///
+/// Each measured value stands for the band between the midpoints to its neighbours (clipped
+/// to the measured γ range) and between the midpoints to the neighbouring C planes; a band's
+/// solid angle is exact: ΔC · (cos γ_lo − cos γ_hi). Returns `(total, downward)` in
+/// intensity unit × sr (lm for cd, lm/klm for cd/klm); downward counts γ < 90°.
+pub fn integrate_flux(planes: &[(f64, Vec<f64>)], gammas: &[f64]) -> (f64, f64) {
+    let bands = gamma_bands(gammas);
+    let widths = c_widths(planes.iter().map(|p| p.0).collect::<Vec<_>>().as_slice());
+    let mut total = 0.0;
+    let mut down = 0.0;
+    for ((_, values), dc) in planes.iter().zip(widths) {
+        for (v, (lo, hi)) in values.iter().zip(&bands) {
+            total += v * dc * (lo.cos() - hi.cos());
+            if *lo < std::f64::consts::FRAC_PI_2 {
+                let top = hi.min(std::f64::consts::FRAC_PI_2);
+                down += v * dc * (lo.cos() - top.cos());
+            }
+        }
+    }
+    (total, down)
+}
+
+/// γ band edges (radians) of each angle: midpoints, clipped to the first and last angle.
+fn gamma_bands(g: &[f64]) -> Vec<(f64, f64)> {
+    let n = g.len();
+    (0..n)
+        .map(|i| {
+            let lo = if i == 0 {
+                g[0]
+            } else {
+                0.5 * (g[i - 1] + g[i])
+            };
+            let hi = if i + 1 == n {
+                g[n - 1]
+            } else {
+                0.5 * (g[i] + g[i + 1])
+            };
+            (lo.to_radians(), hi.to_radians())
+        })
+        .collect()
+}
+
+/// C width (radians) of each plane: half the gaps to its neighbours, wrapping at 360°.
+fn c_widths(c: &[f64]) -> Vec<f64> {
+    let n = c.len();
+    if n == 1 {
+        return vec![std::f64::consts::TAU];
+    }
+    let gap = |a: f64, b: f64| {
+        let d = (b - a).rem_euclid(360.0);
+        if d == 0.0 {
+            360.0
+        } else {
+            d
+        }
+    };
+    (0..n)
+        .map(|j| {
+            let before = gap(c[(j + n - 1) % n], c[j]);
+            let after = gap(c[j], c[(j + 1) % n]);
+            (0.5 * (before + after)).to_radians()
+        })
+        .collect()
+}
+
+/// A value for each of the two main planes.
+#[derive(Debug, Clone, Copy, Serialize, PartialEq)]
+pub struct PlanePair {
+    /// In the C0–C180 plane.
+    pub c0_c180: Option<f64>,
+    /// In the C90–C270 plane.
+    pub c90_c270: Option<f64>,
+}
+
+/// The photometric summary of a luminaire.
+#[derive(Debug, Clone, Serialize)]
+pub struct Summary {
+    /// Sum of the declared lamp fluxes, lm.
+    pub lamp_flux_lm: f64,
+    /// Integrated luminaire flux, lm.
+    pub flux_lm: f64,
+    /// Declared light output ratio, percent.
+    pub lorl_declared: f64,
+    /// Integrated flux over lamp flux, percent.
+    pub lorl_computed: f64,
+    /// Declared downward flux fraction, percent.
+    pub dff_declared: f64,
+    /// Computed downward flux fraction, percent.
+    pub dff_computed: f64,
+    /// Peak intensity, cd/klm.
+    pub max_intensity: f64,
+    /// Where the peak is: `[C, γ]` in degrees.
+    pub max_direction_deg: [f64; 2],
+    /// Full angle between the 50 % points around the peak of each plane, degrees.
+    pub beam_angle_deg: PlanePair,
+    /// Full angle between the 10 % points, degrees.
+    pub field_angle_deg: PlanePair,
+}
+
+impl Summary {
+    /// Computes the summary of `dist` with its declared LORL and DFF.
+    pub fn of(dist: &Distribution, lorl_declared: f64, dff_declared: f64) -> Summary {
+        let (rel_flux, down) = dist.relative_flux();
+        let (max_intensity, c_max, g_max) = dist.max_intensity();
+        Summary {
+            lamp_flux_lm: dist.lamp_flux_lm(),
+            flux_lm: rel_flux * dist.lamp_flux_lm() / 1000.0,
+            lorl_declared,
+            lorl_computed: rel_flux / 10.0,
+            dff_declared,
+            dff_computed: if rel_flux > 0.0 {
+                down / rel_flux * 100.0
+            } else {
+                0.0
+            },
+            max_intensity,
+            max_direction_deg: [c_max, g_max],
+            beam_angle_deg: PlanePair {
+                c0_c180: spread_angle(dist, 0.0, 0.5),
+                c90_c270: spread_angle(dist, 90.0, 0.5),
+            },
+            field_angle_deg: PlanePair {
+                c0_c180: spread_angle(dist, 0.0, 0.1),
+                c90_c270: spread_angle(dist, 90.0, 0.1),
+            },
+        }
+    }
+}
+
+/// Full angle around the peak of the great circle through planes `c` and `c + 180`
+/// between the directions where the intensity falls to `fraction` of that peak.
+/// `None` when the intensity is zero or never falls that low.
+fn spread_angle(dist: &Distribution, c: f64, fraction: f64) -> Option<f64> {
+    const STEP: f64 = 0.05;
+    // t in (-180, 180]: t ≥ 0 is plane c at γ = t, t < 0 plane c + 180 at γ = −t.
+    let n = (360.0 / STEP) as usize;
+    let value = |i: usize| {
+        let t = -180.0 + (i as f64) * STEP;
+        if t >= 0.0 {
+            dist.sample(c, t, Interp::Bilinear)
+        } else {
+            dist.sample(c + 180.0, -t, Interp::Bilinear)
+        }
+    };
+    let samples: Vec<f64> = (0..=n).map(value).collect();
+    let (peak_i, &peak) = samples
+        .iter()
+        .enumerate()
+        .max_by(|a, b| a.1.total_cmp(b.1))?;
+    if peak <= 0.0 {
+        return None;
+    }
+    let threshold = peak * fraction;
+    let crossing = |dir: isize| -> Option<f64> {
+        let mut i = peak_i as isize;
+        loop {
+            let next = i + dir;
+            if next < 0 || next > n as isize {
+                return None;
+            }
+            let (a, b) = (samples[i as usize], samples[next as usize]);
+            if b < threshold {
+                let s = (a - threshold) / (a - b);
+                return Some((i as f64 + s * dir as f64) * STEP);
+            }
+            i = next;
+        }
+    };
+    let right = crossing(1)?;
+    let left = crossing(-1)?;
+    Some(right - left)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn isotropic_source_integrates_to_four_pi() {
+        let g: Vec<f64> = (0..=36).map(|i| i as f64 * 5.0).collect();
+        let planes: Vec<(f64, Vec<f64>)> =
+            (0..24).map(|j| (j as f64 * 15.0, vec![1.0; 37])).collect();
+        let (total, down) = integrate_flux(&planes, &g);
+        assert!((total - 4.0 * std::f64::consts::PI).abs() < 1e-12);
+        assert!((down - 2.0 * std::f64::consts::PI).abs() < 1e-12);
+    }
+
+    #[test]
+    fn lambertian_downlight_integrates_to_pi() {
+        // I = cos γ below the horizon: Φ = π exactly; midpoint bands converge as h².
+        let g: Vec<f64> = (0..=180).map(|i| i as f64).collect();
+        let row: Vec<f64> = g.iter().map(|a| a.to_radians().cos().max(0.0)).collect();
+        let (total, _) = integrate_flux(&[(0.0, row)], &g);
+        assert!((total / std::f64::consts::PI - 1.0).abs() < 1e-4, "{total}");
+    }
+}
