@@ -461,7 +461,13 @@ impl<'a> HeaderReader<'a> {
                 ),
             ));
         }
-        let blank_tail = self.src.lines.len().saturating_sub(numbers.line());
+        let blank_tail = self
+            .src
+            .lines
+            .iter()
+            .rev()
+            .take_while(|l| l.trim().is_empty())
+            .count();
         if blank_tail > 0 {
             self.warnings
                 .push(format!("{blank_tail} trailing blank line(s) ignored"));

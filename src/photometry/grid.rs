@@ -414,7 +414,8 @@ mod tests {
     fn linear_data_is_reproduced_by_every_cubic() {
         let grid = ramp_grid();
         for interp in [Interp::Bilinear, Interp::CatmullRom, Interp::Monotone] {
-            for g in [5.0, 12.5, 33.3, 77.0] {
+            // Away from the pole (where the data is |γ|) and the zero margin past 90°.
+            for g in [12.5, 33.3, 55.0, 69.0] {
                 let v = grid.sample(17.0, g, interp);
                 assert!((v - g).abs() < 1e-9, "{interp:?} at {g}: {v}");
             }

@@ -43,7 +43,7 @@ pub enum Tilt {
 }
 
 /// The shape of the luminous opening, decoded from the signs of width, length and height
-/// (LM-63-2002 §5.11, LM-63-2019 Annex D).
+/// (LM-63-2002 §5.11; a zero length with a negative width is the LM-63-1995 round form).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum OpeningShape {
@@ -158,8 +158,15 @@ impl IesFile {
                 0
             }
         };
+        // LM-63-2002 sign patterns, plus the LM-63-1995 habit of a negative width (the
+        // diameter) with a zero length for round shapes.
         let shape = match (sign(w), sign(l), sign(h)) {
             (0, 0, 0) => OpeningShape::Point,
+            (-1, 0, 0) => OpeningShape::Circular,
+            (-1, 0, 1) => OpeningShape::VerticalCylinder,
+            (-1, 0, -1) => OpeningShape::Sphere,
+            (0, 1, -1) => OpeningShape::HorizontalCylinderAlongLength,
+            (1, 0, -1) => OpeningShape::HorizontalCylinderAlongWidth,
             (1, 1, 0) => OpeningShape::Rectangular,
             (1, 1, 1) => OpeningShape::RectangularWithSides,
             (-1, -1, 0) if w == l => OpeningShape::Circular,
@@ -200,7 +207,7 @@ impl IesFile {
         let mut keywords: Vec<(String, String)> = Vec::new();
         let tilt_spec = loop {
             let Some(text) = src.lines.get(line) else {
-                return Err(src.error(line, "no TILT= line: not an IES LM-63 file"));
+                return Err(src.error(src.lines.len() + 1, "no TILT= line: not an IES LM-63 file"));
             };
             line += 1;
             let t = text.trim();
@@ -592,7 +599,8 @@ fn fmt(v: f64) -> String {
 }
 
 fn strip_prefix_ci<'a>(s: &'a str, prefix: &str) -> Option<&'a str> {
-    (s.len() >= prefix.len() && s[..prefix.len()].eq_ignore_ascii_case(prefix))
+    let head = s.get(..prefix.len())?;
+    head.eq_ignore_ascii_case(prefix)
         .then(|| &s[prefix.len()..])
 }
 

@@ -1,0 +1,88 @@
+//! Helpers shared by the integration tests.
+#![allow(dead_code)]
+
+use std::path::{Path, PathBuf};
+
+/// The repository root.
+pub fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// A bundled luminaire file by its path under `luminaires/`.
+pub fn luminaire(rel: &str) -> PathBuf {
+    root().join("luminaires").join(rel)
+}
+
+/// Every bundled `.ldt` and `.ies` file.
+pub fn all_luminaire_files() -> Vec<PathBuf> {
+    let mut out = Vec::new();
+    walk(&root().join("luminaires"), &mut out);
+    out.sort();
+    assert!(
+        out.len() >= 60,
+        "expected the bundled luminaires, found {}",
+        out.len()
+    );
+    out
+}
+
+fn walk(dir: &Path, out: &mut Vec<PathBuf>) {
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let p = entry.unwrap().path();
+        if p.is_dir() {
+            walk(&p, out);
+        } else if matches!(
+            p.extension().and_then(|e| e.to_str()),
+            Some("ldt") | Some("ies")
+        ) {
+            out.push(p);
+        }
+    }
+}
+
+/// An independent, minimal EULUMDAT reader used as the oracle for the expansion tests:
+/// it returns (Isym, C angles, γ angles, stored planes in file order).
+pub fn raw_ldt(path: &Path) -> (u8, Vec<f64>, Vec<f64>, Vec<Vec<f64>>) {
+    let text = std::fs::read_to_string(path).unwrap();
+    let lines: Vec<&str> = text.lines().map(|l| l.trim()).collect();
+    let num = |s: &str| s.replace(',', ".").parse::<f64>().unwrap();
+    let isym = num(lines[2]) as u8;
+    let mc = num(lines[3]) as usize;
+    let ng = num(lines[5]) as usize;
+    let sets = num(lines[25]) as usize;
+    let data: Vec<f64> = lines[26 + 6 * sets..]
+        .iter()
+        .flat_map(|l| l.split_whitespace())
+        .map(num)
+        .collect();
+    let c = data[10..10 + mc].to_vec();
+    let g = data[10 + mc..10 + mc + ng].to_vec();
+    let values = &data[10 + mc + ng..];
+    let planes = values.chunks(ng).map(|c| c.to_vec()).collect();
+    (isym, c, g, planes)
+}
+
+/// Runs the built binary with `args` and `stdin`; returns (exit code, stdout, stderr).
+pub fn run_cli(args: &[&str], stdin: &str) -> (i32, String, String) {
+    use std::io::Write;
+    use std::process::{Command, Stdio};
+    let mut child = Command::new(env!("CARGO_BIN_EXE_goniolight"))
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(stdin.as_bytes())
+        .unwrap();
+    let out = child.wait_with_output().unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
