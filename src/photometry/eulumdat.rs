@@ -7,7 +7,7 @@
 use super::error::ParseError;
 use super::grid::angle_eq;
 use super::symmetry::Symmetry;
-use super::text::{parse_number, NumberStream, SourceText};
+use super::text::{decode_text, parse_number, NumberStream, SourceText};
 
 /// Largest number of C planes or γ angles accepted: a 0.1° grid, far beyond any goniometer.
 pub const MAX_ANGLES: usize = 3601;
@@ -157,7 +157,8 @@ impl Eulumdat {
 
     /// Reads EULUMDAT bytes; `name` is used in messages.
     pub fn parse(name: &str, bytes: &[u8]) -> Result<Parsed<Eulumdat>, ParseError> {
-        let src = SourceText::decode(name, bytes);
+        let (text, decode_warnings) = decode_text(bytes);
+        let src = SourceText::new(name, &text, decode_warnings);
         let mut reader = HeaderReader::new(&src);
         let data = reader.read()?;
         let mut warnings = src.warnings.clone();
@@ -229,15 +230,15 @@ fn num(v: f64) -> String {
 }
 
 /// Reads the fixed-position header fields, tracking the line and collecting warnings.
-struct HeaderReader<'a> {
-    src: &'a SourceText,
+struct HeaderReader<'a, 't> {
+    src: &'a SourceText<'t>,
     line: usize,
     warnings: Vec<String>,
     comma_warned: bool,
 }
 
-impl<'a> HeaderReader<'a> {
-    fn new(src: &'a SourceText) -> Self {
+impl<'a, 't> HeaderReader<'a, 't> {
+    fn new(src: &'a SourceText<'t>) -> Self {
         HeaderReader {
             src,
             line: 0,
@@ -546,7 +547,7 @@ impl<'a> HeaderReader<'a> {
 
 /// Angles must lie in `[lo, hi]` and increase strictly.
 fn check_angles(
-    src: &SourceText,
+    src: &SourceText<'_>,
     tokens: &[super::text::Token],
     lo: f64,
     hi: f64,

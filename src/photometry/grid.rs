@@ -183,34 +183,65 @@ impl Grid {
         (self.c.len() == 1 || self.c.uniform.is_some()) && self.g.uniform.is_some()
     }
 
-    /// γ knot `k` of plane `plane`: its angle and value, reaching across the poles or
-    /// into the zero margin beyond the γ range.
+    /// Angle of γ knot `k`: a grid angle, its mirror across a pole, or a step beyond the
+    /// end of a γ range that stops short of a pole.
     #[inline]
-    fn knot(&self, plane: usize, k: isize) -> (f64, f64) {
-        let ng = self.g.len() as isize;
+    fn knot_angle(&self, k: isize) -> f64 {
         let g = &self.g.angles;
+        let ng = g.len() as isize;
         if (0..ng).contains(&k) {
-            return (g[k as usize], self.values[plane * ng as usize + k as usize]);
+            return g[k as usize];
         }
         if k < 0 {
             let m = -k;
             if g[0] == 0.0 && m < ng {
-                let opp = self.opposite[plane];
-                return (-g[m as usize], self.values[opp * ng as usize + m as usize]);
+                return -g[m as usize];
             }
-            return (g[0] - (g[1] - g[0]) * m as f64, 0.0);
+            return g[0] - (g[1] - g[0]) * m as f64;
         }
         let last = ng - 1;
         let m = 2 * last - k;
         if g[last as usize] == 180.0 && m >= 0 {
-            let opp = self.opposite[plane];
-            return (
-                360.0 - g[m as usize],
-                self.values[opp * ng as usize + m as usize],
-            );
+            return 360.0 - g[m as usize];
         }
         let gl = g[last as usize];
-        (gl + (gl - g[last as usize - 1]) * (k - last) as f64, 0.0)
+        gl + (gl - g[last as usize - 1]) * (k - last) as f64
+    }
+
+    /// Value of γ knot `k` of plane `plane` (see `knot_angle`): across a pole it comes
+    /// from the opposite plane, beyond a γ range it is zero.
+    #[inline]
+    fn knot_value(&self, plane: usize, k: isize) -> f64 {
+        let g = &self.g.angles;
+        let ng = g.len() as isize;
+        if (0..ng).contains(&k) {
+            return self.values[plane * ng as usize + k as usize];
+        }
+        let last = ng - 1;
+        let m = if k < 0 { -k } else { 2 * last - k };
+        let pole = if k < 0 {
+            g[0] == 0.0
+        } else {
+            g[last as usize] == 180.0
+        };
+        if pole && (0..ng).contains(&m) {
+            self.values[self.opposite[plane] * ng as usize + m as usize]
+        } else {
+            0.0
+        }
+    }
+
+    /// The four γ knot values `gi − 1 … gi + 2` of `plane`.
+    #[inline]
+    fn row(&self, plane: usize, gi: isize) -> [f64; 4] {
+        let ng = self.g.len() as isize;
+        if gi >= 1 && gi + 2 < ng {
+            let base = plane * ng as usize + gi as usize - 1;
+            let v = &self.values[base..base + 4];
+            [v[0], v[1], v[2], v[3]]
+        } else {
+            [-1, 0, 1, 2].map(|d| self.knot_value(plane, gi + d))
+        }
     }
 
     /// The cell of the query, or `None` where the intensity is zero by definition
@@ -238,7 +269,11 @@ impl Grid {
         };
         let nc = self.c.len();
         let ca = &self.c.angles;
-        let mut c = c.rem_euclid(360.0);
+        let mut c = if (0.0..360.0).contains(&c) {
+            c
+        } else {
+            c.rem_euclid(360.0)
+        };
         if nc == 1 {
             return Some(Cell {
                 planes: [0; 4],
@@ -260,11 +295,17 @@ impl Grid {
         let mut planes = [0; 4];
         let mut c_knots = [0.0; 4];
         for d in 0..4 {
+            // k ∈ [−1, nc + 1]: wrap with compares (integer division is slow here).
             let k = j as isize + d as isize - 1;
-            let idx = k.rem_euclid(nc as isize) as usize;
-            let wraps = k.div_euclid(nc as isize) as f64;
-            planes[d] = idx;
-            c_knots[d] = ca[idx] + 360.0 * wraps;
+            let (idx, offset) = if k < 0 {
+                (k + nc as isize, -360.0)
+            } else if k >= nc as isize {
+                (k - nc as isize, 360.0)
+            } else {
+                (k, 0.0)
+            };
+            planes[d] = idx as usize;
+            c_knots[d] = ca[idx as usize] + offset;
         }
         Some(Cell {
             planes,
@@ -275,57 +316,66 @@ impl Grid {
         })
     }
 
-    /// Interpolates plane `plane` at γ of `cell` with `interp` (not `Nearest`).
-    #[inline]
-    fn along_gamma(&self, plane: usize, cell: &Cell, interp: Interp) -> f64 {
-        let k = cell.gi;
-        let (t1, p1) = self.knot(plane, k);
-        let (t2, p2) = self.knot(plane, k + 1);
-        if interp == Interp::Bilinear {
-            return lerp(t1, p1, t2, p2, cell.g);
-        }
-        let (t0, p0) = self.knot(plane, k - 1);
-        let (t3, p3) = self.knot(plane, k + 2);
-        hermite([t0, t1, t2, t3], [p0, p1, p2, p3], cell.g, interp)
-    }
-
     /// The intensity at (`c`, `g`) degrees, interpolated with `interp`, never negative.
     pub fn sample(&self, c: f64, g: f64, interp: Interp) -> f64 {
         let Some(cell) = self.cell(c, g) else {
             return 0.0;
         };
         let single = self.c.len() == 1;
+        let gi = cell.gi;
         let v = match interp {
             Interp::Nearest => {
-                let (t1, _) = self.knot(0, cell.gi);
-                let (t2, _) = self.knot(0, cell.gi + 1);
+                let (t1, t2) = (self.knot_angle(gi), self.knot_angle(gi + 1));
                 let k = if cell.g - t1 <= t2 - cell.g {
-                    cell.gi
+                    gi
                 } else {
-                    cell.gi + 1
+                    gi + 1
                 };
                 let plane = if single || cell.c - cell.c_knots[1] <= cell.c_knots[2] - cell.c {
                     cell.planes[1]
                 } else {
                     cell.planes[2]
                 };
-                self.knot(plane, k).1
+                self.knot_value(plane, k)
             }
             Interp::Bilinear => {
-                let a = self.along_gamma(cell.planes[1], &cell, interp);
+                let (t1, t2) = (self.knot_angle(gi), self.knot_angle(gi + 1));
+                let along = |plane| {
+                    let (p1, p2) = (self.knot_value(plane, gi), self.knot_value(plane, gi + 1));
+                    lerp(t1, p1, t2, p2, cell.g)
+                };
+                let a = along(cell.planes[1]);
                 if single {
                     a
                 } else {
-                    let b = self.along_gamma(cell.planes[2], &cell, interp);
-                    lerp(cell.c_knots[1], a, cell.c_knots[2], b, cell.c)
+                    lerp(
+                        cell.c_knots[1],
+                        a,
+                        cell.c_knots[2],
+                        along(cell.planes[2]),
+                        cell.c,
+                    )
                 }
             }
-            Interp::CatmullRom | Interp::Monotone => {
+            Interp::CatmullRom => {
+                // Catmull-Rom is linear in the data: weights once per axis.
+                let t = [-1, 0, 1, 2].map(|d| self.knot_angle(gi + d));
+                let wg = catmull_rom_weights(t, cell.g);
+                let along = |plane| dot(wg, self.row(plane, gi));
                 if single {
-                    self.along_gamma(0, &cell, interp)
+                    along(0)
                 } else {
-                    let p = cell.planes.map(|pl| self.along_gamma(pl, &cell, interp));
-                    hermite(cell.c_knots, p, cell.c, interp)
+                    let wc = catmull_rom_weights(cell.c_knots, cell.c);
+                    dot(wc, cell.planes.map(along))
+                }
+            }
+            Interp::Monotone => {
+                let t = [-1, 0, 1, 2].map(|d| self.knot_angle(gi + d));
+                let along = |plane| monotone_cubic(t, self.row(plane, gi), cell.g);
+                if single {
+                    along(0)
+                } else {
+                    monotone_cubic(cell.c_knots, cell.planes.map(along), cell.c)
                 }
             }
         };
@@ -347,7 +397,7 @@ impl Grid {
         };
         for &p in planes {
             for k in [cell.gi, cell.gi + 1] {
-                let v = self.knot(p, k).1;
+                let v = self.knot_value(p, k);
                 lo = lo.min(v);
                 hi = hi.max(v);
             }
@@ -374,29 +424,47 @@ fn limited_slope(da: f64, db: f64, ha: f64, hb: f64) -> f64 {
     (w1 + w2) / (w1 / da + w2 / db)
 }
 
-/// Cubic Hermite on `[t[1], t[2]]` with slopes from the four knots.
 #[inline]
-fn hermite(t: [f64; 4], p: [f64; 4], x: f64, interp: Interp) -> f64 {
+fn dot(a: [f64; 4], b: [f64; 4]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3]
+}
+
+/// Hermite basis on `[t[1], t[2]]` at `x`: (h00, h10·h, h01, h11·h).
+#[inline]
+fn hermite_basis(t: [f64; 4], x: f64) -> [f64; 4] {
     let h = t[2] - t[1];
-    let (m1, m2) = if interp == Interp::Monotone {
-        let d0 = (p[1] - p[0]) / (t[1] - t[0]);
-        let d1 = (p[2] - p[1]) / h;
-        let d2 = (p[3] - p[2]) / (t[3] - t[2]);
-        (
-            limited_slope(d0, d1, t[1] - t[0], h),
-            limited_slope(d1, d2, h, t[3] - t[2]),
-        )
-    } else {
-        ((p[2] - p[0]) / (t[2] - t[0]), (p[3] - p[1]) / (t[3] - t[1]))
-    };
     let s = (x - t[1]) / h;
     let s2 = s * s;
     let s3 = s2 * s;
-    let h00 = 2.0 * s3 - 3.0 * s2 + 1.0;
-    let h10 = s3 - 2.0 * s2 + s;
-    let h01 = -2.0 * s3 + 3.0 * s2;
-    let h11 = s3 - s2;
-    h00 * p[1] + h10 * h * m1 + h01 * p[2] + h11 * h * m2
+    [
+        2.0 * s3 - 3.0 * s2 + 1.0,
+        (s3 - 2.0 * s2 + s) * h,
+        -2.0 * s3 + 3.0 * s2,
+        (s3 - s2) * h,
+    ]
+}
+
+/// Weights of the four knot values in the Catmull-Rom cubic on `[t[1], t[2]]` (slopes by
+/// central differences over the possibly non-uniform knots).
+#[inline]
+fn catmull_rom_weights(t: [f64; 4], x: f64) -> [f64; 4] {
+    let [h00, h10, h01, h11] = hermite_basis(t, x);
+    let a = h10 / (t[2] - t[0]);
+    let b = h11 / (t[3] - t[1]);
+    [-a, h00 - b, h01 + a, b]
+}
+
+/// Monotone (Fritsch–Butland) cubic on `[t[1], t[2]]` through `p[1]` and `p[2]`.
+#[inline]
+fn monotone_cubic(t: [f64; 4], p: [f64; 4], x: f64) -> f64 {
+    let h = t[2] - t[1];
+    let d0 = (p[1] - p[0]) / (t[1] - t[0]);
+    let d1 = (p[2] - p[1]) / h;
+    let d2 = (p[3] - p[2]) / (t[3] - t[2]);
+    let m1 = limited_slope(d0, d1, t[1] - t[0], h);
+    let m2 = limited_slope(d1, d2, h, t[3] - t[2]);
+    let [h00, h10, h01, h11] = hermite_basis(t, x);
+    h00 * p[1] + h10 * m1 + h01 * p[2] + h11 * m2
 }
 
 #[cfg(test)]
@@ -434,7 +502,7 @@ mod tests {
     fn catmull_rom_uniform_matches_textbook_weights() {
         let g: Vec<f64> = (0..=18).map(|i| i as f64 * 10.0).collect();
         let row: Vec<f64> = g.iter().map(|x| (x / 30.0).sin() + 2.0).collect();
-        let grid = Grid::new(vec![0.0], g, &[row.clone()]);
+        let grid = Grid::new(vec![0.0], g, std::slice::from_ref(&row));
         // Between knots 3 and 4 at s = 0.25.
         let s: f64 = 0.25;
         let w = [

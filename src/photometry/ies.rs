@@ -7,7 +7,7 @@ use super::error::ParseError;
 use super::eulumdat::{Dimensions, Eulumdat, LampSet, Parsed};
 use super::grid::angle_eq;
 use super::symmetry::Symmetry;
-use super::text::{NumberStream, SourceText};
+use super::text::{decode_text, NumberStream, SourceText};
 
 /// Which edition of LM-63 a file declares.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -187,7 +187,8 @@ impl IesFile {
 
     /// Reads IES bytes; `name` is used in messages.
     pub fn parse(name: &str, bytes: &[u8]) -> Result<Parsed<IesFile>, ParseError> {
-        let src = SourceText::decode(name, bytes);
+        let (text, decode_warnings) = decode_text(bytes);
+        let src = SourceText::new(name, &text, decode_warnings);
         let mut warnings = src.warnings.clone();
         let first = src.lines.first().map(|l| l.trim()).unwrap_or("");
         let (version, mut line) = match first.to_ascii_uppercase().as_str() {
@@ -604,7 +605,7 @@ fn strip_prefix_ci<'a>(s: &'a str, prefix: &str) -> Option<&'a str> {
         .then(|| &s[prefix.len()..])
 }
 
-fn whole(src: &SourceText, t: super::text::Token, lo: i64, hi: i64) -> Result<i64, ParseError> {
+fn whole(src: &SourceText<'_>, t: super::text::Token, lo: i64, hi: i64) -> Result<i64, ParseError> {
     if t.value.fract() != 0.0 || t.value < lo as f64 || t.value > hi as f64 {
         return Err(src.error(
             t.line,
@@ -618,7 +619,7 @@ fn whole(src: &SourceText, t: super::text::Token, lo: i64, hi: i64) -> Result<i6
 }
 
 fn check_increasing(
-    src: &SourceText,
+    src: &SourceText<'_>,
     t: &[super::text::Token],
     lo: f64,
     hi: f64,

@@ -1,51 +1,57 @@
 //! Text handling shared by the EULUMDAT and IES readers: byte decoding (BOM, UTF-8 or
 //! Windows-1252), line splitting (CRLF/LF/CR) and number parsing with comma decimals.
 
+use std::borrow::Cow;
+
 use super::error::ParseError;
 
-/// A decoded photometric file: its lines (without terminators) and the warnings that
-/// decoding produced.
+/// Decodes `bytes`: a UTF-8 BOM is skipped, valid UTF-8 is borrowed as is, anything else
+/// is read as Windows-1252 (the encoding of most European luminaire files). Returns the
+/// text and the warnings decoding produced.
+pub fn decode_text(bytes: &[u8]) -> (Cow<'_, str>, Vec<String>) {
+    let mut warnings = Vec::new();
+    let body = match bytes.strip_prefix(b"\xEF\xBB\xBF") {
+        Some(rest) => {
+            warnings.push("UTF-8 byte-order mark skipped".to_string());
+            rest
+        }
+        None => bytes,
+    };
+    let text = match std::str::from_utf8(body) {
+        Ok(s) => Cow::Borrowed(s),
+        Err(_) => {
+            warnings.push("text is not UTF-8: read as Windows-1252".to_string());
+            let (cow, _, _) = encoding_rs::WINDOWS_1252.decode(body);
+            Cow::Owned(cow.into_owned())
+        }
+    };
+    (text, warnings)
+}
+
+/// A decoded photometric file split into lines, with the warnings decoding produced.
 #[derive(Debug, Clone)]
-pub struct SourceText {
+pub struct SourceText<'t> {
     /// The name used in messages (usually the path as given).
     pub name: String,
-    /// Lines of the file, 1-based line `n` is `lines[n - 1]`.
-    pub lines: Vec<String>,
+    /// Lines of the file without terminators: 1-based line `n` is `lines[n - 1]`.
+    pub lines: Vec<&'t str>,
     /// Things that were accepted but deserve a note (encoding, BOM, …).
     pub warnings: Vec<String>,
 }
 
-impl SourceText {
-    /// Decodes `bytes`: a UTF-8 BOM is skipped, valid UTF-8 is taken as is, anything else
-    /// is read as Windows-1252 (the encoding of most European luminaire files).
-    pub fn decode(name: &str, bytes: &[u8]) -> SourceText {
-        let mut warnings = Vec::new();
-        let body = match bytes.strip_prefix(b"\xEF\xBB\xBF") {
-            Some(rest) => {
-                warnings.push("UTF-8 byte-order mark skipped".to_string());
-                rest
-            }
-            None => bytes,
+impl<'t> SourceText<'t> {
+    /// Splits decoded `text` into lines (LF, CRLF or bare CR).
+    pub fn new(name: &str, text: &'t str, warnings: Vec<String>) -> SourceText<'t> {
+        let mut lines: Vec<&str> = if !text.contains('\n') && text.contains('\r') {
+            text.split('\r').collect()
+        } else {
+            text.split('\n')
+                .map(|l| l.strip_suffix('\r').unwrap_or(l))
+                .collect()
         };
-        let text = match std::str::from_utf8(body) {
-            Ok(s) => s.to_string(),
-            Err(_) => {
-                warnings.push("text is not UTF-8: read as Windows-1252".to_string());
-                let (cow, _, _) = encoding_rs::WINDOWS_1252.decode(body);
-                cow.into_owned()
-            }
-        };
-        let mut lines: Vec<String> = text
-            .split('\n')
-            .map(|l| l.strip_suffix('\r').unwrap_or(l).to_string())
-            .collect();
         // A final terminator leaves one empty element: that is not a line.
         if lines.last().is_some_and(|l| l.is_empty()) {
             lines.pop();
-        }
-        // Old Mac files use bare CR.
-        if lines.len() == 1 && lines[0].contains('\r') {
-            lines = lines[0].split('\r').map(str::to_string).collect();
         }
         SourceText {
             name: name.to_string(),
@@ -60,9 +66,47 @@ impl SourceText {
     }
 }
 
+/// Clinger's fast path: a plain decimal with at most 18 digits whose mantissa fits in 53
+/// bits and whose scale is at most 10²² converts with one correctly rounded division,
+/// giving exactly what `str::parse` gives.
+fn fast_decimal(b: &[u8]) -> Option<f64> {
+    const POW10: [f64; 23] = [
+        1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
+        1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
+    ];
+    let (neg, digits) = match b.first()? {
+        b'-' => (true, &b[1..]),
+        b'+' => (false, &b[1..]),
+        _ => (false, b),
+    };
+    let (mut mant, mut count, mut frac, mut dot) = (0u64, 0usize, 0usize, false);
+    for &c in digits {
+        match c {
+            b'0'..=b'9' => {
+                count += 1;
+                if count > 18 {
+                    return None;
+                }
+                mant = mant * 10 + u64::from(c - b'0');
+                frac += usize::from(dot);
+            }
+            b'.' if !dot => dot = true,
+            _ => return None,
+        }
+    }
+    if count == 0 || mant > (1 << 53) || frac > 22 {
+        return None;
+    }
+    let v = mant as f64 / POW10[frac];
+    Some(if neg { -v } else { v })
+}
+
 /// Parses one number, accepting a comma as the decimal separator. Returns whether a comma
 /// was used so callers can warn once. Rejects NaN and infinities.
 pub fn parse_number(token: &str) -> Option<(f64, bool)> {
+    if let Some(v) = fast_decimal(token.as_bytes()) {
+        return Some((v, false));
+    }
     let t = token.trim();
     if t.is_empty() {
         return None;
@@ -96,47 +140,70 @@ pub struct Token {
 }
 
 /// Reads whitespace-separated numbers across lines, starting at a given line.
-pub struct NumberStream<'a> {
-    src: &'a SourceText,
+pub struct NumberStream<'a, 't> {
+    src: &'a SourceText<'t>,
+    /// Lines consumed so far (the current line is `line`, 1-based).
     line: usize,
-    pending: std::collections::VecDeque<&'a str>,
+    rest: &'t str,
     separators: &'static [char],
     /// Set when any number used a decimal comma.
     pub saw_comma: bool,
 }
 
-impl<'a> NumberStream<'a> {
+impl<'a, 't> NumberStream<'a, 't> {
     /// Starts reading at 1-based `line`. `separators` split tokens within a line
     /// (whitespace always does).
-    pub fn new(src: &'a SourceText, line: usize, separators: &'static [char]) -> Self {
+    pub fn new(src: &'a SourceText<'t>, line: usize, separators: &'static [char]) -> Self {
         NumberStream {
             src,
             line: line.saturating_sub(1),
-            pending: Default::default(),
+            rest: "",
             separators,
             saw_comma: false,
         }
     }
 
-    /// The 1-based line the next token comes from (or the last line read).
+    /// The 1-based line the last token came from.
     pub fn line(&self) -> usize {
         self.line.max(1)
     }
 
+    fn is_sep(&self, ch: char) -> bool {
+        ch.is_whitespace() || self.separators.contains(&ch)
+    }
+
+    /// Byte offset of the first separator in `s` (`skip_seps` false) or of the first
+    /// non-separator (`skip_seps` true); bytes while ASCII, chars after that.
+    fn scan(&self, s: &str, skip_seps: bool) -> usize {
+        for (i, &b) in s.as_bytes().iter().enumerate() {
+            if !b.is_ascii() {
+                return i + s[i..]
+                    .find(|ch| self.is_sep(ch) != skip_seps)
+                    .unwrap_or(s.len() - i);
+            }
+            let sep = b.is_ascii_whitespace() || self.separators.contains(&(b as char));
+            if sep != skip_seps {
+                return i;
+            }
+        }
+        s.len()
+    }
+
+    /// Moves to the next token; false at the end of the file.
     fn fill(&mut self) -> bool {
-        while self.pending.is_empty() {
+        loop {
+            let trimmed = &self.rest[self.scan(self.rest, true)..];
+            if !trimmed.is_empty() {
+                self.rest = trimmed;
+                return true;
+            }
             if self.line >= self.src.lines.len() {
+                self.rest = "";
                 return false;
             }
-            let text = self.src.lines[self.line].as_str();
+            self.rest = self.src.lines[self.line];
             self.line += 1;
-            let seps = self.separators;
-            self.pending.extend(
-                text.split(|ch: char| ch.is_whitespace() || seps.contains(&ch))
-                    .filter(|t| !t.is_empty()),
-            );
         }
-        true
     }
 
     /// The next number; `what` names it in the error.
@@ -147,7 +214,9 @@ impl<'a> NumberStream<'a> {
                 format!("unexpected end of file: expected {what}"),
             ));
         }
-        let tok = self.pending.pop_front().expect("filled");
+        let end = self.scan(self.rest, false);
+        let (tok, rest) = self.rest.split_at(end);
+        self.rest = rest;
         let line = self.line;
         match parse_number(tok) {
             Some((value, comma)) => {
@@ -165,8 +234,7 @@ impl<'a> NumberStream<'a> {
         (0..n).map(|_| self.next(what)).collect()
     }
 
-    /// The first line at or after the stream position holding anything but whitespace,
-    /// if any is left.
+    /// The line of the next token, if any is left.
     pub fn remaining_content_line(&mut self) -> Option<usize> {
         if self.fill() {
             Some(self.line)
@@ -194,13 +262,41 @@ mod tests {
 
     #[test]
     fn decode_handles_bom_crlf_and_cp1252() {
-        let t = SourceText::decode("x", b"\xEF\xBB\xBFa\r\nb\r\n");
-        assert_eq!(t.lines, vec!["a", "b"]);
-        assert_eq!(t.warnings.len(), 1);
-        let t = SourceText::decode("x", b"Lumin\xe4r\n");
-        assert_eq!(t.lines, vec!["Luminär"]);
-        assert!(t.warnings[0].contains("Windows-1252"));
-        let t = SourceText::decode("x", b"a\rb\rc");
-        assert_eq!(t.lines, vec!["a", "b", "c"]);
+        let split = |b: &[u8]| {
+            let (text, w) = decode_text(b);
+            let lines: Vec<String> = SourceText::new("x", &text, vec![])
+                .lines
+                .iter()
+                .map(|s| s.to_string())
+                .collect();
+            (lines, w)
+        };
+        let (lines, w) = split(b"\xEF\xBB\xBFa\r\nb\r\n");
+        assert_eq!(lines, vec!["a", "b"]);
+        assert_eq!(w.len(), 1);
+        let (lines, w) = split(b"Lumin\xe4r\n");
+        assert_eq!(lines, vec!["Luminär"]);
+        assert!(w[0].contains("Windows-1252"));
+        let (lines, _) = split(b"a\rb\rc");
+        assert_eq!(lines, vec!["a", "b", "c"]);
+    }
+
+    #[test]
+    fn fast_path_agrees_with_std_parse() {
+        for t in [
+            "0",
+            "1.0000",
+            "-0.5",
+            "444.70",
+            "0.00001",
+            "1234567890123456",
+            "2445.4",
+            "+3.25",
+            ".",
+        ] {
+            assert_eq!(fast_decimal(t.as_bytes()), t.parse::<f64>().ok(), "{t}");
+        }
+        assert_eq!(fast_decimal(b"1e3"), None);
+        assert_eq!(fast_decimal(b"1234567890123456789"), None);
     }
 }

@@ -163,3 +163,71 @@ fn uniform_rows(src: &Grid) -> (Vec<f64>, Vec<f64>, Vec<Vec<f64>>) {
         .collect();
     (new_c, new_g, rows)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::photometry::Luminaire;
+
+    fn load(rel: &str) -> Luminaire {
+        let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("luminaires")
+            .join(rel);
+        Luminaire::load(&p).unwrap()
+    }
+
+    #[test]
+    fn uniform_file_texture_samples_like_the_distribution() {
+        for rel in [
+            "eulumdat-plot/sample_01_isym3.ldt",
+            "eulumdat-luminance/sample_06.ldt",
+            "eulumdat-plot/sample_13_isym1.ldt",
+        ] {
+            let lum = load(rel);
+            let tex = LdtTexture::from_distribution(&lum.distribution);
+            for interp in Interp::ALL {
+                for k in 0..500 {
+                    let c = (k as f64 * 71.123) % 360.0;
+                    let g = (k as f64 * 17.377) % 180.0;
+                    let want = lum.distribution.sample(c, g, interp) / tex.i_max;
+                    let got = tex.sample(c, g, interp);
+                    // Texels are f32.
+                    assert!((want - got).abs() < 1e-6, "{rel} {interp:?} C{c} γ{g}");
+                }
+            }
+            assert!(tex.data.iter().all(|v| (0.0..=1.0).contains(v)));
+            assert_eq!(tex.data.iter().cloned().fold(0.0, f32::max), 1.0);
+        }
+    }
+
+    #[test]
+    fn rotational_and_hemisphere_detection() {
+        let rot =
+            LdtTexture::from_distribution(&load("eulumdat-plot/sample_13_isym1.ldt").distribution);
+        assert!(rot.is_rotational());
+        let lower = LdtTexture::from_distribution(
+            &load("photometric-viewer/ldt/relative.ldt").distribution,
+        );
+        assert_eq!(lower.hemisphere, Hemisphere::Lower);
+        // 0…90° data plus one zero column beyond the last lit angle at most.
+        assert!(lower.gamma_start_deg == 0.0 && lower.gamma_count <= 38);
+        let asym =
+            LdtTexture::from_distribution(&load("eulumdat-plot/sample_01_isym3.ldt").distribution);
+        assert_eq!(asym.c_count, 24);
+        assert!((asym.c_step_deg() - 15.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn non_uniform_grids_are_resampled_through_the_measured_values() {
+        // γ at 0, 5, 10, 20, 40, 90 (non-uniform); the texture grid is 5° uniform.
+        let g = vec![0.0, 5.0, 10.0, 20.0, 40.0, 90.0];
+        let row = vec![100.0, 98.0, 90.0, 60.0, 20.0, 0.0];
+        let grid = Grid::new(vec![0.0], g.clone(), std::slice::from_ref(&row));
+        let dist = Distribution::from_grid(grid, 1000.0, crate::photometry::Symmetry::Rotational);
+        let tex = LdtTexture::from_distribution(&dist);
+        assert!((tex.gamma_step_deg - 5.0).abs() < 1e-12);
+        for (a, v) in g.iter().zip(row) {
+            assert!((tex.sample(0.0, *a, Interp::Nearest) * tex.i_max - v).abs() < 1e-4);
+        }
+    }
+}
