@@ -133,8 +133,14 @@ impl Eulumdat {
     pub fn expanded(&self) -> Vec<(f64, Vec<f64>)> {
         let stored = self.stored_plane_indices();
         let find = |c: f64| -> &Vec<f64> {
-            if self.symmetry == Symmetry::Rotational {
-                return &self.intensities[0];
+            match self.symmetry {
+                Symmetry::Rotational => return &self.intensities[0],
+                Symmetry::None => {
+                    if let Some(k) = self.c_angles.iter().position(|&a| a == c) {
+                        return &self.intensities[k];
+                    }
+                }
+                _ => {}
             }
             let folded = self.symmetry.fold(c);
             let k = stored
@@ -510,7 +516,7 @@ impl<'a, 't> HeaderReader<'a, 't> {
         stored: &[usize],
         line: usize,
     ) -> Result<(), ParseError> {
-        if symmetry == Symmetry::Rotational {
+        if matches!(symmetry, Symmetry::Rotational | Symmetry::None) {
             return Ok(());
         }
         for &angle in c {

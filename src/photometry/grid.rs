@@ -45,16 +45,18 @@ impl Interp {
 }
 
 /// Angle equality within the precision files are printed with (mod 360°).
+/// Both angles must lie within (−360°, 720°), as all angles here do.
 pub(crate) fn angle_eq(a: f64, b: f64) -> bool {
-    let d = (a - b).rem_euclid(360.0);
-    !(1e-6..=360.0 - 1e-6).contains(&d)
+    const EPS: f64 = 1e-6;
+    let d = (a - b).abs();
+    d < EPS || (d - 360.0).abs() < EPS || (d - 720.0).abs() < EPS
 }
 
 /// An ascending list of angles with a fast path for uniform spacing.
 #[derive(Debug, Clone, PartialEq)]
 struct Axis {
     angles: Vec<f64>,
-    /// `(first, step)` when the spacing is uniform.
+    /// `(first, 1 / step)` when the spacing is uniform.
     uniform: Option<(f64, f64)>,
 }
 
@@ -66,7 +68,7 @@ impl Axis {
                 .iter()
                 .enumerate()
                 .all(|(i, a)| (a - (angles[0] + step * i as f64)).abs() < 1e-9 * 360.0);
-            ok.then_some((angles[0], step))
+            ok.then_some((angles[0], 1.0 / step))
         } else {
             None
         };
@@ -81,7 +83,7 @@ impl Axis {
     fn locate_inside(&self, x: f64) -> usize {
         let n = self.angles.len();
         let i = match self.uniform {
-            Some((first, step)) => ((x - first) / step) as usize,
+            Some((first, inv_step)) => ((x - first) * inv_step) as usize,
             None => self.angles.partition_point(|&a| a <= x).saturating_sub(1),
         };
         i.min(n - 2)
@@ -185,7 +187,7 @@ impl Grid {
 
     /// Angle of γ knot `k`: a grid angle, its mirror across a pole, or a step beyond the
     /// end of a γ range that stops short of a pole.
-    #[inline]
+    #[inline(always)]
     fn knot_angle(&self, k: isize) -> f64 {
         let g = &self.g.angles;
         let ng = g.len() as isize;
@@ -210,7 +212,7 @@ impl Grid {
 
     /// Value of γ knot `k` of plane `plane` (see `knot_angle`): across a pole it comes
     /// from the opposite plane, beyond a γ range it is zero.
-    #[inline]
+    #[inline(always)]
     fn knot_value(&self, plane: usize, k: isize) -> f64 {
         let g = &self.g.angles;
         let ng = g.len() as isize;
@@ -232,7 +234,7 @@ impl Grid {
     }
 
     /// The four γ knot values `gi − 1 … gi + 2` of `plane`.
-    #[inline]
+    #[inline(always)]
     fn row(&self, plane: usize, gi: isize) -> [f64; 4] {
         let ng = self.g.len() as isize;
         if gi >= 1 && gi + 2 < ng {
@@ -246,7 +248,7 @@ impl Grid {
 
     /// The cell of the query, or `None` where the intensity is zero by definition
     /// (more than a grid step beyond a γ range that stops short of a pole).
-    #[inline]
+    #[inline(always)]
     fn cell(&self, c: f64, g: f64) -> Option<Cell> {
         let ga = &self.g.angles;
         let ng = ga.len();
@@ -448,9 +450,17 @@ fn hermite_basis(t: [f64; 4], x: f64) -> [f64; 4] {
 /// central differences over the possibly non-uniform knots).
 #[inline]
 fn catmull_rom_weights(t: [f64; 4], x: f64) -> [f64; 4] {
-    let [h00, h10, h01, h11] = hermite_basis(t, x);
-    let a = h10 / (t[2] - t[0]);
-    let b = h11 / (t[3] - t[1]);
+    // One division for the three reciprocals (1/h, 1/(t2 − t0), 1/(t3 − t1)).
+    let h = t[2] - t[1];
+    let (w0, w1) = (t[2] - t[0], t[3] - t[1]);
+    let r = 1.0 / (h * w0 * w1);
+    let s = (x - t[1]) * (r * w0 * w1);
+    let s2 = s * s;
+    let s3 = s2 * s;
+    let (h00, h01) = (2.0 * s3 - 3.0 * s2 + 1.0, -2.0 * s3 + 3.0 * s2);
+    // h10·h / (t2 − t0) and h11·h / (t3 − t1).
+    let a = (s3 - 2.0 * s2 + s) * h * (r * h * w1);
+    let b = (s3 - s2) * h * (r * h * w0);
     [-a, h00 - b, h01 + a, b]
 }
 

@@ -42,13 +42,21 @@ pub struct SourceText<'t> {
 impl<'t> SourceText<'t> {
     /// Splits decoded `text` into lines (LF, CRLF or bare CR).
     pub fn new(name: &str, text: &'t str, warnings: Vec<String>) -> SourceText<'t> {
-        let mut lines: Vec<&str> = if !text.contains('\n') && text.contains('\r') {
-            text.split('\r').collect()
-        } else {
-            text.split('\n')
-                .map(|l| l.strip_suffix('\r').unwrap_or(l))
-                .collect()
-        };
+        let bytes = text.as_bytes();
+        let sep =
+            if memchr::memchr(b'\n', bytes).is_none() && memchr::memchr(b'\r', bytes).is_some() {
+                b'\r'
+            } else {
+                b'\n'
+            };
+        let mut lines = Vec::with_capacity(bytes.len() / 8 + 1);
+        let mut start = 0;
+        for end in memchr::memchr_iter(sep, bytes).chain(std::iter::once(bytes.len())) {
+            // Splitting at an ASCII byte keeps UTF-8 boundaries.
+            let line = &text[start..end];
+            lines.push(line.strip_suffix('\r').unwrap_or(line));
+            start = end + 1;
+        }
         // A final terminator leaves one empty element: that is not a line.
         if lines.last().is_some_and(|l| l.is_empty()) {
             lines.pop();
@@ -66,21 +74,22 @@ impl<'t> SourceText<'t> {
     }
 }
 
-/// Clinger's fast path: a plain decimal with at most 18 digits whose mantissa fits in 53
-/// bits and whose scale is at most 10²² converts with one correctly rounded division,
-/// giving exactly what `str::parse` gives.
-fn fast_decimal(b: &[u8]) -> Option<f64> {
+/// Clinger's fast path for a plain decimal at the start of `b` (sign, digits, one dot):
+/// with at most 18 digits, a mantissa within 53 bits and a scale of at most 10²² the
+/// value is one correctly rounded division, exactly what `str::parse` gives. Returns the
+/// value and the number of bytes read; `None` when the slow path must decide.
+fn fast_decimal_prefix(b: &[u8]) -> Option<(f64, usize)> {
     const POW10: [f64; 23] = [
         1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
         1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
     ];
-    let (neg, digits) = match b.first()? {
-        b'-' => (true, &b[1..]),
-        b'+' => (false, &b[1..]),
-        _ => (false, b),
+    let (neg, mut i) = match b.first()? {
+        b'-' => (true, 1),
+        b'+' => (false, 1),
+        _ => (false, 0),
     };
     let (mut mant, mut count, mut frac, mut dot) = (0u64, 0usize, 0usize, false);
-    for &c in digits {
+    while let Some(&c) = b.get(i) {
         match c {
             b'0'..=b'9' => {
                 count += 1;
@@ -91,14 +100,23 @@ fn fast_decimal(b: &[u8]) -> Option<f64> {
                 frac += usize::from(dot);
             }
             b'.' if !dot => dot = true,
-            _ => return None,
+            _ => break,
         }
+        i += 1;
     }
     if count == 0 || mant > (1 << 53) || frac > 22 {
         return None;
     }
     let v = mant as f64 / POW10[frac];
-    Some(if neg { -v } else { v })
+    Some((if neg { -v } else { v }, i))
+}
+
+/// [`fast_decimal_prefix`] of a whole token.
+fn fast_decimal(b: &[u8]) -> Option<f64> {
+    match fast_decimal_prefix(b) {
+        Some((v, n)) if n == b.len() => Some(v),
+        _ => None,
+    }
 }
 
 /// Parses one number, accepting a comma as the decimal separator. Returns whether a comma
@@ -213,6 +231,19 @@ impl<'a, 't> NumberStream<'a, 't> {
                 self.src.lines.len() + 1,
                 format!("unexpected end of file: expected {what}"),
             ));
+        }
+        let bytes = self.rest.as_bytes();
+        if let Some((value, n)) = fast_decimal_prefix(bytes) {
+            let ends = bytes.get(n).is_none_or(|&b| {
+                b.is_ascii_whitespace() || (b == b',' && self.separators.contains(&','))
+            });
+            if ends {
+                self.rest = &self.rest[n..];
+                return Ok(Token {
+                    value,
+                    line: self.line,
+                });
+            }
         }
         let end = self.scan(self.rest, false);
         let (tok, rest) = self.rest.split_at(end);
