@@ -9,3 +9,4 @@
 pub mod cli;
 pub mod io;
 pub mod photometry;
+pub mod sun;

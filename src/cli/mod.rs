@@ -3,6 +3,7 @@
 
 mod demo;
 mod ldt;
+mod sun;
 
 use clap::{Parser, Subcommand};
 
@@ -25,6 +26,8 @@ pub enum Command {
     Ldt(ldt::LdtCommand),
     /// Run the main job on the bundled data and write its outputs.
     Demo(demo::DemoArgs),
+    /// The sun's position (NREL SPA) for a site and an instant.
+    Sun(sun::SunArgs),
 }
 
 /// A failed command: the error and whether it was the input's fault (exit 2) or not (1).
@@ -78,5 +81,6 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
     match cli.command {
         Command::Ldt(cmd) => ldt::run(cmd),
         Command::Demo(args) => demo::run(args),
+        Command::Sun(args) => sun::run(args),
     }
 }
