@@ -7,6 +7,8 @@
 #![warn(missing_docs)]
 
 pub mod cli;
+pub mod geometry;
 pub mod io;
 pub mod photometry;
+pub mod shadow;
 pub mod sun;

@@ -1,0 +1,131 @@
+//! Procedural meshes for tests and benchmarks: a torus, a bumpy open surface (scan-like),
+//! boxes and a detailed building, all counter-clockwise with outward normals.
+
+use glam::DVec3;
+
+use super::Mesh;
+
+/// A torus around +Z: `major` segments around, `minor` segments across.
+pub fn torus(major: u32, minor: u32, r_major: f64, r_minor: f64) -> Mesh {
+    let mut m = Mesh::default();
+    for i in 0..major {
+        let u = i as f64 / major as f64 * std::f64::consts::TAU;
+        for j in 0..minor {
+            let v = j as f64 / minor as f64 * std::f64::consts::TAU;
+            let r = r_major + r_minor * v.cos();
+            m.positions
+                .push(DVec3::new(r * u.cos(), r * u.sin(), r_minor * v.sin()));
+        }
+    }
+    let id = |i: u32, j: u32| (i % major) * minor + (j % minor);
+    for i in 0..major {
+        for j in 0..minor {
+            let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+            m.triangles.push([a, b, c]);
+            m.triangles.push([a, c, d]);
+        }
+    }
+    m
+}
+
+/// A height field over [0, size]² with `n` × `n` quads: an open surface with border edges,
+/// bumpy like a scan (sums of sines with a deterministic pseudo-random jitter).
+pub fn bumpy_surface(n: u32, size: f64, seed: u64) -> Mesh {
+    let mut m = Mesh::default();
+    let mut s = seed | 1;
+    let mut rnd = move || {
+        s ^= s << 13;
+        s ^= s >> 7;
+        s ^= s << 17;
+        (s >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+    };
+    for i in 0..=n {
+        for j in 0..=n {
+            let (x, y) = (i as f64 / n as f64 * size, j as f64 / n as f64 * size);
+            let z = 0.08 * size * ((x * 3.1 / size).sin() * (y * 2.3 / size).cos())
+                + 0.02 * size * ((x * 17.0 / size).sin() + (y * 13.0 / size).sin())
+                + 0.002 * size * rnd();
+            m.positions.push(DVec3::new(x, y, z));
+        }
+    }
+    let id = |i: u32, j: u32| i * (n + 1) + j;
+    for i in 0..n {
+        for j in 0..n {
+            let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+            m.triangles.push([a, b, c]);
+            m.triangles.push([a, c, d]);
+        }
+    }
+    m
+}
+
+/// Appends an axis-aligned box (12 triangles, its own 8 vertices).
+pub fn push_box(m: &mut Mesh, lo: DVec3, hi: DVec3) {
+    let base = m.positions.len() as u32;
+    for k in 0..8 {
+        m.positions.push(DVec3::new(
+            if k & 1 == 0 { lo.x } else { hi.x },
+            if k & 2 == 0 { lo.y } else { hi.y },
+            if k & 4 == 0 { lo.z } else { hi.z },
+        ));
+    }
+    const FACES: [[u32; 4]; 6] = [
+        [0, 2, 3, 1], // −z
+        [4, 5, 7, 6], // +z
+        [0, 1, 5, 4], // −y
+        [2, 6, 7, 3], // +y
+        [0, 4, 6, 2], // −x
+        [1, 3, 7, 5], // +x
+    ];
+    for f in FACES {
+        let [a, b, c, d] = f.map(|i| base + i);
+        m.triangles.push([a, b, c]);
+        m.triangles.push([a, c, d]);
+    }
+}
+
+/// A box mesh.
+pub fn cuboid(lo: DVec3, hi: DVec3) -> Mesh {
+    let mut m = Mesh::default();
+    push_box(&mut m, lo, hi);
+    m
+}
+
+/// A "detailed building": `nx` × `ny` bays of `floors` storeys, each storey a slab and a
+/// set-back window band with mullions — many small closed boxes, about
+/// 12 · nx · ny · floors · 4 triangles.
+pub fn building(nx: u32, ny: u32, floors: u32) -> Mesh {
+    let mut m = Mesh::default();
+    let (bay, storey) = (3.0, 3.2);
+    for i in 0..nx {
+        for j in 0..ny {
+            let (x0, y0) = (i as f64 * bay, j as f64 * bay);
+            for f in 0..floors {
+                let z0 = f as f64 * storey;
+                push_box(
+                    &mut m,
+                    DVec3::new(x0, y0, z0),
+                    DVec3::new(x0 + bay, y0 + bay, z0 + 0.4),
+                );
+                let inset = 0.25;
+                push_box(
+                    &mut m,
+                    DVec3::new(x0 + inset, y0 + inset, z0 + 0.4),
+                    DVec3::new(x0 + bay - inset, y0 + bay - inset, z0 + storey),
+                );
+                // Two mullions on the outer faces.
+                push_box(
+                    &mut m,
+                    DVec3::new(x0, y0, z0 + 0.4),
+                    DVec3::new(x0 + 0.2, y0 + 0.2, z0 + storey),
+                );
+                push_box(
+                    &mut m,
+                    DVec3::new(x0 + bay - 0.2, y0 + bay - 0.2, z0 + 0.4),
+                    DVec3::new(x0 + bay, y0 + bay, z0 + storey),
+                );
+            }
+        }
+    }
+    m
+}

@@ -1,0 +1,102 @@
+//! Indexed triangle meshes, OBJ geometry, vertex welding and edge adjacency.
+
+pub mod adjacency;
+pub mod generate;
+pub mod obj;
+pub mod weld;
+
+use glam::DVec3;
+
+pub use adjacency::{Adjacency, EdgeKind};
+
+/// Problems with geometry input.
+#[derive(Debug, thiserror::Error)]
+pub enum GeometryError {
+    /// The file could not be read.
+    #[error("{file}: {source}")]
+    Io {
+        /// The file.
+        file: String,
+        /// The I/O error.
+        source: std::io::Error,
+    },
+    /// A malformed line.
+    #[error("{file}: line {line}: {message}")]
+    Parse {
+        /// The file.
+        file: String,
+        /// 1-based line.
+        line: usize,
+        /// What is wrong.
+        message: String,
+    },
+    /// Geometry that cannot be used (empty, all degenerate, non-finite).
+    #[error("{0}")]
+    Invalid(String),
+}
+
+/// A triangle mesh: positions and counter-clockwise triangles (outward normals).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Mesh {
+    /// Vertex positions.
+    pub positions: Vec<DVec3>,
+    /// Triangles as vertex indices.
+    pub triangles: Vec<[u32; 3]>,
+}
+
+impl Mesh {
+    /// Axis-aligned bounds of the positions used by triangles (`None` if there are none).
+    pub fn bounds(&self) -> Option<(DVec3, DVec3)> {
+        let mut it = self
+            .triangles
+            .iter()
+            .flatten()
+            .map(|&i| self.positions[i as usize]);
+        let first = it.next()?;
+        Some(it.fold((first, first), |(lo, hi), p| (lo.min(p), hi.max(p))))
+    }
+
+    /// The unnormalised normal (twice the area) of triangle `t`.
+    pub fn face_normal(&self, t: usize) -> DVec3 {
+        let [a, b, c] = self.triangles[t].map(|i| self.positions[i as usize]);
+        (b - a).cross(c - a)
+    }
+
+    /// Drops triangles with repeated vertices or zero area; returns how many were dropped.
+    pub fn remove_degenerate(&mut self) -> usize {
+        let before = self.triangles.len();
+        let pos = &self.positions;
+        self.triangles.retain(|t| {
+            let [a, b, c] = *t;
+            if a == b || b == c || a == c {
+                return false;
+            }
+            let [p, q, r] = t.map(|i| pos[i as usize]);
+            let n = (q - p).cross(r - p);
+            let scale = (q - p).length_squared().max((r - p).length_squared());
+            n.length_squared() > 1e-24 * scale * scale
+        });
+        before - self.triangles.len()
+    }
+
+    /// Checks the mesh is usable: some triangles, finite positions, valid indices.
+    pub fn validate(&self, name: &str) -> Result<(), GeometryError> {
+        if self.triangles.is_empty() {
+            return Err(GeometryError::Invalid(format!(
+                "{name}: the mesh has no (non-degenerate) triangles"
+            )));
+        }
+        if let Some(i) = self.positions.iter().position(|p| !p.is_finite()) {
+            return Err(GeometryError::Invalid(format!(
+                "{name}: vertex {i} is not finite"
+            )));
+        }
+        let n = self.positions.len() as u32;
+        if self.triangles.iter().flatten().any(|&i| i >= n) {
+            return Err(GeometryError::Invalid(format!(
+                "{name}: vertex index out of range"
+            )));
+        }
+        Ok(())
+    }
+}

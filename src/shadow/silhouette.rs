@@ -1,0 +1,220 @@
+//! Silhouette edges of a mesh for a light, by brute force over the edge list.
+//!
+//! Faces are stored as planes (n, d) with unit n in a frame where the mesh is centred at
+//! the origin and fits in the unit ball, so the planes are the dual points the hextree
+//! indexes. A face is lit when plane · L > 0 (L in the same frame); brute force and
+//! hextree evaluate exactly this expression, so they give identical edge sets.
+
+use glam::{DVec3, DVec4};
+
+use super::Light;
+use crate::geometry::adjacency::{Adjacency, EdgeKind};
+use crate::geometry::weld::{weld, Welded};
+use crate::geometry::{GeometryError, Mesh};
+
+/// A consistently wound manifold edge: `a < b`, the face traversing a→b and the one b→a.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ManifoldEdge {
+    /// Smaller vertex.
+    pub a: u32,
+    /// Larger vertex.
+    pub b: u32,
+    /// Face traversing a→b.
+    pub forward: u32,
+    /// Face traversing b→a.
+    pub backward: u32,
+}
+
+/// Silhouette edges, directed as the lit faces traverse them (an edge appears |count|
+/// times under the rule of [`crate::geometry::adjacency`]), in welded vertex numbering.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Silhouette {
+    /// Directed edges `[from, to]`.
+    pub edges: Vec<[u32; 2]>,
+}
+
+impl Silhouette {
+    /// Undirected, sorted, unique `[i, j]` (i < j).
+    pub fn undirected(&self) -> Vec<[u32; 2]> {
+        let mut v: Vec<[u32; 2]> = self
+            .edges
+            .iter()
+            .map(|&[a, b]| [a.min(b), a.max(b)])
+            .collect();
+        v.sort_unstable();
+        v.dedup();
+        v
+    }
+
+    /// Directed edges sorted (for comparisons between methods).
+    pub fn sorted(&self) -> Vec<[u32; 2]> {
+        let mut v = self.edges.clone();
+        v.sort_unstable();
+        v
+    }
+}
+
+/// A mesh prepared for silhouette queries.
+#[derive(Debug, Clone)]
+pub struct SilhouetteMesh {
+    /// The welded mesh and the maps to the input's numbering.
+    pub welded: Welded,
+    /// Its edges.
+    pub adjacency: Adjacency,
+    /// Face planes in the normalised frame (unit normal, offset).
+    pub planes: Vec<DVec4>,
+    /// Consistently wound manifold edges (the hextree indexes these).
+    pub manifold: Vec<ManifoldEdge>,
+    /// Indices into `adjacency.edges` of every other edge (border, inconsistent,
+    /// non-manifold), tested directly by every method.
+    pub others: Vec<u32>,
+    /// Degenerate triangles dropped.
+    pub degenerate: usize,
+    center: DVec3,
+    scale: f64,
+}
+
+impl SilhouetteMesh {
+    /// Welds vertices within `weld_tolerance` (relative to the bounding-box diagonal),
+    /// drops degenerate triangles and builds planes and adjacency.
+    pub fn new(mesh: &Mesh, name: &str, weld_tolerance: f64) -> Result<Self, GeometryError> {
+        mesh.validate(name)?;
+        let (lo, hi) = mesh.bounds().expect("validated non-empty");
+        let diag = (hi - lo).length();
+        let mut welded = weld(mesh, weld_tolerance * diag);
+        let degenerate = welded.mesh.remove_degenerate();
+        if welded.mesh.triangles.is_empty() {
+            return Err(GeometryError::Invalid(format!(
+                "{name}: every triangle is degenerate (zero area)"
+            )));
+        }
+        let center = (lo + hi) * 0.5;
+        let scale = (diag * 0.5).max(f64::MIN_POSITIVE);
+        let m = &welded.mesh;
+        let planes = (0..m.triangles.len())
+            .map(|t| {
+                let n = m.face_normal(t).normalize();
+                let p = (m.positions[m.triangles[t][0] as usize] - center) / scale;
+                n.extend(-n.dot(p))
+            })
+            .collect();
+        let adjacency = Adjacency::build(m);
+        let mut manifold = Vec::new();
+        let mut others = Vec::new();
+        for (i, e) in adjacency.edges.iter().enumerate() {
+            if adjacency.kind(e) == EdgeKind::Manifold {
+                let f = adjacency.faces(e);
+                let (fw, bw) = if f[0].forward {
+                    (f[0].face, f[1].face)
+                } else {
+                    (f[1].face, f[0].face)
+                };
+                manifold.push(ManifoldEdge {
+                    a: e.a,
+                    b: e.b,
+                    forward: fw,
+                    backward: bw,
+                });
+            } else {
+                others.push(i as u32);
+            }
+        }
+        Ok(SilhouetteMesh {
+            welded,
+            adjacency,
+            planes,
+            manifold,
+            others,
+            degenerate,
+            center,
+            scale,
+        })
+    }
+
+    /// The welded mesh.
+    pub fn mesh(&self) -> &Mesh {
+        &self.welded.mesh
+    }
+
+    /// The light in the normalised frame (same plane · L signs as in the world).
+    pub fn light_in_frame(&self, light: &Light) -> DVec4 {
+        let l = light.0;
+        let xyz = (l.truncate() - l.w * self.center) / self.scale;
+        xyz.extend(l.w)
+    }
+
+    /// Whether face `f` is lit by `l` (a light in the normalised frame).
+    #[inline]
+    pub fn lit(&self, f: u32, l: DVec4) -> bool {
+        self.planes[f as usize].dot(l) > 0.0
+    }
+
+    /// Lit flags of every face.
+    pub fn lit_faces(&self, light: &Light) -> Vec<bool> {
+        let l = self.light_in_frame(light);
+        self.planes.iter().map(|p| p.dot(l) > 0.0).collect()
+    }
+
+    /// Appends the silhouette contribution of a manifold edge.
+    #[inline]
+    pub(crate) fn push_manifold(
+        out: &mut Vec<[u32; 2]>,
+        e: &ManifoldEdge,
+        lit_fw: bool,
+        lit_bw: bool,
+    ) {
+        if lit_fw != lit_bw {
+            out.push(if lit_fw { [e.a, e.b] } else { [e.b, e.a] });
+        }
+    }
+
+    /// Appends the silhouette edges among the non-manifold-kind edges (signed counts).
+    pub(crate) fn other_edges(&self, l: DVec4, out: &mut Vec<[u32; 2]>) {
+        for &i in &self.others {
+            let e = &self.adjacency.edges[i as usize];
+            let count: i64 = self
+                .adjacency
+                .faces(e)
+                .iter()
+                .filter(|inc| self.lit(inc.face, l))
+                .map(|inc| if inc.forward { 1 } else { -1 })
+                .sum();
+            let dir = if count > 0 { [e.a, e.b] } else { [e.b, e.a] };
+            out.extend(std::iter::repeat_n(dir, count.unsigned_abs() as usize));
+        }
+    }
+
+    /// Silhouette by testing every edge.
+    pub fn brute(&self, light: &Light) -> Silhouette {
+        let l = self.light_in_frame(light);
+        let lit: Vec<bool> = self.planes.iter().map(|p| p.dot(l) > 0.0).collect();
+        let mut edges = Vec::new();
+        for e in &self.manifold {
+            Self::push_manifold(
+                &mut edges,
+                e,
+                lit[e.forward as usize],
+                lit[e.backward as usize],
+            );
+        }
+        self.other_edges(l, &mut edges);
+        Silhouette { edges }
+    }
+
+    /// Undirected silhouette edges in the input's vertex numbering (the smallest input
+    /// index of each welded vertex), i < j, sorted and unique.
+    pub fn to_input_indices(&self, s: &Silhouette) -> Vec<[u32; 2]> {
+        let rep = &self.welded.representative;
+        let mut v: Vec<[u32; 2]> = s
+            .edges
+            .iter()
+            .map(|&[a, b]| {
+                let (i, j) = (rep[a as usize], rep[b as usize]);
+                [i.min(j), i.max(j)]
+            })
+            .collect();
+        v.sort_unstable();
+        v.dedup();
+        v
+    }
+}
