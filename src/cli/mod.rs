@@ -3,6 +3,7 @@
 
 mod demo;
 mod ldt;
+mod silhouette;
 mod sun;
 
 use clap::{Parser, Subcommand};
@@ -28,6 +29,11 @@ pub enum Command {
     Demo(demo::DemoArgs),
     /// The sun's position (NREL SPA) for a site and an instant.
     Sun(sun::SunArgs),
+    /// Silhouette edges of an OBJ model for a point or directional light.
+    Silhouette(silhouette::SilhouetteArgs),
+    /// Benchmarks that print tables of ratios measured side by side.
+    #[command(subcommand)]
+    Bench(silhouette::BenchCommand),
 }
 
 /// A failed command: the error and whether it was the input's fault (exit 2) or not (1).
@@ -82,5 +88,7 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         Command::Ldt(cmd) => ldt::run(cmd),
         Command::Demo(args) => demo::run(args),
         Command::Sun(args) => sun::run(args),
+        Command::Silhouette(args) => silhouette::run(args),
+        Command::Bench(cmd) => silhouette::run_bench(cmd),
     }
 }

@@ -6,19 +6,36 @@
 //! crosses it. Each dual edge is stored in the smallest cell containing both ends; a query
 //! skips every cell the hyperplane misses, bounding P · L over the cell by its min/max
 //! corners chosen from the sign bits of L (Wallner Eq. 1.1).
+//!
+//! Two refinements keep the query ahead of a fast linear scan: the bounds tested are the
+//! tight bounds of the dual points actually stored in a subtree (and, separately, of a
+//! node's own edges) rather than the cell, and each stored edge carries its two dual points
+//! inline so a query reads memory in order.
 
-use glam::DVec4;
+use glam::Vec4;
 
 use super::silhouette::{ManifoldEdge, Silhouette, SilhouetteMesh};
 use super::Light;
 
 /// Default maximum depth.
-pub const DEFAULT_DEPTH: u32 = 7;
+pub const DEFAULT_DEPTH: u32 = 5;
+
+/// A stored dual edge: both dual points inline, so a query reads memory in order.
+#[derive(Debug, Clone, Copy)]
+struct TreeEdge {
+    p: Vec4,
+    q: Vec4,
+    edge: ManifoldEdge,
+}
 
 #[derive(Debug, Clone)]
 struct Node {
-    lo: DVec4,
-    hi: DVec4,
+    /// Tight bounds of every dual point stored in this subtree (tighter than the cell).
+    lo: Vec4,
+    hi: Vec4,
+    /// Tight bounds of the dual points of this node's own edges.
+    own_lo: Vec4,
+    own_hi: Vec4,
     /// Edges stored here: `edges[first_edge..first_edge + edge_count]`.
     first_edge: u32,
     edge_count: u32,
@@ -32,7 +49,7 @@ struct Node {
 pub struct Hextree {
     nodes: Vec<Node>,
     children: Vec<u32>,
-    edges: Vec<ManifoldEdge>,
+    edges: Vec<TreeEdge>,
     depth: u32,
 }
 
@@ -41,10 +58,10 @@ struct Builder<'a> {
     max_depth: u32,
     nodes: Vec<Node>,
     child_lists: Vec<Vec<u32>>,
-    edges: Vec<ManifoldEdge>,
+    edges: Vec<TreeEdge>,
 }
 
-fn child_of(p: DVec4, mid: DVec4) -> usize {
+fn child_of(p: Vec4, mid: Vec4) -> usize {
     (p.x >= mid.x) as usize
         | ((p.y >= mid.y) as usize) << 1
         | ((p.z >= mid.z) as usize) << 2
@@ -52,11 +69,13 @@ fn child_of(p: DVec4, mid: DVec4) -> usize {
 }
 
 impl Builder<'_> {
-    fn build(&mut self, lo: DVec4, hi: DVec4, items: Vec<u32>, depth: u32) -> u32 {
+    fn build(&mut self, lo: Vec4, hi: Vec4, items: Vec<u32>, depth: u32) -> u32 {
         let id = self.nodes.len() as u32;
         self.nodes.push(Node {
-            lo,
-            hi,
+            lo: Vec4::splat(f32::INFINITY),
+            hi: Vec4::splat(f32::NEG_INFINITY),
+            own_lo: Vec4::splat(f32::INFINITY),
+            own_hi: Vec4::splat(f32::NEG_INFINITY),
             first_edge: 0,
             edge_count: 0,
             first_child: 0,
@@ -78,28 +97,43 @@ impl Builder<'_> {
             }
         }
         let first_edge = self.edges.len() as u32;
-        self.edges
-            .extend(here.iter().map(|&i| self.mesh.manifold[i as usize]));
-        self.nodes[id as usize].first_edge = first_edge;
-        self.nodes[id as usize].edge_count = here.len() as u32;
+        let (mut own_lo, mut own_hi) = (Vec4::splat(f32::INFINITY), Vec4::splat(f32::NEG_INFINITY));
+        for &i in &here {
+            let edge = self.mesh.manifold[i as usize];
+            let p = self.mesh.planes[edge.forward as usize];
+            let q = self.mesh.planes[edge.backward as usize];
+            own_lo = own_lo.min(p).min(q);
+            own_hi = own_hi.max(p).max(q);
+            self.edges.push(TreeEdge { p, q, edge });
+        }
+        let node = &mut self.nodes[id as usize];
+        node.first_edge = first_edge;
+        node.edge_count = here.len() as u32;
+        node.own_lo = own_lo;
+        node.own_hi = own_hi;
+        let (mut sub_lo, mut sub_hi) = (own_lo, own_hi);
         for (c, bucket) in buckets.into_iter().enumerate() {
             if bucket.is_empty() {
                 continue;
             }
             let pick =
-                |k: usize, a: f64, m: f64, b: f64| if c >> k & 1 == 1 { (m, b) } else { (a, m) };
+                |k: usize, a: f32, m: f32, b: f32| if c >> k & 1 == 1 { (m, b) } else { (a, m) };
             let (x0, x1) = pick(0, lo.x, mid.x, hi.x);
             let (y0, y1) = pick(1, lo.y, mid.y, hi.y);
             let (z0, z1) = pick(2, lo.z, mid.z, hi.z);
             let (w0, w1) = pick(3, lo.w, mid.w, hi.w);
             let child = self.build(
-                DVec4::new(x0, y0, z0, w0),
-                DVec4::new(x1, y1, z1, w1),
+                Vec4::new(x0, y0, z0, w0),
+                Vec4::new(x1, y1, z1, w1),
                 bucket,
                 depth + 1,
             );
             self.child_lists[id as usize].push(child);
+            sub_lo = sub_lo.min(self.nodes[child as usize].lo);
+            sub_hi = sub_hi.max(self.nodes[child as usize].hi);
         }
+        self.nodes[id as usize].lo = sub_lo;
+        self.nodes[id as usize].hi = sub_hi;
         id
     }
 }
@@ -107,14 +141,14 @@ impl Builder<'_> {
 impl Hextree {
     /// Builds the tree (once per mesh) with the given maximum depth.
     pub fn build(mesh: &SilhouetteMesh, max_depth: u32) -> Hextree {
-        let mut lo = DVec4::splat(f64::INFINITY);
-        let mut hi = DVec4::splat(f64::NEG_INFINITY);
+        let mut lo = Vec4::splat(f32::INFINITY);
+        let mut hi = Vec4::splat(f32::NEG_INFINITY);
         for p in &mesh.planes {
             lo = lo.min(*p);
             hi = hi.max(*p);
         }
         // A margin keeps points off the outer faces.
-        let pad = (hi - lo).max(DVec4::splat(1e-9)) * 1e-6;
+        let pad = (hi - lo).max(Vec4::splat(1e-6)) * 1e-4;
         let mut b = Builder {
             mesh,
             max_depth,
@@ -152,31 +186,73 @@ impl Hextree {
         self.nodes.len()
     }
 
+    /// Edges stored at each depth (diagnostics).
+    pub fn edges_per_level(&self) -> Vec<usize> {
+        let mut out = vec![0; self.depth as usize + 1];
+        let mut stack = vec![(0u32, 0usize)];
+        while let Some((id, d)) = stack.pop() {
+            let n = &self.nodes[id as usize];
+            out[d] += n.edge_count as usize;
+            let fc = n.first_child as usize;
+            for &c in &self.children[fc..fc + n.child_count as usize] {
+                stack.push((c, d + 1));
+            }
+        }
+        out
+    }
+
+    /// (nodes visited, edges tested) by a query (diagnostics).
+    pub fn query_stats(&self, mesh: &SilhouetteMesh, light: &Light) -> (usize, usize) {
+        let l = mesh.light_in_frame(light);
+        let pos = l.cmpge(Vec4::ZERO);
+        let straddles = |lo: Vec4, hi: Vec4| {
+            Vec4::select(pos, lo, hi).dot(l) <= 0.0 && Vec4::select(pos, hi, lo).dot(l) >= 0.0
+        };
+        let (mut nodes, mut edges) = (0, 0);
+        let mut stack = vec![0u32];
+        while let Some(id) = stack.pop() {
+            let n = &self.nodes[id as usize];
+            if !straddles(n.lo, n.hi) {
+                continue;
+            }
+            nodes += 1;
+            if straddles(n.own_lo, n.own_hi) {
+                edges += n.edge_count as usize;
+            }
+            let fc = n.first_child as usize;
+            stack.extend_from_slice(&self.children[fc..fc + n.child_count as usize]);
+        }
+        (nodes, edges)
+    }
+
     /// Silhouette edges for `light`: the same set as [`SilhouetteMesh::brute`].
     pub fn query(&self, mesh: &SilhouetteMesh, light: &Light) -> Silhouette {
         let l = mesh.light_in_frame(light);
-        // Rounding in the corner bounds must not skip a cell holding a sign change.
-        let tol = 1e-12 * (l.x.abs() + l.y.abs() + l.z.abs() + l.w.abs()) * 4.0;
+        // Rounding in the corner bounds must not skip a box holding a sign change.
+        let tol = 1e-5 * (l.x.abs() + l.y.abs() + l.z.abs() + l.w.abs());
+        // Min and max corners from the sign bits of L (Wallner Eq. 1.1).
+        let pos = l.cmpge(Vec4::ZERO);
+        let straddles = |lo: Vec4, hi: Vec4| {
+            Vec4::select(pos, lo, hi).dot(l) <= tol && Vec4::select(pos, hi, lo).dot(l) >= -tol
+        };
         let mut out = Vec::new();
         let mut stack = vec![0u32];
         while let Some(id) = stack.pop() {
             let n = &self.nodes[id as usize];
-            // Min and max corners from the sign bits of L (Wallner Eq. 1.1).
-            let pos = l.cmpge(DVec4::ZERO);
-            let min_corner = DVec4::select(pos, n.lo, n.hi);
-            let max_corner = DVec4::select(pos, n.hi, n.lo);
-            let (dmin, dmax) = (min_corner.dot(l), max_corner.dot(l));
-            if dmin > tol || dmax < -tol {
+            if !straddles(n.lo, n.hi) {
                 continue;
             }
-            let first = n.first_edge as usize;
-            for e in &self.edges[first..first + n.edge_count as usize] {
-                SilhouetteMesh::push_manifold(
-                    &mut out,
-                    e,
-                    mesh.lit(e.forward, l),
-                    mesh.lit(e.backward, l),
-                );
+            if n.edge_count > 0 && straddles(n.own_lo, n.own_hi) {
+                let first = n.first_edge as usize;
+                for e in &self.edges[first..first + n.edge_count as usize] {
+                    // The same expression as `SilhouetteMesh::lit` on the same numbers.
+                    SilhouetteMesh::push_manifold(
+                        &mut out,
+                        &e.edge,
+                        e.p.dot(l) > 0.0,
+                        e.q.dot(l) > 0.0,
+                    );
+                }
             }
             let fc = n.first_child as usize;
             stack.extend_from_slice(&self.children[fc..fc + n.child_count as usize]);

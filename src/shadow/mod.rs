@@ -1,6 +1,7 @@
 //! Shadows: silhouettes (brute force and the 4D dual-space hextree), shadow-volume
 //! geometry, the z-pass/z-fail decision and a CPU ray-cast reference.
 
+pub mod bench;
 pub mod hextree;
 pub mod raycast;
 pub mod silhouette;

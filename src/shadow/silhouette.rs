@@ -5,7 +5,7 @@
 //! indexes. A face is lit when plane · L > 0 (L in the same frame); brute force and
 //! hextree evaluate exactly this expression, so they give identical edge sets.
 
-use glam::{DVec3, DVec4};
+use glam::{DVec3, Vec4};
 
 use super::Light;
 use crate::geometry::adjacency::{Adjacency, EdgeKind};
@@ -61,8 +61,9 @@ pub struct SilhouetteMesh {
     pub welded: Welded,
     /// Its edges.
     pub adjacency: Adjacency,
-    /// Face planes in the normalised frame (unit normal, offset).
-    pub planes: Vec<DVec4>,
+    /// Face planes in the normalised frame (unit normal, offset), in f32: both methods
+    /// evaluate the same f32 expression, and half the memory keeps queries in cache.
+    pub planes: Vec<Vec4>,
     /// Consistently wound manifold edges (the hextree indexes these).
     pub manifold: Vec<ManifoldEdge>,
     /// Indices into `adjacency.edges` of every other edge (border, inconsistent,
@@ -95,7 +96,7 @@ impl SilhouetteMesh {
             .map(|t| {
                 let n = m.face_normal(t).normalize();
                 let p = (m.positions[m.triangles[t][0] as usize] - center) / scale;
-                n.extend(-n.dot(p))
+                n.extend(-n.dot(p)).as_vec4()
             })
             .collect();
         let adjacency = Adjacency::build(m);
@@ -137,15 +138,17 @@ impl SilhouetteMesh {
     }
 
     /// The light in the normalised frame (same plane · L signs as in the world).
-    pub fn light_in_frame(&self, light: &Light) -> DVec4 {
+    pub fn light_in_frame(&self, light: &Light) -> Vec4 {
         let l = light.0;
         let xyz = (l.truncate() - l.w * self.center) / self.scale;
-        xyz.extend(l.w)
+        // Scale to unit length: the signs are unchanged and f32 keeps its precision.
+        let v = xyz.extend(l.w);
+        (v / v.length()).as_vec4()
     }
 
     /// Whether face `f` is lit by `l` (a light in the normalised frame).
     #[inline]
-    pub fn lit(&self, f: u32, l: DVec4) -> bool {
+    pub fn lit(&self, f: u32, l: Vec4) -> bool {
         self.planes[f as usize].dot(l) > 0.0
     }
 
@@ -169,7 +172,7 @@ impl SilhouetteMesh {
     }
 
     /// Appends the silhouette edges among the non-manifold-kind edges (signed counts).
-    pub(crate) fn other_edges(&self, l: DVec4, out: &mut Vec<[u32; 2]>) {
+    pub(crate) fn other_edges(&self, l: Vec4, out: &mut Vec<[u32; 2]>) {
         for &i in &self.others {
             let e = &self.adjacency.edges[i as usize];
             let count: i64 = self

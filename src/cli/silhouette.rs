@@ -1,0 +1,173 @@
+//! `goniolight silhouette` and `goniolight bench silhouette`.
+
+use std::path::PathBuf;
+
+use clap::{Args, Subcommand, ValueEnum};
+use serde_json::json;
+
+use super::CliError;
+use crate::geometry::obj::read_obj;
+use crate::geometry::GeometryError;
+use crate::shadow::{bench, Hextree, Light, SilhouetteMesh};
+
+/// How to find silhouette edges.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum Method {
+    /// Test every edge.
+    Brute,
+    /// The 4D dual-space hextree.
+    Hextree,
+}
+
+/// Options of `silhouette`.
+#[derive(Debug, Args)]
+pub struct SilhouetteArgs {
+    /// The model (OBJ), read as is (no up-axis change).
+    pub model: PathBuf,
+    /// Homogeneous light X,Y,Z,W: W = 1 a point light, W = 0 a direction toward the light.
+    #[arg(long, allow_hyphen_values = true, value_parser = parse_light)]
+    pub light: [f64; 4],
+    /// Search method.
+    #[arg(long, value_enum, default_value = "hextree")]
+    pub method: Method,
+    /// Maximum hextree depth.
+    #[arg(long, default_value_t = crate::shadow::hextree::DEFAULT_DEPTH)]
+    pub depth: u32,
+    /// Weld vertices closer than this fraction of the bounding-box diagonal.
+    #[arg(long, default_value_t = 1e-9)]
+    pub weld: f64,
+    /// Print JSON {"count", "edges"} with 0-based OBJ vertex indices.
+    #[arg(long)]
+    pub json: bool,
+}
+
+fn parse_light(s: &str) -> Result<[f64; 4], String> {
+    let v: Vec<f64> = s
+        .split(',')
+        .map(|t| {
+            t.trim()
+                .parse::<f64>()
+                .map_err(|_| format!("bad number {t:?} in --light"))
+        })
+        .collect::<Result<_, _>>()?;
+    <[f64; 4]>::try_from(v)
+        .map_err(|v| format!("--light needs X,Y,Z,W (4 numbers), got {}", v.len()))
+}
+
+/// Benchmarks.
+#[derive(Debug, Subcommand)]
+pub enum BenchCommand {
+    /// Silhouette queries, brute force vs hextree, on ~10 k, 180 k and 1 M triangles.
+    Silhouette {
+        /// Print JSON {"meshes": [...]}.
+        #[arg(long)]
+        json: bool,
+        /// Light positions per mesh, evenly along one orbit (120: 3° apart).
+        #[arg(long, default_value_t = 120)]
+        queries: usize,
+        /// Maximum hextree depth.
+        #[arg(long, default_value_t = crate::shadow::hextree::DEFAULT_DEPTH)]
+        depth: u32,
+        /// Shrink the meshes by this factor (1 = the full sizes).
+        #[arg(long, default_value_t = 1.0)]
+        scale: f64,
+    },
+}
+
+impl From<GeometryError> for CliError {
+    fn from(e: GeometryError) -> CliError {
+        match &e {
+            GeometryError::Io { source, .. }
+                if !matches!(
+                    source.kind(),
+                    std::io::ErrorKind::NotFound | std::io::ErrorKind::PermissionDenied
+                ) =>
+            {
+                CliError::failure(e)
+            }
+            _ => CliError::input(e),
+        }
+    }
+}
+
+/// Runs `silhouette`.
+pub fn run(a: SilhouetteArgs) -> Result<(), CliError> {
+    let light =
+        Light::new(a.light).map_err(|e| CliError::input(anyhow::anyhow!("--light: {e}")))?;
+    if !(a.weld >= 0.0 && a.weld < 0.1) {
+        return Err(CliError::input(anyhow::anyhow!(
+            "--weld {} must be in [0, 0.1)",
+            a.weld
+        )));
+    }
+    let mesh = read_obj(&a.model)?;
+    let name = a.model.display().to_string();
+    let sm = SilhouetteMesh::new(&mesh, &name, a.weld)?;
+    if sm.degenerate > 0 {
+        eprintln!(
+            "warning: {name}: {} degenerate triangles ignored",
+            sm.degenerate
+        );
+    }
+    let s = match a.method {
+        Method::Brute => sm.brute(&light),
+        Method::Hextree => Hextree::build(&sm, a.depth).query(&sm, &light),
+    };
+    let edges = sm.to_input_indices(&s);
+    if a.json {
+        println!("{}", json!({"count": edges.len(), "edges": edges}));
+    } else {
+        let [m, b, i, n] = sm.adjacency.census();
+        println!(
+            "{name}: {} triangles, {} edges ({m} manifold, {b} border, {i} inconsistent winding, {n} non-manifold)",
+            sm.mesh().triangles.len(),
+            sm.adjacency.edges.len()
+        );
+        println!("{} silhouette edges ({:?})", edges.len(), a.method);
+        for [i, j] in edges {
+            println!("{i} {j}");
+        }
+    }
+    Ok(())
+}
+
+/// Runs `bench …`.
+pub fn run_bench(cmd: BenchCommand) -> Result<(), CliError> {
+    let BenchCommand::Silhouette {
+        json: as_json,
+        queries,
+        depth,
+        scale,
+    } = cmd;
+    if queries == 0 || !(scale > 0.0 && scale <= 1.0) {
+        return Err(CliError::input(anyhow::anyhow!(
+            "--queries must be > 0 and --scale in (0, 1]"
+        )));
+    }
+    let meshes = bench::bench_meshes(scale);
+    let rows = bench::run(&meshes, queries, depth, |name| {
+        eprintln!("benchmarking {name} …")
+    })
+    .map_err(|e| CliError::failure(anyhow::anyhow!(e)))?;
+    if as_json {
+        println!("{}", json!({ "meshes": rows }));
+        return Ok(());
+    }
+    println!(
+        "{:<28} {:>10} {:>10} {:>12} {:>8} {:>10} {:>9}",
+        "mesh", "triangles", "brute ms", "hextree ms", "speedup", "sil.edges", "build s"
+    );
+    for r in rows {
+        println!(
+            "{:<28} {:>10} {:>10.3} {:>12.3} {:>7.2}× {:>10.0} {:>9.2}",
+            r.mesh,
+            r.triangles,
+            r.brute_ms,
+            r.hextree_ms,
+            r.speedup,
+            r.silhouette_edges,
+            r.hextree_build_s
+        );
+    }
+    Ok(())
+}

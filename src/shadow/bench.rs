@@ -1,0 +1,119 @@
+//! The silhouette benchmark behind `goniolight bench silhouette`: procedural meshes of
+//! about 10 k, 180 k and 1 M triangles, a moving light, brute force and hextree timed
+//! side by side on one thread (and checked to agree on every query).
+
+use std::time::Instant;
+
+use glam::DVec3;
+use serde::Serialize;
+
+use super::{Hextree, Light, SilhouetteMesh};
+use crate::geometry::generate::{building, bumpy_surface, torus};
+use crate::geometry::Mesh;
+
+/// One benchmarked mesh.
+#[derive(Debug, Clone, Serialize)]
+pub struct SilhouetteBenchRow {
+    /// What the mesh is.
+    pub mesh: String,
+    /// Triangle count.
+    pub triangles: usize,
+    /// Median ms per brute-force query.
+    pub brute_ms: f64,
+    /// Median ms per hextree query.
+    pub hextree_ms: f64,
+    /// brute_ms / hextree_ms.
+    pub speedup: f64,
+    /// Mean silhouette edges per query.
+    pub silhouette_edges: f64,
+    /// Seconds to build the hextree (once per mesh).
+    pub hextree_build_s: f64,
+}
+
+/// The benchmark meshes, smallest first; `scale` < 1 shrinks them (for tests).
+pub fn bench_meshes(scale: f64) -> Vec<(String, Mesh)> {
+    let s = |n: f64| ((n * scale.sqrt()).round() as u32).max(2);
+    vec![
+        ("detailed building".to_string(), building(s(8.0), s(6.0), 5)),
+        (
+            "tessellated torus".to_string(),
+            torus(s(300.0), s(300.0), 3.0, 1.0),
+        ),
+        (
+            "bumpy scanned-like surface".to_string(),
+            bumpy_surface(s(707.0), 50.0, 11),
+        ),
+    ]
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+/// Lights orbiting the mesh at twice its size, rising and falling.
+fn lights(mesh: &Mesh, queries: usize) -> Vec<Light> {
+    let (lo, hi) = mesh.bounds().expect("non-empty benchmark mesh");
+    let c = (lo + hi) * 0.5;
+    let r = (hi - lo).length();
+    (0..queries)
+        .map(|k| {
+            let a = k as f64 / queries as f64 * std::f64::consts::TAU;
+            let e = 0.3 + 0.5 * (k as f64 * 0.7).sin().abs();
+            let p = c + DVec3::new(a.cos() * e.cos(), a.sin() * e.cos(), e.sin()) * r;
+            Light::new([p.x, p.y, p.z, 1.0]).expect("finite")
+        })
+        .collect()
+}
+
+/// Runs the benchmark on `meshes`; `progress` is told each mesh's name as it starts.
+pub fn run(
+    meshes: &[(String, Mesh)],
+    queries: usize,
+    depth: u32,
+    mut progress: impl FnMut(&str),
+) -> Result<Vec<SilhouetteBenchRow>, String> {
+    let mut rows = Vec::new();
+    for (name, mesh) in meshes {
+        progress(name);
+        let sm = SilhouetteMesh::new(mesh, name, 1e-9).map_err(|e| e.to_string())?;
+        let t0 = Instant::now();
+        let tree = Hextree::build(&sm, depth);
+        let build_s = t0.elapsed().as_secs_f64();
+        let lights = lights(mesh, queries);
+        // Both methods must agree on every light.
+        let mut edges = 0usize;
+        for light in &lights {
+            let (a, b) = (sm.brute(light), tree.query(&sm, light));
+            if a.sorted() != b.sorted() {
+                return Err(format!("{name}: brute force and hextree disagree"));
+            }
+            edges += a.edges.len();
+        }
+        // Then each method on its own over the moving light, three passes, per-query times.
+        let time = |f: &dyn Fn(&Light) -> usize| {
+            let mut ms = Vec::with_capacity(3 * lights.len());
+            for _ in 0..3 {
+                for light in &lights {
+                    let t = Instant::now();
+                    std::hint::black_box(f(light));
+                    ms.push(t.elapsed().as_secs_f64() * 1e3);
+                }
+            }
+            ms
+        };
+        let brute = time(&|l| sm.brute(l).edges.len());
+        let hex = time(&|l| tree.query(&sm, l).edges.len());
+        let (b, h) = (median(brute), median(hex));
+        rows.push(SilhouetteBenchRow {
+            mesh: name.clone(),
+            triangles: sm.mesh().triangles.len(),
+            brute_ms: b,
+            hextree_ms: h,
+            speedup: b / h,
+            silhouette_edges: edges as f64 / queries as f64,
+            hextree_build_s: build_s,
+        });
+    }
+    Ok(rows)
+}
