@@ -80,7 +80,10 @@ pub fn run(a: SunArgs) -> Result<(), CliError> {
         });
         println!("{v}");
     } else {
-        println!("utc              {}", p.utc.to_rfc3339());
+        println!(
+            "utc              {}",
+            p.utc.to_rfc3339_opts(chrono::SecondsFormat::Secs, true)
+        );
         println!(
             "azimuth          {:.5}° (clockwise from north)",
             p.azimuth_deg
