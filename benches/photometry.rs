@@ -72,13 +72,8 @@ fn parse(c: &mut Criterion) {
 
 fn sample(c: &mut Criterion) {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("luminaires");
-    let mut rng = 0x9E37_79B9_7F4A_7C15u64;
-    let mut next = move || {
-        rng ^= rng << 13;
-        rng ^= rng >> 7;
-        rng ^= rng << 17;
-        (rng >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rng = goniolight::geometry::generate::XorShift::new(0x9E37_79B9_7F4A_7C15);
+    let mut next = move || rng.next_f64();
     let queries: Vec<(f64, f64)> = (0..10_000)
         .map(|_| (next() * 360.0, next() * 180.0))
         .collect();

@@ -18,13 +18,8 @@ fn arb_grid() -> impl Strategy<Value = Grid> {
         any::<u64>(),
     )
         .prop_map(|(nc, ng, full, jitter, seed)| {
-            let mut rng = seed;
-            let mut next = move || {
-                rng ^= rng << 13;
-                rng ^= rng >> 7;
-                rng ^= rng << 17;
-                (rng >> 11) as f64 / (1u64 << 53) as f64
-            };
+            let mut rng = goniolight::geometry::generate::XorShift::new(seed);
+            let mut next = move || rng.next_f64();
             let top = if full { 180.0 } else { 90.0 };
             let mut c: Vec<f64> = (0..nc).map(|i| i as f64 * 360.0 / nc as f64).collect();
             let mut g: Vec<f64> = (0..ng).map(|i| i as f64 * top / (ng - 1) as f64).collect();

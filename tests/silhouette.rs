@@ -33,13 +33,9 @@ fn random_mesh(kind: u8, seed: u64) -> Mesh {
     } else {
         bumpy_surface(16, 5.0, seed)
     };
-    let mut s = seed | 1;
+    let mut rng = goniolight::geometry::generate::XorShift::new(seed);
     for p in &mut m.positions {
-        s ^= s << 13;
-        s ^= s >> 7;
-        s ^= s << 17;
-        let r = (s >> 11) as f64 / (1u64 << 53) as f64 - 0.5;
-        *p *= 1.0 + 0.05 * r;
+        *p *= 1.0 + 0.05 * (rng.next_f64() - 0.5);
     }
     m
 }
@@ -195,13 +191,8 @@ fn shadow_volume_contains_exactly_the_ray_cast_shadow() {
 fn zpass_zfail_decision_matches_sampling() {
     let mesh = cuboid(DVec3::new(-1.0, -1.0, 0.0), DVec3::new(1.0, 1.0, 2.0));
     let light = Light::new([0.0, 0.0, 10.0, 1.0]).unwrap();
-    let mut s = 12345u64;
-    let mut rnd = move || {
-        s ^= s << 13;
-        s ^= s >> 7;
-        s ^= s << 17;
-        (s >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rng = goniolight::geometry::generate::XorShift::new(12345);
+    let mut rnd = move || rng.next_f64();
     let (mut fail, mut pass, mut slivers) = (0, 0, 0);
     for _ in 0..300 {
         // A small near rectangle somewhere around the box, facing a random way.

@@ -5,6 +5,26 @@ use glam::DVec3;
 
 use super::Mesh;
 
+/// A tiny deterministic pseudo-random generator (xorshift64) for procedural data, tests
+/// and benchmarks: not for anything that needs real randomness.
+#[derive(Debug, Clone)]
+pub struct XorShift(u64);
+
+impl XorShift {
+    /// A generator from a seed (0 is replaced by 1).
+    pub fn new(seed: u64) -> XorShift {
+        XorShift(seed.max(1))
+    }
+
+    /// The next value, uniform in [0, 1).
+    pub fn next_f64(&mut self) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
 /// A torus around +Z: `major` segments around, `minor` segments across.
 pub fn torus(major: u32, minor: u32, r_major: f64, r_minor: f64) -> Mesh {
     let mut m = Mesh::default();
@@ -32,13 +52,8 @@ pub fn torus(major: u32, minor: u32, r_major: f64, r_minor: f64) -> Mesh {
 /// bumpy like a scan (sums of sines with a deterministic pseudo-random jitter).
 pub fn bumpy_surface(n: u32, size: f64, seed: u64) -> Mesh {
     let mut m = Mesh::default();
-    let mut s = seed | 1;
-    let mut rnd = move || {
-        s ^= s << 13;
-        s ^= s >> 7;
-        s ^= s << 17;
-        (s >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-    };
+    let mut rng = XorShift::new(seed);
+    let mut rnd = move || rng.next_f64() - 0.5;
     for i in 0..=n {
         for j in 0..=n {
             let (x, y) = (i as f64 / n as f64 * size, j as f64 / n as f64 * size);

@@ -7,7 +7,7 @@
 use super::error::ParseError;
 use super::grid::angle_eq;
 use super::symmetry::Symmetry;
-use super::text::{decode_text, parse_number, NumberStream, SourceText};
+use super::text::{check_increasing, decode_text, parse_number, NumberStream, SourceText};
 
 /// Largest number of C planes or γ angles accepted: a 0.1° grid, far beyond any goniometer.
 pub const MAX_ANGLES: usize = 3601;
@@ -276,10 +276,9 @@ impl<'a, 't> HeaderReader<'a, 't> {
         }
     }
 
-    /// A required number on its own line.
-    fn required(&mut self, what: &str) -> Result<f64, ParseError> {
-        let s = self.text(what)?;
-        match parse_number(&s) {
+    /// The number in `s` (the current line's text).
+    fn number(&mut self, s: &str, what: &str) -> Result<f64, ParseError> {
+        match parse_number(s) {
             Some((v, comma)) => {
                 self.note_comma(comma);
                 Ok(v)
@@ -288,6 +287,12 @@ impl<'a, 't> HeaderReader<'a, 't> {
                 .src
                 .error(self.line, format!("expected {what}, found {s:?}"))),
         }
+    }
+
+    /// A required number on its own line.
+    fn required(&mut self, what: &str) -> Result<f64, ParseError> {
+        let s = self.text(what)?;
+        self.number(&s, what)
     }
 
     /// A required whole number within `lo..=hi`.
@@ -317,15 +322,7 @@ impl<'a, 't> HeaderReader<'a, 't> {
             self.warn(line, format!("{what} missing: {default} assumed"));
             return Ok(default);
         }
-        match parse_number(&s) {
-            Some((v, comma)) => {
-                self.note_comma(comma);
-                Ok(v)
-            }
-            None => Err(self
-                .src
-                .error(self.line, format!("expected {what}, found {s:?}"))),
-        }
+        self.number(&s, what)
     }
 
     fn read(&mut self) -> Result<Eulumdat, ParseError> {
@@ -425,8 +422,8 @@ impl<'a, 't> HeaderReader<'a, 't> {
         }
         let c_tokens = numbers.take(mc, "C angle")?;
         let g_tokens = numbers.take(ng, "γ angle")?;
-        check_angles(self.src, &c_tokens, 0.0, 360.0, "C")?;
-        check_angles(self.src, &g_tokens, 0.0, 180.0, "γ")?;
+        check_increasing(self.src, &c_tokens, 0.0..360.0, "C")?;
+        check_increasing(self.src, &g_tokens, 0.0..=180.0, "γ")?;
         let c_angles: Vec<f64> = c_tokens.iter().map(|t| t.value).collect();
         let gamma_angles: Vec<f64> = g_tokens.iter().map(|t| t.value).collect();
         let stored = symmetry.stored_plane_indices(mc);
@@ -549,37 +546,4 @@ impl<'a, 't> HeaderReader<'a, 't> {
             );
         }
     }
-}
-
-/// Angles must lie in `[lo, hi]` and increase strictly.
-fn check_angles(
-    src: &SourceText<'_>,
-    tokens: &[super::text::Token],
-    lo: f64,
-    hi: f64,
-    axis: &str,
-) -> Result<(), ParseError> {
-    for (i, t) in tokens.iter().enumerate() {
-        if t.value < lo || t.value > hi || (axis == "C" && t.value >= hi) {
-            return Err(src.error(
-                t.line,
-                format!(
-                    "{axis} angle {} outside [{lo}°, {hi}°{}",
-                    t.value,
-                    if axis == "C" { ")" } else { "]" }
-                ),
-            ));
-        }
-        if i > 0 && t.value <= tokens[i - 1].value {
-            return Err(src.error(
-                t.line,
-                format!(
-                    "{axis} angles must increase: {} follows {}",
-                    t.value,
-                    tokens[i - 1].value
-                ),
-            ));
-        }
-    }
-    Ok(())
 }

@@ -7,7 +7,7 @@ use super::error::ParseError;
 use super::eulumdat::{Dimensions, Eulumdat, LampSet, Parsed};
 use super::grid::angle_eq;
 use super::symmetry::Symmetry;
-use super::text::{decode_text, NumberStream, SourceText};
+use super::text::{check_increasing, decode_text, NumberStream, SourceText};
 
 /// Which edition of LM-63 a file declares.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -331,8 +331,8 @@ impl IesFile {
         }
         let v_tok = nums.take(n_vert, "vertical angle")?;
         let h_tok = nums.take(n_horiz, "horizontal angle")?;
-        check_increasing(&src, &v_tok, 0.0, 180.0, "vertical")?;
-        check_increasing(&src, &h_tok, 0.0, 360.0, "horizontal")?;
+        check_increasing(&src, &v_tok, 0.0..=180.0, "vertical")?;
+        check_increasing(&src, &h_tok, 0.0..=360.0, "horizontal")?;
         let mut candela = Vec::with_capacity(n_horiz);
         for h in &h_tok {
             let row = nums.take(
@@ -616,34 +616,6 @@ fn whole(src: &SourceText<'_>, t: super::text::Token, lo: i64, hi: i64) -> Resul
         ));
     }
     Ok(t.value as i64)
-}
-
-fn check_increasing(
-    src: &SourceText<'_>,
-    t: &[super::text::Token],
-    lo: f64,
-    hi: f64,
-    what: &str,
-) -> Result<(), ParseError> {
-    for (i, tok) in t.iter().enumerate() {
-        if tok.value < lo || tok.value > hi {
-            return Err(src.error(
-                tok.line,
-                format!("{what} angle {} outside [{lo}°, {hi}°]", tok.value),
-            ));
-        }
-        if i > 0 && tok.value <= t[i - 1].value {
-            return Err(src.error(
-                tok.line,
-                format!(
-                    "{what} angles must increase: {} follows {}",
-                    tok.value,
-                    t[i - 1].value
-                ),
-            ));
-        }
-    }
-    Ok(())
 }
 
 /// The symmetry implied by the horizontal angle range of a Type C file.

@@ -275,6 +275,35 @@ impl<'a, 't> NumberStream<'a, 't> {
     }
 }
 
+/// Angles must lie in `range` and increase strictly; `what` names them in errors
+/// ("C", "γ", "vertical", …).
+pub fn check_increasing(
+    src: &SourceText<'_>,
+    tokens: &[Token],
+    range: impl std::ops::RangeBounds<f64> + std::fmt::Debug,
+    what: &str,
+) -> Result<(), ParseError> {
+    for (i, t) in tokens.iter().enumerate() {
+        if !range.contains(&t.value) {
+            return Err(src.error(
+                t.line,
+                format!("{what} angle {} outside {range:?} degrees", t.value),
+            ));
+        }
+        if i > 0 && t.value <= tokens[i - 1].value {
+            return Err(src.error(
+                t.line,
+                format!(
+                    "{what} angles must increase: {} follows {}",
+                    t.value,
+                    tokens[i - 1].value
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
