@@ -4,6 +4,10 @@ set -euo pipefail
 
 need_apt=()
 command -v cc >/dev/null 2>&1 || need_apt+=(gcc libc6-dev)
+# GPU code runs on any Vulkan driver; without one, the software driver lavapipe.
+if ! ls /usr/share/vulkan/icd.d/*.json /etc/vulkan/icd.d/*.json >/dev/null 2>&1; then
+  need_apt+=(mesa-vulkan-drivers libvulkan1)
+fi
 command -v python3 >/dev/null 2>&1 || need_apt+=(python3)
 if [ ${#need_apt[@]} -gt 0 ]; then
   echo "installing: ${need_apt[*]}" >&2
@@ -13,7 +17,7 @@ if [ ${#need_apt[@]} -gt 0 ]; then
 fi
 
 if ! command -v cargo >/dev/null 2>&1; then
-  echo "error: cargo not found. goniolight needs Rust 1.85 or newer: install it with rustup" >&2
+  echo "error: cargo not found. goniolight needs Rust 1.87 or newer: install it with rustup" >&2
   echo "       (https://rustup.rs), then run this command again." >&2
   exit 1
 fi

@@ -8,6 +8,7 @@
 
 pub mod cli;
 pub mod geometry;
+pub mod gpu;
 pub mod io;
 pub mod photometry;
 pub mod shadow;

@@ -144,11 +144,11 @@ impl Distribution {
 
 /// (C, γ) in degrees of a direction in the luminaire frame.
 pub fn direction_to_angles(dir: DVec3) -> (f64, f64) {
-    let len = dir.length();
-    if len == 0.0 {
+    if dir.length_squared() == 0.0 {
         return (0.0, 0.0);
     }
-    let g = (-dir.z / len).clamp(-1.0, 1.0).acos().to_degrees();
+    // atan2 is well conditioned everywhere (acos is not near the poles).
+    let g = dir.x.hypot(dir.y).atan2(-dir.z).to_degrees();
     let c = dir.y.atan2(dir.x).to_degrees().rem_euclid(360.0);
     (c, g)
 }

@@ -100,6 +100,16 @@ impl LdtTexture {
         360.0 / self.c_count as f64
     }
 
+    /// Whether the first γ column is exactly 0° (knots below it mirror across the pole).
+    pub fn starts_at_pole(&self) -> bool {
+        self.grid.gamma_angles()[0] == 0.0
+    }
+
+    /// Whether the last γ column is exactly 180°.
+    pub fn ends_at_pole(&self) -> bool {
+        self.grid.gamma_angles()[self.gamma_count - 1] == 180.0
+    }
+
     /// Whether one row serves every C plane.
     pub fn is_rotational(&self) -> bool {
         self.c_count == 1

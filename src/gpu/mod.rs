@@ -1,0 +1,122 @@
+//! The GPU context: instance, adapter, device and queue, built headless (for the CLI and
+//! tests) with the adapter chosen by `WGPU_BACKEND` / `WGPU_ADAPTER_NAME`; WGSL sources
+//! compiled in; read-back helpers.
+
+pub mod ldt;
+pub mod shaders;
+
+/// Why no GPU context could be made.
+#[derive(Debug, thiserror::Error)]
+pub enum GpuError {
+    /// No adapter at all (or none matching `WGPU_ADAPTER_NAME`).
+    #[error("no GPU adapter found{0}. On Debian/Ubuntu without a GPU driver, install the software Vulkan driver: `apt-get install mesa-vulkan-drivers libvulkan1` (lavapipe). `WGPU_BACKEND` (vulkan, gl, …) and `WGPU_ADAPTER_NAME` (a part of the adapter's name) choose among several.")]
+    NoAdapter(String),
+    /// The adapter refused to create a device.
+    #[error("the GPU adapter {adapter:?} could not create a device: {source}")]
+    Device {
+        /// The adapter's name.
+        adapter: String,
+        /// What wgpu said.
+        source: wgpu::RequestDeviceError,
+    },
+    /// A GPU operation failed (validation, mapping, timeout).
+    #[error("GPU: {0}")]
+    Operation(String),
+}
+
+/// A headless GPU context.
+pub struct Gpu {
+    /// The instance.
+    pub instance: wgpu::Instance,
+    /// The chosen adapter.
+    pub adapter: wgpu::Adapter,
+    /// The device.
+    pub device: wgpu::Device,
+    /// Its queue.
+    pub queue: wgpu::Queue,
+}
+
+impl Gpu {
+    /// Creates a headless context. `WGPU_BACKEND` limits the backends, `WGPU_ADAPTER_NAME`
+    /// picks the first adapter whose name contains it (case-insensitive).
+    pub fn headless() -> Result<Gpu, GpuError> {
+        let instance =
+            wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+        let wanted = std::env::var("WGPU_ADAPTER_NAME")
+            .ok()
+            .map(|s| s.to_lowercase());
+        let adapter = match &wanted {
+            Some(name) => {
+                let all = pollster::block_on(instance.enumerate_adapters(wgpu::Backends::all()));
+                let names: Vec<String> = all.iter().map(|a| a.get_info().name).collect();
+                all.into_iter()
+                    .find(|a| a.get_info().name.to_lowercase().contains(name.as_str()))
+                    .ok_or_else(|| {
+                        GpuError::NoAdapter(format!(
+                            " matching WGPU_ADAPTER_NAME={name:?} (adapters: {names:?})"
+                        ))
+                    })?
+            }
+            None => pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
+                power_preference: wgpu::PowerPreference::HighPerformance,
+                ..Default::default()
+            }))
+            .map_err(|e| GpuError::NoAdapter(format!(" ({e})")))?,
+        };
+        let info = adapter.get_info();
+        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+            label: Some("goniolight"),
+            required_features: wgpu::Features::empty(),
+            required_limits: wgpu::Limits::downlevel_defaults().using_resolution(adapter.limits()),
+            ..Default::default()
+        }))
+        .map_err(|source| GpuError::Device {
+            adapter: info.name.clone(),
+            source,
+        })?;
+        Ok(Gpu {
+            instance,
+            adapter,
+            device,
+            queue,
+        })
+    }
+
+    /// "name (backend, device type)" of the adapter.
+    pub fn describe(&self) -> String {
+        let i = self.adapter.get_info();
+        format!("{} ({:?}, {:?})", i.name, i.backend, i.device_type)
+    }
+
+    /// Copies `buffer` (which must allow COPY_SRC) back to the CPU as `f32`s.
+    pub fn read_f32(&self, buffer: &wgpu::Buffer) -> Result<Vec<f32>, GpuError> {
+        let size = buffer.size();
+        let staging = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("read-back"),
+            size,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let mut enc = self.device.create_command_encoder(&Default::default());
+        enc.copy_buffer_to_buffer(buffer, 0, &staging, 0, size);
+        self.queue.submit([enc.finish()]);
+        let slice = staging.slice(..);
+        let (tx, rx) = std::sync::mpsc::channel();
+        slice.map_async(wgpu::MapMode::Read, move |r| {
+            let _ = tx.send(r);
+        });
+        self.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map_err(|e| GpuError::Operation(e.to_string()))?;
+        rx.recv()
+            .map_err(|e| GpuError::Operation(e.to_string()))?
+            .map_err(|e| GpuError::Operation(e.to_string()))?;
+        let data = slice
+            .get_mapped_range()
+            .map_err(|e| GpuError::Operation(e.to_string()))?;
+        let out = bytemuck::cast_slice::<u8, f32>(&data).to_vec();
+        drop(data);
+        staging.unmap();
+        Ok(out)
+    }
+}
