@@ -45,8 +45,8 @@ impl Symmetry {
     pub fn check_plane_count(self, mc: usize) -> Result<(), String> {
         let ok = match self {
             Symmetry::None | Symmetry::Rotational => mc >= 1,
-            Symmetry::C0C180 => mc >= 2 && mc % 2 == 0,
-            Symmetry::C90C270 | Symmetry::Quadrant => mc >= 4 && mc % 4 == 0,
+            Symmetry::C0C180 => mc >= 2 && mc.is_multiple_of(2),
+            Symmetry::C90C270 | Symmetry::Quadrant => mc >= 4 && mc.is_multiple_of(4),
         };
         if ok {
             Ok(())
