@@ -11,5 +11,7 @@ pub mod geometry;
 pub mod gpu;
 pub mod io;
 pub mod photometry;
+pub mod render;
+pub mod scene;
 pub mod shadow;
 pub mod sun;

@@ -1,18 +1,23 @@
 //! `goniolight demo`: the main job on the bundled data.
 //!
-//! Until the renderer lands, the demo runs the interpolation check on the bundled raw lab
-//! measurement (`luminaires/eulumdat-analysis/sample_18.ldt`, 1° × 1°) downsampled to the
-//! 15° × 5° grid of a typical manufacturer file, prints the table, and writes the polar
-//! diagram and the check as JSON.
+//! Renders the bundled furnished room (`assets/scenes/furnished_room.toml`) shaded and in
+//! false-colour illuminance (PNG + EXR), then runs the interpolation check on the bundled
+//! raw lab measurement (`luminaires/eulumdat-analysis/sample_18.ldt`, 1° × 1°)
+//! downsampled to the 15° × 5° grid of a typical manufacturer file, prints the table, and
+//! writes the polar diagram and the check as JSON.
 
 use std::path::PathBuf;
 
 use clap::Args;
 
 use super::ldt::{print_check, write_plot};
+use super::render::{render_to_files, ImageOptions};
 use super::CliError;
+use crate::gpu::Gpu;
 use crate::io::write_atomic;
 use crate::photometry::{check, Luminaire};
+use crate::render::Renderer;
+use crate::scene::{Mode, Scene};
 
 /// The bundled luminaire of the demo.
 pub static DEMO_LUMINAIRE: &[u8] =
@@ -24,6 +29,45 @@ pub struct DemoArgs {
     /// Where to write the outputs.
     #[arg(long, default_value = "out")]
     pub out_dir: PathBuf,
+    /// The scene to render (default: the bundled furnished room).
+    #[arg(long)]
+    pub scene: Option<PathBuf>,
+    /// Image options (override the scene's `[display]`; the mode is set per image).
+    #[command(flatten)]
+    pub image: ImageOptions,
+}
+
+/// The bundled furnished room: next to the sources when built from a checkout, else in
+/// `assets/` below the working directory.
+pub fn default_scene() -> PathBuf {
+    let rel = "assets/scenes/furnished_room.toml";
+    let built = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(rel);
+    if built.is_file() {
+        built
+    } else {
+        PathBuf::from(rel)
+    }
+}
+
+/// Renders the scene shaded and in false-colour illuminance.
+fn render_both(args: &DemoArgs) -> Result<(), CliError> {
+    let scene_path = args.scene.clone().unwrap_or_else(default_scene);
+    let scene = Scene::load(&scene_path)?;
+    let gpu = Gpu::headless()?;
+    println!("GPU: {}", gpu.describe());
+    let renderer = Renderer::new(&gpu);
+    for (mode, stem) in [
+        (Mode::Shaded, "room-shaded"),
+        (Mode::Illuminance, "room-illuminance"),
+    ] {
+        let mut opts = args.image.clone();
+        opts.mode = Some(mode);
+        let settings = opts.settings(&scene)?;
+        let png = args.out_dir.join(format!("{stem}.png"));
+        let exr = args.out_dir.join(format!("{stem}.exr"));
+        render_to_files(&gpu, &renderer, &scene, &settings, &png, Some(&exr))?;
+    }
+    Ok(())
 }
 
 /// Runs the demo.
@@ -31,6 +75,7 @@ pub fn run(args: DemoArgs) -> Result<(), CliError> {
     let lum = Luminaire::from_bytes("luminaires/eulumdat-analysis/sample_18.ldt", DEMO_LUMINAIRE)?;
     std::fs::create_dir_all(&args.out_dir)
         .map_err(|e| CliError::failure(anyhow::anyhow!("{}: {e}", args.out_dir.display())))?;
+    render_both(&args)?;
     let s = lum.summary();
     println!(
         "sample_18.ldt: {} C planes × {} γ angles, integrated flux {:.1} lm (declared lamp flux {:.1} lm)",

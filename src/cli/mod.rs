@@ -3,6 +3,7 @@
 
 mod demo;
 mod ldt;
+mod render;
 mod silhouette;
 mod sun;
 
@@ -27,6 +28,10 @@ pub enum Command {
     Ldt(ldt::LdtCommand),
     /// Run the main job on the bundled data and write its outputs.
     Demo(demo::DemoArgs),
+    /// Render a scene (shaded or false-colour illuminance) to PNG and optionally EXR.
+    Render(render::RenderArgs),
+    /// Read "x y z nx ny nz" lines from stdin and print the direct illuminance (lux) at each.
+    Illuminance(render::IlluminanceArgs),
     /// The sun's position (NREL SPA) for a site and an instant.
     Sun(sun::SunArgs),
     /// Silhouette edges of an OBJ model for a point or directional light.
@@ -87,6 +92,8 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
     match cli.command {
         Command::Ldt(cmd) => ldt::run(cmd),
         Command::Demo(args) => demo::run(args),
+        Command::Render(args) => render::run(args),
+        Command::Illuminance(args) => render::run_illuminance(args),
         Command::Sun(args) => sun::run(args),
         Command::Silhouette(args) => silhouette::run(args),
         Command::Bench(cmd) => silhouette::run_bench(cmd),

@@ -2,6 +2,7 @@
 //! luminaire, one row per C plane) plus per-layer grid information, and a compute probe
 //! that samples a layer at many directions with the WGSL sampler of `shaders/ldt.wgsl`.
 
+use bytemuck::Zeroable;
 use wgpu::util::DeviceExt;
 
 use super::{shaders, Gpu, GpuError};
@@ -43,6 +44,14 @@ pub struct LdtAtlas {
 }
 
 impl LdtAtlas {
+    /// A one-layer atlas of zeros, for scenes without luminaires (a texture array cannot be
+    /// empty).
+    pub fn empty(gpu: &Gpu) -> LdtAtlas {
+        let mut atlas = LdtAtlas::upload(gpu, 1, 2, &[0.0, 0.0], &[LdtInfoGpu::zeroed()]);
+        atlas.layers = 0;
+        atlas
+    }
+
     /// Uploads `textures` (at least one).
     pub fn new(gpu: &Gpu, textures: &[&LdtTexture]) -> LdtAtlas {
         assert!(!textures.is_empty(), "an atlas needs at least one LDT");
@@ -67,6 +76,11 @@ impl LdtAtlas {
                 pad: [0; 2],
             });
         }
+        LdtAtlas::upload(gpu, width, height, &texels, &info)
+    }
+
+    fn upload(gpu: &Gpu, width: u32, height: u32, texels: &[f32], info: &[LdtInfoGpu]) -> LdtAtlas {
+        let layers = info.len();
         let texture = gpu.device.create_texture_with_data(
             &gpu.queue,
             &wgpu::TextureDescriptor {
@@ -74,7 +88,7 @@ impl LdtAtlas {
                 size: wgpu::Extent3d {
                     width,
                     height,
-                    depth_or_array_layers: textures.len() as u32,
+                    depth_or_array_layers: layers as u32,
                 },
                 mip_level_count: 1,
                 sample_count: 1,
@@ -84,7 +98,7 @@ impl LdtAtlas {
                 view_formats: &[],
             },
             wgpu::util::TextureDataOrder::LayerMajor,
-            bytemuck::cast_slice(&texels),
+            bytemuck::cast_slice(texels),
         );
         let view = texture.create_view(&wgpu::TextureViewDescriptor {
             dimension: Some(wgpu::TextureViewDimension::D2Array),
@@ -94,14 +108,14 @@ impl LdtAtlas {
             .device
             .create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("ldt info"),
-                contents: bytemuck::cast_slice(&info),
+                contents: bytemuck::cast_slice(info),
                 usage: wgpu::BufferUsages::STORAGE,
             });
         LdtAtlas {
             texture,
             view,
             info,
-            layers: textures.len(),
+            layers,
         }
     }
 }
@@ -123,7 +137,7 @@ pub struct LdtProbe {
 impl LdtProbe {
     /// Builds the pipeline.
     pub fn new(gpu: &Gpu) -> LdtProbe {
-        let source = format!("{}\n{}", shaders::LDT, shaders::LDT_PROBE);
+        let source = shaders::ldt_probe();
         let module = gpu
             .device
             .create_shader_module(wgpu::ShaderModuleDescriptor {

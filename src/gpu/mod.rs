@@ -90,6 +90,55 @@ impl Gpu {
 
     /// Copies `buffer` (which must allow COPY_SRC) back to the CPU as `f32`s.
     pub fn read_f32(&self, buffer: &wgpu::Buffer) -> Result<Vec<f32>, GpuError> {
+        let bytes = self.read_bytes(buffer, |_| {})?;
+        Ok(bytemuck::pod_collect_to_vec(&bytes))
+    }
+
+    /// Copies a whole 2D texture (which must allow COPY_SRC) back to the CPU, rows packed.
+    pub fn read_texture(&self, texture: &wgpu::Texture) -> Result<Vec<u8>, GpuError> {
+        let (w, h) = (texture.width(), texture.height());
+        let texel = texture
+            .format()
+            .block_copy_size(None)
+            .ok_or_else(|| GpuError::Operation("texture format cannot be copied".into()))?;
+        let row = w * texel;
+        let padded =
+            row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+        let buffer = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("texture read-back"),
+            size: (padded * h) as u64,
+            usage: wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let bytes = self.read_bytes(&buffer, |enc| {
+            enc.copy_texture_to_buffer(
+                texture.as_image_copy(),
+                wgpu::TexelCopyBufferInfo {
+                    buffer: &buffer,
+                    layout: wgpu::TexelCopyBufferLayout {
+                        offset: 0,
+                        bytes_per_row: Some(padded),
+                        rows_per_image: Some(h),
+                    },
+                },
+                texture.size(),
+            );
+        })?;
+        let mut out = Vec::with_capacity((row * h) as usize);
+        for y in 0..h as usize {
+            let at = y * padded as usize;
+            out.extend_from_slice(&bytes[at..at + row as usize]);
+        }
+        Ok(out)
+    }
+
+    /// Runs `before` (copies into `buffer`), then copies `buffer` to a mappable one and
+    /// returns its bytes once the GPU is done.
+    fn read_bytes(
+        &self,
+        buffer: &wgpu::Buffer,
+        before: impl FnOnce(&mut wgpu::CommandEncoder),
+    ) -> Result<Vec<u8>, GpuError> {
         let size = buffer.size();
         let staging = self.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("read-back"),
@@ -98,6 +147,7 @@ impl Gpu {
             mapped_at_creation: false,
         });
         let mut enc = self.device.create_command_encoder(&Default::default());
+        before(&mut enc);
         enc.copy_buffer_to_buffer(buffer, 0, &staging, 0, size);
         self.queue.submit([enc.finish()]);
         let slice = staging.slice(..);
@@ -105,18 +155,24 @@ impl Gpu {
         slice.map_async(wgpu::MapMode::Read, move |r| {
             let _ = tx.send(r);
         });
-        self.device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .map_err(|e| GpuError::Operation(e.to_string()))?;
+        self.wait()?;
         rx.recv()
             .map_err(|e| GpuError::Operation(e.to_string()))?
             .map_err(|e| GpuError::Operation(e.to_string()))?;
         let data = slice
             .get_mapped_range()
             .map_err(|e| GpuError::Operation(e.to_string()))?;
-        let out = bytemuck::cast_slice::<u8, f32>(&data).to_vec();
+        let out = data.to_vec();
         drop(data);
         staging.unmap();
         Ok(out)
+    }
+
+    /// Blocks until the GPU has finished all submitted work.
+    pub fn wait(&self) -> Result<(), GpuError> {
+        self.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map(|_| ())
+            .map_err(|e| GpuError::Operation(e.to_string()))
     }
 }

@@ -6,9 +6,38 @@ pub const LDT: &str = include_str!("../../shaders/ldt.wgsl");
 /// Compute entry point that samples one LDT at many directions (tests, checks).
 pub const LDT_PROBE: &str = include_str!("../../shaders/ldt_probe.wgsl");
 
+/// Direct light of goniometric luminaires (needs [`LDT`]).
+pub const LIGHTING: &str = include_str!("../../shaders/lighting.wgsl");
+/// Direct illuminance at many points (needs [`LDT`] and [`LIGHTING`]).
+pub const ILLUMINANCE_POINTS: &str = include_str!("../../shaders/illuminance_points.wgsl");
+/// The renderer's depth and shading passes (needs [`LDT`] and [`LIGHTING`]).
+pub const SCENE: &str = include_str!("../../shaders/scene.wgsl");
+/// Tone mapping, false colour and image statistics.
+pub const TONEMAP: &str = include_str!("../../shaders/tonemap.wgsl");
+
+/// The LDT probe module.
+pub fn ldt_probe() -> String {
+    format!("{LDT}\n{LDT_PROBE}")
+}
+
+/// The illuminance-at-points module.
+pub fn illuminance_points() -> String {
+    format!("{LDT}\n{LIGHTING}\n{ILLUMINANCE_POINTS}")
+}
+
+/// The scene (depth + shading) module.
+pub fn scene() -> String {
+    format!("{LDT}\n{LIGHTING}\n{SCENE}")
+}
+
 /// Every shader module as (name, full source), for validation.
 pub fn modules() -> Vec<(&'static str, String)> {
-    vec![("ldt_probe", format!("{LDT}\n{LDT_PROBE}"))]
+    vec![
+        ("ldt_probe", ldt_probe()),
+        ("illuminance_points", illuminance_points()),
+        ("scene", scene()),
+        ("tonemap", TONEMAP.to_string()),
+    ]
 }
 
 #[cfg(test)]

@@ -16,7 +16,7 @@ pub mod texture;
 
 use std::path::Path;
 
-pub use distribution::Distribution;
+pub use distribution::{angles_to_direction, direction_to_angles, Distribution};
 pub use error::{ParseError, PhotometryError};
 pub use eulumdat::Eulumdat;
 pub use grid::{Grid, Interp};

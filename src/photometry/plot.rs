@@ -16,7 +16,8 @@ pub static FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
 const WIDTH: u32 = 1400;
 const HEIGHT: u32 = 800;
 
-fn register_font() {
+/// Registers the bundled font with plotters as "sans-serif" (once).
+pub fn register_font() {
     static ONCE: Once = Once::new();
     ONCE.call_once(|| {
         // The bundled font is known to be valid; a failure would only lose the labels.

@@ -1,0 +1,29 @@
+// Direct illuminance at many points: `goniolight illuminance` and the GPU side of the
+// illuminance tests. Needs ldt.wgsl and lighting.wgsl before it.
+
+struct PointParams {
+    count: u32,
+    light_count: u32,
+    _pad0: u32,
+    _pad1: u32,
+};
+
+@group(0) @binding(0) var<uniform> point_params: PointParams;
+// Pairs of vec4: position, normal.
+@group(0) @binding(4) var<storage, read> points: array<vec4<f32>>;
+@group(0) @binding(5) var<storage, read_write> lux: array<f32>;
+
+@compute @workgroup_size(64)
+fn illuminance_points(@builtin(global_invocation_id) id: vec3<u32>) {
+    let i = id.x;
+    if (i >= point_params.count) {
+        return;
+    }
+    let p = points[2u * i].xyz;
+    let n = normalize(points[2u * i + 1u].xyz);
+    var e = 0.0;
+    for (var k = 0u; k < point_params.light_count; k++) {
+        e += light_illuminance(lights[k], p, n);
+    }
+    lux[i] = e;
+}

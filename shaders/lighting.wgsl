@@ -1,0 +1,59 @@
+// Direct light from goniometric luminaires: B = I · LDT(θ, φ) / d² (Wallner Eq. 3.4).
+// Shared by the renderer's fragment shader and the illuminance compute shader, so the
+// image and `goniolight illuminance` run the same code. Needs ldt.wgsl before it.
+
+struct Light {
+    // xyz: photometric centre (metres); w: the LDT layer.
+    position: vec4<f32>,
+    // The luminaire frame's axes in world coordinates: C0, C90 and up (away from γ = 0).
+    axis_x: vec4<f32>,
+    axis_y: vec4<f32>,
+    axis_z: vec4<f32>,
+    // rgb: colour normalised to luminance 1; w: candela per texel unit.
+    color: vec4<f32>,
+};
+
+// 0 nearest, 1 bilinear, 2 Catmull-Rom, 3 monotone; 4 = plain point light of constant
+// intensity (the baseline of the renderer benchmark).
+override LIGHT_MODEL: u32 = 2u;
+const LIGHT_MODEL_POINT: u32 = 4u;
+
+@group(0) @binding(1) var<storage, read> lights: array<Light>;
+@group(0) @binding(2) var ldt_tex: texture_2d_array<f32>;
+@group(0) @binding(3) var<storage, read> ldt_info: array<LdtInfo>;
+
+// Intensity in candela of light `l` toward the unit world direction `dir`.
+fn light_intensity(l: Light, dir: vec3<f32>) -> f32 {
+    if (LIGHT_MODEL == LIGHT_MODEL_POINT) {
+        return l.color.w;
+    }
+    let local = vec3<f32>(dot(dir, l.axis_x.xyz), dot(dir, l.axis_y.xyz), dot(dir, l.axis_z.xyz));
+    let a = ldt_angles(local);
+    let layer = u32(l.position.w);
+    return ldt_sample(ldt_tex, layer, ldt_info[layer], a.x, a.y, LIGHT_MODEL) * l.color.w;
+}
+
+// Illuminance on a surface facing the light (lux = I / d²) and the unit direction to it.
+struct Incident {
+    normal_lux: f32,
+    to_light: vec3<f32>,
+};
+
+fn light_incident(l: Light, p: vec3<f32>) -> Incident {
+    var out: Incident;
+    let d = l.position.xyz - p;
+    let d2 = max(dot(d, d), 1e-12);
+    out.to_light = d * inverseSqrt(d2);
+    out.normal_lux = light_intensity(l, -out.to_light) / d2;
+    return out;
+}
+
+// Direct illuminance (lux) at p on a surface with unit normal n from light l.
+fn light_illuminance(l: Light, p: vec3<f32>, n: vec3<f32>) -> f32 {
+    let d = l.position.xyz - p;
+    if (dot(d, n) <= 0.0) {
+        return 0.0;
+    }
+    let inc = light_incident(l, p);
+    return inc.normal_lux * dot(n, inc.to_light);
+}

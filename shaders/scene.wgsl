@@ -1,0 +1,121 @@
+// The real-time renderer's geometry passes: a depth pre-pass, then one shading pass that
+// sums every luminaire (Blinn-Phong, E = I · cos θ / d²) into an HDR target:
+// rgb = luminance (cd/m²), a = direct illuminance (lux) on the surface, −1 = no surface.
+// Needs ldt.wgsl and lighting.wgsl before it.
+
+struct Frame {
+    view_proj: mat4x4<f32>,
+    // xyz: eye; w: 1 for an orthographic camera.
+    eye: vec4<f32>,
+    // xyz: view direction (used by orthographic cameras).
+    view_dir: vec4<f32>,
+    light_count: u32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
+};
+
+struct MaterialParams {
+    // rgb: Kd; w: 1 when a diffuse map is bound.
+    diffuse: vec4<f32>,
+    // rgb: Ks; w: Ns.
+    specular: vec4<f32>,
+    // x: 1 when a normal map is bound.
+    flags: vec4<u32>,
+};
+
+@group(0) @binding(0) var<uniform> frame: Frame;
+@group(1) @binding(0) var<uniform> material: MaterialParams;
+@group(1) @binding(1) var diffuse_map: texture_2d<f32>;
+@group(1) @binding(2) var normal_map: texture_2d<f32>;
+@group(1) @binding(3) var material_sampler: sampler;
+
+const PI: f32 = 3.14159265358979;
+
+struct VertexIn {
+    @location(0) position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) uv: vec2<f32>,
+    @location(3) tangent: vec4<f32>,
+};
+
+struct VertexOut {
+    @builtin(position) @invariant clip: vec4<f32>,
+    @location(0) world: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) uv: vec2<f32>,
+    @location(3) tangent: vec4<f32>,
+};
+
+@vertex
+fn vs_main(v: VertexIn) -> VertexOut {
+    var out: VertexOut;
+    out.clip = frame.view_proj * vec4<f32>(v.position, 1.0);
+    out.world = v.position;
+    out.normal = v.normal;
+    out.uv = v.uv;
+    out.tangent = v.tangent;
+    return out;
+}
+
+struct DepthOut {
+    @builtin(position) @invariant clip: vec4<f32>,
+};
+
+@vertex
+fn vs_depth(v: VertexIn) -> DepthOut {
+    var out: DepthOut;
+    out.clip = frame.view_proj * vec4<f32>(v.position, 1.0);
+    return out;
+}
+
+// The shading normal: the interpolated normal, turned toward the viewer on back faces,
+// perturbed by the tangent-space normal map when there is one.
+fn shading_normal(in: VertexOut, geometric: vec3<f32>) -> vec3<f32> {
+    if (material.flags.x == 0u) {
+        return geometric;
+    }
+    let t = normalize(in.tangent.xyz - geometric * dot(geometric, in.tangent.xyz));
+    let b = cross(geometric, t) * in.tangent.w;
+    let m = textureSample(normal_map, material_sampler, in.uv).xyz * 2.0 - 1.0;
+    return normalize(t * m.x + b * m.y + geometric * m.z);
+}
+
+@fragment
+fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
+    var n_geo = normalize(in.normal);
+    if (!front) {
+        n_geo = -n_geo;
+    }
+    let n = shading_normal(in, n_geo);
+    var kd = material.diffuse.rgb;
+    if (material.diffuse.w > 0.5) {
+        kd = kd * textureSample(diffuse_map, material_sampler, in.uv).rgb;
+    }
+    let ks = material.specular.rgb;
+    let ns = material.specular.w;
+    var v = normalize(frame.eye.xyz - in.world);
+    if (frame.eye.w > 0.5) {
+        v = -frame.view_dir.xyz;
+    }
+    // Normalised Blinn-Phong lobe, so Ks is an energy fraction.
+    let spec_norm = (ns + 8.0) / (8.0 * PI);
+    var radiance = vec3<f32>(0.0);
+    var lux = 0.0;
+    for (var i = 0u; i < frame.light_count; i++) {
+        let l = lights[i];
+        let d = l.position.xyz - in.world;
+        let lit_geo = dot(d, n_geo) > 0.0;
+        let lit_shading = dot(d, n) > 0.0;
+        if (!(lit_geo || lit_shading)) {
+            continue;
+        }
+        let inc = light_incident(l, in.world);
+        lux += inc.normal_lux * max(dot(n_geo, inc.to_light), 0.0);
+        let e = inc.normal_lux * max(dot(n, inc.to_light), 0.0);
+        let h = normalize(inc.to_light + v);
+        let spec = ks * spec_norm * pow(max(dot(n, h), 0.0), ns);
+        radiance += (kd / PI + spec) * l.color.rgb * e;
+    }
+    return vec4<f32>(radiance, lux);
+}

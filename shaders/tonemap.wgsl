@@ -1,0 +1,107 @@
+// HDR → display: exposure (y = 1 − e^(−k·x)), Reinhard's global operator, or false
+// colour of the illuminance channel. The target is an sRGB format, so the hardware does
+// the sRGB encoding. Also the statistics pass the automatic settings come from.
+
+struct ToneParams {
+    // 0 exposure, 1 Reinhard, 2 false-colour illuminance.
+    tone_operator: u32,
+    stop_count: u32,
+    _pad0: u32,
+    _pad1: u32,
+    // exposure: k; Reinhard: key / log-average luminance, 1 / L_white²; false colour: lux
+    // at the top of the scale.
+    k: f32,
+    key_scale: f32,
+    inv_white2: f32,
+    lux_max: f32,
+    background: vec4<f32>,
+    // rgb: colour (linear); w: position on the scale, 0..1.
+    stops: array<vec4<f32>, 16>,
+};
+
+@group(0) @binding(0) var hdr: texture_2d<f32>;
+@group(0) @binding(1) var<uniform> tone: ToneParams;
+
+const LUMA: vec3<f32> = vec3<f32>(0.2126, 0.7152, 0.0722);
+
+@vertex
+fn vs_fullscreen(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
+    let x = f32((i << 1u) & 2u) * 2.0 - 1.0;
+    let y = f32(i & 2u) * 2.0 - 1.0;
+    return vec4<f32>(x, y, 0.0, 1.0);
+}
+
+fn false_colour(t: f32) -> vec3<f32> {
+    let x = clamp(t, 0.0, 1.0);
+    var c = tone.stops[0].rgb;
+    for (var i = 1u; i < tone.stop_count; i++) {
+        let a = tone.stops[i - 1u];
+        let b = tone.stops[i];
+        if (x >= a.w && x <= b.w) {
+            c = mix(a.rgb, b.rgb, (x - a.w) / max(b.w - a.w, 1e-6));
+        }
+    }
+    return c;
+}
+
+@fragment
+fn fs_tonemap(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
+    let texel = textureLoad(hdr, vec2<i32>(pos.xy), 0);
+    if (texel.a < 0.0) {
+        return vec4<f32>(tone.background.rgb, 1.0);
+    }
+    if (tone.tone_operator == 2u) {
+        return vec4<f32>(false_colour(texel.a / tone.lux_max), 1.0);
+    }
+    if (tone.tone_operator == 0u) {
+        return vec4<f32>(1.0 - exp(-tone.k * texel.rgb), 1.0);
+    }
+    let lw = dot(texel.rgb, LUMA);
+    if (lw <= 0.0) {
+        return vec4<f32>(0.0, 0.0, 0.0, 1.0);
+    }
+    let l = tone.key_scale * lw;
+    let ld = l * (1.0 + l * tone.inv_white2) / (1.0 + l);
+    return vec4<f32>(min(texel.rgb * (ld / lw), vec3<f32>(1.0)), 1.0);
+}
+
+// Per 16 × 16 tile of surface pixels: (Σ ln(δ + L), count, min L > 0, max L) and
+// (max lux, Σ lux, 0, 0). The CPU sums the tiles.
+const TILE: u32 = 16u;
+var<workgroup> part_a: array<vec4<f32>, 256>;
+var<workgroup> part_b: array<vec4<f32>, 256>;
+@group(0) @binding(2) var<storage, read_write> tiles: array<vec4<f32>>;
+
+@compute @workgroup_size(16, 16)
+fn stats(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(local_invocation_index) li: u32, @builtin(workgroup_id) wg: vec3<u32>, @builtin(num_workgroups) nwg: vec3<u32>) {
+    let size = textureDimensions(hdr);
+    var a = vec4<f32>(0.0, 0.0, 3.0e38, 0.0);
+    var b = vec4<f32>(0.0);
+    if (gid.x < size.x && gid.y < size.y) {
+        let t = textureLoad(hdr, vec2<i32>(gid.xy), 0);
+        if (t.a >= 0.0) {
+            let l = dot(t.rgb, LUMA);
+            a = vec4<f32>(log(1e-4 + l), 1.0, select(3.0e38, l, l > 0.0), l);
+            b = vec4<f32>(t.a, t.a, 0.0, 0.0);
+        }
+    }
+    part_a[li] = a;
+    part_b[li] = b;
+    workgroupBarrier();
+    for (var s = 128u; s > 0u; s = s >> 1u) {
+        if (li < s) {
+            let x = part_a[li];
+            let y = part_a[li + s];
+            part_a[li] = vec4<f32>(x.x + y.x, x.y + y.y, min(x.z, y.z), max(x.w, y.w));
+            let u = part_b[li];
+            let w = part_b[li + s];
+            part_b[li] = vec4<f32>(max(u.x, w.x), u.y + w.y, 0.0, 0.0);
+        }
+        workgroupBarrier();
+    }
+    if (li == 0u) {
+        let tile = wg.y * nwg.x + wg.x;
+        tiles[2u * tile] = part_a[0];
+        tiles[2u * tile + 1u] = part_b[0];
+    }
+}

@@ -1,0 +1,263 @@
+//! `goniolight render` and `goniolight illuminance`: a scene to images, and the direct
+//! illuminance at points read from stdin.
+
+use std::io::BufRead;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use anyhow::anyhow;
+use clap::Args;
+use glam::DVec3;
+
+use super::CliError;
+use crate::gpu::{Gpu, GpuError};
+use crate::photometry::Interp;
+use crate::render::illuminance::{illuminance_cpu, IlluminanceProbe, SurfacePoint};
+use crate::render::output::{linear_image, write_image};
+use crate::render::{LightModel, RenderSettings, RenderedFrame, Renderer};
+use crate::scene::{Mode, Scene, SceneError, Tonemap};
+
+impl From<SceneError> for CliError {
+    fn from(e: SceneError) -> CliError {
+        CliError::input(e)
+    }
+}
+
+impl From<GpuError> for CliError {
+    fn from(e: GpuError) -> CliError {
+        CliError::failure(e)
+    }
+}
+
+/// Options of `render`.
+#[derive(Debug, Args)]
+pub struct RenderArgs {
+    /// The scene file (TOML).
+    pub scene: PathBuf,
+    /// The image to write (PNG).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Also write linear values as OpenEXR (cd/m² when shaded, lux in illuminance mode).
+    #[arg(long)]
+    pub exr: Option<PathBuf>,
+    /// Image options (override the scene's `[display]`).
+    #[command(flatten)]
+    pub image: ImageOptions,
+}
+
+/// Image options shared by `render` and `demo`.
+#[derive(Debug, Args, Clone, Default)]
+pub struct ImageOptions {
+    /// Image width in pixels.
+    #[arg(long)]
+    pub width: Option<u32>,
+    /// Image height in pixels.
+    #[arg(long)]
+    pub height: Option<u32>,
+    /// Interpolation of the light distributions.
+    #[arg(long, value_enum)]
+    pub interp: Option<Interp>,
+    /// Shaded image or false-colour illuminance (lux).
+    #[arg(long, value_enum)]
+    pub mode: Option<Mode>,
+    /// Tone-mapping operator.
+    #[arg(long, value_enum)]
+    pub tonemap: Option<Tonemap>,
+    /// k of the exposure operator y = 1 − e^(−k·x), in 1/(cd/m²) (default: automatic).
+    #[arg(long)]
+    pub exposure: Option<f64>,
+    /// Top of the false-colour scale in lux (default: automatic).
+    #[arg(long)]
+    pub lux_max: Option<f64>,
+}
+
+impl ImageOptions {
+    /// The scene's display settings with these options applied.
+    pub fn settings(&self, scene: &Scene) -> Result<RenderSettings, CliError> {
+        let mut s = RenderSettings::from_display(&scene.display);
+        if let Some(w) = self.width {
+            s.width = w;
+        }
+        if let Some(h) = self.height {
+            s.height = h;
+        }
+        for (flag, v) in [("--width", s.width), ("--height", s.height)] {
+            if !(1..=8192).contains(&v) {
+                return Err(CliError::input(anyhow!("{flag} {v} is not in 1..=8192")));
+            }
+        }
+        if let Some(i) = self.interp {
+            s.light_model = LightModel::Ldt(i);
+        }
+        if let Some(m) = self.mode {
+            s.mode = m;
+        }
+        if let Some(t) = self.tonemap {
+            s.tonemap = t;
+        }
+        for (flag, v) in [("--exposure", self.exposure), ("--lux-max", self.lux_max)] {
+            if let Some(v) = v {
+                if !(v.is_finite() && v > 0.0) {
+                    return Err(CliError::input(anyhow!(
+                        "{flag} {v} must be a positive number"
+                    )));
+                }
+            }
+        }
+        s.exposure = self.exposure.or(s.exposure);
+        s.lux_max = self.lux_max.or(s.lux_max);
+        Ok(s)
+    }
+}
+
+fn check_extension(path: &Path, ext: &str, flag: &str) -> Result<(), CliError> {
+    let ok = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case(ext));
+    if ok {
+        Ok(())
+    } else {
+        Err(CliError::input(anyhow!(
+            "{flag} {}: the file name must end in .{ext}",
+            path.display()
+        )))
+    }
+}
+
+/// Renders `scene` with `settings` and writes the PNG (and EXR): the shared body of
+/// `render` and `demo`.
+pub fn render_to_files(
+    gpu: &Gpu,
+    renderer: &Renderer,
+    scene: &Scene,
+    settings: &RenderSettings,
+    png: &Path,
+    exr: Option<&Path>,
+) -> Result<RenderedFrame, CliError> {
+    let mut settings = settings.clone();
+    settings.read_hdr = exr.is_some();
+    let started = Instant::now();
+    let uploaded = renderer.upload(gpu, scene);
+    let frame = renderer.render(gpu, &uploaded, &scene.camera, &settings)?;
+    let ms = started.elapsed().as_secs_f64() * 1e3;
+    write_image(png, &image::DynamicImage::ImageRgba8(frame.image.clone()))
+        .map_err(CliError::failure)?;
+    if let Some(exr) = exr {
+        let linear = linear_image(&frame, settings.width, settings.height)
+            .ok_or_else(|| CliError::failure(anyhow!("no HDR values were read back")))?;
+        write_image(exr, &image::DynamicImage::ImageRgb32F(linear)).map_err(CliError::failure)?;
+    }
+    let what = match settings.mode {
+        Mode::Shaded => format!(
+            "log-average luminance {:.1} cd/m², max {:.0} cd/m²",
+            frame.stats.log_average_luminance, frame.stats.max_luminance
+        ),
+        Mode::Illuminance => format!(
+            "illuminance mean {:.0} lx, max {:.0} lx, scale 0–{} lx",
+            frame.stats.mean_lux, frame.stats.max_lux, frame.tone.lux_max
+        ),
+    };
+    println!(
+        "{}: {} triangles, {} luminaires, {}×{} in {ms:.0} ms; {what} → {}{}",
+        scene.path.display(),
+        scene.triangle_count(),
+        scene.luminaires.len(),
+        settings.width,
+        settings.height,
+        png.display(),
+        exr.map(|e| format!(", {}", e.display()))
+            .unwrap_or_default()
+    );
+    Ok(frame)
+}
+
+/// Runs `render`.
+pub fn run(args: RenderArgs) -> Result<(), CliError> {
+    check_extension(&args.out, "png", "--out")?;
+    if let Some(e) = &args.exr {
+        check_extension(e, "exr", "--exr")?;
+    }
+    let scene = Scene::load(&args.scene)?;
+    let settings = args.image.settings(&scene)?;
+    let gpu = Gpu::headless()?;
+    let renderer = Renderer::new(&gpu);
+    render_to_files(
+        &gpu,
+        &renderer,
+        &scene,
+        &settings,
+        &args.out,
+        args.exr.as_deref(),
+    )?;
+    Ok(())
+}
+
+/// Options of `illuminance`.
+#[derive(Debug, Args)]
+pub struct IlluminanceArgs {
+    /// The scene file (TOML); its luminaires are used.
+    pub scene: PathBuf,
+    /// Compute on the CPU (the reference) instead of with the renderer's WGSL code.
+    #[arg(long)]
+    pub cpu: bool,
+    /// Interpolation of the light distributions.
+    #[arg(long, value_enum, default_value = "catmull-rom")]
+    pub interp: Interp,
+}
+
+/// Parses lines `x y z nx ny nz` (blank lines and `#` comments skipped).
+pub fn read_points(input: impl BufRead, name: &str) -> Result<Vec<SurfacePoint>, CliError> {
+    let mut points = Vec::new();
+    for (i, line) in input.lines().enumerate() {
+        let line = line.map_err(|e| CliError::input(anyhow!("{name}: line {}: {e}", i + 1)))?;
+        let t = line.trim();
+        if t.is_empty() || t.starts_with('#') {
+            continue;
+        }
+        let v: Vec<f64> = t
+            .split_whitespace()
+            .map(|w| w.parse::<f64>())
+            .collect::<Result<_, _>>()
+            .map_err(|e| CliError::input(anyhow!("{name}: line {}: {e}: {t:?}", i + 1)))?;
+        if v.len() != 6 || v.iter().any(|x| !x.is_finite()) {
+            return Err(CliError::input(anyhow!(
+                "{name}: line {}: expected six finite numbers \"x y z nx ny nz\", got {t:?}",
+                i + 1
+            )));
+        }
+        let normal = DVec3::new(v[3], v[4], v[5]);
+        if normal.length() < 1e-12 {
+            return Err(CliError::input(anyhow!(
+                "{name}: line {}: the normal has zero length",
+                i + 1
+            )));
+        }
+        points.push(SurfacePoint {
+            position: DVec3::new(v[0], v[1], v[2]),
+            normal,
+        });
+    }
+    Ok(points)
+}
+
+/// Runs `illuminance`.
+pub fn run_illuminance(args: IlluminanceArgs) -> Result<(), CliError> {
+    let scene = Scene::load(&args.scene)?;
+    let points = read_points(std::io::stdin().lock(), "stdin")?;
+    let lux: Vec<f64> = if args.cpu {
+        points
+            .iter()
+            .map(|p| illuminance_cpu(&scene.luminaires, p, args.interp))
+            .collect()
+    } else {
+        let gpu = Gpu::headless()?;
+        let lights = crate::render::gpu_scene::GpuLights::new(&gpu, &scene.luminaires);
+        IlluminanceProbe::new(&gpu, LightModel::Ldt(args.interp)).run(&gpu, &lights, &points)?
+    };
+    let mut out = String::with_capacity(lux.len() * 12);
+    for v in lux {
+        out.push_str(&format!("{v:.6}\n"));
+    }
+    print!("{out}");
+    Ok(())
+}

@@ -1,0 +1,354 @@
+//! A scene uploaded to the GPU: one vertex and index buffer, a bind group per material,
+//! the luminaires (a storage buffer) and their light distribution textures (one array).
+
+use std::collections::HashMap;
+use std::path::PathBuf;
+
+use glam::{Vec2, Vec3};
+use wgpu::util::DeviceExt;
+
+use super::layouts::Layouts;
+use crate::gpu::ldt::LdtAtlas;
+use crate::gpu::Gpu;
+use crate::photometry::LdtTexture;
+use crate::scene::{Material, PlacedLuminaire, Scene, SceneMesh};
+
+/// A vertex as the shaders read it.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct Vertex {
+    /// World position, metres.
+    pub position: [f32; 3],
+    /// Unit normal.
+    pub normal: [f32; 3],
+    /// Texture coordinates.
+    pub uv: [f32; 2],
+    /// Tangent (xyz) and handedness (w) for normal mapping.
+    pub tangent: [f32; 4],
+}
+
+impl Vertex {
+    /// The vertex buffer layout.
+    pub const LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
+        array_stride: std::mem::size_of::<Vertex>() as u64,
+        step_mode: wgpu::VertexStepMode::Vertex,
+        attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x2, 3 => Float32x4],
+    };
+}
+
+/// A luminaire as the shaders read it (`Light` in `shaders/lighting.wgsl`).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct LightGpu {
+    /// Photometric centre; w: the LDT layer.
+    pub position: [f32; 4],
+    /// Luminaire X (C0) axis in the world.
+    pub axis_x: [f32; 4],
+    /// Luminaire Y (C90) axis.
+    pub axis_y: [f32; 4],
+    /// Luminaire Z (up) axis.
+    pub axis_z: [f32; 4],
+    /// Colour (luminance 1); w: candela per texel unit.
+    pub color: [f32; 4],
+}
+
+impl LightGpu {
+    /// The GPU record of `l`, whose distribution is layer `layer` of the atlas.
+    pub fn new(l: &PlacedLuminaire, layer: u32) -> LightGpu {
+        let axis = |v: glam::DVec3| [v.x as f32, v.y as f32, v.z as f32, 0.0];
+        let p = l.position.as_vec3();
+        let c = l.color.as_vec3();
+        LightGpu {
+            position: [p.x, p.y, p.z, layer as f32],
+            axis_x: axis(l.rotation.x_axis),
+            axis_y: axis(l.rotation.y_axis),
+            axis_z: axis(l.rotation.z_axis),
+            color: [c.x, c.y, c.z, l.candela_scale() as f32],
+        }
+    }
+}
+
+/// The luminaires' distinct distributions (one atlas layer per file) and their records.
+pub struct GpuLights {
+    /// `array<Light>` (at least one element, so it can be bound).
+    pub buffer: wgpu::Buffer,
+    /// Number of lights.
+    pub count: u32,
+    /// The distributions.
+    pub atlas: LdtAtlas,
+}
+
+impl GpuLights {
+    /// Uploads `luminaires`; luminaires of the same file share a layer.
+    pub fn new(gpu: &Gpu, luminaires: &[PlacedLuminaire]) -> GpuLights {
+        let mut layer_of: HashMap<PathBuf, u32> = HashMap::new();
+        let mut textures: Vec<&LdtTexture> = Vec::new();
+        let mut records = Vec::with_capacity(luminaires.len());
+        for l in luminaires {
+            let layer = *layer_of.entry(l.file.clone()).or_insert_with(|| {
+                textures.push(&l.texture);
+                textures.len() as u32 - 1
+            });
+            records.push(LightGpu::new(l, layer));
+        }
+        let atlas = if textures.is_empty() {
+            LdtAtlas::empty(gpu)
+        } else {
+            LdtAtlas::new(gpu, &textures)
+        };
+        let count = records.len() as u32;
+        if records.is_empty() {
+            records.push(bytemuck::Zeroable::zeroed());
+        }
+        let buffer = gpu
+            .device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("lights"),
+                contents: bytemuck::cast_slice(&records),
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            });
+        GpuLights {
+            buffer,
+            count,
+            atlas,
+        }
+    }
+}
+
+/// One draw call: a range of the index buffer with one material.
+#[derive(Debug, Clone, Copy)]
+pub struct Draw {
+    /// First index.
+    pub first_index: u32,
+    /// Number of indices.
+    pub index_count: u32,
+    /// Material index.
+    pub material: usize,
+}
+
+/// Material parameters (`MaterialParams` in `shaders/scene.wgsl`).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct MaterialGpu {
+    diffuse: [f32; 4],
+    specular: [f32; 4],
+    flags: [u32; 4],
+}
+
+/// The uploaded scene.
+pub struct GpuScene {
+    /// Vertices of every mesh.
+    pub vertices: wgpu::Buffer,
+    /// Indices of every mesh.
+    pub indices: wgpu::Buffer,
+    /// Draw calls, grouped by material.
+    pub draws: Vec<Draw>,
+    /// One bind group per material (group 1).
+    pub materials: Vec<wgpu::BindGroup>,
+    /// The luminaires.
+    pub lights: GpuLights,
+    /// Number of triangles.
+    pub triangle_count: usize,
+}
+
+impl GpuScene {
+    /// Uploads `scene`.
+    pub fn new(gpu: &Gpu, layouts: &Layouts, scene: &Scene) -> GpuScene {
+        let mut vertices: Vec<Vertex> = Vec::new();
+        let mut indices: Vec<u32> = Vec::new();
+        let mut meshes: Vec<&SceneMesh> = scene.meshes.iter().collect();
+        meshes.sort_by_key(|m| m.material);
+        let mut draws: Vec<Draw> = Vec::new();
+        for m in meshes {
+            let base = vertices.len() as u32;
+            let tangents = tangents(m);
+            vertices.extend((0..m.positions.len()).map(|i| Vertex {
+                position: m.positions[i].to_array(),
+                normal: m.normals[i].to_array(),
+                uv: m.uvs[i].to_array(),
+                tangent: tangents[i],
+            }));
+            let first_index = indices.len() as u32;
+            indices.extend(m.indices.iter().map(|i| i + base));
+            let index_count = m.indices.len() as u32;
+            match draws.last_mut() {
+                Some(d)
+                    if d.material == m.material && d.first_index + d.index_count == first_index =>
+                {
+                    d.index_count += index_count
+                }
+                _ => draws.push(Draw {
+                    first_index,
+                    index_count,
+                    material: m.material,
+                }),
+            }
+        }
+        if vertices.is_empty() {
+            vertices.push(bytemuck::Zeroable::zeroed());
+            indices.extend([0, 0, 0]);
+        }
+        let dev = &gpu.device;
+        let vertex_buffer = dev.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("vertices"),
+            contents: bytemuck::cast_slice(&vertices),
+            usage: wgpu::BufferUsages::VERTEX,
+        });
+        let index_buffer = dev.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("indices"),
+            contents: bytemuck::cast_slice(&indices),
+            usage: wgpu::BufferUsages::INDEX,
+        });
+        let materials = scene
+            .materials
+            .iter()
+            .map(|m| material_bind_group(gpu, layouts, m))
+            .collect();
+        GpuScene {
+            vertices: vertex_buffer,
+            indices: index_buffer,
+            draws,
+            materials,
+            lights: GpuLights::new(gpu, &scene.luminaires),
+            triangle_count: scene.triangle_count(),
+        }
+    }
+
+    /// Records the draw calls (bind group 1 and the buffers are set here).
+    pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>) {
+        pass.set_vertex_buffer(0, self.vertices.slice(..));
+        pass.set_index_buffer(self.indices.slice(..), wgpu::IndexFormat::Uint32);
+        for d in &self.draws {
+            pass.set_bind_group(1, &self.materials[d.material], &[]);
+            pass.draw_indexed(d.first_index..d.first_index + d.index_count, 0, 0..1);
+        }
+    }
+}
+
+/// Per-vertex tangents from the texture coordinates (w = handedness); any unit vector
+/// across the normal where the mapping is degenerate.
+fn tangents(m: &SceneMesh) -> Vec<[f32; 4]> {
+    let n = m.positions.len();
+    let mut tan = vec![Vec3::ZERO; n];
+    let mut bit = vec![Vec3::ZERO; n];
+    for t in m.indices.chunks_exact(3) {
+        let [a, b, c] = [t[0] as usize, t[1] as usize, t[2] as usize];
+        let (e1, e2) = (
+            m.positions[b] - m.positions[a],
+            m.positions[c] - m.positions[a],
+        );
+        let (d1, d2): (Vec2, Vec2) = (m.uvs[b] - m.uvs[a], m.uvs[c] - m.uvs[a]);
+        let det = d1.x * d2.y - d2.x * d1.y;
+        if det.abs() < 1e-12 {
+            continue;
+        }
+        let r = 1.0 / det;
+        let t_dir = (e1 * d2.y - e2 * d1.y) * r;
+        let b_dir = (e2 * d1.x - e1 * d2.x) * r;
+        for i in [a, b, c] {
+            tan[i] += t_dir;
+            bit[i] += b_dir;
+        }
+    }
+    (0..n)
+        .map(|i| {
+            let nrm = m.normals[i];
+            let mut t = (tan[i] - nrm * nrm.dot(tan[i])).normalize_or_zero();
+            if t == Vec3::ZERO {
+                t = nrm.any_orthonormal_vector();
+            }
+            let w = if nrm.cross(t).dot(bit[i]) < 0.0 {
+                -1.0
+            } else {
+                1.0
+            };
+            [t.x, t.y, t.z, w]
+        })
+        .collect()
+}
+
+fn upload_rgba(
+    gpu: &Gpu,
+    img: &image::RgbaImage,
+    format: wgpu::TextureFormat,
+) -> wgpu::TextureView {
+    let texture = gpu.device.create_texture_with_data(
+        &gpu.queue,
+        &wgpu::TextureDescriptor {
+            label: Some("material texture"),
+            size: wgpu::Extent3d {
+                width: img.width(),
+                height: img.height(),
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING,
+            view_formats: &[],
+        },
+        wgpu::util::TextureDataOrder::LayerMajor,
+        img.as_raw(),
+    );
+    texture.create_view(&Default::default())
+}
+
+fn material_bind_group(gpu: &Gpu, layouts: &Layouts, m: &Material) -> wgpu::BindGroup {
+    let one_pixel = |rgba: [u8; 4]| image::RgbaImage::from_pixel(1, 1, image::Rgba(rgba));
+    let diffuse = match &m.diffuse_map {
+        Some(img) => upload_rgba(gpu, img, wgpu::TextureFormat::Rgba8UnormSrgb),
+        None => upload_rgba(
+            gpu,
+            &one_pixel([255; 4]),
+            wgpu::TextureFormat::Rgba8UnormSrgb,
+        ),
+    };
+    let normal = match &m.normal_map {
+        Some(img) => upload_rgba(gpu, img, wgpu::TextureFormat::Rgba8Unorm),
+        None => upload_rgba(
+            gpu,
+            &one_pixel([128, 128, 255, 255]),
+            wgpu::TextureFormat::Rgba8Unorm,
+        ),
+    };
+    let params = MaterialGpu {
+        diffuse: [
+            m.diffuse.x,
+            m.diffuse.y,
+            m.diffuse.z,
+            m.diffuse_map.is_some() as u32 as f32,
+        ],
+        specular: [m.specular.x, m.specular.y, m.specular.z, m.shininess],
+        flags: [m.normal_map.is_some() as u32, 0, 0, 0],
+    };
+    let buffer = gpu
+        .device
+        .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("material"),
+            contents: bytemuck::bytes_of(&params),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+    gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some(&m.name),
+        layout: &layouts.material,
+        entries: &[
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: buffer.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: wgpu::BindingResource::TextureView(&diffuse),
+            },
+            wgpu::BindGroupEntry {
+                binding: 2,
+                resource: wgpu::BindingResource::TextureView(&normal),
+            },
+            wgpu::BindGroupEntry {
+                binding: 3,
+                resource: wgpu::BindingResource::Sampler(&layouts.material_sampler),
+            },
+        ],
+    })
+}

@@ -1,0 +1,170 @@
+//! The real-time goniometric renderer (Wallner ch. 3): a depth pre-pass, one shading pass
+//! that sums every luminaire with B = I · LDT(θ, φ) / d² (Eq. 3.4) and Blinn-Phong into an
+//! HDR target, image statistics, and tone mapping (exposure, Reinhard) or false-colour
+//! illuminance with a legend. Headless here; the viewer drives the same passes.
+
+pub mod gpu_scene;
+pub mod illuminance;
+pub mod layouts;
+pub mod legend;
+pub mod output;
+pub mod passes;
+pub mod targets;
+pub mod tonemap;
+
+use glam::Vec3;
+
+pub use gpu_scene::GpuScene;
+pub use passes::LightModel;
+pub use tonemap::{ImageStats, ToneSettings};
+
+use crate::gpu::{Gpu, GpuError};
+use crate::photometry::Interp;
+use crate::scene::{Camera, DisplayEntry, Mode, Scene, Tonemap};
+use layouts::Layouts;
+use passes::ScenePasses;
+use targets::Targets;
+use tonemap::ToneMapper;
+
+/// What to render.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RenderSettings {
+    /// Width, pixels.
+    pub width: u32,
+    /// Height, pixels.
+    pub height: u32,
+    /// How luminaires emit.
+    pub light_model: LightModel,
+    /// Shaded or false-colour illuminance.
+    pub mode: Mode,
+    /// Tone-mapping operator (shaded mode).
+    pub tonemap: Tonemap,
+    /// k of the exposure operator (automatic when `None`).
+    pub exposure: Option<f64>,
+    /// Top of the false-colour scale, lux (automatic when `None`).
+    pub lux_max: Option<f64>,
+    /// Display colour where no surface is seen (linear RGB 0..1).
+    pub background: Vec3,
+    /// Whether to read the HDR values back (for EXR output and tests).
+    pub read_hdr: bool,
+}
+
+impl RenderSettings {
+    /// The settings of a scene's `[display]` table, with defaults for what it leaves out.
+    pub fn from_display(d: &DisplayEntry) -> RenderSettings {
+        RenderSettings {
+            width: d.width.unwrap_or(1280),
+            height: d.height.unwrap_or(720),
+            light_model: LightModel::Ldt(d.interp.unwrap_or(Interp::CatmullRom)),
+            mode: d.mode.unwrap_or_default(),
+            tonemap: d.tonemap.unwrap_or_default(),
+            exposure: d.exposure,
+            lux_max: d.lux_max,
+            background: d
+                .background
+                .map(|b| glam::DVec3::from_array(b).as_vec3())
+                .unwrap_or(Vec3::splat(0.02)),
+            read_hdr: false,
+        }
+    }
+}
+
+/// A rendered image.
+pub struct RenderedFrame {
+    /// The displayable image (sRGB), with the legend in illuminance mode.
+    pub image: image::RgbaImage,
+    /// Linear values when asked for: rgb = luminance (cd/m²), a = lux (−1: no surface).
+    pub hdr: Option<Vec<[f32; 4]>>,
+    /// Statistics of the HDR image.
+    pub stats: ImageStats,
+    /// The tone-mapping settings used.
+    pub tone: ToneSettings,
+}
+
+/// The renderer's pipelines (built once, reused for every frame and scene).
+pub struct Renderer {
+    /// Bind group layouts and the material sampler.
+    pub layouts: Layouts,
+    passes: ScenePasses,
+    tonemapper: ToneMapper,
+}
+
+impl Renderer {
+    /// Builds the pipelines.
+    pub fn new(gpu: &Gpu) -> Renderer {
+        let layouts = Layouts::new(gpu);
+        Renderer {
+            passes: ScenePasses::new(gpu, &layouts),
+            tonemapper: ToneMapper::new(gpu),
+            layouts,
+        }
+    }
+
+    /// Uploads a scene.
+    pub fn upload(&self, gpu: &Gpu, scene: &Scene) -> GpuScene {
+        GpuScene::new(gpu, &self.layouts, scene)
+    }
+
+    /// Renders the HDR image of `scene` seen by `camera` into `targets` and waits for it:
+    /// one frame of GPU work (the benchmark's unit).
+    pub fn draw_hdr(
+        &self,
+        gpu: &Gpu,
+        scene: &GpuScene,
+        camera: &Camera,
+        targets: &Targets,
+        model: LightModel,
+    ) -> Result<(), GpuError> {
+        let frame = self
+            .passes
+            .frame_bind_group(gpu, &self.layouts, scene, camera, targets);
+        let mut enc = gpu.device.create_command_encoder(&Default::default());
+        self.passes
+            .record(gpu, &mut enc, &frame, scene, targets, model);
+        gpu.queue.submit([enc.finish()]);
+        gpu.wait()
+    }
+
+    /// Renders a complete image.
+    pub fn render(
+        &self,
+        gpu: &Gpu,
+        scene: &GpuScene,
+        camera: &Camera,
+        settings: &RenderSettings,
+    ) -> Result<RenderedFrame, GpuError> {
+        let targets = Targets::new(gpu, settings.width, settings.height);
+        self.draw_hdr(gpu, scene, camera, &targets, settings.light_model)?;
+        let stats = self.tonemapper.statistics(gpu, &targets)?;
+        let tone = ToneSettings::resolve(
+            settings.mode,
+            settings.tonemap,
+            settings.exposure,
+            settings.lux_max,
+            &stats,
+        );
+        let mut enc = gpu.device.create_command_encoder(&Default::default());
+        self.tonemapper
+            .record(gpu, &mut enc, &targets, &tone, settings.background);
+        gpu.queue.submit([enc.finish()]);
+        let pixels = gpu.read_texture(&targets.ldr)?;
+        let mut image = image::RgbaImage::from_raw(settings.width, settings.height, pixels)
+            .ok_or_else(|| GpuError::Operation("read-back size mismatch".into()))?;
+        if settings.mode == Mode::Illuminance {
+            legend::draw_legend(&mut image, tone.lux_max);
+        }
+        let hdr = if settings.read_hdr {
+            Some(bytemuck::pod_collect_to_vec(
+                &gpu.read_texture(&targets.hdr)?,
+            ))
+        } else {
+            None
+        };
+        Ok(RenderedFrame {
+            image,
+            hdr,
+            stats,
+            tone,
+        })
+    }
+}

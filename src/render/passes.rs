@@ -1,0 +1,266 @@
+//! The geometry passes: a depth pre-pass and the shading pass (all luminaires in one
+//! pass, into the HDR target). Shading pipelines are specialised per light model with the
+//! WGSL override constant `LIGHT_MODEL`, so the interpolation costs nothing when unused.
+
+use std::collections::HashMap;
+use std::sync::Mutex;
+
+use glam::Mat4;
+use wgpu::util::DeviceExt;
+
+use super::gpu_scene::{GpuScene, Vertex};
+use super::layouts::Layouts;
+use super::targets::{Targets, DEPTH_FORMAT, HDR_FORMAT};
+use crate::gpu::ldt::interp_code;
+use crate::gpu::{shaders, Gpu};
+use crate::photometry::Interp;
+use crate::scene::{Camera, Projection};
+
+/// How luminaires emit.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum LightModel {
+    /// A plain point light of constant intensity (I_max): the benchmark's baseline.
+    Point,
+    /// The luminaire's distribution, sampled with an interpolation.
+    Ldt(Interp),
+}
+
+impl LightModel {
+    /// The value of the WGSL `LIGHT_MODEL` override.
+    pub fn code(self) -> u32 {
+        match self {
+            LightModel::Point => 4,
+            LightModel::Ldt(i) => interp_code(i),
+        }
+    }
+}
+
+/// `Frame` in `shaders/scene.wgsl`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct FrameGpu {
+    view_proj: [f32; 16],
+    eye: [f32; 4],
+    view_dir: [f32; 4],
+    light_count: u32,
+    pad: [u32; 3],
+}
+
+/// The depth pre-pass and the shading pipelines.
+pub struct ScenePasses {
+    module: wgpu::ShaderModule,
+    layout: wgpu::PipelineLayout,
+    depth: wgpu::RenderPipeline,
+    shade: Mutex<HashMap<LightModel, wgpu::RenderPipeline>>,
+}
+
+impl ScenePasses {
+    /// Compiles the scene shader and the depth pipeline.
+    pub fn new(gpu: &Gpu, layouts: &Layouts) -> ScenePasses {
+        let module = gpu
+            .device
+            .create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some("scene"),
+                source: wgpu::ShaderSource::Wgsl(shaders::scene().into()),
+            });
+        let layout = gpu
+            .device
+            .create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some("scene"),
+                bind_group_layouts: &[Some(&layouts.frame), Some(&layouts.material)],
+                immediate_size: 0,
+            });
+        let depth = gpu
+            .device
+            .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some("depth pre-pass"),
+                layout: Some(&layout),
+                vertex: wgpu::VertexState {
+                    module: &module,
+                    entry_point: Some("vs_depth"),
+                    compilation_options: Default::default(),
+                    buffers: &[Some(Vertex::LAYOUT)],
+                },
+                primitive: wgpu::PrimitiveState::default(),
+                depth_stencil: Some(depth_state(true, wgpu::CompareFunction::Less)),
+                multisample: Default::default(),
+                fragment: None,
+                multiview_mask: None,
+                cache: None,
+            });
+        ScenePasses {
+            module,
+            layout,
+            depth,
+            shade: Mutex::new(HashMap::new()),
+        }
+    }
+
+    /// The shading pipeline of `model` (built on first use).
+    fn shade_pipeline(&self, gpu: &Gpu, model: LightModel) -> wgpu::RenderPipeline {
+        let mut cache = self.shade.lock().unwrap_or_else(|e| e.into_inner());
+        cache
+            .entry(model)
+            .or_insert_with(|| {
+                let constants = [("LIGHT_MODEL", model.code() as f64)];
+                let options = wgpu::PipelineCompilationOptions {
+                    constants: &constants,
+                    ..Default::default()
+                };
+                gpu.device
+                    .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                        label: Some("shade"),
+                        layout: Some(&self.layout),
+                        vertex: wgpu::VertexState {
+                            module: &self.module,
+                            entry_point: Some("vs_main"),
+                            compilation_options: options.clone(),
+                            buffers: &[Some(Vertex::LAYOUT)],
+                        },
+                        primitive: wgpu::PrimitiveState::default(),
+                        depth_stencil: Some(depth_state(false, wgpu::CompareFunction::LessEqual)),
+                        multisample: Default::default(),
+                        fragment: Some(wgpu::FragmentState {
+                            module: &self.module,
+                            entry_point: Some("fs_main"),
+                            compilation_options: options,
+                            targets: &[Some(wgpu::ColorTargetState {
+                                format: HDR_FORMAT,
+                                blend: None,
+                                write_mask: wgpu::ColorWrites::ALL,
+                            })],
+                        }),
+                        multiview_mask: None,
+                        cache: None,
+                    })
+            })
+            .clone()
+    }
+
+    /// The frame bind group (group 0) for `camera` looking at `scene` in `targets`.
+    pub fn frame_bind_group(
+        &self,
+        gpu: &Gpu,
+        layouts: &Layouts,
+        scene: &GpuScene,
+        camera: &Camera,
+        targets: &Targets,
+    ) -> wgpu::BindGroup {
+        let aspect = targets.width as f64 / targets.height as f64;
+        let view_proj: Mat4 = camera.view_projection(aspect);
+        let dir = (camera.look_at - camera.position).normalize().as_vec3();
+        let ortho = matches!(camera.projection, Projection::Orthographic { .. });
+        let eye = camera.position.as_vec3();
+        let frame = FrameGpu {
+            view_proj: view_proj.to_cols_array(),
+            eye: [eye.x, eye.y, eye.z, ortho as u32 as f32],
+            view_dir: [dir.x, dir.y, dir.z, 0.0],
+            light_count: scene.lights.count,
+            pad: [0; 3],
+        };
+        let buffer = gpu
+            .device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("frame"),
+                contents: bytemuck::bytes_of(&frame),
+                usage: wgpu::BufferUsages::UNIFORM,
+            });
+        gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("frame"),
+            layout: &layouts.frame,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: buffer.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: scene.lights.buffer.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: wgpu::BindingResource::TextureView(&scene.lights.atlas.view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 3,
+                    resource: scene.lights.atlas.info.as_entire_binding(),
+                },
+            ],
+        })
+    }
+
+    /// Records the depth pre-pass and the shading pass into `enc`. The HDR target is
+    /// cleared to luminance 0 with illuminance −1 (no surface).
+    pub fn record(
+        &self,
+        gpu: &Gpu,
+        enc: &mut wgpu::CommandEncoder,
+        frame: &wgpu::BindGroup,
+        scene: &GpuScene,
+        targets: &Targets,
+        model: LightModel,
+    ) {
+        let shade = self.shade_pipeline(gpu, model);
+        {
+            let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("depth pre-pass"),
+                color_attachments: &[],
+                depth_stencil_attachment: Some(depth_attachment(&targets.depth_view, true)),
+                ..Default::default()
+            });
+            pass.set_pipeline(&self.depth);
+            pass.set_bind_group(0, frame, &[]);
+            scene.draw(&mut pass);
+        }
+        let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("shade"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: &targets.hdr_view,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color {
+                        r: 0.0,
+                        g: 0.0,
+                        b: 0.0,
+                        a: -1.0,
+                    }),
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: Some(depth_attachment(&targets.depth_view, false)),
+            ..Default::default()
+        });
+        pass.set_pipeline(&shade);
+        pass.set_bind_group(0, frame, &[]);
+        scene.draw(&mut pass);
+    }
+}
+
+fn depth_state(write: bool, compare: wgpu::CompareFunction) -> wgpu::DepthStencilState {
+    wgpu::DepthStencilState {
+        format: DEPTH_FORMAT,
+        depth_write_enabled: Some(write),
+        depth_compare: Some(compare),
+        stencil: Default::default(),
+        bias: Default::default(),
+    }
+}
+
+fn depth_attachment(
+    view: &wgpu::TextureView,
+    clear: bool,
+) -> wgpu::RenderPassDepthStencilAttachment<'_> {
+    wgpu::RenderPassDepthStencilAttachment {
+        view,
+        depth_ops: Some(wgpu::Operations {
+            load: if clear {
+                wgpu::LoadOp::Clear(1.0)
+            } else {
+                wgpu::LoadOp::Load
+            },
+            store: wgpu::StoreOp::Store,
+        }),
+        stencil_ops: None,
+    }
+}

@@ -1,0 +1,68 @@
+//! Render targets of one image size: depth, HDR (linear luminance + illuminance) and the
+//! displayable sRGB image.
+
+use crate::gpu::Gpu;
+
+/// Depth buffer format.
+pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+/// HDR target: rgb = luminance (cd/m²), a = direct illuminance (lux), −1 where no surface.
+pub const HDR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+/// The displayable image.
+pub const LDR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+
+/// The targets.
+pub struct Targets {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// Depth.
+    pub depth_view: wgpu::TextureView,
+    /// HDR texture.
+    pub hdr: wgpu::Texture,
+    /// Its view.
+    pub hdr_view: wgpu::TextureView,
+    /// sRGB image.
+    pub ldr: wgpu::Texture,
+    /// Its view.
+    pub ldr_view: wgpu::TextureView,
+}
+
+impl Targets {
+    /// Creates targets of `width` × `height`.
+    pub fn new(gpu: &Gpu, width: u32, height: u32) -> Targets {
+        let make = |label, format, usage| {
+            gpu.device.create_texture(&wgpu::TextureDescriptor {
+                label: Some(label),
+                size: wgpu::Extent3d {
+                    width,
+                    height,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format,
+                usage,
+                view_formats: &[],
+            })
+        };
+        use wgpu::TextureUsages as U;
+        let depth = make("depth", DEPTH_FORMAT, U::RENDER_ATTACHMENT);
+        let hdr = make(
+            "hdr",
+            HDR_FORMAT,
+            U::RENDER_ATTACHMENT | U::TEXTURE_BINDING | U::COPY_SRC,
+        );
+        let ldr = make("ldr", LDR_FORMAT, U::RENDER_ATTACHMENT | U::COPY_SRC);
+        Targets {
+            width,
+            height,
+            depth_view: depth.create_view(&Default::default()),
+            hdr_view: hdr.create_view(&Default::default()),
+            hdr,
+            ldr_view: ldr.create_view(&Default::default()),
+            ldr,
+        }
+    }
+}

@@ -1,0 +1,181 @@
+//! The scene file format (TOML), as read by serde. Every table rejects unknown keys so a
+//! typo is an error that names the key, not a silently ignored setting.
+//!
+//! ```toml
+//! [[model]]
+//! path = "models/room.obj"      # OBJ with its MTL, relative to this file
+//! up = "z"                      # "y" (default, most OBJ exporters) or "z"
+//! translation = [0.0, 0.0, 0.0] # optional transform: scale, then rotation, then translation
+//! rotation_deg = [0.0, 0.0, 90.0]
+//! scale = 1.0
+//!
+//! [[luminaire]]
+//! file = "../luminaires/eulumdat-plot/sample_06_isym1.ldt"
+//! position = [2.0, 1.5, 2.95]   # metres, world frame (+Z up)
+//! aim = [0.0, 0.0, -1.0]        # optional: direction of γ = 0 (or aim_at = a point)
+//! roll = 0.0                    # degrees about the aim direction
+//! rotation_deg = [0.0, 0.0, 0.0]# optional: then rotate about world X, Y, Z
+//! multiplier = 1.0              # dimming
+//! color = [1.0, 0.9, 0.8]       # optional tint (normalised to luminance 1)
+//!
+//! [camera]
+//! position = [0.5, 0.5, 1.6]
+//! look_at = [3.0, 2.0, 1.0]
+//! fov_deg = 60.0                # or orthographic_height = 6.0
+//!
+//! [display]
+//! mode = "shaded"               # or "illuminance"
+//! tonemap = "reinhard"          # or "exposure"
+//! interp = "catmull-rom"        # nearest | bilinear | catmull-rom | monotone
+//! width = 1280
+//! height = 720
+//! ```
+
+use serde::Deserialize;
+
+/// The whole file.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneFile {
+    /// Geometry.
+    #[serde(default)]
+    pub model: Vec<ModelEntry>,
+    /// Light sources.
+    #[serde(default)]
+    pub luminaire: Vec<LuminaireEntry>,
+    /// The view.
+    pub camera: CameraEntry,
+    /// Display settings.
+    #[serde(default)]
+    pub display: DisplayEntry,
+}
+
+/// The up axis of an OBJ file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum UpAxis {
+    /// +Y up (converted to the world's +Z up).
+    #[default]
+    Y,
+    /// +Z up (as the world).
+    Z,
+}
+
+/// A scale: one factor or one per axis.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[serde(untagged)]
+pub enum Scale {
+    /// The same factor on every axis.
+    Uniform(f64),
+    /// Per axis.
+    PerAxis([f64; 3]),
+}
+
+/// `[[model]]`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ModelEntry {
+    /// OBJ file, relative to the scene file.
+    pub path: String,
+    /// The OBJ's up axis.
+    #[serde(default)]
+    pub up: UpAxis,
+    /// Translation in metres (applied last).
+    pub translation: Option<[f64; 3]>,
+    /// Rotation about world X, then Y, then Z, degrees.
+    pub rotation_deg: Option<[f64; 3]>,
+    /// Scale (applied first).
+    pub scale: Option<Scale>,
+}
+
+/// `[[luminaire]]`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LuminaireEntry {
+    /// `.ldt` or `.ies` file, relative to the scene file.
+    pub file: String,
+    /// Photometric centre in metres.
+    pub position: [f64; 3],
+    /// Direction of γ = 0.
+    pub aim: Option<[f64; 3]>,
+    /// A point γ = 0 points at (instead of `aim`).
+    pub aim_at: Option<[f64; 3]>,
+    /// Rotation about the aim direction, degrees.
+    #[serde(default)]
+    pub roll: f64,
+    /// Rotation about world X, then Y, then Z (degrees), after aiming.
+    pub rotation_deg: Option<[f64; 3]>,
+    /// Dimming factor on the declared flux.
+    #[serde(default = "one")]
+    pub multiplier: f64,
+    /// Light colour (linear RGB), normalised to luminance 1 so lux stay photometric.
+    pub color: Option<[f64; 3]>,
+    /// A display name (defaults to the file name).
+    pub name: Option<String>,
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+/// `[camera]`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CameraEntry {
+    /// Eye position, metres.
+    pub position: [f64; 3],
+    /// The point looked at.
+    pub look_at: [f64; 3],
+    /// Up direction (default +Z).
+    pub up: Option<[f64; 3]>,
+    /// Vertical field of view of a perspective camera, degrees.
+    pub fov_deg: Option<f64>,
+    /// Height of the view of an orthographic camera, metres.
+    pub orthographic_height: Option<f64>,
+    /// Near plane distance, metres.
+    pub near: Option<f64>,
+}
+
+/// The output mode.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Default, clap::ValueEnum)]
+#[serde(rename_all = "lowercase")]
+pub enum Mode {
+    /// Shaded image (luminance, tone mapped).
+    #[default]
+    Shaded,
+    /// False-colour direct illuminance in lux with a legend.
+    Illuminance,
+}
+
+/// The tone-mapping operator.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Default, clap::ValueEnum)]
+#[serde(rename_all = "lowercase")]
+pub enum Tonemap {
+    /// y = 1 − exp(−k·x).
+    Exposure,
+    /// Reinhard's global operator with an automatic key.
+    #[default]
+    Reinhard,
+}
+
+/// `[display]`.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DisplayEntry {
+    /// Shaded or false-colour illuminance.
+    pub mode: Option<Mode>,
+    /// Tone mapping.
+    pub tonemap: Option<Tonemap>,
+    /// k of the exposure operator, 1/(cd/m²) (default: automatic).
+    pub exposure: Option<f64>,
+    /// LDT interpolation: nearest, bilinear, catmull-rom, monotone.
+    pub interp: Option<crate::photometry::Interp>,
+    /// Image width, pixels.
+    pub width: Option<u32>,
+    /// Image height, pixels.
+    pub height: Option<u32>,
+    /// Top of the false-colour scale, lux (default: from the image).
+    pub lux_max: Option<f64>,
+    /// Colour of pixels that show no surface (linear RGB in cd/m²).
+    pub background: Option<[f64; 3]>,
+}

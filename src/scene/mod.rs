@@ -1,0 +1,201 @@
+//! Scenes: the TOML scene file, OBJ/MTL models (tobj) with their textures (image),
+//! luminaires placed in the world, and the camera. See [`file`] for the format.
+//!
+//! Frames: the world is right-handed with +Z up (metres). A luminaire's own frame has
+//! γ = 0 along −Z and C0 along +X; [`PlacedLuminaire::rotation`] maps it to the world.
+
+pub mod camera;
+pub mod file;
+pub mod model;
+pub mod placement;
+
+use std::path::{Path, PathBuf};
+
+use glam::DVec3;
+
+pub use camera::{Camera, Projection};
+pub use file::{DisplayEntry, Mode, SceneFile, Tonemap, UpAxis};
+pub use model::{Material, SceneMesh};
+pub use placement::PlacedLuminaire;
+
+/// A problem with a scene: the file, the key (`luminaire[2].position`, `model[0].path`, or
+/// `line 7` for syntax errors) and what is wrong.
+#[derive(Debug, thiserror::Error)]
+#[error("{file}: {key}: {message}")]
+pub struct SceneError {
+    /// The scene file (or the model/texture file the key points to).
+    pub file: String,
+    /// Where in it.
+    pub key: String,
+    /// What is wrong.
+    pub message: String,
+}
+
+impl SceneError {
+    /// An error at `key` of `file`.
+    pub fn new(file: &Path, key: impl Into<String>, message: impl Into<String>) -> SceneError {
+        SceneError {
+            file: file.display().to_string(),
+            key: key.into(),
+            message: message.into(),
+        }
+    }
+}
+
+/// A loaded scene, in world coordinates.
+#[derive(Debug, Clone)]
+pub struct Scene {
+    /// The scene file (empty for scenes built in code).
+    pub path: PathBuf,
+    /// Triangle meshes, one per OBJ object, with a material each.
+    pub meshes: Vec<SceneMesh>,
+    /// Materials; index 0 is the default (matte grey) for faces without one.
+    pub materials: Vec<Material>,
+    /// Light sources.
+    pub luminaires: Vec<PlacedLuminaire>,
+    /// The view.
+    pub camera: Camera,
+    /// Display settings as written in the file.
+    pub display: DisplayEntry,
+}
+
+impl Scene {
+    /// Reads a scene file and everything it refers to.
+    pub fn load(path: &Path) -> Result<Scene, SceneError> {
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| SceneError::new(path, "file", e.to_string()))?;
+        Scene::from_toml(path, &text)
+    }
+
+    /// Parses scene text; relative paths are resolved against `path`'s folder.
+    pub fn from_toml(path: &Path, text: &str) -> Result<Scene, SceneError> {
+        let parsed: SceneFile = toml::from_str(text).map_err(|e| toml_error(path, text, &e))?;
+        let dir = path.parent().unwrap_or(Path::new("")).to_path_buf();
+        let mut materials = vec![Material::default()];
+        let mut meshes = Vec::new();
+        for (i, entry) in parsed.model.iter().enumerate() {
+            let key = format!("model[{i}]");
+            meshes.extend(model::load_model(path, &key, &dir, entry, &mut materials)?);
+        }
+        let luminaires = parsed
+            .luminaire
+            .iter()
+            .enumerate()
+            .map(|(i, entry)| {
+                PlacedLuminaire::from_entry(path, &format!("luminaire[{i}]"), &dir, entry)
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let bounds = bounds_of(&meshes, &luminaires);
+        let camera = Camera::from_entry(path, &parsed.camera, bounds)?;
+        check_display(path, &parsed.display)?;
+        Ok(Scene {
+            path: path.to_path_buf(),
+            meshes,
+            materials,
+            luminaires,
+            camera,
+            display: parsed.display,
+        })
+    }
+
+    /// Number of triangles.
+    pub fn triangle_count(&self) -> usize {
+        self.meshes.iter().map(|m| m.indices.len() / 3).sum()
+    }
+
+    /// Bounds of the geometry and the luminaires.
+    pub fn bounds(&self) -> (DVec3, DVec3) {
+        bounds_of(&self.meshes, &self.luminaires)
+    }
+}
+
+fn bounds_of(meshes: &[SceneMesh], luminaires: &[PlacedLuminaire]) -> (DVec3, DVec3) {
+    let points = meshes
+        .iter()
+        .flat_map(|m| m.positions.iter().map(|p| p.as_dvec3()))
+        .chain(luminaires.iter().map(|l| l.position));
+    let (lo, hi) = points.fold(
+        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+        |(lo, hi), p| (lo.min(p), hi.max(p)),
+    );
+    if lo.x > hi.x {
+        (DVec3::ZERO, DVec3::ZERO)
+    } else {
+        (lo, hi)
+    }
+}
+
+fn check_display(path: &Path, d: &DisplayEntry) -> Result<(), SceneError> {
+    for (key, v) in [("display.width", d.width), ("display.height", d.height)] {
+        if let Some(v) = v {
+            if !(1..=16384).contains(&v) {
+                return Err(SceneError::new(
+                    path,
+                    key,
+                    format!("{v} is not in 1..=16384"),
+                ));
+            }
+        }
+    }
+    for (key, v) in [
+        ("display.exposure", d.exposure),
+        ("display.lux_max", d.lux_max),
+    ] {
+        if let Some(v) = v {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(SceneError::new(
+                    path,
+                    key,
+                    format!("{v} must be a positive number"),
+                ));
+            }
+        }
+    }
+    if let Some(b) = d.background {
+        finite_vec(path, "display.background", b)?;
+    }
+    Ok(())
+}
+
+/// `v` as a vector if every component is finite.
+pub(crate) fn finite_vec(path: &Path, key: &str, v: [f64; 3]) -> Result<DVec3, SceneError> {
+    if v.iter().all(|x| x.is_finite()) {
+        Ok(DVec3::from_array(v))
+    } else {
+        Err(SceneError::new(
+            path,
+            key,
+            format!("{v:?} has a component that is not a finite number"),
+        ))
+    }
+}
+
+/// A TOML error with its line and, where the line has one, the key it is about.
+fn toml_error(path: &Path, text: &str, e: &toml::de::Error) -> SceneError {
+    let message = e.message().trim().to_string();
+    let Some(span) = e.span() else {
+        return SceneError::new(path, "toml", message);
+    };
+    let line_no = text[..span.start.min(text.len())].matches('\n').count() + 1;
+    let line = text.lines().nth(line_no - 1).unwrap_or("");
+    let table = text
+        .lines()
+        .take(line_no)
+        .filter_map(|l| {
+            let t = l.trim();
+            t.starts_with('[')
+                .then(|| t.trim_matches(['[', ']']).to_string())
+        })
+        .last();
+    let key = match line.split_once('=') {
+        Some((k, _)) if !line.trim_start().starts_with('[') => {
+            let k = k.trim();
+            match &table {
+                Some(t) => format!("line {line_no}: {t}.{k}"),
+                None => format!("line {line_no}: {k}"),
+            }
+        }
+        _ => format!("line {line_no}"),
+    };
+    SceneError::new(path, key, message)
+}

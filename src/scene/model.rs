@@ -1,0 +1,357 @@
+//! OBJ models with MTL materials (via tobj) and their textures (via image), converted to
+//! the world frame (+Z up) with the model's transform applied.
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use glam::{DMat3, DMat4, DVec3, Vec2, Vec3};
+
+use super::file::{ModelEntry, Scale, UpAxis};
+use super::{finite_vec, SceneError};
+
+/// A surface material (MTL subset).
+#[derive(Debug, Clone)]
+pub struct Material {
+    /// Its name in the MTL file.
+    pub name: String,
+    /// `Kd`: diffuse reflectance (linear RGB).
+    pub diffuse: Vec3,
+    /// `Ks`: specular reflectance.
+    pub specular: Vec3,
+    /// `Ns`: Blinn-Phong exponent.
+    pub shininess: f32,
+    /// `Ke`: luminous exitance, lm/m² (for the radiosity solver).
+    pub emission: Vec3,
+    /// `map_Kd`: diffuse colour texture (sRGB), multiplied with `Kd`.
+    pub diffuse_map: Option<Arc<image::RgbaImage>>,
+    /// `map_Bump` / `bump` / `norm`: tangent-space normal map.
+    pub normal_map: Option<Arc<image::RgbaImage>>,
+}
+
+impl Default for Material {
+    fn default() -> Material {
+        Material {
+            name: "default".into(),
+            diffuse: Vec3::splat(0.6),
+            specular: Vec3::ZERO,
+            shininess: 1.0,
+            emission: Vec3::ZERO,
+            diffuse_map: None,
+            normal_map: None,
+        }
+    }
+}
+
+/// A triangle mesh in world coordinates with one material.
+#[derive(Debug, Clone, Default)]
+pub struct SceneMesh {
+    /// Object name from the OBJ file.
+    pub name: String,
+    /// Vertex positions, metres.
+    pub positions: Vec<Vec3>,
+    /// Unit vertex normals.
+    pub normals: Vec<Vec3>,
+    /// Texture coordinates (zero when the OBJ has none).
+    pub uvs: Vec<Vec2>,
+    /// Triangles, three indices each, counter-clockwise seen from the front.
+    pub indices: Vec<u32>,
+    /// Index into the scene's materials.
+    pub material: usize,
+}
+
+impl SceneMesh {
+    /// Builds a mesh with flat normals from world-space triangles (for scenes made in code).
+    pub fn from_triangles(name: &str, triangles: &[[Vec3; 3]], material: usize) -> SceneMesh {
+        let mut m = SceneMesh {
+            name: name.into(),
+            material,
+            ..Default::default()
+        };
+        for t in triangles {
+            let n = (t[1] - t[0]).cross(t[2] - t[0]).normalize_or_zero();
+            for p in t {
+                m.indices.push(m.positions.len() as u32);
+                m.positions.push(*p);
+                m.normals.push(n);
+                m.uvs.push(Vec2::ZERO);
+            }
+        }
+        m
+    }
+}
+
+/// The model's matrix: OBJ frame → world (up-axis change, scale, rotation, translation).
+pub fn model_matrix(entry: &ModelEntry) -> DMat4 {
+    let up = match entry.up {
+        UpAxis::Y => DMat4::from_rotation_x(std::f64::consts::FRAC_PI_2),
+        UpAxis::Z => DMat4::IDENTITY,
+    };
+    let scale = match entry.scale {
+        None => DVec3::ONE,
+        Some(Scale::Uniform(s)) => DVec3::splat(s),
+        Some(Scale::PerAxis(s)) => DVec3::from_array(s),
+    };
+    let rotation = euler_xyz_deg(entry.rotation_deg.unwrap_or([0.0; 3]));
+    let translation = DVec3::from_array(entry.translation.unwrap_or([0.0; 3]));
+    DMat4::from_translation(translation)
+        * DMat4::from_mat3(rotation)
+        * DMat4::from_scale(scale)
+        * up
+}
+
+/// Rotation about world X, then Y, then Z (degrees).
+pub fn euler_xyz_deg(deg: [f64; 3]) -> DMat3 {
+    DMat3::from_rotation_z(deg[2].to_radians())
+        * DMat3::from_rotation_y(deg[1].to_radians())
+        * DMat3::from_rotation_x(deg[0].to_radians())
+}
+
+/// Loads the OBJ of `entry`; its materials are appended to `materials`.
+pub(super) fn load_model(
+    scene: &Path,
+    key: &str,
+    dir: &Path,
+    entry: &ModelEntry,
+    materials: &mut Vec<Material>,
+) -> Result<Vec<SceneMesh>, SceneError> {
+    let path_key = format!("{key}.path");
+    for (k, v) in [
+        ("translation", entry.translation),
+        ("rotation_deg", entry.rotation_deg),
+    ] {
+        if let Some(v) = v {
+            finite_vec(scene, &format!("{key}.{k}"), v)?;
+        }
+    }
+    let scale = match entry.scale {
+        None => [1.0; 3],
+        Some(Scale::Uniform(s)) => [s; 3],
+        Some(Scale::PerAxis(s)) => s,
+    };
+    if scale.iter().any(|s| !s.is_finite() || *s == 0.0) {
+        return Err(SceneError::new(
+            scene,
+            format!("{key}.scale"),
+            format!("{scale:?}: every factor must be finite and non-zero"),
+        ));
+    }
+    let obj = dir.join(&entry.path);
+    if !obj.is_file() {
+        return Err(SceneError::new(
+            scene,
+            path_key,
+            format!("cannot read model {}: no such file", obj.display()),
+        ));
+    }
+    let options = tobj::LoadOptions {
+        triangulate: true,
+        single_index: true,
+        ignore_points: true,
+        ignore_lines: true,
+    };
+    let (models, mtl) = tobj::load_obj(&obj, &options)
+        .map_err(|e| SceneError::new(scene, &path_key, format!("{}: {e}", obj.display())))?;
+    let obj_dir = obj.parent().unwrap_or(Path::new("")).to_path_buf();
+    let first_material = materials.len();
+    let mut textures = TextureCache::new(&obj_dir);
+    match mtl {
+        Ok(list) => {
+            for m in &list {
+                materials.push(textures.material(m).map_err(|message| {
+                    SceneError::new(
+                        scene,
+                        &path_key,
+                        format!("material {:?}: {message}", m.name),
+                    )
+                })?);
+            }
+        }
+        // A missing MTL is common in exported files: warn and use the default material.
+        Err(tobj::LoadError::OpenFileFailed) => {
+            eprintln!(
+                "warning: {}: its MTL file could not be opened; using the default material",
+                obj.display()
+            );
+        }
+        Err(e) => {
+            return Err(SceneError::new(
+                scene,
+                &path_key,
+                format!("{}: MTL: {e}", obj.display()),
+            ))
+        }
+    }
+    let matrix = model_matrix(entry);
+    let normal_matrix = DMat3::from_mat4(matrix).inverse().transpose();
+    let mut meshes = Vec::new();
+    for m in models {
+        let mesh = convert(&m, matrix, normal_matrix, first_material, materials.len()).map_err(
+            |message| {
+                SceneError::new(
+                    scene,
+                    &path_key,
+                    format!("{}: object {:?}: {message}", obj.display(), m.name),
+                )
+            },
+        )?;
+        if !mesh.indices.is_empty() {
+            meshes.push(mesh);
+        }
+    }
+    if meshes.is_empty() {
+        return Err(SceneError::new(
+            scene,
+            path_key,
+            format!("{}: no triangles with a non-zero area", obj.display()),
+        ));
+    }
+    Ok(meshes)
+}
+
+/// One tobj model to a world-space mesh, dropping zero-area triangles; flat normals where
+/// the OBJ has none.
+fn convert(
+    m: &tobj::Model,
+    matrix: DMat4,
+    normal_matrix: DMat3,
+    first_material: usize,
+    material_count: usize,
+) -> Result<SceneMesh, String> {
+    let src = &m.mesh;
+    let point = |i: usize| {
+        let p = DVec3::new(
+            src.positions[3 * i] as f64,
+            src.positions[3 * i + 1] as f64,
+            src.positions[3 * i + 2] as f64,
+        );
+        matrix.transform_point3(p)
+    };
+    if src.positions.iter().any(|v| !v.is_finite()) {
+        return Err("a vertex position is not a finite number".into());
+    }
+    let has_normals = src.normals.len() == src.positions.len();
+    let has_uvs = src.texcoords.len() / 2 == src.positions.len() / 3;
+    let material = match src.material_id {
+        Some(id) if first_material + id < material_count => first_material + id,
+        _ => 0,
+    };
+    let mut out = SceneMesh {
+        name: m.name.clone(),
+        material,
+        ..Default::default()
+    };
+    let mut remap: HashMap<u32, u32> = HashMap::new();
+    for tri in src.indices.chunks_exact(3) {
+        let p = [0, 1, 2].map(|k| point(tri[k] as usize));
+        let face = (p[1] - p[0]).cross(p[2] - p[0]);
+        if face.length_squared() <= 1e-24 || !face.is_finite() {
+            continue;
+        }
+        let face_n = face.normalize().as_vec3();
+        for (k, &vi) in tri.iter().enumerate() {
+            let i = vi as usize;
+            let normal = if has_normals {
+                let n = DVec3::new(
+                    src.normals[3 * i] as f64,
+                    src.normals[3 * i + 1] as f64,
+                    src.normals[3 * i + 2] as f64,
+                );
+                let n = (normal_matrix * n).normalize_or_zero().as_vec3();
+                if n == Vec3::ZERO {
+                    face_n
+                } else {
+                    n
+                }
+            } else {
+                face_n
+            };
+            let uv = if has_uvs {
+                Vec2::new(src.texcoords[2 * i], src.texcoords[2 * i + 1])
+            } else {
+                Vec2::ZERO
+            };
+            // Shared vertices only when the file gives normals; flat faces otherwise.
+            let index = if has_normals {
+                *remap.entry(vi).or_insert_with(|| {
+                    out.positions.push(p[k].as_vec3());
+                    out.normals.push(normal);
+                    out.uvs.push(uv);
+                    out.positions.len() as u32 - 1
+                })
+            } else {
+                out.positions.push(p[k].as_vec3());
+                out.normals.push(normal);
+                out.uvs.push(uv);
+                out.positions.len() as u32 - 1
+            };
+            out.indices.push(index);
+        }
+    }
+    Ok(out)
+}
+
+/// Loads each texture once per model.
+struct TextureCache {
+    dir: PathBuf,
+    loaded: HashMap<String, Arc<image::RgbaImage>>,
+}
+
+impl TextureCache {
+    fn new(dir: &Path) -> TextureCache {
+        TextureCache {
+            dir: dir.to_path_buf(),
+            loaded: HashMap::new(),
+        }
+    }
+
+    fn texture(&mut self, name: &str) -> Result<Arc<image::RgbaImage>, String> {
+        // MTL map statements may carry options ("-bm 1 file.png"): the file is last.
+        let file = name.split_whitespace().last().unwrap_or(name).to_string();
+        if let Some(t) = self.loaded.get(&file) {
+            return Ok(t.clone());
+        }
+        let path = self.dir.join(&file);
+        let img = image::open(&path)
+            .map_err(|e| format!("texture {}: {e}", path.display()))?
+            .to_rgba8();
+        let img = Arc::new(img);
+        self.loaded.insert(file, img.clone());
+        Ok(img)
+    }
+
+    fn material(&mut self, m: &tobj::Material) -> Result<Material, String> {
+        let v3 = |v: Option<[f32; 3]>, d: f32| v.map(Vec3::from_array).unwrap_or(Vec3::splat(d));
+        let diffuse = v3(m.diffuse, 0.6);
+        let specular = v3(m.specular, 0.0);
+        let emission = v3(m.emissive, 0.0);
+        for (key, v) in [("Kd", diffuse), ("Ks", specular), ("Ke", emission)] {
+            if !v.is_finite() || v.min_element() < 0.0 {
+                return Err(format!("{key} {v} must be finite and non-negative"));
+            }
+        }
+        if diffuse.max_element() > 1.0 {
+            return Err(format!("Kd {diffuse} is a reflectance and cannot exceed 1"));
+        }
+        let shininess = m.shininess.unwrap_or(1.0).max(0.0);
+        let diffuse_map = m
+            .diffuse_texture
+            .as_deref()
+            .map(|t| self.texture(t))
+            .transpose()?;
+        let normal_name = m
+            .normal_texture
+            .as_deref()
+            .or_else(|| m.unknown_param.get("norm").map(String::as_str));
+        let normal_map = normal_name.map(|t| self.texture(t)).transpose()?;
+        Ok(Material {
+            name: m.name.clone(),
+            diffuse,
+            specular,
+            shininess,
+            emission,
+            diffuse_map,
+            normal_map,
+        })
+    }
+}
