@@ -171,6 +171,33 @@ impl ToneSettings {
     }
 }
 
+impl ToneSettings {
+    /// The display colour (linear RGB, 0..1) of one HDR pixel: the CPU reference of
+    /// `fs_tonemap` in `shaders/tonemap.wgsl`.
+    pub fn map_pixel(&self, hdr: [f32; 4], background: Vec3) -> Vec3 {
+        if hdr[3] < 0.0 {
+            return background;
+        }
+        let rgb = Vec3::new(hdr[0], hdr[1], hdr[2]);
+        match (self.mode, self.tonemap) {
+            (Mode::Illuminance, _) => false_colour(hdr[3] / self.lux_max as f32),
+            (Mode::Shaded, Tonemap::Exposure) => {
+                Vec3::ONE - (-(self.exposure_k as f32) * rgb).exp()
+            }
+            (Mode::Shaded, Tonemap::Reinhard) => {
+                let lw = rgb.dot(Vec3::new(0.2126, 0.7152, 0.0722));
+                if lw <= 0.0 {
+                    return Vec3::ZERO;
+                }
+                let l = (self.key / self.log_average) as f32 * lw;
+                let white2 = (self.white * self.white) as f32;
+                let ld = l * (1.0 + l / white2) / (1.0 + l);
+                (rgb * (ld / lw)).min(Vec3::ONE)
+            }
+        }
+    }
+}
+
 /// The smallest of 1, 2, 2.5, 5 × 10ⁿ that is ≥ `x` (1 for x ≤ 0).
 pub fn nice_ceil(x: f64) -> f64 {
     if !x.is_finite() || x <= 0.0 {

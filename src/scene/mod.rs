@@ -187,6 +187,19 @@ fn toml_error(path: &Path, text: &str, e: &toml::de::Error) -> SceneError {
                 .then(|| t.trim_matches(['[', ']']).to_string())
         })
         .last();
+    let missing = message
+        .strip_prefix("missing field `")
+        .and_then(|m| m.split('`').next());
+    if let Some(field) = missing {
+        // The span is the table that lacks the field.
+        let header = line.trim();
+        let key = if header.starts_with('[') {
+            format!("{}.{field}", header.trim_matches(['[', ']']))
+        } else {
+            field.to_string()
+        };
+        return SceneError::new(path, key, message);
+    }
     let key = match line.split_once('=') {
         Some((k, _)) if !line.trim_start().starts_with('[') => {
             let k = k.trim();

@@ -1,0 +1,329 @@
+//! The renderer on the GPU (lavapipe in CI) against physics and the CPU references:
+//! direct illuminance at points (the renderer's WGSL lighting code) = I · cos θ / d²; an
+//! illuminance-mode image of a floor under one luminaire = the analytic value per pixel;
+//! tone mapping = its CPU formulas; the bundled scenes = their reference images (FLIP).
+
+mod common;
+
+#[path = "common/gpu.rs"]
+mod gpu_common;
+
+use std::path::{Path, PathBuf};
+
+use common::{luminaire, root};
+use glam::{DVec3, Vec3};
+use goniolight::geometry::generate::XorShift;
+use goniolight::gpu::Gpu;
+use goniolight::photometry::{Interp, Luminaire};
+use goniolight::render::gpu_scene::GpuLights;
+use goniolight::render::illuminance::{illuminance_cpu, IlluminanceProbe, SurfacePoint};
+use goniolight::render::tonemap::linear_to_srgb;
+use goniolight::render::{LightModel, RenderSettings, RenderedFrame, Renderer};
+use goniolight::scene::placement::aim_frame;
+use goniolight::scene::{
+    Camera, DisplayEntry, Material, Mode, PlacedLuminaire, Scene, SceneMesh, Tonemap,
+};
+
+/// Two luminaires, one asymmetric and tilted, one rotationally symmetric.
+fn test_luminaires() -> Vec<PlacedLuminaire> {
+    let a = Luminaire::load(&luminaire("eulumdat-luminance/sample_07.ldt")).unwrap();
+    let mut l1 = PlacedLuminaire::new("asymmetric", a, DVec3::new(0.3, -0.2, 2.5));
+    l1.rotation = aim_frame(Some(DVec3::new(0.2, 0.1, -1.0)), 30.0);
+    l1.multiplier = 0.8;
+    let b = Luminaire::load(&luminaire("eulumdat-plot/sample_06_isym1.ldt")).unwrap();
+    let l2 = PlacedLuminaire::new("round", b, DVec3::new(-1.5, 1.0, 2.0));
+    vec![l1, l2]
+}
+
+fn random_points(n: usize, seed: u64) -> Vec<SurfacePoint> {
+    let mut rng = XorShift::new(seed);
+    let mut r = |lo: f64, hi: f64| lo + (hi - lo) * rng.next_f64();
+    (0..n)
+        .map(|_| SurfacePoint {
+            position: DVec3::new(r(-4.0, 4.0), r(-4.0, 4.0), r(-0.5, 1.5)),
+            normal: DVec3::new(r(-1.0, 1.0), r(-1.0, 1.0), r(-0.2, 1.0)),
+        })
+        .collect()
+}
+
+#[test]
+fn gpu_illuminance_at_points_equals_the_cpu_reference_within_half_a_percent() {
+    let Some(gpu) = gpu_common::gpu() else { return };
+    let lums = test_luminaires();
+    let lights = GpuLights::new(&gpu, &lums);
+    let points = random_points(10_000, 3);
+    for interp in Interp::ALL {
+        let probe = IlluminanceProbe::new(&gpu, LightModel::Ldt(interp));
+        let got = probe.run(&gpu, &lights, &points).unwrap();
+        let want: Vec<f64> = points
+            .iter()
+            .map(|p| illuminance_cpu(&lums, p, interp))
+            .collect();
+        let e_max = want.iter().cloned().fold(0.0, f64::max);
+        assert!(e_max > 10.0);
+        let mut worst = 0.0f64;
+        for (g, w) in got.iter().zip(&want) {
+            // Relative error, with a floor at 1e-4 · E_max where E is tiny.
+            let err = (g - w).abs() / w.max(1e-4 * e_max);
+            worst = worst.max(err);
+        }
+        assert!(worst <= 5e-3, "{interp:?}: worst relative error {worst:e}");
+        eprintln!("{interp:?}: worst relative GPU/CPU illuminance difference {worst:.2e}");
+    }
+}
+
+/// A square floor of `size` metres at z = 0, seen from straight above.
+fn floor_scene(luminaires: Vec<PlacedLuminaire>, size: f32) -> Scene {
+    let h = size / 2.0;
+    let p = |x: f32, y: f32| Vec3::new(x, y, 0.0);
+    let floor = SceneMesh::from_triangles(
+        "floor",
+        &[
+            [p(-h, -h), p(h, -h), p(h, h)],
+            [p(-h, -h), p(h, h), p(-h, h)],
+        ],
+        0,
+    );
+    Scene {
+        path: PathBuf::from("floor"),
+        meshes: vec![floor],
+        materials: vec![Material::default()],
+        luminaires,
+        camera: Camera::top_down(DVec3::ZERO, size as f64, 10.0),
+        display: DisplayEntry::default(),
+    }
+}
+
+fn render(gpu: &Gpu, scene: &Scene, settings: &RenderSettings) -> RenderedFrame {
+    let renderer = Renderer::new(gpu);
+    let uploaded = renderer.upload(gpu, scene);
+    renderer
+        .render(gpu, &uploaded, &scene.camera, settings)
+        .unwrap()
+}
+
+#[test]
+fn illuminance_image_of_a_floor_matches_the_analytic_value_per_pixel() {
+    let Some(gpu) = gpu_common::gpu() else { return };
+    let lum = test_luminaires().remove(0);
+    let size = 8.0;
+    let scene = floor_scene(vec![lum.clone()], size);
+    let (w, h) = (96u32, 96u32);
+    let mut settings = RenderSettings::from_display(&scene.display);
+    settings.width = w;
+    settings.height = h;
+    settings.mode = Mode::Illuminance;
+    settings.read_hdr = true;
+    let frame = render(&gpu, &scene, &settings);
+    let hdr = frame.hdr.as_ref().unwrap();
+    let flux = lum.luminaire.distribution.lamp_flux_lm();
+    // The analytic value from the file's distribution (f64), not from the GPU texture.
+    let analytic = |x: f64, y: f64| {
+        let p = DVec3::new(x, y, 0.0);
+        let to_light = lum.position - p;
+        let d2 = to_light.length_squared();
+        let cos = to_light.z / d2.sqrt();
+        let local = lum.rotation.transpose() * -to_light;
+        let i = lum
+            .luminaire
+            .distribution
+            .sample_dir(local, Interp::CatmullRom)
+            * flux
+            / 1000.0
+            * lum.multiplier;
+        i * cos / d2
+    };
+    let mut expected = Vec::new();
+    for py in 0..h {
+        for px in 0..w {
+            let x = ((px as f64 + 0.5) / w as f64 - 0.5) * size as f64;
+            let y = (0.5 - (py as f64 + 0.5) / h as f64) * size as f64;
+            expected.push(analytic(x, y));
+        }
+    }
+    let e_max = expected.iter().cloned().fold(0.0, f64::max);
+    assert!(e_max > 10.0, "{e_max}");
+    let mut checked = 0;
+    for (k, (px, want)) in hdr.iter().zip(&expected).enumerate() {
+        let got = px[3] as f64;
+        if *want >= 0.01 * e_max {
+            let rel = (got - want).abs() / want;
+            assert!(rel <= 0.01, "pixel {k}: {got} lx vs analytic {want} lx");
+            checked += 1;
+        } else {
+            assert!(
+                (got - want).abs() <= 1e-4 * e_max,
+                "pixel {k}: {got} vs {want}"
+            );
+        }
+        // Diffuse only (Kd 0.6): luminance = Kd / π · E.
+        let l = 0.6 / std::f64::consts::PI * got;
+        assert!((px[1] as f64 - l).abs() <= 1e-4 * l.max(1e-3), "pixel {k}");
+    }
+    assert!(checked > (w * h) as usize / 4, "{checked}");
+}
+
+fn srgb(c: Vec3) -> [u8; 3] {
+    [
+        linear_to_srgb(c.x),
+        linear_to_srgb(c.y),
+        linear_to_srgb(c.z),
+    ]
+}
+
+#[test]
+fn tone_mapping_on_the_gpu_equals_its_cpu_formulas() {
+    let Some(gpu) = gpu_common::gpu() else { return };
+    let scene = Scene::load(&root().join("assets/scenes/furnished_room.toml")).unwrap();
+    let renderer = Renderer::new(&gpu);
+    let uploaded = renderer.upload(&gpu, &scene);
+    for (mode, tonemap) in [
+        (Mode::Shaded, Tonemap::Reinhard),
+        (Mode::Shaded, Tonemap::Exposure),
+        (Mode::Illuminance, Tonemap::Reinhard),
+    ] {
+        let mut s = RenderSettings::from_display(&scene.display);
+        (s.width, s.height, s.mode, s.tonemap, s.read_hdr) = (200, 120, mode, tonemap, true);
+        let frame = renderer.render(&gpu, &uploaded, &scene.camera, &s).unwrap();
+        let hdr = frame.hdr.as_ref().unwrap();
+        // The legend covers the right edge in illuminance mode.
+        let x_end = if mode == Mode::Illuminance { 140 } else { 200 };
+        let (mut bad, mut total) = (0, 0);
+        for y in 0..120u32 {
+            for x in 0..x_end {
+                let want = srgb(
+                    frame
+                        .tone
+                        .map_pixel(hdr[(y * 200 + x) as usize], s.background),
+                );
+                let got = frame.image.get_pixel(x, y).0;
+                total += 1;
+                if (0..3).any(|c| (got[c] as i32 - want[c] as i32).abs() > 1) {
+                    bad += 1;
+                }
+            }
+        }
+        assert!(
+            bad * 1000 <= total,
+            "{mode:?} {tonemap:?}: {bad} of {total} pixels differ"
+        );
+        // The statistics pass equals a CPU pass over the same HDR values.
+        let lux: Vec<f64> = hdr
+            .iter()
+            .filter(|p| p[3] >= 0.0)
+            .map(|p| p[3] as f64)
+            .collect();
+        let mean = lux.iter().sum::<f64>() / lux.len() as f64;
+        assert_eq!(frame.stats.pixels as usize, lux.len());
+        assert!((frame.stats.mean_lux - mean).abs() <= 1e-4 * mean);
+        let log_avg = (hdr
+            .iter()
+            .filter(|p| p[3] >= 0.0)
+            .map(|p| {
+                (1e-4 + Vec3::new(p[0], p[1], p[2]).dot(Vec3::new(0.2126, 0.7152, 0.0722)) as f64)
+                    .ln()
+            })
+            .sum::<f64>()
+            / lux.len() as f64)
+            .exp();
+        assert!((frame.stats.log_average_luminance - log_avg).abs() <= 1e-3 * log_avg);
+    }
+}
+
+fn reference_path(name: &str) -> PathBuf {
+    root().join("tests/data/images").join(format!("{name}.png"))
+}
+
+/// The FLIP error map of `actual` against the reference image `name`.
+fn flip_error(name: &str, actual: &image::RgbImage) -> nv_flip::FlipImageFloat {
+    let reference = reference_path(name);
+    let want = image::open(&reference)
+        .unwrap_or_else(|e| {
+            panic!(
+                "{}: {e} (GONIOLIGHT_BLESS=1 writes it)",
+                reference.display()
+            )
+        })
+        .to_rgb8();
+    assert_eq!(want.dimensions(), actual.dimensions(), "{name}");
+    let (w, h) = actual.dimensions();
+    nv_flip::flip(
+        nv_flip::FlipImageRgb8::with_data(w, h, want.as_raw()),
+        nv_flip::FlipImageRgb8::with_data(w, h, actual.as_raw()),
+        nv_flip::DEFAULT_PIXELS_PER_DEGREE,
+    )
+}
+
+/// Checks `actual` against the reference image `name` (mean FLIP ≤ `tolerance`); writes
+/// the reference with `GONIOLIGHT_BLESS=1`, and `-actual`/`-difference` PNGs on failure.
+fn compare_with_reference(name: &str, actual: &image::RgbaImage, tolerance: f32) {
+    let rgb = image::DynamicImage::ImageRgba8(actual.clone()).to_rgb8();
+    if std::env::var("GONIOLIGHT_BLESS").as_deref() == Ok("1") {
+        rgb.save(reference_path(name)).unwrap();
+        eprintln!("blessed {name}");
+        return;
+    }
+    let error = flip_error(name, &rgb);
+    let mean = nv_flip::FlipPool::from_image(&error).mean();
+    eprintln!("{name}: mean FLIP {mean:.4}");
+    if mean > tolerance {
+        let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("image-tests");
+        std::fs::create_dir_all(&dir).unwrap();
+        rgb.save(dir.join(format!("{name}-actual.png"))).unwrap();
+        let diff = error.apply_color_lut(&nv_flip::magma_lut());
+        let (w, h) = rgb.dimensions();
+        image::RgbImage::from_raw(w, h, diff.to_vec())
+            .unwrap()
+            .save(dir.join(format!("{name}-difference.png")))
+            .unwrap();
+        panic!(
+            "{name}: mean FLIP {mean:.4} > {tolerance}; see {}",
+            dir.display()
+        );
+    }
+}
+
+#[test]
+fn bundled_scenes_match_their_reference_images() {
+    let Some(gpu) = gpu_common::gpu() else { return };
+    let renderer = Renderer::new(&gpu);
+    for (file, mode) in [
+        ("furnished_room", Mode::Shaded),
+        ("furnished_room", Mode::Illuminance),
+        ("box_room", Mode::Illuminance),
+        ("effect_stage", Mode::Shaded),
+    ] {
+        let scene = Scene::load(&root().join(format!("assets/scenes/{file}.toml"))).unwrap();
+        let uploaded = renderer.upload(&gpu, &scene);
+        let mut s = RenderSettings::from_display(&scene.display);
+        (s.width, s.height, s.mode) = (320, 180, mode);
+        let frame = renderer.render(&gpu, &uploaded, &scene.camera, &s).unwrap();
+        let name = format!(
+            "{file}-{}",
+            if mode == Mode::Shaded {
+                "shaded"
+            } else {
+                "illuminance"
+            }
+        );
+        compare_with_reference(&name, &frame.image, 0.05);
+    }
+}
+
+#[test]
+fn the_image_test_fails_on_a_visibly_different_image() {
+    // The comparison itself must be able to fail: a darker image is far over tolerance.
+    let Some(gpu) = gpu_common::gpu() else { return };
+    let scene = Scene::load(&root().join("assets/scenes/box_room.toml")).unwrap();
+    let renderer = Renderer::new(&gpu);
+    let uploaded = renderer.upload(&gpu, &scene);
+    let mut s = RenderSettings::from_display(&scene.display);
+    (s.width, s.height, s.mode, s.lux_max) = (320, 180, Mode::Illuminance, Some(1000.0));
+    let frame = renderer.render(&gpu, &uploaded, &scene.camera, &s).unwrap();
+    let rgb = image::DynamicImage::ImageRgba8(frame.image).to_rgb8();
+    let mean = nv_flip::FlipPool::from_image(&flip_error("box_room-illuminance", &rgb)).mean();
+    assert!(
+        mean > 0.05,
+        "a different lux scale passed the image test: FLIP {mean}"
+    );
+}

@@ -1,0 +1,295 @@
+//! Scenes: the bundled scenes load; bad scene files name the file and the key and exit 2;
+//! the CPU reference of the direct illuminance equals E = I · cos θ / d² at measured
+//! angles (values from an independent reader of the file).
+
+mod common;
+
+use std::path::{Path, PathBuf};
+
+use common::{luminaire, raw_ldt, root, run_cli};
+use glam::{DMat3, DVec3};
+use goniolight::geometry::generate::XorShift;
+use goniolight::photometry::{angles_to_direction, Interp};
+use goniolight::render::illuminance::{illuminance_cpu, SurfacePoint};
+use goniolight::scene::{Scene, SceneError};
+
+fn scene(rel: &str) -> PathBuf {
+    root().join("assets/scenes").join(rel)
+}
+
+#[test]
+fn bundled_scenes_load_with_their_luminaires_materials_and_textures() {
+    let s = Scene::load(&scene("furnished_room.toml")).unwrap();
+    assert_eq!(s.luminaires.len(), 5);
+    assert!(s.triangle_count() > 400, "{}", s.triangle_count());
+    let wood = s.materials.iter().find(|m| m.name == "floor_wood").unwrap();
+    assert_eq!(wood.diffuse_map.as_ref().unwrap().dimensions(), (256, 256));
+    let bricks = s
+        .materials
+        .iter()
+        .find(|m| m.name == "plaster_bricks")
+        .unwrap();
+    assert!(bricks.normal_map.is_some());
+    // The wall spots point at the pictures: γ = 0 toward the aim point.
+    let spot = &s.luminaires[2];
+    let aim = (DVec3::new(1.9, 3.97, 1.55) - spot.position).normalize();
+    assert!((spot.world_direction(0.0, 0.0) - aim).length() < 1e-12);
+    // Colours are normalised to luminance 1.
+    assert!((spot.color.dot(DVec3::new(0.2126, 0.7152, 0.0722)) - 1.0).abs() < 1e-12);
+    let room = Scene::load(&scene("box_room.toml")).unwrap();
+    assert_eq!(room.triangle_count(), 12);
+    let (lo, hi) = room.bounds();
+    assert_eq!((lo, hi), (DVec3::ZERO, DVec3::new(6.0, 4.0, 3.0)));
+    let stage = Scene::load(&scene("effect_stage.toml")).unwrap();
+    assert_eq!(stage.luminaires[0].luminaire.data.c_angles.len(), 144);
+}
+
+#[test]
+fn y_up_models_turn_to_z_up_and_transforms_apply_scale_rotation_translation() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("tri.obj"),
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+    )
+    .unwrap();
+    let write = |extra: &str| {
+        let p = dir.path().join("s.toml");
+        std::fs::write(
+            &p,
+            format!(
+                "[[model]]\npath = \"tri.obj\"\n{extra}\n[camera]\nposition = [5, 5, 5]\nlook_at = [0, 0, 0]\n"
+            ),
+        )
+        .unwrap();
+        Scene::load(&p).unwrap()
+    };
+    // Y up (the default): OBJ +Y becomes world +Z, OBJ +Z becomes world −Y.
+    let s = write("");
+    assert!((s.meshes[0].positions[2].as_dvec3() - DVec3::Z).length() < 1e-6);
+    assert!((s.meshes[0].normals[0].as_dvec3() - DVec3::NEG_Y).length() < 1e-6);
+    // Z up with scale 2, a 90° turn about Z, then a translation.
+    let s = write("up = \"z\"\nscale = 2.0\nrotation_deg = [0, 0, 90]\ntranslation = [10, 0, 0]");
+    let p = s.meshes[0].positions[1].as_dvec3();
+    assert!((p - DVec3::new(10.0, 2.0, 0.0)).length() < 1e-5, "{p}");
+}
+
+/// Writes `text` as a scene next to nothing and loads it.
+fn load_text(text: &str) -> (tempfile::TempDir, Result<Scene, SceneError>) {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().join("bad.toml");
+    std::fs::write(&p, text).unwrap();
+    let r = Scene::load(&p);
+    (dir, r)
+}
+
+fn good_parts() -> (String, String) {
+    let model = format!(
+        "[[model]]\npath = {:?}\nup = \"z\"\n",
+        scene("box_room.obj").display().to_string()
+    );
+    let camera = "[camera]\nposition = [1, 1, 1.5]\nlook_at = [3, 2, 1]\n".to_string();
+    (model, camera)
+}
+
+fn luminaire_entry(file: &Path, position: &str) -> String {
+    format!(
+        "[[luminaire]]\nfile = {:?}\nposition = {position}\n",
+        file.display().to_string()
+    )
+}
+
+#[test]
+fn bad_scene_files_name_the_file_and_the_key() {
+    let (model, camera) = good_parts();
+    let lum = luminaire("eulumdat-plot/sample_06_isym1.ldt");
+    let cases: Vec<(String, &str, &str)> = vec![
+        (
+            format!("[[model]]\npath = \"missing.obj\"\n{camera}"),
+            "model[0].path",
+            "no such file",
+        ),
+        (format!("{model}{camera}position = [1, 2\n"), "line 7", ""),
+        (
+            format!(
+                "{model}{}{camera}",
+                luminaire_entry(Path::new("nope.ldt"), "[1, 1, 2]")
+            ),
+            "luminaire[0].file",
+            "nope.ldt",
+        ),
+        (
+            format!("{model}{}{camera}", luminaire_entry(&lum, "[1, nan, 2]")),
+            "luminaire[0].position",
+            "finite",
+        ),
+        (
+            format!(
+                "{model}{}multiplier = -1\n{camera}",
+                luminaire_entry(&lum, "[1, 1, 2]")
+            ),
+            "luminaire[0].multiplier",
+            "",
+        ),
+        (
+            format!(
+                "{model}{}positon = [1, 1, 1]\n{camera}",
+                luminaire_entry(&lum, "[1, 1, 2]")
+            ),
+            "luminaire.positon",
+            "unknown field",
+        ),
+        (
+            format!("{model}[camera]\nposition = [1, 1, 1]\nlook_at = [1, 1, 1]\n"),
+            "camera.look_at",
+            "",
+        ),
+        (model.clone(), "camera", "missing field"),
+        (
+            format!("{model}{camera}[display]\nwidth = 0\n"),
+            "display.width",
+            "",
+        ),
+    ];
+    for (text, key, words) in cases {
+        let (_dir, r) = load_text(&text);
+        let e = r.expect_err(&text);
+        let msg = e.to_string();
+        assert!(e.key.contains(key), "key {key:?} not in {msg:?}");
+        assert!(msg.contains("bad.toml"), "{msg}");
+        assert!(msg.contains(words), "{words:?} not in {msg:?}");
+    }
+}
+
+#[test]
+fn render_of_a_bad_scene_exits_2_and_writes_nothing() {
+    let (model, camera) = good_parts();
+    let dir = tempfile::tempdir().unwrap();
+    let bad = dir.path().join("scene.toml");
+    let lum = luminaire("eulumdat-plot/sample_06_isym1.ldt");
+    std::fs::write(
+        &bad,
+        format!("{model}{}{camera}", luminaire_entry(&lum, "[1, nan, 2]")),
+    )
+    .unwrap();
+    let out = dir.path().join("img.png");
+    let (code, _, err) = run_cli(
+        &[
+            "render",
+            bad.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        "",
+    );
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("scene.toml") && err.contains("luminaire[0].position"),
+        "{err}"
+    );
+    assert!(!out.exists());
+    // Wrong flags: exit 2 before any work.
+    let good = scene("box_room.toml");
+    for args in [
+        vec!["--out", "x.jpg"],
+        vec!["--out", "x.png", "--width", "0"],
+        vec!["--out", "x.png", "--exposure", "-1"],
+        vec!["--out", "x.png", "--interp", "cubic"],
+    ] {
+        let mut all = vec!["render", good.to_str().unwrap()];
+        all.extend(args.iter());
+        let (code, _, err) = run_cli(&all, "");
+        assert_eq!(code, 2, "{args:?}: {err}");
+    }
+    // Bad point lines for `illuminance`.
+    let (code, _, err) = run_cli(
+        &["illuminance", good.to_str().unwrap(), "--cpu"],
+        "1 2 1 0 0 1\n1 2 x 0 0 1\n",
+    );
+    assert_eq!(code, 2);
+    assert!(err.contains("line 2"), "{err}");
+}
+
+/// Measured (C, γ, cd/klm) of a file, from the independent reader, for stored planes.
+fn measured(file: &Path) -> Vec<(f64, f64, f64)> {
+    let (_isym, c, g, planes) = raw_ldt(file);
+    let mut out = Vec::new();
+    for (ci, plane) in planes.iter().enumerate() {
+        for (gi, &v) in plane.iter().enumerate() {
+            if g[gi] > 0.0 && g[gi] < 180.0 {
+                out.push((c[ci.min(c.len() - 1)], g[gi], v));
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn cpu_illuminance_equals_intensity_cos_over_d2_at_measured_angles() {
+    let mut rng = XorShift::new(7);
+    for (file, planes_are_c) in [
+        ("eulumdat-analysis/sample_18.ldt", true),
+        ("eulumdat-plot/sample_06_isym1.ldt", false),
+    ] {
+        let path = luminaire(file);
+        let text = format!(
+            "[[luminaire]]\nfile = {:?}\nposition = [1.0, 2.0, 2.5]\naim = [0.3, -0.2, -1.0]\nroll = 25\nmultiplier = 0.7\n[camera]\nposition = [0, 0, 0]\nlook_at = [1, 1, 1]\n",
+            path.display().to_string()
+        );
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("s.toml");
+        std::fs::write(&p, text).unwrap();
+        let s = Scene::load(&p).unwrap();
+        let l = &s.luminaires[0];
+        let flux = l.luminaire.distribution.lamp_flux_lm();
+        let values = measured(&path);
+        let mut checked = 0;
+        for (k, &(c, g, cd_klm)) in values.iter().enumerate() {
+            if (values.len() > 2000 && k % 7 != 0) || cd_klm <= 0.0 {
+                continue;
+            }
+            // A rotationally symmetric file stores one plane: any C has its values.
+            let c = if planes_are_c {
+                c
+            } else {
+                rng.next_f64() * 360.0
+            };
+            let dir_world = l.rotation * angles_to_direction(c, g);
+            let r = 1.0 + 3.0 * rng.next_f64();
+            let point = l.position + dir_world * r;
+            let tilt = DMat3::from_axis_angle(
+                DVec3::new(rng.next_f64(), rng.next_f64(), 1.0).normalize(),
+                rng.next_f64() * 1.2,
+            );
+            let normal = tilt * -dir_world;
+            let cos = normal.dot(-dir_world);
+            let expected = cd_klm * flux / 1000.0 * 0.7 * cos / (r * r);
+            for interp in Interp::ALL {
+                let got = illuminance_cpu(
+                    &s.luminaires,
+                    &SurfacePoint {
+                        position: point,
+                        normal,
+                    },
+                    interp,
+                );
+                let rel = (got - expected).abs() / expected;
+                assert!(
+                    rel <= 1e-3,
+                    "{file} C {c} γ {g} {interp:?}: {got} vs {expected} ({rel:e})"
+                );
+            }
+            // The back of the surface gets nothing.
+            let back = illuminance_cpu(
+                &s.luminaires,
+                &SurfacePoint {
+                    position: point,
+                    normal: -normal,
+                },
+                Interp::CatmullRom,
+            );
+            assert_eq!(back, 0.0);
+            checked += 1;
+        }
+        assert!(checked > 20, "{file}: {checked}");
+    }
+}
