@@ -61,13 +61,6 @@ fn hermite_basis(t: vec4<f32>, x: f32) -> vec4<f32> {
     return vec4<f32>(2.0 * s3 - 3.0 * s2 + 1.0, (s3 - 2.0 * s2 + s) * h, -2.0 * s3 + 3.0 * s2, (s3 - s2) * h);
 }
 
-fn catmull_rom(t: vec4<f32>, p: vec4<f32>, x: f32) -> f32 {
-    let b = hermite_basis(t, x);
-    let m1 = (p.z - p.x) / (t.z - t.x);
-    let m2 = (p.w - p.y) / (t.w - t.y);
-    return b.x * p.y + b.y * m1 + b.z * p.z + b.w * m2;
-}
-
 fn limited_slope(da: f32, db: f32, ha: f32, hb: f32) -> f32 {
     if (da * db <= 0.0) {
         return 0.0;
@@ -89,6 +82,17 @@ fn monotone_cubic(t: vec4<f32>, p: vec4<f32>, x: f32) -> f32 {
 }
 
 fn ldt_row(tex: texture_2d_array<f32>, layer: u32, info: LdtInfo, plane: u32, gi: i32) -> vec4<f32> {
+    // Fast path: all four knots inside the stored γ range.
+    if (gi >= 1 && gi + 2 < i32(info.gamma_count)) {
+        let y = i32(plane);
+        let l = i32(layer);
+        return vec4<f32>(
+            textureLoad(tex, vec2<i32>(gi - 1, y), l, 0).x,
+            textureLoad(tex, vec2<i32>(gi, y), l, 0).x,
+            textureLoad(tex, vec2<i32>(gi + 1, y), l, 0).x,
+            textureLoad(tex, vec2<i32>(gi + 2, y), l, 0).x,
+        );
+    }
     return vec4<f32>(
         ldt_knot(tex, layer, info, plane, gi - 1),
         ldt_knot(tex, layer, info, plane, gi),
@@ -97,15 +101,38 @@ fn ldt_row(tex: texture_2d_array<f32>, layer: u32, info: LdtInfo, plane: u32, gi
     );
 }
 
+// The two knots of the cell (bilinear needs no more).
+fn ldt_pair(tex: texture_2d_array<f32>, layer: u32, info: LdtInfo, plane: u32, gi: i32) -> vec2<f32> {
+    if (gi >= 0 && gi + 1 < i32(info.gamma_count)) {
+        let y = i32(plane);
+        let l = i32(layer);
+        return vec2<f32>(
+            textureLoad(tex, vec2<i32>(gi, y), l, 0).x,
+            textureLoad(tex, vec2<i32>(gi + 1, y), l, 0).x,
+        );
+    }
+    return vec2<f32>(ldt_knot(tex, layer, info, plane, gi), ldt_knot(tex, layer, info, plane, gi + 1));
+}
+
+// Catmull-Rom weights of the four knots at s in [0, 1] of a uniform grid: the same curve as
+// the Hermite form with slopes (p₂ − p₀)/(t₂ − t₀) of the CPU reference.
+fn catmull_rom_weights(s: f32) -> vec4<f32> {
+    let s2 = s * s;
+    let s3 = s2 * s;
+    return vec4<f32>(
+        -0.5 * s3 + s2 - 0.5 * s,
+        1.5 * s3 - 2.5 * s2 + 1.0,
+        -1.5 * s3 + 2.0 * s2 + 0.5 * s,
+        0.5 * s3 - 0.5 * s2,
+    );
+}
+
 fn ldt_along_gamma(tex: texture_2d_array<f32>, layer: u32, info: LdtInfo, plane: u32, gi: i32, tg: vec4<f32>, g: f32, interp: u32) -> f32 {
-    let p = ldt_row(tex, layer, info, plane, gi);
     if (interp == INTERP_BILINEAR) {
-        return p.y + (p.z - p.y) * (g - tg.y) / (tg.z - tg.y);
+        let p = ldt_pair(tex, layer, info, plane, gi);
+        return p.x + (p.y - p.x) * (g - tg.y) / (tg.z - tg.y);
     }
-    if (interp == INTERP_MONOTONE) {
-        return monotone_cubic(tg, p, g);
-    }
-    return catmull_rom(tg, p, g);
+    return monotone_cubic(tg, ldt_row(tex, layer, info, plane, gi), g);
 }
 
 // Normalised intensity at C, γ (degrees), never negative.
@@ -139,10 +166,14 @@ fn ldt_sample(tex: texture_2d_array<f32>, layer: u32, info: LdtInfo, c_deg: f32,
     if (c >= 360.0) {
         c = 0.0;
     }
+    let wg = catmull_rom_weights((g - tg.y) / h);
     if (nc == 1) {
         if (interp == INTERP_NEAREST) {
             let k = select(gi + 1, gi, g - tg.y <= tg.z - g);
             return max(ldt_knot(tex, layer, info, 0u, k), 0.0);
+        }
+        if (interp == INTERP_CATMULL_ROM) {
+            return max(dot(wg, ldt_row(tex, layer, info, 0u, gi)), 0.0);
         }
         return max(ldt_along_gamma(tex, layer, info, 0u, gi, tg, g, interp), 0.0);
     }
@@ -162,6 +193,14 @@ fn ldt_sample(tex: texture_2d_array<f32>, layer: u32, info: LdtInfo, c_deg: f32,
         let a = ldt_along_gamma(tex, layer, info, p1, gi, tg, g, interp);
         let b = ldt_along_gamma(tex, layer, info, p2, gi, tg, g, interp);
         v = a + (b - a) * (c - tc.y) / (tc.z - tc.y);
+    } else if (interp == INTERP_CATMULL_ROM) {
+        let q = vec4<f32>(
+            dot(wg, ldt_row(tex, layer, info, p0, gi)),
+            dot(wg, ldt_row(tex, layer, info, p1, gi)),
+            dot(wg, ldt_row(tex, layer, info, p2, gi)),
+            dot(wg, ldt_row(tex, layer, info, p3, gi)),
+        );
+        v = dot(catmull_rom_weights((c - tc.y) / dc), q);
     } else {
         let q = vec4<f32>(
             ldt_along_gamma(tex, layer, info, p0, gi, tg, g, interp),
@@ -169,11 +208,7 @@ fn ldt_sample(tex: texture_2d_array<f32>, layer: u32, info: LdtInfo, c_deg: f32,
             ldt_along_gamma(tex, layer, info, p2, gi, tg, g, interp),
             ldt_along_gamma(tex, layer, info, p3, gi, tg, g, interp),
         );
-        if (interp == INTERP_MONOTONE) {
-            v = monotone_cubic(tc, q, c);
-        } else {
-            v = catmull_rom(tc, q, c);
-        }
+        v = monotone_cubic(tc, q, c);
     }
     return max(v, 0.0);
 }

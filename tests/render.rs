@@ -327,3 +327,94 @@ fn the_image_test_fails_on_a_visibly_different_image() {
         "a different lux scale passed the image test: FLIP {mean}"
     );
 }
+
+#[test]
+fn render_cli_writes_an_exr_of_lux_that_the_illuminance_command_reproduces() {
+    let Some(_gpu) = gpu_common::gpu() else {
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("floor.toml");
+    let assets = root().join("assets/scenes");
+    std::fs::write(
+        &scene,
+        format!(
+            "[[model]]\npath = {:?}\nup = \"z\"\n[[luminaire]]\nfile = {:?}\nposition = [2.5, 2.2, 2.9]\naim = [0.2, 0.1, -1]\n[camera]\nposition = [3, 2, 2.5]\nlook_at = [3, 2, 0]\nup = [0, 1, 0]\northographic_height = 4.0\n",
+            assets.join("box_room.obj").display().to_string(),
+            luminaire("eulumdat-luminance/sample_07.ldt").display().to_string()
+        ),
+    )
+    .unwrap();
+    let (png, exr) = (dir.path().join("f.png"), dir.path().join("f.exr"));
+    let (code, out, err) = common::run_cli(
+        &[
+            "render",
+            scene.to_str().unwrap(),
+            "--out",
+            png.to_str().unwrap(),
+            "--exr",
+            exr.to_str().unwrap(),
+            "--mode",
+            "illuminance",
+            "--width",
+            "60",
+            "--height",
+            "40",
+        ],
+        "",
+    );
+    assert_eq!(code, 0, "{out}{err}");
+    assert_eq!(image::open(&png).unwrap().width(), 60);
+    let lux = image::open(&exr).unwrap().to_rgb32f();
+    // Pixel centres of the orthographic view are floor points 0.1 m apart.
+    let mut points = String::new();
+    let mut pixels = Vec::new();
+    for (j, i) in [(3, 5), (20, 30), (25, 41), (38, 58), (10, 17)] {
+        let (x, y) = (0.05 + 0.1 * i as f64, 3.95 - 0.1 * j as f64);
+        points.push_str(&format!("{x} {y} 0 0 0 1\n"));
+        pixels.push(lux.get_pixel(i, j).0[0] as f64);
+    }
+    for flags in [vec!["--cpu"], vec![]] {
+        let mut args = vec!["illuminance", scene.to_str().unwrap()];
+        args.extend(flags.iter());
+        let (code, out, err) = common::run_cli(&args, &points);
+        assert_eq!(code, 0, "{err}");
+        let values: Vec<f64> = out.lines().map(|l| l.parse().unwrap()).collect();
+        assert_eq!(values.len(), pixels.len());
+        for (v, p) in values.iter().zip(&pixels) {
+            assert!(
+                *v > 1.0 && (v - p).abs() <= 0.01 * v,
+                "{flags:?}: {v} lx vs EXR {p}"
+            );
+        }
+    }
+}
+
+#[test]
+fn bench_render_json_has_the_contract_keys() {
+    let Some(_gpu) = gpu_common::gpu() else {
+        return;
+    };
+    let (code, out, err) = common::run_cli(
+        &[
+            "bench", "render", "--json", "--quick", "--frames", "1", "--rounds", "1", "--width",
+            "64", "--height", "36",
+        ],
+        "",
+    );
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let rows = v["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), 6);
+    let tris: Vec<u64> = rows
+        .iter()
+        .map(|r| r["triangles"].as_u64().unwrap())
+        .collect();
+    assert_eq!(tris, [108, 108, 108, 1996, 1996, 1996]);
+    for r in rows {
+        assert!([1, 4, 7].contains(&r["lights"].as_u64().unwrap()));
+        for k in ["point_ms", "bilinear_ms", "catmull_rom_ms"] {
+            assert!(r[k].as_f64().unwrap() > 0.0, "{k}");
+        }
+    }
+}

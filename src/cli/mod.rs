@@ -1,6 +1,7 @@
 //! The command-line interface: clap definitions and dispatch. Commands call the library
 //! and hold no logic of their own beyond reading input and printing results.
 
+mod bench;
 mod demo;
 mod ldt;
 mod render;
@@ -38,7 +39,7 @@ pub enum Command {
     Silhouette(silhouette::SilhouetteArgs),
     /// Benchmarks that print tables of ratios measured side by side.
     #[command(subcommand)]
-    Bench(silhouette::BenchCommand),
+    Bench(bench::BenchCommand),
 }
 
 /// A failed command: the error and whether it was the input's fault (exit 2) or not (1).
@@ -96,6 +97,6 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         Command::Illuminance(args) => render::run_illuminance(args),
         Command::Sun(args) => sun::run(args),
         Command::Silhouette(args) => silhouette::run(args),
-        Command::Bench(cmd) => silhouette::run_bench(cmd),
+        Command::Bench(cmd) => bench::run(cmd),
     }
 }

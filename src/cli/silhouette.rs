@@ -2,7 +2,7 @@
 
 use std::path::PathBuf;
 
-use clap::{Args, Subcommand, ValueEnum};
+use clap::{Args, ValueEnum};
 use serde_json::json;
 
 use super::CliError;
@@ -52,26 +52,6 @@ fn parse_light(s: &str) -> Result<[f64; 4], String> {
         .collect::<Result<_, _>>()?;
     <[f64; 4]>::try_from(v)
         .map_err(|v| format!("--light needs X,Y,Z,W (4 numbers), got {}", v.len()))
-}
-
-/// Benchmarks.
-#[derive(Debug, Subcommand)]
-pub enum BenchCommand {
-    /// Silhouette queries, brute force vs hextree, on ~10 k, 180 k and 1 M triangles.
-    Silhouette {
-        /// Print JSON {"meshes": [...]}.
-        #[arg(long)]
-        json: bool,
-        /// Light positions per mesh, evenly along one orbit (120: 3° apart).
-        #[arg(long, default_value_t = 120)]
-        queries: usize,
-        /// Maximum hextree depth.
-        #[arg(long, default_value_t = crate::shadow::hextree::DEFAULT_DEPTH)]
-        depth: u32,
-        /// Shrink the meshes by this factor (1 = the full sizes).
-        #[arg(long, default_value_t = 1.0)]
-        scale: f64,
-    },
 }
 
 impl From<GeometryError> for CliError {
@@ -131,14 +111,8 @@ pub fn run(a: SilhouetteArgs) -> Result<(), CliError> {
     Ok(())
 }
 
-/// Runs `bench …`.
-pub fn run_bench(cmd: BenchCommand) -> Result<(), CliError> {
-    let BenchCommand::Silhouette {
-        json: as_json,
-        queries,
-        depth,
-        scale,
-    } = cmd;
+/// Runs `bench silhouette`.
+pub fn run_bench(as_json: bool, queries: usize, depth: u32, scale: f64) -> Result<(), CliError> {
     if queries == 0 || !(scale > 0.0 && scale <= 1.0) {
         return Err(CliError::input(anyhow::anyhow!(
             "--queries must be > 0 and --scale in (0, 1]"

@@ -3,6 +3,7 @@
 //! HDR target, image statistics, and tone mapping (exposure, Reinhard) or false-colour
 //! illuminance with a legend. Headless here; the viewer drives the same passes.
 
+pub mod bench;
 pub mod gpu_scene;
 pub mod illuminance;
 pub mod layouts;
@@ -105,8 +106,8 @@ impl Renderer {
         GpuScene::new(gpu, &self.layouts, scene)
     }
 
-    /// Renders the HDR image of `scene` seen by `camera` into `targets` and waits for it:
-    /// one frame of GPU work (the benchmark's unit).
+    /// Renders the HDR image of `scene` seen by `camera` into `targets` `frames` times in
+    /// one submission and waits for the GPU to finish (one frame: the benchmark's unit).
     pub fn draw_hdr(
         &self,
         gpu: &Gpu,
@@ -114,13 +115,16 @@ impl Renderer {
         camera: &Camera,
         targets: &Targets,
         model: LightModel,
+        frames: usize,
     ) -> Result<(), GpuError> {
         let frame = self
             .passes
             .frame_bind_group(gpu, &self.layouts, scene, camera, targets);
         let mut enc = gpu.device.create_command_encoder(&Default::default());
-        self.passes
-            .record(gpu, &mut enc, &frame, scene, targets, model);
+        for _ in 0..frames {
+            self.passes
+                .record(gpu, &mut enc, &frame, scene, targets, model);
+        }
         gpu.queue.submit([enc.finish()]);
         gpu.wait()
     }
@@ -134,7 +138,7 @@ impl Renderer {
         settings: &RenderSettings,
     ) -> Result<RenderedFrame, GpuError> {
         let targets = Targets::new(gpu, settings.width, settings.height);
-        self.draw_hdr(gpu, scene, camera, &targets, settings.light_model)?;
+        self.draw_hdr(gpu, scene, camera, &targets, settings.light_model, 1)?;
         let stats = self.tonemapper.statistics(gpu, &targets)?;
         let tone = ToneSettings::resolve(
             settings.mode,
