@@ -184,43 +184,24 @@ impl LdtProbe {
             count: dirs.len() as u32,
             pad: 0,
         };
-        let param_buf = dev.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("probe params"),
-            contents: bytemuck::bytes_of(&params),
-            usage: wgpu::BufferUsages::UNIFORM,
-        });
+        let param_buf = gpu.uniform_buffer("probe params", &params);
         let out = dev.create_buffer(&wgpu::BufferDescriptor {
             label: Some("probe results"),
             size: (n * 4) as u64,
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
-        let bind = dev.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("probe"),
-            layout: &self.pipeline.get_bind_group_layout(0),
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: wgpu::BindingResource::TextureView(&atlas.view),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: atlas.info.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: param_buf.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 3,
-                    resource: dir_buf.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 4,
-                    resource: out.as_entire_binding(),
-                },
+        let bind = gpu.bind_group(
+            "probe",
+            &self.pipeline.get_bind_group_layout(0),
+            &[
+                (0, wgpu::BindingResource::TextureView(&atlas.view)),
+                (1, atlas.info.as_entire_binding()),
+                (2, param_buf.as_entire_binding()),
+                (3, dir_buf.as_entire_binding()),
+                (4, out.as_entire_binding()),
             ],
-        });
+        );
         let mut enc = dev.create_command_encoder(&Default::default());
         {
             let mut pass = enc.begin_compute_pass(&Default::default());

@@ -322,33 +322,15 @@ fn material_bind_group(gpu: &Gpu, layouts: &Layouts, m: &Material) -> wgpu::Bind
         specular: [m.specular.x, m.specular.y, m.specular.z, m.shininess],
         flags: [m.normal_map.is_some() as u32, 0, 0, 0],
     };
-    let buffer = gpu
-        .device
-        .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("material"),
-            contents: bytemuck::bytes_of(&params),
-            usage: wgpu::BufferUsages::UNIFORM,
-        });
-    gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some(&m.name),
-        layout: &layouts.material,
-        entries: &[
-            wgpu::BindGroupEntry {
-                binding: 0,
-                resource: buffer.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 1,
-                resource: wgpu::BindingResource::TextureView(&diffuse),
-            },
-            wgpu::BindGroupEntry {
-                binding: 2,
-                resource: wgpu::BindingResource::TextureView(&normal),
-            },
-            wgpu::BindGroupEntry {
-                binding: 3,
-                resource: wgpu::BindingResource::Sampler(&layouts.material_sampler),
-            },
+    let buffer = gpu.uniform_buffer("material", &params);
+    gpu.bind_group(
+        &m.name,
+        &layouts.material,
+        &[
+            (0, buffer.as_entire_binding()),
+            (1, wgpu::BindingResource::TextureView(&diffuse)),
+            (2, wgpu::BindingResource::TextureView(&normal)),
+            (3, wgpu::BindingResource::Sampler(&layouts.material_sampler)),
         ],
-    })
+    )
 }

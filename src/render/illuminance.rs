@@ -94,32 +94,25 @@ impl IlluminanceProbe {
             light_count: lights.count,
             pad: [0; 2],
         };
-        let params_buf = dev.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("point params"),
-            contents: bytemuck::bytes_of(&params),
-            usage: wgpu::BufferUsages::UNIFORM,
-        });
+        let params_buf = gpu.uniform_buffer("point params", &params);
         let out = dev.create_buffer(&wgpu::BufferDescriptor {
             label: Some("lux"),
             size: 4 * points.len().max(1) as u64,
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
-        let layout = self.pipeline.get_bind_group_layout(0);
-        let entries = [
-            (0, params_buf.as_entire_binding()),
-            (1, lights.buffer.as_entire_binding()),
-            (2, wgpu::BindingResource::TextureView(&lights.atlas.view)),
-            (3, lights.atlas.info.as_entire_binding()),
-            (4, points_buf.as_entire_binding()),
-            (5, out.as_entire_binding()),
-        ]
-        .map(|(binding, resource)| wgpu::BindGroupEntry { binding, resource });
-        let bind = dev.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("illuminance points"),
-            layout: &layout,
-            entries: &entries,
-        });
+        let bind = gpu.bind_group(
+            "illuminance points",
+            &self.pipeline.get_bind_group_layout(0),
+            &[
+                (0, params_buf.as_entire_binding()),
+                (1, lights.buffer.as_entire_binding()),
+                (2, wgpu::BindingResource::TextureView(&lights.atlas.view)),
+                (3, lights.atlas.info.as_entire_binding()),
+                (4, points_buf.as_entire_binding()),
+                (5, out.as_entire_binding()),
+            ],
+        );
         let mut enc = dev.create_command_encoder(&Default::default());
         {
             let mut pass = enc.begin_compute_pass(&Default::default());

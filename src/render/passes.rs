@@ -6,7 +6,6 @@ use std::collections::HashMap;
 use std::sync::Mutex;
 
 use glam::Mat4;
-use wgpu::util::DeviceExt;
 
 use super::gpu_scene::{GpuScene, Vertex};
 use super::layouts::Layouts;
@@ -158,35 +157,20 @@ impl ScenePasses {
             light_count: scene.lights.count,
             pad: [0; 3],
         };
-        let buffer = gpu
-            .device
-            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("frame"),
-                contents: bytemuck::bytes_of(&frame),
-                usage: wgpu::BufferUsages::UNIFORM,
-            });
-        gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("frame"),
-            layout: &layouts.frame,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: buffer.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: scene.lights.buffer.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: wgpu::BindingResource::TextureView(&scene.lights.atlas.view),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 3,
-                    resource: scene.lights.atlas.info.as_entire_binding(),
-                },
+        let buffer = gpu.uniform_buffer("frame", &frame);
+        gpu.bind_group(
+            "frame",
+            &layouts.frame,
+            &[
+                (0, buffer.as_entire_binding()),
+                (1, scene.lights.buffer.as_entire_binding()),
+                (
+                    2,
+                    wgpu::BindingResource::TextureView(&scene.lights.atlas.view),
+                ),
+                (3, scene.lights.atlas.info.as_entire_binding()),
             ],
-        })
+        )
     }
 
     /// Records the depth pre-pass and the shading pass into `enc`. The HDR target is

@@ -10,7 +10,6 @@
 //! - False colour: lux on a colour scale from 0 to `lux_max`.
 
 use glam::Vec3;
-use wgpu::util::DeviceExt;
 
 use super::targets::{Targets, LDR_FORMAT};
 use crate::gpu::{shaders, Gpu, GpuError};
@@ -288,20 +287,14 @@ impl ToneMapper {
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
-        let bind = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("statistics"),
-            layout: &self.stats.get_bind_group_layout(0),
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: wgpu::BindingResource::TextureView(&targets.hdr_view),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: tiles.as_entire_binding(),
-                },
+        let bind = gpu.bind_group(
+            "statistics",
+            &self.stats.get_bind_group_layout(0),
+            &[
+                (0, wgpu::BindingResource::TextureView(&targets.hdr_view)),
+                (2, tiles.as_entire_binding()),
             ],
-        });
+        );
         let mut enc = gpu.device.create_command_encoder(&Default::default());
         {
             let mut pass = enc.begin_compute_pass(&Default::default());
@@ -342,27 +335,15 @@ impl ToneMapper {
             background: [background.x, background.y, background.z, 1.0],
             stops,
         };
-        let buffer = gpu
-            .device
-            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("tone params"),
-                contents: bytemuck::bytes_of(&params),
-                usage: wgpu::BufferUsages::UNIFORM,
-            });
-        let bind = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("tonemap"),
-            layout: &self.tonemap.get_bind_group_layout(0),
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: wgpu::BindingResource::TextureView(&targets.hdr_view),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: buffer.as_entire_binding(),
-                },
+        let buffer = gpu.uniform_buffer("tone params", &params);
+        let bind = gpu.bind_group(
+            "tonemap",
+            &self.tonemap.get_bind_group_layout(0),
+            &[
+                (0, wgpu::BindingResource::TextureView(&targets.hdr_view)),
+                (1, buffer.as_entire_binding()),
             ],
-        });
+        );
         let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("tonemap"),
             color_attachments: &[Some(wgpu::RenderPassColorAttachment {
