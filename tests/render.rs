@@ -418,3 +418,130 @@ fn bench_render_json_has_the_contract_keys() {
         }
     }
 }
+
+/// A floor with texture coordinates equal to x and y (so the tangent is +X).
+fn uv_floor(size: f32) -> SceneMesh {
+    let h = size / 2.0;
+    let corners = [(-h, -h), (h, -h), (h, h), (-h, h)];
+    SceneMesh {
+        name: "floor".into(),
+        positions: corners.iter().map(|&(x, y)| Vec3::new(x, y, 0.0)).collect(),
+        normals: vec![Vec3::Z; 4],
+        uvs: corners
+            .iter()
+            .map(|&(x, y)| glam::Vec2::new(x, y))
+            .collect(),
+        indices: vec![0, 1, 2, 0, 2, 3],
+        material: 0,
+    }
+}
+
+fn floor_hdr(gpu: &Gpu, scene: &Scene, w: u32) -> Vec<[f32; 4]> {
+    let mut s = RenderSettings::from_display(&scene.display);
+    (s.width, s.height, s.mode, s.read_hdr) = (w, w, Mode::Illuminance, true);
+    render(gpu, scene, &s).hdr.unwrap()
+}
+
+/// World point at the centre of pixel (px, py) of the top-down floor view.
+fn floor_point(px: u32, py: u32, w: u32, size: f64) -> DVec3 {
+    DVec3::new(
+        ((px as f64 + 0.5) / w as f64 - 0.5) * size,
+        (0.5 - (py as f64 + 0.5) / w as f64) * size,
+        0.0,
+    )
+}
+
+#[test]
+fn sixteen_luminaires_in_one_pass_sum_like_the_cpu_reference() {
+    let Some(gpu) = gpu_common::gpu() else { return };
+    let files = [
+        "eulumdat-plot/sample_06_isym1.ldt",
+        "eulumdat-luminance/sample_07.ldt",
+        "eulumdat-luminance/sample_04.ldt",
+        "eulumdat-plot/sample_14_isym1.ldt",
+    ];
+    let mut lums = Vec::new();
+    for k in 0..16 {
+        let lum = Luminaire::load(&luminaire(files[k % 4])).unwrap();
+        let (x, y) = ((k % 4) as f64 * 2.0 - 3.0, (k / 4) as f64 * 2.0 - 3.0);
+        let mut l = PlacedLuminaire::new("l", lum, DVec3::new(x, y, 2.0 + 0.1 * k as f64));
+        l.rotation = aim_frame(
+            Some(DVec3::new(0.05 * k as f64 - 0.4, 0.2, -1.0)),
+            20.0 * k as f64,
+        );
+        l.multiplier = 0.5 + 0.05 * k as f64;
+        lums.push(l);
+    }
+    let size = 10.0;
+    let scene = floor_scene(lums.clone(), size);
+    let w = 64;
+    let hdr = floor_hdr(&gpu, &scene, w);
+    let mut worst = 0.0f64;
+    for py in 0..w {
+        for px in 0..w {
+            let p = SurfacePoint {
+                position: floor_point(px, py, w, size as f64),
+                normal: DVec3::Z,
+            };
+            let want = illuminance_cpu(&lums, &p, Interp::CatmullRom);
+            let got = hdr[(py * w + px) as usize][3] as f64;
+            worst = worst.max((got - want).abs() / want.max(1.0));
+        }
+    }
+    assert!(worst <= 0.005, "worst relative difference {worst:e}");
+}
+
+#[test]
+fn normal_maps_tilt_the_shading_normal_but_not_the_illuminance() {
+    let Some(gpu) = gpu_common::gpu() else { return };
+    let lum = test_luminaires().remove(1);
+    let size = 8.0f64;
+    // A normal map tilted 30° toward the tangent (+X, since u = x).
+    let tilt = 30f64.to_radians();
+    let n_tangent = DVec3::new(tilt.sin(), 0.0, tilt.cos());
+    let enc = |c: f64| ((c * 0.5 + 0.5) * 255.0).round() as u8;
+    let map = image::RgbaImage::from_pixel(
+        4,
+        4,
+        image::Rgba([enc(n_tangent.x), enc(n_tangent.y), enc(n_tangent.z), 255]),
+    );
+    // The stored normal after 8-bit encoding, as the shader decodes it.
+    let dec = |c: u8| c as f64 / 255.0 * 2.0 - 1.0;
+    let n_world = DVec3::new(
+        dec(map.get_pixel(0, 0)[0]),
+        dec(map.get_pixel(0, 0)[1]),
+        dec(map.get_pixel(0, 0)[2]),
+    )
+    .normalize();
+    let mut scene = floor_scene(vec![lum.clone()], size as f32);
+    scene.meshes = vec![uv_floor(size as f32)];
+    scene.materials[0].normal_map = Some(std::sync::Arc::new(map));
+    let w = 48;
+    let hdr = floor_hdr(&gpu, &scene, w);
+    let kd = 0.6 / std::f64::consts::PI;
+    let mut checked = 0;
+    for py in 0..w {
+        for px in 0..w {
+            let p = floor_point(px, py, w, size);
+            let lux_geo = lum.illuminance_at(p, DVec3::Z, Interp::CatmullRom);
+            let lux_tilted = lum.illuminance_at(p, n_world, Interp::CatmullRom);
+            let got = hdr[(py * w + px) as usize];
+            let tol = |v: f64| 2e-3 * v.max(1.0);
+            assert!(
+                (got[3] as f64 - lux_geo).abs() <= tol(lux_geo),
+                "lux at {p}"
+            );
+            let l = kd * lux_tilted;
+            assert!(
+                (got[1] as f64 - l).abs() <= tol(l) * kd,
+                "luminance at {p}: {} vs {l}",
+                got[1]
+            );
+            if (lux_tilted - lux_geo).abs() > 0.05 * lux_geo {
+                checked += 1;
+            }
+        }
+    }
+    // The tilt makes a visible difference on much of the floor.
+    assert!(checked > (w * w / 4) as usize, "{checked}");
+}

@@ -1,9 +1,6 @@
 //! A scene uploaded to the GPU: one vertex and index buffer, a bind group per material,
 //! the luminaires (a storage buffer) and their light distribution textures (one array).
 
-use std::collections::HashMap;
-use std::path::PathBuf;
-
 use glam::{Vec2, Vec3};
 use wgpu::util::DeviceExt;
 
@@ -79,17 +76,26 @@ pub struct GpuLights {
 }
 
 impl GpuLights {
-    /// Uploads `luminaires`; luminaires of the same file share a layer.
+    /// Uploads `luminaires`; luminaires with the same distribution share a layer.
     pub fn new(gpu: &Gpu, luminaires: &[PlacedLuminaire]) -> GpuLights {
-        let mut layer_of: HashMap<PathBuf, u32> = HashMap::new();
         let mut textures: Vec<&LdtTexture> = Vec::new();
         let mut records = Vec::with_capacity(luminaires.len());
         for l in luminaires {
-            let layer = *layer_of.entry(l.file.clone()).or_insert_with(|| {
-                textures.push(&l.texture);
-                textures.len() as u32 - 1
-            });
-            records.push(LightGpu::new(l, layer));
+            let t = &l.texture;
+            let same = |o: &&LdtTexture| {
+                (o.c_count, o.gamma_count) == (t.c_count, t.gamma_count)
+                    && (o.gamma_start_deg, o.gamma_step_deg)
+                        == (t.gamma_start_deg, t.gamma_step_deg)
+                    && o.data == t.data
+            };
+            let layer = match textures.iter().position(same) {
+                Some(k) => k,
+                None => {
+                    textures.push(t);
+                    textures.len() - 1
+                }
+            };
+            records.push(LightGpu::new(l, layer as u32));
         }
         let atlas = if textures.is_empty() {
             LdtAtlas::empty(gpu)
