@@ -4,6 +4,8 @@ set -euo pipefail
 
 need_apt=()
 command -v cc >/dev/null 2>&1 || need_apt+=(gcc libc6-dev)
+# The image tests' FLIP metric (nv-flip-sys) compiles C++.
+command -v c++ >/dev/null 2>&1 || need_apt+=(g++)
 # GPU code runs on any Vulkan driver; without one, the software driver lavapipe.
 if ! compgen -G "/usr/share/vulkan/icd.d/*.json" >/dev/null && ! compgen -G "/etc/vulkan/icd.d/*.json" >/dev/null; then
   need_apt+=(mesa-vulkan-drivers libvulkan1)
