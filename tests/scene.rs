@@ -149,6 +149,11 @@ fn bad_scene_files_name_the_file_and_the_key() {
             "display.width",
             "",
         ),
+        (
+            format!("{model}{camera}[display]\nheight = 10000\n"),
+            "display.height",
+            "8192",
+        ),
     ];
     for (text, key, words) in cases {
         let (_dir, r) = load_text(&text);

@@ -14,7 +14,7 @@ use crate::gpu::{Gpu, GpuError};
 use crate::photometry::Interp;
 use crate::render::illuminance::{illuminance_cpu, IlluminanceProbe, SurfacePoint};
 use crate::render::output::{linear_image, write_image};
-use crate::render::{LightModel, RenderSettings, RenderedFrame, Renderer};
+use crate::render::{LightModel, RenderSettings, RenderedFrame, Renderer, MAX_IMAGE_SIZE};
 use crate::scene::{Mode, Scene, SceneError, Tonemap};
 
 impl From<SceneError> for CliError {
@@ -75,15 +75,17 @@ impl ImageOptions {
     /// The scene's display settings with these options applied.
     pub fn settings(&self, scene: &Scene) -> Result<RenderSettings, CliError> {
         let mut s = RenderSettings::from_display(&scene.display);
-        if let Some(w) = self.width {
-            s.width = w;
-        }
-        if let Some(h) = self.height {
-            s.height = h;
-        }
-        for (flag, v) in [("--width", s.width), ("--height", s.height)] {
-            if !(1..=8192).contains(&v) {
-                return Err(CliError::input(anyhow!("{flag} {v} is not in 1..=8192")));
+        for (flag, v, slot) in [
+            ("--width", self.width, &mut s.width),
+            ("--height", self.height, &mut s.height),
+        ] {
+            if let Some(v) = v {
+                if !(1..=MAX_IMAGE_SIZE).contains(&v) {
+                    return Err(CliError::input(anyhow!(
+                        "{flag} {v} is not in 1..={MAX_IMAGE_SIZE}"
+                    )));
+                }
+                *slot = v;
             }
         }
         if let Some(i) = self.interp {

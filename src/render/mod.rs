@@ -27,6 +27,9 @@ use passes::ScenePasses;
 use targets::Targets;
 use tonemap::ToneMapper;
 
+/// Largest image side the renderer accepts (wgpu's guaranteed 2D texture size).
+pub const MAX_IMAGE_SIZE: u32 = 8192;
+
 /// What to render.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RenderSettings {

@@ -128,11 +128,12 @@ fn bounds_of(meshes: &[SceneMesh], luminaires: &[PlacedLuminaire]) -> (DVec3, DV
 fn check_display(path: &Path, d: &DisplayEntry) -> Result<(), SceneError> {
     for (key, v) in [("display.width", d.width), ("display.height", d.height)] {
         if let Some(v) = v {
-            if !(1..=16384).contains(&v) {
+            let max = crate::render::MAX_IMAGE_SIZE;
+            if !(1..=max).contains(&v) {
                 return Err(SceneError::new(
                     path,
                     key,
-                    format!("{v} is not in 1..=16384"),
+                    format!("{v} is not in 1..={max}"),
                 ));
             }
         }
