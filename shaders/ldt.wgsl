@@ -166,13 +166,13 @@ fn ldt_sample(tex: texture_2d_array<f32>, layer: u32, info: LdtInfo, c_deg: f32,
     if (c >= 360.0) {
         c = 0.0;
     }
-    let wg = catmull_rom_weights((g - tg.y) / h);
     if (nc == 1) {
         if (interp == INTERP_NEAREST) {
             let k = select(gi + 1, gi, g - tg.y <= tg.z - g);
             return max(ldt_knot(tex, layer, info, 0u, k), 0.0);
         }
         if (interp == INTERP_CATMULL_ROM) {
+            let wg = catmull_rom_weights((g - tg.y) / h);
             return max(dot(wg, ldt_row(tex, layer, info, 0u, gi)), 0.0);
         }
         return max(ldt_along_gamma(tex, layer, info, 0u, gi, tg, g, interp), 0.0);
@@ -194,6 +194,7 @@ fn ldt_sample(tex: texture_2d_array<f32>, layer: u32, info: LdtInfo, c_deg: f32,
         let b = ldt_along_gamma(tex, layer, info, p2, gi, tg, g, interp);
         v = a + (b - a) * (c - tc.y) / (tc.z - tc.y);
     } else if (interp == INTERP_CATMULL_ROM) {
+        let wg = catmull_rom_weights((g - tg.y) / h);
         let q = vec4<f32>(
             dot(wg, ldt_row(tex, layer, info, p0, gi)),
             dot(wg, ldt_row(tex, layer, info, p1, gi)),

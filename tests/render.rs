@@ -74,19 +74,9 @@ fn gpu_illuminance_at_points_equals_the_cpu_reference_within_half_a_percent() {
 
 /// A square floor of `size` metres at z = 0, seen from straight above.
 fn floor_scene(luminaires: Vec<PlacedLuminaire>, size: f32) -> Scene {
-    let h = size / 2.0;
-    let p = |x: f32, y: f32| Vec3::new(x, y, 0.0);
-    let floor = SceneMesh::from_triangles(
-        "floor",
-        &[
-            [p(-h, -h), p(h, -h), p(h, h)],
-            [p(-h, -h), p(h, h), p(-h, h)],
-        ],
-        0,
-    );
     Scene {
         path: PathBuf::from("floor"),
-        meshes: vec![floor],
+        meshes: vec![uv_floor(size)],
         materials: vec![Material::default()],
         luminaires,
         camera: Camera::top_down(DVec3::ZERO, size as f64, 10.0),
@@ -109,17 +99,10 @@ fn illuminance_image_of_a_floor_matches_the_analytic_value_per_pixel() {
     let size = 8.0;
     let scene = floor_scene(vec![lum.clone()], size);
     let (w, h) = (96u32, 96u32);
-    let mut settings = RenderSettings::from_display(&scene.display);
-    settings.width = w;
-    settings.height = h;
-    settings.mode = Mode::Illuminance;
-    settings.read_hdr = true;
-    let frame = render(&gpu, &scene, &settings);
-    let hdr = frame.hdr.as_ref().unwrap();
+    let hdr = floor_hdr(&gpu, &scene, w);
     let flux = lum.luminaire.distribution.lamp_flux_lm();
     // The analytic value from the file's distribution (f64), not from the GPU texture.
-    let analytic = |x: f64, y: f64| {
-        let p = DVec3::new(x, y, 0.0);
+    let analytic = |p: DVec3| {
         let to_light = lum.position - p;
         let d2 = to_light.length_squared();
         let cos = to_light.z / d2.sqrt();
@@ -136,9 +119,7 @@ fn illuminance_image_of_a_floor_matches_the_analytic_value_per_pixel() {
     let mut expected = Vec::new();
     for py in 0..h {
         for px in 0..w {
-            let x = ((px as f64 + 0.5) / w as f64 - 0.5) * size as f64;
-            let y = (0.5 - (py as f64 + 0.5) / h as f64) * size as f64;
-            expected.push(analytic(x, y));
+            expected.push(analytic(floor_point(px, py, w, size as f64)));
         }
     }
     let e_max = expected.iter().cloned().fold(0.0, f64::max);
@@ -514,7 +495,6 @@ fn normal_maps_tilt_the_shading_normal_but_not_the_illuminance() {
     )
     .normalize();
     let mut scene = floor_scene(vec![lum.clone()], size as f32);
-    scene.meshes = vec![uv_floor(size as f32)];
     scene.materials[0].normal_map = Some(std::sync::Arc::new(map));
     let w = 48;
     let hdr = floor_hdr(&gpu, &scene, w);

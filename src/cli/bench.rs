@@ -94,18 +94,13 @@ fn run_render(as_json: bool, plan: bench::BenchPlan, quick: bool) -> Result<(), 
     }
     let gpu = Gpu::headless()?;
     eprintln!("GPU: {}", gpu.describe());
-    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
-    let root = if root.join("luminaires").is_dir() {
-        root
-    } else {
-        std::path::Path::new(".")
-    };
+    let root = super::data_root();
     let tess = if quick {
         &bench::TESSELLATIONS[..2]
     } else {
         &bench::TESSELLATIONS[..]
     };
-    let rows = bench::run(&gpu, root, plan, tess, |tris, lights| {
+    let rows = bench::run(&gpu, &root, plan, tess, |tris, lights| {
         eprintln!("benchmarking {tris} triangles, {lights} luminaires …")
     })
     .map_err(CliError::failure)?;

@@ -37,16 +37,9 @@ pub struct DemoArgs {
     pub image: ImageOptions,
 }
 
-/// The bundled furnished room: next to the sources when built from a checkout, else in
-/// `assets/` below the working directory.
+/// The bundled furnished room.
 pub fn default_scene() -> PathBuf {
-    let rel = "assets/scenes/furnished_room.toml";
-    let built = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(rel);
-    if built.is_file() {
-        built
-    } else {
-        PathBuf::from(rel)
-    }
+    super::data_root().join("assets/scenes/furnished_room.toml")
 }
 
 /// Renders the scene shaded and in false-colour illuminance.

@@ -88,6 +88,17 @@ impl From<PhotometryError> for CliError {
     }
 }
 
+/// The folder holding the bundled data (`assets/`, `luminaires/`): the source checkout the
+/// binary was built from when it is still there, else the working directory.
+pub fn data_root() -> std::path::PathBuf {
+    let built = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    if built.join("assets").is_dir() && built.join("luminaires").is_dir() {
+        built.to_path_buf()
+    } else {
+        std::path::PathBuf::from(".")
+    }
+}
+
 /// Runs a parsed command line.
 pub fn run(cli: Cli) -> Result<(), CliError> {
     match cli.command {

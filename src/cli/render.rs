@@ -142,12 +142,11 @@ pub fn render_to_files(
     let uploaded = renderer.upload(gpu, scene);
     let frame = renderer.render(gpu, &uploaded, &scene.camera, &settings)?;
     let ms = started.elapsed().as_secs_f64() * 1e3;
-    write_image(png, &image::DynamicImage::ImageRgba8(frame.image.clone()))
-        .map_err(CliError::failure)?;
+    write_image(png, &frame.image).map_err(CliError::failure)?;
     if let Some(exr) = exr {
         let linear = linear_image(&frame, settings.width, settings.height)
             .ok_or_else(|| CliError::failure(anyhow!("no HDR values were read back")))?;
-        write_image(exr, &image::DynamicImage::ImageRgb32F(linear)).map_err(CliError::failure)?;
+        write_image(exr, &linear).map_err(CliError::failure)?;
     }
     let what = match settings.mode {
         Mode::Shaded => format!(

@@ -185,12 +185,7 @@ impl LdtProbe {
             pad: 0,
         };
         let param_buf = gpu.uniform_buffer("probe params", &params);
-        let out = dev.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("probe results"),
-            size: (n * 4) as u64,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-            mapped_at_creation: false,
-        });
+        let out = gpu.output_buffer("probe results", (n * 4) as u64);
         let bind = gpu.bind_group(
             "probe",
             &self.pipeline.get_bind_group_layout(0),
@@ -202,15 +197,8 @@ impl LdtProbe {
                 (4, out.as_entire_binding()),
             ],
         );
-        let mut enc = dev.create_command_encoder(&Default::default());
-        {
-            let mut pass = enc.begin_compute_pass(&Default::default());
-            pass.set_pipeline(&self.pipeline);
-            pass.set_bind_group(0, &bind, &[]);
-            pass.dispatch_workgroups((n as u32).div_ceil(64), 1, 1);
-        }
-        gpu.queue.submit([enc.finish()]);
-        let mut v = gpu.read_f32(&out)?;
+        let workgroups = [(n as u32).div_ceil(64), 1, 1];
+        let mut v = gpu.dispatch_and_read(&self.pipeline, &bind, workgroups, &out)?;
         v.truncate(dirs.len());
         Ok(v)
     }

@@ -93,6 +93,36 @@ impl Gpu {
             })
     }
 
+    /// A storage buffer of `size` bytes the GPU writes and the CPU can read back.
+    pub fn output_buffer(&self, label: &str, size: u64) -> wgpu::Buffer {
+        self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some(label),
+            size,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        })
+    }
+
+    /// Runs one compute dispatch of `pipeline` with `bind` as group 0, then reads
+    /// `output` back as `f32`s.
+    pub fn dispatch_and_read(
+        &self,
+        pipeline: &wgpu::ComputePipeline,
+        bind: &wgpu::BindGroup,
+        workgroups: [u32; 3],
+        output: &wgpu::Buffer,
+    ) -> Result<Vec<f32>, GpuError> {
+        let mut enc = self.device.create_command_encoder(&Default::default());
+        {
+            let mut pass = enc.begin_compute_pass(&Default::default());
+            pass.set_pipeline(pipeline);
+            pass.set_bind_group(0, bind, &[]);
+            pass.dispatch_workgroups(workgroups[0], workgroups[1], workgroups[2]);
+        }
+        self.queue.submit([enc.finish()]);
+        self.read_f32(output)
+    }
+
     /// A bind group of `(binding, resource)` pairs.
     pub fn bind_group(
         &self,

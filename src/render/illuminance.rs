@@ -95,12 +95,7 @@ impl IlluminanceProbe {
             pad: [0; 2],
         };
         let params_buf = gpu.uniform_buffer("point params", &params);
-        let out = dev.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("lux"),
-            size: 4 * points.len().max(1) as u64,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-            mapped_at_creation: false,
-        });
+        let out = gpu.output_buffer("lux", 4 * points.len().max(1) as u64);
         let bind = gpu.bind_group(
             "illuminance points",
             &self.pipeline.get_bind_group_layout(0),
@@ -113,15 +108,8 @@ impl IlluminanceProbe {
                 (5, out.as_entire_binding()),
             ],
         );
-        let mut enc = dev.create_command_encoder(&Default::default());
-        {
-            let mut pass = enc.begin_compute_pass(&Default::default());
-            pass.set_pipeline(&self.pipeline);
-            pass.set_bind_group(0, &bind, &[]);
-            pass.dispatch_workgroups((points.len().max(1) as u32).div_ceil(64), 1, 1);
-        }
-        gpu.queue.submit([enc.finish()]);
-        let lux = gpu.read_f32(&out)?;
+        let workgroups = [(points.len().max(1) as u32).div_ceil(64), 1, 1];
+        let lux = gpu.dispatch_and_read(&self.pipeline, &bind, workgroups, &out)?;
         Ok(lux[..points.len()].iter().map(|&v| v as f64).collect())
     }
 }

@@ -10,7 +10,14 @@ use crate::io::write_atomic;
 use crate::scene::Mode;
 
 /// Encodes an image in the format `path`'s extension names and writes it atomically.
-pub fn write_image(path: &Path, image: &image::DynamicImage) -> anyhow::Result<()> {
+pub fn write_image<P>(
+    path: &Path,
+    image: &image::ImageBuffer<P, Vec<P::Subpixel>>,
+) -> anyhow::Result<()>
+where
+    P: image::PixelWithColorType,
+    [P::Subpixel]: image::EncodableLayout,
+{
     let format = image::ImageFormat::from_path(path)
         .with_context(|| format!("{}: unknown image extension", path.display()))?;
     let mut bytes = std::io::Cursor::new(Vec::new());

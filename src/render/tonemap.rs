@@ -281,12 +281,7 @@ impl ToneMapper {
     /// Statistics of the HDR target (runs on the GPU, reads back one record per tile).
     pub fn statistics(&self, gpu: &Gpu, targets: &Targets) -> Result<ImageStats, GpuError> {
         let (tx, ty) = (targets.width.div_ceil(TILE), targets.height.div_ceil(TILE));
-        let tiles = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("statistics tiles"),
-            size: (tx * ty * 32) as u64,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-            mapped_at_creation: false,
-        });
+        let tiles = gpu.output_buffer("statistics tiles", (tx * ty * 32) as u64);
         let bind = gpu.bind_group(
             "statistics",
             &self.stats.get_bind_group_layout(0),
@@ -295,15 +290,8 @@ impl ToneMapper {
                 (2, tiles.as_entire_binding()),
             ],
         );
-        let mut enc = gpu.device.create_command_encoder(&Default::default());
-        {
-            let mut pass = enc.begin_compute_pass(&Default::default());
-            pass.set_pipeline(&self.stats);
-            pass.set_bind_group(0, &bind, &[]);
-            pass.dispatch_workgroups(tx, ty, 1);
-        }
-        gpu.queue.submit([enc.finish()]);
-        Ok(ImageStats::from_tiles(&gpu.read_f32(&tiles)?))
+        let tiles = gpu.dispatch_and_read(&self.stats, &bind, [tx, ty, 1], &tiles)?;
+        Ok(ImageStats::from_tiles(&tiles))
     }
 
     /// Records the tone-mapping pass from the HDR target into the sRGB image.
