@@ -1,7 +1,7 @@
 // The real-time renderer's geometry passes: a depth pre-pass, then one shading pass that
 // sums every luminaire (Blinn-Phong, E = I · cos θ / d²) into an HDR target:
 // rgb = luminance (cd/m²), a = direct illuminance (lux) on the surface, −1 = no surface.
-// Needs ldt.wgsl and lighting.wgsl before it.
+// Needs ldt.wgsl, lighting.wgsl and shadow.wgsl before it.
 
 struct Frame {
     view_proj: mat4x4<f32>,
@@ -102,6 +102,8 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> @location(0) ve
     let spec_norm = (ns + 8.0) / (8.0 * PI);
     var radiance = vec3<f32>(0.0);
     var lux = 0.0;
+    let pixel = vec2<u32>(in.clip.xy);
+    let slot = pixel.y * shadow.mask_width + pixel.x;
     for (var i = 0u; i < frame.light_count; i++) {
         let l = lights[i];
         let d = l.position.xyz - in.world;
@@ -110,9 +112,13 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> @location(0) ve
         if (!(lit_geo || lit_shading)) {
             continue;
         }
+        let visible = light_visibility(l, i, in.world, n_geo, slot);
+        if (visible <= 0.0) {
+            continue;
+        }
         let inc = light_incident(l, in.world);
-        lux += inc.normal_lux * max(dot(n_geo, inc.to_light), 0.0);
-        let e = inc.normal_lux * max(dot(n, inc.to_light), 0.0);
+        lux += visible * inc.normal_lux * max(dot(n_geo, inc.to_light), 0.0);
+        let e = visible * inc.normal_lux * max(dot(n, inc.to_light), 0.0);
         let h = normalize(inc.to_light + v);
         let spec = ks * spec_norm * pow(max(dot(n, h), 0.0), ns);
         radiance += (kd / PI + spec) * l.color.rgb * e;

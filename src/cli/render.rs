@@ -14,8 +14,12 @@ use crate::gpu::{Gpu, GpuError};
 use crate::photometry::Interp;
 use crate::render::illuminance::{illuminance_cpu, IlluminanceProbe, SurfacePoint};
 use crate::render::output::{linear_image, write_image};
-use crate::render::{LightModel, RenderSettings, RenderedFrame, Renderer, MAX_IMAGE_SIZE};
+use crate::render::{
+    LightModel, RenderSettings, RenderedFrame, Renderer, ShadowTechnique, VolumeTest,
+    MAX_IMAGE_SIZE,
+};
 use crate::scene::{Mode, Scene, SceneError, Tonemap};
+use crate::shadow::SilhouetteMethod;
 
 impl From<SceneError> for CliError {
     fn from(e: SceneError) -> CliError {
@@ -69,6 +73,23 @@ pub struct ImageOptions {
     /// Top of the false-colour scale in lux (default: automatic).
     #[arg(long)]
     pub lux_max: Option<f64>,
+    /// Shadows of the luminaires (default: the scene's `display.shadows`, else
+    /// paraboloid maps, the sensible choice for point-like luminaires).
+    #[arg(long, value_enum)]
+    pub shadows: Option<ShadowTechnique>,
+    /// Shadow volumes: z-pass, z-fail, or chosen per light by the near-clip-volume test.
+    #[arg(long, value_enum, default_value = "auto")]
+    pub volume_test: VolumeTest,
+    /// Shadow volumes: how silhouettes are found.
+    #[arg(long, value_enum, default_value = "hextree")]
+    pub silhouettes: SilhouetteMethod,
+    /// Paraboloid shadow-map side in texels, per hemisphere and luminaire (default 1024).
+    #[arg(long)]
+    pub shadow_map_size: Option<u32>,
+    /// Debug view: draw the shadow volumes (translucent yellow) and silhouette edges
+    /// (pink) over the image (shadow-volume mode).
+    #[arg(long)]
+    pub show_volumes: bool,
 }
 
 impl ImageOptions {
@@ -106,6 +127,21 @@ impl ImageOptions {
                 }
             }
         }
+        if let Some(t) = self.shadows {
+            s.shadows.technique = t;
+        }
+        if let Some(size) = self.shadow_map_size {
+            if !(16..=MAX_IMAGE_SIZE).contains(&size) {
+                return Err(CliError::input(anyhow!(
+                    "--shadow-map-size {size} is not in 16..={MAX_IMAGE_SIZE}"
+                )));
+            }
+            s.shadows.map_size = size;
+        }
+        s.shadows.volume_test = self.volume_test;
+        s.shadows.silhouette = self.silhouettes;
+        s.shadows.show_volumes = self.show_volumes;
+        s.shadows.show_silhouettes = self.show_volumes;
         s.exposure = self.exposure.or(s.exposure);
         s.lux_max = self.lux_max.or(s.lux_max);
         Ok(s)

@@ -2,7 +2,7 @@
 
 use std::path::PathBuf;
 
-use clap::{Args, ValueEnum};
+use clap::Args;
 use serde_json::json;
 
 use super::CliError;
@@ -10,14 +10,7 @@ use crate::geometry::obj::read_obj;
 use crate::geometry::GeometryError;
 use crate::shadow::{bench, Hextree, Light, SilhouetteMesh};
 
-/// How to find silhouette edges.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum Method {
-    /// Test every edge.
-    Brute,
-    /// The 4D dual-space hextree.
-    Hextree,
-}
+pub use crate::shadow::SilhouetteMethod as Method;
 
 /// Options of `silhouette`.
 #[derive(Debug, Args)]

@@ -64,9 +64,11 @@ impl Gpu {
             .map_err(|e| GpuError::NoAdapter(format!(" ({e})")))?,
         };
         let info = adapter.get_info();
+        let wanted_features =
+            wgpu::Features::DEPTH32FLOAT_STENCIL8 | wgpu::Features::DEPTH_CLIP_CONTROL;
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("goniolight"),
-            required_features: wgpu::Features::empty(),
+            required_features: adapter.features() & wanted_features,
             required_limits: wgpu::Limits::downlevel_defaults().using_resolution(adapter.limits()),
             ..Default::default()
         }))
@@ -80,6 +82,28 @@ impl Gpu {
             device,
             queue,
         })
+    }
+
+    /// The depth-stencil format of the renderer's targets: 32-bit float depth with an
+    /// 8-bit stencil where the adapter has it, 24-bit depth otherwise.
+    pub fn depth_stencil_format(&self) -> wgpu::TextureFormat {
+        if self
+            .device
+            .features()
+            .contains(wgpu::Features::DEPTH32FLOAT_STENCIL8)
+        {
+            wgpu::TextureFormat::Depth32FloatStencil8
+        } else {
+            wgpu::TextureFormat::Depth24PlusStencil8
+        }
+    }
+
+    /// Whether primitives can skip depth clipping (depth clamp), which keeps the caps of
+    /// shadow volumes at infinity from being clipped at the far plane.
+    pub fn has_depth_clamp(&self) -> bool {
+        self.device
+            .features()
+            .contains(wgpu::Features::DEPTH_CLIP_CONTROL)
     }
 
     /// A uniform buffer holding `value`.
@@ -156,9 +180,17 @@ impl Gpu {
         Ok(bytemuck::pod_collect_to_vec(&bytes))
     }
 
-    /// Copies a whole 2D texture (which must allow COPY_SRC) back to the CPU, rows packed.
+    /// Copies `buffer` (which must allow COPY_SRC) back to the CPU as `u32`s.
+    pub fn read_u32(&self, buffer: &wgpu::Buffer) -> Result<Vec<u32>, GpuError> {
+        let bytes = self.read_bytes(buffer, |_| {})?;
+        Ok(bytemuck::pod_collect_to_vec(&bytes))
+    }
+
+    /// Copies a whole 2D texture (which must allow COPY_SRC) back to the CPU, rows packed,
+    /// layer after layer for an array.
     pub fn read_texture(&self, texture: &wgpu::Texture) -> Result<Vec<u8>, GpuError> {
         let (w, h) = (texture.width(), texture.height());
+        let layers = texture.depth_or_array_layers();
         let texel = texture
             .format()
             .block_copy_size(None)
@@ -168,7 +200,7 @@ impl Gpu {
             row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
         let buffer = self.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("texture read-back"),
-            size: (padded * h) as u64,
+            size: (padded * h * layers) as u64,
             usage: wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
@@ -186,8 +218,8 @@ impl Gpu {
                 texture.size(),
             );
         })?;
-        let mut out = Vec::with_capacity((row * h) as usize);
-        for y in 0..h as usize {
+        let mut out = Vec::with_capacity((row * h * layers) as usize);
+        for y in 0..(h * layers) as usize {
             let at = y * padded as usize;
             out.extend_from_slice(&bytes[at..at + row as usize]);
         }

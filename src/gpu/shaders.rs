@@ -10,7 +10,13 @@ pub const LDT_PROBE: &str = include_str!("../../shaders/ldt_probe.wgsl");
 pub const LIGHTING: &str = include_str!("../../shaders/lighting.wgsl");
 /// Direct illuminance at many points (needs [`LDT`] and [`LIGHTING`]).
 pub const ILLUMINANCE_POINTS: &str = include_str!("../../shaders/illuminance_points.wgsl");
-/// The renderer's depth and shading passes (needs [`LDT`] and [`LIGHTING`]).
+/// Shadow lookups of the shading code: volume mask and paraboloid maps (needs [`LIGHTING`]).
+pub const SHADOW: &str = include_str!("../../shaders/shadow.wgsl");
+/// Stencil shadow volumes, the shadow mask and their debug views.
+pub const SHADOW_VOLUME: &str = include_str!("../../shaders/shadow_volume.wgsl");
+/// Dual-paraboloid shadow maps.
+pub const PARABOLOID: &str = include_str!("../../shaders/paraboloid.wgsl");
+/// The renderer's depth and shading passes (needs [`LDT`], [`LIGHTING`] and [`SHADOW`]).
 pub const SCENE: &str = include_str!("../../shaders/scene.wgsl");
 /// Tone mapping, false colour and image statistics.
 pub const TONEMAP: &str = include_str!("../../shaders/tonemap.wgsl");
@@ -22,12 +28,12 @@ pub fn ldt_probe() -> String {
 
 /// The illuminance-at-points module.
 pub fn illuminance_points() -> String {
-    format!("{LDT}\n{LIGHTING}\n{ILLUMINANCE_POINTS}")
+    format!("{LDT}\n{LIGHTING}\n{SHADOW}\n{ILLUMINANCE_POINTS}")
 }
 
 /// The scene (depth + shading) module.
 pub fn scene() -> String {
-    format!("{LDT}\n{LIGHTING}\n{SCENE}")
+    format!("{LDT}\n{LIGHTING}\n{SHADOW}\n{SCENE}")
 }
 
 /// Every shader module as (name, full source), for validation.
@@ -37,6 +43,8 @@ pub fn modules() -> Vec<(&'static str, String)> {
         ("illuminance_points", illuminance_points()),
         ("scene", scene()),
         ("tonemap", TONEMAP.to_string()),
+        ("shadow_volume", SHADOW_VOLUME.to_string()),
+        ("paraboloid", PARABOLOID.to_string()),
     ]
 }
 

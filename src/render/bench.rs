@@ -196,6 +196,7 @@ pub fn run(
                         &scene.camera,
                         &targets,
                         *model,
+                        &super::ShadowSettings::none(),
                         plan.frames,
                     )?;
                     if round > 0 {

@@ -1,10 +1,15 @@
 //! A scene uploaded to the GPU: one vertex and index buffer, a bind group per material,
 //! the luminaires (a storage buffer) and their light distribution textures (one array).
 
+use std::sync::{Arc, Mutex, OnceLock};
+
 use glam::{Vec2, Vec3};
 use wgpu::util::DeviceExt;
 
 use super::layouts::Layouts;
+use super::paraboloid::{ParaboloidCasters, ShadowLight};
+use super::volumes::VolumeGeometry;
+use crate::geometry::Mesh;
 use crate::gpu::ldt::LdtAtlas;
 use crate::gpu::Gpu;
 use crate::photometry::LdtTexture;
@@ -155,6 +160,12 @@ pub struct GpuScene {
     pub lights: GpuLights,
     /// Number of triangles.
     pub triangle_count: usize,
+    /// Every triangle as one mesh: the shadow casters.
+    pub casters: Mesh,
+    /// The luminaires as shadow-casting lights, in the order of `lights`.
+    pub shadow_lights: Vec<ShadowLight>,
+    volume_geometry: OnceLock<Option<VolumeGeometry>>,
+    paraboloid_casters: Mutex<Option<(f64, Arc<ParaboloidCasters>)>>,
 }
 
 impl GpuScene {
@@ -217,7 +228,64 @@ impl GpuScene {
             materials,
             lights: GpuLights::new(gpu, &scene.luminaires),
             triangle_count: scene.triangle_count(),
+            casters: scene.caster_mesh(),
+            shadow_lights: scene
+                .luminaires
+                .iter()
+                .map(|l| ShadowLight {
+                    position: l.position,
+                    rotation: l.rotation,
+                    hemisphere: l.texture.hemisphere,
+                })
+                .collect(),
+            volume_geometry: OnceLock::new(),
+            paraboloid_casters: Mutex::new(None),
         }
+    }
+
+    /// The casters prepared for shadow volumes (built on first use; `None` when the
+    /// scene has no usable triangle).
+    pub fn volume_geometry(&self, gpu: &Gpu) -> Option<&VolumeGeometry> {
+        self.volume_geometry
+            .get_or_init(|| VolumeGeometry::new(gpu, &self.casters, "scene").ok())
+            .as_ref()
+    }
+
+    /// The volume geometry if [`GpuScene::volume_geometry`] has built it.
+    pub fn volume_geometry_if_built(&self) -> Option<&VolumeGeometry> {
+        self.volume_geometry.get().and_then(|g| g.as_ref())
+    }
+
+    /// The casters tessellated to `max_edge` metres for paraboloid maps (cached).
+    pub fn paraboloid_casters(&self, gpu: &Gpu, max_edge: f64) -> Arc<ParaboloidCasters> {
+        let mut cache = self
+            .paraboloid_casters
+            .lock()
+            .unwrap_or_else(|e| e.into_inner());
+        match &*cache {
+            Some((edge, casters)) if *edge == max_edge => casters.clone(),
+            _ => {
+                let casters = Arc::new(ParaboloidCasters::new(gpu, &self.casters, max_edge));
+                *cache = Some((max_edge, casters.clone()));
+                casters
+            }
+        }
+    }
+
+    /// The distance stored as depth 1 in the paraboloid maps: the farthest caster
+    /// vertex from any luminaire, with a margin.
+    pub fn shadow_far(&self) -> f32 {
+        let far = self
+            .shadow_lights
+            .iter()
+            .flat_map(|l| {
+                self.casters
+                    .positions
+                    .iter()
+                    .map(move |p| p.distance(l.position))
+            })
+            .fold(1.0f64, f64::max);
+        (far * 1.05) as f32
     }
 
     /// Records the draw calls (bind group 1 and the buffers are set here).

@@ -5,7 +5,8 @@ use crate::gpu::Gpu;
 
 /// The layouts and the material sampler.
 pub struct Layouts {
-    /// Group 0: `Frame` uniform, lights, LDT atlas, LDT info.
+    /// Group 0: `Frame` uniform, lights, LDT atlas, LDT info; shadow info, shadow mask,
+    /// paraboloid maps and their comparison sampler.
     pub frame: wgpu::BindGroupLayout,
     /// Group 1: material uniform, diffuse map, normal map, sampler.
     pub material: wgpu::BindGroupLayout,
@@ -71,6 +72,28 @@ impl Layouts {
                         ),
                     ),
                     entry(3, S::FRAGMENT, storage),
+                    entry(8, S::FRAGMENT, buffer(wgpu::BufferBindingType::Uniform)),
+                    entry(
+                        9,
+                        S::FRAGMENT,
+                        texture(
+                            wgpu::TextureSampleType::Uint,
+                            wgpu::TextureViewDimension::D2Array,
+                        ),
+                    ),
+                    entry(
+                        10,
+                        S::FRAGMENT,
+                        texture(
+                            wgpu::TextureSampleType::Depth,
+                            wgpu::TextureViewDimension::D2Array,
+                        ),
+                    ),
+                    entry(
+                        11,
+                        S::FRAGMENT,
+                        wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
+                    ),
                 ],
             });
         let filterable = texture(

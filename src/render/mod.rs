@@ -9,21 +9,27 @@ pub mod illuminance;
 pub mod layouts;
 pub mod legend;
 pub mod output;
+pub mod paraboloid;
 pub mod passes;
+pub mod shadows;
 pub mod targets;
 pub mod tonemap;
+pub mod volumes;
 
 use glam::Vec3;
 
 pub use gpu_scene::GpuScene;
 pub use passes::LightModel;
+pub use shadows::{ShadowSettings, ShadowTechnique};
 pub use tonemap::{ImageStats, ToneSettings};
+pub use volumes::VolumeTest;
 
 use crate::gpu::{Gpu, GpuError};
 use crate::photometry::Interp;
 use crate::scene::{Camera, DisplayEntry, Mode, Scene, Tonemap};
 use layouts::Layouts;
 use passes::ScenePasses;
+use shadows::{ShadowFrame, ShadowPasses};
 use targets::Targets;
 use tonemap::ToneMapper;
 
@@ -51,6 +57,8 @@ pub struct RenderSettings {
     pub background: Vec3,
     /// Whether to read the HDR values back (for EXR output and tests).
     pub read_hdr: bool,
+    /// Shadows.
+    pub shadows: ShadowSettings,
 }
 
 impl RenderSettings {
@@ -69,6 +77,7 @@ impl RenderSettings {
                 .map(|b| glam::DVec3::from_array(b).as_vec3())
                 .unwrap_or(Vec3::splat(0.02)),
             read_hdr: false,
+            shadows: ShadowSettings::with(d.shadows.unwrap_or_default()),
         }
     }
 }
@@ -81,6 +90,9 @@ pub struct RenderedFrame {
     pub hdr: Option<Vec<[f32; 4]>>,
     /// Statistics of the HDR image.
     pub stats: ImageStats,
+    /// The shadow-volume mask when asked for (`read_hdr` in shadow-volume mode): one
+    /// layer of pixels per light, 1 where the pixel is in that light's shadow.
+    pub shadow_mask: Vec<u8>,
     /// The tone-mapping settings used.
     pub tone: ToneSettings,
 }
@@ -91,6 +103,8 @@ pub struct Renderer {
     pub layouts: Layouts,
     passes: ScenePasses,
     tonemapper: ToneMapper,
+    /// Shadow pipelines.
+    pub shadows: ShadowPasses,
 }
 
 impl Renderer {
@@ -100,6 +114,7 @@ impl Renderer {
         Renderer {
             passes: ScenePasses::new(gpu, &layouts),
             tonemapper: ToneMapper::new(gpu),
+            shadows: ShadowPasses::new(gpu, targets::LDR_FORMAT),
             layouts,
         }
     }
@@ -111,6 +126,8 @@ impl Renderer {
 
     /// Renders the HDR image of `scene` seen by `camera` into `targets` `frames` times in
     /// one submission and waits for the GPU to finish (one frame: the benchmark's unit).
+    /// Returns the frame's shadow resources.
+    #[allow(clippy::too_many_arguments)]
     pub fn draw_hdr(
         &self,
         gpu: &Gpu,
@@ -118,18 +135,38 @@ impl Renderer {
         camera: &Camera,
         targets: &Targets,
         model: LightModel,
+        shadows: &ShadowSettings,
         frames: usize,
-    ) -> Result<(), GpuError> {
-        let frame = self
-            .passes
-            .frame_bind_group(gpu, &self.layouts, scene, camera, targets);
+    ) -> Result<ShadowFrame, GpuError> {
+        let aspect = targets.width as f64 / targets.height as f64;
+        let shadow = self.shadows.prepare(
+            gpu,
+            scene,
+            camera.view_projection(aspect),
+            camera.near_rectangle(aspect),
+            targets.width,
+            targets.height,
+            shadows,
+        )?;
+        let frame = self.passes.frame_bind_group(
+            gpu,
+            &self.layouts,
+            scene,
+            camera,
+            targets,
+            &self.shadows.bindings(&shadow),
+        );
         let mut enc = gpu.device.create_command_encoder(&Default::default());
         for _ in 0..frames {
+            self.passes.record_depth(&mut enc, &frame, scene, targets);
+            self.shadows
+                .record_mask(&mut enc, scene, &shadow, &targets.depth_view);
             self.passes
-                .record(gpu, &mut enc, &frame, scene, targets, model);
+                .record_shade(gpu, &mut enc, &frame, scene, targets, model);
         }
         gpu.queue.submit([enc.finish()]);
-        gpu.wait()
+        gpu.wait()?;
+        Ok(shadow)
     }
 
     /// Renders a complete image.
@@ -141,7 +178,15 @@ impl Renderer {
         settings: &RenderSettings,
     ) -> Result<RenderedFrame, GpuError> {
         let targets = Targets::new(gpu, settings.width, settings.height);
-        self.draw_hdr(gpu, scene, camera, &targets, settings.light_model, 1)?;
+        let shadow = self.draw_hdr(
+            gpu,
+            scene,
+            camera,
+            &targets,
+            settings.light_model,
+            &settings.shadows,
+            1,
+        )?;
         let stats = self.tonemapper.statistics(gpu, &targets)?;
         let tone = ToneSettings::resolve(
             settings.mode,
@@ -153,6 +198,14 @@ impl Renderer {
         let mut enc = gpu.device.create_command_encoder(&Default::default());
         self.tonemapper
             .record(gpu, &mut enc, &targets, &tone, settings.background);
+        self.shadows.record_debug(
+            &mut enc,
+            scene,
+            &shadow,
+            &settings.shadows,
+            &targets.ldr_view,
+            &targets.depth_view,
+        );
         gpu.queue.submit([enc.finish()]);
         let pixels = gpu.read_texture(&targets.ldr)?;
         let mut image = image::RgbaImage::from_raw(settings.width, settings.height, pixels)
@@ -160,16 +213,20 @@ impl Renderer {
         if settings.mode == Mode::Illuminance {
             legend::draw_legend(&mut image, tone.lux_max);
         }
-        let hdr = if settings.read_hdr {
-            Some(bytemuck::pod_collect_to_vec(
-                &gpu.read_texture(&targets.hdr)?,
-            ))
+        let (hdr, shadow_mask) = if settings.read_hdr {
+            (
+                Some(bytemuck::pod_collect_to_vec(
+                    &gpu.read_texture(&targets.hdr)?,
+                )),
+                self.shadows.read_mask(gpu, &shadow)?,
+            )
         } else {
-            None
+            (None, Vec::new())
         };
         Ok(RenderedFrame {
             image,
             hdr,
+            shadow_mask,
             stats,
             tone,
         })

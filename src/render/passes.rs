@@ -9,7 +9,7 @@ use glam::Mat4;
 
 use super::gpu_scene::{GpuScene, Vertex};
 use super::layouts::Layouts;
-use super::targets::{Targets, DEPTH_FORMAT, HDR_FORMAT};
+use super::targets::{Targets, HDR_FORMAT};
 use crate::gpu::ldt::interp_code;
 use crate::gpu::{shaders, Gpu};
 use crate::photometry::Interp;
@@ -81,7 +81,7 @@ impl ScenePasses {
                     buffers: &[Some(Vertex::LAYOUT)],
                 },
                 primitive: wgpu::PrimitiveState::default(),
-                depth_stencil: Some(depth_state(true, wgpu::CompareFunction::Less)),
+                depth_stencil: Some(depth_state(gpu, true, wgpu::CompareFunction::Less)),
                 multisample: Default::default(),
                 fragment: None,
                 multiview_mask: None,
@@ -117,7 +117,11 @@ impl ScenePasses {
                             buffers: &[Some(Vertex::LAYOUT)],
                         },
                         primitive: wgpu::PrimitiveState::default(),
-                        depth_stencil: Some(depth_state(false, wgpu::CompareFunction::LessEqual)),
+                        depth_stencil: Some(depth_state(
+                            gpu,
+                            false,
+                            wgpu::CompareFunction::LessEqual,
+                        )),
                         multisample: Default::default(),
                         fragment: Some(wgpu::FragmentState {
                             module: &self.module,
@@ -144,6 +148,7 @@ impl ScenePasses {
         scene: &GpuScene,
         camera: &Camera,
         targets: &Targets,
+        shadow: &[(u32, wgpu::BindingResource<'_>)],
     ) -> wgpu::BindGroup {
         let aspect = targets.width as f64 / targets.height as f64;
         let view_proj: Mat4 = camera.view_projection(aspect);
@@ -158,24 +163,41 @@ impl ScenePasses {
             pad: [0; 3],
         };
         let buffer = gpu.uniform_buffer("frame", &frame);
-        gpu.bind_group(
-            "frame",
-            &layouts.frame,
-            &[
-                (0, buffer.as_entire_binding()),
-                (1, scene.lights.buffer.as_entire_binding()),
-                (
-                    2,
-                    wgpu::BindingResource::TextureView(&scene.lights.atlas.view),
-                ),
-                (3, scene.lights.atlas.info.as_entire_binding()),
-            ],
-        )
+        let mut entries = vec![
+            (0, buffer.as_entire_binding()),
+            (1, scene.lights.buffer.as_entire_binding()),
+            (
+                2,
+                wgpu::BindingResource::TextureView(&scene.lights.atlas.view),
+            ),
+            (3, scene.lights.atlas.info.as_entire_binding()),
+        ];
+        entries.extend(shadow.iter().cloned());
+        gpu.bind_group("frame", &layouts.frame, &entries)
     }
 
-    /// Records the depth pre-pass and the shading pass into `enc`. The HDR target is
+    /// Records the depth pre-pass into `enc`.
+    pub fn record_depth(
+        &self,
+        enc: &mut wgpu::CommandEncoder,
+        frame: &wgpu::BindGroup,
+        scene: &GpuScene,
+        targets: &Targets,
+    ) {
+        let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("depth pre-pass"),
+            color_attachments: &[],
+            depth_stencil_attachment: Some(depth_attachment(&targets.depth_view, true)),
+            ..Default::default()
+        });
+        pass.set_pipeline(&self.depth);
+        pass.set_bind_group(0, frame, &[]);
+        scene.draw(&mut pass);
+    }
+
+    /// Records the shading pass into `enc` (after the depth pre-pass). The HDR target is
     /// cleared to luminance 0 with illuminance −1 (no surface).
-    pub fn record(
+    pub fn record_shade(
         &self,
         gpu: &Gpu,
         enc: &mut wgpu::CommandEncoder,
@@ -185,17 +207,6 @@ impl ScenePasses {
         model: LightModel,
     ) {
         let shade = self.shade_pipeline(gpu, model);
-        {
-            let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("depth pre-pass"),
-                color_attachments: &[],
-                depth_stencil_attachment: Some(depth_attachment(&targets.depth_view, true)),
-                ..Default::default()
-            });
-            pass.set_pipeline(&self.depth);
-            pass.set_bind_group(0, frame, &[]);
-            scene.draw(&mut pass);
-        }
         let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("shade"),
             color_attachments: &[Some(wgpu::RenderPassColorAttachment {
@@ -221,9 +232,9 @@ impl ScenePasses {
     }
 }
 
-fn depth_state(write: bool, compare: wgpu::CompareFunction) -> wgpu::DepthStencilState {
+fn depth_state(gpu: &Gpu, write: bool, compare: wgpu::CompareFunction) -> wgpu::DepthStencilState {
     wgpu::DepthStencilState {
-        format: DEPTH_FORMAT,
+        format: gpu.depth_stencil_format(),
         depth_write_enabled: Some(write),
         depth_compare: Some(compare),
         stencil: Default::default(),
@@ -245,6 +256,9 @@ fn depth_attachment(
             },
             store: wgpu::StoreOp::Store,
         }),
-        stencil_ops: None,
+        stencil_ops: clear.then_some(wgpu::Operations {
+            load: wgpu::LoadOp::Clear(0),
+            store: wgpu::StoreOp::Store,
+        }),
     }
 }

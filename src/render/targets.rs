@@ -3,8 +3,6 @@
 
 use crate::gpu::Gpu;
 
-/// Depth buffer format.
-pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 /// HDR target: rgb = luminance (cd/m²), a = direct illuminance (lux), −1 where no surface.
 pub const HDR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 /// The displayable image.
@@ -16,7 +14,7 @@ pub struct Targets {
     pub width: u32,
     /// Height in pixels.
     pub height: u32,
-    /// Depth.
+    /// Depth and stencil (the stencil counts shadow volumes).
     pub depth_view: wgpu::TextureView,
     /// HDR texture.
     pub hdr: wgpu::Texture,
@@ -48,7 +46,7 @@ impl Targets {
             })
         };
         use wgpu::TextureUsages as U;
-        let depth = make("depth", DEPTH_FORMAT, U::RENDER_ATTACHMENT);
+        let depth = make("depth", gpu.depth_stencil_format(), U::RENDER_ATTACHMENT);
         let hdr = make(
             "hdr",
             HDR_FORMAT,

@@ -158,6 +158,26 @@ impl Camera {
         }
     }
 
+    /// The corners of the near-plane rectangle in world coordinates, counter-clockwise
+    /// seen from the eye: what the z-pass / z-fail decision of shadow volumes tests.
+    pub fn near_rectangle(&self, aspect: f64) -> [DVec3; 4] {
+        let f = (self.look_at - self.position).normalize();
+        let r = f.cross(self.up).normalize();
+        let u = r.cross(f);
+        let half_h = match self.projection {
+            Projection::Perspective { fov_deg } => self.near * (fov_deg.to_radians() / 2.0).tan(),
+            Projection::Orthographic { height } => height / 2.0,
+        };
+        let half_w = half_h * aspect;
+        let c = self.position + f * self.near;
+        [
+            c - r * half_w - u * half_h,
+            c + r * half_w - u * half_h,
+            c + r * half_w + u * half_h,
+            c - r * half_w + u * half_h,
+        ]
+    }
+
     /// World → clip, f32 for the GPU.
     pub fn view_projection(&self, aspect: f64) -> Mat4 {
         (self.projection(aspect) * self.view()).as_mat4()

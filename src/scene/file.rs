@@ -178,4 +178,6 @@ pub struct DisplayEntry {
     pub lux_max: Option<f64>,
     /// Colour of pixels that show no surface (linear RGB in cd/m²).
     pub background: Option<[f64; 3]>,
+    /// Shadows: "none", "paraboloid" (default) or "volumes".
+    pub shadows: Option<crate::render::ShadowTechnique>,
 }

@@ -103,6 +103,22 @@ impl Scene {
         self.meshes.iter().map(|m| m.indices.len() / 3).sum()
     }
 
+    /// Every triangle of the scene as one mesh: what casts shadows.
+    pub fn caster_mesh(&self) -> crate::geometry::Mesh {
+        let mut mesh = crate::geometry::Mesh::default();
+        for m in &self.meshes {
+            let base = mesh.positions.len() as u32;
+            mesh.positions
+                .extend(m.positions.iter().map(|p| p.as_dvec3()));
+            mesh.triangles.extend(
+                m.indices
+                    .chunks_exact(3)
+                    .map(|t| [t[0] + base, t[1] + base, t[2] + base]),
+            );
+        }
+        mesh
+    }
+
     /// Bounds of the geometry and the luminaires.
     pub fn bounds(&self) -> (DVec3, DVec3) {
         bounds_of(&self.meshes, &self.luminaires)

@@ -12,6 +12,16 @@ use glam::{DVec3, DVec4};
 pub use hextree::Hextree;
 pub use silhouette::{Silhouette, SilhouetteMesh};
 
+/// How to find silhouette edges.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum SilhouetteMethod {
+    /// Test every edge.
+    Brute,
+    /// The 4D dual-space hextree.
+    #[default]
+    Hextree,
+}
+
 /// A light as a homogeneous position: w = 1 a point light at (x, y, z), w = 0 a light
 /// at infinity in direction (x, y, z) from the scene (for the sun: toward the sun).
 #[derive(Debug, Clone, Copy, PartialEq)]

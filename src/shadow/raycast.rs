@@ -34,6 +34,19 @@ fn corners(mesh: &Mesh, t: &[u32; 3]) -> [DVec3; 3] {
     t.map(|i| mesh.positions[i as usize])
 }
 
+/// The nearest triangle hit by the ray from `o` along `dir` beyond `tmin`: (distance in
+/// units of `dir`, triangle index).
+pub fn first_hit(mesh: &Mesh, o: DVec3, dir: DVec3, tmin: f64) -> Option<(f64, usize)> {
+    let mut best: Option<(f64, usize)> = None;
+    for (k, t) in mesh.triangles.iter().enumerate() {
+        let tmax = best.map_or(f64::INFINITY, |b| b.0);
+        if let Some(d) = ray_triangle(o, dir, corners(mesh, t), tmin, tmax) {
+            best = Some((d, k));
+        }
+    }
+    best
+}
+
 /// Whether `p` is in shadow: any triangle strictly between `p` and the light. `eps`
 /// (relative to the scene) keeps a surface from shadowing itself.
 pub fn in_shadow(mesh: &Mesh, light: &Light, p: DVec3, eps: f64) -> bool {

@@ -21,7 +21,6 @@ impl ShadowVolume {
     /// for the same light by either method).
     pub fn build(mesh: &SilhouetteMesh, light: &Light, silhouette: &Silhouette) -> ShadowVolume {
         let m = mesh.mesh();
-        let n = m.positions.len() as u32;
         let l = light.0;
         let mut vertices: Vec<DVec4> = m.positions.iter().map(|p| p.extend(1.0)).collect();
         let directional = light.is_directional();
@@ -31,28 +30,9 @@ impl ShadowVolume {
         } else {
             vertices.extend(m.positions.iter().map(|p| (*p - l.truncate()).extend(0.0)));
         }
-        let far = |v: u32| if directional { n } else { n + v };
-        let lit = mesh.lit_faces(light);
-        let mut triangles = Vec::new();
-        for (t, &is_lit) in m.triangles.iter().zip(&lit) {
-            if is_lit {
-                triangles.push(*t);
-                if !directional {
-                    let [a, b, c] = *t;
-                    triangles.push([far(a), far(c), far(b)]);
-                }
-            }
-        }
-        for &[u, v] in &silhouette.edges {
-            // The lit face runs u→v; the side runs v→u, then out to infinity.
-            triangles.push([v, u, far(u)]);
-            if !directional {
-                triangles.push([v, far(u), far(v)]);
-            }
-        }
         ShadowVolume {
             vertices,
-            triangles,
+            triangles: volume_triangles(mesh, light, silhouette, directional),
         }
     }
 
@@ -69,6 +49,43 @@ impl ShadowVolume {
         reversed.sort_unstable();
         directed == reversed
     }
+}
+
+/// The triangles of the shadow volume of `mesh`'s lit faces for `light`: the lit faces
+/// (front cap), their extrusions (back cap, point lights only) and a side for every
+/// silhouette edge. Vertex `v < n` is mesh vertex `v`; its extrusion to infinity is
+/// `n + v`, or `n` for every vertex when `shared_apex` (a light at infinity, whose
+/// extrusions are one point). The GPU keeps `n + v` for both and extrudes in the vertex
+/// shader, where the extrusions of a light at infinity coincide by themselves.
+pub fn volume_triangles(
+    mesh: &SilhouetteMesh,
+    light: &Light,
+    silhouette: &Silhouette,
+    shared_apex: bool,
+) -> Vec<[u32; 3]> {
+    let m = mesh.mesh();
+    let n = m.positions.len() as u32;
+    let directional = light.is_directional();
+    let far = |v: u32| if shared_apex { n } else { n + v };
+    let lit = mesh.lit_faces(light);
+    let mut triangles = Vec::new();
+    for (t, &is_lit) in m.triangles.iter().zip(&lit) {
+        if is_lit {
+            triangles.push(*t);
+            if !directional {
+                let [a, b, c] = *t;
+                triangles.push([far(a), far(c), far(b)]);
+            }
+        }
+    }
+    for &[u, v] in &silhouette.edges {
+        // The lit face runs u→v; the side runs v→u, then out to infinity.
+        triangles.push([v, u, far(u)]);
+        if !directional {
+            triangles.push([v, far(u), far(v)]);
+        }
+    }
+    triangles
 }
 
 /// Perspective projection with the far plane at infinity, for depth in [0, 1] (wgpu),

@@ -1,0 +1,55 @@
+// Stencil shadow volumes (Wallner ch. 1): the volume geometry is extruded to infinity in
+// the vertex shader (w = 0), counted in the stencil buffer with two-sided stencil, then a
+// full-screen pass writes 1 into the light's layer of the shadow mask wherever the count
+// is not 0 (a colour output, so the stencil test applies on every backend).
+// Also the debug views: volumes (translucent yellow) and silhouette edges (pink).
+
+struct VolumeLight {
+    view_proj: mat4x4<f32>,
+    // xyz: the light's position (w = 1) or the direction toward it (w = 0).
+    light: vec4<f32>,
+};
+
+@group(0) @binding(0) var<uniform> volume: VolumeLight;
+
+// p.w = 1: a mesh vertex; p.w = 0: the same vertex pushed to infinity away from the light.
+@vertex
+fn vs_volume(@location(0) p: vec4<f32>) -> @builtin(position) @invariant vec4<f32> {
+    var v = vec4<f32>(p.xyz, 1.0);
+    if (p.w == 0.0) {
+        if (volume.light.w == 0.0) {
+            v = vec4<f32>(-volume.light.xyz, 0.0);
+        } else {
+            v = vec4<f32>(p.xyz - volume.light.xyz, 0.0);
+        }
+    }
+    return volume.view_proj * v;
+}
+
+@vertex
+fn vs_fullscreen(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
+    let uv = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
+    return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
+}
+
+// Runs where the stencil count is not 0: the pixel is inside the light's shadow volume.
+@fragment
+fn fs_mark() -> @location(0) u32 {
+    return 1u;
+}
+
+// The counting pass writes no colour (its target's write mask is empty).
+@fragment
+fn fs_count() -> @location(0) u32 {
+    return 0u;
+}
+
+@fragment
+fn fs_debug_volume() -> @location(0) vec4<f32> {
+    return vec4<f32>(1.0, 0.85, 0.0, 0.18);
+}
+
+@fragment
+fn fs_debug_edge() -> @location(0) vec4<f32> {
+    return vec4<f32>(1.0, 0.2, 0.75, 1.0);
+}

@@ -1,0 +1,308 @@
+//! Dual-paraboloid shadow maps for luminaires (Brabec et al. 2002): two depth layers per
+//! luminaire, the lower paraboloid around its γ = 0 axis and the upper one around γ = 180°.
+//! A luminaire that emits only below (or above) its horizontal gets only that map drawn
+//! (the other stays cleared: it never darkens anything, and no light goes there anyway).
+//!
+//! The paraboloid projection is not linear, so straight edges become curves the rasterizer
+//! cannot follow: the casters are tessellated once (longest-edge bisection to a maximum
+//! edge length), and each fragment stores the exact distance along its texel's direction
+//! to its triangle's plane, so only coverage (not depth) depends on the tessellation.
+
+use glam::{DMat3, DVec3};
+use wgpu::util::DeviceExt;
+
+use crate::geometry::Mesh;
+use crate::gpu::{shaders, Gpu};
+use crate::photometry::texture::Hemisphere;
+
+/// Where a luminaire is, how it is turned and where it emits: what its maps need.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ShadowLight {
+    /// Photometric centre, metres.
+    pub position: DVec3,
+    /// Luminaire frame → world.
+    pub rotation: DMat3,
+    /// The part of the sphere it lights.
+    pub hemisphere: Hemisphere,
+}
+
+/// Splits every triangle of `mesh` at the midpoint of its longest edge until no edge is
+/// longer than `max_edge` metres.
+pub fn tessellate(mesh: &Mesh, max_edge: f64) -> Vec<[DVec3; 3]> {
+    let mut out = Vec::new();
+    let mut stack: Vec<[DVec3; 3]> = mesh
+        .triangles
+        .iter()
+        .map(|t| t.map(|i| mesh.positions[i as usize]))
+        .collect();
+    let limit = max_edge * max_edge;
+    while let Some(t) = stack.pop() {
+        let lengths = [0, 1, 2].map(|k| t[k].distance_squared(t[(k + 1) % 3]));
+        let k = (0..3)
+            .max_by(|&a, &b| lengths[a].total_cmp(&lengths[b]))
+            .unwrap_or(0);
+        if lengths[k] <= limit {
+            out.push(t);
+            continue;
+        }
+        let (a, b, c) = (t[k], t[(k + 1) % 3], t[(k + 2) % 3]);
+        let m = (a + b) * 0.5;
+        stack.push([a, m, c]);
+        stack.push([m, b, c]);
+    }
+    out
+}
+
+/// The tessellated shadow casters on the GPU (non-indexed triangles).
+pub struct ParaboloidCasters {
+    vertices: wgpu::Buffer,
+    vertex_count: u32,
+}
+
+impl ParaboloidCasters {
+    /// Tessellates `mesh` to `max_edge` metres and uploads it.
+    pub fn new(gpu: &Gpu, mesh: &Mesh, max_edge: f64) -> ParaboloidCasters {
+        let mut data: Vec<[f32; 3]> = tessellate(mesh, max_edge)
+            .iter()
+            .flatten()
+            .map(|p| p.as_vec3().to_array())
+            .collect();
+        let vertex_count = data.len() as u32;
+        if data.is_empty() {
+            data.push([0.0; 3]);
+        }
+        let vertices = gpu
+            .device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("paraboloid casters"),
+                contents: bytemuck::cast_slice(&data),
+                usage: wgpu::BufferUsages::VERTEX,
+            });
+        ParaboloidCasters {
+            vertices,
+            vertex_count,
+        }
+    }
+
+    /// Number of triangles after tessellation.
+    pub fn triangle_count(&self) -> u32 {
+        self.vertex_count / 3
+    }
+}
+
+/// `ParaboloidView` in `shaders/paraboloid.wgsl`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct ParaboloidViewGpu {
+    position: [f32; 4],
+    axis_x: [f32; 4],
+    axis_y: [f32; 4],
+    axis_z: [f32; 4],
+    params: [f32; 4],
+}
+
+/// The maps of every luminaire: layers 2i (lower) and 2i + 1 (upper).
+pub struct ParaboloidMaps {
+    /// The depth texture array.
+    pub texture: wgpu::Texture,
+    /// Its array view.
+    pub view: wgpu::TextureView,
+    /// Side, texels.
+    pub size: u32,
+    /// Distance stored as depth 1, metres.
+    pub far: f32,
+}
+
+/// Format of the maps.
+pub const MAP_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+
+/// The pipeline that draws a map.
+pub struct ParaboloidPasses {
+    layout: wgpu::BindGroupLayout,
+    pipeline: wgpu::RenderPipeline,
+}
+
+impl ParaboloidPasses {
+    /// Builds the pipeline.
+    pub fn new(gpu: &Gpu) -> ParaboloidPasses {
+        let dev = &gpu.device;
+        let module = dev.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("paraboloid"),
+            source: wgpu::ShaderSource::Wgsl(shaders::PARABOLOID.into()),
+        });
+        let layout = dev.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("paraboloid"),
+            entries: &[wgpu::BindGroupLayoutEntry {
+                binding: 0,
+                visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+                ty: wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Uniform,
+                    has_dynamic_offset: false,
+                    min_binding_size: None,
+                },
+                count: None,
+            }],
+        });
+        let pipeline_layout = dev.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("paraboloid"),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let pipeline = dev.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("paraboloid map"),
+            layout: Some(&pipeline_layout),
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("vs_paraboloid"),
+                compilation_options: Default::default(),
+                buffers: &[Some(wgpu::VertexBufferLayout {
+                    array_stride: 12,
+                    step_mode: wgpu::VertexStepMode::Vertex,
+                    attributes: &wgpu::vertex_attr_array![0 => Float32x3],
+                })],
+            },
+            primitive: wgpu::PrimitiveState::default(),
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: MAP_FORMAT,
+                depth_write_enabled: Some(true),
+                depth_compare: Some(wgpu::CompareFunction::Less),
+                stencil: Default::default(),
+                bias: Default::default(),
+            }),
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("fs_paraboloid"),
+                compilation_options: Default::default(),
+                targets: &[],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        ParaboloidPasses { layout, pipeline }
+    }
+
+    /// Creates and records the maps of `lights` (`size` texels square; distances up to
+    /// `far` metres).
+    pub fn render(
+        &self,
+        gpu: &Gpu,
+        enc: &mut wgpu::CommandEncoder,
+        casters: &ParaboloidCasters,
+        lights: &[ShadowLight],
+        size: u32,
+        far: f32,
+    ) -> ParaboloidMaps {
+        let layers = 2 * lights.len().max(1) as u32;
+        let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("paraboloid maps"),
+            size: wgpu::Extent3d {
+                width: size,
+                height: size,
+                depth_or_array_layers: layers,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: MAP_FORMAT,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+            view_formats: &[],
+        });
+        for layer in 0..layers {
+            let view = texture.create_view(&wgpu::TextureViewDescriptor {
+                dimension: Some(wgpu::TextureViewDimension::D2),
+                base_array_layer: layer,
+                array_layer_count: Some(1),
+                ..Default::default()
+            });
+            let light = lights.get(layer as usize / 2);
+            let upper = layer % 2 == 1;
+            let wanted = light.is_some_and(|l| match l.hemisphere {
+                Hemisphere::Lower => !upper,
+                Hemisphere::Upper => upper,
+                Hemisphere::Full => true,
+            });
+            let bind = light.filter(|_| wanted).map(|l| {
+                let axis = |v: DVec3| {
+                    let v = v.as_vec3();
+                    [v.x, v.y, v.z, 0.0]
+                };
+                let p = l.position.as_vec3();
+                let record = ParaboloidViewGpu {
+                    position: [p.x, p.y, p.z, upper as u32 as f32],
+                    axis_x: axis(l.rotation.x_axis),
+                    axis_y: axis(l.rotation.y_axis),
+                    axis_z: axis(l.rotation.z_axis),
+                    params: [far, size as f32, 0.0, 0.0],
+                };
+                let buffer = gpu.uniform_buffer("paraboloid view", &record);
+                gpu.bind_group(
+                    "paraboloid view",
+                    &self.layout,
+                    &[(0, buffer.as_entire_binding())],
+                )
+            });
+            let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("paraboloid map"),
+                color_attachments: &[],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: &view,
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(1.0),
+                        store: wgpu::StoreOp::Store,
+                    }),
+                    stencil_ops: None,
+                }),
+                ..Default::default()
+            });
+            if let Some(bind) = bind {
+                if casters.vertex_count > 0 {
+                    pass.set_pipeline(&self.pipeline);
+                    pass.set_bind_group(0, &bind, &[]);
+                    pass.set_vertex_buffer(0, casters.vertices.slice(..));
+                    pass.draw(0..casters.vertex_count, 0..1);
+                }
+            }
+        }
+        let view = texture.create_view(&wgpu::TextureViewDescriptor {
+            dimension: Some(wgpu::TextureViewDimension::D2Array),
+            ..Default::default()
+        });
+        ParaboloidMaps {
+            texture,
+            view,
+            size,
+            far,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tessellation_keeps_area_and_bounds_edges() {
+        let mesh = Mesh {
+            positions: vec![
+                DVec3::ZERO,
+                DVec3::new(6.0, 0.0, 0.0),
+                DVec3::new(0.0, 4.0, 0.0),
+            ],
+            triangles: vec![[0, 1, 2]],
+        };
+        let tris = tessellate(&mesh, 0.3);
+        let area: f64 = tris
+            .iter()
+            .map(|t| (t[1] - t[0]).cross(t[2] - t[0]).length() / 2.0)
+            .sum();
+        assert!((area - 12.0).abs() < 1e-9, "{area}");
+        for t in &tris {
+            for k in 0..3 {
+                assert!(t[k].distance(t[(k + 1) % 3]) <= 0.3 + 1e-12);
+            }
+            // Winding is kept.
+            assert!((t[1] - t[0]).cross(t[2] - t[0]).z > 0.0);
+        }
+    }
+}

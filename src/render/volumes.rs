@@ -1,0 +1,510 @@
+//! Stencil shadow volumes on the GPU (Wallner ch. 1). Per light: silhouette edges on the
+//! CPU (brute force or hextree), an index buffer of the volume (sides, plus caps for
+//! z-fail), extrusion to infinity in the vertex shader (w = 0), a stencil pass with
+//! two-sided stencil (IncrementWrap / DecrementWrap) over the depth of the visible
+//! surfaces, and a full-screen pass that writes 1 into the light's layer of a shadow mask
+//! wherever the count is not 0. The shading pass then skips a light where its mask is
+//! set: the "lit pass where the stencil is 0" of every light folded into one pass, so any
+//! number of lights costs one shading pass and the sum stays exact (no blending).
+
+use std::sync::OnceLock;
+
+use glam::Mat4;
+use wgpu::util::DeviceExt;
+
+use crate::geometry::{GeometryError, Mesh};
+use crate::gpu::{shaders, Gpu};
+use crate::shadow::raycast::needs_zfail;
+use crate::shadow::volume::volume_triangles;
+use crate::shadow::{Hextree, Light, Silhouette, SilhouetteMesh, SilhouetteMethod};
+
+/// How a light's volume is counted.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum VolumeTest {
+    /// z-fail where the camera's near plane may be inside a volume (the near-clip-volume
+    /// test), z-pass elsewhere.
+    #[default]
+    Auto,
+    /// Count volume faces in front of the visible surface (camera outside every volume).
+    Zpass,
+    /// Count volume faces behind the visible surface (robust, needs the caps).
+    Zfail,
+}
+
+/// A mesh prepared for shadow volumes: welded, with adjacency, on the GPU as its
+/// vertices (w = 1) followed by their copies to be extruded (w = 0).
+pub struct VolumeGeometry {
+    /// The welded mesh with adjacency and face planes.
+    pub mesh: SilhouetteMesh,
+    hextree: OnceLock<Hextree>,
+    vertices: wgpu::Buffer,
+}
+
+/// One light's volume, ready to draw.
+pub struct LightVolume {
+    /// The light.
+    pub light: Light,
+    /// Counted by z-fail (else z-pass).
+    pub zfail: bool,
+    /// The silhouette found.
+    pub silhouette: Silhouette,
+    indices: wgpu::Buffer,
+    index_count: u32,
+    edges: wgpu::Buffer,
+    edge_index_count: u32,
+}
+
+impl VolumeGeometry {
+    /// Prepares `mesh` (named `name` in errors).
+    pub fn new(gpu: &Gpu, mesh: &Mesh, name: &str) -> Result<VolumeGeometry, GeometryError> {
+        let sm = SilhouetteMesh::new(mesh, name, 1e-9)?;
+        let positions = &sm.mesh().positions;
+        let vertices: Vec<[f32; 4]> = [1.0f32, 0.0]
+            .iter()
+            .flat_map(|&w| {
+                positions.iter().map(move |p| {
+                    let p = p.as_vec3();
+                    [p.x, p.y, p.z, w]
+                })
+            })
+            .collect();
+        let vertices = gpu
+            .device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("shadow-volume vertices"),
+                contents: bytemuck::cast_slice(&vertices),
+                usage: wgpu::BufferUsages::VERTEX,
+            });
+        Ok(VolumeGeometry {
+            mesh: sm,
+            hextree: OnceLock::new(),
+            vertices,
+        })
+    }
+
+    /// The silhouette of the mesh for `light`.
+    pub fn silhouette(&self, light: &Light, method: SilhouetteMethod) -> Silhouette {
+        match method {
+            SilhouetteMethod::Brute => self.mesh.brute(light),
+            SilhouetteMethod::Hextree => self
+                .hextree
+                .get_or_init(|| Hextree::build(&self.mesh, crate::shadow::hextree::DEFAULT_DEPTH))
+                .query(&self.mesh, light),
+        }
+    }
+
+    /// Whether `test` asks for z-fail for `light` seen through the near rectangle `near`.
+    pub fn zfail(&self, light: &Light, test: VolumeTest, near: [glam::DVec3; 4]) -> bool {
+        match test {
+            VolumeTest::Zpass => false,
+            VolumeTest::Zfail => true,
+            VolumeTest::Auto => needs_zfail(self.mesh.mesh(), light, near),
+        }
+    }
+
+    /// The volume of `light`: its sides, and for z-fail its caps.
+    pub fn volume(
+        &self,
+        gpu: &Gpu,
+        light: Light,
+        method: SilhouetteMethod,
+        zfail: bool,
+    ) -> LightVolume {
+        let silhouette = self.silhouette(&light, method);
+        let n = self.mesh.mesh().positions.len() as u32;
+        let mut triangles = volume_triangles(&self.mesh, &light, &silhouette, false);
+        if !zfail {
+            // z-pass counts only faces in front of the visible surface: the caps (on the
+            // lit faces and at infinity) never are.
+            triangles.retain(|t| t.iter().any(|&v| v >= n) && t.iter().any(|&v| v < n));
+        }
+        let edge_indices: Vec<u32> = silhouette.edges.iter().flatten().copied().collect();
+        let buffer = |label: &str, data: &[u32]| {
+            gpu.device
+                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some(label),
+                    contents: bytemuck::cast_slice(if data.is_empty() { &[0u32; 3] } else { data }),
+                    usage: wgpu::BufferUsages::INDEX,
+                })
+        };
+        let flat: Vec<u32> = triangles.iter().flatten().copied().collect();
+        LightVolume {
+            light,
+            zfail,
+            indices: buffer("shadow volume", &flat),
+            index_count: flat.len() as u32,
+            edges: buffer("silhouette edges", &edge_indices),
+            edge_index_count: edge_indices.len() as u32,
+            silhouette,
+        }
+    }
+}
+
+/// `VolumeLight` in `shaders/shadow_volume.wgsl`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct VolumeLightGpu {
+    view_proj: [f32; 16],
+    light: [f32; 4],
+}
+
+/// Format of the shadow mask: one layer per light, 1 = in its shadow volume.
+pub const MASK_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R8Uint;
+
+/// Bytes between the per-light uniform records (the dynamic-offset alignment).
+const UNIFORM_STRIDE: u64 = 256;
+
+/// The stencil, mask and debug pipelines.
+pub struct VolumePasses {
+    layout: wgpu::BindGroupLayout,
+    zpass: wgpu::RenderPipeline,
+    zfail: wgpu::RenderPipeline,
+    mark: wgpu::RenderPipeline,
+    debug_volume: wgpu::RenderPipeline,
+    debug_edge: wgpu::RenderPipeline,
+}
+
+fn stencil_face(
+    compare: wgpu::CompareFunction,
+    depth_fail: wgpu::StencilOperation,
+    pass: wgpu::StencilOperation,
+) -> wgpu::StencilFaceState {
+    wgpu::StencilFaceState {
+        compare,
+        fail_op: wgpu::StencilOperation::Keep,
+        depth_fail_op: depth_fail,
+        pass_op: pass,
+    }
+}
+
+impl VolumePasses {
+    /// Builds the pipelines for depth-stencil targets of the GPU's format and colour
+    /// targets of `debug_format` (the debug views).
+    pub fn new(gpu: &Gpu, debug_format: wgpu::TextureFormat) -> VolumePasses {
+        let dev = &gpu.device;
+        let module = dev.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("shadow volumes"),
+            source: wgpu::ShaderSource::Wgsl(shaders::SHADOW_VOLUME.into()),
+        });
+        use wgpu::ShaderStages as S;
+        let layout = dev.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("shadow volumes"),
+            entries: &[wgpu::BindGroupLayoutEntry {
+                binding: 0,
+                visibility: S::VERTEX_FRAGMENT,
+                ty: wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Uniform,
+                    has_dynamic_offset: true,
+                    min_binding_size: wgpu::BufferSize::new(
+                        std::mem::size_of::<VolumeLightGpu>() as u64
+                    ),
+                },
+                count: None,
+            }],
+        });
+        let pipeline_layout = dev.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("shadow volumes"),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let vertex_layout = wgpu::VertexBufferLayout {
+            array_stride: 16,
+            step_mode: wgpu::VertexStepMode::Vertex,
+            attributes: &wgpu::vertex_attr_array![0 => Float32x4],
+        };
+        use wgpu::CompareFunction as C;
+        use wgpu::StencilOperation as Op;
+        let format = gpu.depth_stencil_format();
+        let make = |label: &str,
+                    vs: &str,
+                    fs: &str,
+                    topology: wgpu::PrimitiveTopology,
+                    unclipped: bool,
+                    depth_compare: C,
+                    stencil: wgpu::StencilState,
+                    bias: i32,
+                    color: wgpu::ColorTargetState| {
+            let buffers = [Some(vertex_layout.clone())];
+            let targets = [Some(color)];
+            dev.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(label),
+                layout: Some(&pipeline_layout),
+                vertex: wgpu::VertexState {
+                    module: &module,
+                    entry_point: Some(vs),
+                    compilation_options: Default::default(),
+                    buffers: if vs == "vs_fullscreen" { &[] } else { &buffers },
+                },
+                primitive: wgpu::PrimitiveState {
+                    topology,
+                    cull_mode: None,
+                    unclipped_depth: unclipped,
+                    ..Default::default()
+                },
+                depth_stencil: Some(wgpu::DepthStencilState {
+                    format,
+                    depth_write_enabled: Some(false),
+                    depth_compare: Some(depth_compare),
+                    stencil,
+                    bias: wgpu::DepthBiasState {
+                        constant: bias,
+                        slope_scale: 0.0,
+                        clamp: 0.0,
+                    },
+                }),
+                multisample: Default::default(),
+                fragment: Some(wgpu::FragmentState {
+                    module: &module,
+                    entry_point: Some(fs),
+                    compilation_options: Default::default(),
+                    targets: &targets,
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+        };
+        let counting =
+            |front: wgpu::StencilFaceState, back: wgpu::StencilFaceState| wgpu::StencilState {
+                front,
+                back,
+                read_mask: 0xff,
+                write_mask: 0xff,
+            };
+        let tri = wgpu::PrimitiveTopology::TriangleList;
+        let no_colour = wgpu::ColorTargetState {
+            format: MASK_FORMAT,
+            blend: None,
+            write_mask: wgpu::ColorWrites::empty(),
+        };
+        // The volumes are pushed a little away from the camera, so a lit face's own cap
+        // counts as behind it in both methods (z-pass ignores it, z-fail sees it enter and
+        // its extrusion leave).
+        const VOLUME_BIAS: i32 = 16;
+        let zpass = make(
+            "shadow volumes z-pass",
+            "vs_volume",
+            "fs_count",
+            tri,
+            false,
+            C::Less,
+            counting(
+                stencil_face(C::Always, Op::Keep, Op::IncrementWrap),
+                stencil_face(C::Always, Op::Keep, Op::DecrementWrap),
+            ),
+            VOLUME_BIAS,
+            no_colour.clone(),
+        );
+        let zfail = make(
+            "shadow volumes z-fail",
+            "vs_volume",
+            "fs_count",
+            tri,
+            gpu.has_depth_clamp(),
+            C::Less,
+            counting(
+                stencil_face(C::Always, Op::DecrementWrap, Op::Keep),
+                stencil_face(C::Always, Op::IncrementWrap, Op::Keep),
+            ),
+            VOLUME_BIAS,
+            no_colour.clone(),
+        );
+        let not_zero = stencil_face(C::NotEqual, Op::Keep, Op::Keep);
+        let mark = make(
+            "shadow mask",
+            "vs_fullscreen",
+            "fs_mark",
+            tri,
+            false,
+            C::Always,
+            wgpu::StencilState {
+                front: not_zero,
+                back: not_zero,
+                read_mask: 0xff,
+                write_mask: 0,
+            },
+            0,
+            MASK_FORMAT.into(),
+        );
+        let blend = wgpu::ColorTargetState {
+            format: debug_format,
+            blend: Some(wgpu::BlendState::ALPHA_BLENDING),
+            write_mask: wgpu::ColorWrites::ALL,
+        };
+        let debug_volume = make(
+            "debug: shadow volumes",
+            "vs_volume",
+            "fs_debug_volume",
+            tri,
+            gpu.has_depth_clamp(),
+            C::LessEqual,
+            Default::default(),
+            0,
+            blend.clone(),
+        );
+        let debug_edge = make(
+            "debug: silhouette edges",
+            "vs_volume",
+            "fs_debug_edge",
+            wgpu::PrimitiveTopology::LineList,
+            false,
+            C::Always,
+            Default::default(),
+            0,
+            blend,
+        );
+        VolumePasses {
+            layout,
+            zpass,
+            zfail,
+            mark,
+            debug_volume,
+            debug_edge,
+        }
+    }
+
+    /// A bind group of per-light uniforms (one record per volume, in order).
+    pub fn bind_group(
+        &self,
+        gpu: &Gpu,
+        view_proj: Mat4,
+        volumes: &[LightVolume],
+    ) -> wgpu::BindGroup {
+        let mut bytes = vec![0u8; (UNIFORM_STRIDE as usize) * volumes.len().max(1)];
+        for (i, v) in volumes.iter().enumerate() {
+            let l = v.light.0.as_vec4();
+            let record = VolumeLightGpu {
+                view_proj: view_proj.to_cols_array(),
+                light: l.to_array(),
+            };
+            let at = i * UNIFORM_STRIDE as usize;
+            bytes[at..at + std::mem::size_of::<VolumeLightGpu>()]
+                .copy_from_slice(bytemuck::bytes_of(&record));
+        }
+        let uniforms = gpu
+            .device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("shadow-volume lights"),
+                contents: &bytes,
+                usage: wgpu::BufferUsages::UNIFORM,
+            });
+        gpu.bind_group(
+            "shadow volumes",
+            &self.layout,
+            &[(
+                0,
+                wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                    buffer: &uniforms,
+                    offset: 0,
+                    size: wgpu::BufferSize::new(std::mem::size_of::<VolumeLightGpu>() as u64),
+                }),
+            )],
+        )
+    }
+
+    /// Records, for every light, the stencil count of its volume over the depth in
+    /// `depth_view` and its layer of `mask` (1 where the count is not 0, else 0).
+    pub fn record_mask(
+        &self,
+        enc: &mut wgpu::CommandEncoder,
+        geometry: &VolumeGeometry,
+        volumes: &[LightVolume],
+        bind: &wgpu::BindGroup,
+        mask: &wgpu::Texture,
+        depth_view: &wgpu::TextureView,
+    ) {
+        for (i, v) in volumes.iter().enumerate() {
+            let layer = mask.create_view(&wgpu::TextureViewDescriptor {
+                dimension: Some(wgpu::TextureViewDimension::D2),
+                base_array_layer: i as u32,
+                array_layer_count: Some(1),
+                ..Default::default()
+            });
+            let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("shadow volume"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: &layer,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: depth_view,
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Load,
+                        store: wgpu::StoreOp::Store,
+                    }),
+                    stencil_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(0),
+                        store: wgpu::StoreOp::Store,
+                    }),
+                }),
+                ..Default::default()
+            });
+            if v.index_count == 0 {
+                continue;
+            }
+            let offset = (i as u64 * UNIFORM_STRIDE) as u32;
+            pass.set_bind_group(0, bind, &[offset]);
+            pass.set_pipeline(if v.zfail { &self.zfail } else { &self.zpass });
+            pass.set_vertex_buffer(0, geometry.vertices.slice(..));
+            pass.set_index_buffer(v.indices.slice(..), wgpu::IndexFormat::Uint32);
+            pass.draw_indexed(0..v.index_count, 0, 0..1);
+            pass.set_pipeline(&self.mark);
+            pass.draw(0..3, 0..1);
+        }
+    }
+
+    /// Records the debug views over `color`: volumes translucent yellow (depth-tested
+    /// against `depth_view`), silhouette edges pink on top.
+    #[allow(clippy::too_many_arguments)]
+    pub fn record_debug(
+        &self,
+        enc: &mut wgpu::CommandEncoder,
+        geometry: &VolumeGeometry,
+        volumes: &[LightVolume],
+        bind: &wgpu::BindGroup,
+        color: &wgpu::TextureView,
+        depth_view: &wgpu::TextureView,
+        show_volumes: bool,
+        show_edges: bool,
+    ) {
+        let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("shadow debug views"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: color,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Load,
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: depth_view,
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Load,
+                    store: wgpu::StoreOp::Store,
+                }),
+                stencil_ops: None,
+            }),
+            ..Default::default()
+        });
+        pass.set_vertex_buffer(0, geometry.vertices.slice(..));
+        for (i, v) in volumes.iter().enumerate() {
+            pass.set_bind_group(0, bind, &[(i as u64 * UNIFORM_STRIDE) as u32]);
+            if show_volumes && v.index_count > 0 {
+                pass.set_pipeline(&self.debug_volume);
+                pass.set_index_buffer(v.indices.slice(..), wgpu::IndexFormat::Uint32);
+                pass.draw_indexed(0..v.index_count, 0, 0..1);
+            }
+            if show_edges && v.edge_index_count > 0 {
+                pass.set_pipeline(&self.debug_edge);
+                pass.set_index_buffer(v.edges.slice(..), wgpu::IndexFormat::Uint32);
+                pass.draw_indexed(0..v.edge_index_count, 0, 0..1);
+            }
+        }
+    }
+}
