@@ -8,6 +8,10 @@ struct VolumeLight {
     view_proj: mat4x4<f32>,
     // xyz: the light's position (w = 1) or the direction toward it (w = 0).
     light: vec4<f32>,
+    // x > 0: extrude lights at infinity by this length (metres) instead of to infinity,
+    // for orthographic views, whose far plane would otherwise cut the volumes (and the
+    // clipped edges of neighbouring sides need not meet).
+    extrude: vec4<f32>,
 };
 
 @group(0) @binding(0) var<uniform> volume: VolumeLight;
@@ -18,7 +22,11 @@ fn vs_volume(@location(0) p: vec4<f32>) -> @builtin(position) @invariant vec4<f3
     var v = vec4<f32>(p.xyz, 1.0);
     if (p.w == 0.0) {
         if (volume.light.w == 0.0) {
-            v = vec4<f32>(-volume.light.xyz, 0.0);
+            if (volume.extrude.x > 0.0) {
+                v = vec4<f32>(p.xyz - volume.light.xyz * volume.extrude.x, 1.0);
+            } else {
+                v = vec4<f32>(-volume.light.xyz, 0.0);
+            }
         } else {
             v = vec4<f32>(p.xyz - volume.light.xyz, 0.0);
         }
@@ -52,4 +60,24 @@ fn fs_debug_volume() -> @location(0) vec4<f32> {
 @fragment
 fn fs_debug_edge() -> @location(0) vec4<f32> {
     return vec4<f32>(1.0, 0.2, 0.75, 1.0);
+}
+
+// Plan views (shadow profiles): the visible surfaces' depth and which surface each pixel
+// sees (the instance index of the draw: 1 ground, 2 model).
+struct SurfaceOut {
+    @builtin(position) @invariant clip: vec4<f32>,
+    @location(0) @interpolate(flat) id: u32,
+};
+
+@vertex
+fn vs_surface(@location(0) p: vec4<f32>, @builtin(instance_index) id: u32) -> SurfaceOut {
+    var out: SurfaceOut;
+    out.clip = volume.view_proj * vec4<f32>(p.xyz, 1.0);
+    out.id = id;
+    return out;
+}
+
+@fragment
+fn fs_surface(in: SurfaceOut) -> @location(0) u32 {
+    return in.id;
 }

@@ -4,6 +4,7 @@
 mod bench;
 mod demo;
 mod ldt;
+mod profile;
 mod render;
 mod silhouette;
 mod sun;
@@ -35,6 +36,9 @@ pub enum Command {
     Illuminance(render::IlluminanceArgs),
     /// The sun's position (NREL SPA) for a site and an instant.
     Sun(sun::SunArgs),
+    /// Sun-path shadow profile of an OBJ model over a period: profile.png, hours.png,
+    /// profile.csv.
+    Profile(profile::ProfileArgs),
     /// Silhouette edges of an OBJ model for a point or directional light.
     Silhouette(silhouette::SilhouetteArgs),
     /// Benchmarks that print tables of ratios measured side by side.
@@ -108,6 +112,7 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         Command::Illuminance(args) => render::run_illuminance(args),
         Command::Sun(args) => sun::run(args),
         Command::Silhouette(args) => silhouette::run(args),
+        Command::Profile(args) => profile::run(args),
         Command::Bench(cmd) => bench::run(cmd),
     }
 }

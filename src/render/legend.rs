@@ -8,10 +8,64 @@ use crate::photometry::plot::register_font;
 
 /// Draws the legend for a scale from 0 to `lux_max` into `image`.
 pub fn draw_legend(image: &mut image::RgbaImage, lux_max: f64) {
+    let labels: Vec<String> = (0..=4)
+        .map(|k| {
+            let v = lux_max * k as f64 / 4.0;
+            if k == 4 {
+                format!("≥{}", format_lux(v))
+            } else {
+                format_lux(v)
+            }
+        })
+        .collect();
+    draw_colour_bar(image, "lux", &labels, |t| {
+        let c = false_colour(t);
+        [
+            linear_to_srgb(c.x),
+            linear_to_srgb(c.y),
+            linear_to_srgb(c.z),
+        ]
+    });
+}
+
+/// `plan` widened by a white panel on the right that carries a colour bar (see
+/// [`draw_colour_bar`]), so the legend never covers the plan.
+pub fn with_legend_panel(
+    plan: &image::RgbaImage,
+    title: &str,
+    labels: &[String],
+    colour: impl Fn(f32) -> [u8; 3],
+) -> image::RgbaImage {
+    let (w, h) = plan.dimensions();
+    let panel = panel_width(h, labels);
+    let mut out = image::RgbaImage::from_pixel(w + panel, h, image::Rgba([255, 255, 255, 255]));
+    image::imageops::replace(&mut out, plan, 0, 0);
+    draw_colour_bar(&mut out, title, labels, colour);
+    out
+}
+
+fn font_px(height: u32) -> u32 {
+    (height / 40).clamp(9, 22)
+}
+
+fn panel_width(height: u32, labels: &[String]) -> u32 {
+    let widest = labels.iter().map(|l| l.chars().count()).max().unwrap_or(4) as u32;
+    font_px(height) * (widest / 2 + 4).max(6)
+}
+
+/// Draws a vertical colour bar into a panel at `image`'s right edge: `title` on top,
+/// `colour(t)` (sRGB) from t = 0 at the bottom to 1 at the top, and `labels` spread
+/// evenly from bottom to top.
+pub fn draw_colour_bar(
+    image: &mut image::RgbaImage,
+    title: &str,
+    labels: &[String],
+    colour: impl Fn(f32) -> [u8; 3],
+) {
     register_font();
     let (w, h) = image.dimensions();
-    let font_px = (h / 40).clamp(9, 22);
-    let panel_w = font_px * 6;
+    let font_px = font_px(h);
+    let panel_w = panel_width(h, labels);
     if w < panel_w * 2 || h < font_px * 8 {
         return; // too small to carry a legend
     }
@@ -26,7 +80,7 @@ pub fn draw_legend(image: &mut image::RgbaImage, lux_max: f64) {
         ));
         let style = ("sans-serif", font_px).into_font().color(&BLACK);
         let _ = root.draw(&Text::new(
-            "lux",
+            title,
             (x0 + margin / 2, margin / 2),
             style.clone(),
         ));
@@ -36,29 +90,21 @@ pub fn draw_legend(image: &mut image::RgbaImage, lux_max: f64) {
         let bar_w = (font_px as i32).max(8);
         let span = (bottom - top).max(1);
         for y in top..bottom {
-            let t = (bottom - y) as f32 / span as f32;
-            let c = false_colour(t);
-            let colour = RGBColor(
-                linear_to_srgb(c.x),
-                linear_to_srgb(c.y),
-                linear_to_srgb(c.z),
-            );
-            let _ = root.draw(&PathElement::new([(bar_x, y), (bar_x + bar_w, y)], colour));
+            let [r, g, b] = colour((bottom - y) as f32 / span as f32);
+            let _ = root.draw(&PathElement::new(
+                [(bar_x, y), (bar_x + bar_w, y)],
+                RGBColor(r, g, b),
+            ));
         }
-        for k in 0..=4 {
-            let v = lux_max * k as f64 / 4.0;
-            let y = bottom - span * k / 4;
-            let label = if k == 4 {
-                format!("≥{}", format_lux(v))
-            } else {
-                format_lux(v)
-            };
+        let steps = labels.len().saturating_sub(1).max(1) as i32;
+        for (k, label) in labels.iter().enumerate() {
+            let y = bottom - span * k as i32 / steps;
             let _ = root.draw(&PathElement::new(
                 [(bar_x + bar_w, y), (bar_x + bar_w + 4, y)],
                 BLACK,
             ));
             let _ = root.draw(&Text::new(
-                label,
+                label.as_str(),
                 (bar_x + bar_w + 6, y - font_px as i32 / 2),
                 style.clone(),
             ));

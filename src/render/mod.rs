@@ -11,6 +11,8 @@ pub mod legend;
 pub mod output;
 pub mod paraboloid;
 pub mod passes;
+pub mod profile;
+pub mod profile_output;
 pub mod shadows;
 pub mod targets;
 pub mod tonemap;

@@ -243,7 +243,7 @@ impl ShadowPasses {
                         let zfail = geometry.zfail(&light, settings.volume_test, near);
                         volumes.push(geometry.volume(gpu, light, settings.silhouette, zfail));
                     }
-                    volume_bind = Some(self.volumes.bind_group(gpu, view_proj, &volumes));
+                    volume_bind = Some(self.volumes.bind_group(gpu, view_proj, &volumes, None));
                     info.mode = 2;
                 }
             }

@@ -38,6 +38,8 @@ pub struct VolumeGeometry {
     pub mesh: SilhouetteMesh,
     hextree: OnceLock<Hextree>,
     vertices: wgpu::Buffer,
+    surface: wgpu::Buffer,
+    surface_index_count: u32,
 }
 
 /// One light's volume, ready to draw.
@@ -75,10 +77,20 @@ impl VolumeGeometry {
                 contents: bytemuck::cast_slice(&vertices),
                 usage: wgpu::BufferUsages::VERTEX,
             });
+        let triangles: Vec<u32> = sm.mesh().triangles.iter().flatten().copied().collect();
+        let surface = gpu
+            .device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("shadow-volume surfaces"),
+                contents: bytemuck::cast_slice(&triangles),
+                usage: wgpu::BufferUsages::INDEX,
+            });
         Ok(VolumeGeometry {
+            surface_index_count: triangles.len() as u32,
             mesh: sm,
             hextree: OnceLock::new(),
             vertices,
+            surface,
         })
     }
 
@@ -146,6 +158,7 @@ impl VolumeGeometry {
 struct VolumeLightGpu {
     view_proj: [f32; 16],
     light: [f32; 4],
+    extrude: [f32; 4],
 }
 
 /// Format of the shadow mask: one layer per light, 1 = in its shadow volume.
@@ -162,6 +175,7 @@ pub struct VolumePasses {
     mark: wgpu::RenderPipeline,
     debug_volume: wgpu::RenderPipeline,
     debug_edge: wgpu::RenderPipeline,
+    surface: wgpu::RenderPipeline,
 }
 
 fn stencil_face(
@@ -352,7 +366,35 @@ impl VolumePasses {
             0,
             blend,
         );
+        let surface = dev.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("plan surfaces"),
+            layout: Some(&pipeline_layout),
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("vs_surface"),
+                compilation_options: Default::default(),
+                buffers: &[Some(vertex_layout.clone())],
+            },
+            primitive: wgpu::PrimitiveState::default(),
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format,
+                depth_write_enabled: Some(true),
+                depth_compare: Some(C::Less),
+                stencil: Default::default(),
+                bias: Default::default(),
+            }),
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("fs_surface"),
+                compilation_options: Default::default(),
+                targets: &[Some(MASK_FORMAT.into())],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
         VolumePasses {
+            surface,
             layout,
             zpass,
             zfail,
@@ -362,19 +404,25 @@ impl VolumePasses {
         }
     }
 
-    /// A bind group of per-light uniforms (one record per volume, in order).
+    /// A bind group of per-light uniforms (one record per volume, in order; with no
+    /// volumes, one record holding only the camera). `finite_extrusion` (metres) replaces
+    /// the extrusion to infinity of lights at infinity (orthographic views).
     pub fn bind_group(
         &self,
         gpu: &Gpu,
         view_proj: Mat4,
         volumes: &[LightVolume],
+        finite_extrusion: Option<f32>,
     ) -> wgpu::BindGroup {
         let mut bytes = vec![0u8; (UNIFORM_STRIDE as usize) * volumes.len().max(1)];
-        for (i, v) in volumes.iter().enumerate() {
-            let l = v.light.0.as_vec4();
+        for i in 0..volumes.len().max(1) {
+            let l = volumes
+                .get(i)
+                .map_or(glam::Vec4::ZERO, |v| v.light.0.as_vec4());
             let record = VolumeLightGpu {
                 view_proj: view_proj.to_cols_array(),
                 light: l.to_array(),
+                extrude: [finite_extrusion.unwrap_or(0.0), 0.0, 0.0, 0.0],
             };
             let at = i * UNIFORM_STRIDE as usize;
             bytes[at..at + std::mem::size_of::<VolumeLightGpu>()]
@@ -455,6 +503,54 @@ impl VolumePasses {
             pass.set_pipeline(&self.mark);
             pass.draw(0..3, 0..1);
         }
+    }
+
+    /// Records the depth of `geometry`'s surfaces and of `ground` (a vertex buffer of
+    /// vec4 positions and its index count, drawn as listed triangles) into `depth_view`,
+    /// and into `ids` which one each pixel sees (1 ground, 2 geometry, 0 none). The
+    /// camera is the first record of `bind`.
+    pub fn record_surfaces(
+        &self,
+        enc: &mut wgpu::CommandEncoder,
+        geometry: &VolumeGeometry,
+        ground: (&wgpu::Buffer, &wgpu::Buffer, u32),
+        bind: &wgpu::BindGroup,
+        ids: &wgpu::TextureView,
+        depth_view: &wgpu::TextureView,
+    ) {
+        let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("plan surfaces"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: ids,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: depth_view,
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(1.0),
+                    store: wgpu::StoreOp::Store,
+                }),
+                stencil_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(0),
+                    store: wgpu::StoreOp::Store,
+                }),
+            }),
+            ..Default::default()
+        });
+        pass.set_pipeline(&self.surface);
+        pass.set_bind_group(0, bind, &[0]);
+        let (ground_vertices, ground_indices, ground_count) = ground;
+        pass.set_vertex_buffer(0, ground_vertices.slice(..));
+        pass.set_index_buffer(ground_indices.slice(..), wgpu::IndexFormat::Uint32);
+        pass.draw_indexed(0..ground_count, 0, 1..2);
+        pass.set_vertex_buffer(0, geometry.vertices.slice(..));
+        pass.set_index_buffer(geometry.surface.slice(..), wgpu::IndexFormat::Uint32);
+        pass.draw_indexed(0..geometry.surface_index_count, 0, 2..3);
     }
 
     /// Records the debug views over `color`: volumes translucent yellow (depth-tested

@@ -81,7 +81,9 @@ pub fn volume_triangles(
     for &[u, v] in &silhouette.edges {
         // The lit face runs u→v; the side runs v→u, then out to infinity.
         triangles.push([v, u, far(u)]);
-        if !directional {
+        // For a light at infinity this half is degenerate (both ends are one point) unless
+        // the GPU extrudes by a finite length, which needs it.
+        if !shared_apex {
             triangles.push([v, far(u), far(v)]);
         }
     }

@@ -1,0 +1,190 @@
+//! `goniolight profile`: sun-path shadow profiles of a model over a period.
+
+use std::path::{Path, PathBuf};
+use std::sync::atomic::AtomicBool;
+
+use anyhow::anyhow;
+use chrono::{NaiveDate, NaiveTime};
+use clap::{Args, ValueEnum};
+
+use super::CliError;
+use crate::geometry::obj::read_obj;
+use crate::geometry::Mesh;
+use crate::gpu::Gpu;
+use crate::render::profile::{compute, Profile, ProfileError, ProfileSpec};
+use crate::render::profile_output::write_profile;
+use crate::shadow::SilhouetteMethod;
+use crate::sun::{Site, SunOptions, Zone};
+
+/// The up axis of the model file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum Up {
+    /// +Y up (most OBJ exporters): turned to the world's +Z up.
+    Y,
+    /// +Z up (as the world).
+    Z,
+}
+
+/// Options of `profile`.
+#[derive(Debug, Args)]
+pub struct ProfileArgs {
+    /// The model (OBJ), metres; the ground is its lowest point.
+    pub model: PathBuf,
+    /// Latitude, degrees north.
+    #[arg(long, allow_hyphen_values = true)]
+    pub lat: f64,
+    /// Longitude, degrees east.
+    #[arg(long, allow_hyphen_values = true)]
+    pub lon: f64,
+    /// The day, YYYY-MM-DD.
+    #[arg(long)]
+    pub date: NaiveDate,
+    /// First step, local time HH:MM.
+    #[arg(long, value_parser = parse_hhmm)]
+    pub from: NaiveTime,
+    /// Last step, local time HH:MM.
+    #[arg(long, value_parser = parse_hhmm)]
+    pub to: NaiveTime,
+    /// Minutes between steps (at least 1).
+    #[arg(long)]
+    pub step: u32,
+    /// Time zone: an IANA name (Europe/Vienna) or an offset (+02:00); default UTC.
+    #[arg(long, default_value = "UTC")]
+    pub tz: String,
+    /// Angle from the model's +Y axis clockwise (seen from above) to true north, degrees.
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub north_offset: f64,
+    /// Side of the square plan, metres (default: enough for the lowest sun, at most
+    /// twenty times the model's height on each side).
+    #[arg(long)]
+    pub extent: Option<f64>,
+    /// Pixels per side of the plan.
+    #[arg(long, default_value_t = 1024)]
+    pub resolution: u32,
+    /// The model's up axis.
+    #[arg(long, value_enum, default_value = "y")]
+    pub up: Up,
+    /// Silhouette search.
+    #[arg(long, value_enum, default_value = "hextree")]
+    pub silhouettes: SilhouetteMethod,
+    /// Also write one plan per step into DIR/steps/HHMM.png.
+    #[arg(long)]
+    pub step_images: bool,
+    /// The output folder (profile.png, hours.png, profile.csv).
+    #[arg(long)]
+    pub out: PathBuf,
+}
+
+fn parse_hhmm(s: &str) -> Result<NaiveTime, String> {
+    NaiveTime::parse_from_str(s, "%H:%M").map_err(|_| format!("{s:?} is not a time HH:MM"))
+}
+
+/// Reads an OBJ model and turns it to the world's +Z up.
+pub fn load_model(path: &Path, up: Up) -> Result<Mesh, CliError> {
+    let mut mesh = read_obj(path)?;
+    if up == Up::Y {
+        for p in &mut mesh.positions {
+            *p = glam::DVec3::new(p.x, -p.z, p.y);
+        }
+    }
+    mesh.validate(&path.display().to_string())?;
+    Ok(mesh)
+}
+
+impl From<ProfileError> for CliError {
+    fn from(e: ProfileError) -> CliError {
+        match e {
+            ProfileError::Input(_) => CliError::input(e),
+            ProfileError::Gpu(_) | ProfileError::Cancelled => CliError::failure(e),
+        }
+    }
+}
+
+/// Runs `profile`.
+pub fn run(a: ProfileArgs) -> Result<(), CliError> {
+    let site = Site::new(a.lat, a.lon, 0.0)?;
+    let zone = Zone::parse(&a.tz)?;
+    let model = load_model(&a.model, a.up)?;
+    let spec = ProfileSpec {
+        site,
+        zone,
+        date: a.date,
+        from: a.from,
+        to: a.to,
+        step_minutes: a.step,
+        sun: SunOptions {
+            north_offset_deg: a.north_offset,
+            ..Default::default()
+        },
+        extent_m: a.extent,
+        resolution: a.resolution,
+        silhouette: a.silhouettes,
+    };
+    // Check the period before starting the GPU.
+    let steps = spec.local_times()?.len();
+    let gpu = Gpu::headless().map_err(CliError::failure)?;
+    let bar = indicatif::ProgressBar::new(steps as u64);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} steps, {eta} left")
+            .map_err(|e| CliError::failure(anyhow!(e)))?,
+    );
+    bar.set_message("shadow profile");
+    let cancel = AtomicBool::new(false);
+    let t = std::time::Instant::now();
+    let profile = compute(
+        &gpu,
+        &model,
+        &spec,
+        |done, _| bar.set_position(done as u64),
+        &cancel,
+    );
+    bar.finish_and_clear();
+    let profile = profile?;
+    report(&a, &profile, t.elapsed().as_secs_f64());
+    write_profile(&profile, &a.out, a.step_images).map_err(CliError::failure)?;
+    Ok(())
+}
+
+fn report(a: &ProfileArgs, profile: &Profile, seconds: f64) {
+    if !profile.skipped.is_empty() {
+        let times: Vec<String> = profile
+            .skipped
+            .iter()
+            .map(|t| t.format("%H:%M").to_string())
+            .collect();
+        eprintln!(
+            "warning: the sun is below the horizon at {} step(s), skipped: {}",
+            times.len(),
+            times.join(" ")
+        );
+    }
+    let cut: Vec<String> = profile
+        .steps
+        .iter()
+        .filter(|s| s.reaches_edge)
+        .map(|s| s.time.format("%H:%M").to_string())
+        .collect();
+    if !cut.is_empty() {
+        eprintln!(
+            "warning: the shadow reaches the edge of the {:.0} m plan at {} (its area is cut; use a larger --extent): {}",
+            profile.extent_m,
+            cut.len(),
+            cut.join(" ")
+        );
+    }
+    let n = profile.steps.len().max(1) as f64;
+    println!(
+        "{}: {} steps, plan {:.1} m at {} px ({:.3} m/px), footprint {:.1} m²; {:.2} s ({:.1} ms/step: silhouettes {:.1} ms, shadow volumes {:.1} ms) → {}",
+        a.model.display(),
+        profile.steps.len(),
+        profile.extent_m,
+        profile.resolution,
+        profile.extent_m / profile.resolution as f64,
+        profile.footprint_area_m2(),
+        seconds,
+        1000.0 * seconds / n,
+        1000.0 * profile.timing.silhouette_s / n,
+        1000.0 * profile.timing.render_s / n,
+        a.out.display()
+    );
+}

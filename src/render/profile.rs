@@ -1,0 +1,446 @@
+//! Sun-path shadow profiles (Wallner §1.5, Figs. 1.5–1.7): for each step of a period, the
+//! sun's position, then the shadows of a model on the ground and on itself in a plan view
+//! (top-down orthographic), found with stencil shadow volumes (z-pass: the camera is above
+//! everything, so it is outside every volume). The result keeps one shadow bit per pixel
+//! and step, so overlays and hours-in-shadow maps are derived without rendering again.
+
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Instant;
+
+use chrono::{DateTime, FixedOffset, NaiveDate, NaiveTime};
+use glam::{DVec2, DVec3};
+use wgpu::util::DeviceExt;
+
+use super::shadows::mask_texture;
+use super::volumes::{VolumeGeometry, VolumePasses};
+use crate::geometry::Mesh;
+use crate::gpu::{Gpu, GpuError};
+use crate::scene::Camera;
+use crate::shadow::{Light, SilhouetteMethod};
+use crate::sun::{self, Site, SunOptions, Zone};
+
+/// What went wrong computing a profile.
+#[derive(Debug, thiserror::Error)]
+pub enum ProfileError {
+    /// Bad options or model (the user can fix them).
+    #[error("{0}")]
+    Input(String),
+    /// The GPU failed.
+    #[error(transparent)]
+    Gpu(#[from] GpuError),
+    /// Interrupted by the caller.
+    #[error("interrupted")]
+    Cancelled,
+}
+
+/// The period, site and image of a profile.
+#[derive(Debug, Clone)]
+pub struct ProfileSpec {
+    /// The site.
+    pub site: Site,
+    /// Its time zone (local times below are in it).
+    pub zone: Zone,
+    /// The day.
+    pub date: NaiveDate,
+    /// First step, local time.
+    pub from: NaiveTime,
+    /// Last step (inclusive when the steps land on it), local time.
+    pub to: NaiveTime,
+    /// Minutes between steps.
+    pub step_minutes: u32,
+    /// Atmosphere, ΔT and the model's north offset.
+    pub sun: SunOptions,
+    /// Side of the square plan view, metres (`None`: enough for the lowest sun).
+    pub extent_m: Option<f64>,
+    /// Pixels per side.
+    pub resolution: u32,
+    /// Silhouette search.
+    pub silhouette: SilhouetteMethod,
+}
+
+impl ProfileSpec {
+    /// The local instants of the steps.
+    pub fn local_times(&self) -> Result<Vec<chrono::NaiveDateTime>, ProfileError> {
+        if self.step_minutes == 0 {
+            return Err(ProfileError::Input(
+                "--step must be at least 1 minute".into(),
+            ));
+        }
+        if self.from > self.to {
+            return Err(ProfileError::Input(format!(
+                "--from {} is after --to {}",
+                self.from.format("%H:%M"),
+                self.to.format("%H:%M")
+            )));
+        }
+        let start = self.date.and_time(self.from);
+        let end = self.date.and_time(self.to);
+        let step = chrono::Duration::minutes(self.step_minutes as i64);
+        let mut out = Vec::new();
+        let mut t = start;
+        while t <= end {
+            out.push(t);
+            t += step;
+        }
+        Ok(out)
+    }
+}
+
+/// One step of a profile.
+#[derive(Debug, Clone)]
+pub struct ProfileStep {
+    /// Local time.
+    pub time: DateTime<FixedOffset>,
+    /// Sun azimuth, degrees clockwise from north.
+    pub azimuth_deg: f64,
+    /// Sun elevation, degrees (apparent).
+    pub elevation_deg: f64,
+    /// Ground in shadow outside the footprint, m².
+    pub shadow_area_m2: f64,
+    /// The same plus the footprint, m².
+    pub shadow_area_with_footprint_m2: f64,
+    /// Whether the shadow reaches the edge of the plan (its area is then cut).
+    pub reaches_edge: bool,
+    /// One bit per pixel (row-major): in shadow.
+    pub shadow: Vec<u64>,
+}
+
+impl ProfileStep {
+    /// Whether pixel `k` is in shadow.
+    pub fn in_shadow(&self, k: usize) -> bool {
+        self.shadow[k / 64] >> (k % 64) & 1 == 1
+    }
+}
+
+/// What each plan pixel sees.
+pub const SURFACE_NONE: u8 = 0;
+/// The ground.
+pub const SURFACE_GROUND: u8 = 1;
+/// The model (its footprint, seen from above).
+pub const SURFACE_MODEL: u8 = 2;
+
+/// Time spent per part, seconds.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct ProfileTiming {
+    /// Silhouettes and volume index buffers (CPU).
+    pub silhouette_s: f64,
+    /// Stencil passes and read-back (GPU).
+    pub render_s: f64,
+}
+
+/// A computed profile.
+#[derive(Debug, Clone)]
+pub struct Profile {
+    /// Pixels per side.
+    pub resolution: u32,
+    /// Side of the plan, metres.
+    pub extent_m: f64,
+    /// World x, y of the plan's centre.
+    pub center: DVec2,
+    /// Height of the ground plane (the model's lowest point), metres.
+    pub ground_z: f64,
+    /// Per pixel: [`SURFACE_GROUND`], [`SURFACE_MODEL`] or [`SURFACE_NONE`].
+    pub surface: Vec<u8>,
+    /// The steps with the sun above the horizon.
+    pub steps: Vec<ProfileStep>,
+    /// Steps skipped because the sun was below the horizon.
+    pub skipped: Vec<DateTime<FixedOffset>>,
+    /// Minutes between steps.
+    pub step_minutes: u32,
+    /// Where the time went.
+    pub timing: ProfileTiming,
+}
+
+impl Profile {
+    /// Area of one pixel, m².
+    pub fn pixel_area_m2(&self) -> f64 {
+        (self.extent_m / self.resolution as f64).powi(2)
+    }
+
+    /// World (x, y) of pixel (px, py)'s centre (row 0 is the north edge).
+    pub fn pixel_center(&self, px: u32, py: u32) -> DVec2 {
+        let s = self.extent_m / self.resolution as f64;
+        DVec2::new(
+            self.center.x - self.extent_m / 2.0 + (px as f64 + 0.5) * s,
+            self.center.y + self.extent_m / 2.0 - (py as f64 + 0.5) * s,
+        )
+    }
+
+    /// Footprint area (pixels that see the model from above), m².
+    pub fn footprint_area_m2(&self) -> f64 {
+        self.surface.iter().filter(|&&s| s == SURFACE_MODEL).count() as f64 * self.pixel_area_m2()
+    }
+
+    /// Hours in shadow per pixel: steps in shadow × the step length (every pixel; the
+    /// model's own pixels count the shadow on its roof).
+    pub fn hours_in_shadow(&self) -> Vec<f32> {
+        let n = (self.resolution * self.resolution) as usize;
+        let mut hours = vec![0f32; n];
+        let h = self.step_minutes as f32 / 60.0;
+        for s in &self.steps {
+            for (k, v) in hours.iter_mut().enumerate() {
+                if s.in_shadow(k) {
+                    *v += h;
+                }
+            }
+        }
+        hours
+    }
+}
+
+/// The plan square for `model`: centre, side. `min_elevation_deg` is the lowest sun.
+pub fn default_extent(model: &Mesh, min_elevation_deg: f64) -> Option<(DVec2, f64)> {
+    let (lo, hi) = model.bounds()?;
+    let size = (hi - lo).truncate().max_element();
+    let height = hi.z - lo.z;
+    let reach = (height / min_elevation_deg.max(3.0).to_radians().tan()).min(20.0 * height);
+    let side = ((size + 2.0 * reach) * 1.05).max(1e-3);
+    Some((((lo + hi) / 2.0).truncate(), side))
+}
+
+/// Computes the profile of `model` (world frame: metres, +Z up) for `spec`, calling
+/// `progress(done, total)` after each step; stops with [`ProfileError::Cancelled`] when
+/// `cancel` is set.
+pub fn compute(
+    gpu: &Gpu,
+    model: &Mesh,
+    spec: &ProfileSpec,
+    mut progress: impl FnMut(usize, usize),
+    cancel: &AtomicBool,
+) -> Result<Profile, ProfileError> {
+    if spec.resolution < 16 || spec.resolution > super::MAX_IMAGE_SIZE {
+        return Err(ProfileError::Input(format!(
+            "--resolution {} is not in 16..={}",
+            spec.resolution,
+            super::MAX_IMAGE_SIZE
+        )));
+    }
+    if let Some(e) = spec.extent_m {
+        if !(e.is_finite() && e > 0.0) {
+            return Err(ProfileError::Input(format!(
+                "--extent {e} must be a positive number"
+            )));
+        }
+    }
+    // Sun positions first: they decide the extent and which steps are skipped.
+    let mut suns = Vec::new();
+    let mut skipped = Vec::new();
+    for local in spec.local_times()? {
+        let (utc, _) = spec
+            .zone
+            .resolve(local)
+            .map_err(|e| ProfileError::Input(e.to_string()))?;
+        let offset = FixedOffset::east_opt(spec.zone.offset_seconds(utc))
+            .ok_or_else(|| ProfileError::Input("bad time-zone offset".into()))?;
+        let time = utc.with_timezone(&offset);
+        let p = sun::position(&spec.site, utc, &spec.sun)
+            .map_err(|e| ProfileError::Input(e.to_string()))?;
+        if p.elevation_deg <= 0.0 {
+            skipped.push(time);
+        } else {
+            suns.push((time, p));
+        }
+    }
+    if suns.is_empty() {
+        return Err(ProfileError::Input(format!(
+            "the sun is below the horizon at every step ({} steps on {} from {} to {})",
+            skipped.len(),
+            spec.date,
+            spec.from.format("%H:%M"),
+            spec.to.format("%H:%M")
+        )));
+    }
+    let geometry =
+        VolumeGeometry::new(gpu, model, "model").map_err(|e| ProfileError::Input(e.to_string()))?;
+    let (lo, hi) = geometry
+        .mesh
+        .mesh()
+        .bounds()
+        .ok_or_else(|| ProfileError::Input("the model has no triangles".into()))?;
+    let min_elevation = suns
+        .iter()
+        .map(|(_, p)| p.elevation_deg)
+        .fold(90.0, f64::min);
+    let (center, auto_side) = default_extent(geometry.mesh.mesh(), min_elevation)
+        .ok_or_else(|| ProfileError::Input("the model has no triangles".into()))?;
+    let extent = spec.extent_m.unwrap_or(auto_side);
+    let n = spec.resolution;
+    let plan = PlanView::new(gpu, center, extent, lo.z, hi.z, n);
+    let passes = VolumePasses::new(gpu, super::targets::LDR_FORMAT);
+    let camera_bind = passes.bind_group(gpu, plan.view_proj, &[], None);
+    let mut enc = gpu.device.create_command_encoder(&Default::default());
+    passes.record_surfaces(
+        &mut enc,
+        &geometry,
+        (&plan.ground_vertices, &plan.ground_indices, 6),
+        &camera_bind,
+        &plan.ids_view,
+        &plan.depth_view,
+    );
+    gpu.queue.submit([enc.finish()]);
+    let surface = gpu.read_texture(&plan.ids)?;
+
+    let pixel_area = (extent / n as f64).powi(2);
+    let footprint = surface.iter().filter(|&&s| s == SURFACE_MODEL).count() as f64 * pixel_area;
+    let mut steps = Vec::with_capacity(suns.len());
+    let mut timing = ProfileTiming::default();
+    let total = suns.len();
+    for (k, (time, p)) in suns.into_iter().enumerate() {
+        if cancel.load(Ordering::Relaxed) {
+            return Err(ProfileError::Cancelled);
+        }
+        let d = p.direction;
+        let light = Light::new([d[0], d[1], d[2], 0.0]).map_err(ProfileError::Input)?;
+        let t0 = Instant::now();
+        let volume = geometry.volume(gpu, light, spec.silhouette, false);
+        timing.silhouette_s += t0.elapsed().as_secs_f64();
+        let t1 = Instant::now();
+        let volumes = [volume];
+        // Down to half a metre below the ground, inside the camera's far plane.
+        let sin_e = p.elevation_deg.to_radians().sin().max(1e-3);
+        let extrusion = ((hi.z - lo.z + 0.5) / sin_e) as f32;
+        let bind = passes.bind_group(gpu, plan.view_proj, &volumes, Some(extrusion));
+        let mut enc = gpu.device.create_command_encoder(&Default::default());
+        passes.record_mask(
+            &mut enc,
+            &geometry,
+            &volumes,
+            &bind,
+            &plan.mask,
+            &plan.depth_view,
+        );
+        gpu.queue.submit([enc.finish()]);
+        let mask = gpu.read_texture(&plan.mask)?;
+        timing.render_s += t1.elapsed().as_secs_f64();
+        steps.push(step_from_mask(
+            time,
+            p.azimuth_deg,
+            p.elevation_deg,
+            &mask,
+            &surface,
+            n,
+            pixel_area,
+            footprint,
+        ));
+        progress(k + 1, total);
+    }
+    Ok(Profile {
+        resolution: n,
+        extent_m: extent,
+        center,
+        ground_z: lo.z,
+        surface,
+        steps,
+        skipped,
+        step_minutes: spec.step_minutes,
+        timing,
+    })
+}
+
+#[allow(clippy::too_many_arguments)]
+fn step_from_mask(
+    time: DateTime<FixedOffset>,
+    azimuth_deg: f64,
+    elevation_deg: f64,
+    mask: &[u8],
+    surface: &[u8],
+    n: u32,
+    pixel_area: f64,
+    footprint: f64,
+) -> ProfileStep {
+    let mut shadow = vec![0u64; mask.len().div_ceil(64)];
+    let mut ground = 0usize;
+    let mut reaches_edge = false;
+    let n = n as usize;
+    for (k, (&m, &s)) in mask.iter().zip(surface).enumerate() {
+        if m != 0 && s != SURFACE_NONE {
+            shadow[k / 64] |= 1 << (k % 64);
+            if s == SURFACE_GROUND {
+                ground += 1;
+                let (x, y) = (k % n, k / n);
+                reaches_edge |= x == 0 || y == 0 || x == n - 1 || y == n - 1;
+            }
+        }
+    }
+    let area = ground as f64 * pixel_area;
+    ProfileStep {
+        time,
+        azimuth_deg,
+        elevation_deg,
+        shadow_area_m2: area,
+        shadow_area_with_footprint_m2: area + footprint,
+        reaches_edge,
+        shadow,
+    }
+}
+
+/// The plan view's camera, ground and targets.
+struct PlanView {
+    view_proj: glam::Mat4,
+    ground_vertices: wgpu::Buffer,
+    ground_indices: wgpu::Buffer,
+    ids: wgpu::Texture,
+    ids_view: wgpu::TextureView,
+    mask: wgpu::Texture,
+    depth_view: wgpu::TextureView,
+}
+
+impl PlanView {
+    fn new(gpu: &Gpu, center: DVec2, extent: f64, ground_z: f64, top_z: f64, n: u32) -> Self {
+        let height = (top_z - ground_z).max(1.0);
+        let camera = Camera::top_down(
+            DVec3::new(center.x, center.y, ground_z),
+            extent,
+            top_z + height,
+        );
+        let view_proj = camera.view_projection(1.0);
+        // The ground: the plan square, a little larger so its edge never shows.
+        let h = extent * 0.6;
+        let corners: Vec<[f32; 4]> = [(-h, -h), (h, -h), (h, h), (-h, h)]
+            .iter()
+            .map(|&(dx, dy)| {
+                [
+                    (center.x + dx) as f32,
+                    (center.y + dy) as f32,
+                    ground_z as f32,
+                    1.0,
+                ]
+            })
+            .collect();
+        let dev = &gpu.device;
+        let ground_vertices = dev.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("ground"),
+            contents: bytemuck::cast_slice(&corners),
+            usage: wgpu::BufferUsages::VERTEX,
+        });
+        let ground_indices = dev.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("ground"),
+            contents: bytemuck::cast_slice(&[0u32, 1, 2, 0, 2, 3]),
+            usage: wgpu::BufferUsages::INDEX,
+        });
+        let ids = mask_texture(gpu, n, n, 1);
+        let depth = dev.create_texture(&wgpu::TextureDescriptor {
+            label: Some("plan depth"),
+            size: wgpu::Extent3d {
+                width: n,
+                height: n,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: gpu.depth_stencil_format(),
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+            view_formats: &[],
+        });
+        PlanView {
+            view_proj,
+            ground_vertices,
+            ground_indices,
+            ids_view: ids.create_view(&Default::default()),
+            ids,
+            mask: mask_texture(gpu, n, n, 1),
+            depth_view: depth.create_view(&Default::default()),
+        }
+    }
+}
