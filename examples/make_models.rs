@@ -2,7 +2,7 @@
 //! `cargo run --example make_models`.
 
 use glam::DVec3;
-use goniolight::geometry::generate::{building, bumpy_surface, cuboid, torus};
+use goniolight::geometry::generate::{building, bumpy_surface, cuboid, industrial_area, torus};
 use goniolight::geometry::obj::to_obj_string;
 use goniolight::geometry::Mesh;
 
@@ -25,7 +25,7 @@ fn main() -> anyhow::Result<()> {
         // Three fins sharing the edge 0–1: a non-manifold edge.
         triangles: vec![[0, 2, 1], [0, 3, 1], [0, 1, 4]],
     };
-    let models: [(&str, Mesh, &str); 6] = [
+    let models: [(&str, Mesh, &str); 7] = [
         (
             "box.obj",
             cuboid(DVec3::ZERO, DVec3::new(2.0, 1.0, 3.0)),
@@ -45,6 +45,11 @@ fn main() -> anyhow::Result<()> {
             "building.obj",
             building(4, 3, 5),
             "a detailed building: slabs, window bands, mullions",
+        ),
+        (
+            "industrial_area.obj",
+            industrial_area(),
+            "a small industrial area: sawtooth hall, warehouse, offices, lattice tower",
         ),
         (
             "flipped_box.obj",

@@ -282,3 +282,41 @@ fn bad_profile_input_is_refused_with_exit_2_and_no_files() {
         assert!(!out.join("profile.csv").exists());
     }
 }
+
+#[test]
+fn bench_profile_reports_both_methods_as_json() {
+    if gpu_common::gpu().is_none() {
+        return;
+    }
+    let (code, stdout, stderr) = run_cli(
+        &[
+            "bench",
+            "profile",
+            "--json",
+            "--floors",
+            "1",
+            "--resolution",
+            "64",
+            "--step",
+            "120",
+        ],
+        "",
+    );
+    assert_eq!(code, 0, "{stderr}");
+    let v: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    let rows = v["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), 2);
+    for (row, method) in rows.iter().zip(["brute force", "hextree"]) {
+        assert_eq!(row["method"], method);
+        assert_eq!(row["triangles"], 30000);
+        assert_eq!(row["steps"], 5, "08:00 … 16:00 every 2 h");
+        for key in [
+            "total_s",
+            "per_step_ms",
+            "silhouette_ms_per_step",
+            "render_ms_per_step",
+        ] {
+            assert!(row[key].as_f64().unwrap() > 0.0, "{key}");
+        }
+    }
+}

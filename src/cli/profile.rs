@@ -188,3 +188,89 @@ fn report(a: &ProfileArgs, profile: &Profile, seconds: f64) {
         a.out.display()
     );
 }
+
+/// Runs `bench profile`: the same profile with brute-force and hextree silhouettes.
+pub fn run_bench(as_json: bool, resolution: u32, step: u32, floors: u32) -> Result<(), CliError> {
+    if !(1..=40).contains(&floors) {
+        return Err(CliError::input(anyhow!(
+            "--floors {floors} is not in 1..=40"
+        )));
+    }
+    let model = crate::geometry::generate::building(25, 25, floors);
+    let hm = |h| NaiveTime::from_hms_opt(h, 0, 0).unwrap_or_default();
+    let mut spec = ProfileSpec {
+        site: Site::new(48.21, 16.37, 0.0)?,
+        zone: Zone::parse("Europe/Vienna")?,
+        date: NaiveDate::from_ymd_opt(2026, 3, 21).unwrap_or_default(),
+        from: hm(8),
+        to: hm(16),
+        step_minutes: step,
+        sun: SunOptions::default(),
+        extent_m: None,
+        resolution,
+        silhouette: SilhouetteMethod::Brute,
+    };
+    let gpu = Gpu::headless().map_err(CliError::failure)?;
+    eprintln!("GPU: {}", gpu.describe());
+    let cancel = AtomicBool::new(false);
+    let mut rows = Vec::new();
+    // A warm-up run (pipelines, hextree build), then each method.
+    for (label, method) in [
+        ("warm-up", SilhouetteMethod::Hextree),
+        ("brute force", SilhouetteMethod::Brute),
+        ("hextree", SilhouetteMethod::Hextree),
+    ] {
+        spec.silhouette = method;
+        let t = std::time::Instant::now();
+        let p = compute(&gpu, &model, &spec, |_, _| {}, &cancel)?;
+        let total = t.elapsed().as_secs_f64();
+        if label != "warm-up" {
+            rows.push((label, p.steps.len(), total, p.timing));
+        }
+    }
+    if as_json {
+        let v: Vec<_> = rows
+            .iter()
+            .map(|(label, steps, total, timing)| {
+                serde_json::json!({
+                    "method": label,
+                    "triangles": model.triangles.len(),
+                    "steps": steps,
+                    "resolution": resolution,
+                    "total_s": total,
+                    "per_step_ms": 1000.0 * total / *steps as f64,
+                    "silhouette_ms_per_step": 1000.0 * timing.silhouette_s / *steps as f64,
+                    "render_ms_per_step": 1000.0 * timing.render_s / *steps as f64,
+                })
+            })
+            .collect();
+        println!("{}", serde_json::json!({ "rows": v }));
+        return Ok(());
+    }
+    println!(
+        "shadow profile: {} triangles, {} steps, {resolution}² plan",
+        model.triangles.len(),
+        rows.first().map_or(0, |r| r.1)
+    );
+    println!(
+        "| silhouettes | total s | ms/step | silhouette ms/step | volumes + read-back ms/step |"
+    );
+    println!("|---|---:|---:|---:|---:|");
+    for (label, steps, total, timing) in &rows {
+        let n = *steps as f64;
+        println!(
+            "| {label} | {total:.2} | {:.1} | {:.2} | {:.1} |",
+            1000.0 * total / n,
+            1000.0 * timing.silhouette_s / n,
+            1000.0 * timing.render_s / n
+        );
+    }
+    if let [(_, _, brute, bt), (_, _, hex, ht)] = rows.as_slice() {
+        println!(
+            "hextree / brute force: total {:.2}×, silhouettes {:.2}× faster",
+            brute / hex,
+            bt.silhouette_s / ht.silhouette_s.max(1e-12)
+        );
+    }
+    Ok(())
+}

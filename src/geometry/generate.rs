@@ -144,3 +144,101 @@ pub fn building(nx: u32, ny: u32, floors: u32) -> Mesh {
     }
     m
 }
+
+/// Appends a closed beam of square cross-section `thickness` from `a` to `b` (12 triangles).
+pub fn push_beam(m: &mut Mesh, a: DVec3, b: DVec3, thickness: f64) {
+    let axis = (b - a).normalize();
+    let u = axis.any_orthonormal_vector() * (thickness / 2.0);
+    let v = axis.cross(u);
+    let base = m.positions.len() as u32;
+    for end in [a, b] {
+        for (su, sv) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
+            m.positions.push(end + u * su + v * sv);
+        }
+    }
+    // Ring k at `a` is k, at `b` is k + 4; (u, v, axis) is right-handed.
+    let mut quad = |q: [u32; 4]| {
+        let [p, q1, r, s] = q.map(|i| base + i);
+        m.triangles.push([p, q1, r]);
+        m.triangles.push([p, r, s]);
+    };
+    quad([0, 3, 2, 1]);
+    quad([4, 5, 6, 7]);
+    for k in 0..4 {
+        let n = (k + 1) % 4;
+        quad([k, n, n + 4, k + 4]);
+    }
+}
+
+/// Appends a closed sawtooth roof tooth over x ∈ [x0, x1], y ∈ [y0, y1] from height `z`:
+/// a wedge whose vertical face (the north light) is at x1, `rise` metres high.
+pub fn push_tooth(m: &mut Mesh, x0: f64, x1: f64, y0: f64, y1: f64, z: f64, rise: f64) {
+    let base = m.positions.len() as u32;
+    for y in [y0, y1] {
+        m.positions.push(DVec3::new(x0, y, z));
+        m.positions.push(DVec3::new(x1, y, z));
+        m.positions.push(DVec3::new(x1, y, z + rise));
+    }
+    let t = |a: u32, b: u32, c: u32| [base + a, base + b, base + c];
+    m.triangles.extend([
+        t(0, 2, 1),
+        t(3, 4, 5),
+        t(0, 1, 4),
+        t(0, 4, 3),
+        t(1, 2, 5),
+        t(1, 5, 4),
+        t(0, 3, 5),
+        t(0, 5, 2),
+    ]);
+}
+
+/// A small industrial area for shadow studies (Wallner Figs. 1.5–1.7): a sawtooth-roofed
+/// hall, a flat warehouse, an office block of storeys and a 40 m lattice tower, about
+/// 1 800 triangles, +Z up, the ground at z = 0.
+pub fn industrial_area() -> Mesh {
+    let mut m = Mesh::default();
+    // Hall with a sawtooth roof: 40 × 20 × 7 m, eight teeth 2.5 m high.
+    push_box(
+        &mut m,
+        DVec3::new(0.0, 0.0, 0.0),
+        DVec3::new(40.0, 20.0, 7.0),
+    );
+    for k in 0..8 {
+        let x0 = k as f64 * 5.0;
+        push_tooth(&mut m, x0, x0 + 5.0, 0.0, 20.0, 7.0, 2.5);
+    }
+    // Warehouse: 25 × 14 × 9 m.
+    push_box(
+        &mut m,
+        DVec3::new(48.0, 4.0, 0.0),
+        DVec3::new(73.0, 18.0, 9.0),
+    );
+    // Office block: 4 × 3 bays of 3 m, 6 storeys, beside the hall.
+    let mut office = building(4, 3, 6);
+    for p in &mut office.positions {
+        *p += DVec3::new(5.0, 28.0, 0.0);
+    }
+    let base = m.positions.len() as u32;
+    m.positions.extend(office.positions);
+    m.triangles
+        .extend(office.triangles.iter().map(|t| t.map(|i| i + base)));
+    // Lattice tower: four legs tapering from 6 m to 2 m apart over 40 m, braced every 4 m.
+    let centre = DVec3::new(62.0, 32.0, 0.0);
+    let leg = |corner: usize, z: f64| {
+        let half = 3.0 - 2.0 * z / 40.0;
+        let (sx, sy) = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)][corner];
+        centre + DVec3::new(sx * half, sy * half, z)
+    };
+    for c in 0..4 {
+        push_beam(&mut m, leg(c, 0.0), leg(c, 40.0), 0.35);
+    }
+    for level in 0..10 {
+        let (z0, z1) = (level as f64 * 4.0, level as f64 * 4.0 + 4.0);
+        for c in 0..4 {
+            let n = (c + 1) % 4;
+            push_beam(&mut m, leg(c, z1), leg(n, z1), 0.15);
+            push_beam(&mut m, leg(c, z0), leg(n, z1), 0.12);
+        }
+    }
+    m
+}
