@@ -369,3 +369,39 @@ fn furnished_room_shadows_of_every_luminaire_match_the_ray_cast() {
         "the room's furniture casts shadows: {shadowed} pixels"
     );
 }
+
+#[test]
+fn debug_view_draws_volumes_yellow_and_silhouettes_pink() {
+    let Some(gpu) = gpu_common::gpu() else { return };
+    let s = box_on_floor();
+    let renderer = Renderer::new(&gpu);
+    let uploaded = renderer.upload(&gpu, &s);
+    let render = |show: bool| {
+        let settings = RenderSettings {
+            width: W,
+            height: H,
+            shadows: ShadowSettings {
+                show_volumes: show,
+                show_silhouettes: show,
+                ..volumes(VolumeTest::Auto, SilhouetteMethod::Brute)
+            },
+            ..RenderSettings::from_display(&DisplayEntry::default())
+        };
+        renderer
+            .render(&gpu, &uploaded, &s.camera, &settings)
+            .unwrap()
+            .image
+    };
+    let (plain, debug) = (render(false), render(true));
+    let (mut pink, mut yellower) = (0, 0);
+    for (a, b) in plain.pixels().zip(debug.pixels()) {
+        // Silhouette edges: opaque pink (linear 1, 0.2, 0.75 in an sRGB target).
+        pink += (b[0] == 255 && b[1] == 124 && b[2] == 225) as usize;
+        // Volumes: blended toward yellow, so red and green rise more than blue.
+        let gain = |c: usize| b[c] as i32 - a[c] as i32;
+        yellower += (gain(0) > 2 && gain(1) > 2 && gain(2) < gain(1)) as usize;
+    }
+    eprintln!("pink {pink}, yellower {yellower} of {}", W * H);
+    assert!(pink > 50, "{pink}");
+    assert!(yellower > 1000, "{yellower}");
+}

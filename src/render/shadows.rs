@@ -97,7 +97,8 @@ pub(crate) struct ShadowInfoGpu {
     pcf_radius: i32,
 }
 
-/// The shadow pipelines and the placeholders bound when a resource is unused.
+/// The shadow pipelines, the comparison sampler, and the 1 × 1 empty map array bound when
+/// no paraboloid maps are drawn (WGSL needs every binding filled).
 pub struct ShadowPasses {
     /// Shadow-volume pipelines.
     pub volumes: VolumePasses,

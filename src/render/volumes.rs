@@ -178,6 +178,53 @@ pub struct VolumePasses {
     surface: wgpu::RenderPipeline,
 }
 
+/// Begins a pass drawing into `color` (cleared to 0 when `clear_color`, else kept) over
+/// `depth_view`, whose depth is cleared to 1 when `clear_depth` (else kept) and whose
+/// stencil is cleared to 0 when `clear_stencil` (else read-only).
+fn begin_pass<'e>(
+    enc: &'e mut wgpu::CommandEncoder,
+    label: &str,
+    color: &wgpu::TextureView,
+    clear_color: bool,
+    depth_view: &wgpu::TextureView,
+    clear_depth: bool,
+    clear_stencil: bool,
+) -> wgpu::RenderPass<'e> {
+    let store = wgpu::StoreOp::Store;
+    enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some(label),
+        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+            view: color,
+            depth_slice: None,
+            resolve_target: None,
+            ops: wgpu::Operations {
+                load: if clear_color {
+                    wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT)
+                } else {
+                    wgpu::LoadOp::Load
+                },
+                store,
+            },
+        })],
+        depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+            view: depth_view,
+            depth_ops: Some(wgpu::Operations {
+                load: if clear_depth {
+                    wgpu::LoadOp::Clear(1.0)
+                } else {
+                    wgpu::LoadOp::Load
+                },
+                store,
+            }),
+            stencil_ops: clear_stencil.then_some(wgpu::Operations {
+                load: wgpu::LoadOp::Clear(0),
+                store,
+            }),
+        }),
+        ..Default::default()
+    })
+}
+
 fn stencil_face(
     compare: wgpu::CompareFunction,
     depth_fail: wgpu::StencilOperation,
@@ -467,30 +514,7 @@ impl VolumePasses {
                 array_layer_count: Some(1),
                 ..Default::default()
             });
-            let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("shadow volume"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: &layer,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: depth_view,
-                    depth_ops: Some(wgpu::Operations {
-                        load: wgpu::LoadOp::Load,
-                        store: wgpu::StoreOp::Store,
-                    }),
-                    stencil_ops: Some(wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(0),
-                        store: wgpu::StoreOp::Store,
-                    }),
-                }),
-                ..Default::default()
-            });
+            let mut pass = begin_pass(enc, "shadow volume", &layer, true, depth_view, false, true);
             if v.index_count == 0 {
                 continue;
             }
@@ -518,30 +542,7 @@ impl VolumePasses {
         ids: &wgpu::TextureView,
         depth_view: &wgpu::TextureView,
     ) {
-        let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("plan surfaces"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: ids,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: depth_view,
-                depth_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(1.0),
-                    store: wgpu::StoreOp::Store,
-                }),
-                stencil_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(0),
-                    store: wgpu::StoreOp::Store,
-                }),
-            }),
-            ..Default::default()
-        });
+        let mut pass = begin_pass(enc, "plan surfaces", ids, true, depth_view, true, true);
         pass.set_pipeline(&self.surface);
         pass.set_bind_group(0, bind, &[0]);
         let (ground_vertices, ground_indices, ground_count) = ground;
@@ -567,27 +568,15 @@ impl VolumePasses {
         show_volumes: bool,
         show_edges: bool,
     ) {
-        let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("shadow debug views"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: color,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Load,
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: depth_view,
-                depth_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Load,
-                    store: wgpu::StoreOp::Store,
-                }),
-                stencil_ops: None,
-            }),
-            ..Default::default()
-        });
+        let mut pass = begin_pass(
+            enc,
+            "shadow debug views",
+            color,
+            false,
+            depth_view,
+            false,
+            false,
+        );
         pass.set_vertex_buffer(0, geometry.vertices.slice(..));
         for (i, v) in volumes.iter().enumerate() {
             pass.set_bind_group(0, bind, &[(i as u64 * UNIFORM_STRIDE) as u32]);
