@@ -1,5 +1,6 @@
 // Direct illuminance at many points: `goniolight illuminance` and the GPU side of the
-// illuminance tests. Needs ldt.wgsl and lighting.wgsl before it.
+// illuminance tests. Needs ldt.wgsl, lighting.wgsl and shadow.wgsl before it; the shadow
+// mask's entry for point i is slot i.
 
 struct PointParams {
     count: u32,
@@ -23,7 +24,7 @@ fn illuminance_points(@builtin(global_invocation_id) id: vec3<u32>) {
     let n = normalize(points[2u * i + 1u].xyz);
     var e = 0.0;
     for (var k = 0u; k < point_params.light_count; k++) {
-        e += light_illuminance(lights[k], p, n);
+        e += light_illuminance(lights[k], p, n) * light_visibility(lights[k], k, p, n, i);
     }
     lux[i] = e;
 }

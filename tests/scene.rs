@@ -163,6 +163,9 @@ fn bad_scene_files_name_the_file_and_the_key() {
         assert!(msg.contains("bad.toml"), "{msg}");
         assert!(msg.contains(words), "{words:?} not in {msg:?}");
     }
+    // A missing top-level table is named alone, not under the file's first table.
+    let (_dir, r) = load_text(&model);
+    assert_eq!(r.expect_err("no camera").key, "camera");
 }
 
 #[test]

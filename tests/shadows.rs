@@ -15,8 +15,13 @@ use common::{luminaire, root};
 use glam::{DMat4, DVec3, DVec4, Vec3};
 use goniolight::geometry::Mesh;
 use goniolight::gpu::Gpu;
-use goniolight::photometry::Luminaire;
-use goniolight::render::{RenderSettings, Renderer, ShadowSettings, ShadowTechnique, VolumeTest};
+use goniolight::photometry::{Interp, Luminaire};
+use goniolight::render::illuminance::{
+    illuminance_cpu_in_scene, point_visibility, IlluminanceProbe, SurfacePoint,
+};
+use goniolight::render::{
+    LightModel, RenderSettings, Renderer, ShadowSettings, ShadowTechnique, VolumeTest,
+};
 use goniolight::scene::{Camera, DisplayEntry, Material, PlacedLuminaire, Scene, SceneMesh};
 use goniolight::shadow::raycast::{first_hit, in_shadow};
 use goniolight::shadow::{Light, SilhouetteMethod};
@@ -404,4 +409,162 @@ fn debug_view_draws_volumes_yellow_and_silhouettes_pink() {
     eprintln!("pink {pink}, yellower {yellower} of {}", W * H);
     assert!(pink > 50, "{pink}");
     assert!(yellower > 1000, "{yellower}");
+}
+
+/// Floor points on a grid of `n` × `n` over `[-h, h]²`, normal +Z.
+fn floor_grid(n: usize, h: f64) -> Vec<SurfacePoint> {
+    let step = 2.0 * h / n as f64;
+    (0..n * n)
+        .map(|k| SurfacePoint {
+            position: DVec3::new(
+                -h + step * ((k % n) as f64 + 0.5),
+                -h + step * ((k / n) as f64 + 0.5),
+                0.0,
+            ),
+            normal: DVec3::Z,
+        })
+        .collect()
+}
+
+/// Grid points whose visibility of some light differs from a neighbour's (the edge band).
+fn grid_edge_band(visible: &[Vec<bool>], n: usize) -> Vec<bool> {
+    (0..n * n)
+        .map(|k| {
+            let (x, y) = ((k % n) as i64, (k / n) as i64);
+            visible.iter().any(|layer| {
+                (-1..=1).any(|dy: i64| {
+                    (-1..=1).any(|dx: i64| {
+                        let (u, v) = (x + dx, y + dy);
+                        (0..n as i64).contains(&u)
+                            && (0..n as i64).contains(&v)
+                            && layer[(v * n as i64 + u) as usize] != layer[k]
+                    })
+                })
+            })
+        })
+        .collect()
+}
+
+#[test]
+fn illuminance_at_points_respects_shadows_on_gpu_and_cpu() {
+    let Some(gpu) = gpu_common::gpu() else { return };
+    let mut s = box_on_floor();
+    // A second luminaire on the other side: points in one shadow keep the other's light.
+    s.luminaires.push(downlight(DVec3::new(-1.8, -0.9, 2.6)));
+    let n = 60;
+    let points = floor_grid(n, 3.0);
+    let casters = s.caster_mesh();
+    let plain = illuminance_cpu_in_scene(&s.luminaires, None, &points, Interp::CatmullRom);
+    let want = illuminance_cpu_in_scene(&s.luminaires, Some(&casters), &points, Interp::CatmullRom);
+    let positions: Vec<DVec3> = s.luminaires.iter().map(|l| l.position).collect();
+    let visible = point_visibility(&casters, &positions, &points);
+    let band = grid_edge_band(&visible, n);
+    let shadowed = (0..points.len())
+        .filter(|&k| want[k] < 0.9 * plain[k] && want[k] > 0.05 * plain[k])
+        .count();
+    assert!(
+        shadowed > 100,
+        "only {shadowed} points in one light's shadow"
+    );
+    let under_box = points
+        .iter()
+        .position(|p| p.position.truncate().length() < 0.1);
+    assert_eq!(want[under_box.unwrap()], 0.0, "under the box is dark");
+
+    let renderer = Renderer::new(&gpu);
+    let uploaded = renderer.upload(&gpu, &s);
+    let probe = IlluminanceProbe::new(&gpu, LightModel::Ldt(Interp::CatmullRom));
+    for settings in [
+        ShadowSettings::with(ShadowTechnique::Volumes),
+        paraboloid(),
+        ShadowSettings::with(ShadowTechnique::None),
+    ] {
+        let got = probe
+            .run_in_scene(&gpu, &uploaded, &points, &settings)
+            .unwrap();
+        let reference = match settings.technique {
+            ShadowTechnique::None => &plain,
+            _ => &want,
+        };
+        let (mut counted, mut agree) = (0, 0);
+        for k in 0..points.len() {
+            if band[k] && settings.technique == ShadowTechnique::Paraboloid {
+                continue;
+            }
+            counted += 1;
+            agree += ((got[k] - reference[k]).abs() <= 0.005 * reference[k].max(1.0)) as usize;
+        }
+        let fraction = agree as f64 / counted as f64;
+        eprintln!(
+            "points, {:?}: {:.2} % of {counted} within 0.5 %",
+            settings.technique,
+            100.0 * fraction
+        );
+        let goal = if settings.technique == ShadowTechnique::Paraboloid {
+            0.995
+        } else {
+            1.0
+        };
+        assert!(fraction >= goal, "{:?}: {fraction}", settings.technique);
+    }
+}
+
+#[test]
+fn illuminance_command_shadows_points_behind_an_occluder() {
+    let Some(_gpu) = gpu_common::gpu() else {
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let mut mesh = floor(10.0);
+    goniolight::geometry::generate::push_box(
+        &mut mesh,
+        DVec3::new(-0.5, -0.5, 0.0),
+        DVec3::new(0.5, 0.5, 1.0),
+    );
+    std::fs::write(
+        dir.path().join("box.obj"),
+        goniolight::geometry::obj::to_obj_string(&mesh, "box on a floor"),
+    )
+    .unwrap();
+    let scene = dir.path().join("box.toml");
+    std::fs::write(
+        &scene,
+        format!(
+            "[[model]]\npath = \"box.obj\"\nup = \"z\"\n[[luminaire]]\nfile = {:?}\nposition = [2.0, 1.2, 2.2]\n[camera]\nposition = [4, -5, 4.5]\nlook_at = [0, 0, 0]\n",
+            luminaire("eulumdat-plot/sample_06_isym1.ldt").display().to_string()
+        ),
+    )
+    .unwrap();
+    // Behind the box as seen from the luminaire, then in the open.
+    let points = "-1.0 -0.6 0 0 0 1\n3.0 2.0 0 0 0 1\n";
+    let run = |flags: &[&str]| -> Vec<f64> {
+        let mut args = vec!["illuminance", scene.to_str().unwrap()];
+        args.extend(flags);
+        let (code, out, err) = common::run_cli(&args, points);
+        assert_eq!(code, 0, "{flags:?}: {err}");
+        out.lines().map(|l| l.parse().unwrap()).collect()
+    };
+    let open = run(&["--shadows", "none"]);
+    assert!(open[0] > 10.0 && open[1] > 10.0, "{open:?}");
+    for flags in [
+        vec![],
+        vec!["--shadows", "volumes"],
+        vec!["--shadows", "paraboloid"],
+        vec!["--cpu"],
+        vec!["--cpu", "--shadows", "volumes"],
+    ] {
+        let lux = run(&flags);
+        assert!(lux[0] < 1e-3, "{flags:?}: behind the box {} lx", lux[0]);
+        assert!(
+            (lux[1] - open[1]).abs() <= 0.005 * open[1],
+            "{flags:?}: in the open {} lx vs {}",
+            lux[1],
+            open[1]
+        );
+    }
+    let (code, _, err) = common::run_cli(
+        &["illuminance", scene.to_str().unwrap(), "--shadows", "maps"],
+        points,
+    );
+    assert_eq!(code, 2, "{err}");
 }

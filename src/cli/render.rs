@@ -12,11 +12,12 @@ use glam::DVec3;
 use super::CliError;
 use crate::gpu::{Gpu, GpuError};
 use crate::photometry::Interp;
-use crate::render::illuminance::{illuminance_cpu, IlluminanceProbe, SurfacePoint};
+use crate::render::illuminance::{illuminance_cpu_in_scene, IlluminanceProbe, SurfacePoint};
+use crate::render::layouts::Layouts;
 use crate::render::output::{linear_image, write_image};
 use crate::render::{
-    LightModel, RenderSettings, RenderedFrame, Renderer, ShadowTechnique, VolumeTest,
-    MAX_IMAGE_SIZE,
+    GpuScene, LightModel, RenderSettings, RenderedFrame, Renderer, ShadowSettings, ShadowTechnique,
+    VolumeTest, MAX_IMAGE_SIZE,
 };
 use crate::scene::{Mode, Scene, SceneError, Tonemap};
 use crate::shadow::SilhouetteMethod;
@@ -240,6 +241,11 @@ pub struct IlluminanceArgs {
     /// Interpolation of the light distributions.
     #[arg(long, value_enum, default_value = "catmull-rom")]
     pub interp: Interp,
+    /// Shadows cast by the scene's geometry (default: the scene's `display.shadows`, else
+    /// paraboloid). For points, `volumes` means exact hard shadows (a ray cast from each
+    /// point toward each luminaire); `--cpu` always ray casts unless `none`.
+    #[arg(long, value_enum)]
+    pub shadows: Option<ShadowTechnique>,
 }
 
 /// Parses lines `x y z nx ny nz` (blank lines and `#` comments skipped).
@@ -281,15 +287,19 @@ pub fn read_points(input: impl BufRead, name: &str) -> Result<Vec<SurfacePoint>,
 pub fn run_illuminance(args: IlluminanceArgs) -> Result<(), CliError> {
     let scene = Scene::load(&args.scene)?;
     let points = read_points(std::io::stdin().lock(), "stdin")?;
+    let technique = args.shadows.or(scene.display.shadows).unwrap_or_default();
     let lux: Vec<f64> = if args.cpu {
-        points
-            .iter()
-            .map(|p| illuminance_cpu(&scene.luminaires, p, args.interp))
-            .collect()
+        let casters = (technique != ShadowTechnique::None).then(|| scene.caster_mesh());
+        illuminance_cpu_in_scene(&scene.luminaires, casters.as_ref(), &points, args.interp)
     } else {
         let gpu = Gpu::headless()?;
-        let lights = crate::render::gpu_scene::GpuLights::new(&gpu, &scene.luminaires);
-        IlluminanceProbe::new(&gpu, LightModel::Ldt(args.interp)).run(&gpu, &lights, &points)?
+        let uploaded = GpuScene::new(&gpu, &Layouts::new(&gpu), &scene);
+        IlluminanceProbe::new(&gpu, LightModel::Ldt(args.interp)).run_in_scene(
+            &gpu,
+            &uploaded,
+            &points,
+            &ShadowSettings::with(technique),
+        )?
     };
     let mut out = String::with_capacity(lux.len() * 12);
     for v in lux {

@@ -1,14 +1,19 @@
 //! Direct illuminance at points, on the GPU with the renderer's own WGSL lighting code
-//! (`shaders/lighting.wgsl`) and on the CPU as the reference.
+//! (`shaders/lighting.wgsl`, with the shadows of `shaders/shadow.wgsl`) and on the CPU as
+//! the reference (shadows by ray casting).
 
 use glam::DVec3;
+use rayon::prelude::*;
 use wgpu::util::DeviceExt;
 
-use super::gpu_scene::GpuLights;
+use super::gpu_scene::{GpuLights, GpuScene};
 use super::passes::LightModel;
+use super::shadows::{ShadowFrame, ShadowPasses, ShadowSettings};
+use crate::geometry::Mesh;
 use crate::gpu::{shaders, Gpu, GpuError};
 use crate::photometry::Interp;
 use crate::scene::PlacedLuminaire;
+use crate::shadow::{raycast, Light};
 
 /// A point on a surface: position (metres) and normal (need not be unit length).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -19,13 +24,72 @@ pub struct SurfacePoint {
     pub normal: DVec3,
 }
 
-/// The CPU reference: Σ over luminaires of I · cos θ / d², lux.
+/// The CPU reference without shadows: Σ over luminaires of I · cos θ / d², lux.
 pub fn illuminance_cpu(luminaires: &[PlacedLuminaire], p: &SurfacePoint, interp: Interp) -> f64 {
     let n = p.normal.normalize_or_zero();
     luminaires
         .iter()
         .map(|l| l.illuminance_at(p.position, n, interp))
         .sum()
+}
+
+/// Which lights reach which points: `visible[light][point]`, by casting a ray from each
+/// point toward each light position against `casters`. These are exact hard shadows: the
+/// CPU reference of every shadow technique, and what `volumes` means for point queries.
+pub fn point_visibility(
+    casters: &Mesh,
+    light_positions: &[DVec3],
+    points: &[SurfacePoint],
+) -> Vec<Vec<bool>> {
+    let (lo, hi) = casters
+        .positions
+        .iter()
+        .fold((DVec3::MAX, DVec3::MIN), |(lo, hi), p| {
+            (lo.min(*p), hi.max(*p))
+        });
+    let size = if casters.positions.is_empty() {
+        0.0
+    } else {
+        (hi - lo).length()
+    };
+    // Keeps a point on a surface (vertices stored as f32) from shadowing itself.
+    let eps = 1e-6 * (1.0 + size);
+    light_positions
+        .iter()
+        .map(|&at| {
+            let light = Light(at.extend(1.0));
+            points
+                .par_iter()
+                .map(|p| !raycast::in_shadow(casters, &light, p.position, eps))
+                .collect()
+        })
+        .collect()
+}
+
+/// The CPU reference with shadows cast by `casters` (none when `None`): lux at `points`.
+pub fn illuminance_cpu_in_scene(
+    luminaires: &[PlacedLuminaire],
+    casters: Option<&Mesh>,
+    points: &[SurfacePoint],
+    interp: Interp,
+) -> Vec<f64> {
+    let visible = casters.map(|mesh| {
+        let positions: Vec<DVec3> = luminaires.iter().map(|l| l.position).collect();
+        point_visibility(mesh, &positions, points)
+    });
+    points
+        .par_iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let n = p.normal.normalize_or_zero();
+            luminaires
+                .iter()
+                .enumerate()
+                .filter(|(k, _)| visible.as_ref().is_none_or(|v| v[*k][i]))
+                .map(|(_, l)| l.illuminance_at(p.position, n, interp))
+                .sum()
+        })
+        .collect()
 }
 
 #[repr(C)]
@@ -36,9 +100,10 @@ struct PointParams {
     pad: [u32; 2],
 }
 
-/// The compute pipeline of `illuminance_points`.
+/// The compute pipeline of `illuminance_points`, with the shadow passes it reads.
 pub struct IlluminanceProbe {
     pipeline: wgpu::ComputePipeline,
+    shadows: ShadowPasses,
 }
 
 impl IlluminanceProbe {
@@ -64,14 +129,41 @@ impl IlluminanceProbe {
                 },
                 cache: None,
             });
-        IlluminanceProbe { pipeline }
+        IlluminanceProbe {
+            pipeline,
+            shadows: ShadowPasses::new(gpu, super::targets::LDR_FORMAT),
+        }
     }
 
-    /// Direct illuminance (lux) at `points` from `lights`.
+    /// Direct illuminance (lux) at `points` from `lights`, without shadows.
     pub fn run(
         &self,
         gpu: &Gpu,
         lights: &GpuLights,
+        points: &[SurfacePoint],
+    ) -> Result<Vec<f64>, GpuError> {
+        let frame = self.shadows.prepare_none(gpu);
+        self.dispatch(gpu, lights, &frame, points)
+    }
+
+    /// Direct illuminance (lux) at `points` from the luminaires of `scene`, shadowed by
+    /// its geometry as `settings` say.
+    pub fn run_in_scene(
+        &self,
+        gpu: &Gpu,
+        scene: &GpuScene,
+        points: &[SurfacePoint],
+        settings: &ShadowSettings,
+    ) -> Result<Vec<f64>, GpuError> {
+        let frame = self.shadows.prepare_points(gpu, scene, points, settings)?;
+        self.dispatch(gpu, &scene.lights, &frame, points)
+    }
+
+    fn dispatch(
+        &self,
+        gpu: &Gpu,
+        lights: &GpuLights,
+        shadow: &ShadowFrame,
         points: &[SurfacePoint],
     ) -> Result<Vec<f64>, GpuError> {
         let mut data: Vec<[f32; 4]> = Vec::with_capacity(2 * points.len().max(1));
@@ -96,6 +188,7 @@ impl IlluminanceProbe {
         };
         let params_buf = gpu.uniform_buffer("point params", &params);
         let out = gpu.output_buffer("lux", 4 * points.len().max(1) as u64);
+        let [s8, s9, s10, s11] = self.shadows.bindings(shadow);
         let bind = gpu.bind_group(
             "illuminance points",
             &self.pipeline.get_bind_group_layout(0),
@@ -106,6 +199,10 @@ impl IlluminanceProbe {
                 (3, lights.atlas.info.as_entire_binding()),
                 (4, points_buf.as_entire_binding()),
                 (5, out.as_entire_binding()),
+                s8,
+                s9,
+                s10,
+                s11,
             ],
         );
         let workgroups = [(points.len().max(1) as u32).div_ceil(64), 1, 1];

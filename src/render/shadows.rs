@@ -4,6 +4,7 @@
 use glam::{DVec3, Mat4};
 
 use super::gpu_scene::GpuScene;
+use super::illuminance::{point_visibility, SurfacePoint};
 use super::paraboloid::{ParaboloidMaps, ParaboloidPasses, MAP_FORMAT};
 use super::volumes::{LightVolume, VolumePasses, VolumeTest, MASK_FORMAT};
 use crate::gpu::{Gpu, GpuError};
@@ -97,6 +98,24 @@ pub(crate) struct ShadowInfoGpu {
     pcf_radius: i32,
 }
 
+impl ShadowInfoGpu {
+    fn new(settings: &ShadowSettings, mode: u32, mask_width: u32) -> ShadowInfoGpu {
+        ShadowInfoGpu {
+            mode,
+            mask_width,
+            pad: 0,
+            map_size: settings.map_size,
+            far: 1.0,
+            bias: settings.bias_m as f32,
+            bias_slope: settings.bias_slope as f32,
+            pcf_radius: settings.pcf_radius as i32,
+        }
+    }
+}
+
+/// Entries per row of the shadow mask of point queries (slot i at column i mod this).
+pub const POINT_MASK_WIDTH: u32 = 1024;
+
 /// The shadow pipelines, the comparison sampler, and the 1 × 1 empty map array bound when
 /// no paraboloid maps are drawn (WGSL needs every binding filled).
 pub struct ShadowPasses {
@@ -117,6 +136,20 @@ pub struct ShadowFrame {
     /// The lights' volumes (shadow-volume mode), in light order.
     pub volumes: Vec<LightVolume>,
     volume_bind: Option<wgpu::BindGroup>,
+}
+
+impl ShadowFrame {
+    /// Resources with `info` and `mask`, no maps and no volumes.
+    fn new(gpu: &Gpu, info: &ShadowInfoGpu, mask: wgpu::Texture) -> ShadowFrame {
+        ShadowFrame {
+            info: gpu.uniform_buffer("shadow info", info),
+            mask_view: array_view(&mask),
+            mask,
+            maps: None,
+            volumes: Vec::new(),
+            volume_bind: None,
+        }
+    }
 }
 
 /// A shadow mask of `width` × `height` entries and `layers` layers (one per light).
@@ -199,16 +232,7 @@ impl ShadowPasses {
         settings: &ShadowSettings,
     ) -> Result<ShadowFrame, GpuError> {
         let lights = &scene.shadow_lights;
-        let mut info = ShadowInfoGpu {
-            mode: 0,
-            mask_width: width,
-            pad: 0,
-            map_size: settings.map_size,
-            far: 1.0,
-            bias: settings.bias_m as f32,
-            bias_slope: settings.bias_slope as f32,
-            pcf_radius: settings.pcf_radius as i32,
-        };
+        let mut info = ShadowInfoGpu::new(settings, 0, width);
         let mut maps = None;
         let mut volumes = Vec::new();
         let mut volume_bind = None;
@@ -250,13 +274,57 @@ impl ShadowPasses {
             }
         }
         Ok(ShadowFrame {
-            info: gpu.uniform_buffer("shadow info", &info),
-            mask_view: array_view(&mask),
-            mask,
             maps,
             volumes,
             volume_bind,
+            ..ShadowFrame::new(gpu, &info, mask)
         })
+    }
+
+    /// Shadow resources that shadow nothing.
+    pub fn prepare_none(&self, gpu: &Gpu) -> ShadowFrame {
+        let info = ShadowInfoGpu::new(&ShadowSettings::none(), 0, 1);
+        ShadowFrame::new(gpu, &info, mask_texture(gpu, 1, 1, 1))
+    }
+
+    /// Prepares the shadows of `scene` for illuminance at `points` (point i reads mask
+    /// slot i): paraboloid maps as for a frame; for `volumes`, the exact visibility of
+    /// each luminaire from each point by ray casting on the CPU — the hard shadows the
+    /// volumes give on screen, without a view to rasterize them in.
+    pub fn prepare_points(
+        &self,
+        gpu: &Gpu,
+        scene: &GpuScene,
+        points: &[SurfacePoint],
+        settings: &ShadowSettings,
+    ) -> Result<ShadowFrame, GpuError> {
+        let lights = &scene.shadow_lights;
+        if settings.technique != ShadowTechnique::Volumes || lights.is_empty() {
+            return self.prepare(gpu, scene, Mat4::IDENTITY, [DVec3::ZERO; 4], 1, 1, settings);
+        }
+        let positions: Vec<DVec3> = lights.iter().map(|l| l.position).collect();
+        let visible = point_visibility(&scene.casters, &positions, points);
+        let rows = (points.len() as u32).div_ceil(POINT_MASK_WIDTH).max(1);
+        let layer_len = (POINT_MASK_WIDTH * rows) as usize;
+        let mut data = vec![0u8; layer_len * lights.len()];
+        for (k, layer) in visible.iter().enumerate() {
+            for (i, &lit) in layer.iter().enumerate() {
+                data[k * layer_len + i] = u8::from(!lit);
+            }
+        }
+        let mask = mask_texture(gpu, POINT_MASK_WIDTH, rows, lights.len() as u32);
+        gpu.queue.write_texture(
+            mask.as_image_copy(),
+            &data,
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(POINT_MASK_WIDTH),
+                rows_per_image: Some(rows),
+            },
+            mask.size(),
+        );
+        let info = ShadowInfoGpu::new(settings, 2, POINT_MASK_WIDTH);
+        Ok(ShadowFrame::new(gpu, &info, mask))
     }
 
     /// The frame bind group's shadow entries (bindings 8–11).

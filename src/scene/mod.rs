@@ -210,7 +210,9 @@ fn toml_error(path: &Path, text: &str, e: &toml::de::Error) -> SceneError {
     if let Some(field) = missing {
         // The span is the table that lacks the field.
         let header = line.trim();
-        let key = if header.starts_with('[') {
+        // A field missing from the top level has an empty span at the file's start.
+        let top_level = span.is_empty() && span.start == 0;
+        let key = if header.starts_with('[') && !top_level {
             format!("{}.{field}", header.trim_matches(['[', ']']))
         } else {
             field.to_string()
