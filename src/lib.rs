@@ -11,6 +11,7 @@ pub mod geometry;
 pub mod gpu;
 pub mod io;
 pub mod photometry;
+pub mod radiosity;
 pub mod render;
 pub mod scene;
 pub mod shadow;
