@@ -10,10 +10,12 @@ use glam::DVec3;
 #[serde(rename_all = "lowercase")]
 pub enum FormFactorKind {
     /// The disc approximation (Wallace et al.; Wallner Eq. 2.2): A cos φi cos φj / (π d² + A).
-    #[default]
+    /// Cheap, but it saturates for receivers next to the patch (−10 % for perpendicular
+    /// squares sharing an edge).
     Disc,
     /// The exact form factor to the patch's polygon (Lambert's contour integral), clipped
-    /// to the receiver's horizon.
+    /// to the receiver's horizon (the default).
+    #[default]
     Polygon,
 }
 

@@ -1,5 +1,44 @@
 //! Progressive radiosity (Wallner ch. 2 and 4; Cohen et al. 1988; Coombe et al. 2004):
 //! light-map elements, form factors, and the CPU reference solver.
 
+pub mod cpu;
 pub mod elements;
 pub mod form_factor;
+pub mod scene;
+
+use crate::photometry::Interp;
+pub use form_factor::FormFactorKind;
+
+/// What the ambient term is used for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Ambient {
+    /// No ambient term.
+    None,
+    /// Added for display only (Cohen et al. 1988): early solutions look plausible.
+    #[default]
+    Display,
+    /// Ambient overshooting (Feda and Purgathofer; Wallner Eq. 4.9), and for display.
+    Overshoot,
+}
+
+/// Solver options shared by the GPU solver and the CPU reference.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SolverSettings {
+    /// Form factor evaluation.
+    pub form_factor: FormFactorKind,
+    /// Ambient term use.
+    pub ambient: Ambient,
+    /// Interpolation of the luminaires' distributions.
+    pub interp: Interp,
+}
+
+impl Default for SolverSettings {
+    fn default() -> SolverSettings {
+        SolverSettings {
+            form_factor: FormFactorKind::Polygon,
+            ambient: Ambient::Display,
+            interp: Interp::CatmullRom,
+        }
+    }
+}

@@ -1,0 +1,228 @@
+//! The CPU reference solver: progressive refinement (Cohen et al. 1988) over the same
+//! elements and patches as the GPU solver, with exact visibility (a ray from the patch
+//! centre to each receiver, brute force over the triangles). Slow, simple and exact
+//! enough to check the GPU on small scenes.
+
+use glam::DVec3;
+
+use super::form_factor::{self, FormFactorKind};
+use super::scene::{luminance, RadiosityScene};
+use super::{Ambient, SolverSettings};
+use crate::render::illuminance::SurfacePoint;
+use crate::shadow::{raycast, Light};
+
+/// The state of a CPU solution.
+#[derive(Debug, Clone)]
+pub struct CpuSolver<'a> {
+    scene: &'a RadiosityScene,
+    settings: SolverSettings,
+    /// Radiosity per element (luminous exitance, lm/m², RGB).
+    pub radiosity: Vec<DVec3>,
+    /// Unshot radiosity per element.
+    pub unshot: Vec<DVec3>,
+    /// Unshot power when progressive shooting started (after the luminaires), lm.
+    pub initial_unshot: f64,
+    /// Shots from triangles so far.
+    pub shots: usize,
+    eps: f64,
+}
+
+impl<'a> CpuSolver<'a> {
+    /// Starts a solution: every element's radiosity and unshot radiosity are its
+    /// emission; then the luminaires shoot their direct light (with ray-cast shadows).
+    pub fn new(scene: &'a RadiosityScene, settings: SolverSettings) -> CpuSolver<'a> {
+        let n = scene.elements.len();
+        let emission: Vec<DVec3> = (0..n).map(|e| scene.element_emission(e)).collect();
+        let size = scene
+            .casters
+            .bounds()
+            .map_or(1.0, |(lo, hi)| (hi - lo).length());
+        let mut s = CpuSolver {
+            scene,
+            settings,
+            radiosity: emission.clone(),
+            unshot: emission,
+            initial_unshot: 0.0,
+            shots: 0,
+            eps: 1e-6 * (1.0 + size),
+        };
+        s.shoot_luminaires();
+        s.initial_unshot = s.unshot_power();
+        s
+    }
+
+    fn visible(&self, from: DVec3, from_n: DVec3, to: DVec3, to_n: DVec3) -> bool {
+        let light = Light((from + from_n * self.eps).extend(1.0));
+        !raycast::in_shadow(&self.scene.casters, &light, to + to_n * self.eps, self.eps)
+    }
+
+    /// Direct illuminance (lux, RGB) from the luminaires at `p` with unit normal `n`.
+    pub fn direct(&self, p: DVec3, n: DVec3) -> DVec3 {
+        self.scene
+            .luminaires
+            .iter()
+            .filter(|l| self.visible(l.position, DVec3::ZERO, p, n))
+            .map(|l| l.color * l.illuminance_at(p, n, self.settings.interp))
+            .sum()
+    }
+
+    fn shoot_luminaires(&mut self) {
+        let el = &self.scene.elements;
+        for e in 0..el.len() {
+            let gained =
+                self.scene.element_reflectance(e) * self.direct(el.position[e], el.normal(e));
+            self.radiosity[e] += gained;
+            self.unshot[e] += gained;
+        }
+    }
+
+    /// Σ |unshot luminance| × area, lm.
+    pub fn unshot_power(&self) -> f64 {
+        let el = &self.scene.elements;
+        (0..el.len())
+            .map(|e| luminance(self.unshot[e]).abs() * el.area[e])
+            .sum()
+    }
+
+    /// Fraction of the initial unshot power that has been shot (1 when there was none).
+    pub fn convergence(&self) -> f64 {
+        if self.initial_unshot <= 0.0 {
+            return 1.0;
+        }
+        1.0 - self.unshot_power() / self.initial_unshot
+    }
+
+    /// The ambient term (Cohen et al. 1988; Wallner Eq. 2.4–2.6): the unshot radiosity
+    /// averaged over the area, times the interreflection factor 1 / (1 − ρ̄).
+    pub fn ambient(&self) -> DVec3 {
+        let el = &self.scene.elements;
+        let unshot: DVec3 = (0..el.len()).map(|e| self.unshot[e] * el.area[e]).sum();
+        unshot / self.scene.total_area() / (1.0 - self.scene.mean_reflectance())
+    }
+
+    /// Per triangle: unshot radiosity (area-weighted mean) and area.
+    fn triangle_unshot(&self, t: usize) -> DVec3 {
+        let el = &self.scene.elements;
+        let te = &el.triangles[t];
+        let range = te.first as usize..(te.first + te.count) as usize;
+        let power: DVec3 = range.map(|e| self.unshot[e] * el.area[e]).sum();
+        power / te.area.max(1e-300)
+    }
+
+    /// The next shooter and the overshoot it adds to its unshot radiosity: the triangle
+    /// with the largest unshot power, with ambient overshooting (Feda and Purgathofer;
+    /// Wallner Eq. 4.9) the largest (ΔB + ΔB′) A.
+    pub fn select(&self) -> Option<(usize, DVec3)> {
+        let el = &self.scene.elements;
+        let total: DVec3 = (0..el.len()).map(|e| self.unshot[e] * el.area[e]).sum();
+        let ambient = self.ambient();
+        let mut best: Option<(usize, DVec3, f64)> = None;
+        for (t, te) in el.triangles.iter().enumerate() {
+            if te.count == 0 {
+                continue;
+            }
+            let unshot = self.triangle_unshot(t);
+            let extra = match self.settings.ambient {
+                Ambient::Overshoot => {
+                    let rho = self.scene.reflectance[te.material];
+                    (rho * ambient)
+                        .min(total / te.area - unshot)
+                        .max(DVec3::ZERO)
+                }
+                _ => DVec3::ZERO,
+            };
+            let power = luminance(unshot + extra).abs() * te.area;
+            if best.is_none_or(|b| power > b.2) {
+                best = Some((t, extra, power));
+            }
+        }
+        best.filter(|b| b.2 > 0.0).map(|b| (b.0, b.1))
+    }
+
+    /// Shoots triangle `t`'s unshot radiosity plus `extra` from each of its patches to
+    /// every visible element; its unshot radiosity becomes −`extra`.
+    pub fn shoot(&mut self, t: usize, extra: DVec3) {
+        let el = &self.scene.elements;
+        let te = &el.triangles[t];
+        let nt = te.normal;
+        for p in &el.patches[te.first_patch as usize..][..te.patch_count as usize] {
+            let range = p.first as usize..(p.first + p.count) as usize;
+            let power: DVec3 = range.map(|e| (self.unshot[e] + extra) * el.area[e]).sum();
+            let delta = power / p.area.max(1e-300);
+            for i in 0..el.len() {
+                if el.triangle[i] as usize == t {
+                    continue;
+                }
+                let (pi, ni) = (el.position[i], el.normal(i));
+                let f = match self.settings.form_factor {
+                    FormFactorKind::Disc => form_factor::disc(pi, ni, p.centroid, nt, p.area),
+                    FormFactorKind::Polygon => form_factor::polygon(pi, ni, &p.polygon, nt),
+                };
+                if f <= 0.0 || !self.visible(p.centroid, nt, pi, ni) {
+                    continue;
+                }
+                let gained = self.scene.element_reflectance(i) * delta * f;
+                self.radiosity[i] += gained;
+                self.unshot[i] += gained;
+            }
+        }
+        for e in te.first as usize..(te.first + te.count) as usize {
+            self.unshot[e] = -extra;
+        }
+        self.shots += 1;
+    }
+
+    /// One shot; false when nothing is left to shoot.
+    pub fn step(&mut self) -> bool {
+        match self.select() {
+            Some((t, extra)) => {
+                self.shoot(t, extra);
+                true
+            }
+            None => false,
+        }
+    }
+
+    /// Shoots until `converge` (fraction of the initial unshot power shot) or `max_shots`.
+    pub fn solve(&mut self, converge: f64, max_shots: usize) {
+        while self.shots < max_shots && self.convergence() < converge && self.step() {}
+    }
+
+    /// Radiosity for display: with an ambient mode, plus ρ × the ambient term.
+    pub fn display_radiosity(&self) -> Vec<DVec3> {
+        if self.settings.ambient == Ambient::None {
+            return self.radiosity.clone();
+        }
+        let ambient = self.ambient();
+        (0..self.radiosity.len())
+            .map(|e| self.radiosity[e] + self.scene.element_reflectance(e) * ambient)
+            .collect()
+    }
+
+    /// Total illuminance (lux, RGB) at a point: the luminaires' direct light plus the
+    /// light from every patch (its mean radiosity × the form factor, if visible).
+    pub fn illuminance(&self, point: &SurfacePoint) -> DVec3 {
+        let (p, n) = (point.position, point.normal.normalize_or_zero());
+        let el = &self.scene.elements;
+        let mut e = self.direct(p, n);
+        for te in &el.triangles {
+            for patch in &el.patches[te.first_patch as usize..][..te.patch_count as usize] {
+                let f = match self.settings.form_factor {
+                    FormFactorKind::Disc => {
+                        form_factor::disc(p, n, patch.centroid, te.normal, patch.area)
+                    }
+                    FormFactorKind::Polygon => {
+                        form_factor::polygon(p, n, &patch.polygon, te.normal)
+                    }
+                };
+                if f <= 0.0 || !self.visible(patch.centroid, te.normal, p, n) {
+                    continue;
+                }
+                let range = patch.first as usize..(patch.first + patch.count) as usize;
+                let power: DVec3 = range.map(|k| self.radiosity[k] * el.area[k]).sum();
+                e += power / patch.area * f;
+            }
+        }
+        e
+    }
+}

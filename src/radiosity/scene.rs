@@ -1,0 +1,88 @@
+//! What the solver works on: the scene's triangles as elements, their materials'
+//! reflectance (`Kd`) and luminous exitance (`Ke`, lm/m²), and the luminaires.
+
+use glam::DVec3;
+
+use super::elements::{ElementError, Elements, InputTriangle};
+use crate::geometry::Mesh;
+use crate::scene::{PlacedLuminaire, Scene};
+
+/// A scene prepared for radiosity.
+#[derive(Debug, Clone)]
+pub struct RadiosityScene {
+    /// The elements and patches.
+    pub elements: Elements,
+    /// Diffuse reflectance per material (RGB, 0..1).
+    pub reflectance: Vec<DVec3>,
+    /// Luminous exitance per material, lm/m² (RGB).
+    pub emission: Vec<DVec3>,
+    /// The luminaires.
+    pub luminaires: Vec<PlacedLuminaire>,
+    /// Every triangle as one mesh (occluders for the CPU's visibility rays).
+    pub casters: Mesh,
+}
+
+impl RadiosityScene {
+    /// Splits `scene` into elements of `1 / texel_density` metres with shooting patches of
+    /// 2^`level` texels.
+    pub fn new(scene: &Scene, texel_density: f64, level: u32) -> Result<Self, ElementError> {
+        let texel_m = 1.0 / texel_density;
+        let mut triangles = Vec::with_capacity(scene.triangle_count());
+        for m in &scene.meshes {
+            for t in m.indices.chunks_exact(3) {
+                triangles.push(InputTriangle {
+                    corners: [0, 1, 2].map(|k| m.positions[t[k] as usize].as_dvec3()),
+                    material: m.material,
+                    texel_m,
+                });
+            }
+        }
+        let elements = Elements::build(&triangles, level)?;
+        Ok(RadiosityScene {
+            elements,
+            reflectance: scene
+                .materials
+                .iter()
+                .map(|m| m.diffuse.as_dvec3().clamp(DVec3::ZERO, DVec3::splat(0.999)))
+                .collect(),
+            emission: scene
+                .materials
+                .iter()
+                .map(|m| m.emission.as_dvec3().max(DVec3::ZERO))
+                .collect(),
+            luminaires: scene.luminaires.clone(),
+            casters: scene.caster_mesh(),
+        })
+    }
+
+    /// Reflectance of element `e`.
+    pub fn element_reflectance(&self, e: usize) -> DVec3 {
+        let t = &self.elements.triangles[self.elements.triangle[e] as usize];
+        self.reflectance[t.material]
+    }
+
+    /// Exitance of element `e`, lm/m².
+    pub fn element_emission(&self, e: usize) -> DVec3 {
+        let t = &self.elements.triangles[self.elements.triangle[e] as usize];
+        self.emission[t.material]
+    }
+
+    /// Total surface area, m².
+    pub fn total_area(&self) -> f64 {
+        self.elements.area.iter().sum()
+    }
+
+    /// The area-weighted mean reflectance (luminance).
+    pub fn mean_reflectance(&self) -> f64 {
+        let e = &self.elements;
+        let sum: f64 = (0..e.len())
+            .map(|k| luminance(self.element_reflectance(k)) * e.area[k])
+            .sum();
+        sum / self.total_area().max(1e-300)
+    }
+}
+
+/// Rec. 709 luminance of an RGB value.
+pub fn luminance(c: DVec3) -> f64 {
+    c.dot(crate::scene::placement::LUMINANCE_WEIGHTS)
+}
