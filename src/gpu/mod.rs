@@ -69,7 +69,12 @@ impl Gpu {
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("goniolight"),
             required_features: adapter.features() & wanted_features,
-            required_limits: wgpu::Limits::downlevel_defaults().using_resolution(adapter.limits()),
+            required_limits: wgpu::Limits {
+                // The radiosity solver binds 8 storage buffers (WebGPU's default limit).
+                max_storage_buffers_per_shader_stage:
+                    adapter.limits().max_storage_buffers_per_shader_stage.min(8),
+                ..wgpu::Limits::downlevel_defaults().using_resolution(adapter.limits())
+            },
             ..Default::default()
         }))
         .map_err(|source| GpuError::Device {

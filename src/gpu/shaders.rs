@@ -18,6 +18,10 @@ pub const SHADOW_VOLUME: &str = include_str!("../../shaders/shadow_volume.wgsl")
 pub const PARABOLOID: &str = include_str!("../../shaders/paraboloid.wgsl");
 /// The renderer's depth and shading passes (needs [`LDT`], [`LIGHTING`] and [`SHADOW`]).
 pub const SCENE: &str = include_str!("../../shaders/scene.wgsl");
+/// Progressive radiosity: shooter selection, patches, receivers.
+pub const RADIOSITY: &str = include_str!("../../shaders/radiosity.wgsl");
+/// Radiosity visibility maps (hemicube faces, stereographic).
+pub const RADIOSITY_VISIBILITY: &str = include_str!("../../shaders/radiosity_visibility.wgsl");
 /// Tone mapping, false colour and image statistics.
 pub const TONEMAP: &str = include_str!("../../shaders/tonemap.wgsl");
 
@@ -45,6 +49,8 @@ pub fn modules() -> Vec<(&'static str, String)> {
         ("tonemap", TONEMAP.to_string()),
         ("shadow_volume", SHADOW_VOLUME.to_string()),
         ("paraboloid", PARABOLOID.to_string()),
+        ("radiosity", RADIOSITY.to_string()),
+        ("radiosity_visibility", RADIOSITY_VISIBILITY.to_string()),
     ]
 }
 

@@ -4,6 +4,7 @@
 pub mod cpu;
 pub mod elements;
 pub mod form_factor;
+pub mod gpu;
 pub mod scene;
 
 use crate::photometry::Interp;

@@ -1,0 +1,302 @@
+// GPU progressive radiosity (Wallner ch. 2 and 4; Coombe et al. 2004), on element arrays.
+// Per shot: triangle_sums (unshot power per triangle), select_shooter (one workgroup: the
+// ambient term and the triangle with the largest unshot power, with ambient overshooting
+// when asked), gather_patches (the shooter's patches' unshot radiosity: substructuring),
+// clear_shooter, then per patch a visibility map (radiosity_visibility.wgsl) and receive
+// (every element, the form factor to the patch, if visible).
+
+struct SolveParams {
+    element_count: u32,
+    triangle_count: u32,
+    shooter: u32,
+    overshoot: u32,
+    patch_first: u32,
+    patch_count: u32,
+    total_area: f32,
+    mean_reflectance: f32,
+};
+
+struct Element {
+    // xyz position, w area.
+    position_area: vec4<f32>,
+    // xyz unit normal, w triangle index (as f32 bits).
+    normal_triangle: vec4<f32>,
+};
+
+struct TriangleInfo {
+    // first element, element count, first patch, patch count.
+    range: vec4<u32>,
+    // rgb reflectance, w area.
+    reflectance_area: vec4<f32>,
+};
+
+struct PatchInfo {
+    // first element, element count.
+    range: vec2<u32>,
+    area: f32,
+    _pad: f32,
+};
+
+@group(0) @binding(0) var<uniform> params: SolveParams;
+@group(0) @binding(1) var<storage, read> elements: array<Element>;
+@group(0) @binding(2) var<storage, read> reflectance: array<vec4<f32>>;
+@group(0) @binding(3) var<storage, read_write> radiosity: array<vec4<f32>>;
+@group(0) @binding(4) var<storage, read_write> unshot: array<vec4<f32>>;
+@group(0) @binding(5) var<storage, read> triangles: array<TriangleInfo>;
+// Per triangle: rgb unshot power, w Σ |luminance| power; then the selection record at
+// triangle_count + 0: shooter (bits), its power, Σ |unshot power|; + 1: overshoot rgb;
+// + 2: total unshot power rgb.
+@group(0) @binding(6) var<storage, read_write> triangle_power: array<vec4<f32>>;
+@group(0) @binding(7) var<storage, read> patches: array<PatchInfo>;
+// Per patch of the shooter: rgb unshot radiosity to shoot.
+@group(0) @binding(8) var<storage, read_write> patch_delta: array<vec4<f32>>;
+
+const LUMA = vec3<f32>(0.2126, 0.7152, 0.0722);
+
+@compute @workgroup_size(64)
+fn triangle_sums(@builtin(global_invocation_id) id: vec3<u32>) {
+    let t = id.x;
+    if (t >= params.triangle_count) {
+        return;
+    }
+    let r = triangles[t].range;
+    var sum = vec3<f32>(0.0);
+    var magnitude = 0.0;
+    for (var e = r.x; e < r.x + r.y; e++) {
+        let a = elements[e].position_area.w;
+        let u = unshot[e].rgb;
+        sum += u * a;
+        magnitude += abs(dot(u, LUMA)) * a;
+    }
+    triangle_power[t] = vec4<f32>(sum, magnitude);
+}
+
+var<workgroup> wg_sum: array<vec4<f32>, 256>;
+var<workgroup> wg_best: array<f32, 256>;
+var<workgroup> wg_index: array<u32, 256>;
+
+@compute @workgroup_size(256)
+fn select_shooter(@builtin(local_invocation_index) l: u32) {
+    var sum = vec4<f32>(0.0);
+    for (var t = l; t < params.triangle_count; t += 256u) {
+        sum += triangle_power[t];
+    }
+    wg_sum[l] = sum;
+    workgroupBarrier();
+    for (var s = 128u; s > 0u; s >>= 1u) {
+        if (l < s) {
+            wg_sum[l] += wg_sum[l + s];
+        }
+        workgroupBarrier();
+    }
+    let total = wg_sum[0];
+    let ambient = total.rgb / params.total_area / (1.0 - params.mean_reflectance);
+    var best = -1.0;
+    var best_index = 0xffffffffu;
+    for (var t = l; t < params.triangle_count; t += 256u) {
+        let info = triangles[t];
+        let area = info.reflectance_area.w;
+        if (info.range.y == 0u || area <= 0.0) {
+            continue;
+        }
+        let mean = triangle_power[t].rgb / area;
+        var extra = vec3<f32>(0.0);
+        if (params.overshoot != 0u) {
+            extra = max(min(info.reflectance_area.rgb * ambient, total.rgb / area - mean), vec3<f32>(0.0));
+        }
+        let power = abs(dot(mean + extra, LUMA)) * area;
+        if (power > best) {
+            best = power;
+            best_index = t;
+        }
+    }
+    wg_best[l] = best;
+    wg_index[l] = best_index;
+    workgroupBarrier();
+    for (var s = 128u; s > 0u; s >>= 1u) {
+        if (l < s && wg_best[l + s] > wg_best[l]) {
+            wg_best[l] = wg_best[l + s];
+            wg_index[l] = wg_index[l + s];
+        }
+        workgroupBarrier();
+    }
+    if (l == 0u) {
+        let t = wg_index[0];
+        var extra = vec3<f32>(0.0);
+        if (params.overshoot != 0u && t != 0xffffffffu) {
+            let info = triangles[t];
+            let area = info.reflectance_area.w;
+            let mean = triangle_power[t].rgb / area;
+            extra = max(min(info.reflectance_area.rgb * ambient, total.rgb / area - mean), vec3<f32>(0.0));
+        }
+        let at = params.triangle_count;
+        triangle_power[at] = vec4<f32>(bitcast<f32>(t), wg_best[0], total.w, 0.0);
+        triangle_power[at + 1u] = vec4<f32>(extra, 0.0);
+        triangle_power[at + 2u] = vec4<f32>(total.rgb, 0.0);
+    }
+}
+
+@compute @workgroup_size(64)
+fn gather_patches(@builtin(global_invocation_id) id: vec3<u32>) {
+    if (id.x >= params.patch_count) {
+        return;
+    }
+    let p = patches[params.patch_first + id.x];
+    let extra = triangle_power[params.triangle_count + 1u].rgb;
+    var power = vec3<f32>(0.0);
+    for (var e = p.range.x; e < p.range.x + p.range.y; e++) {
+        power += (unshot[e].rgb + extra) * elements[e].position_area.w;
+    }
+    patch_delta[id.x] = vec4<f32>(power / max(p.area, 1e-30), 0.0);
+}
+
+@compute @workgroup_size(64)
+fn clear_shooter(@builtin(global_invocation_id) id: vec3<u32>) {
+    let r = triangles[params.shooter].range;
+    if (id.x >= r.y) {
+        return;
+    }
+    unshot[r.x + id.x] = vec4<f32>(-triangle_power[params.triangle_count + 1u].rgb, 0.0);
+}
+
+// One shooting patch as seen by the receive pass.
+struct Shot {
+    // The hemicube faces' view-projections: top (along the normal), +t, −t, +b, −b.
+    faces: array<mat4x4<f32>, 5>,
+    // Patch frame: tangent, bitangent, normal (xyz); centroid.
+    tangent: vec4<f32>,
+    bitangent: vec4<f32>,
+    normal: vec4<f32>,
+    centroid: vec4<f32>,
+    // The patch polygon (counter-clockwise from the front), up to 8 corners.
+    polygon: array<vec4<f32>, 8>,
+    // patch (local index), corner count, form factor (0 disc, 1 polygon), map size.
+    info: vec4<u32>,
+    // area, relative depth tolerance, absolute depth tolerance (m), visibility (0 hemicube, 1 stereographic).
+    extra: vec4<f32>,
+};
+
+@group(1) @binding(0) var<uniform> shot: Shot;
+@group(1) @binding(1) var visibility: texture_2d_array<f32>;
+
+const PI = 3.14159265358979;
+
+fn disc_form_factor(p: vec3<f32>, n: vec3<f32>) -> f32 {
+    let d = shot.centroid.xyz - p;
+    let d2 = dot(d, d);
+    let w = d * inverseSqrt(d2);
+    let cos_p = dot(n, w);
+    let cos_q = -dot(shot.normal.xyz, w);
+    if (cos_p <= 0.0 || cos_q <= 0.0) {
+        return 0.0;
+    }
+    let a = shot.extra.x;
+    return a * cos_p * cos_q / (PI * d2 + a);
+}
+
+// Lambert's contour integral over the patch polygon clipped to the receiver's horizon.
+fn polygon_form_factor(p: vec3<f32>, n: vec3<f32>) -> f32 {
+    var clipped: array<vec3<f32>, 10>;
+    var count = 0u;
+    let corners = shot.info.y;
+    for (var i = 0u; i < corners; i++) {
+        let a = shot.polygon[i].xyz;
+        let b = shot.polygon[(i + 1u) % corners].xyz;
+        let sa = dot(n, a - p);
+        let sb = dot(n, b - p);
+        if (sa >= 0.0) {
+            clipped[count] = a - p;
+            count++;
+        }
+        if ((sa >= 0.0) != (sb >= 0.0)) {
+            clipped[count] = a + (b - a) * (sa / (sa - sb)) - p;
+            count++;
+        }
+    }
+    if (count < 3u) {
+        return 0.0;
+    }
+    var sum = 0.0;
+    for (var i = 0u; i < count; i++) {
+        let ra = clipped[i];
+        let rb = clipped[(i + 1u) % count];
+        let c = cross(ra, rb);
+        let len = length(c);
+        if (len > 1e-20) {
+            sum += atan2(len, dot(ra, rb)) * dot(n, c / len);
+        }
+    }
+    return abs(sum) / (2.0 * PI);
+}
+
+// Map texel and layer of direction `v` (world, from the patch centroid to `p`).
+fn visibility_lookup(p: vec3<f32>, v: vec3<f32>) -> vec3<i32> {
+    let size = i32(shot.info.w);
+    let x = dot(v, shot.tangent.xyz);
+    let y = dot(v, shot.bitangent.xyz);
+    let z = dot(v, shot.normal.xyz);
+    var uv: vec2<f32>;
+    var layer = 0;
+    if (shot.extra.w > 0.5) {
+        // Stereographic: the unit direction projected from the lower pole onto the disc.
+        let u = vec3<f32>(x, y, z) / length(v);
+        uv = u.xy / (1.0 + u.z);
+    } else {
+        if (z >= max(abs(x), abs(y))) {
+            layer = 0;
+        } else if (abs(x) >= abs(y)) {
+            layer = select(2, 1, x > 0.0);
+        } else {
+            layer = select(4, 3, y > 0.0);
+        }
+        let clip = shot.faces[layer] * vec4<f32>(p, 1.0);
+        uv = clip.xy / clip.w;
+    }
+    let texel = vec2<i32>(floor((vec2<f32>(uv.x, -uv.y) * 0.5 + 0.5) * f32(size)));
+    return vec3<i32>(clamp(texel, vec2<i32>(0), vec2<i32>(size - 1)), layer);
+}
+
+// Visible when the map holds something at least as far as `p` (less a tolerance) at its
+// texel or one of the 8 around it (Wallner Fig. 2.3).
+fn visible_from_patch(p: vec3<f32>) -> bool {
+    let v = p - shot.centroid.xyz;
+    let dist = length(v);
+    let at = visibility_lookup(p, v);
+    let size = i32(shot.info.w);
+    let limit = dist * (1.0 - shot.extra.y) - shot.extra.z;
+    for (var dy = -1; dy <= 1; dy++) {
+        for (var dx = -1; dx <= 1; dx++) {
+            let q = clamp(at.xy + vec2<i32>(dx, dy), vec2<i32>(0), vec2<i32>(size - 1));
+            if (textureLoad(visibility, q, at.z, 0).r >= limit) {
+                return true;
+            }
+        }
+    }
+    return false;
+}
+
+@compute @workgroup_size(64)
+fn receive(@builtin(global_invocation_id) id: vec3<u32>) {
+    let i = id.x;
+    if (i >= params.element_count) {
+        return;
+    }
+    let el = elements[i];
+    if (bitcast<u32>(el.normal_triangle.w) == params.shooter) {
+        return;
+    }
+    let p = el.position_area.xyz;
+    let n = el.normal_triangle.xyz;
+    var f = 0.0;
+    if (shot.info.z == 1u) {
+        f = polygon_form_factor(p, n);
+    } else {
+        f = disc_form_factor(p, n);
+    }
+    if (f <= 0.0 || !visible_from_patch(p)) {
+        return;
+    }
+    let gained = reflectance[i].rgb * patch_delta[shot.info.x].rgb * f;
+    radiosity[i] += vec4<f32>(gained, 0.0);
+    unshot[i] += vec4<f32>(gained, 0.0);
+}

@@ -1,0 +1,712 @@
+//! The GPU solver: element arrays in storage buffers; per shot the shooter is chosen on
+//! the GPU by reduction (only a 48-byte selection record is read back), its patches'
+//! unshot radiosity gathered (substructuring), and per patch a visibility map rendered
+//! (hemicube or stereographic) and every element updated in one compute pass.
+
+use glam::{DVec3, Mat4, Vec3};
+use wgpu::util::DeviceExt;
+
+use super::form_factor::FormFactorKind;
+use super::scene::RadiosityScene;
+use super::{Ambient, SolverSettings};
+use crate::gpu::{Gpu, GpuError};
+
+/// How a shooting patch sees what it can reach.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Visibility {
+    /// Five perspective faces (Cohen and Greenberg): exact projection, five renders.
+    #[default]
+    Hemicube,
+    /// The stereographic projection of the hemisphere (Wallner §2.3; Coombe et al.): one
+    /// render, but only vertices are projected, so long edges bend.
+    Stereographic,
+}
+
+/// GPU-only options.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GpuSettings {
+    /// Visibility maps.
+    pub visibility: Visibility,
+    /// Side of a hemicube face or of the stereographic map, texels.
+    pub map_size: u32,
+    /// Relative depth tolerance of the visibility test.
+    pub tolerance: f32,
+}
+
+impl Default for GpuSettings {
+    fn default() -> GpuSettings {
+        GpuSettings {
+            visibility: Visibility::Hemicube,
+            map_size: 256,
+            tolerance: 0.01,
+        }
+    }
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct SolveParams {
+    element_count: u32,
+    triangle_count: u32,
+    shooter: u32,
+    overshoot: u32,
+    patch_first: u32,
+    patch_count: u32,
+    total_area: f32,
+    mean_reflectance: f32,
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct ShotGpu {
+    faces: [[f32; 16]; 5],
+    tangent: [f32; 4],
+    bitangent: [f32; 4],
+    normal: [f32; 4],
+    centroid: [f32; 4],
+    polygon: [[f32; 4]; 8],
+    info: [u32; 4],
+    extra: [f32; 4],
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct FaceGpu {
+    view_proj: [f32; 16],
+    eye: [f32; 4],
+    tangent: [f32; 4],
+    bitangent: [f32; 4],
+    normal: [f32; 4],
+}
+
+const SHOT_STRIDE: u64 = 768;
+const FACE_STRIDE: u64 = 256;
+const MAP_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
+
+/// The shooter the GPU chose.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Selection {
+    /// The triangle, `None` when nothing is left to shoot.
+    pub shooter: Option<usize>,
+    /// Its unshot power (with overshoot), lm (luminance).
+    pub power: f64,
+    /// Σ |unshot luminance| × area over all elements, lm.
+    pub unshot_power: f64,
+}
+
+struct Pipelines {
+    triangle_sums: wgpu::ComputePipeline,
+    select: wgpu::ComputePipeline,
+    gather: wgpu::ComputePipeline,
+    clear: wgpu::ComputePipeline,
+    receive: wgpu::ComputePipeline,
+    visibility: wgpu::RenderPipeline,
+    shot_layout: wgpu::BindGroupLayout,
+    face_layout: wgpu::BindGroupLayout,
+}
+
+/// A solution in progress on the GPU.
+pub struct GpuSolver<'a> {
+    gpu: &'a Gpu,
+    scene: &'a RadiosityScene,
+    settings: SolverSettings,
+    gpu_settings: GpuSettings,
+    pipelines: Pipelines,
+    params: wgpu::Buffer,
+    radiosity: wgpu::Buffer,
+    unshot: wgpu::Buffer,
+    selection: wgpu::Buffer,
+    triangle_power: wgpu::Buffer,
+    shared: wgpu::BindGroup,
+    vertices: wgpu::Buffer,
+    vertex_count: u32,
+    face_views: Vec<wgpu::TextureView>,
+    maps_view: wgpu::TextureView,
+    depth_view: wgpu::TextureView,
+    size: f64,
+    /// Shots from triangles so far.
+    pub shots: usize,
+}
+
+fn storage(gpu: &Gpu, label: &str, data: &[u8], writable: bool) -> wgpu::Buffer {
+    use wgpu::BufferUsages as U;
+    let usage = if writable {
+        U::STORAGE | U::COPY_SRC | U::COPY_DST
+    } else {
+        U::STORAGE
+    };
+    gpu.device
+        .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some(label),
+            contents: data,
+            usage,
+        })
+}
+
+fn layout_entry(
+    binding: u32,
+    ty: wgpu::BindingType,
+    visibility: wgpu::ShaderStages,
+) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility,
+        ty,
+        count: None,
+    }
+}
+
+fn buffer_type(kind: wgpu::BufferBindingType, dynamic: bool) -> wgpu::BindingType {
+    wgpu::BindingType::Buffer {
+        ty: kind,
+        has_dynamic_offset: dynamic,
+        min_binding_size: None,
+    }
+}
+
+impl Pipelines {
+    fn new(gpu: &Gpu) -> Pipelines {
+        use wgpu::BufferBindingType as B;
+        let dev = &gpu.device;
+        let compute = wgpu::ShaderStages::COMPUTE;
+        let kinds = [
+            B::Uniform,
+            B::Storage { read_only: true },
+            B::Storage { read_only: true },
+            B::Storage { read_only: false },
+            B::Storage { read_only: false },
+            B::Storage { read_only: true },
+            B::Storage { read_only: false },
+            B::Storage { read_only: true },
+            B::Storage { read_only: false },
+        ];
+        let entries: Vec<_> = kinds
+            .iter()
+            .enumerate()
+            .map(|(i, &k)| layout_entry(i as u32, buffer_type(k, false), compute))
+            .collect();
+        let shared_layout = dev.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("radiosity"),
+            entries: &entries,
+        });
+        let shot_layout = dev.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("radiosity shot"),
+            entries: &[
+                layout_entry(0, buffer_type(B::Uniform, true), compute),
+                layout_entry(
+                    1,
+                    wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                        view_dimension: wgpu::TextureViewDimension::D2Array,
+                        multisampled: false,
+                    },
+                    compute,
+                ),
+            ],
+        });
+        let face_layout = dev.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("visibility face"),
+            entries: &[layout_entry(
+                0,
+                buffer_type(B::Uniform, true),
+                wgpu::ShaderStages::VERTEX_FRAGMENT,
+            )],
+        });
+        let module = dev.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("radiosity"),
+            source: wgpu::ShaderSource::Wgsl(crate::gpu::shaders::RADIOSITY.into()),
+        });
+        let shared_only = dev.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("radiosity"),
+            bind_group_layouts: &[Some(&shared_layout)],
+            immediate_size: 0,
+        });
+        let with_shot = dev.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("radiosity receive"),
+            bind_group_layouts: &[Some(&shared_layout), Some(&shot_layout)],
+            immediate_size: 0,
+        });
+        let compute_pipeline = |entry: &str, layout: &wgpu::PipelineLayout| {
+            dev.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(entry),
+                layout: Some(layout),
+                module: &module,
+                entry_point: Some(entry),
+                compilation_options: Default::default(),
+                cache: None,
+            })
+        };
+        let vis_module = dev.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("radiosity visibility"),
+            source: wgpu::ShaderSource::Wgsl(crate::gpu::shaders::RADIOSITY_VISIBILITY.into()),
+        });
+        let vis_layout = dev.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("radiosity visibility"),
+            bind_group_layouts: &[Some(&face_layout)],
+            immediate_size: 0,
+        });
+        let visibility = dev.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("radiosity visibility"),
+            layout: Some(&vis_layout),
+            vertex: wgpu::VertexState {
+                module: &vis_module,
+                entry_point: Some("vs_visibility"),
+                compilation_options: Default::default(),
+                buffers: &[Some(wgpu::VertexBufferLayout {
+                    array_stride: 12,
+                    step_mode: wgpu::VertexStepMode::Vertex,
+                    attributes: &wgpu::vertex_attr_array![0 => Float32x3],
+                })],
+            },
+            primitive: wgpu::PrimitiveState::default(),
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: wgpu::TextureFormat::Depth32Float,
+                depth_write_enabled: Some(true),
+                depth_compare: Some(wgpu::CompareFunction::Less),
+                stencil: Default::default(),
+                bias: Default::default(),
+            }),
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &vis_module,
+                entry_point: Some("fs_visibility"),
+                compilation_options: Default::default(),
+                targets: &[Some(MAP_FORMAT.into())],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        Pipelines {
+            triangle_sums: compute_pipeline("triangle_sums", &shared_only),
+            select: compute_pipeline("select_shooter", &shared_only),
+            gather: compute_pipeline("gather_patches", &shared_only),
+            clear: compute_pipeline("clear_shooter", &shared_only),
+            receive: compute_pipeline("receive", &with_shot),
+            visibility,
+            shot_layout,
+            face_layout,
+        }
+    }
+}
+
+/// An orthonormal frame (t, b, n) around unit `n`.
+fn frame(n: DVec3) -> (DVec3, DVec3) {
+    let t = if n.z.abs() < 0.9 {
+        DVec3::Z.cross(n)
+    } else {
+        DVec3::X.cross(n)
+    }
+    .normalize();
+    (t, n.cross(t))
+}
+
+fn v4(v: DVec3, w: f32) -> [f32; 4] {
+    let v = v.as_vec3();
+    [v.x, v.y, v.z, w]
+}
+
+impl<'a> GpuSolver<'a> {
+    /// Uploads `scene` with `initial` radiosity (= unshot radiosity) per element: the
+    /// emission plus the reflected direct light of the luminaires.
+    pub fn new(
+        gpu: &'a Gpu,
+        scene: &'a RadiosityScene,
+        initial: &[DVec3],
+        settings: SolverSettings,
+        gpu_settings: GpuSettings,
+    ) -> GpuSolver<'a> {
+        let el = &scene.elements;
+        let n = el.len();
+        let elements: Vec<[f32; 4]> = (0..n)
+            .flat_map(|e| {
+                [
+                    v4(el.position[e], el.area[e] as f32),
+                    v4(el.normal(e), f32::from_bits(el.triangle[e])),
+                ]
+            })
+            .collect();
+        let reflect: Vec<[f32; 4]> = (0..n)
+            .map(|e| v4(scene.element_reflectance(e), 0.0))
+            .collect();
+        let start: Vec<[f32; 4]> = initial.iter().map(|b| v4(*b, 0.0)).collect();
+        let triangles: Vec<[u32; 8]> = el
+            .triangles
+            .iter()
+            .map(|t| {
+                let r = scene.reflectance[t.material].as_vec3();
+                [
+                    t.first,
+                    t.count,
+                    t.first_patch,
+                    t.patch_count,
+                    r.x.to_bits(),
+                    r.y.to_bits(),
+                    r.z.to_bits(),
+                    (t.area as f32).to_bits(),
+                ]
+            })
+            .collect();
+        let patches: Vec<[u32; 4]> = el
+            .patches
+            .iter()
+            .map(|p| [p.first, p.count, (p.area as f32).to_bits(), 0])
+            .collect();
+        let max_patches = el
+            .triangles
+            .iter()
+            .map(|t| t.patch_count)
+            .max()
+            .unwrap_or(1)
+            .max(1);
+        let pipelines = Pipelines::new(gpu);
+        let bytes = |v: &[[f32; 4]]| bytemuck::cast_slice::<[f32; 4], u8>(v).to_vec();
+        let params = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("radiosity params"),
+            size: std::mem::size_of::<SolveParams>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let element_buf = storage(gpu, "elements", &bytes(&elements), false);
+        let reflect_buf = storage(gpu, "reflectance", &bytes(&reflect), false);
+        let radiosity = storage(gpu, "radiosity", &bytes(&start), true);
+        let unshot = storage(gpu, "unshot", &bytes(&start), true);
+        let tri_buf = storage(gpu, "triangles", bytemuck::cast_slice(&triangles), false);
+        // The selection record follows the triangles' sums.
+        let tri_power = storage(
+            gpu,
+            "triangle power",
+            &vec![0u8; 16 * (triangles.len() + 3)],
+            true,
+        );
+        let selection = storage(gpu, "selection", &[0u8; 48], true);
+        let patch_buf = storage(gpu, "patches", bytemuck::cast_slice(&patches), false);
+        let patch_delta = storage(
+            gpu,
+            "patch delta",
+            &vec![0u8; 16 * max_patches as usize],
+            true,
+        );
+        let shared = gpu.bind_group(
+            "radiosity",
+            &pipelines.triangle_sums.get_bind_group_layout(0),
+            &[
+                (0, params.as_entire_binding()),
+                (1, element_buf.as_entire_binding()),
+                (2, reflect_buf.as_entire_binding()),
+                (3, radiosity.as_entire_binding()),
+                (4, unshot.as_entire_binding()),
+                (5, tri_buf.as_entire_binding()),
+                (6, tri_power.as_entire_binding()),
+                (7, patch_buf.as_entire_binding()),
+                (8, patch_delta.as_entire_binding()),
+            ],
+        );
+        let mesh = &scene.casters;
+        let verts: Vec<[f32; 3]> = mesh
+            .triangles
+            .iter()
+            .flat_map(|t| t.map(|i| mesh.positions[i as usize].as_vec3().to_array()))
+            .collect();
+        let vertices = gpu
+            .device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("radiosity vertices"),
+                contents: bytemuck::cast_slice(&verts),
+                usage: wgpu::BufferUsages::VERTEX,
+            });
+        let size = gpu_settings.map_size;
+        let texture = |label: &str, format, layers| {
+            gpu.device.create_texture(&wgpu::TextureDescriptor {
+                label: Some(label),
+                size: wgpu::Extent3d {
+                    width: size,
+                    height: size,
+                    depth_or_array_layers: layers,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format,
+                usage: wgpu::TextureUsages::RENDER_ATTACHMENT
+                    | wgpu::TextureUsages::TEXTURE_BINDING,
+                view_formats: &[],
+            })
+        };
+        let maps = texture("visibility maps", MAP_FORMAT, 5);
+        let depth = texture("visibility depth", wgpu::TextureFormat::Depth32Float, 1);
+        let face_views = (0..5)
+            .map(|layer| {
+                maps.create_view(&wgpu::TextureViewDescriptor {
+                    dimension: Some(wgpu::TextureViewDimension::D2),
+                    base_array_layer: layer,
+                    array_layer_count: Some(1),
+                    ..Default::default()
+                })
+            })
+            .collect();
+        let scene_size = mesh.bounds().map_or(1.0, |(lo, hi)| (hi - lo).length());
+        let solver = GpuSolver {
+            gpu,
+            scene,
+            settings,
+            gpu_settings,
+            pipelines,
+            params,
+            radiosity,
+            unshot,
+            selection,
+            triangle_power: tri_power,
+            shared,
+            vertices,
+            vertex_count: verts.len() as u32,
+            face_views,
+            maps_view: maps.create_view(&wgpu::TextureViewDescriptor {
+                dimension: Some(wgpu::TextureViewDimension::D2Array),
+                ..Default::default()
+            }),
+            depth_view: depth.create_view(&Default::default()),
+            size: scene_size,
+            shots: 0,
+        };
+        solver.write_params(u32::MAX, 0, 0);
+        solver
+    }
+
+    fn write_params(&self, shooter: u32, patch_first: u32, patch_count: u32) {
+        let el = &self.scene.elements;
+        let p = SolveParams {
+            element_count: el.len() as u32,
+            triangle_count: el.triangles.len() as u32,
+            shooter,
+            overshoot: u32::from(self.settings.ambient == Ambient::Overshoot),
+            patch_first,
+            patch_count,
+            total_area: self.scene.total_area() as f32,
+            mean_reflectance: self.scene.mean_reflectance() as f32,
+        };
+        self.gpu
+            .queue
+            .write_buffer(&self.params, 0, bytemuck::bytes_of(&p));
+    }
+
+    fn dispatch(
+        &self,
+        enc: &mut wgpu::CommandEncoder,
+        pipeline: &wgpu::ComputePipeline,
+        threads: u32,
+        group: u32,
+    ) {
+        let mut pass = enc.begin_compute_pass(&Default::default());
+        pass.set_pipeline(pipeline);
+        pass.set_bind_group(0, &self.shared, &[]);
+        pass.dispatch_workgroups(threads.div_ceil(group).max(1), 1, 1);
+    }
+
+    /// Chooses the next shooter on the GPU (reduction over the triangles).
+    pub fn select(&self) -> Result<Selection, GpuError> {
+        self.write_params(u32::MAX, 0, 0);
+        let mut enc = self.gpu.device.create_command_encoder(&Default::default());
+        let triangles = self.scene.elements.triangles.len() as u32;
+        self.dispatch(&mut enc, &self.pipelines.triangle_sums, triangles, 64);
+        self.dispatch(&mut enc, &self.pipelines.select, 1, 1);
+        // Only the 48-byte selection record comes back.
+        enc.copy_buffer_to_buffer(
+            &self.triangle_power,
+            16 * triangles as u64,
+            &self.selection,
+            0,
+            48,
+        );
+        self.gpu.queue.submit([enc.finish()]);
+        let v = self.gpu.read_f32(&self.selection)?;
+        let index = v[0].to_bits();
+        Ok(Selection {
+            shooter: (index != u32::MAX && v[1] > 0.0).then_some(index as usize),
+            power: v[1] as f64,
+            unshot_power: v[2] as f64,
+        })
+    }
+
+    /// The shooting records of triangle `t`'s patches and their visibility faces.
+    fn shot_records(&self, t: usize) -> (Vec<u8>, Vec<u8>, u32) {
+        let el = &self.scene.elements;
+        let te = &el.triangles[t];
+        let n = te.normal;
+        let (tangent, bitangent) = frame(n);
+        let faces_per_patch = match self.gpu_settings.visibility {
+            Visibility::Hemicube => 5,
+            Visibility::Stereographic => 1,
+        };
+        let (near, far) = ((1e-4 * self.size) as f32, (2.0 * self.size) as f32);
+        let projection = Mat4::perspective_rh(std::f32::consts::FRAC_PI_2, 1.0, near, far);
+        let mut shots = vec![0u8; te.patch_count as usize * SHOT_STRIDE as usize];
+        let mut faces = vec![0u8; te.patch_count as usize * faces_per_patch * FACE_STRIDE as usize];
+        for k in 0..te.patch_count as usize {
+            let p = &el.patches[te.first_patch as usize + k];
+            let eye = (p.centroid + n * 1e-6 * self.size).as_vec3();
+            let (t3, b3, n3) = (tangent.as_vec3(), bitangent.as_vec3(), n.as_vec3());
+            let looks = [(n3, t3), (t3, n3), (-t3, n3), (b3, n3), (-b3, n3)];
+            let matrices = looks.map(|(dir, up)| projection * Mat4::look_to_rh(eye, dir, up));
+            let mut polygon = [[0f32; 4]; 8];
+            for (slot, v) in polygon.iter_mut().zip(&p.polygon) {
+                *slot = v4(*v, 1.0);
+            }
+            let stereographic = self.gpu_settings.visibility == Visibility::Stereographic;
+            let record = ShotGpu {
+                faces: matrices.map(|m| m.to_cols_array()),
+                tangent: v4(tangent, 0.0),
+                bitangent: v4(bitangent, 0.0),
+                normal: v4(n, 0.0),
+                centroid: v4(p.centroid, 1.0),
+                polygon,
+                info: [
+                    k as u32,
+                    p.polygon.len().min(8) as u32,
+                    u32::from(self.settings.form_factor == FormFactorKind::Polygon),
+                    self.gpu_settings.map_size,
+                ],
+                extra: [
+                    p.area as f32,
+                    self.gpu_settings.tolerance,
+                    (1e-4 * self.size) as f32,
+                    if stereographic { 1.0 } else { 0.0 },
+                ],
+            };
+            let at = k * SHOT_STRIDE as usize;
+            shots[at..at + std::mem::size_of::<ShotGpu>()]
+                .copy_from_slice(bytemuck::bytes_of(&record));
+            for (f, m) in matrices.iter().take(faces_per_patch).enumerate() {
+                let face = FaceGpu {
+                    view_proj: m.to_cols_array(),
+                    eye: [eye.x, eye.y, eye.z, if stereographic { 1.0 } else { 0.0 }],
+                    tangent: v4(tangent, 0.0),
+                    bitangent: v4(bitangent, 0.0),
+                    normal: v4(n, far),
+                };
+                let at = (k * faces_per_patch + f) * FACE_STRIDE as usize;
+                faces[at..at + std::mem::size_of::<FaceGpu>()]
+                    .copy_from_slice(bytemuck::bytes_of(&face));
+            }
+        }
+        (shots, faces, faces_per_patch as u32)
+    }
+
+    /// Shoots triangle `t` (plus the overshoot the last [`GpuSolver::select`] chose).
+    pub fn shoot(&mut self, t: usize) -> Result<(), GpuError> {
+        let te = self.scene.elements.triangles[t].clone();
+        if te.patch_count == 0 {
+            return Ok(());
+        }
+        self.write_params(t as u32, te.first_patch, te.patch_count);
+        let (shots, faces, faces_per_patch) = self.shot_records(t);
+        let dev = &self.gpu.device;
+        let uniform = |label: &str, data: &[u8]| {
+            dev.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents: data,
+                usage: wgpu::BufferUsages::UNIFORM,
+            })
+        };
+        let shot_buf = uniform("shots", &shots);
+        let face_buf = uniform("faces", &faces);
+        fn binding(buffer: &wgpu::Buffer, size: usize) -> wgpu::BindingResource<'_> {
+            wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                buffer,
+                offset: 0,
+                size: wgpu::BufferSize::new(size as u64),
+            })
+        }
+        let shot_bind = self.gpu.bind_group(
+            "shot",
+            &self.pipelines.shot_layout,
+            &[
+                (0, binding(&shot_buf, std::mem::size_of::<ShotGpu>())),
+                (1, wgpu::BindingResource::TextureView(&self.maps_view)),
+            ],
+        );
+        let face_bind = self.gpu.bind_group(
+            "faces",
+            &self.pipelines.face_layout,
+            &[(0, binding(&face_buf, std::mem::size_of::<FaceGpu>()))],
+        );
+        let mut enc = dev.create_command_encoder(&Default::default());
+        self.dispatch(&mut enc, &self.pipelines.gather, te.patch_count, 64);
+        self.dispatch(&mut enc, &self.pipelines.clear, te.count, 64);
+        let elements = self.scene.elements.len() as u32;
+        for k in 0..te.patch_count {
+            for f in 0..faces_per_patch {
+                let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+                    label: Some("visibility"),
+                    color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                        view: &self.face_views[f as usize],
+                        resolve_target: None,
+                        depth_slice: None,
+                        ops: wgpu::Operations {
+                            load: wgpu::LoadOp::Clear(wgpu::Color {
+                                r: 1e30,
+                                g: 0.0,
+                                b: 0.0,
+                                a: 0.0,
+                            }),
+                            store: wgpu::StoreOp::Store,
+                        },
+                    })],
+                    depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                        view: &self.depth_view,
+                        depth_ops: Some(wgpu::Operations {
+                            load: wgpu::LoadOp::Clear(1.0),
+                            store: wgpu::StoreOp::Discard,
+                        }),
+                        stencil_ops: None,
+                    }),
+                    timestamp_writes: None,
+                    occlusion_query_set: None,
+                    multiview_mask: None,
+                });
+                pass.set_pipeline(&self.pipelines.visibility);
+                let offset = ((k * faces_per_patch + f) as u64 * FACE_STRIDE) as u32;
+                pass.set_bind_group(0, &face_bind, &[offset]);
+                pass.set_vertex_buffer(0, self.vertices.slice(..));
+                pass.draw(0..self.vertex_count, 0..1);
+            }
+            let mut pass = enc.begin_compute_pass(&Default::default());
+            pass.set_pipeline(&self.pipelines.receive);
+            pass.set_bind_group(0, &self.shared, &[]);
+            pass.set_bind_group(1, &shot_bind, &[(k as u64 * SHOT_STRIDE) as u32]);
+            pass.dispatch_workgroups(elements.div_ceil(64).max(1), 1, 1);
+        }
+        self.gpu.queue.submit([enc.finish()]);
+        self.shots += 1;
+        Ok(())
+    }
+
+    /// One shot: select, then shoot. False when nothing is left.
+    pub fn step(&mut self) -> Result<Option<Selection>, GpuError> {
+        let s = self.select()?;
+        match s.shooter {
+            Some(t) => {
+                self.shoot(t)?;
+                Ok(Some(s))
+            }
+            None => Ok(None),
+        }
+    }
+
+    fn read_rgb(&self, buffer: &wgpu::Buffer) -> Result<Vec<DVec3>, GpuError> {
+        let v = self.gpu.read_f32(buffer)?;
+        Ok(v.chunks_exact(4)
+            .map(|c| Vec3::new(c[0], c[1], c[2]).as_dvec3())
+            .collect())
+    }
+
+    /// Radiosity per element.
+    pub fn radiosity(&self) -> Result<Vec<DVec3>, GpuError> {
+        self.read_rgb(&self.radiosity)
+    }
+
+    /// Unshot radiosity per element.
+    pub fn unshot(&self) -> Result<Vec<DVec3>, GpuError> {
+        self.read_rgb(&self.unshot)
+    }
+}
