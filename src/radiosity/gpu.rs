@@ -10,6 +10,7 @@ use super::form_factor::FormFactorKind;
 use super::scene::RadiosityScene;
 use super::{Ambient, SolverSettings};
 use crate::gpu::{Gpu, GpuError};
+use crate::render::layouts::{buffer_binding, entry};
 
 /// How a shooting patch sees what it can reach.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum, serde::Deserialize)]
@@ -144,27 +145,6 @@ fn storage(gpu: &Gpu, label: &str, data: &[u8], writable: bool) -> wgpu::Buffer 
         })
 }
 
-fn layout_entry(
-    binding: u32,
-    ty: wgpu::BindingType,
-    visibility: wgpu::ShaderStages,
-) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility,
-        ty,
-        count: None,
-    }
-}
-
-fn buffer_type(kind: wgpu::BufferBindingType, dynamic: bool) -> wgpu::BindingType {
-    wgpu::BindingType::Buffer {
-        ty: kind,
-        has_dynamic_offset: dynamic,
-        min_binding_size: None,
-    }
-}
-
 impl Pipelines {
     fn new(gpu: &Gpu) -> Pipelines {
         use wgpu::BufferBindingType as B;
@@ -184,7 +164,7 @@ impl Pipelines {
         let entries: Vec<_> = kinds
             .iter()
             .enumerate()
-            .map(|(i, &k)| layout_entry(i as u32, buffer_type(k, false), compute))
+            .map(|(i, &k)| entry(i as u32, compute, buffer_binding(k, false)))
             .collect();
         let shared_layout = dev.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("radiosity"),
@@ -193,24 +173,24 @@ impl Pipelines {
         let shot_layout = dev.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("radiosity shot"),
             entries: &[
-                layout_entry(0, buffer_type(B::Uniform, true), compute),
-                layout_entry(
+                entry(0, compute, buffer_binding(B::Uniform, true)),
+                entry(
                     1,
+                    compute,
                     wgpu::BindingType::Texture {
                         sample_type: wgpu::TextureSampleType::Float { filterable: false },
                         view_dimension: wgpu::TextureViewDimension::D2Array,
                         multisampled: false,
                     },
-                    compute,
                 ),
             ],
         });
         let face_layout = dev.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("visibility face"),
-            entries: &[layout_entry(
+            entries: &[entry(
                 0,
-                buffer_type(B::Uniform, true),
                 wgpu::ShaderStages::VERTEX_FRAGMENT,
+                buffer_binding(B::Uniform, true),
             )],
         });
         let module = dev.create_shader_module(wgpu::ShaderModuleDescriptor {
@@ -227,12 +207,12 @@ impl Pipelines {
             bind_group_layouts: &[Some(&shared_layout), Some(&shot_layout)],
             immediate_size: 0,
         });
-        let compute_pipeline = |entry: &str, layout: &wgpu::PipelineLayout| {
+        let compute_pipeline = |name: &str, layout: &wgpu::PipelineLayout| {
             dev.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                label: Some(entry),
+                label: Some(name),
                 layout: Some(layout),
                 module: &module,
-                entry_point: Some(entry),
+                entry_point: Some(name),
                 compilation_options: Default::default(),
                 cache: None,
             })

@@ -14,7 +14,8 @@ pub struct Layouts {
     pub material_sampler: wgpu::Sampler,
 }
 
-fn entry(
+/// A bind group layout entry.
+pub(crate) fn entry(
     binding: u32,
     visibility: wgpu::ShaderStages,
     ty: wgpu::BindingType,
@@ -28,9 +29,14 @@ fn entry(
 }
 
 fn buffer(ty: wgpu::BufferBindingType) -> wgpu::BindingType {
+    buffer_binding(ty, false)
+}
+
+/// A buffer binding, with or without a dynamic offset.
+pub(crate) fn buffer_binding(ty: wgpu::BufferBindingType, dynamic: bool) -> wgpu::BindingType {
     wgpu::BindingType::Buffer {
         ty,
-        has_dynamic_offset: false,
+        has_dynamic_offset: dynamic,
         min_binding_size: None,
     }
 }
