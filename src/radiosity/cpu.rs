@@ -33,10 +33,6 @@ impl<'a> CpuSolver<'a> {
     pub fn new(scene: &'a RadiosityScene, settings: SolverSettings) -> CpuSolver<'a> {
         let n = scene.elements.len();
         let emission: Vec<DVec3> = (0..n).map(|e| scene.element_emission(e)).collect();
-        let size = scene
-            .casters
-            .bounds()
-            .map_or(1.0, |(lo, hi)| (hi - lo).length());
         let mut s = CpuSolver {
             scene,
             settings,
@@ -44,7 +40,7 @@ impl<'a> CpuSolver<'a> {
             unshot: emission,
             initial_unshot: 0.0,
             shots: 0,
-            eps: 1e-6 * (1.0 + size),
+            eps: raycast::self_hit_epsilon(&scene.casters),
         };
         s.shoot_luminaires();
         s.initial_unshot = s.unshot_power();
@@ -97,7 +93,7 @@ impl<'a> CpuSolver<'a> {
     pub fn ambient(&self) -> DVec3 {
         let el = &self.scene.elements;
         let unshot: DVec3 = (0..el.len()).map(|e| self.unshot[e] * el.area[e]).sum();
-        unshot / self.scene.total_area() / (1.0 - self.scene.mean_reflectance())
+        unshot / self.scene.total_area / (1.0 - self.scene.mean_reflectance)
     }
 
     /// Per triangle: unshot radiosity (area-weighted mean) and area.

@@ -462,8 +462,8 @@ impl<'a> GpuSolver<'a> {
             overshoot: u32::from(self.settings.ambient == Ambient::Overshoot),
             patch_first,
             patch_count,
-            total_area: self.scene.total_area() as f32,
-            mean_reflectance: self.scene.mean_reflectance() as f32,
+            total_area: self.scene.total_area as f32,
+            mean_reflectance: self.scene.mean_reflectance as f32,
         };
         self.gpu
             .queue

@@ -20,6 +20,10 @@ pub struct RadiosityScene {
     pub luminaires: Vec<PlacedLuminaire>,
     /// Every triangle as one mesh (occluders for the CPU's visibility rays).
     pub casters: Mesh,
+    /// Total surface area, m².
+    pub total_area: f64,
+    /// The area-weighted mean reflectance (luminance), for the ambient term.
+    pub mean_reflectance: f64,
 }
 
 impl RadiosityScene {
@@ -38,7 +42,7 @@ impl RadiosityScene {
             }
         }
         let elements = Elements::build(&triangles, level)?;
-        Ok(RadiosityScene {
+        let mut scene = RadiosityScene {
             elements,
             reflectance: scene
                 .materials
@@ -52,7 +56,16 @@ impl RadiosityScene {
                 .collect(),
             luminaires: scene.luminaires.clone(),
             casters: scene.caster_mesh(),
-        })
+            total_area: 0.0,
+            mean_reflectance: 0.0,
+        };
+        let e = &scene.elements;
+        scene.total_area = e.area.iter().sum();
+        let reflected: f64 = (0..e.len())
+            .map(|k| luminance(scene.element_reflectance(k)) * e.area[k])
+            .sum();
+        scene.mean_reflectance = reflected / scene.total_area.max(1e-300);
+        Ok(scene)
     }
 
     /// Reflectance of element `e`.
@@ -65,20 +78,6 @@ impl RadiosityScene {
     pub fn element_emission(&self, e: usize) -> DVec3 {
         let t = &self.elements.triangles[self.elements.triangle[e] as usize];
         self.emission[t.material]
-    }
-
-    /// Total surface area, m².
-    pub fn total_area(&self) -> f64 {
-        self.elements.area.iter().sum()
-    }
-
-    /// The area-weighted mean reflectance (luminance).
-    pub fn mean_reflectance(&self) -> f64 {
-        let e = &self.elements;
-        let sum: f64 = (0..e.len())
-            .map(|k| luminance(self.element_reflectance(k)) * e.area[k])
-            .sum();
-        sum / self.total_area().max(1e-300)
     }
 }
 

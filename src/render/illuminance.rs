@@ -41,19 +41,7 @@ pub fn point_visibility(
     light_positions: &[DVec3],
     points: &[SurfacePoint],
 ) -> Vec<Vec<bool>> {
-    let (lo, hi) = casters
-        .positions
-        .iter()
-        .fold((DVec3::MAX, DVec3::MIN), |(lo, hi), p| {
-            (lo.min(*p), hi.max(*p))
-        });
-    let size = if casters.positions.is_empty() {
-        0.0
-    } else {
-        (hi - lo).length()
-    };
-    // Keeps a point on a surface (vertices stored as f32) from shadowing itself.
-    let eps = 1e-6 * (1.0 + size);
+    let eps = raycast::self_hit_epsilon(casters);
     light_positions
         .iter()
         .map(|&at| {

@@ -47,6 +47,13 @@ pub fn first_hit(mesh: &Mesh, o: DVec3, dir: DVec3, tmin: f64) -> Option<(f64, u
     best
 }
 
+/// The offset that keeps a point on a surface of `mesh` (vertices stored as f32) from
+/// shadowing itself: 1e-6 of the mesh's size, plus 1e-6 m.
+pub fn self_hit_epsilon(mesh: &Mesh) -> f64 {
+    let size = mesh.bounds().map_or(0.0, |(lo, hi)| (hi - lo).length());
+    1e-6 * (1.0 + size)
+}
+
 /// Whether `p` is in shadow: any triangle strictly between `p` and the light. `eps`
 /// (relative to the scene) keeps a surface from shadowing itself.
 pub fn in_shadow(mesh: &Mesh, light: &Light, p: DVec3, eps: f64) -> bool {
