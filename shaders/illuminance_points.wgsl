@@ -12,7 +12,8 @@ struct PointParams {
 @group(0) @binding(0) var<uniform> point_params: PointParams;
 // Pairs of vec4: position, normal.
 @group(0) @binding(4) var<storage, read> points: array<vec4<f32>>;
-@group(0) @binding(5) var<storage, read_write> lux: array<f32>;
+// Per point: rgb illuminance weighted by each luminaire's colour, a lux.
+@group(0) @binding(5) var<storage, read_write> lux: array<vec4<f32>>;
 
 @compute @workgroup_size(64)
 fn illuminance_points(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -22,9 +23,11 @@ fn illuminance_points(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let p = points[2u * i].xyz;
     let n = normalize(points[2u * i + 1u].xyz);
-    var e = 0.0;
+    var e = vec4<f32>(0.0);
     for (var k = 0u; k < point_params.light_count; k++) {
-        e += light_illuminance(lights[k], p, n) * light_visibility(lights[k], k, p, n, i);
+        let l = lights[k];
+        let lit = light_illuminance(l, p, n) * light_visibility(l, k, p, n, i);
+        e += vec4<f32>(l.color.rgb * lit, lit);
     }
     lux[i] = e;
 }

@@ -40,6 +40,7 @@ struct PatchInfo {
 @group(0) @binding(0) var<uniform> params: SolveParams;
 @group(0) @binding(1) var<storage, read> elements: array<Element>;
 @group(0) @binding(2) var<storage, read> reflectance: array<vec4<f32>>;
+// rgb radiosity, w illuminance received (lux).
 @group(0) @binding(3) var<storage, read_write> radiosity: array<vec4<f32>>;
 @group(0) @binding(4) var<storage, read_write> unshot: array<vec4<f32>>;
 @group(0) @binding(5) var<storage, read> triangles: array<TriangleInfo>;
@@ -296,7 +297,8 @@ fn receive(@builtin(global_invocation_id) id: vec3<u32>) {
     if (f <= 0.0 || !visible_from_patch(p)) {
         return;
     }
-    let gained = reflectance[i].rgb * patch_delta[shot.info.x].rgb * f;
-    radiosity[i] += vec4<f32>(gained, 0.0);
+    let incident = patch_delta[shot.info.x].rgb * f;
+    let gained = reflectance[i].rgb * incident;
+    radiosity[i] += vec4<f32>(gained, dot(incident, LUMA));
     unshot[i] += vec4<f32>(gained, 0.0);
 }

@@ -5,15 +5,23 @@
 use std::path::PathBuf;
 
 use glam::{DVec3, Vec3};
+use goniolight::photometry::{Interp, Luminaire};
 use goniolight::radiosity::cpu::CpuSolver;
 use goniolight::radiosity::form_factor::{self, howell};
 use goniolight::radiosity::gpu::{GpuSettings, GpuSolver, Visibility};
+use goniolight::radiosity::initial::InitialState;
 use goniolight::radiosity::scene::RadiosityScene;
 use goniolight::radiosity::{Ambient, FormFactorKind, SolverSettings};
-use goniolight::scene::{Camera, DisplayEntry, Material, Scene, SceneMesh};
+use goniolight::render::{ShadowSettings, ShadowTechnique};
+use goniolight::scene::placement::aim_frame;
+use goniolight::scene::{Camera, DisplayEntry, Material, PlacedLuminaire, Scene, SceneMesh};
 
+
+mod common;
 #[path = "common/gpu.rs"]
 mod gpu_common;
+
+use common::luminaire;
 
 /// The six faces of the box [lo, hi], facing inward.
 fn inward_box(lo: DVec3, hi: DVec3) -> Vec<[Vec3; 3]> {
@@ -266,12 +274,13 @@ fn one_gpu_shot_equals_the_cpu_reference_shot() {
             ..SolverSettings::default()
         };
         let mut cpu = CpuSolver::new(&r, settings);
-        let initial = cpu.radiosity.clone();
+        let start = cpu.state();
+        let initial = start.radiosity.clone();
         let gpu_settings = GpuSettings {
             visibility,
             ..GpuSettings::default()
         };
-        let mut solver = GpuSolver::new(&gpu, &r, &initial, settings, gpu_settings);
+        let mut solver = GpuSolver::new(&gpu, &r, &start, settings, gpu_settings);
         let chosen = solver.select().unwrap();
         let (best, extra) = cpu.select().unwrap();
         // The same shooter, or one with the same power (the two ceiling triangles tie).
@@ -342,7 +351,7 @@ fn furnace_converges_on_the_gpu() {
     let Some(gpu) = gpu_common::gpu() else { return };
     let r = RadiosityScene::new(&furnace(0.5, 100.0), 8.0, 1).unwrap();
     let settings = SolverSettings::default();
-    let initial = CpuSolver::new(&r, settings).radiosity;
+    let initial = CpuSolver::new(&r, settings).state();
     let mut solver = GpuSolver::new(&gpu, &r, &initial, settings, GpuSettings::default());
     let start = solver.select().unwrap().unshot_power;
     let mut remaining = start;
@@ -352,15 +361,62 @@ fn furnace_converges_on_the_gpu() {
             None => break,
         }
     }
-    let b = solver.radiosity().unwrap();
+    let (b, lux) = solver.radiosity_and_illuminance().unwrap();
     let worst = b
         .iter()
         .map(|b| (b.x / 200.0 - 1.0).abs())
         .fold(0.0, f64::max);
+    // Every element receives what it sees everywhere: B = 200 lm/m² → 200 lx.
+    let worst_lux = lux
+        .iter()
+        .map(|e| (e / 200.0 - 1.0).abs())
+        .fold(0.0, f64::max);
     eprintln!(
-        "GPU furnace: {} shots, worst {:.3} %",
+        "GPU furnace: {} shots, worst {:.3} %, illuminance worst {:.3} %",
         solver.shots,
-        100.0 * worst
+        100.0 * worst,
+        100.0 * worst_lux
     );
     assert!(worst < 0.01, "worst relative error {worst}");
+    assert!(worst_lux < 0.01, "worst illuminance error {worst_lux}");
+}
+
+#[test]
+fn luminaires_shot_on_the_gpu_matches_the_cpu_ray_cast() {
+    let Some(gpu) = gpu_common::gpu() else { return };
+    let mut scene = room_with_box();
+    let ldt = Luminaire::load(&luminaire("eulumdat-luminance/sample_07.ldt")).unwrap();
+    let mut lamp = PlacedLuminaire::new("tilted", ldt, DVec3::new(2.3, 1.5, 1.9));
+    lamp.rotation = aim_frame(Some(DVec3::new(-0.4, -0.3, -1.0)), 20.0);
+    scene.luminaires.push(lamp);
+    let r = RadiosityScene::new(&scene, 6.0, 1).unwrap();
+    let cpu = CpuSolver::new(&r, SolverSettings::default());
+    let shadows = ShadowSettings::with(ShadowTechnique::Paraboloid);
+    let gpu_start =
+        InitialState::from_luminaires_gpu(&gpu, &scene, &r, Interp::CatmullRom, &shadows).unwrap();
+    let n = r.elements.len();
+    let peak = cpu.illuminance.iter().cloned().fold(0.0, f64::max);
+    let agree = (0..n)
+        .filter(|&e| {
+            let (want, have) = (cpu.illuminance[e], gpu_start.illuminance[e]);
+            (have - want).abs() <= 0.01 * want.max(0.01 * peak)
+        })
+        .count();
+    let lit = cpu.illuminance.iter().filter(|&&e| e > 0.0).count();
+    let shadowed = n - lit;
+    let share = agree as f64 / n as f64;
+    eprintln!("luminaires' shot: GPU within 1 % of the CPU on {:.2} % of {n} elements ({shadowed} in shadow)", 100.0 * share);
+    // Paraboloid maps blur shadow edges over a PCF kernel; everywhere else they agree.
+    assert!(shadowed > 50 && share > 0.97, "{share}");
+    for e in 0..n {
+        let want = cpu.radiosity[e];
+        let have = gpu_start.radiosity[e];
+        let tolerance = 0.02 * want.x.max(0.02 * peak);
+        if (cpu.illuminance[e] - gpu_start.illuminance[e]).abs() <= 0.01 * cpu.illuminance[e] {
+            assert!(
+                (have - want).abs().max_element() <= tolerance,
+                "{e}: {have} vs {want}"
+            );
+        }
+    }
 }

@@ -6,6 +6,8 @@
 use glam::DVec3;
 
 use super::form_factor::{self, FormFactorKind};
+use super::gather;
+use super::initial::InitialState;
 use super::scene::{luminance, RadiosityScene};
 use super::{Ambient, SolverSettings};
 use crate::render::illuminance::SurfacePoint;
@@ -20,6 +22,8 @@ pub struct CpuSolver<'a> {
     pub radiosity: Vec<DVec3>,
     /// Unshot radiosity per element.
     pub unshot: Vec<DVec3>,
+    /// Illuminance received per element, lux (luminance).
+    pub illuminance: Vec<f64>,
     /// Unshot power when progressive shooting started (after the luminaires), lm.
     pub initial_unshot: f64,
     /// Shots from triangles so far.
@@ -38,6 +42,7 @@ impl<'a> CpuSolver<'a> {
             settings,
             radiosity: emission.clone(),
             unshot: emission,
+            illuminance: vec![0.0; n],
             initial_unshot: 0.0,
             shots: 0,
             eps: raycast::self_hit_epsilon(&scene.casters),
@@ -65,10 +70,11 @@ impl<'a> CpuSolver<'a> {
     fn shoot_luminaires(&mut self) {
         let el = &self.scene.elements;
         for e in 0..el.len() {
-            let gained =
-                self.scene.element_reflectance(e) * self.direct(el.position[e], el.normal(e));
+            let direct = self.direct(el.position[e], el.normal(e));
+            let gained = self.scene.element_reflectance(e) * direct;
             self.radiosity[e] += gained;
             self.unshot[e] += gained;
+            self.illuminance[e] += luminance(direct);
         }
     }
 
@@ -160,6 +166,7 @@ impl<'a> CpuSolver<'a> {
                 let gained = self.scene.element_reflectance(i) * delta * f;
                 self.radiosity[i] += gained;
                 self.unshot[i] += gained;
+                self.illuminance[i] += luminance(delta * f);
             }
         }
         for e in te.first as usize..(te.first + te.count) as usize {
@@ -199,26 +206,20 @@ impl<'a> CpuSolver<'a> {
     /// light from every patch (its mean radiosity × the form factor, if visible).
     pub fn illuminance(&self, point: &SurfacePoint) -> DVec3 {
         let (p, n) = (point.position, point.normal.normalize_or_zero());
-        let el = &self.scene.elements;
-        let mut e = self.direct(p, n);
-        for te in &el.triangles {
-            for patch in &el.patches[te.first_patch as usize..][..te.patch_count as usize] {
-                let f = match self.settings.form_factor {
-                    FormFactorKind::Disc => {
-                        form_factor::disc(p, n, patch.centroid, te.normal, patch.area)
-                    }
-                    FormFactorKind::Polygon => {
-                        form_factor::polygon(p, n, &patch.polygon, te.normal)
-                    }
-                };
-                if f <= 0.0 || !self.visible(patch.centroid, te.normal, p, n) {
-                    continue;
-                }
-                let range = patch.first as usize..(patch.first + patch.count) as usize;
-                let power: DVec3 = range.map(|k| self.radiosity[k] * el.area[k]).sum();
-                e += power / patch.area * f;
-            }
+        self.direct(p, n)
+            + gather::from_patches(
+                self.scene,
+                &self.radiosity,
+                point,
+                self.settings.form_factor,
+            )
+    }
+
+    /// The state reached so far, as a start for another solver.
+    pub fn state(&self) -> InitialState {
+        InitialState {
+            radiosity: self.radiosity.clone(),
+            illuminance: self.illuminance.clone(),
         }
-        e
     }
 }

@@ -7,6 +7,7 @@ use glam::{DVec3, Mat4, Vec3};
 use wgpu::util::DeviceExt;
 
 use super::form_factor::FormFactorKind;
+use super::initial::InitialState;
 use super::scene::RadiosityScene;
 use super::{Ambient, SolverSettings};
 use crate::gpu::{Gpu, GpuError};
@@ -287,12 +288,12 @@ fn v4(v: DVec3, w: f32) -> [f32; 4] {
 }
 
 impl<'a> GpuSolver<'a> {
-    /// Uploads `scene` with `initial` radiosity (= unshot radiosity) per element: the
-    /// emission plus the reflected direct light of the luminaires.
+    /// Uploads `scene` with the `initial` radiosity (= unshot radiosity) and illuminance
+    /// per element: the emission plus the reflected direct light of the luminaires.
     pub fn new(
         gpu: &'a Gpu,
         scene: &'a RadiosityScene,
-        initial: &[DVec3],
+        initial: &InitialState,
         settings: SolverSettings,
         gpu_settings: GpuSettings,
     ) -> GpuSolver<'a> {
@@ -309,7 +310,10 @@ impl<'a> GpuSolver<'a> {
         let reflect: Vec<[f32; 4]> = (0..n)
             .map(|e| v4(scene.element_reflectance(e), 0.0))
             .collect();
-        let start: Vec<[f32; 4]> = initial.iter().map(|b| v4(*b, 0.0)).collect();
+        let start: Vec<[f32; 4]> = initial.radiosity.iter().map(|b| v4(*b, 0.0)).collect();
+        let start_lit: Vec<[f32; 4]> = (0..n)
+            .map(|e| v4(initial.radiosity[e], initial.illuminance[e] as f32))
+            .collect();
         let triangles: Vec<[u32; 8]> = el
             .triangles
             .iter()
@@ -349,7 +353,7 @@ impl<'a> GpuSolver<'a> {
         });
         let element_buf = storage(gpu, "elements", &bytes(&elements), false);
         let reflect_buf = storage(gpu, "reflectance", &bytes(&reflect), false);
-        let radiosity = storage(gpu, "radiosity", &bytes(&start), true);
+        let radiosity = storage(gpu, "radiosity", &bytes(&start_lit), true);
         let unshot = storage(gpu, "unshot", &bytes(&start), true);
         let tri_buf = storage(gpu, "triangles", bytemuck::cast_slice(&triangles), false);
         // The selection record follows the triangles' sums.
@@ -683,6 +687,14 @@ impl<'a> GpuSolver<'a> {
     /// Radiosity per element.
     pub fn radiosity(&self) -> Result<Vec<DVec3>, GpuError> {
         self.read_rgb(&self.radiosity)
+    }
+
+    /// Radiosity (RGB, lm/m²) and received illuminance (lux) per element.
+    pub fn radiosity_and_illuminance(&self) -> Result<(Vec<DVec3>, Vec<f64>), GpuError> {
+        let v = self.gpu.read_f32(&self.radiosity)?;
+        Ok(v.chunks_exact(4)
+            .map(|c| (Vec3::new(c[0], c[1], c[2]).as_dvec3(), c[3] as f64))
+            .unzip())
     }
 
     /// Unshot radiosity per element.

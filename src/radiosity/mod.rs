@@ -4,7 +4,9 @@
 pub mod cpu;
 pub mod elements;
 pub mod form_factor;
+pub mod gather;
 pub mod gpu;
+pub mod initial;
 pub mod scene;
 
 use crate::photometry::Interp;

@@ -131,7 +131,7 @@ impl IlluminanceProbe {
         points: &[SurfacePoint],
     ) -> Result<Vec<f64>, GpuError> {
         let frame = self.shadows.prepare_none(gpu);
-        self.dispatch(gpu, lights, &frame, points)
+        Ok(lux_of(&self.dispatch(gpu, lights, &frame, points)?))
     }
 
     /// Direct illuminance (lux) at `points` from the luminaires of `scene`, shadowed by
@@ -144,7 +144,29 @@ impl IlluminanceProbe {
         settings: &ShadowSettings,
     ) -> Result<Vec<f64>, GpuError> {
         let frame = self.shadows.prepare_points(gpu, scene, points, settings)?;
-        self.dispatch(gpu, &scene.lights, &frame, points)
+        Ok(lux_of(&self.dispatch(
+            gpu,
+            &scene.lights,
+            &frame,
+            points,
+        )?))
+    }
+
+    /// As [`IlluminanceProbe::run_in_scene`], in colour: per point the illuminance of each
+    /// luminaire times its colour (RGB, lux; the colours have luminance 1).
+    pub fn run_in_scene_rgb(
+        &self,
+        gpu: &Gpu,
+        scene: &GpuScene,
+        points: &[SurfacePoint],
+        settings: &ShadowSettings,
+    ) -> Result<Vec<DVec3>, GpuError> {
+        let frame = self.shadows.prepare_points(gpu, scene, points, settings)?;
+        let rgba = self.dispatch(gpu, &scene.lights, &frame, points)?;
+        Ok(rgba
+            .iter()
+            .map(|v| DVec3::new(v[0] as f64, v[1] as f64, v[2] as f64))
+            .collect())
     }
 
     fn dispatch(
@@ -153,7 +175,7 @@ impl IlluminanceProbe {
         lights: &GpuLights,
         shadow: &ShadowFrame,
         points: &[SurfacePoint],
-    ) -> Result<Vec<f64>, GpuError> {
+    ) -> Result<Vec<[f32; 4]>, GpuError> {
         let mut data: Vec<[f32; 4]> = Vec::with_capacity(2 * points.len().max(1));
         for p in points {
             let (a, n) = (p.position.as_vec3(), p.normal.as_vec3());
@@ -175,7 +197,7 @@ impl IlluminanceProbe {
             pad: [0; 2],
         };
         let params_buf = gpu.uniform_buffer("point params", &params);
-        let out = gpu.output_buffer("lux", 4 * points.len().max(1) as u64);
+        let out = gpu.output_buffer("lux", 16 * points.len().max(1) as u64);
         let [s8, s9, s10, s11] = self.shadows.bindings(shadow);
         let bind = gpu.bind_group(
             "illuminance points",
@@ -194,7 +216,16 @@ impl IlluminanceProbe {
             ],
         );
         let workgroups = [(points.len().max(1) as u32).div_ceil(64), 1, 1];
-        let lux = gpu.dispatch_and_read(&self.pipeline, &bind, workgroups, &out)?;
-        Ok(lux[..points.len()].iter().map(|&v| v as f64).collect())
+        let values = gpu.dispatch_and_read(&self.pipeline, &bind, workgroups, &out)?;
+        Ok(values
+            .chunks_exact(4)
+            .take(points.len())
+            .map(|c| [c[0], c[1], c[2], c[3]])
+            .collect())
     }
+}
+
+/// The lux (alpha) of the probe's RGBA results.
+fn lux_of(rgba: &[[f32; 4]]) -> Vec<f64> {
+    rgba.iter().map(|v| v[3] as f64).collect()
 }
