@@ -1,6 +1,8 @@
 // The real-time renderer's geometry passes: a depth pre-pass, then one shading pass that
 // sums every luminaire (Blinn-Phong, E = I · cos θ / d²) into an HDR target:
 // rgb = luminance (cd/m²), a = direct illuminance (lux) on the surface, −1 = no surface.
+// With a solved radiosity light map (frame.light_map = 1) the diffuse light and the lux
+// come from the map (direct + interreflected) and the luminaires add their specular term.
 // Needs ldt.wgsl, lighting.wgsl and shadow.wgsl before it.
 
 struct Frame {
@@ -10,7 +12,7 @@ struct Frame {
     // xyz: view direction (used by orthographic cameras).
     view_dir: vec4<f32>,
     light_count: u32,
-    _pad0: u32,
+    light_map: u32,
     _pad1: u32,
     _pad2: u32,
 };
@@ -25,6 +27,9 @@ struct MaterialParams {
 };
 
 @group(0) @binding(0) var<uniform> frame: Frame;
+// rgb: radiosity (lm/m²); a: illuminance received (lux).
+@group(0) @binding(12) var light_map: texture_2d<f32>;
+@group(0) @binding(13) var light_map_sampler: sampler;
 @group(1) @binding(0) var<uniform> material: MaterialParams;
 @group(1) @binding(1) var diffuse_map: texture_2d<f32>;
 @group(1) @binding(2) var normal_map: texture_2d<f32>;
@@ -37,6 +42,7 @@ struct VertexIn {
     @location(1) normal: vec3<f32>,
     @location(2) uv: vec2<f32>,
     @location(3) tangent: vec4<f32>,
+    @location(4) lightmap_uv: vec2<f32>,
 };
 
 struct VertexOut {
@@ -45,6 +51,7 @@ struct VertexOut {
     @location(1) normal: vec3<f32>,
     @location(2) uv: vec2<f32>,
     @location(3) tangent: vec4<f32>,
+    @location(4) lightmap_uv: vec2<f32>,
 };
 
 @vertex
@@ -55,6 +62,7 @@ fn vs_main(v: VertexIn) -> VertexOut {
     out.normal = v.normal;
     out.uv = v.uv;
     out.tangent = v.tangent;
+    out.lightmap_uv = v.lightmap_uv;
     return out;
 }
 
@@ -88,10 +96,13 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> @location(0) ve
         n_geo = -n_geo;
     }
     let n = shading_normal(in, n_geo);
-    var kd = material.diffuse.rgb;
+    var texture_rgb = vec3<f32>(1.0);
     if (material.diffuse.w > 0.5) {
-        kd = kd * textureSample(diffuse_map, material_sampler, in.uv).rgb;
+        texture_rgb = textureSample(diffuse_map, material_sampler, in.uv).rgb;
     }
+    let solved = frame.light_map != 0u;
+    // With a light map the diffuse light is the map's; only the specular term is direct.
+    let kd = select(material.diffuse.rgb * texture_rgb, vec3<f32>(0.0), solved);
     let ks = material.specular.rgb;
     let ns = material.specular.w;
     var v = normalize(frame.eye.xyz - in.world);
@@ -122,6 +133,12 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> @location(0) ve
         let h = normalize(inc.to_light + v);
         let spec = ks * spec_norm * pow(max(dot(n, h), 0.0), ns);
         radiance += (kd / PI + spec) * l.color.rgb * e;
+    }
+    if (solved) {
+        let map = textureSampleLevel(light_map, light_map_sampler, in.lightmap_uv, 0.0);
+        // Lambertian: L = B / π; a diffuse map modulates the (untextured) solution.
+        radiance += map.rgb * texture_rgb / PI;
+        lux = map.a;
     }
     return vec4<f32>(radiance, lux);
 }

@@ -16,7 +16,6 @@ use goniolight::render::{ShadowSettings, ShadowTechnique};
 use goniolight::scene::placement::aim_frame;
 use goniolight::scene::{Camera, DisplayEntry, Material, PlacedLuminaire, Scene, SceneMesh};
 
-
 mod common;
 #[path = "common/gpu.rs"]
 mod gpu_common;
@@ -419,4 +418,39 @@ fn luminaires_shot_on_the_gpu_matches_the_cpu_ray_cast() {
             );
         }
     }
+}
+
+#[test]
+fn luminaires_shot_delivers_the_luminaires_flux_in_a_closed_room() {
+    // The bundled box room: a luminaire 5 cm under the ceiling, 45 % of its flux upward.
+    // Every lumen lands on a wall, so Σ E × A over the elements is the luminaire's flux;
+    // one sample per element at the centroid would miss the ceiling's peak by ~10 %.
+    let Some(gpu) = gpu_common::gpu() else { return };
+    let scene = Scene::load(&common::root().join("assets/scenes/box_room.toml")).unwrap();
+    let flux = scene.luminaires[0].luminaire.summary().flux_lm;
+    let r = RadiosityScene::new(&scene, 10.0, 2).unwrap();
+    let shadows = ShadowSettings::with(ShadowTechnique::Paraboloid);
+    let start =
+        InitialState::from_luminaires_gpu(&gpu, &scene, &r, Interp::CatmullRom, &shadows).unwrap();
+    let delivered: f64 = (0..r.elements.len())
+        .map(|e| start.illuminance[e] * r.elements.area[e])
+        .sum();
+    let centroid_only: f64 = (0..r.elements.len())
+        .map(|e| {
+            scene.luminaires[0].illuminance_at(
+                r.elements.position[e],
+                r.elements.normal(e),
+                Interp::CatmullRom,
+            ) * r.elements.area[e]
+        })
+        .sum();
+    eprintln!(
+        "luminaire flux {flux:.1} lm: delivered {delivered:.1} lm ({:+.2} %), centroid samples only {:+.2} %",
+        100.0 * (delivered / flux - 1.0),
+        100.0 * (centroid_only / flux - 1.0)
+    );
+    assert!(
+        (delivered / flux - 1.0).abs() < 0.01,
+        "{delivered} vs {flux}"
+    );
 }

@@ -5,6 +5,7 @@ mod bench;
 mod demo;
 mod ldt;
 mod profile;
+mod radiosity;
 mod render;
 mod silhouette;
 mod sun;
@@ -36,6 +37,9 @@ pub enum Command {
     Illuminance(render::IlluminanceArgs),
     /// The sun's position (NREL SPA) for a site and an instant.
     Sun(sun::SunArgs),
+    /// Solve the scene's interreflected light (GPU progressive radiosity): rendering,
+    /// light-map atlas, convergence log; with --points the total lux at points from stdin.
+    Radiosity(radiosity::RadiosityArgs),
     /// Sun-path shadow profile of an OBJ model over a period: profile.png, hours.png,
     /// profile.csv.
     Profile(profile::ProfileArgs),
@@ -113,6 +117,7 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         Command::Sun(args) => sun::run(args),
         Command::Silhouette(args) => silhouette::run(args),
         Command::Profile(args) => profile::run(args),
+        Command::Radiosity(args) => radiosity::run(args),
         Command::Bench(cmd) => bench::run(cmd),
     }
 }

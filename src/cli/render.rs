@@ -14,6 +14,7 @@ use crate::gpu::{Gpu, GpuError};
 use crate::photometry::Interp;
 use crate::render::illuminance::{illuminance_cpu_in_scene, IlluminanceProbe, SurfacePoint};
 use crate::render::layouts::Layouts;
+use crate::render::lightmap::LightMap;
 use crate::render::output::{linear_image, write_image};
 use crate::render::{
     GpuScene, LightModel, RenderSettings, RenderedFrame, Renderer, ShadowSettings, ShadowTechnique,
@@ -163,12 +164,13 @@ fn check_extension(path: &Path, ext: &str, flag: &str) -> Result<(), CliError> {
     }
 }
 
-/// Renders `scene` with `settings` and writes the PNG (and EXR): the shared body of
-/// `render` and `demo`.
+/// Renders `scene` with `settings` (with a solved radiosity light map when given) and
+/// writes the PNG (and EXR): the shared body of `render`, `demo` and `radiosity`.
 pub fn render_to_files(
     gpu: &Gpu,
     renderer: &Renderer,
     scene: &Scene,
+    light_map: Option<&LightMap>,
     settings: &RenderSettings,
     png: &Path,
     exr: Option<&Path>,
@@ -176,7 +178,10 @@ pub fn render_to_files(
     let mut settings = settings.clone();
     settings.read_hdr = exr.is_some();
     let started = Instant::now();
-    let uploaded = renderer.upload(gpu, scene);
+    let uploaded = match light_map {
+        Some(map) => renderer.upload_solved(gpu, scene, map),
+        None => renderer.upload(gpu, scene),
+    };
     let frame = renderer.render(gpu, &uploaded, &scene.camera, &settings)?;
     let ms = started.elapsed().as_secs_f64() * 1e3;
     write_image(png, &frame.image).map_err(CliError::failure)?;
@@ -223,6 +228,7 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
         &gpu,
         &renderer,
         &scene,
+        None,
         &settings,
         &args.out,
         args.exr.as_deref(),

@@ -7,8 +7,9 @@ use glam::DVec3;
 
 use super::form_factor::{self, FormFactorKind};
 use super::gather;
-use super::initial::InitialState;
+use super::initial::{DirectSamples, InitialState};
 use super::scene::{luminance, RadiosityScene};
+use super::solve;
 use super::{Ambient, SolverSettings};
 use crate::render::illuminance::SurfacePoint;
 use crate::shadow::{raycast, Light};
@@ -68,9 +69,13 @@ impl<'a> CpuSolver<'a> {
     }
 
     fn shoot_luminaires(&mut self) {
-        let el = &self.scene.elements;
-        for e in 0..el.len() {
-            let direct = self.direct(el.position[e], el.normal(e));
+        let samples = DirectSamples::new(self.scene);
+        let at_samples: Vec<DVec3> = samples
+            .points
+            .iter()
+            .map(|p| self.direct(p.position, p.normal))
+            .collect();
+        for (e, direct) in samples.average(&at_samples).into_iter().enumerate() {
             let gained = self.scene.element_reflectance(e) * direct;
             self.radiosity[e] += gained;
             self.unshot[e] += gained;
@@ -97,9 +102,7 @@ impl<'a> CpuSolver<'a> {
     /// The ambient term (Cohen et al. 1988; Wallner Eq. 2.4–2.6): the unshot radiosity
     /// averaged over the area, times the interreflection factor 1 / (1 − ρ̄).
     pub fn ambient(&self) -> DVec3 {
-        let el = &self.scene.elements;
-        let unshot: DVec3 = (0..el.len()).map(|e| self.unshot[e] * el.area[e]).sum();
-        unshot / self.scene.total_area / (1.0 - self.scene.mean_reflectance)
+        solve::ambient_term(self.scene, &self.unshot)
     }
 
     /// Per triangle: unshot radiosity (area-weighted mean) and area.
@@ -193,13 +196,15 @@ impl<'a> CpuSolver<'a> {
 
     /// Radiosity for display: with an ambient mode, plus ρ × the ambient term.
     pub fn display_radiosity(&self) -> Vec<DVec3> {
-        if self.settings.ambient == Ambient::None {
-            return self.radiosity.clone();
-        }
-        let ambient = self.ambient();
-        (0..self.radiosity.len())
-            .map(|e| self.radiosity[e] + self.scene.element_reflectance(e) * ambient)
-            .collect()
+        let ambient = self.settings.ambient;
+        solve::displayed(
+            self.scene,
+            &self.radiosity,
+            &self.illuminance,
+            &self.unshot,
+            ambient,
+        )
+        .0
     }
 
     /// Total illuminance (lux, RGB) at a point: the luminaires' direct light plus the

@@ -406,6 +406,41 @@ impl Elements {
     pub fn normal(&self, e: usize) -> DVec3 {
         self.triangles[self.triangle[e] as usize].normal
     }
+
+    /// Points of an `n` × `n` grid over element `e`'s texel that lie on its triangle, whose
+    /// `corners` are as given to [`Elements::build`]; the element's centroid when `n` ≤ 1
+    /// or no grid point does. Averages over these integrate steep gradients (a luminaire
+    /// close to a surface) that one sample at the centroid would miss.
+    pub fn texel_samples(&self, e: usize, corners: &[DVec3; 3], n: u32) -> Vec<DVec3> {
+        let [a, b, c] = self.triangles[self.triangle[e] as usize].atlas_uv;
+        let (v0, v1) = (b - a, c - a);
+        let det = v0.perp_dot(v1);
+        if n <= 1 || det.abs() < 1e-12 {
+            return vec![self.position[e]];
+        }
+        let [tx, ty] = self.texel[e];
+        let step = 1.0 / n as f64;
+        let mut out = Vec::with_capacity((n * n) as usize);
+        for j in 0..n {
+            for i in 0..n {
+                let p = DVec2::new(
+                    tx as f64 + (i as f64 + 0.5) * step,
+                    ty as f64 + (j as f64 + 0.5) * step,
+                );
+                let d = p - a;
+                let (u, v) = (d.perp_dot(v1) / det, v0.perp_dot(d) / det);
+                if u >= 0.0 && v >= 0.0 && u + v <= 1.0 {
+                    out.push(
+                        corners[0] + (corners[1] - corners[0]) * u + (corners[2] - corners[0]) * v,
+                    );
+                }
+            }
+        }
+        if out.is_empty() {
+            out.push(self.position[e]);
+        }
+        out
+    }
 }
 
 #[cfg(test)]
@@ -418,6 +453,38 @@ mod tests {
             material: 0,
             texel_m,
         }
+    }
+
+    #[test]
+    fn texel_samples_lie_on_the_element_around_its_centroid() {
+        let corners = [
+            DVec3::new(0.1, 0.0, 0.3),
+            DVec3::new(1.3, 0.2, 0.0),
+            DVec3::new(0.4, 0.9, 0.5),
+        ];
+        let s = 0.07;
+        let el = Elements::build(&[tri(corners, s)], 0).unwrap();
+        let n = el.normal(0);
+        let mut full = 0;
+        for e in 0..el.len() {
+            let samples = el.texel_samples(e, &corners, 8);
+            let mean = samples.iter().sum::<DVec3>() / samples.len() as f64;
+            for p in &samples {
+                // On the triangle's plane, within the texel around the centroid.
+                assert!((*p - corners[0]).dot(n).abs() < 1e-9);
+                assert!(p.distance(el.position[e]) <= s * 1.5);
+            }
+            if el.area[e] > s * s * (1.0 - 1e-9) {
+                full += 1;
+                // A whole texel: the grid's mean is its centre.
+                assert_eq!(samples.len(), 64);
+                assert!(mean.distance(el.position[e]) < 1e-9, "{e}");
+            } else {
+                assert!(mean.distance(el.position[e]) < s / 4.0, "{e}");
+            }
+        }
+        assert!(full > 50, "{full}");
+        assert_eq!(el.texel_samples(3, &corners, 1), vec![el.position[3]]);
     }
 
     #[test]

@@ -8,6 +8,7 @@ pub mod gather;
 pub mod gpu;
 pub mod initial;
 pub mod scene;
+pub mod solve;
 
 use crate::photometry::Interp;
 pub use form_factor::FormFactorKind;

@@ -7,6 +7,7 @@ use glam::{Vec2, Vec3};
 use wgpu::util::DeviceExt;
 
 use super::layouts::Layouts;
+use super::lightmap::{self, LightMap};
 use super::paraboloid::{ParaboloidCasters, ShadowLight};
 use super::volumes::VolumeGeometry;
 use crate::geometry::Mesh;
@@ -27,6 +28,8 @@ pub struct Vertex {
     pub uv: [f32; 2],
     /// Tangent (xyz) and handedness (w) for normal mapping.
     pub tangent: [f32; 4],
+    /// Light-map atlas coordinates (0..1; unused without a light map).
+    pub lightmap_uv: [f32; 2],
 }
 
 impl Vertex {
@@ -34,7 +37,7 @@ impl Vertex {
     pub const LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
         array_stride: std::mem::size_of::<Vertex>() as u64,
         step_mode: wgpu::VertexStepMode::Vertex,
-        attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x2, 3 => Float32x4],
+        attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x2, 3 => Float32x4, 4 => Float32x2],
     };
 }
 
@@ -164,6 +167,10 @@ pub struct GpuScene {
     pub casters: Mesh,
     /// The luminaires as shadow-casting lights, in the order of `lights`.
     pub shadow_lights: Vec<ShadowLight>,
+    /// The radiosity light map (a 1 × 1 black texture when there is none).
+    pub light_map: wgpu::TextureView,
+    /// Whether a solved light map is shown instead of the direct diffuse light.
+    pub has_light_map: bool,
     volume_geometry: OnceLock<Option<VolumeGeometry>>,
     paraboloid_casters: Mutex<Option<(f64, Arc<ParaboloidCasters>)>>,
 }
@@ -171,23 +178,64 @@ pub struct GpuScene {
 impl GpuScene {
     /// Uploads `scene`.
     pub fn new(gpu: &Gpu, layouts: &Layouts, scene: &Scene) -> GpuScene {
+        GpuScene::with_light_map(gpu, layouts, scene, None)
+    }
+
+    /// Uploads `scene` with a solved radiosity light map: its triangles then get their
+    /// own vertices (each has its own place in the atlas).
+    pub fn with_light_map(
+        gpu: &Gpu,
+        layouts: &Layouts,
+        scene: &Scene,
+        light_map: Option<&LightMap>,
+    ) -> GpuScene {
         let mut vertices: Vec<Vertex> = Vec::new();
         let mut indices: Vec<u32> = Vec::new();
-        let mut meshes: Vec<&SceneMesh> = scene.meshes.iter().collect();
-        meshes.sort_by_key(|m| m.material);
+        // First triangle of each mesh in scene order (the light map's numbering).
+        let first_triangle: Vec<usize> = scene
+            .meshes
+            .iter()
+            .scan(0, |next, m| {
+                let first = *next;
+                *next += m.indices.len() / 3;
+                Some(first)
+            })
+            .collect();
+        let mut order: Vec<usize> = (0..scene.meshes.len()).collect();
+        order.sort_by_key(|&i| scene.meshes[i].material);
         let mut draws: Vec<Draw> = Vec::new();
-        for m in meshes {
-            let base = vertices.len() as u32;
+        for i in order {
+            let m = &scene.meshes[i];
             let tangents = tangents(m);
-            vertices.extend((0..m.positions.len()).map(|i| Vertex {
-                position: m.positions[i].to_array(),
-                normal: m.normals[i].to_array(),
-                uv: m.uvs[i].to_array(),
-                tangent: tangents[i],
-            }));
+            let vertex = |k: usize, lightmap_uv: Vec2| Vertex {
+                position: m.positions[k].to_array(),
+                normal: m.normals[k].to_array(),
+                uv: m.uvs[k].to_array(),
+                tangent: tangents[k],
+                lightmap_uv: lightmap_uv.to_array(),
+            };
             let first_index = indices.len() as u32;
-            indices.extend(m.indices.iter().map(|i| i + base));
-            let index_count = m.indices.len() as u32;
+            match light_map {
+                None => {
+                    let base = vertices.len() as u32;
+                    vertices.extend((0..m.positions.len()).map(|k| vertex(k, Vec2::ZERO)));
+                    indices.extend(m.indices.iter().map(|k| k + base));
+                }
+                Some(map) => {
+                    for (t, corners) in m.indices.chunks_exact(3).enumerate() {
+                        let uv = map
+                            .triangle_uv
+                            .get(first_triangle[i] + t)
+                            .copied()
+                            .unwrap_or([Vec2::ZERO; 3]);
+                        for c in 0..3 {
+                            indices.push(vertices.len() as u32);
+                            vertices.push(vertex(corners[c] as usize, uv[c]));
+                        }
+                    }
+                }
+            }
+            let index_count = indices.len() as u32 - first_index;
             match draws.last_mut() {
                 Some(d)
                     if d.material == m.material && d.first_index + d.index_count == first_index =>
@@ -238,6 +286,8 @@ impl GpuScene {
                     hemisphere: l.texture.hemisphere,
                 })
                 .collect(),
+            light_map: lightmap::upload(gpu, light_map),
+            has_light_map: light_map.is_some(),
             volume_geometry: OnceLock::new(),
             paraboloid_casters: Mutex::new(None),
         }

@@ -6,12 +6,15 @@ use crate::gpu::Gpu;
 /// The layouts and the material sampler.
 pub struct Layouts {
     /// Group 0: `Frame` uniform, lights, LDT atlas, LDT info; shadow info, shadow mask,
-    /// paraboloid maps and their comparison sampler.
+    /// paraboloid maps and their comparison sampler; the radiosity light map and its
+    /// sampler.
     pub frame: wgpu::BindGroupLayout,
     /// Group 1: material uniform, diffuse map, normal map, sampler.
     pub material: wgpu::BindGroupLayout,
     /// Linear, repeating.
     pub material_sampler: wgpu::Sampler,
+    /// Linear, clamped: the radiosity light map.
+    pub light_map_sampler: wgpu::Sampler,
 }
 
 /// A bind group layout entry.
@@ -58,6 +61,10 @@ impl Layouts {
     pub fn new(gpu: &Gpu) -> Layouts {
         use wgpu::ShaderStages as S;
         let storage = buffer(wgpu::BufferBindingType::Storage { read_only: true });
+        let filterable = texture(
+            wgpu::TextureSampleType::Float { filterable: true },
+            wgpu::TextureViewDimension::D2,
+        );
         let frame = gpu
             .device
             .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -100,12 +107,14 @@ impl Layouts {
                         S::FRAGMENT,
                         wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
                     ),
+                    entry(12, S::FRAGMENT, filterable),
+                    entry(
+                        13,
+                        S::FRAGMENT,
+                        wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                    ),
                 ],
             });
-        let filterable = texture(
-            wgpu::TextureSampleType::Float { filterable: true },
-            wgpu::TextureViewDimension::D2,
-        );
         let material = gpu
             .device
             .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -129,10 +138,17 @@ impl Layouts {
             min_filter: wgpu::FilterMode::Linear,
             ..Default::default()
         });
+        let light_map_sampler = gpu.device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("light map"),
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            ..Default::default()
+        });
         Layouts {
             frame,
             material,
             material_sampler,
+            light_map_sampler,
         }
     }
 }

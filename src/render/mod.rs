@@ -8,6 +8,7 @@ pub mod gpu_scene;
 pub mod illuminance;
 pub mod layouts;
 pub mod legend;
+pub mod lightmap;
 pub mod output;
 pub mod paraboloid;
 pub mod passes;
@@ -124,6 +125,17 @@ impl Renderer {
     /// Uploads a scene.
     pub fn upload(&self, gpu: &Gpu, scene: &Scene) -> GpuScene {
         GpuScene::new(gpu, &self.layouts, scene)
+    }
+
+    /// Uploads a scene with its solved radiosity light map (displayed instead of the
+    /// direct diffuse light; the luminaires add their specular term).
+    pub fn upload_solved(
+        &self,
+        gpu: &Gpu,
+        scene: &Scene,
+        light_map: &lightmap::LightMap,
+    ) -> GpuScene {
+        GpuScene::with_light_map(gpu, &self.layouts, scene, Some(light_map))
     }
 
     /// Renders the HDR image of `scene` seen by `camera` into `targets` `frames` times in

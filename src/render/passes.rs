@@ -42,7 +42,8 @@ struct FrameGpu {
     eye: [f32; 4],
     view_dir: [f32; 4],
     light_count: u32,
-    pad: [u32; 3],
+    light_map: u32,
+    pad: [u32; 2],
 }
 
 /// The depth pre-pass and the shading pipelines.
@@ -160,7 +161,8 @@ impl ScenePasses {
             eye: [eye.x, eye.y, eye.z, ortho as u32 as f32],
             view_dir: [dir.x, dir.y, dir.z, 0.0],
             light_count: scene.lights.count,
-            pad: [0; 3],
+            light_map: u32::from(scene.has_light_map),
+            pad: [0; 2],
         };
         let buffer = gpu.uniform_buffer("frame", &frame);
         let mut entries = vec![
@@ -171,6 +173,11 @@ impl ScenePasses {
                 wgpu::BindingResource::TextureView(&scene.lights.atlas.view),
             ),
             (3, scene.lights.atlas.info.as_entire_binding()),
+            (12, wgpu::BindingResource::TextureView(&scene.light_map)),
+            (
+                13,
+                wgpu::BindingResource::Sampler(&layouts.light_map_sampler),
+            ),
         ];
         entries.extend(shadow.iter().cloned());
         gpu.bind_group("frame", &layouts.frame, &entries)

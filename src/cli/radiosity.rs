@@ -1,0 +1,283 @@
+//! `goniolight radiosity`: solve a scene's interreflected light on the GPU, write the
+//! rendering of the solution, the light-map atlas and the convergence log, and with
+//! `--points` print the total illuminance at points read from stdin.
+
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+use anyhow::anyhow;
+use clap::Args;
+use glam::DVec3;
+
+use super::render::{read_points, render_to_files, ImageOptions};
+use super::CliError;
+use crate::gpu::Gpu;
+use crate::io::write_atomic;
+use crate::radiosity::gather;
+use crate::radiosity::gpu::{GpuSettings, GpuSolver, Visibility};
+use crate::radiosity::initial::InitialState;
+use crate::radiosity::scene::{luminance, RadiosityScene};
+use crate::radiosity::solve::{self, ConvergencePoint, StopAt, StopReason};
+use crate::radiosity::{Ambient, FormFactorKind, SolverSettings};
+use crate::render::illuminance::{IlluminanceProbe, SurfacePoint};
+use crate::render::lightmap::LightMap;
+use crate::render::output::write_image;
+use crate::render::{LightModel, Renderer};
+use crate::scene::Scene;
+
+/// Options of `radiosity`.
+#[derive(Debug, Args)]
+pub struct RadiosityArgs {
+    /// The scene file (TOML).
+    pub scene: PathBuf,
+    /// Stop when this fraction of the initial unshot power has been shot (0..1).
+    #[arg(long, default_value_t = 0.99)]
+    pub converge: f64,
+    /// Stop after this many shots.
+    #[arg(long)]
+    pub max_shots: Option<usize>,
+    /// Stop after this many seconds of shooting.
+    #[arg(long)]
+    pub time_limit: Option<f64>,
+    /// Elements (light-map texels) per metre.
+    #[arg(long, default_value_t = 10.0)]
+    pub texel_density: f64,
+    /// Shooting patches are 2^LEVEL × 2^LEVEL texels (substructuring; 0: every texel).
+    #[arg(long, default_value_t = 2)]
+    pub level: u32,
+    /// Visibility maps of the shooting patches.
+    #[arg(long, value_enum, default_value = "hemicube")]
+    pub visibility: Visibility,
+    /// Side of a hemicube face or of the stereographic map, texels.
+    #[arg(long, default_value_t = 256)]
+    pub map_size: u32,
+    /// Form factor from a patch to an element.
+    #[arg(long, value_enum, default_value = "polygon")]
+    pub form_factor: FormFactorKind,
+    /// Ambient term: for display only, also for overshooting, or none.
+    #[arg(long, value_enum, default_value = "display")]
+    pub ambient: Ambient,
+    /// Output folder: render.png, render.exr, lightmap.exr, lightmap_lux.exr,
+    /// convergence.csv (default `radiosity-out`; with --points nothing is written unless
+    /// it is given).
+    #[arg(long)]
+    pub out_dir: Option<PathBuf>,
+    /// Read "x y z nx ny nz" lines from stdin and print the total illuminance (lux,
+    /// direct + interreflected) at each, one per line.
+    #[arg(long)]
+    pub points: bool,
+    /// Image options of the rendering (and the luminaires' interpolation and shadows).
+    #[command(flatten)]
+    pub image: ImageOptions,
+}
+
+impl RadiosityArgs {
+    fn check(&self) -> Result<(), CliError> {
+        let bad = |what: String| Err(CliError::input(anyhow!(what)));
+        if !(self.converge.is_finite() && (0.0..=1.0).contains(&self.converge)) {
+            return bad(format!("--converge {} is not in 0..=1", self.converge));
+        }
+        if !(self.texel_density.is_finite() && self.texel_density > 0.0) {
+            return bad(format!(
+                "--texel-density {} must be a positive number of texels per metre",
+                self.texel_density
+            ));
+        }
+        if self.level > 6 {
+            return bad(format!("--level {} is not in 0..=6", self.level));
+        }
+        if !(16..=4096).contains(&self.map_size) {
+            return bad(format!("--map-size {} is not in 16..=4096", self.map_size));
+        }
+        if let Some(t) = self.time_limit {
+            if !(t.is_finite() && t > 0.0) {
+                return bad(format!(
+                    "--time-limit {t} must be a positive number of seconds"
+                ));
+            }
+        }
+        if let Some(dir) = &self.out_dir {
+            if dir.is_file() {
+                return bad(format!("--out-dir {}: is a file", dir.display()));
+            }
+        }
+        Ok(())
+    }
+
+    fn stop(&self) -> StopAt {
+        StopAt {
+            converge: self.converge,
+            max_shots: self.max_shots,
+            time_budget: self.time_limit.map(Duration::from_secs_f64),
+        }
+    }
+}
+
+/// The first Ctrl-C asks the solver to stop (the solution so far is written); a second
+/// one ends the process at once.
+fn cancel_on_ctrl_c() -> Arc<AtomicBool> {
+    let cancel = Arc::new(AtomicBool::new(false));
+    let flag = cancel.clone();
+    let _ = ctrlc::set_handler(move || {
+        if flag.swap(true, Ordering::SeqCst) {
+            std::process::exit(130);
+        }
+        eprintln!("\ninterrupted: finishing the current shot (Ctrl-C again to quit)");
+    });
+    cancel
+}
+
+fn progress_bar() -> Result<indicatif::ProgressBar, CliError> {
+    let bar = indicatif::ProgressBar::new(10_000);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template(
+            "radiosity [{bar:40}] {msg} ({elapsed_precise}, Ctrl-C stops and writes)",
+        )
+        .map_err(|e| CliError::failure(anyhow!(e)))?,
+    );
+    Ok(bar)
+}
+
+/// Everything the command writes, computed before anything is written.
+struct Outputs {
+    light_map: LightMap,
+    csv: String,
+}
+
+/// Runs `radiosity`.
+pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
+    args.check()?;
+    let scene = Scene::load(&args.scene)?;
+    let mut settings = args.image.settings(&scene)?;
+    let points = if args.points {
+        read_points(std::io::stdin().lock(), "stdin")?
+    } else {
+        Vec::new()
+    };
+    let out_dir = match (&args.out_dir, args.points) {
+        (Some(d), _) => Some(d.clone()),
+        (None, false) => Some(PathBuf::from("radiosity-out")),
+        (None, true) => None,
+    };
+    let started = Instant::now();
+    let rscene = RadiosityScene::new(&scene, args.texel_density, args.level)
+        .map_err(|e| CliError::input(anyhow!("{}: {e}", args.scene.display())))?;
+    let interp = match settings.light_model {
+        LightModel::Ldt(i) => i,
+        LightModel::Point => crate::photometry::Interp::CatmullRom,
+    };
+    let solver_settings = SolverSettings {
+        form_factor: args.form_factor,
+        ambient: args.ambient,
+        interp,
+    };
+    let gpu = Gpu::headless()?;
+    let initial =
+        InitialState::from_luminaires_gpu(&gpu, &scene, &rscene, interp, &settings.shadows)?;
+    let gpu_settings = GpuSettings {
+        visibility: args.visibility,
+        map_size: args.map_size,
+        ..GpuSettings::default()
+    };
+    let prepared_s = started.elapsed().as_secs_f64();
+    let mut solver = GpuSolver::new(&gpu, &rscene, &initial, solver_settings, gpu_settings);
+    let cancel = cancel_on_ctrl_c();
+    let bar = progress_bar()?;
+    let (stop, log) = solver.solve(&args.stop(), &cancel, |p: &ConvergencePoint| {
+        bar.set_position((p.convergence.clamp(0.0, 1.0) * 10_000.0) as u64);
+        bar.set_message(format!(
+            "{:.2} % converged, {} shots",
+            100.0 * p.convergence,
+            p.shot
+        ));
+    })?;
+    bar.finish_and_clear();
+    let solve_s = log.last().map_or(0.0, |p| p.seconds);
+    let (radiosity, illuminance) = solver.radiosity_and_illuminance()?;
+    let unshot = solver.unshot()?;
+    let (shown, shown_lux) =
+        solve::displayed(&rscene, &radiosity, &illuminance, &unshot, args.ambient);
+    let last = log.last().copied();
+    eprintln!(
+        "{}: {} elements, {} patches, atlas {}×{}; {} shots, {:.2} % converged ({stop}) in {solve_s:.2} s (+{prepared_s:.2} s to prepare and shoot the luminaires)",
+        args.scene.display(),
+        rscene.elements.len(),
+        rscene.elements.patches.len(),
+        rscene.elements.atlas_width,
+        rscene.elements.atlas_height,
+        solver.shots,
+        100.0 * last.map_or(1.0, |p| p.convergence),
+    );
+    if !points.is_empty() {
+        let probe = IlluminanceProbe::new(&gpu, LightModel::Ldt(interp));
+        let uploaded =
+            crate::render::GpuScene::new(&gpu, &crate::render::layouts::Layouts::new(&gpu), &scene);
+        let direct = probe.run_in_scene(&gpu, &uploaded, &points, &settings.shadows)?;
+        print_total_lux(&rscene, &shown, &points, &direct, args.form_factor);
+    }
+    if let Some(dir) = out_dir {
+        let outputs = Outputs {
+            light_map: solve::light_map(&rscene, &shown, &shown_lux),
+            csv: solve::convergence_csv(&log),
+        };
+        settings.read_hdr = true;
+        write_outputs(&gpu, &scene, &settings, &outputs, &dir)?;
+    }
+    if stop == StopReason::Cancelled {
+        eprintln!("stopped early: the solution so far was written");
+    }
+    Ok(())
+}
+
+/// Prints direct + gathered interreflected illuminance (lux) per point.
+fn print_total_lux(
+    rscene: &RadiosityScene,
+    radiosity: &[DVec3],
+    points: &[SurfacePoint],
+    direct: &[f64],
+    kind: FormFactorKind,
+) {
+    let gathered = gather::at_points(rscene, radiosity, points, kind);
+    let mut out = String::with_capacity(points.len() * 12);
+    for (d, g) in direct.iter().zip(&gathered) {
+        out.push_str(&format!("{:.6}\n", d + luminance(*g)));
+    }
+    print!("{out}");
+}
+
+/// Writes the rendering, the atlas and the log into `dir`.
+fn write_outputs(
+    gpu: &Gpu,
+    scene: &Scene,
+    settings: &crate::render::RenderSettings,
+    outputs: &Outputs,
+    dir: &Path,
+) -> Result<(), CliError> {
+    std::fs::create_dir_all(dir)
+        .map_err(|e| CliError::input(anyhow!("--out-dir {}: {e}", dir.display())))?;
+    let png = dir.join("render.png");
+    let exr = dir.join("render.exr");
+    let renderer = Renderer::new(gpu);
+    render_to_files(
+        gpu,
+        &renderer,
+        scene,
+        Some(&outputs.light_map),
+        settings,
+        &png,
+        Some(&exr),
+    )?;
+    let map = &outputs.light_map;
+    let rgb: Vec<f32> = map.texels.iter().flat_map(|t| [t[0], t[1], t[2]]).collect();
+    let lux: Vec<f32> = map.texels.iter().flat_map(|t| [t[3]; 3]).collect();
+    for (name, data) in [("lightmap.exr", rgb), ("lightmap_lux.exr", lux)] {
+        let image = image::Rgb32FImage::from_raw(map.width, map.height, data)
+            .ok_or_else(|| CliError::failure(anyhow!("light-map size mismatch")))?;
+        write_image(&dir.join(name), &image).map_err(CliError::failure)?;
+    }
+    write_atomic(&dir.join("convergence.csv"), outputs.csv.as_bytes())
+        .map_err(CliError::failure)?;
+    Ok(())
+}

@@ -1,0 +1,201 @@
+//! Running a solution to a stop condition (convergence target, shot count, time budget or
+//! a cancel request), with a convergence log, and turning the result into what is shown:
+//! the ambient term and the light-map atlas.
+
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
+
+use glam::{DVec3, Vec2};
+
+use super::gpu::GpuSolver;
+use super::scene::{luminance, RadiosityScene};
+use super::Ambient;
+use crate::gpu::GpuError;
+use crate::render::lightmap::LightMap;
+
+/// When to stop shooting.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StopAt {
+    /// Fraction of the initial unshot power that has been shot (0..1).
+    pub converge: f64,
+    /// At most this many shots.
+    pub max_shots: Option<usize>,
+    /// At most this long.
+    pub time_budget: Option<Duration>,
+}
+
+impl Default for StopAt {
+    fn default() -> StopAt {
+        StopAt {
+            converge: 0.99,
+            max_shots: None,
+            time_budget: None,
+        }
+    }
+}
+
+/// Why a solution stopped.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StopReason {
+    /// The convergence target was reached.
+    Converged,
+    /// Nothing was left to shoot (all unshot power is zero).
+    NothingLeft,
+    /// The shot count was reached.
+    ShotLimit,
+    /// The time budget was spent.
+    TimeBudget,
+    /// Cancelled by the caller.
+    Cancelled,
+}
+
+impl std::fmt::Display for StopReason {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            StopReason::Converged => "converged",
+            StopReason::NothingLeft => "nothing left to shoot",
+            StopReason::ShotLimit => "shot limit reached",
+            StopReason::TimeBudget => "time budget spent",
+            StopReason::Cancelled => "interrupted",
+        })
+    }
+}
+
+/// One line of the convergence log: the state before shot `shot`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ConvergencePoint {
+    /// Shots done so far.
+    pub shot: usize,
+    /// Seconds since shooting started.
+    pub seconds: f64,
+    /// The triangle shot next (`None`: nothing left).
+    pub shooter: Option<usize>,
+    /// Σ |unshot luminance| × area, lm.
+    pub unshot_power: f64,
+    /// 1 − unshot / initial unshot power.
+    pub convergence: f64,
+}
+
+/// The convergence log as CSV (`shot,seconds,shooter,unshot_lm,convergence`).
+pub fn convergence_csv(log: &[ConvergencePoint]) -> String {
+    let mut out = String::from("shot,seconds,shooter,unshot_lm,convergence\n");
+    for p in log {
+        let shooter = p.shooter.map(|t| t.to_string()).unwrap_or_default();
+        out.push_str(&format!(
+            "{},{:.6},{shooter},{:.6},{:.8}\n",
+            p.shot, p.seconds, p.unshot_power, p.convergence
+        ));
+    }
+    out
+}
+
+impl GpuSolver<'_> {
+    /// Shoots until `stop` says so or `cancel` is set. `progress` sees every log point
+    /// as it is made. Returns why it stopped and the log (its first point is the start).
+    pub fn solve(
+        &mut self,
+        stop: &StopAt,
+        cancel: &AtomicBool,
+        mut progress: impl FnMut(&ConvergencePoint),
+    ) -> Result<(StopReason, Vec<ConvergencePoint>), GpuError> {
+        let started = Instant::now();
+        let mut log = Vec::new();
+        let mut initial = None;
+        loop {
+            let s = self.select()?;
+            let initial = *initial.get_or_insert(s.unshot_power);
+            let point = ConvergencePoint {
+                shot: self.shots,
+                seconds: started.elapsed().as_secs_f64(),
+                shooter: s.shooter,
+                unshot_power: s.unshot_power,
+                convergence: if initial > 0.0 {
+                    1.0 - s.unshot_power / initial
+                } else {
+                    1.0
+                },
+            };
+            progress(&point);
+            log.push(point);
+            let reason = if point.convergence >= stop.converge {
+                Some(StopReason::Converged)
+            } else if s.shooter.is_none() {
+                Some(StopReason::NothingLeft)
+            } else if stop.max_shots.is_some_and(|m| self.shots >= m) {
+                Some(StopReason::ShotLimit)
+            } else if stop.time_budget.is_some_and(|b| started.elapsed() >= b) {
+                Some(StopReason::TimeBudget)
+            } else if cancel.load(Ordering::Relaxed) {
+                Some(StopReason::Cancelled)
+            } else {
+                None
+            };
+            match (reason, s.shooter) {
+                (Some(r), _) => return Ok((r, log)),
+                (None, Some(t)) => self.shoot(t)?,
+                (None, None) => unreachable!("no shooter is a stop reason"),
+            }
+        }
+    }
+}
+
+/// The ambient term (Cohen et al. 1988; Wallner Eq. 2.4–2.6): the unshot radiosity
+/// averaged over the area, times the interreflection factor 1 / (1 − ρ̄).
+pub fn ambient_term(scene: &RadiosityScene, unshot: &[DVec3]) -> DVec3 {
+    let el = &scene.elements;
+    let total: DVec3 = (0..el.len()).map(|e| unshot[e] * el.area[e]).sum();
+    total / scene.total_area.max(1e-300) / (1.0 - scene.mean_reflectance)
+}
+
+/// A solution as displayed: radiosity and received illuminance per element, with the
+/// ambient term added when `ambient` asks for it (reflectance × ambient to the
+/// radiosity, the ambient's luminance to the illuminance).
+pub fn displayed(
+    scene: &RadiosityScene,
+    radiosity: &[DVec3],
+    illuminance: &[f64],
+    unshot: &[DVec3],
+    ambient: Ambient,
+) -> (Vec<DVec3>, Vec<f64>) {
+    if ambient == Ambient::None {
+        return (radiosity.to_vec(), illuminance.to_vec());
+    }
+    let a = ambient_term(scene, unshot);
+    let lux = luminance(a);
+    (0..radiosity.len())
+        .map(|e| {
+            (
+                radiosity[e] + scene.element_reflectance(e) * a,
+                illuminance[e] + lux,
+            )
+        })
+        .unzip()
+}
+
+/// The light-map atlas of a solution: each texel shows its element (gutters their
+/// neighbour's), rgb radiosity and a illuminance.
+pub fn light_map(scene: &RadiosityScene, radiosity: &[DVec3], illuminance: &[f64]) -> LightMap {
+    let el = &scene.elements;
+    let texels = el
+        .display_source
+        .iter()
+        .map(|&e| match e {
+            u32::MAX => [0.0; 4],
+            e => {
+                let b = radiosity[e as usize].as_vec3();
+                [b.x, b.y, b.z, illuminance[e as usize] as f32]
+            }
+        })
+        .collect();
+    let size = glam::DVec2::new(el.atlas_width as f64, el.atlas_height as f64);
+    LightMap {
+        width: el.atlas_width,
+        height: el.atlas_height,
+        texels,
+        triangle_uv: el
+            .triangles
+            .iter()
+            .map(|t| t.atlas_uv.map(|uv| (uv / size).as_vec2()))
+            .collect::<Vec<[Vec2; 3]>>(),
+    }
+}
