@@ -434,6 +434,55 @@ fn disco() -> Eulumdat {
     }
 }
 
+/// Materials of the Cornell box (reflectances after Goral et al. 1984; the light's
+/// luminous exitance in lm/m²).
+const CORNELL_MTL: &str =
+    "# Cornell-box-like scene: diffuse reflectances, light exitance Ke in lm/m².
+newmtl white
+Kd 0.73 0.73 0.73
+newmtl red
+Kd 0.63 0.065 0.05
+newmtl green
+Kd 0.14 0.45 0.091
+newmtl light
+Kd 0.78 0.78 0.78
+Ke 10000 10000 10000
+";
+
+/// A Cornell-box-like scene (5.56 × 5.59 × 5.49 m, open at the front, y = 0): white
+/// floor, ceiling and back wall, red left and green right wall, an emitting panel under
+/// the ceiling and two axis-aligned blocks.
+fn cornell_box(o: &mut Obj) {
+    let (x, y, z) = (5.56, 5.59, 5.49);
+    let p = DVec3::new;
+    o.object("floor", "white");
+    o.quad(
+        [p(0., 0., 0.), p(x, 0., 0.), p(x, y, 0.), p(0., y, 0.)],
+        1.0,
+    );
+    o.object("ceiling", "white");
+    o.quad([p(0., 0., z), p(0., y, z), p(x, y, z), p(x, 0., z)], 1.0);
+    o.object("back", "white");
+    o.quad([p(0., y, 0.), p(x, y, 0.), p(x, y, z), p(0., y, z)], 1.0);
+    o.object("left", "red");
+    o.quad(
+        [p(0., 0., 0.), p(0., y, 0.), p(0., y, z), p(0., 0., z)],
+        1.0,
+    );
+    o.object("right", "green");
+    o.quad([p(x, 0., 0.), p(x, 0., z), p(x, y, z), p(x, y, 0.)], 1.0);
+    o.object("light", "light");
+    let (x0, x1, y0, y1, zl) = (2.13, 3.43, 2.27, 3.32, 5.48);
+    o.quad(
+        [p(x0, y0, zl), p(x0, y1, zl), p(x1, y1, zl), p(x1, y0, zl)],
+        1.0,
+    );
+    o.object("short_block", "white");
+    o.cuboid(p(3.0, 0.65, 0.0), p(4.65, 2.3, 1.65));
+    o.object("tall_block", "white");
+    o.cuboid(p(0.9, 2.9, 0.0), p(2.55, 4.55, 3.3));
+}
+
 fn main() -> anyhow::Result<()> {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let scenes = root.join("assets/scenes");
@@ -461,6 +510,11 @@ fn main() -> anyhow::Result<()> {
     stage.cuboid(DVec3::new(2.99, 1.99, 2.35), DVec3::new(3.01, 2.01, 3.0));
     stage.write(&scenes.join("effect_stage.obj"), "effect_stage.mtl")?;
     std::fs::write(scenes.join("effect_stage.mtl"), STAGE_MTL)?;
+
+    let mut cornell = Obj::default();
+    cornell_box(&mut cornell);
+    cornell.write(&scenes.join("cornell_box.obj"), "cornell_box.mtl")?;
+    std::fs::write(scenes.join("cornell_box.mtl"), CORNELL_MTL)?;
 
     let ldt = disco();
     std::fs::write(

@@ -196,7 +196,11 @@ fn disc_form_factor(p: vec3<f32>, n: vec3<f32>) -> f32 {
 }
 
 // Lambert's contour integral over the patch polygon clipped to the receiver's horizon.
+// Zero behind the patch's plane: a patch emits from its front only.
 fn polygon_form_factor(p: vec3<f32>, n: vec3<f32>) -> f32 {
+    if (dot(shot.normal.xyz, p - shot.polygon[0].xyz) <= 0.0) {
+        return 0.0;
+    }
     var clipped: array<vec3<f32>, 10>;
     var count = 0u;
     let corners = shot.info.y;

@@ -454,3 +454,56 @@ fn luminaires_shot_delivers_the_luminaires_flux_in_a_closed_room() {
         "{delivered} vs {flux}"
     );
 }
+
+#[test]
+fn a_patch_lights_nothing_behind_its_plane() {
+    // An emitting panel 1 cm under a ceiling, facing down, over a floor: the ceiling (in
+    // front of the panel's back) must get nothing, the floor its share (the bug this
+    // guards against lit the ceiling of the Cornell box from the back of its light).
+    let Some(gpu) = gpu_common::gpu() else { return };
+    let quad = |z: f32, half: f32, up: bool| -> Vec<[Vec3; 3]> {
+        let c = [(-half, -half), (half, -half), (half, half), (-half, half)]
+            .map(|(x, y)| Vec3::new(x, y, z));
+        if up {
+            vec![[c[0], c[1], c[2]], [c[0], c[2], c[3]]]
+        } else {
+            vec![[c[0], c[2], c[1]], [c[0], c[3], c[2]]]
+        }
+    };
+    let scene = scene_of(
+        vec![
+            SceneMesh::from_triangles("panel", &quad(0.99, 0.3, false), 1),
+            SceneMesh::from_triangles("ceiling", &quad(1.0, 1.0, false), 0),
+            SceneMesh::from_triangles("floor", &quad(0.0, 1.0, true), 0),
+        ],
+        vec![material(0.5, 0.0), material(0.0, 1000.0)],
+    );
+    let r = RadiosityScene::new(&scene, 10.0, 1).unwrap();
+    let settings = SolverSettings::default();
+    let mut cpu = CpuSolver::new(&r, settings);
+    let mut solver = GpuSolver::new(&gpu, &r, &cpu.state(), settings, GpuSettings::default());
+    for _ in 0..2 {
+        let (t, extra) = cpu.select().unwrap();
+        cpu.shoot(t, extra);
+        solver.shoot(t).unwrap();
+    }
+    let b = solver.radiosity().unwrap();
+    let mean = |b: &[DVec3], tris: std::ops::Range<usize>| {
+        let el = &r.elements;
+        let (mut sum, mut area) = (0.0, 0.0);
+        for t in tris {
+            let te = &el.triangles[t];
+            for e in te.first as usize..(te.first + te.count) as usize {
+                sum += b[e].x * el.area[e];
+                area += el.area[e];
+            }
+        }
+        sum / area
+    };
+    for (who, b) in [("GPU", &b), ("CPU", &cpu.radiosity)] {
+        let (ceiling, floor) = (mean(b, 2..4), mean(b, 4..6));
+        eprintln!("{who}: ceiling {ceiling:.3}, floor {floor:.3} lm/m²");
+        assert_eq!(ceiling, 0.0, "{who}");
+        assert!(floor > 10.0, "{who}: {floor}");
+    }
+}

@@ -1,0 +1,220 @@
+#!/usr/bin/env python3
+"""goniolight's radiosity against Radiance in the bundled box room.
+
+Builds the same 6 x 4 x 3 m room (reflectances 0.2 floor / 0.5 walls / 0.7 ceiling, read
+from assets/scenes/box_room.mtl) lit by the same luminaire (assets/scenes/box_room.toml:
+the LDT converted to IES by `goniolight ldt convert`, then to Radiance by `ies2rad`) in
+Radiance and in goniolight, and compares the illuminance on a work plane at 0.8 m:
+
+  direct: Radiance `rtrace -I -ab 0`  vs  `goniolight illuminance`
+  total:  a converged Radiance run    vs  `goniolight radiosity --points`
+
+and, with --bench, the time each needs to come within 2 % (mean absolute difference) of
+the converged Radiance work plane, measured side by side on this machine.
+
+Radiance comes from pyradiance (pip install pyradiance), which ships rtrace, oconv and
+ies2rad. Writes radiance_box_room.csv (x y z and every column) into --out.
+
+Usage: python3 scripts/compare_radiance.py [--goniolight BIN] [--out DIR] [--bench]
+"""
+
+import argparse
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+import tomllib
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+SCENE = ROOT / "assets/scenes/box_room.toml"
+ROOM = (6.0, 4.0, 3.0)
+WORK_PLANE_Z = 0.8
+# Radiance's luminous efficacy of its white light, lm/W.
+WHITE_EFFICACY = 179.0
+# A converged Radiance run: eight bounces, dense hemisphere sampling, fine ambient cache.
+RADIANCE_CONVERGED = "-ab 8 -ad 4096 -as 2048 -aa 0.05 -ar 512 -lw 1e-6"
+RADIANCE_COMMON = "-h -I -dt 0 -dc 1 -ds 0.01 -dj 0"
+
+
+def radiance_bin():
+    try:
+        import pyradiance
+    except ImportError:
+        sys.exit("error: Radiance is missing: pip install pyradiance")
+    base = Path(pyradiance.__file__).parent
+    return base / "bin", base / "lib"
+
+
+def work_plane(step=0.5):
+    """Points on a grid at 0.8 m, half a step from the walls, facing up."""
+    nx, ny = round(ROOM[0] / step), round(ROOM[1] / step)
+    return [
+        (step * (i + 0.5), step * (j + 0.5), WORK_PLANE_Z)
+        for j in range(ny)
+        for i in range(nx)
+    ]
+
+
+def reflectances():
+    """Kd of floor, wall and ceiling from the scene's MTL file."""
+    kd, name = {}, None
+    for line in (SCENE.parent / "box_room.mtl").read_text().splitlines():
+        words = line.split()
+        if words[:1] == ["newmtl"]:
+            name = words[1]
+        elif words[:1] == ["Kd"] and name:
+            kd[name] = [float(w) for w in words[1:4]]
+    return kd
+
+
+def room_rad(kd, lum_rad, position):
+    """The room in Radiance's scene language (polygons facing inward)."""
+    x, y, z = ROOM
+    faces = {
+        "floor": [(0, 0, 0), (0, y, 0), (x, y, 0), (x, 0, 0)],
+        "ceiling": [(0, 0, z), (x, 0, z), (x, y, z), (0, y, z)],
+        "wall": [
+            [(0, 0, 0), (x, 0, 0), (x, 0, z), (0, 0, z)],
+            [(x, 0, 0), (x, y, 0), (x, y, z), (x, 0, z)],
+            [(x, y, 0), (0, y, 0), (0, y, z), (x, y, z)],
+            [(0, y, 0), (0, 0, 0), (0, 0, z), (0, y, z)],
+        ],
+    }
+    out = []
+    for name, rgb in kd.items():
+        out.append(f"void plastic {name}\n0\n0\n5 {rgb[0]} {rgb[1]} {rgb[2]} 0 0\n")
+    for name, polys in faces.items():
+        if name != "wall":
+            polys = [polys]
+        for k, poly in enumerate(polys):
+            coords = " ".join(f"{a} {b} {c}" for a, b, c in poly)
+            out.append(f"{name} polygon {name}.{k}\n0\n0\n12 {coords}\n")
+    px, py, pz = position
+    out.append(f"!xform -t {px} {py} {pz} {lum_rad}\n")
+    return "".join(out)
+
+
+def lux_of(line):
+    r, g, b = (float(v) for v in line.split()[:3])
+    return WHITE_EFFICACY * (0.265 * r + 0.670 * g + 0.065 * b)
+
+
+def rtrace(env, octree, options, points):
+    rays = "".join(f"{x} {y} {z} 0 0 1\n" for x, y, z in points)
+    start = time.perf_counter()
+    run = subprocess.run(
+        ["rtrace", *RADIANCE_COMMON.split(), *options.split(), str(octree)],
+        input=rays, capture_output=True, text=True, env=env, cwd=octree.parent,
+    )
+    seconds = time.perf_counter() - start
+    if run.returncode != 0:
+        sys.exit(f"error: rtrace {options} failed:\n{run.stderr}")
+    out = run.stdout
+    return [lux_of(l) for l in out.splitlines() if l.strip()], seconds
+
+
+def goniolight(binary, args, points):
+    rays = "".join(f"{x} {y} {z} 0 0 1\n" for x, y, z in points)
+    start = time.perf_counter()
+    out = subprocess.run(
+        [str(binary), *args, str(SCENE)], input=rays, capture_output=True, text=True,
+    )
+    seconds = time.perf_counter() - start
+    if out.returncode != 0:
+        sys.exit(f"error: goniolight {' '.join(args)} failed:\n{out.stderr}")
+    return [float(v) for v in out.stdout.split()], seconds
+
+
+def mad(values, reference):
+    """Mean absolute difference relative to the reference's mean."""
+    diff = sum(abs(a - b) for a, b in zip(values, reference)) / len(reference)
+    return diff / (sum(reference) / len(reference))
+
+
+def worst(values, reference):
+    return max(abs(a / b - 1.0) for a, b in zip(values, reference))
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--goniolight", type=Path, default=ROOT / "target/release/goniolight")
+    ap.add_argument("--out", type=Path, default=Path("radiance-compare"))
+    ap.add_argument("--bench", action="store_true",
+                    help="also time both to within 2 %% of the converged work plane")
+    a = ap.parse_args()
+    if not a.goniolight.exists():
+        subprocess.run(["cargo", "build", "--release", "--quiet"], cwd=ROOT, check=True)
+    bindir, libdir = radiance_bin()
+    env = dict(os.environ, PATH=f"{bindir}{os.pathsep}{os.environ['PATH']}",
+               RAYPATH=f".{os.pathsep}{libdir}")
+    scene = tomllib.loads(SCENE.read_text())
+    lum = scene["luminaire"][0]
+    ldt = (SCENE.parent / lum["file"]).resolve()
+    points = work_plane()
+    work = Path(tempfile.mkdtemp(prefix="goniolight-radiance-"))
+    try:
+        subprocess.run([str(a.goniolight), "ldt", "convert", str(ldt), "--out",
+                        str(work / "lum.ies")], check=True, capture_output=True)
+        # -i: a point-like sphere (1 cm) as goniolight's point source; -t default: white.
+        subprocess.run(["ies2rad", "-dm", "-t", "default", "-i", "0.01", "-o", "lum",
+                        "lum.ies"], cwd=work, env=env, check=True)
+        (work / "room.rad").write_text(room_rad(reflectances(), "lum.rad", lum["position"]))
+        with open(work / "room.oct", "wb") as octree:
+            subprocess.run(["oconv", "room.rad"], cwd=work, env=env, check=True,
+                           stdout=octree)
+        env["RAYPATH"] = f"{work}{os.pathsep}{libdir}"
+        rad_direct, t_rad_direct = rtrace(env, work / "room.oct", "-ab 0", points)
+        rad_total, t_rad_total = rtrace(env, work / "room.oct", RADIANCE_CONVERGED, points)
+        gl_direct, t_gl_direct = goniolight(a.goniolight, ["illuminance"], points)
+        gl_total, t_gl_total = goniolight(
+            a.goniolight, ["radiosity", "--points", "--converge", "0.999"], points)
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+    a.out.mkdir(parents=True, exist_ok=True)
+    with open(a.out / "radiance_box_room.csv", "w") as f:
+        f.write("x,y,z,radiance_direct_lx,goniolight_direct_lx,radiance_total_lx,goniolight_total_lx\n")
+        for p, rd, gd, rt, gt in zip(points, rad_direct, gl_direct, rad_total, gl_total):
+            f.write(f"{p[0]},{p[1]},{p[2]},{rd:.4f},{gd:.4f},{rt:.4f},{gt:.4f}\n")
+    mean = lambda v: sum(v) / len(v)
+    print(f"box room 6 x 4 x 3 m, {len(points)} work-plane points at {WORK_PLANE_Z} m, "
+          f"luminaire {ldt.name} at {lum['position']}")
+    print("| quantity | Radiance mean lx | goniolight mean lx | mean abs. diff. | worst point |")
+    print("|---|---|---|---|---|")
+    for name, r, g in [("direct (`-ab 0`)", rad_direct, gl_direct),
+                       ("total (converged)", rad_total, gl_total),
+                       ("interreflected (total − direct)",
+                        [t - d for t, d in zip(rad_total, rad_direct)],
+                        [t - d for t, d in zip(gl_total, gl_direct)])]:
+        print(f"| {name} | {mean(r):.2f} | {mean(g):.2f} | {100 * mad(g, r):.2f} % "
+              f"| {100 * worst(g, r):.2f} % |")
+    print(f"times: rtrace direct {t_rad_direct:.2f} s, converged {t_rad_total:.2f} s; "
+          f"goniolight illuminance {t_gl_direct:.2f} s, radiosity {t_gl_total:.2f} s")
+    ok = worst(gl_direct, rad_direct) <= 0.01 and mad(gl_total, rad_total) <= 0.03
+    if a.bench:
+        bench(a.goniolight, env, points, rad_total)
+    print("PASS" if ok else "FAIL: direct must agree within 1 % at every point, "
+          "total within 3 % mean absolute difference")
+    return 0 if ok else 1
+
+
+def bench(binary, env, points, reference):
+    """Cheapest setting of each tool within 2 % MAD of the converged Radiance plane."""
+    print("\ntime to within 2 % of the converged work plane (wall clock, this machine):")
+    print("| tool | setting | MAD | seconds |")
+    print("|---|---|---|---|")
+    found = {}
+    for converge in ["0.5", "0.8", "0.9", "0.95", "0.98", "0.99", "0.995", "0.999"]:
+        lux, s = goniolight(binary, ["radiosity", "--points", "--converge", converge], points)
+        d = mad(lux, reference)
+        print(f"| goniolight | --converge {converge} | {100 * d:.2f} % | {s:.2f} |")
+        if d <= 0.02:
+            found["goniolight"] = s
+            break
+    raise NotImplementedError
+
+
+if __name__ == "__main__":
+    sys.exit(main())
