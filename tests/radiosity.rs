@@ -490,14 +490,13 @@ fn a_patch_lights_nothing_behind_its_plane() {
     let b = solver.radiosity().unwrap();
     let mean = |b: &[DVec3], tris: std::ops::Range<usize>| {
         let el = &r.elements;
-        let (mut sum, mut area) = (0.0, 0.0);
-        for t in tris {
+        let elements = tris.flat_map(|t| {
             let te = &el.triangles[t];
-            for e in te.first as usize..(te.first + te.count) as usize {
-                sum += b[e].x * el.area[e];
-                area += el.area[e];
-            }
-        }
+            te.first as usize..(te.first + te.count) as usize
+        });
+        let (sum, area) = elements.fold((0.0, 0.0), |(s, a), e| {
+            (s + b[e].x * el.area[e], a + el.area[e])
+        });
         sum / area
     };
     for (who, b) in [("GPU", &b), ("CPU", &cpu.radiosity)] {

@@ -66,6 +66,25 @@ pub enum BenchCommand {
         #[arg(long, default_value_t = 6)]
         floors: u32,
     },
+    /// GPU radiosity on a Cornell-box-like scene (Wallner Table 4.1, "Cornell box high":
+    /// ~127 000 elements): time to 90 % and 99 % convergence, hemicube vs stereographic.
+    Radiosity {
+        /// Print JSON {"rows": [...]}.
+        #[arg(long)]
+        json: bool,
+        /// About this many elements.
+        #[arg(long, default_value_t = 127_000)]
+        elements: usize,
+        /// Patch level (patches of 2^level × 2^level texels).
+        #[arg(long, default_value_t = 4)]
+        level: u32,
+        /// Give up after this many shots per solution.
+        #[arg(long, default_value_t = 5000)]
+        max_shots: usize,
+        /// The scene (default: the bundled assets/scenes/cornell_box.toml).
+        #[arg(long)]
+        scene: Option<std::path::PathBuf>,
+    },
 }
 
 /// Runs `bench …`.
@@ -100,7 +119,86 @@ pub fn run(cmd: BenchCommand) -> Result<(), CliError> {
             step,
             floors,
         } => super::profile::run_bench(json, resolution, step, floors),
+        BenchCommand::Radiosity {
+            json,
+            elements,
+            level,
+            max_shots,
+            scene,
+        } => run_radiosity(json, elements, level, max_shots, scene),
     }
+}
+
+fn run_radiosity(
+    as_json: bool,
+    elements: usize,
+    level: u32,
+    max_shots: usize,
+    scene: Option<std::path::PathBuf>,
+) -> Result<(), CliError> {
+    use crate::radiosity::bench as rbench;
+    use crate::radiosity::gpu::Visibility;
+    if !(1..=50_000_000).contains(&elements) || level > 6 || max_shots == 0 {
+        return Err(CliError::input(anyhow::anyhow!(
+            "--elements must be in 1..=50000000, --level in 0..=6, --max-shots > 0"
+        )));
+    }
+    let path = scene.unwrap_or_else(|| super::data_root().join("assets/scenes/cornell_box.toml"));
+    let scene = crate::scene::Scene::load(&path)?;
+    let gpu = Gpu::headless()?;
+    eprintln!("GPU: {}", gpu.describe());
+    let visibilities = [Visibility::Hemicube, Visibility::Stereographic];
+    let bar = indicatif::ProgressBar::new(1000);
+    let rows = rbench::run(
+        &gpu,
+        &scene,
+        elements,
+        level,
+        &visibilities,
+        max_shots,
+        |v, c| {
+            bar.set_message(format!("{v:?}"));
+            bar.set_position((c.clamp(0.0, 1.0) * 1000.0) as u64);
+        },
+    )
+    .map_err(CliError::failure)?;
+    bar.finish_and_clear();
+    if as_json {
+        println!(
+            "{}",
+            json!({ "rows": rows, "gpu": gpu.describe(), "scene": path, "level": level })
+        );
+        return Ok(());
+    }
+    let first = &rows[0];
+    println!(
+        "{}: {}, {} elements ({:.1} texels/m), {} patches (level {level})",
+        gpu.describe(),
+        path.display(),
+        first.elements,
+        first.texel_density,
+        first.patches
+    );
+    println!("| visibility | shots to 90 % | s to 90 % | shots to 99 % | s to 99 % | ms/shot | time to 90 % / hemicube |");
+    println!("|---|---|---|---|---|---|---|");
+    let opt = |v: Option<f64>| v.map_or("—".to_string(), |v| format!("{v:.2}"));
+    let shots = |v: Option<usize>| v.map_or("—".to_string(), |v| v.to_string());
+    for r in &rows {
+        let ratio = match (r.seconds_90, first.seconds_90) {
+            (Some(a), Some(b)) if b > 0.0 => format!("{:.2}", a / b),
+            _ => "—".into(),
+        };
+        println!(
+            "| {} | {} | {} | {} | {} | {:.1} | {ratio} |",
+            r.visibility,
+            shots(r.shots_90),
+            opt(r.seconds_90),
+            shots(r.shots_99),
+            opt(r.seconds_99),
+            r.ms_per_shot
+        );
+    }
+    Ok(())
 }
 
 fn run_render(as_json: bool, plan: bench::BenchPlan, quick: bool) -> Result<(), CliError> {

@@ -58,7 +58,9 @@ fn render_both(args: &DemoArgs) -> Result<(), CliError> {
         let settings = opts.settings(&scene)?;
         let png = args.out_dir.join(format!("{stem}.png"));
         let exr = args.out_dir.join(format!("{stem}.exr"));
-        render_to_files(&gpu, &renderer, &scene, None, &settings, &png, Some(&exr))?;
+        let (_, report) =
+            render_to_files(&gpu, &renderer, &scene, None, &settings, &png, Some(&exr))?;
+        println!("{report}");
     }
     Ok(())
 }

@@ -184,6 +184,14 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
     let prepared_s = started.elapsed().as_secs_f64();
     let mut solver = GpuSolver::new(&gpu, &rscene, &initial, solver_settings, gpu_settings);
     let cancel = cancel_on_ctrl_c();
+    eprintln!(
+        "{}: {} elements, {} patches, atlas {}×{}; shooting (Ctrl-C stops and writes the solution so far)",
+        args.scene.display(),
+        rscene.elements.len(),
+        rscene.elements.patches.len(),
+        rscene.elements.atlas_width,
+        rscene.elements.atlas_height,
+    );
     let bar = progress_bar()?;
     let (stop, log) = solver.solve(&args.stop(), &cancel, |p: &ConvergencePoint| {
         bar.set_position((p.convergence.clamp(0.0, 1.0) * 10_000.0) as u64);
@@ -201,12 +209,8 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
         solve::displayed(&rscene, &radiosity, &illuminance, &unshot, args.ambient);
     let last = log.last().copied();
     eprintln!(
-        "{}: {} elements, {} patches, atlas {}×{}; {} shots, {:.2} % converged ({stop}) in {solve_s:.2} s (+{prepared_s:.2} s to prepare and shoot the luminaires)",
+        "{}: {} shots, {:.2} % converged ({stop}) in {solve_s:.2} s (+{prepared_s:.2} s to prepare and shoot the luminaires)",
         args.scene.display(),
-        rscene.elements.len(),
-        rscene.elements.patches.len(),
-        rscene.elements.atlas_width,
-        rscene.elements.atlas_height,
         solver.shots,
         100.0 * last.map_or(1.0, |p| p.convergence),
     );
@@ -260,7 +264,7 @@ fn write_outputs(
     let png = dir.join("render.png");
     let exr = dir.join("render.exr");
     let renderer = Renderer::new(gpu);
-    render_to_files(
+    let (_, report) = render_to_files(
         gpu,
         &renderer,
         scene,
@@ -269,6 +273,7 @@ fn write_outputs(
         &png,
         Some(&exr),
     )?;
+    eprintln!("{report}");
     let map = &outputs.light_map;
     let rgb: Vec<f32> = map.texels.iter().flat_map(|t| [t[0], t[1], t[2]]).collect();
     let lux: Vec<f32> = map.texels.iter().flat_map(|t| [t[3]; 3]).collect();

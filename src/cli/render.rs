@@ -165,7 +165,8 @@ fn check_extension(path: &Path, ext: &str, flag: &str) -> Result<(), CliError> {
 }
 
 /// Renders `scene` with `settings` (with a solved radiosity light map when given) and
-/// writes the PNG (and EXR): the shared body of `render`, `demo` and `radiosity`.
+/// writes the PNG (and EXR): the shared body of `render`, `demo` and `radiosity`. Returns
+/// the frame and a one-line report for the caller to print.
 pub fn render_to_files(
     gpu: &Gpu,
     renderer: &Renderer,
@@ -174,7 +175,7 @@ pub fn render_to_files(
     settings: &RenderSettings,
     png: &Path,
     exr: Option<&Path>,
-) -> Result<RenderedFrame, CliError> {
+) -> Result<(RenderedFrame, String), CliError> {
     let mut settings = settings.clone();
     settings.read_hdr = exr.is_some();
     let started = Instant::now();
@@ -200,7 +201,7 @@ pub fn render_to_files(
             frame.stats.mean_lux, frame.stats.max_lux, frame.tone.lux_max
         ),
     };
-    println!(
+    let report = format!(
         "{}: {} triangles, {} luminaires, {}×{} in {ms:.0} ms; {what} → {}{}",
         scene.path.display(),
         scene.triangle_count(),
@@ -211,7 +212,7 @@ pub fn render_to_files(
         exr.map(|e| format!(", {}", e.display()))
             .unwrap_or_default()
     );
-    Ok(frame)
+    Ok((frame, report))
 }
 
 /// Runs `render`.
@@ -224,7 +225,7 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
     let settings = args.image.settings(&scene)?;
     let gpu = Gpu::headless()?;
     let renderer = Renderer::new(&gpu);
-    render_to_files(
+    let (_, report) = render_to_files(
         &gpu,
         &renderer,
         &scene,
@@ -233,6 +234,7 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
         &args.out,
         args.exr.as_deref(),
     )?;
+    println!("{report}");
     Ok(())
 }
 

@@ -1,0 +1,315 @@
+//! `goniolight radiosity` end to end: the furnace through the command (points, light map,
+//! rendering), the box room against Radiance's numbers (stored by
+//! scripts/compare_radiance.py), the stop conditions and bad input.
+
+mod common;
+
+use std::path::Path;
+
+use common::{root, run_cli};
+
+/// A closed 2 × 1.5 × 1 m box, faces inward, reflectance `rho`, exitance `e` (lm/m²).
+fn write_furnace(dir: &Path, rho: f64, e: f64) -> std::path::PathBuf {
+    let (x, y, z) = (2.0, 1.5, 1.0);
+    let v = [
+        (0., 0., 0.),
+        (x, 0., 0.),
+        (x, y, 0.),
+        (0., y, 0.),
+        (0., 0., z),
+        (x, 0., z),
+        (x, y, z),
+        (0., y, z),
+    ];
+    let mut obj = String::from("mtllib furnace.mtl\nusemtl glow\n");
+    for (a, b, c) in v {
+        obj.push_str(&format!("v {a} {b} {c}\n"));
+    }
+    // Counter-clockwise seen from inside.
+    for f in [
+        [1, 2, 3, 4],
+        [5, 8, 7, 6],
+        [1, 5, 6, 2],
+        [2, 6, 7, 3],
+        [3, 7, 8, 4],
+        [4, 8, 5, 1],
+    ] {
+        obj.push_str(&format!("f {} {} {} {}\n", f[0], f[1], f[2], f[3]));
+    }
+    std::fs::write(dir.join("furnace.obj"), obj).unwrap();
+    std::fs::write(
+        dir.join("furnace.mtl"),
+        format!("newmtl glow\nKd {rho} {rho} {rho}\nKe {e} {e} {e}\n"),
+    )
+    .unwrap();
+    let toml = "[[model]]\npath = \"furnace.obj\"\nup = \"z\"\n\n[camera]\nposition = [0.2, 0.2, 0.5]\nlook_at = [1.8, 1.3, 0.4]\nfov_deg = 80.0\n\n[display]\nmode = \"illuminance\"\nwidth = 96\nheight = 64\n";
+    let path = dir.join("furnace.toml");
+    std::fs::write(&path, toml).unwrap();
+    path
+}
+
+fn read_exr(path: &Path) -> image::Rgb32FImage {
+    image::open(path).unwrap().to_rgb32f()
+}
+
+#[test]
+fn furnace_through_the_command_gives_e_over_one_minus_rho_everywhere() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = write_furnace(dir.path(), 0.5, 100.0);
+    let out = dir.path().join("out");
+    // Points anywhere inside, facing anywhere, see B = E / (1 − ρ) = 200 lm/m² all round.
+    let points = "1.0 0.75 0.0 0 0 1\n0.3 1.2 0.5 1 -1 0.3\n1.9 0.1 0.9 -0.2 0.3 -1\n";
+    let (code, stdout, stderr) = run_cli(
+        &[
+            "radiosity",
+            scene.to_str().unwrap(),
+            "--points",
+            "--converge",
+            "0.999",
+            "--texel-density",
+            "8",
+            "--out-dir",
+            out.to_str().unwrap(),
+        ],
+        points,
+    );
+    assert_eq!(code, 0, "{stderr}");
+    let lux: Vec<f64> = stdout.lines().map(|l| l.parse().unwrap()).collect();
+    assert_eq!(lux.len(), 3);
+    for v in &lux {
+        assert!((v / 200.0 - 1.0).abs() < 0.01, "{lux:?}");
+    }
+    // The light map: radiosity 200 lm/m² and illuminance 200 lx on every used texel.
+    let atlas = read_exr(&out.join("lightmap.exr"));
+    let lux_map = read_exr(&out.join("lightmap_lux.exr"));
+    let used: Vec<(f32, f32)> = atlas
+        .pixels()
+        .zip(lux_map.pixels())
+        .filter(|(b, _)| b[0] > 0.0)
+        .map(|(b, e)| (b[0], e[0]))
+        .collect();
+    assert!(used.len() > 500, "{}", used.len());
+    for (b, e) in &used {
+        assert!(
+            (b / 200.0 - 1.0).abs() < 0.01 && (e / 200.0 - 1.0).abs() < 0.01,
+            "{b} {e}"
+        );
+    }
+    // The rendering shows the solution: 200 lx on every pixel (illuminance mode), and the
+    // log ends converged.
+    let render = read_exr(&out.join("render.exr"));
+    for p in render.pixels() {
+        assert!((p[0] / 200.0 - 1.0).abs() < 0.01, "{}", p[0]);
+    }
+    assert!(out.join("render.png").is_file());
+    let csv = std::fs::read_to_string(out.join("convergence.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(
+        lines.next(),
+        Some("shot,seconds,shooter,unshot_lm,convergence")
+    );
+    let last: Vec<&str> = csv.lines().last().unwrap().split(',').collect();
+    assert!(last[4].parse::<f64>().unwrap() >= 0.999, "{last:?}");
+    assert!(stderr.contains("converged"), "{stderr}");
+}
+
+#[test]
+fn stops_at_the_shot_limit_and_the_log_has_a_line_per_shot() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = write_furnace(dir.path(), 0.8, 50.0);
+    let out = dir.path().join("out");
+    let (code, _, stderr) = run_cli(
+        &[
+            "radiosity",
+            scene.to_str().unwrap(),
+            "--max-shots",
+            "3",
+            "--texel-density",
+            "4",
+            "--out-dir",
+            out.to_str().unwrap(),
+        ],
+        "",
+    );
+    assert_eq!(code, 0, "{stderr}");
+    assert!(
+        stderr.contains("3 shots") && stderr.contains("shot limit"),
+        "{stderr}"
+    );
+    let csv = std::fs::read_to_string(out.join("convergence.csv")).unwrap();
+    let rows: Vec<Vec<f64>> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|v| v.parse().unwrap_or(-1.0)).collect())
+        .collect();
+    assert_eq!(rows.len(), 4, "{csv}");
+    // Convergence grows shot by shot from 0.
+    assert_eq!(rows[0][4], 0.0);
+    assert!(rows.windows(2).all(|w| w[1][4] > w[0][4]), "{csv}");
+}
+
+#[test]
+fn box_room_agrees_with_radiance() {
+    // Radiance's work plane (scripts/compare_radiance.py: rtrace -ab 0 and a converged
+    // run) is stored; goniolight must match direct within 1 % at every point and the total
+    // within 3 % mean absolute difference.
+    let csv = std::fs::read_to_string(root().join("tests/data/radiance_box_room.csv")).unwrap();
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let (direct_col, total_col) = (col("radiance_direct_lx"), col("radiance_total_lx"));
+    let rows: Vec<Vec<f64>> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    let points: String = rows
+        .iter()
+        .map(|r| format!("{} {} {} 0 0 1\n", r[0], r[1], r[2]))
+        .collect();
+    let scene = root().join("assets/scenes/box_room.toml");
+    let scene = scene.to_str().unwrap();
+    let lux = |args: &[&str]| -> Vec<f64> {
+        let (code, stdout, stderr) = run_cli(args, &points);
+        assert_eq!(code, 0, "{stderr}");
+        stdout.lines().map(|l| l.parse().unwrap()).collect()
+    };
+    let direct = lux(&["illuminance", scene]);
+    let total = lux(&["radiosity", scene, "--points", "--converge", "0.99"]);
+    let mut worst_direct: f64 = 0.0;
+    let (mut diff, mut sum) = (0.0, 0.0);
+    for (k, r) in rows.iter().enumerate() {
+        worst_direct = worst_direct.max((direct[k] / r[direct_col] - 1.0).abs());
+        diff += (total[k] - r[total_col]).abs();
+        sum += r[total_col];
+    }
+    let mad = diff / sum;
+    eprintln!(
+        "vs Radiance: direct worst {:.3} %, total MAD {:.3} %",
+        100.0 * worst_direct,
+        100.0 * mad
+    );
+    assert!(worst_direct <= 0.01, "{worst_direct}");
+    assert!(mad <= 0.03, "{mad}");
+}
+
+#[test]
+fn bad_input_exits_2_and_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = write_furnace(dir.path(), 0.5, 100.0);
+    let scene = scene.to_str().unwrap();
+    let out = dir.path().join("never");
+    let o = out.to_str().unwrap();
+    let cases: [(&[&str], &str, &str); 6] = [
+        (
+            &["radiosity", scene, "--converge", "1.5", "--out-dir", o],
+            "",
+            "--converge",
+        ),
+        (
+            &["radiosity", scene, "--texel-density", "0", "--out-dir", o],
+            "",
+            "--texel-density",
+        ),
+        (
+            &["radiosity", scene, "--visibility", "cube", "--out-dir", o],
+            "",
+            "cube",
+        ),
+        (
+            &["radiosity", scene, "--time-limit", "0", "--out-dir", o],
+            "",
+            "--time-limit",
+        ),
+        (
+            &["radiosity", scene, "--points", "--out-dir", o],
+            "1 2 3 0 0 1\n1 2 x 0 0 1\n",
+            "line 2",
+        ),
+        (
+            &["radiosity", "missing.toml", "--out-dir", o],
+            "",
+            "missing.toml",
+        ),
+    ];
+    for (args, stdin, says) in cases {
+        let (code, _, stderr) = run_cli(args, stdin);
+        assert_eq!(code, 2, "{args:?}: {stderr}");
+        assert!(stderr.contains(says), "{args:?}: {stderr}");
+        assert!(!out.exists(), "{args:?} wrote {}", out.display());
+    }
+}
+
+#[test]
+fn bench_radiosity_json_has_the_contract_keys() {
+    let (code, stdout, stderr) = run_cli(
+        &[
+            "bench",
+            "radiosity",
+            "--elements",
+            "3000",
+            "--level",
+            "2",
+            "--json",
+        ],
+        "",
+    );
+    assert_eq!(code, 0, "{stderr}");
+    let v: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    let rows = v["rows"].as_array().unwrap();
+    let names: Vec<&str> = rows
+        .iter()
+        .map(|r| r["visibility"].as_str().unwrap())
+        .collect();
+    assert_eq!(names, ["hemicube", "stereographic"]);
+    for r in rows {
+        let elements = r["elements"].as_u64().unwrap();
+        assert!((2500..4000).contains(&elements), "{r}");
+        let (s90, s99) = (
+            r["seconds_90"].as_f64().unwrap(),
+            r["seconds_99"].as_f64().unwrap(),
+        );
+        let (n90, n99) = (
+            r["shots_90"].as_u64().unwrap(),
+            r["shots_99"].as_u64().unwrap(),
+        );
+        assert!(0.0 < s90 && s90 <= s99 && 0 < n90 && n90 < n99, "{r}");
+        assert!(r["ms_per_shot"].as_f64().unwrap() > 0.0);
+    }
+}
+
+#[test]
+fn ctrl_c_stops_the_solver_and_writes_the_solution_so_far() {
+    use std::io::{BufRead, BufReader};
+    use std::process::{Command, Stdio};
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let scene = root().join("assets/scenes/cornell_box.toml");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_goniolight"))
+        .args(["radiosity", scene.to_str().unwrap(), "--converge", "1"])
+        .args(["--texel-density", "20", "--level", "1", "--out-dir"])
+        .arg(&out)
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut stderr = BufReader::new(child.stderr.take().unwrap());
+    let mut text = String::new();
+    // Wait until it says it is shooting (the handler is in place), then interrupt.
+    while !text.contains("shooting") {
+        let mut line = String::new();
+        assert!(stderr.read_line(&mut line).unwrap() > 0, "ended early: {text}");
+        text.push_str(&line);
+    }
+    std::thread::sleep(std::time::Duration::from_millis(300));
+    unsafe { libc::kill(child.id() as i32, libc::SIGINT) };
+    let mut rest = String::new();
+    std::io::Read::read_to_string(&mut stderr, &mut rest).unwrap();
+    let status = child.wait().unwrap();
+    assert!(status.success(), "{status:?}: {text}{rest}");
+    assert!(rest.contains("(interrupted)") && rest.contains("stopped early"), "{rest}");
+    let csv = std::fs::read_to_string(out.join("convergence.csv")).unwrap();
+    let last: f64 = csv.lines().last().unwrap().split(',').nth(4).unwrap().parse().unwrap();
+    assert!(last < 1.0, "{csv}");
+    assert!(out.join("render.png").is_file() && out.join("lightmap.exr").is_file());
+}
