@@ -149,6 +149,40 @@ fn stops_at_the_shot_limit_and_the_log_has_a_line_per_shot() {
 }
 
 #[test]
+fn stops_when_the_time_budget_is_spent() {
+    let scene = root().join("assets/scenes/cornell_box.toml");
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let (code, _, stderr) = run_cli(
+        &[
+            "radiosity",
+            scene.to_str().unwrap(),
+            "--converge",
+            "1",
+            "--texel-density",
+            "6",
+            "--time-limit",
+            "0.05",
+            "--out-dir",
+            out.to_str().unwrap(),
+        ],
+        "",
+    );
+    assert_eq!(code, 0, "{stderr}");
+    assert!(stderr.contains("(time budget spent)"), "{stderr}");
+    let csv = std::fs::read_to_string(out.join("convergence.csv")).unwrap();
+    let seconds: Vec<f64> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').nth(1).unwrap().parse().unwrap())
+        .collect();
+    // Shooting stopped at the first check after the budget: only the last point is past it.
+    let n = seconds.len();
+    assert!(n >= 2 && seconds[n - 1] >= 0.05, "{csv}");
+    assert!(seconds[..n - 1].iter().all(|&s| s < 0.05), "{csv}");
+}
+
+#[test]
 fn box_room_agrees_with_radiance() {
     // Radiance's work plane (scripts/compare_radiance.py: rtrace -ab 0 and a converged
     // run) is stored; goniolight must match direct within 1 % at every point and the total
@@ -298,7 +332,10 @@ fn ctrl_c_stops_the_solver_and_writes_the_solution_so_far() {
     // Wait until it says it is shooting (the handler is in place), then interrupt.
     while !text.contains("shooting") {
         let mut line = String::new();
-        assert!(stderr.read_line(&mut line).unwrap() > 0, "ended early: {text}");
+        assert!(
+            stderr.read_line(&mut line).unwrap() > 0,
+            "ended early: {text}"
+        );
         text.push_str(&line);
     }
     std::thread::sleep(std::time::Duration::from_millis(300));
@@ -307,9 +344,20 @@ fn ctrl_c_stops_the_solver_and_writes_the_solution_so_far() {
     std::io::Read::read_to_string(&mut stderr, &mut rest).unwrap();
     let status = child.wait().unwrap();
     assert!(status.success(), "{status:?}: {text}{rest}");
-    assert!(rest.contains("(interrupted)") && rest.contains("stopped early"), "{rest}");
+    assert!(
+        rest.contains("(interrupted)") && rest.contains("stopped early"),
+        "{rest}"
+    );
     let csv = std::fs::read_to_string(out.join("convergence.csv")).unwrap();
-    let last: f64 = csv.lines().last().unwrap().split(',').nth(4).unwrap().parse().unwrap();
+    let last: f64 = csv
+        .lines()
+        .last()
+        .unwrap()
+        .split(',')
+        .nth(4)
+        .unwrap()
+        .parse()
+        .unwrap();
     assert!(last < 1.0, "{csv}");
     assert!(out.join("render.png").is_file() && out.join("lightmap.exr").is_file());
 }

@@ -123,7 +123,10 @@ impl GpuSolver<'_> {
                 Some(StopReason::NothingLeft)
             } else if stop.max_shots.is_some_and(|m| self.shots >= m) {
                 Some(StopReason::ShotLimit)
-            } else if stop.time_budget.is_some_and(|b| started.elapsed() >= b) {
+            } else if stop
+                .time_budget
+                .is_some_and(|b| point.seconds >= b.as_secs_f64())
+            {
                 Some(StopReason::TimeBudget)
             } else if cancel.load(Ordering::Relaxed) {
                 Some(StopReason::Cancelled)
