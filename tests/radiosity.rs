@@ -9,7 +9,7 @@ use goniolight::photometry::{Interp, Luminaire};
 use goniolight::radiosity::cpu::CpuSolver;
 use goniolight::radiosity::form_factor::{self, howell};
 use goniolight::radiosity::gpu::{GpuSettings, GpuSolver, Visibility};
-use goniolight::radiosity::initial::InitialState;
+use goniolight::radiosity::initial::{InitialState, LuminaireLight};
 use goniolight::radiosity::scene::RadiosityScene;
 use goniolight::radiosity::{Ambient, FormFactorKind, SolverSettings};
 use goniolight::render::{ShadowSettings, ShadowTechnique};
@@ -391,8 +391,10 @@ fn luminaires_shot_on_the_gpu_matches_the_cpu_ray_cast() {
     let r = RadiosityScene::new(&scene, 6.0, 1).unwrap();
     let cpu = CpuSolver::new(&r, SolverSettings::default());
     let shadows = ShadowSettings::with(ShadowTechnique::Paraboloid);
-    let gpu_start =
-        InitialState::from_luminaires_gpu(&gpu, &scene, &r, Interp::CatmullRom, &shadows).unwrap();
+    let gpu_start = {
+        let light = LuminaireLight::new(&gpu, &scene, Interp::CatmullRom);
+        InitialState::from_luminaires_gpu(&gpu, &light, &r, &shadows).unwrap()
+    };
     let n = r.elements.len();
     let peak = cpu.illuminance.iter().cloned().fold(0.0, f64::max);
     let agree = (0..n)
@@ -430,8 +432,10 @@ fn luminaires_shot_delivers_the_luminaires_flux_in_a_closed_room() {
     let flux = scene.luminaires[0].luminaire.summary().flux_lm;
     let r = RadiosityScene::new(&scene, 10.0, 2).unwrap();
     let shadows = ShadowSettings::with(ShadowTechnique::Paraboloid);
-    let start =
-        InitialState::from_luminaires_gpu(&gpu, &scene, &r, Interp::CatmullRom, &shadows).unwrap();
+    let start = {
+        let light = LuminaireLight::new(&gpu, &scene, Interp::CatmullRom);
+        InitialState::from_luminaires_gpu(&gpu, &light, &r, &shadows).unwrap()
+    };
     let delivered: f64 = (0..r.elements.len())
         .map(|e| start.illuminance[e] * r.elements.area[e])
         .sum();

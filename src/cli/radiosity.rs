@@ -17,11 +17,11 @@ use crate::gpu::Gpu;
 use crate::io::write_atomic;
 use crate::radiosity::gather;
 use crate::radiosity::gpu::{GpuSettings, GpuSolver, Visibility};
-use crate::radiosity::initial::InitialState;
+use crate::radiosity::initial::{InitialState, LuminaireLight};
 use crate::radiosity::scene::{luminance, RadiosityScene};
 use crate::radiosity::solve::{self, ConvergencePoint, StopAt, StopReason};
 use crate::radiosity::{Ambient, FormFactorKind, SolverSettings};
-use crate::render::illuminance::{IlluminanceProbe, SurfacePoint};
+use crate::render::illuminance::SurfacePoint;
 use crate::render::lightmap::LightMap;
 use crate::render::output::write_image;
 use crate::render::{LightModel, Renderer};
@@ -174,8 +174,8 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
         interp,
     };
     let gpu = Gpu::headless()?;
-    let initial =
-        InitialState::from_luminaires_gpu(&gpu, &scene, &rscene, interp, &settings.shadows)?;
+    let light = LuminaireLight::new(&gpu, &scene, interp);
+    let initial = InitialState::from_luminaires_gpu(&gpu, &light, &rscene, &settings.shadows)?;
     let gpu_settings = GpuSettings {
         visibility: args.visibility,
         map_size: args.map_size,
@@ -215,10 +215,7 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
         100.0 * last.map_or(1.0, |p| p.convergence),
     );
     if !points.is_empty() {
-        let probe = IlluminanceProbe::new(&gpu, LightModel::Ldt(interp));
-        let uploaded =
-            crate::render::GpuScene::new(&gpu, &crate::render::layouts::Layouts::new(&gpu), &scene);
-        let direct = probe.run_in_scene(&gpu, &uploaded, &points, &settings.shadows)?;
+        let direct = light.lux(&gpu, &points, &settings.shadows)?;
         print_total_lux(&rscene, &shown, &points, &direct, args.form_factor);
     }
     if let Some(dir) = out_dir {

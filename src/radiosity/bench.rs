@@ -6,7 +6,7 @@
 use std::sync::atomic::AtomicBool;
 
 use super::gpu::{GpuSettings, GpuSolver, Visibility};
-use super::initial::InitialState;
+use super::initial::{InitialState, LuminaireLight};
 use super::scene::RadiosityScene;
 use super::solve::StopAt;
 use super::SolverSettings;
@@ -65,8 +65,8 @@ pub fn run(
     let rscene = RadiosityScene::new(scene, density, level)?;
     let settings = SolverSettings::default();
     let shadows = crate::render::ShadowSettings::default();
-    let initial =
-        InitialState::from_luminaires_gpu(gpu, scene, &rscene, settings.interp, &shadows)?;
+    let light = LuminaireLight::new(gpu, scene, settings.interp);
+    let initial = InitialState::from_luminaires_gpu(gpu, &light, &rscene, &shadows)?;
     let mut rows = Vec::new();
     for &visibility in visibilities {
         let gpu_settings = GpuSettings {

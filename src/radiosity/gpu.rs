@@ -227,37 +227,14 @@ impl Pipelines {
             bind_group_layouts: &[Some(&face_layout)],
             immediate_size: 0,
         });
-        let visibility = dev.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("radiosity visibility"),
-            layout: Some(&vis_layout),
-            vertex: wgpu::VertexState {
-                module: &vis_module,
-                entry_point: Some("vs_visibility"),
-                compilation_options: Default::default(),
-                buffers: &[Some(wgpu::VertexBufferLayout {
-                    array_stride: 12,
-                    step_mode: wgpu::VertexStepMode::Vertex,
-                    attributes: &wgpu::vertex_attr_array![0 => Float32x3],
-                })],
-            },
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: wgpu::TextureFormat::Depth32Float,
-                depth_write_enabled: Some(true),
-                depth_compare: Some(wgpu::CompareFunction::Less),
-                stencil: Default::default(),
-                bias: Default::default(),
-            }),
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &vis_module,
-                entry_point: Some("fs_visibility"),
-                compilation_options: Default::default(),
-                targets: &[Some(MAP_FORMAT.into())],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        let visibility = gpu.position_depth_pipeline(
+            "radiosity visibility",
+            &vis_layout,
+            &vis_module,
+            ("vs_visibility", "fs_visibility"),
+            wgpu::TextureFormat::Depth32Float,
+            &[Some(MAP_FORMAT.into())],
+        );
         Pipelines {
             triangle_sums: compute_pipeline("triangle_sums", &shared_only),
             select: compute_pipeline("select_shooter", &shared_only),

@@ -41,26 +41,62 @@ impl InitialState {
         }
     }
 
-    /// The luminaires' shot on the GPU: direct illuminance at every element centre with
-    /// `shadows` (paraboloid maps for the luminaires' own visibility, by default).
+    /// The luminaires' shot on the GPU: direct illuminance at every element (averaged
+    /// over its samples near a luminaire) with `shadows` (paraboloid maps for the
+    /// luminaires' own visibility, by default).
     pub fn from_luminaires_gpu(
         gpu: &Gpu,
-        scene: &Scene,
+        light: &LuminaireLight,
         radiosity_scene: &RadiosityScene,
-        interp: Interp,
         shadows: &ShadowSettings,
     ) -> Result<InitialState, GpuError> {
-        if scene.luminaires.is_empty() {
+        if light.scene.lights.count == 0 {
             return Ok(InitialState::emission(radiosity_scene));
         }
         let samples = DirectSamples::new(radiosity_scene);
-        let gpu_scene = GpuScene::new(gpu, &Layouts::new(gpu), scene);
-        let probe = IlluminanceProbe::new(gpu, LightModel::Ldt(interp));
-        let direct = probe.run_in_scene_rgb(gpu, &gpu_scene, &samples.points, shadows)?;
+        let direct = light.rgb(gpu, &samples.points, shadows)?;
         Ok(InitialState::with_direct(
             radiosity_scene,
             &samples.average(&direct),
         ))
+    }
+}
+
+/// A scene's luminaires on the GPU with the renderer's point probe: their direct light at
+/// elements (the luminaires' shot) and at query points, uploaded and compiled once.
+pub struct LuminaireLight {
+    scene: GpuScene,
+    probe: IlluminanceProbe,
+}
+
+impl LuminaireLight {
+    /// Uploads `scene` and builds the probe for `interp`.
+    pub fn new(gpu: &Gpu, scene: &Scene, interp: Interp) -> LuminaireLight {
+        LuminaireLight {
+            scene: GpuScene::new(gpu, &Layouts::new(gpu), scene),
+            probe: IlluminanceProbe::new(gpu, LightModel::Ldt(interp)),
+        }
+    }
+
+    /// Direct illuminance (lux) at `points`.
+    pub fn lux(
+        &self,
+        gpu: &Gpu,
+        points: &[SurfacePoint],
+        shadows: &ShadowSettings,
+    ) -> Result<Vec<f64>, GpuError> {
+        self.probe.run_in_scene(gpu, &self.scene, points, shadows)
+    }
+
+    /// Direct illuminance at `points` in colour (RGB lux).
+    pub fn rgb(
+        &self,
+        gpu: &Gpu,
+        points: &[SurfacePoint],
+        shadows: &ShadowSettings,
+    ) -> Result<Vec<DVec3>, GpuError> {
+        self.probe
+            .run_in_scene_rgb(gpu, &self.scene, points, shadows)
     }
 }
 

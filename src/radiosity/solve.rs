@@ -133,10 +133,11 @@ impl GpuSolver<'_> {
             } else {
                 None
             };
-            match (reason, s.shooter) {
-                (Some(r), _) => return Ok((r, log)),
-                (None, Some(t)) => self.shoot(t)?,
-                (None, None) => unreachable!("no shooter is a stop reason"),
+            if let Some(r) = reason {
+                return Ok((r, log));
+            }
+            if let Some(t) = s.shooter {
+                self.shoot(t)?;
             }
         }
     }
