@@ -11,7 +11,9 @@ use goniolight::radiosity::form_factor::{self, howell};
 use goniolight::radiosity::gpu::{GpuSettings, GpuSolver, Visibility};
 use goniolight::radiosity::initial::{InitialState, LuminaireLight};
 use goniolight::radiosity::scene::RadiosityScene;
+use goniolight::radiosity::solve;
 use goniolight::radiosity::{Ambient, FormFactorKind, SolverSettings};
+use goniolight::render::{GpuScene, RenderSettings, Renderer};
 use goniolight::render::{ShadowSettings, ShadowTechnique};
 use goniolight::scene::placement::aim_frame;
 use goniolight::scene::{Camera, DisplayEntry, Material, PlacedLuminaire, Scene, SceneMesh};
@@ -509,4 +511,85 @@ fn a_patch_lights_nothing_behind_its_plane() {
         assert_eq!(ceiling, 0.0, "{who}");
         assert!(floor > 10.0, "{who}: {floor}");
     }
+}
+
+#[test]
+fn solved_display_is_the_light_map_plus_the_direct_specular_term() {
+    // A glossy floor under one luminaire, nothing else: its radiosity is ρ × the direct
+    // light, so the solved display (light map + specular) must look like the direct
+    // render, highlight included.
+    let Some(gpu) = gpu_common::gpu() else { return };
+    let floor = [
+        Vec3::new(-2.0, -2.0, 0.0),
+        Vec3::new(2.0, -2.0, 0.0),
+        Vec3::new(2.0, 2.0, 0.0),
+        Vec3::new(-2.0, 2.0, 0.0),
+    ];
+    let glossy = Material {
+        specular: Vec3::splat(0.3),
+        shininess: 60.0,
+        ..material(0.5, 0.0)
+    };
+    let mut scene = scene_of(
+        vec![SceneMesh::from_triangles(
+            "floor",
+            &[
+                [floor[0], floor[1], floor[2]],
+                [floor[0], floor[2], floor[3]],
+            ],
+            0,
+        )],
+        vec![glossy],
+    );
+    let ldt = Luminaire::load(&luminaire("eulumdat-plot/sample_06_isym1.ldt")).unwrap();
+    scene
+        .luminaires
+        .push(PlacedLuminaire::new("lamp", ldt, DVec3::new(0.0, 0.0, 1.5)));
+    scene.camera = Camera::perspective(DVec3::new(0.0, -2.5, 1.2), DVec3::new(0.0, 0.6, 0.0), 60.0);
+    let r = RadiosityScene::new(&scene, 40.0, 1).unwrap();
+    let light = LuminaireLight::new(&gpu, &scene, Interp::CatmullRom);
+    let shadows = ShadowSettings::none();
+    let start = InitialState::from_luminaires_gpu(&gpu, &light, &r, &shadows).unwrap();
+    let map = solve::light_map(&r, &start.radiosity, &start.illuminance);
+    let renderer = Renderer::new(&gpu);
+    let mut settings = RenderSettings::from_display(&DisplayEntry::default());
+    (settings.width, settings.height, settings.read_hdr) = (160, 120, true);
+    settings.shadows = shadows;
+    let luminance = |uploaded: &GpuScene| -> Vec<f32> {
+        let frame = renderer
+            .render(&gpu, uploaded, &scene.camera, &settings)
+            .unwrap();
+        frame
+            .hdr
+            .unwrap()
+            .iter()
+            .map(|p| p[0] + p[1] + p[2])
+            .collect()
+    };
+    let direct = luminance(&renderer.upload(&gpu, &scene));
+    let solved = luminance(&renderer.upload_solved(&gpu, &scene, &map));
+    let (peak, at) = direct
+        .iter()
+        .enumerate()
+        .fold((0.0f32, 0), |b, (i, &v)| if v > b.0 { (v, i) } else { b });
+    let mut rel: Vec<f32> = direct
+        .iter()
+        .zip(&solved)
+        .filter(|(d, _)| **d > 0.0)
+        .map(|(d, s)| (s / d - 1.0).abs())
+        .collect();
+    rel.sort_by(f32::total_cmp);
+    let median = rel[rel.len() / 2];
+    eprintln!(
+        "solved vs direct display: highlight {peak:.1} vs {:.1}, median difference {:.2} %",
+        solved[at],
+        100.0 * median
+    );
+    // The highlight is mostly specular: without the specular term it would drop by far.
+    assert!(
+        (solved[at] / peak - 1.0).abs() < 0.05,
+        "{} vs {peak}",
+        solved[at]
+    );
+    assert!(median < 0.03, "{median}");
 }
