@@ -16,3 +16,4 @@ pub mod render;
 pub mod scene;
 pub mod shadow;
 pub mod sun;
+pub mod viewer;

@@ -49,6 +49,7 @@ fn scene_of(meshes: Vec<SceneMesh>, materials: Vec<Material>) -> Scene {
         luminaires: Vec::new(),
         camera: Camera::perspective(DVec3::new(0.5, 0.5, 0.5), DVec3::ZERO, 60.0),
         display: DisplayEntry::default(),
+        models: Vec::new(),
     }
 }
 

@@ -81,6 +81,7 @@ fn floor_scene(luminaires: Vec<PlacedLuminaire>, size: f32) -> Scene {
         luminaires,
         camera: Camera::top_down(DVec3::ZERO, size as f64, 10.0),
         display: DisplayEntry::default(),
+        models: Vec::new(),
     }
 }
 

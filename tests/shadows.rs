@@ -94,6 +94,7 @@ fn scene(meshes: &[Mesh], luminaires: Vec<PlacedLuminaire>, camera: Camera) -> S
         luminaires,
         camera,
         display: DisplayEntry::default(),
+        models: Vec::new(),
     }
 }
 

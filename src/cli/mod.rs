@@ -48,6 +48,9 @@ pub enum Command {
     /// Benchmarks that print tables of ratios measured side by side.
     #[command(subcommand)]
     Bench(bench::BenchCommand),
+    /// The interactive viewer: a scene (TOML) or an OBJ model, luminaires, sun, shadows,
+    /// radiosity. `--frames N [--screenshot out.png]` renders N frames and exits.
+    View(crate::viewer::ViewArgs),
 }
 
 /// A failed command: the error and whether it was the input's fault (exit 2) or not (1).
@@ -119,5 +122,6 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         Command::Profile(args) => profile::run(args),
         Command::Radiosity(args) => radiosity::run(args),
         Command::Bench(cmd) => bench::run(cmd),
+        Command::View(args) => crate::viewer::run(args),
     }
 }

@@ -42,6 +42,15 @@ impl Gpu {
     pub fn headless() -> Result<Gpu, GpuError> {
         let instance =
             wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+        Gpu::with_instance(instance, None)
+    }
+
+    /// Creates a context on `instance` whose adapter can present to `surface` (the
+    /// viewer's window) when one is given; the adapter is chosen as for [`Gpu::headless`].
+    pub fn with_instance(
+        instance: wgpu::Instance,
+        surface: Option<&wgpu::Surface<'_>>,
+    ) -> Result<Gpu, GpuError> {
         let wanted = std::env::var("WGPU_ADAPTER_NAME")
             .ok()
             .map(|s| s.to_lowercase());
@@ -59,6 +68,7 @@ impl Gpu {
             }
             None => pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
                 power_preference: wgpu::PowerPreference::HighPerformance,
+                compatible_surface: surface,
                 ..Default::default()
             }))
             .map_err(|e| GpuError::NoAdapter(format!(" ({e})")))?,
@@ -275,6 +285,53 @@ impl Gpu {
             out.extend_from_slice(&bytes[at..at + row as usize]);
         }
         Ok(out)
+    }
+
+    /// Reads one texel (x, y) of a 2D texture back as its raw bytes (the lux read-out
+    /// under the viewer's cursor).
+    pub fn read_texel(&self, texture: &wgpu::Texture, x: u32, y: u32) -> Result<Vec<u8>, GpuError> {
+        let texel = texture
+            .format()
+            .block_copy_size(None)
+            .ok_or_else(|| GpuError::Operation("texture format cannot be copied".into()))?;
+        if x >= texture.width() || y >= texture.height() {
+            return Err(GpuError::Operation(format!(
+                "texel ({x}, {y}) outside a {}×{} texture",
+                texture.width(),
+                texture.height()
+            )));
+        }
+        let buffer = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("texel read-back"),
+            size: wgpu::COPY_BYTES_PER_ROW_ALIGNMENT as u64,
+            usage: wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let mut bytes = self.read_bytes(&buffer, |enc| {
+            enc.copy_texture_to_buffer(
+                wgpu::TexelCopyTextureInfo {
+                    texture,
+                    mip_level: 0,
+                    origin: wgpu::Origin3d { x, y, z: 0 },
+                    aspect: wgpu::TextureAspect::All,
+                },
+                wgpu::TexelCopyBufferInfo {
+                    buffer: &buffer,
+                    layout: wgpu::TexelCopyBufferLayout {
+                        offset: 0,
+                        bytes_per_row: None,
+                        rows_per_image: None,
+                    },
+                },
+                wgpu::Extent3d {
+                    width: 1,
+                    height: 1,
+                    depth_or_array_layers: 1,
+                },
+            );
+        })?;
+        bytes.truncate(texel as usize);
+        Ok(bytes)
     }
 
     /// Runs `before` (copies into `buffer`), then copies `buffer` to a mappable one and

@@ -138,6 +138,7 @@ pub fn bench_scene(major: u32, minor: u32, luminaires: &[PlacedLuminaire]) -> Sc
         luminaires: luminaires.to_vec(),
         camera: Camera::perspective(DVec3::new(0.3, 0.3, 1.7), DVec3::new(3.0, 2.0, 1.0), 70.0),
         display: DisplayEntry::default(),
+        models: Vec::new(),
     }
 }
 

@@ -192,35 +192,7 @@ impl Renderer {
         settings: &RenderSettings,
     ) -> Result<RenderedFrame, GpuError> {
         let targets = Targets::new(gpu, settings.width, settings.height);
-        let shadow = self.draw_hdr(
-            gpu,
-            scene,
-            camera,
-            &targets,
-            settings.light_model,
-            &settings.shadows,
-            1,
-        )?;
-        let stats = self.tonemapper.statistics(gpu, &targets)?;
-        let tone = ToneSettings::resolve(
-            settings.mode,
-            settings.tonemap,
-            settings.exposure,
-            settings.lux_max,
-            &stats,
-        );
-        let mut enc = gpu.device.create_command_encoder(&Default::default());
-        self.tonemapper
-            .record(gpu, &mut enc, &targets, &tone, settings.background);
-        self.shadows.record_debug(
-            &mut enc,
-            scene,
-            &shadow,
-            &settings.shadows,
-            &targets.ldr_view,
-            &targets.depth_view,
-        );
-        gpu.queue.submit([enc.finish()]);
+        let (shadow, stats, tone) = self.render_to(gpu, scene, camera, settings, &targets)?;
         let pixels = gpu.read_texture(&targets.ldr)?;
         let mut image = image::RgbaImage::from_raw(settings.width, settings.height, pixels)
             .ok_or_else(|| GpuError::Operation("read-back size mismatch".into()))?;
@@ -244,5 +216,49 @@ impl Renderer {
             stats,
             tone,
         })
+    }
+
+    /// Renders into `targets` (whose size wins over the settings'), leaving the HDR and
+    /// displayable images on the GPU (the viewer shows the latter as it is); returns the
+    /// frame's shadow resources, the image statistics and the tone mapping used. The
+    /// legend of illuminance mode is not drawn.
+    pub fn render_to(
+        &self,
+        gpu: &Gpu,
+        scene: &GpuScene,
+        camera: &Camera,
+        settings: &RenderSettings,
+        targets: &Targets,
+    ) -> Result<(ShadowFrame, ImageStats, ToneSettings), GpuError> {
+        let shadow = self.draw_hdr(
+            gpu,
+            scene,
+            camera,
+            targets,
+            settings.light_model,
+            &settings.shadows,
+            1,
+        )?;
+        let stats = self.tonemapper.statistics(gpu, targets)?;
+        let tone = ToneSettings::resolve(
+            settings.mode,
+            settings.tonemap,
+            settings.exposure,
+            settings.lux_max,
+            &stats,
+        );
+        let mut enc = gpu.device.create_command_encoder(&Default::default());
+        self.tonemapper
+            .record(gpu, &mut enc, targets, &tone, settings.background);
+        self.shadows.record_debug(
+            &mut enc,
+            scene,
+            &shadow,
+            &settings.shadows,
+            &targets.ldr_view,
+            &targets.depth_view,
+        );
+        gpu.queue.submit([enc.finish()]);
+        Ok((shadow, stats, tone))
     }
 }

@@ -11,7 +11,17 @@ use crate::gpu::{Gpu, GpuError};
 use crate::shadow::{Light, SilhouetteMethod};
 
 /// Which shadows the luminaires cast.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum, serde::Deserialize)]
+#[derive(
+    Debug,
+    Clone,
+    Copy,
+    PartialEq,
+    Eq,
+    Default,
+    clap::ValueEnum,
+    serde::Deserialize,
+    serde::Serialize,
+)]
 #[serde(rename_all = "lowercase")]
 pub enum ShadowTechnique {
     /// No shadows: every surface facing a luminaire is lit.

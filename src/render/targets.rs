@@ -52,7 +52,12 @@ impl Targets {
             HDR_FORMAT,
             U::RENDER_ATTACHMENT | U::TEXTURE_BINDING | U::COPY_SRC,
         );
-        let ldr = make("ldr", LDR_FORMAT, U::RENDER_ATTACHMENT | U::COPY_SRC);
+        // Sampled too: the viewer shows it in its window.
+        let ldr = make(
+            "ldr",
+            LDR_FORMAT,
+            U::RENDER_ATTACHMENT | U::COPY_SRC | U::TEXTURE_BINDING,
+        );
         Targets {
             width,
             height,

@@ -31,10 +31,10 @@
 //! height = 720
 //! ```
 
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 /// The whole file.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct SceneFile {
     /// Geometry.
@@ -51,7 +51,7 @@ pub struct SceneFile {
 }
 
 /// The up axis of an OBJ file.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, Default)]
 #[serde(rename_all = "lowercase")]
 pub enum UpAxis {
     /// +Y up (converted to the world's +Z up).
@@ -62,7 +62,7 @@ pub enum UpAxis {
 }
 
 /// A scale: one factor or one per axis.
-#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize)]
 #[serde(untagged)]
 pub enum Scale {
     /// The same factor on every axis.
@@ -72,7 +72,7 @@ pub enum Scale {
 }
 
 /// `[[model]]`.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct ModelEntry {
     /// OBJ file, relative to the scene file.
@@ -81,15 +81,18 @@ pub struct ModelEntry {
     #[serde(default)]
     pub up: UpAxis,
     /// Translation in metres (applied last).
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub translation: Option<[f64; 3]>,
     /// Rotation about world X, then Y, then Z, degrees.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub rotation_deg: Option<[f64; 3]>,
     /// Scale (applied first).
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub scale: Option<Scale>,
 }
 
 /// `[[luminaire]]`.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct LuminaireEntry {
     /// `.ldt` or `.ies` file, relative to the scene file.
@@ -97,20 +100,25 @@ pub struct LuminaireEntry {
     /// Photometric centre in metres.
     pub position: [f64; 3],
     /// Direction of γ = 0.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub aim: Option<[f64; 3]>,
     /// A point γ = 0 points at (instead of `aim`).
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub aim_at: Option<[f64; 3]>,
     /// Rotation about the aim direction, degrees.
     #[serde(default)]
     pub roll: f64,
     /// Rotation about world X, then Y, then Z (degrees), after aiming.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub rotation_deg: Option<[f64; 3]>,
     /// Dimming factor on the declared flux.
     #[serde(default = "one")]
     pub multiplier: f64,
     /// Light colour (linear RGB), normalised to luminance 1 so lux stay photometric.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub color: Option<[f64; 3]>,
     /// A display name (defaults to the file name).
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub name: Option<String>,
 }
 
@@ -118,8 +126,19 @@ fn one() -> f64 {
     1.0
 }
 
+/// Writes an interpolation by the name the file format reads (`catmull-rom`).
+fn interp_name<S: serde::Serializer>(
+    interp: &Option<crate::photometry::Interp>,
+    s: S,
+) -> Result<S::Ok, S::Error> {
+    match interp {
+        Some(i) => s.serialize_str(i.name()),
+        None => s.serialize_none(),
+    }
+}
+
 /// `[camera]`.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct CameraEntry {
     /// Eye position, metres.
@@ -127,17 +146,21 @@ pub struct CameraEntry {
     /// The point looked at.
     pub look_at: [f64; 3],
     /// Up direction (default +Z).
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub up: Option<[f64; 3]>,
     /// Vertical field of view of a perspective camera, degrees.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub fov_deg: Option<f64>,
     /// Height of the view of an orthographic camera, metres.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub orthographic_height: Option<f64>,
     /// Near plane distance, metres.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub near: Option<f64>,
 }
 
 /// The output mode.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Default, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, Default, clap::ValueEnum)]
 #[serde(rename_all = "lowercase")]
 pub enum Mode {
     /// Shaded image (luminance, tone mapped).
@@ -148,7 +171,7 @@ pub enum Mode {
 }
 
 /// The tone-mapping operator.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Default, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, Default, clap::ValueEnum)]
 #[serde(rename_all = "lowercase")]
 pub enum Tonemap {
     /// y = 1 − exp(−k·x).
@@ -159,25 +182,37 @@ pub enum Tonemap {
 }
 
 /// `[display]`.
-#[derive(Debug, Clone, Default, Deserialize)]
+#[derive(Debug, Clone, Default, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct DisplayEntry {
     /// Shaded or false-colour illuminance.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub mode: Option<Mode>,
     /// Tone mapping.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub tonemap: Option<Tonemap>,
     /// k of the exposure operator, 1/(cd/m²) (default: automatic).
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub exposure: Option<f64>,
     /// LDT interpolation: nearest, bilinear, catmull-rom, monotone.
+    #[serde(
+        skip_serializing_if = "Option::is_none",
+        serialize_with = "interp_name"
+    )]
     pub interp: Option<crate::photometry::Interp>,
     /// Image width, pixels.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub width: Option<u32>,
     /// Image height, pixels.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub height: Option<u32>,
     /// Top of the false-colour scale, lux (default: from the image).
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub lux_max: Option<f64>,
     /// Colour of pixels that show no surface (linear RGB in cd/m²).
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub background: Option<[f64; 3]>,
     /// Shadows: "none", "paraboloid" (default) or "volumes".
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub shadows: Option<crate::render::ShadowTechnique>,
 }

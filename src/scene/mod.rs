@@ -8,6 +8,7 @@ pub mod camera;
 pub mod file;
 pub mod model;
 pub mod placement;
+pub mod save;
 
 use std::path::{Path, PathBuf};
 
@@ -57,6 +58,9 @@ pub struct Scene {
     pub camera: Camera,
     /// Display settings as written in the file.
     pub display: DisplayEntry,
+    /// The `[[model]]` entries, their paths resolved against the scene file's folder
+    /// (what [`Scene::save`] writes back).
+    pub models: Vec<file::ModelEntry>,
 }
 
 impl Scene {
@@ -95,6 +99,14 @@ impl Scene {
             luminaires,
             camera,
             display: parsed.display,
+            models: parsed
+                .model
+                .iter()
+                .map(|m| file::ModelEntry {
+                    path: dir.join(&m.path).to_string_lossy().into_owned(),
+                    ..m.clone()
+                })
+                .collect(),
         })
     }
 

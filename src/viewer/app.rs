@@ -1,0 +1,557 @@
+//! The viewer's state and its egui UI, free of windowing and GPU code so that it runs
+//! headless in tests: the window ([`super::window`]) feeds it input, renders the scene
+//! it describes into the viewport texture and reports back frame time and the lux
+//! under the cursor.
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use glam::DVec3;
+
+use super::camera::ViewCamera;
+use super::files::{Dialog, RecentFiles};
+use super::jobs::{ProfileUpdate, RadiositySettings, RadiosityUpdate, Worker};
+use super::sun::SunControls;
+use crate::gpu::Gpu;
+use crate::photometry::Interp;
+use crate::render::lightmap::LightMap;
+use crate::render::profile::Profile;
+use crate::render::{LightModel, RenderSettings, ShadowSettings};
+use crate::scene::{Mode, PlacedLuminaire, Scene, Tonemap};
+
+/// How serious a message is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Level {
+    /// Something happened.
+    Info,
+    /// Something was refused; nothing changed.
+    Error,
+}
+
+/// A line in the message bar.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Message {
+    /// Its level.
+    pub level: Level,
+    /// Its text.
+    pub text: String,
+}
+
+/// Display choices (they become [`RenderSettings`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct DisplayChoices {
+    /// Interpolation of the luminaires' distributions.
+    pub interp: Interp,
+    /// Shaded or false-colour lux.
+    pub mode: Mode,
+    /// Tone-mapping operator.
+    pub tonemap: Tonemap,
+    /// Exposure k (1/(cd/m²)); `None`: automatic.
+    pub exposure: Option<f64>,
+    /// Top of the false-colour scale; `None`: automatic.
+    pub lux_max: Option<f64>,
+    /// Shadows.
+    pub shadows: ShadowSettings,
+}
+
+/// Aim of a luminaire as the panel edits it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AimControls {
+    /// Angle of γ = 0 from straight down, degrees.
+    pub tilt_deg: f64,
+    /// Heading of the tilt, degrees counter-clockwise from +X.
+    pub azimuth_deg: f64,
+    /// Rotation about the aim, degrees.
+    pub roll_deg: f64,
+}
+
+impl AimControls {
+    /// The controls that reproduce `rotation`.
+    pub fn of(rotation: glam::DMat3) -> AimControls {
+        let (aim, roll) = crate::scene::save::aim_and_roll(rotation);
+        AimControls {
+            tilt_deg: (-aim.z).clamp(-1.0, 1.0).acos().to_degrees(),
+            azimuth_deg: aim.y.atan2(aim.x).to_degrees(),
+            roll_deg: roll,
+        }
+    }
+
+    /// The luminaire frame they describe.
+    pub fn rotation(&self) -> glam::DMat3 {
+        let (t, a) = (self.tilt_deg.to_radians(), self.azimuth_deg.to_radians());
+        let aim = DVec3::new(t.sin() * a.cos(), t.sin() * a.sin(), -t.cos());
+        crate::scene::placement::aim_frame(Some(aim), self.roll_deg)
+    }
+}
+
+/// The radiosity panel.
+#[derive(Default)]
+pub struct RadiosityState {
+    /// Settings of the next run.
+    pub settings: RadiositySettings,
+    /// The running (or paused) solver.
+    pub worker: Option<Worker<RadiosityUpdate>>,
+    /// Whether the worker is paused.
+    pub paused: bool,
+    /// (seconds, converged fraction) of every shot.
+    pub log: Vec<[f64; 2]>,
+    /// Shots so far.
+    pub shots: usize,
+    /// Elements of the current run.
+    pub elements: usize,
+    /// The displayed solution.
+    pub light_map: Option<Arc<LightMap>>,
+    /// What the solver said last.
+    pub status: String,
+}
+
+/// The shadow-profile panel.
+#[derive(Default)]
+pub struct ProfileState {
+    /// The running computation.
+    pub worker: Option<Worker<ProfileUpdate>>,
+    /// Steps done of the total.
+    pub progress: (usize, usize),
+    /// The last profile.
+    pub result: Option<Arc<Profile>>,
+    /// Show hours in shadow instead of the profile.
+    pub show_hours: bool,
+    /// The image shown (rebuilt when the result or the choice changes).
+    pub texture: Option<egui::TextureHandle>,
+    /// Whether its window is open.
+    pub open: bool,
+}
+
+/// Frame statistics and read-outs the window fills in.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct FrameStatus {
+    /// Smoothed frame time, ms.
+    pub frame_ms: f64,
+    /// The GPU.
+    pub gpu: String,
+    /// The viewport's size in physical pixels.
+    pub viewport_px: [u32; 2],
+    /// Where the viewport lies in the window, physical pixels (x, y, w, h).
+    pub viewport_rect_px: [u32; 4],
+    /// The pixel of the viewport under the cursor.
+    pub cursor_px: Option<[u32; 2]>,
+    /// Illuminance there, lux (None off the surfaces).
+    pub cursor_lux: Option<f64>,
+    /// Luminance there, cd/m².
+    pub cursor_luminance: Option<f64>,
+    /// Top of the false-colour scale of the last frame.
+    pub lux_max: f64,
+}
+
+/// Work the window does for the UI at the end of the frame.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Requests {
+    /// Save the view as PNG + EXR at this path (PNG; the EXR beside it).
+    pub screenshot: Option<PathBuf>,
+}
+
+/// The viewer.
+pub struct ViewerApp {
+    /// The scene being edited.
+    pub scene: Scene,
+    /// Where it was loaded from or saved to.
+    pub scene_path: Option<PathBuf>,
+    /// The camera.
+    pub camera: ViewCamera,
+    /// Display choices.
+    pub display: DisplayChoices,
+    /// Aim controls, one per luminaire of the scene.
+    pub aims: Vec<AimControls>,
+    /// The luminaire being edited.
+    pub selected: Option<usize>,
+    /// The luminaire whose photometry window is open.
+    pub photometry: Option<usize>,
+    /// The C plane of the photometry window's diagram, degrees.
+    pub photometry_c_deg: f64,
+    /// The sun.
+    pub sun: SunControls,
+    /// Radiosity.
+    pub radiosity: RadiosityState,
+    /// Shadow profile.
+    pub profile: ProfileState,
+    /// Messages, newest last.
+    pub messages: Vec<Message>,
+    /// Recently opened or saved scenes.
+    pub recent: RecentFiles,
+    /// Bumped whenever what the GPU shows changes (luminaires, sun, light map).
+    pub revision: u64,
+    /// Read-outs from the window.
+    pub status: FrameStatus,
+    /// The viewport texture (registered by the window).
+    pub viewport_texture: Option<egui::TextureId>,
+    /// Work for the window.
+    pub requests: Requests,
+    /// The GPU background jobs run on (None in UI tests).
+    pub gpu: Option<Arc<Gpu>>,
+    /// A file dialog open on its own thread.
+    pub dialog: Option<Dialog>,
+    /// Text of the "add luminaire from path" field.
+    pub add_path: String,
+    /// Text of the screenshot path field.
+    pub screenshot_path: String,
+}
+
+impl ViewerApp {
+    /// A viewer showing `scene` (loaded from `path`, if any).
+    pub fn new(scene: Scene, path: Option<PathBuf>, recent: RecentFiles) -> ViewerApp {
+        let mut app = ViewerApp {
+            camera: ViewCamera::from_camera(&scene.camera),
+            display: display_choices(&scene),
+            aims: Vec::new(),
+            scene,
+            scene_path: path,
+            selected: None,
+            photometry: None,
+            photometry_c_deg: 0.0,
+            sun: SunControls::default(),
+            radiosity: RadiosityState::default(),
+            profile: ProfileState::default(),
+            messages: Vec::new(),
+            recent,
+            revision: 0,
+            status: FrameStatus::default(),
+            viewport_texture: None,
+            requests: Requests::default(),
+            gpu: None,
+            dialog: None,
+            add_path: String::new(),
+            screenshot_path: "screenshot.png".into(),
+        };
+        app.aims = app
+            .scene
+            .luminaires
+            .iter()
+            .map(|l| AimControls::of(l.rotation))
+            .collect();
+        if let Some(p) = &app.scene_path {
+            app.recent.add(p);
+        }
+        app
+    }
+
+    /// Adds an info line.
+    pub fn info(&mut self, text: impl Into<String>) {
+        self.push(Level::Info, text.into());
+    }
+
+    /// Adds an error line.
+    pub fn error(&mut self, text: impl Into<String>) {
+        self.push(Level::Error, text.into());
+    }
+
+    fn push(&mut self, level: Level, text: String) {
+        self.messages.push(Message { level, text });
+        if self.messages.len() > 50 {
+            self.messages.remove(0);
+        }
+    }
+
+    /// The latest error, if the newest message is one.
+    pub fn last_error(&self) -> Option<&str> {
+        self.messages
+            .last()
+            .filter(|m| m.level == Level::Error)
+            .map(|m| m.text.as_str())
+    }
+
+    /// Marks the lights as changed: the GPU scene is rebuilt and a radiosity solution of
+    /// the old lights is dropped.
+    pub fn lights_changed(&mut self) {
+        self.revision += 1;
+        if self.radiosity.worker.is_some() || self.radiosity.light_map.is_some() {
+            self.reset_radiosity();
+            self.info("radiosity reset: the lights changed");
+        }
+    }
+
+    /// Loads a luminaire file and hangs it pointing down under the top of the scene.
+    /// A file that does not load changes nothing and leaves an error naming it.
+    pub fn add_luminaire(&mut self, path: &Path) -> bool {
+        let luminaire = match crate::photometry::Luminaire::load(path) {
+            Ok(l) => l,
+            Err(e) => {
+                self.error(format!("{}: not added: {e}", path.display()));
+                return false;
+            }
+        };
+        let (lo, hi) = self.scene.bounds();
+        let position = DVec3::new((lo.x + hi.x) / 2.0, (lo.y + hi.y) / 2.0, hi.z - 0.1);
+        let name = path
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "luminaire".into());
+        let mut placed = PlacedLuminaire::new(&name, luminaire, position);
+        placed.file = path.to_path_buf();
+        self.scene.luminaires.push(placed);
+        self.aims.push(AimControls::of(glam::DMat3::IDENTITY));
+        self.selected = Some(self.scene.luminaires.len() - 1);
+        self.info(format!("added {}", path.display()));
+        self.lights_changed();
+        true
+    }
+
+    /// Removes luminaire `i`.
+    pub fn remove_luminaire(&mut self, i: usize) {
+        if i < self.scene.luminaires.len() {
+            let l = self.scene.luminaires.remove(i);
+            self.aims.remove(i);
+            self.selected = None;
+            if self.photometry == Some(i) {
+                self.photometry = None;
+            }
+            self.info(format!("removed {}", l.name));
+            self.lights_changed();
+        }
+    }
+
+    /// The scene the GPU shows: the edited scene plus the sun when it is on and up.
+    pub fn render_scene(&self) -> Scene {
+        let mut scene = self.scene.clone();
+        if self.sun.enabled {
+            if let Ok(p) = self.sun.position() {
+                let lux = super::sun::clear_sky_direct_normal_lux(p.elevation_deg);
+                if lux > 0.0 {
+                    let (lo, hi) = self.scene.bounds();
+                    let radius = (hi - lo).length() / 2.0;
+                    scene.luminaires.push(super::sun::sun_luminaire(
+                        DVec3::from_array(p.direction),
+                        lux,
+                        (lo + hi) / 2.0,
+                        radius,
+                    ));
+                }
+            }
+        }
+        scene
+    }
+
+    /// The renderer's settings for a viewport of `width` × `height` pixels.
+    pub fn render_settings(&self, width: u32, height: u32) -> RenderSettings {
+        let d = &self.display;
+        let mut s = RenderSettings::from_display(&self.scene.display);
+        s.width = width;
+        s.height = height;
+        s.light_model = LightModel::Ldt(d.interp);
+        s.mode = d.mode;
+        s.tonemap = d.tonemap;
+        s.exposure = d.exposure;
+        s.lux_max = d.lux_max;
+        s.shadows = d.shadows.clone();
+        s
+    }
+
+    /// Size of the scene (metres), for the far plane and the fly speed.
+    pub fn extent(&self) -> f64 {
+        let (lo, hi) = self.scene.bounds();
+        (hi - lo).length().max(1.0)
+    }
+
+    /// Replaces the scene (jobs stop, the camera and display follow the new file).
+    pub fn replace_scene(&mut self, scene: Scene, path: Option<PathBuf>) {
+        self.reset_radiosity();
+        self.profile = ProfileState::default();
+        self.camera = ViewCamera::from_camera(&scene.camera);
+        self.display = display_choices(&scene);
+        self.aims = scene
+            .luminaires
+            .iter()
+            .map(|l| AimControls::of(l.rotation))
+            .collect();
+        self.scene = scene;
+        self.selected = None;
+        self.photometry = None;
+        if let Some(p) = &path {
+            self.recent.add(p);
+        }
+        self.scene_path = path;
+        self.revision += 1;
+    }
+
+    /// Copies the camera and display choices into the scene (before saving).
+    pub fn sync_scene(&mut self) {
+        let extent = self.extent();
+        self.scene.camera = self.camera.camera(extent);
+        let d = &self.display;
+        let e = &mut self.scene.display;
+        e.mode = Some(d.mode);
+        e.tonemap = Some(d.tonemap);
+        e.exposure = d.exposure;
+        e.lux_max = d.lux_max;
+        e.interp = Some(d.interp);
+        e.shadows = Some(d.shadows.technique);
+    }
+
+    /// Stops radiosity and goes back to direct light.
+    pub fn reset_radiosity(&mut self) {
+        if let Some(w) = self.radiosity.worker.take() {
+            w.cancel();
+        }
+        let had_map = self.radiosity.light_map.take().is_some();
+        self.radiosity.log.clear();
+        self.radiosity.shots = 0;
+        self.radiosity.paused = false;
+        self.radiosity.status.clear();
+        if had_map {
+            self.revision += 1;
+        }
+    }
+
+    /// Whether background work is running (the window keeps repainting).
+    pub fn busy(&self) -> bool {
+        self.radiosity.worker.is_some()
+            || self.profile.worker.is_some()
+            || self.sun.animate
+            || self.dialog.is_some()
+    }
+
+    /// Builds the whole UI for one frame.
+    pub fn ui(&mut self, ui: &mut egui::Ui) {
+        let ctx = ui.ctx().clone();
+        let dt = ctx.input(|i| i.stable_dt as f64).min(0.5);
+        if self.sun.animate && self.sun.enabled {
+            self.sun.advance(dt);
+            self.revision += 1;
+        }
+        self.poll_jobs(&ctx);
+        self.poll_dialog();
+        self.take_dropped_files(&ctx);
+        egui::Panel::top("menu").show(ui, |ui| self.menu_bar(ui));
+        egui::Panel::bottom("status").show(ui, |ui| self.status_bar(ui));
+        egui::Panel::left("controls")
+            .resizable(true)
+            .default_size(330.0)
+            .show(ui, |ui| {
+                egui::ScrollArea::vertical().show(ui, |ui| self.side_panel(ui));
+            });
+        egui::CentralPanel::default()
+            .frame(egui::Frame::NONE)
+            .show(ui, |ui| self.viewport(ui, dt));
+        self.photometry_window(&ctx);
+        self.profile_window(&ctx);
+        if self.busy() {
+            ctx.request_repaint_after(std::time::Duration::from_millis(50));
+        }
+    }
+
+    fn side_panel(&mut self, ui: &mut egui::Ui) {
+        egui::CollapsingHeader::new("Luminaires")
+            .default_open(true)
+            .show(ui, |ui| self.luminaires_panel(ui));
+        egui::CollapsingHeader::new("Display")
+            .default_open(true)
+            .show(ui, |ui| self.display_panel(ui));
+        egui::CollapsingHeader::new("Shadows")
+            .default_open(false)
+            .show(ui, |ui| self.shadows_panel(ui));
+        egui::CollapsingHeader::new("Sun")
+            .default_open(false)
+            .show(ui, |ui| self.sun_panel(ui));
+        egui::CollapsingHeader::new("Radiosity")
+            .default_open(false)
+            .show(ui, |ui| self.radiosity_panel(ui));
+    }
+
+    fn status_bar(&mut self, ui: &mut egui::Ui) {
+        if let Some(m) = self.messages.last().cloned() {
+            ui.horizontal(|ui| {
+                let colour = match m.level {
+                    Level::Error => ui.visuals().error_fg_color,
+                    Level::Info => ui.visuals().text_color(),
+                };
+                ui.colored_label(colour, &m.text);
+                if ui.small_button("✖").on_hover_text("dismiss").clicked() {
+                    self.messages.pop();
+                }
+            });
+        }
+        ui.horizontal(|ui| {
+            let s = &self.status;
+            let fps = if s.frame_ms > 0.0 {
+                1000.0 / s.frame_ms
+            } else {
+                0.0
+            };
+            ui.label(format!("frame {:.1} ms ({fps:.0} fps)", s.frame_ms));
+            ui.separator();
+            ui.label(format!("{} × {}", s.viewport_px[0], s.viewport_px[1]));
+            ui.separator();
+            match (s.cursor_lux, s.cursor_luminance) {
+                (Some(lux), Some(l)) => {
+                    ui.label(format!("{lux:.1} lx, {l:.2} cd/m² under the cursor"))
+                }
+                _ => ui.label("— lx"),
+            };
+            ui.separator();
+            ui.label(&s.gpu);
+            if let Some(w) = &self.radiosity.worker {
+                ui.separator();
+                let c = self.radiosity.log.last().map_or(0.0, |p| p[1]);
+                let state = if w.control.pause.load(std::sync::atomic::Ordering::Relaxed) {
+                    "paused"
+                } else {
+                    "solving"
+                };
+                ui.label(format!("radiosity {state} {:.1} %", 100.0 * c));
+            }
+            if self.profile.worker.is_some() {
+                ui.separator();
+                let (d, t) = self.profile.progress;
+                ui.label(format!("profile {d}/{t}"));
+            }
+        });
+    }
+
+    /// Everything dropped on the window: luminaires are added, a scene or model opened.
+    fn take_dropped_files(&mut self, ctx: &egui::Context) {
+        let dropped: Vec<PathBuf> = ctx.input(|i| {
+            i.raw
+                .dropped_files
+                .iter()
+                .map(|f| f.path().to_path_buf())
+                .filter(|p| !p.as_os_str().is_empty())
+                .collect()
+        });
+        for path in dropped {
+            self.open_any(&path);
+        }
+    }
+
+    /// Opens whatever `path` is by its extension: a luminaire is added, a scene or an
+    /// OBJ model replaces the scene.
+    pub fn open_any(&mut self, path: &Path) {
+        let ext = path
+            .extension()
+            .map(|e| e.to_string_lossy().to_ascii_lowercase())
+            .unwrap_or_default();
+        match ext.as_str() {
+            "ldt" | "ies" => {
+                self.add_luminaire(path);
+            }
+            "toml" | "obj" => self.open_scene(path),
+            _ => self.error(format!(
+                "{}: not a luminaire (.ldt, .ies), scene (.toml) or model (.obj)",
+                path.display()
+            )),
+        }
+    }
+}
+
+fn display_choices(scene: &Scene) -> DisplayChoices {
+    let s = RenderSettings::from_display(&scene.display);
+    DisplayChoices {
+        interp: match s.light_model {
+            LightModel::Ldt(i) => i,
+            LightModel::Point => Interp::CatmullRom,
+        },
+        mode: s.mode,
+        tonemap: s.tonemap,
+        exposure: s.exposure,
+        lux_max: s.lux_max,
+        shadows: s.shadows,
+    }
+}

@@ -1,0 +1,181 @@
+//! The viewer's camera: orbit about a target (drag to orbit, right/middle drag to pan,
+//! scroll to zoom) or fly (drag to look, W/A/S/D/Q/E to move), kept as target + yaw +
+//! pitch + distance so both modes share one state.
+
+use glam::DVec3;
+
+use crate::scene::Camera;
+
+/// How mouse and keys move the camera.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CameraMode {
+    /// Orbit about the target.
+    Orbit,
+    /// Look around from the eye and move it with the keys.
+    Fly,
+}
+
+/// The interactive camera (world frame: +Z up).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ViewCamera {
+    /// The point orbited about (and looked at).
+    pub target: DVec3,
+    /// Heading of the view direction, degrees counter-clockwise from +X.
+    pub yaw_deg: f64,
+    /// Elevation of the view direction, degrees (negative: looking down).
+    pub pitch_deg: f64,
+    /// Eye to target, metres.
+    pub distance: f64,
+    /// Vertical field of view, degrees.
+    pub fov_deg: f64,
+    /// Near plane, metres.
+    pub near: f64,
+    /// Orbit or fly.
+    pub mode: CameraMode,
+    /// Fly speed, metres per second.
+    pub speed_m_s: f64,
+}
+
+/// Degrees per pixel of mouse drag.
+const DEGREES_PER_PIXEL: f64 = 0.3;
+
+impl ViewCamera {
+    /// The interactive version of a scene's camera (orthographic cameras become a
+    /// perspective one of 60°).
+    pub fn from_camera(c: &Camera) -> ViewCamera {
+        let dir = (c.look_at - c.position).normalize_or(DVec3::NEG_Y);
+        let fov_deg = match c.projection {
+            crate::scene::Projection::Perspective { fov_deg } => fov_deg,
+            crate::scene::Projection::Orthographic { .. } => 60.0,
+        };
+        ViewCamera {
+            target: c.look_at,
+            yaw_deg: dir.y.atan2(dir.x).to_degrees(),
+            pitch_deg: dir.z.clamp(-1.0, 1.0).asin().to_degrees(),
+            distance: (c.look_at - c.position).length().max(1e-3),
+            fov_deg,
+            near: c.near,
+            mode: CameraMode::Orbit,
+            speed_m_s: 2.0,
+        }
+    }
+
+    /// Unit view direction.
+    pub fn direction(&self) -> DVec3 {
+        let (y, p) = (self.yaw_deg.to_radians(), self.pitch_deg.to_radians());
+        DVec3::new(y.cos() * p.cos(), y.sin() * p.cos(), p.sin())
+    }
+
+    /// Eye position.
+    pub fn eye(&self) -> DVec3 {
+        self.target - self.direction() * self.distance
+    }
+
+    /// The renderer's camera; `extent` (metres) sets the far plane.
+    pub fn camera(&self, extent: f64) -> Camera {
+        let mut c = Camera::perspective(self.eye(), self.target, self.fov_deg);
+        c.near = self.near;
+        c.far = (self.distance + extent) * 2.0 + 1.0;
+        c
+    }
+
+    /// Turns the view by a mouse drag of (dx, dy) pixels: about the target when
+    /// orbiting, about the eye when flying.
+    pub fn rotate(&mut self, dx: f64, dy: f64) {
+        let eye = self.eye();
+        self.yaw_deg = (self.yaw_deg - dx * DEGREES_PER_PIXEL).rem_euclid(360.0);
+        self.pitch_deg = (self.pitch_deg - dy * DEGREES_PER_PIXEL).clamp(-89.0, 89.0);
+        if self.mode == CameraMode::Fly {
+            self.target = eye + self.direction() * self.distance;
+        }
+    }
+
+    /// Moves target and eye across the view by a drag of (dx, dy) pixels in a view
+    /// `height_px` pixels high (the point under the cursor follows it).
+    pub fn pan(&mut self, dx: f64, dy: f64, height_px: f64) {
+        let dir = self.direction();
+        let right = dir.cross(DVec3::Z).normalize_or(DVec3::X);
+        let up = right.cross(dir);
+        let metres_per_px =
+            2.0 * self.distance * (self.fov_deg.to_radians() / 2.0).tan() / height_px.max(1.0);
+        self.target += (-right * dx + up * dy) * metres_per_px;
+    }
+
+    /// Zooms by scroll `steps` (positive: closer), 10 % per step.
+    pub fn zoom(&mut self, steps: f64) {
+        self.distance = (self.distance * 0.9f64.powf(steps)).clamp(0.05, 1e5);
+    }
+
+    /// Moves eye and target by (forward, right, up) × speed × `dt_s` (fly keys).
+    pub fn fly(&mut self, forward: f64, right: f64, up: f64, dt_s: f64) {
+        let dir = self.direction();
+        let side = dir.cross(DVec3::Z).normalize_or(DVec3::X);
+        self.target += (dir * forward + side * right + DVec3::Z * up) * self.speed_m_s * dt_s;
+    }
+
+    /// Looks at the box (lo, hi) from the current direction so it fills the view.
+    pub fn frame(&mut self, lo: DVec3, hi: DVec3) {
+        let radius = ((hi - lo).length() / 2.0).max(0.5);
+        self.target = (lo + hi) / 2.0;
+        self.distance = radius / (self.fov_deg.to_radians() / 2.0).sin();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn camera() -> ViewCamera {
+        ViewCamera::from_camera(&Camera::perspective(
+            DVec3::new(0.0, -5.0, 2.0),
+            DVec3::new(0.0, 0.0, 1.0),
+            60.0,
+        ))
+    }
+
+    #[test]
+    fn round_trips_the_scene_camera() {
+        let v = camera();
+        assert!((v.eye() - DVec3::new(0.0, -5.0, 2.0)).length() < 1e-9);
+        let c = v.camera(10.0);
+        assert!((c.look_at - DVec3::new(0.0, 0.0, 1.0)).length() < 1e-9);
+    }
+
+    #[test]
+    fn orbit_keeps_the_target_and_distance_fly_keeps_the_eye() {
+        let mut v = camera();
+        let (target, d) = (v.target, v.distance);
+        v.rotate(300.0, 0.0); // 90° about +Z
+        assert!((v.target - target).length() < 1e-12);
+        assert!((v.eye() - v.target).length() - d < 1e-9);
+        assert!((v.eye() - DVec3::new(5.0, 0.0, 2.0)).length() < 1e-9);
+        let mut f = camera();
+        f.mode = CameraMode::Fly;
+        let eye = f.eye();
+        f.rotate(100.0, 20.0);
+        assert!((f.eye() - eye).length() < 1e-9);
+        assert!((f.target - target).length() > 0.1);
+    }
+
+    #[test]
+    fn pan_moves_the_target_by_the_view_width_per_drag() {
+        let mut v = camera();
+        let d = v.distance;
+        // A drag over the whole view height moves by the view's height at the target.
+        v.pan(0.0, 1000.0, 1000.0);
+        let moved = (v.target - DVec3::new(0.0, 0.0, 1.0)).length();
+        let expected = 2.0 * d * (30f64).to_radians().tan();
+        assert!((moved - expected).abs() < 1e-9, "{moved} vs {expected}");
+    }
+
+    #[test]
+    fn zoom_and_fly() {
+        let mut v = camera();
+        let d = v.distance;
+        v.zoom(1.0);
+        assert!((v.distance - 0.9 * d).abs() < 1e-12);
+        let before = v.target;
+        v.fly(1.0, 0.0, 0.0, 0.5);
+        assert!(((v.target - before).length() - 1.0).abs() < 1e-12);
+    }
+}

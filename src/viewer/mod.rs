@@ -1,0 +1,109 @@
+//! The interactive viewer (`goniolight view`): winit + egui around the renderer, with
+//! luminaires to add, place and inspect, display and shadow settings, the sun and its
+//! shadow profiles, and progressive radiosity in the background. The UI state
+//! ([`app::ViewerApp`]) is separate from the window so that tests drive it headless.
+
+pub mod app;
+pub mod camera;
+pub mod files;
+pub mod jobs;
+pub mod luminaires;
+pub mod sun;
+pub mod view;
+pub mod viewport;
+pub mod window;
+pub mod work;
+
+use std::path::PathBuf;
+
+use anyhow::anyhow;
+use clap::Args;
+
+use crate::cli::CliError;
+use app::ViewerApp;
+use files::{load_scene_or_model, RecentFiles};
+
+/// The scene `view` opens without an argument.
+pub const DEFAULT_SCENE: &str = "assets/scenes/furnished_room.toml";
+
+/// Options of `view`.
+#[derive(Debug, Args)]
+pub struct ViewArgs {
+    /// A scene file (TOML) or an OBJ model (default: the bundled furnished room).
+    pub path: Option<PathBuf>,
+    /// Render this many frames, then exit (with --screenshot: 3 unless given).
+    #[arg(long)]
+    pub frames: Option<u64>,
+    /// After the last frame, save the whole window (UI included) as PNG and exit.
+    #[arg(long)]
+    pub screenshot: Option<PathBuf>,
+    /// Window width, logical pixels.
+    #[arg(long, default_value_t = 1280)]
+    pub width: u32,
+    /// Window height, logical pixels.
+    #[arg(long, default_value_t = 800)]
+    pub height: u32,
+    /// Luminaire files to add to the scene at start (as if dropped on the window).
+    #[arg(long = "add", value_name = "LDT|IES")]
+    pub add: Vec<PathBuf>,
+    /// Mode at start: shaded or illuminance (default: the scene's).
+    #[arg(long, value_enum)]
+    pub mode: Option<crate::scene::Mode>,
+}
+
+/// Runs `view`.
+pub fn run(args: ViewArgs) -> Result<(), CliError> {
+    let bad = |m: String| Err(CliError::input(anyhow!(m)));
+    if args.frames == Some(0) {
+        return bad("--frames must be at least 1".into());
+    }
+    for (name, v) in [("--width", args.width), ("--height", args.height)] {
+        if !(64..=8192).contains(&v) {
+            return bad(format!("{name} {v} is not in 64..=8192"));
+        }
+    }
+    if let Some(s) = &args.screenshot {
+        if image::ImageFormat::from_path(s).ok() != Some(image::ImageFormat::Png) {
+            return bad(format!("--screenshot {}: must end in .png", s.display()));
+        }
+    }
+    let path = args
+        .path
+        .clone()
+        .unwrap_or_else(|| PathBuf::from(DEFAULT_SCENE));
+    let scene = load_scene_or_model(&path)?;
+    let is_scene = !scene.path.as_os_str().is_empty();
+    let mut app = ViewerApp::new(
+        scene,
+        is_scene.then(|| path.clone()),
+        RecentFiles::load(RecentFiles::default_store()),
+    );
+    for l in &args.add {
+        if !app.add_luminaire(l) {
+            return Err(CliError::input(anyhow!(
+                "{}",
+                app.last_error().unwrap_or("luminaire not added")
+            )));
+        }
+    }
+    if let Some(m) = args.mode {
+        app.display.mode = m;
+    }
+    let options = window::WindowOptions {
+        size: [args.width, args.height],
+        frames: args.frames.or(args.screenshot.as_ref().map(|_| 3)),
+        screenshot: args.screenshot.clone(),
+    };
+    let summary = window::run(app, options).map_err(CliError::failure)?;
+    if options_printed(&args) {
+        println!(
+            "{}",
+            serde_json::to_string(&summary).map_err(|e| CliError::failure(anyhow!(e)))?
+        );
+    }
+    Ok(())
+}
+
+fn options_printed(args: &ViewArgs) -> bool {
+    args.frames.is_some() || args.screenshot.is_some()
+}

@@ -1,0 +1,150 @@
+//! The GPU side of the viewport: uploads the scene the UI describes when it changes,
+//! renders it into targets of the viewport's size (only when the view or the scene
+//! changed), hands the image to egui as a native texture, reads the lux under the
+//! cursor and writes screenshots.
+
+use std::path::Path;
+
+use anyhow::Context as _;
+
+use super::app::ViewerApp;
+use crate::gpu::{Gpu, GpuError};
+use crate::render::targets::Targets;
+use crate::render::{GpuScene, RenderSettings, Renderer};
+use crate::scene::Camera;
+
+/// What the last image was rendered from.
+#[derive(Clone, PartialEq)]
+struct RenderedFrom {
+    revision: u64,
+    camera: Camera,
+    settings: RenderSettings,
+}
+
+/// The viewport's GPU resources.
+pub struct Viewport {
+    renderer: Renderer,
+    scene: Option<(u64, GpuScene)>,
+    targets: Option<Targets>,
+    texture: Option<egui::TextureId>,
+    last: Option<RenderedFrom>,
+}
+
+impl Viewport {
+    /// Builds the renderer's pipelines.
+    pub fn new(gpu: &Gpu) -> Viewport {
+        Viewport {
+            renderer: Renderer::new(gpu),
+            scene: None,
+            targets: None,
+            texture: None,
+            last: None,
+        }
+    }
+
+    /// Brings the image up to date with `app` and registers it with `egui`.
+    pub fn update(
+        &mut self,
+        gpu: &Gpu,
+        app: &mut ViewerApp,
+        egui: &mut egui_wgpu::Renderer,
+    ) -> Result<(), GpuError> {
+        let [w, h] = app.status.viewport_px;
+        let (w, h) = (
+            w.clamp(1, crate::render::MAX_IMAGE_SIZE),
+            h.clamp(1, crate::render::MAX_IMAGE_SIZE),
+        );
+        if self.scene.as_ref().map(|s| s.0) != Some(app.revision) {
+            let scene = app.render_scene();
+            let uploaded = match &app.radiosity.light_map {
+                Some(map) => self.renderer.upload_solved(gpu, &scene, map),
+                None => self.renderer.upload(gpu, &scene),
+            };
+            self.scene = Some((app.revision, uploaded));
+        }
+        let resized = self
+            .targets
+            .as_ref()
+            .is_none_or(|t| t.width != w || t.height != h);
+        if resized {
+            self.targets = Some(Targets::new(gpu, w, h));
+        }
+        let (Some((_, scene)), Some(targets)) = (&self.scene, &self.targets) else {
+            return Ok(());
+        };
+        let from = RenderedFrom {
+            revision: app.revision,
+            camera: app.camera.camera(app.extent()),
+            settings: app.render_settings(w, h),
+        };
+        if resized || self.last.as_ref() != Some(&from) {
+            let (_, _, tone) =
+                self.renderer
+                    .render_to(gpu, scene, &from.camera, &from.settings, targets)?;
+            app.status.lux_max = tone.lux_max;
+            self.last = Some(from);
+            match self.texture {
+                Some(id) if !resized => {
+                    let _ = id;
+                }
+                Some(id) => egui.update_egui_texture_from_wgpu_texture(
+                    &gpu.device,
+                    &targets.ldr_view,
+                    wgpu::FilterMode::Linear,
+                    id,
+                ),
+                None => {
+                    self.texture = Some(egui.register_native_texture(
+                        &gpu.device,
+                        &targets.ldr_view,
+                        wgpu::FilterMode::Linear,
+                    ))
+                }
+            }
+        }
+        app.viewport_texture = self.texture;
+        self.read_cursor(gpu, app)?;
+        if let Some(path) = app.requests.screenshot.take() {
+            match self.screenshot(gpu, app, &path) {
+                Ok(()) => app.info(format!("saved {} and its .exr", path.display())),
+                Err(e) => app.error(format!("{}: screenshot not saved: {e:#}", path.display())),
+            }
+        }
+        Ok(())
+    }
+
+    fn read_cursor(&self, gpu: &Gpu, app: &mut ViewerApp) -> Result<(), GpuError> {
+        let (Some(t), Some([x, y])) = (&self.targets, app.status.cursor_px) else {
+            app.status.cursor_lux = None;
+            app.status.cursor_luminance = None;
+            return Ok(());
+        };
+        if x >= t.width || y >= t.height {
+            return Ok(());
+        }
+        let texel: [f32; 4] = bytemuck::pod_read_unaligned(&gpu.read_texel(&t.hdr, x, y)?);
+        let surface = texel[3] >= 0.0;
+        app.status.cursor_lux = surface.then_some(texel[3] as f64);
+        let y_lum = 0.2126 * texel[0] + 0.7152 * texel[1] + 0.0722 * texel[2];
+        app.status.cursor_luminance = surface.then_some(y_lum as f64);
+        Ok(())
+    }
+
+    /// Renders the current view at the viewport's size and writes it as PNG (with the
+    /// legend in false-colour mode) and EXR beside it.
+    fn screenshot(&self, gpu: &Gpu, app: &ViewerApp, png: &Path) -> anyhow::Result<()> {
+        let (_, scene) = self.scene.as_ref().context("no scene uploaded")?;
+        let [w, h] = app.status.viewport_px;
+        let mut settings = app.render_settings(w.max(1), h.max(1));
+        settings.read_hdr = true;
+        let frame =
+            self.renderer
+                .render(gpu, scene, &app.camera.camera(app.extent()), &settings)?;
+        let exr = png.with_extension("exr");
+        let linear = crate::render::output::linear_image(&frame, settings.width, settings.height)
+            .context("no HDR image")?;
+        crate::render::output::write_image(png, &frame.image)?;
+        crate::render::output::write_image(&exr, &linear)?;
+        Ok(())
+    }
+}

@@ -1,0 +1,429 @@
+//! The sun and radiosity panels: the site, date and time of the sun (its light and a
+//! background shadow profile), and the progressive radiosity solver with its convergence
+//! plot — both driven by background workers polled here.
+
+use std::sync::atomic::Ordering;
+use std::sync::Arc;
+
+use egui_plot::{Line, Plot, PlotPoints};
+
+use super::app::ViewerApp;
+use super::jobs::{self, ProfileUpdate, RadiosityUpdate};
+use crate::radiosity::gpu::Visibility;
+use crate::radiosity::{Ambient, FormFactorKind};
+use crate::render::profile::ProfileSpec;
+use crate::render::profile_output::{hours_image, profile_image};
+use crate::render::ShadowTechnique;
+use crate::sun::{Site, Zone};
+
+impl ViewerApp {
+    /// Site, date, time (slider, animation), the sun light and the shadow profile.
+    pub fn sun_panel(&mut self, ui: &mut egui::Ui) {
+        let before = self.sun.clone();
+        let s = &mut self.sun;
+        if ui
+            .checkbox(&mut s.enabled, "Sun lights the scene")
+            .changed()
+            && s.enabled
+            && self.display.shadows.technique == ShadowTechnique::Paraboloid
+        {
+            // A paraboloid map around a light this far cannot resolve the scene.
+            self.display.shadows.technique = ShadowTechnique::Volumes;
+            self.messages.push(super::app::Message {
+                level: super::app::Level::Info,
+                text: "shadows switched to volumes: they are exact for the distant sun".into(),
+            });
+        }
+        let s = &mut self.sun;
+        egui::Grid::new("site").num_columns(2).show(ui, |ui| {
+            ui.label("Latitude (°N)");
+            ui.add(
+                egui::DragValue::new(&mut s.latitude)
+                    .range(-90.0..=90.0)
+                    .speed(0.05),
+            );
+            ui.end_row();
+            ui.label("Longitude (°E)");
+            ui.add(
+                egui::DragValue::new(&mut s.longitude)
+                    .range(-180.0..=180.0)
+                    .speed(0.05),
+            );
+            ui.end_row();
+            ui.label("Time zone");
+            ui.text_edit_singleline(&mut s.zone);
+            ui.end_row();
+            ui.label("Date");
+            let mut text = s.date.to_string();
+            if ui.text_edit_singleline(&mut text).changed() {
+                if let Ok(d) = chrono::NaiveDate::parse_from_str(text.trim(), "%Y-%m-%d") {
+                    s.date = d;
+                }
+            }
+            ui.end_row();
+            ui.label("North offset (°)");
+            ui.add(egui::DragValue::new(&mut s.north_offset_deg).range(-180.0..=180.0));
+            ui.end_row();
+        });
+        ui.horizontal(|ui| {
+            ui.label(format!("Time {}", s.time_label()));
+            ui.add(egui::Slider::new(&mut s.minutes, 0.0..=1439.0).show_value(false));
+        });
+        ui.horizontal(|ui| {
+            ui.checkbox(&mut s.animate, "Animate");
+            ui.add(egui::Slider::new(&mut s.hours_per_second, 0.1..=6.0).text("h/s"));
+        });
+        match s.position() {
+            Ok(p) => {
+                let lux = super::sun::clear_sky_direct_normal_lux(p.elevation_deg);
+                ui.label(format!(
+                    "azimuth {:.1}°, elevation {:.1}°, direct normal {:.0} lx (clear sky)",
+                    p.azimuth_deg, p.elevation_deg, lux
+                ));
+            }
+            Err(e) => {
+                ui.colored_label(ui.visuals().error_fg_color, e);
+            }
+        }
+        if self.sun.enabled && self.sun != before {
+            self.lights_changed();
+        }
+        ui.separator();
+        self.profile_controls(ui);
+    }
+
+    fn profile_controls(&mut self, ui: &mut egui::Ui) {
+        ui.label("Shadow profile of the scene over the period");
+        let s = &mut self.sun;
+        ui.horizontal(|ui| {
+            let mut from = s.profile_from.format("%H:%M").to_string();
+            let mut to = s.profile_to.format("%H:%M").to_string();
+            ui.label("from");
+            if ui
+                .add(egui::TextEdit::singleline(&mut from).desired_width(44.0))
+                .changed()
+            {
+                if let Ok(t) = chrono::NaiveTime::parse_from_str(from.trim(), "%H:%M") {
+                    s.profile_from = t;
+                }
+            }
+            ui.label("to");
+            if ui
+                .add(egui::TextEdit::singleline(&mut to).desired_width(44.0))
+                .changed()
+            {
+                if let Ok(t) = chrono::NaiveTime::parse_from_str(to.trim(), "%H:%M") {
+                    s.profile_to = t;
+                }
+            }
+            ui.label("every");
+            ui.add(
+                egui::DragValue::new(&mut s.profile_step)
+                    .range(1..=240)
+                    .suffix(" min"),
+            );
+        });
+        ui.horizontal(|ui| {
+            if let Some(w) = &self.profile.worker {
+                let (d, t) = self.profile.progress;
+                ui.add(
+                    egui::ProgressBar::new(d as f32 / t.max(1) as f32)
+                        .text(format!("{d}/{t} steps"))
+                        .desired_width(160.0),
+                );
+                if ui.button("Cancel").clicked() {
+                    w.cancel();
+                }
+            } else if ui.button("Compute shadow profile").clicked() {
+                self.start_profile();
+            }
+        });
+    }
+
+    /// Starts the shadow profile of the scene's geometry for the sun panel's period.
+    pub fn start_profile(&mut self) {
+        let Some(gpu) = self.gpu.clone() else {
+            return self.error("no GPU for the shadow profile");
+        };
+        let s = &self.sun;
+        let spec = (|| -> Result<ProfileSpec, String> {
+            Ok(ProfileSpec {
+                site: Site::new(s.latitude, s.longitude, 0.0).map_err(|e| e.to_string())?,
+                zone: Zone::parse(&s.zone).map_err(|e| e.to_string())?,
+                date: s.date,
+                from: s.profile_from,
+                to: s.profile_to,
+                step_minutes: s.profile_step,
+                sun: s.options(),
+                extent_m: None,
+                resolution: s.profile_resolution,
+                silhouette: self.display.shadows.silhouette,
+            })
+        })();
+        let spec = match spec.and_then(|sp| sp.local_times().map(|_| sp).map_err(|e| e.to_string()))
+        {
+            Ok(sp) => sp,
+            Err(e) => return self.error(format!("shadow profile: {e}")),
+        };
+        match jobs::start_profile(gpu, self.scene.caster_mesh(), spec) {
+            Ok(w) => {
+                self.profile.worker = Some(w);
+                self.profile.progress = (0, 0);
+                self.profile.open = true;
+            }
+            Err(e) => self.error(format!("shadow profile: {e}")),
+        }
+    }
+
+    /// Settings, start / pause / reset, progress and the convergence plot.
+    pub fn radiosity_panel(&mut self, ui: &mut egui::Ui) {
+        let running = self.radiosity.worker.is_some();
+        let r = &mut self.radiosity;
+        ui.add_enabled_ui(!running, |ui| {
+            let st = &mut r.settings;
+            egui::Grid::new("radiosity settings")
+                .num_columns(2)
+                .show(ui, |ui| {
+                    ui.label("Texels per metre");
+                    ui.add(egui::DragValue::new(&mut st.texel_density).range(1.0..=100.0));
+                    ui.end_row();
+                    ui.label("Patch level");
+                    ui.add(egui::Slider::new(&mut st.level, 0..=6));
+                    ui.end_row();
+                    ui.label("Converge to");
+                    ui.add(egui::Slider::new(&mut st.converge, 0.5..=0.999).fixed_decimals(3));
+                    ui.end_row();
+                    ui.label("Visibility");
+                    ui.horizontal(|ui| {
+                        ui.selectable_value(
+                            &mut st.gpu.visibility,
+                            Visibility::Hemicube,
+                            "hemicube",
+                        );
+                        ui.selectable_value(
+                            &mut st.gpu.visibility,
+                            Visibility::Stereographic,
+                            "stereographic",
+                        );
+                    });
+                    ui.end_row();
+                    ui.label("Form factor");
+                    ui.horizontal(|ui| {
+                        ui.selectable_value(
+                            &mut st.solver.form_factor,
+                            FormFactorKind::Polygon,
+                            "polygon",
+                        );
+                        ui.selectable_value(
+                            &mut st.solver.form_factor,
+                            FormFactorKind::Disc,
+                            "disc",
+                        );
+                    });
+                    ui.end_row();
+                    ui.label("Ambient term");
+                    ui.horizontal(|ui| {
+                        ui.selectable_value(&mut st.solver.ambient, Ambient::Display, "display");
+                        ui.selectable_value(
+                            &mut st.solver.ambient,
+                            Ambient::Overshoot,
+                            "overshoot",
+                        );
+                        ui.selectable_value(&mut st.solver.ambient, Ambient::None, "none");
+                    });
+                    ui.end_row();
+                });
+        });
+        ui.horizontal(|ui| {
+            if !running {
+                if ui.button("Start").clicked() {
+                    self.start_radiosity();
+                }
+            } else {
+                let label = if self.radiosity.paused {
+                    "Resume"
+                } else {
+                    "Pause"
+                };
+                if ui.button(label).clicked() {
+                    self.toggle_radiosity_pause();
+                }
+            }
+            if ui.button("Reset").clicked() {
+                self.reset_radiosity();
+            }
+        });
+        let r = &self.radiosity;
+        if !r.status.is_empty() {
+            ui.label(&r.status);
+        }
+        if let Some(last) = r.log.last() {
+            ui.label(format!(
+                "{} shots, {:.2} % converged, {:.1} s, {} elements",
+                r.shots,
+                100.0 * last[1],
+                last[0],
+                r.elements
+            ));
+            Plot::new("convergence")
+                .height(140.0)
+                .include_y(0.0)
+                .include_y(1.0)
+                .x_axis_label("seconds")
+                .y_axis_label("converged")
+                .show(ui, |plot| {
+                    plot.line(Line::new("converged", PlotPoints::from(r.log.clone())));
+                });
+        }
+    }
+
+    /// Starts radiosity on the scene as shown (the sun included when it is on).
+    pub fn start_radiosity(&mut self) {
+        let Some(gpu) = self.gpu.clone() else {
+            return self.error("no GPU for radiosity");
+        };
+        self.reset_radiosity();
+        let mut settings = self.radiosity.settings;
+        settings.solver.interp = self.display.interp;
+        match jobs::start_radiosity(
+            gpu,
+            self.render_scene(),
+            settings,
+            self.display.shadows.clone(),
+        ) {
+            Ok(w) => {
+                self.radiosity.worker = Some(w);
+                self.radiosity.status = "meshing and shooting the luminaires…".into();
+            }
+            Err(e) => self.error(format!("radiosity: {e}")),
+        }
+    }
+
+    /// Pauses or resumes the solver.
+    pub fn toggle_radiosity_pause(&mut self) {
+        if let Some(w) = &self.radiosity.worker {
+            self.radiosity.paused = !self.radiosity.paused;
+            w.control
+                .pause
+                .store(self.radiosity.paused, Ordering::SeqCst);
+        }
+    }
+
+    /// Takes what the workers reported since the last frame.
+    pub fn poll_jobs(&mut self, ctx: &egui::Context) {
+        if let Some(w) = &mut self.radiosity.worker {
+            let updates = w.poll();
+            let finished = w.finished();
+            for u in updates {
+                self.radiosity_update(u);
+            }
+            if finished {
+                self.radiosity.worker = None;
+                self.radiosity.paused = false;
+            }
+        }
+        if let Some(w) = &mut self.profile.worker {
+            let updates = w.poll();
+            let finished = w.finished();
+            for u in updates {
+                match u {
+                    ProfileUpdate::Progress(d, t) => self.profile.progress = (d, t),
+                    ProfileUpdate::Done(p) => {
+                        self.profile.result = Some(Arc::from(p));
+                        self.profile.texture = None;
+                        self.info("shadow profile done");
+                    }
+                    ProfileUpdate::Failed(e) => self.error(format!("shadow profile: {e}")),
+                }
+            }
+            if finished {
+                self.profile.worker = None;
+            }
+        }
+        if self.profile.texture.is_none() {
+            if let Some(p) = &self.profile.result {
+                let img = if self.profile.show_hours {
+                    hours_image(p)
+                } else {
+                    profile_image(p)
+                };
+                let size = [img.width() as usize, img.height() as usize];
+                let colour = egui::ColorImage::from_rgba_unmultiplied(size, img.as_raw());
+                self.profile.texture =
+                    Some(ctx.load_texture("shadow profile", colour, egui::TextureOptions::LINEAR));
+            }
+        }
+    }
+
+    fn radiosity_update(&mut self, u: RadiosityUpdate) {
+        let r = &mut self.radiosity;
+        match u {
+            RadiosityUpdate::Prepared { elements, patches } => {
+                r.elements = elements;
+                r.status = format!("solving: {elements} elements, {patches} patches");
+            }
+            RadiosityUpdate::Progress {
+                shots,
+                seconds,
+                convergence,
+                light_map,
+            } => {
+                r.shots = shots;
+                r.log.push([seconds, convergence]);
+                if let Some(m) = light_map {
+                    r.light_map = Some(m);
+                    self.revision += 1;
+                }
+            }
+            RadiosityUpdate::Done(reason) => r.status = format!("done: {reason}"),
+            RadiosityUpdate::Failed(e) => {
+                r.status = format!("failed: {e}");
+                self.error(format!("radiosity: {e}"));
+            }
+        }
+    }
+
+    /// The shadow profile window.
+    pub fn profile_window(&mut self, ctx: &egui::Context) {
+        if !self.profile.open {
+            return;
+        }
+        let mut open = true;
+        let p = &mut self.profile;
+        egui::Window::new("Shadow profile")
+            .open(&mut open)
+            .default_size([520.0, 560.0])
+            .show(ctx, |ui| {
+                ui.horizontal(|ui| {
+                    if ui.selectable_label(!p.show_hours, "Profile").clicked() && p.show_hours {
+                        p.show_hours = false;
+                        p.texture = None;
+                    }
+                    if ui
+                        .selectable_label(p.show_hours, "Hours in shadow")
+                        .clicked()
+                        && !p.show_hours
+                    {
+                        p.show_hours = true;
+                        p.texture = None;
+                    }
+                });
+                match (&p.texture, &p.result) {
+                    (Some(t), Some(r)) => {
+                        ui.label(format!(
+                            "{} steps, {} skipped (sun down), {:.0} m square",
+                            r.steps.len(),
+                            r.skipped.len(),
+                            r.extent_m
+                        ));
+                        let side = ui.available_width().min(ui.available_height()).max(64.0);
+                        ui.image((t.id(), egui::vec2(side, side)));
+                    }
+                    _ => {
+                        ui.label("Compute one in the Sun panel.");
+                    }
+                }
+            });
+        self.profile.open = open;
+    }
+}
