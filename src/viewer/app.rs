@@ -464,7 +464,7 @@ impl ViewerApp {
                     Level::Info => ui.visuals().text_color(),
                 };
                 ui.colored_label(colour, &m.text);
-                if ui.small_button("✖").on_hover_text("dismiss").clicked() {
+                if ui.small_button("dismiss").clicked() {
                     self.messages.pop();
                 }
             });

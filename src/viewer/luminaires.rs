@@ -27,11 +27,13 @@ impl ViewerApp {
             ui.label("or drop files here");
         });
         ui.horizontal(|ui| {
+            let label = ui.label("Path");
             ui.add(
                 egui::TextEdit::singleline(&mut self.add_path)
-                    .hint_text("path of a .ldt or .ies file")
-                    .desired_width(200.0),
-            );
+                    .hint_text("a .ldt or .ies file")
+                    .desired_width(170.0),
+            )
+            .labelled_by(label.id);
             if ui.button("Add").clicked() && !self.add_path.trim().is_empty() {
                 let path = std::path::PathBuf::from(self.add_path.trim());
                 if self.add_luminaire(&path) {
@@ -40,7 +42,7 @@ impl ViewerApp {
             }
         });
         ui.horizontal(|ui| {
-            ui.label("Interpolation");
+            let label = ui.label("Interpolation");
             let mut interp = self.display.interp;
             egui::ComboBox::from_id_salt("interp")
                 .selected_text(label_of(interp))
@@ -48,7 +50,9 @@ impl ViewerApp {
                     for (i, label) in INTERPOLATIONS {
                         ui.selectable_value(&mut interp, i, label);
                     }
-                });
+                })
+                .response
+                .labelled_by(label.id);
             if interp != self.display.interp {
                 self.display.interp = interp;
                 self.lights_changed();
@@ -74,32 +78,39 @@ impl ViewerApp {
         ui.label(egui::RichText::new(&l.name).strong());
         ui.horizontal(|ui| {
             ui.label("Position (m)");
-            for v in [&mut l.position.x, &mut l.position.y, &mut l.position.z] {
+            let axes = [&mut l.position.x, &mut l.position.y, &mut l.position.z];
+            for (v, axis) in axes.into_iter().zip(["x", "y", "z"]) {
+                let label = ui.label(axis);
                 changed |= ui
                     .add(egui::DragValue::new(v).speed(0.02).fixed_decimals(2))
+                    .labelled_by(label.id)
                     .changed();
             }
         });
         let aim = &mut self.aims[i];
         egui::Grid::new("aim").num_columns(2).show(ui, |ui| {
-            ui.label("Tilt from down (°)");
+            let label = ui.label("Tilt from down (°)");
             changed |= ui
                 .add(egui::Slider::new(&mut aim.tilt_deg, 0.0..=180.0))
+                .labelled_by(label.id)
                 .changed();
             ui.end_row();
-            ui.label("Tilt heading (°)");
+            let label = ui.label("Tilt heading (°)");
             changed |= ui
                 .add(egui::Slider::new(&mut aim.azimuth_deg, -180.0..=180.0))
+                .labelled_by(label.id)
                 .changed();
             ui.end_row();
-            ui.label("Roll (°)");
+            let label = ui.label("Roll (°)");
             changed |= ui
                 .add(egui::Slider::new(&mut aim.roll_deg, -180.0..=180.0))
+                .labelled_by(label.id)
                 .changed();
             ui.end_row();
-            ui.label("Dimming");
+            let label = ui.label("Dimming");
             changed |= ui
                 .add(egui::Slider::new(&mut l.multiplier, 0.0..=2.0).fixed_decimals(2))
+                .labelled_by(label.id)
                 .changed();
             ui.end_row();
             ui.label("Colour");
@@ -237,7 +248,9 @@ fn photometry_contents(ui: &mut egui::Ui, lum: &Luminaire, c_deg: &mut f64) {
                 *c_deg = c;
             }
         }
-        ui.add(egui::DragValue::new(c_deg).range(0.0..=179.0).suffix("°"));
+        let label = ui.label("C");
+        ui.add(egui::DragValue::new(c_deg).range(0.0..=179.0).suffix("°"))
+            .labelled_by(label.id);
     });
     let colours = [
         egui::Color32::from_rgb(230, 159, 0),

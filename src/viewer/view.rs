@@ -46,7 +46,9 @@ impl ViewerApp {
             }
         }
         ui.horizontal(|ui| {
-            ui.add(egui::TextEdit::singleline(&mut self.screenshot_path).desired_width(160.0));
+            let label = ui.label("File");
+            ui.add(egui::TextEdit::singleline(&mut self.screenshot_path).desired_width(140.0))
+                .labelled_by(label.id);
             if ui
                 .button("Screenshot")
                 .on_hover_text("the view as PNG and, beside it, EXR (luminance, lux in alpha)")
@@ -123,12 +125,16 @@ impl ViewerApp {
             draw_legend(ui, rect, self.status.lux_max);
         }
         if self.scene.luminaires.is_empty() && !self.sun.enabled {
-            ui.painter().text(
-                rect.center(),
-                egui::Align2::CENTER_CENTER,
-                "No lights: add a luminaire (drop an .ldt or .ies file here) or turn on the sun",
-                egui::FontId::proportional(16.0),
-                egui::Color32::from_gray(200),
+            let hint = egui::Rect::from_center_size(rect.center(), egui::vec2(rect.width(), 40.0));
+            ui.put(
+                hint,
+                egui::Label::new(
+                    egui::RichText::new(
+                        "No lights: add a luminaire (drop an .ldt or .ies file here) or turn on the sun",
+                    )
+                    .size(16.0)
+                    .color(egui::Color32::from_gray(220)),
+                ),
             );
         }
     }
@@ -170,6 +176,41 @@ impl ViewerApp {
     }
 }
 
+/// A text field for a value of type `T`: the text being typed is kept (in egui's
+/// memory) until it parses, so partial input is not thrown away.
+pub fn parsed_field<T>(
+    ui: &mut egui::Ui,
+    label: &str,
+    value: &mut T,
+    show: impl Fn(&T) -> String,
+    parse: impl Fn(&str) -> Option<T>,
+    width: f32,
+) -> egui::Response {
+    let label = ui.label(label);
+    let id = label.id.with("text");
+    let mut text = ui
+        .data_mut(|d| d.get_temp::<String>(id))
+        .unwrap_or_else(|| show(value));
+    let response = ui
+        .add(
+            egui::TextEdit::singleline(&mut text)
+                .id(id)
+                .desired_width(width),
+        )
+        .labelled_by(label.id);
+    if let Some(v) = parse(text.trim()) {
+        if response.changed() {
+            *value = v;
+        }
+    }
+    if response.has_focus() {
+        ui.data_mut(|d| d.insert_temp(id, text));
+    } else {
+        ui.data_mut(|d| d.remove::<String>(id));
+    }
+    response
+}
+
 /// A value with an "auto" box: `None` when automatic.
 fn optional_value(
     ui: &mut egui::Ui,
@@ -184,9 +225,10 @@ fn optional_value(
         if ui.checkbox(&mut auto, "auto").changed() {
             *value = if auto { None } else { Some(default) };
         }
-        ui.label(label);
+        let label = ui.label(label);
         if let Some(v) = value {
-            ui.add(egui::Slider::new(v, range).logarithmic(logarithmic));
+            ui.add(egui::Slider::new(v, range).logarithmic(logarithmic))
+                .labelled_by(label.id);
         }
     });
 }

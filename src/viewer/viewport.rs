@@ -83,16 +83,15 @@ impl Viewport {
                     .render_to(gpu, scene, &from.camera, &from.settings, targets)?;
             app.status.lux_max = tone.lux_max;
             self.last = Some(from);
+            // The texture view only changes with the size.
             match self.texture {
-                Some(id) if !resized => {
-                    let _ = id;
-                }
-                Some(id) => egui.update_egui_texture_from_wgpu_texture(
+                Some(id) if resized => egui.update_egui_texture_from_wgpu_texture(
                     &gpu.device,
                     &targets.ldr_view,
                     wgpu::FilterMode::Linear,
                     id,
                 ),
+                Some(_) => {}
                 None => {
                     self.texture = Some(egui.register_native_texture(
                         &gpu.device,

@@ -9,6 +9,7 @@ use egui_plot::{Line, Plot, PlotPoints};
 
 use super::app::ViewerApp;
 use super::jobs::{self, ProfileUpdate, RadiosityUpdate};
+use super::view::parsed_field;
 use crate::radiosity::gpu::Visibility;
 use crate::radiosity::{Ambient, FormFactorKind};
 use crate::render::profile::ProfileSpec;
@@ -36,38 +37,43 @@ impl ViewerApp {
         }
         let s = &mut self.sun;
         egui::Grid::new("site").num_columns(2).show(ui, |ui| {
-            ui.label("Latitude (°N)");
+            let label = ui.label("Latitude (°N)");
             ui.add(
                 egui::DragValue::new(&mut s.latitude)
                     .range(-90.0..=90.0)
                     .speed(0.05),
-            );
+            )
+            .labelled_by(label.id);
             ui.end_row();
-            ui.label("Longitude (°E)");
+            let label = ui.label("Longitude (°E)");
             ui.add(
                 egui::DragValue::new(&mut s.longitude)
                     .range(-180.0..=180.0)
                     .speed(0.05),
+            )
+            .labelled_by(label.id);
+            ui.end_row();
+            let label = ui.label("Time zone");
+            ui.text_edit_singleline(&mut s.zone).labelled_by(label.id);
+            ui.end_row();
+            parsed_field(
+                ui,
+                "Date",
+                &mut s.date,
+                |d| d.to_string(),
+                |t| chrono::NaiveDate::parse_from_str(t, "%Y-%m-%d").ok(),
+                100.0,
             );
             ui.end_row();
-            ui.label("Time zone");
-            ui.text_edit_singleline(&mut s.zone);
-            ui.end_row();
-            ui.label("Date");
-            let mut text = s.date.to_string();
-            if ui.text_edit_singleline(&mut text).changed() {
-                if let Ok(d) = chrono::NaiveDate::parse_from_str(text.trim(), "%Y-%m-%d") {
-                    s.date = d;
-                }
-            }
-            ui.end_row();
-            ui.label("North offset (°)");
-            ui.add(egui::DragValue::new(&mut s.north_offset_deg).range(-180.0..=180.0));
+            let label = ui.label("North offset (°)");
+            ui.add(egui::DragValue::new(&mut s.north_offset_deg).range(-180.0..=180.0))
+                .labelled_by(label.id);
             ui.end_row();
         });
         ui.horizontal(|ui| {
-            ui.label(format!("Time {}", s.time_label()));
-            ui.add(egui::Slider::new(&mut s.minutes, 0.0..=1439.0).show_value(false));
+            let label = ui.label(format!("Time {}", s.time_label()));
+            ui.add(egui::Slider::new(&mut s.minutes, 0.0..=1439.0).show_value(false))
+                .labelled_by(label.id);
         });
         ui.horizontal(|ui| {
             ui.checkbox(&mut s.animate, "Animate");
@@ -96,32 +102,17 @@ impl ViewerApp {
         ui.label("Shadow profile of the scene over the period");
         let s = &mut self.sun;
         ui.horizontal(|ui| {
-            let mut from = s.profile_from.format("%H:%M").to_string();
-            let mut to = s.profile_to.format("%H:%M").to_string();
-            ui.label("from");
-            if ui
-                .add(egui::TextEdit::singleline(&mut from).desired_width(44.0))
-                .changed()
-            {
-                if let Ok(t) = chrono::NaiveTime::parse_from_str(from.trim(), "%H:%M") {
-                    s.profile_from = t;
-                }
-            }
-            ui.label("to");
-            if ui
-                .add(egui::TextEdit::singleline(&mut to).desired_width(44.0))
-                .changed()
-            {
-                if let Ok(t) = chrono::NaiveTime::parse_from_str(to.trim(), "%H:%M") {
-                    s.profile_to = t;
-                }
-            }
-            ui.label("every");
+            let time = |t: &chrono::NaiveTime| t.format("%H:%M").to_string();
+            let parse = |t: &str| chrono::NaiveTime::parse_from_str(t, "%H:%M").ok();
+            parsed_field(ui, "from", &mut s.profile_from, time, parse, 44.0);
+            parsed_field(ui, "to", &mut s.profile_to, time, parse, 44.0);
+            let label = ui.label("every");
             ui.add(
                 egui::DragValue::new(&mut s.profile_step)
                     .range(1..=240)
                     .suffix(" min"),
-            );
+            )
+            .labelled_by(label.id);
         });
         ui.horizontal(|ui| {
             if let Some(w) = &self.profile.worker {
@@ -184,14 +175,17 @@ impl ViewerApp {
             egui::Grid::new("radiosity settings")
                 .num_columns(2)
                 .show(ui, |ui| {
-                    ui.label("Texels per metre");
-                    ui.add(egui::DragValue::new(&mut st.texel_density).range(1.0..=100.0));
+                    let label = ui.label("Texels per metre");
+                    ui.add(egui::DragValue::new(&mut st.texel_density).range(1.0..=100.0))
+                        .labelled_by(label.id);
                     ui.end_row();
-                    ui.label("Patch level");
-                    ui.add(egui::Slider::new(&mut st.level, 0..=6));
+                    let label = ui.label("Patch level");
+                    ui.add(egui::Slider::new(&mut st.level, 0..=6))
+                        .labelled_by(label.id);
                     ui.end_row();
-                    ui.label("Converge to");
-                    ui.add(egui::Slider::new(&mut st.converge, 0.5..=0.999).fixed_decimals(3));
+                    let label = ui.label("Converge to");
+                    ui.add(egui::Slider::new(&mut st.converge, 0.5..=0.999).fixed_decimals(3))
+                        .labelled_by(label.id);
                     ui.end_row();
                     ui.label("Visibility");
                     ui.horizontal(|ui| {

@@ -1,0 +1,446 @@
+//! The viewer's UI driven headless with egui_kittest (no window, no GPU unless a test
+//! runs background work): dropping files, editing luminaires, the photometry window,
+//! display and sun choices, camera control, saving and loading, and the background jobs.
+
+mod common;
+#[path = "common/gpu.rs"]
+mod gpu_common;
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use common::{luminaire, root};
+use egui_kittest::kittest::Queryable;
+use egui_kittest::Harness;
+use goniolight::photometry::Interp;
+use goniolight::render::ShadowTechnique;
+use goniolight::scene::Scene;
+use goniolight::viewer::app::ViewerApp;
+use goniolight::viewer::files::{load_scene_or_model, RecentFiles};
+
+fn scene_path(name: &str) -> PathBuf {
+    root().join("assets/scenes").join(name)
+}
+
+fn app(name: &str) -> ViewerApp {
+    let path = scene_path(name);
+    let scene = Scene::load(&path).unwrap();
+    ViewerApp::new(scene, Some(path), RecentFiles::default())
+}
+
+fn harness(app: ViewerApp) -> Harness<'static, ViewerApp> {
+    Harness::builder()
+        .with_size([1280.0, 900.0])
+        .build_ui_state(|ui, app: &mut ViewerApp| app.ui(ui), app)
+}
+
+/// A file dropped on the window (what egui-winit hands over).
+#[derive(Debug)]
+struct Dropped(PathBuf);
+
+impl egui::DroppedFile for Dropped {
+    fn path(&self) -> &Path {
+        &self.0
+    }
+    fn bytes(&self) -> Result<Vec<u8>, String> {
+        std::fs::read(&self.0).map_err(|e| e.to_string())
+    }
+}
+
+fn drop_file(h: &mut Harness<'_, ViewerApp>, path: &Path) {
+    h.input_mut()
+        .dropped_files
+        .push(Arc::new(Dropped(path.to_path_buf())));
+    h.run();
+}
+
+fn placements(scene: &Scene) -> Vec<String> {
+    scene
+        .luminaires
+        .iter()
+        .map(|l| {
+            format!(
+                "{} {:?} {:?} {} {:?}",
+                l.name, l.position, l.rotation, l.multiplier, l.color
+            )
+        })
+        .collect()
+}
+
+#[test]
+fn dropping_a_malformed_luminaire_shows_an_error_and_changes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let bad = dir.path().join("broken.ldt");
+    // A valid header cut off in the middle of the angles.
+    let good = std::fs::read_to_string(luminaire("eulumdat-plot/sample_06_isym1.ldt")).unwrap();
+    let cut: String = good.lines().take(30).map(|l| format!("{l}\n")).collect();
+    std::fs::write(&bad, cut).unwrap();
+    let mut h = harness(app("box_room.toml"));
+    let before = placements(&h.state().scene);
+    let (revision, camera, display) = (
+        h.state().revision,
+        h.state().camera,
+        h.state().display.clone(),
+    );
+    drop_file(&mut h, &bad);
+    let error = h
+        .state()
+        .last_error()
+        .expect("an error message")
+        .to_string();
+    assert!(error.contains("broken.ldt"), "{error}");
+    assert!(error.contains("not added"), "{error}");
+    // Shown in the UI.
+    h.get_by_label_contains("broken.ldt");
+    let s = h.state();
+    assert_eq!(placements(&s.scene), before);
+    assert_eq!(
+        (s.revision, s.camera, &s.display),
+        (revision, camera, &display)
+    );
+}
+
+#[test]
+fn dropping_luminaires_adds_them_and_remove_takes_them_away() {
+    let mut h = harness(app("box_room.toml"));
+    let n = h.state().scene.luminaires.len();
+    let ies_file = luminaire("photometric-viewer/ies95/metric_units.ies");
+    drop_file(&mut h, &luminaire("eulumdat-luminance/sample_07.ldt"));
+    drop_file(&mut h, &ies_file);
+    assert_eq!(h.state().scene.luminaires.len(), n + 2);
+    assert_eq!(h.state().selected, Some(n + 1));
+    // Hung 10 cm under the top of the scene, pointing down.
+    let (_, hi) = h.state().scene.bounds();
+    let added = &h.state().scene.luminaires[n];
+    assert!((added.position.z - (hi.z - 0.1)).abs() < 1e-9);
+    assert_eq!(added.rotation, glam::DMat3::IDENTITY);
+    h.get_by_label("Remove").click();
+    h.run();
+    assert_eq!(h.state().scene.luminaires.len(), n + 1);
+    assert!(h
+        .state()
+        .scene
+        .luminaires
+        .iter()
+        .all(|l| l.file != ies_file));
+}
+
+#[test]
+fn interpolation_choice_reaches_the_render_settings() {
+    let mut h = harness(app("box_room.toml"));
+    let r0 = h.state().revision;
+    h.get_by_role_and_label(egui::accesskit::Role::ComboBox, "Interpolation")
+        .click();
+    h.run();
+    h.get_by_label("nearest").click();
+    h.run();
+    assert_eq!(h.state().display.interp, Interp::Nearest);
+    assert!(h.state().revision > r0);
+    let s = h.state().render_settings(320, 200);
+    assert_eq!(
+        s.light_model,
+        goniolight::render::LightModel::Ldt(Interp::Nearest)
+    );
+    assert_eq!((s.width, s.height), (320, 200));
+}
+
+#[test]
+fn aim_controls_reproduce_every_rotation_of_the_bundled_scenes() {
+    use goniolight::viewer::app::AimControls;
+    for name in ["furnished_room.toml", "effect_stage.toml", "box_room.toml"] {
+        let scene = Scene::load(&scene_path(name)).unwrap();
+        for l in &scene.luminaires {
+            let back = AimControls::of(l.rotation).rotation();
+            let err = (back - l.rotation)
+                .to_cols_array()
+                .iter()
+                .map(|v| v.abs())
+                .fold(0.0, f64::max);
+            assert!(err < 1e-9, "{name} {}: {err}", l.name);
+        }
+    }
+}
+
+#[test]
+fn photometry_window_shows_the_summary_and_the_curves() {
+    let mut h = harness(app("box_room.toml"));
+    h.get_by_label_contains("1: ").click();
+    h.run();
+    h.get_by_label("Photometry…").click();
+    h.run();
+    let summary = h.state().scene.luminaires[0].luminaire.summary();
+    h.get_by_label_contains("Photometry: ");
+    h.get_by_label(&format!("{:.0} lm", summary.flux_lm));
+    h.get_by_label("Beam angle (50 %)");
+    // The curves pass through the measured values: at measured angles every
+    // interpolation returns the measurement.
+    let lum = &h.state().scene.luminaires[0].luminaire;
+    let measured = goniolight::viewer::luminaires::measured_points(lum, 0.0);
+    assert!(!measured.is_empty());
+    for (interp, _) in goniolight::viewer::luminaires::INTERPOLATIONS {
+        let curve = goniolight::viewer::luminaires::polar_curve(lum, 0.0, interp, 0.5);
+        assert_eq!(curve.len(), 2 * 361);
+        for m in &measured {
+            let nearest = curve
+                .iter()
+                .map(|c| ((c[0] - m[0]).powi(2) + (c[1] - m[1]).powi(2)).sqrt())
+                .fold(f64::INFINITY, f64::min);
+            let size = (m[0] * m[0] + m[1] * m[1]).sqrt();
+            assert!(
+                nearest <= 1e-6 * size.max(1.0),
+                "{interp:?}: {m:?} off the curve by {nearest}"
+            );
+        }
+    }
+}
+
+#[test]
+fn dragging_the_viewport_orbits_and_scrolling_zooms() {
+    let mut h = harness(app("box_room.toml"));
+    h.run();
+    let before = h.state().camera;
+    let centre = egui::pos2(800.0, 450.0);
+    h.event(egui::Event::PointerMoved(centre));
+    h.event(egui::Event::PointerButton {
+        pos: centre,
+        button: egui::PointerButton::Primary,
+        pressed: true,
+        modifiers: Default::default(),
+    });
+    h.run();
+    h.event(egui::Event::PointerMoved(centre + egui::vec2(100.0, 0.0)));
+    h.run();
+    h.event(egui::Event::PointerButton {
+        pos: centre + egui::vec2(100.0, 0.0),
+        button: egui::PointerButton::Primary,
+        pressed: false,
+        modifiers: Default::default(),
+    });
+    h.run();
+    let after = h.state().camera;
+    assert!(
+        (after.target - before.target).length() < 1e-9,
+        "orbiting keeps the target"
+    );
+    let turned = (after.yaw_deg - before.yaw_deg).rem_euclid(360.0);
+    assert!(turned > 1.0, "yaw {} → {}", before.yaw_deg, after.yaw_deg);
+}
+
+#[test]
+fn false_colour_mode_and_shadow_choices() {
+    let mut h = harness(app("box_room.toml"));
+    h.get_by_label("False-colour lux").click();
+    h.run();
+    assert_eq!(h.state().display.mode, goniolight::scene::Mode::Illuminance);
+    h.get_by_label("Shadows").click();
+    h.run();
+    h.get_by_label("Volumes").click();
+    h.run();
+    h.get_by_label("hextree").click();
+    h.run();
+    h.get_by_label("Show silhouettes").click();
+    h.run();
+    let s = h.state().render_settings(100, 100).shadows;
+    assert_eq!(s.technique, ShadowTechnique::Volumes);
+    assert_eq!(s.silhouette, goniolight::shadow::SilhouetteMethod::Hextree);
+    assert!(s.show_silhouettes);
+}
+
+#[test]
+fn the_sun_adds_a_light_and_switches_to_shadow_volumes() {
+    let mut h = harness(app("box_room.toml"));
+    let n = h.state().scene.luminaires.len();
+    h.get_by_label("Sun").click();
+    h.run();
+    h.get_by_label("Sun lights the scene").click();
+    h.run();
+    let app = h.state();
+    assert!(app.sun.enabled);
+    assert_eq!(app.display.shadows.technique, ShadowTechnique::Volumes);
+    let scene = app.render_scene();
+    assert_eq!(scene.luminaires.len(), n + 1);
+    assert_eq!(
+        app.scene.luminaires.len(),
+        n,
+        "the sun is not part of the saved scene"
+    );
+    // Its light at the scene's centre, on a surface facing it, is the clear-sky value.
+    let p = app.sun.position().unwrap();
+    let sun = scene.luminaires.last().unwrap();
+    let (lo, hi) = app.scene.bounds();
+    let to_sun = sun.position - (lo + hi) / 2.0;
+    let lux = sun
+        .luminaire
+        .distribution
+        .candela(0.0, 90.0, Interp::CatmullRom, sun.multiplier)
+        / to_sun.length_squared();
+    let expected = goniolight::viewer::sun::clear_sky_direct_normal_lux(p.elevation_deg);
+    assert!((lux / expected - 1.0).abs() < 1e-9, "{lux} vs {expected}");
+}
+
+#[test]
+fn save_and_load_round_trip_and_recent_files() {
+    let dir = tempfile::tempdir().unwrap();
+    let store = dir.path().join("config/recent.txt");
+    let path = scene_path("furnished_room.toml");
+    let scene = Scene::load(&path).unwrap();
+    let mut app = ViewerApp::new(
+        scene,
+        Some(path.clone()),
+        RecentFiles::load(Some(store.clone())),
+    );
+    // Edit: dim and move the first luminaire, turn the camera.
+    app.scene.luminaires[0].multiplier = 0.5;
+    app.scene.luminaires[0].position.x += 0.25;
+    app.camera.rotate(50.0, 10.0);
+    app.display.mode = goniolight::scene::Mode::Illuminance;
+    let saved = dir.path().join("sub/saved.toml");
+    std::fs::create_dir_all(saved.parent().unwrap()).unwrap();
+    app.save_scene(&saved);
+    assert_eq!(app.last_error(), None);
+    let back = Scene::load(&saved).unwrap();
+    assert_eq!(back.luminaires.len(), app.scene.luminaires.len());
+    for (a, b) in app.scene.luminaires.iter().zip(&back.luminaires) {
+        assert!((a.position - b.position).length() < 1e-9);
+        let err = (a.rotation - b.rotation)
+            .to_cols_array()
+            .iter()
+            .map(|v| v.abs())
+            .fold(0.0, f64::max);
+        assert!(err < 1e-9, "{}: rotation off by {err}", a.name);
+        assert!((a.multiplier - b.multiplier).abs() < 1e-12);
+        assert!((a.color - b.color).length() < 1e-9);
+        assert_eq!(a.name, b.name);
+    }
+    assert_eq!(back.triangle_count(), app.scene.triangle_count());
+    assert!((back.camera.position - app.camera.eye()).length() < 1e-9);
+    assert_eq!(
+        back.display.mode,
+        Some(goniolight::scene::Mode::Illuminance)
+    );
+    // Recent files: newest first, kept on disk.
+    let recent = RecentFiles::load(Some(store));
+    assert_eq!(recent.paths[0], std::path::absolute(&saved).unwrap());
+    assert_eq!(recent.paths[1], std::path::absolute(&path).unwrap());
+    // Opening it again through the app replaces the scene.
+    let mut other = self::app("box_room.toml");
+    other.open_scene(&saved);
+    assert_eq!(other.scene.luminaires.len(), back.luminaires.len());
+    // A broken scene changes nothing.
+    let broken = dir.path().join("broken.toml");
+    std::fs::write(&broken, "[camera]\nposition = [0, 0]\n").unwrap();
+    let before = placements(&other.scene);
+    other.open_scene(&broken);
+    assert!(other.last_error().unwrap().contains("broken.toml"));
+    assert_eq!(placements(&other.scene), before);
+}
+
+#[test]
+fn an_obj_model_opens_framed_with_no_lights() {
+    let scene = load_scene_or_model(&root().join("assets/models/industrial_area.obj")).unwrap();
+    assert!(scene.luminaires.is_empty());
+    assert!(scene.triangle_count() > 0);
+    let (lo, hi) = scene.bounds();
+    let centre = (lo + hi) / 2.0;
+    assert!((scene.camera.look_at - centre).length() < 1e-9);
+    let mut h = harness(ViewerApp::new(scene, None, RecentFiles::default()));
+    h.run();
+    h.get_by_label_contains("No lights");
+}
+
+#[test]
+fn background_jobs_without_a_gpu_say_so() {
+    let mut a = app("box_room.toml");
+    a.start_radiosity();
+    assert!(a.last_error().unwrap().contains("no GPU"));
+    a.start_profile();
+    assert!(a.last_error().unwrap().contains("no GPU"));
+}
+
+/// Runs frames until `done` holds (at most two minutes).
+fn run_until(h: &mut Harness<'_, ViewerApp>, done: impl Fn(&ViewerApp) -> bool) {
+    let start = std::time::Instant::now();
+    while !done(h.state()) {
+        assert!(
+            start.elapsed().as_secs() < 120,
+            "background job did not finish"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(20));
+        h.step();
+    }
+}
+
+#[test]
+fn radiosity_runs_in_the_background_pauses_and_converges() {
+    let Some(gpu) = gpu_common::gpu() else { return };
+    let mut a = app("box_room.toml");
+    a.gpu = Some(Arc::new(gpu));
+    a.radiosity.settings.texel_density = 4.0;
+    a.radiosity.settings.converge = 0.95;
+    a.radiosity.settings.update_every_s = 0.0;
+    let mut h = harness(a);
+    h.get_by_label("Radiosity").click();
+    h.run();
+    let r0 = h.state().revision;
+    h.get_by_label("Start").click();
+    h.step();
+    assert!(h.state().radiosity.worker.is_some());
+    // Pause as soon as a solution is shown; while paused no shots are made.
+    run_until(&mut h, |a| {
+        a.radiosity.light_map.is_some() || a.radiosity.worker.is_none()
+    });
+    if h.state().radiosity.worker.is_some() {
+        h.get_by_label("Pause").click();
+        h.step();
+        std::thread::sleep(std::time::Duration::from_millis(300));
+        h.step();
+        let shots = h.state().radiosity.shots;
+        std::thread::sleep(std::time::Duration::from_millis(300));
+        h.step();
+        assert_eq!(
+            h.state().radiosity.shots,
+            shots,
+            "paused solver kept shooting"
+        );
+        h.get_by_label("Resume").click();
+        h.step();
+    }
+    run_until(&mut h, |a| a.radiosity.worker.is_none());
+    let r = &h.state().radiosity;
+    assert!(r.status.starts_with("done: converged"), "{}", r.status);
+    let last = r.log.last().unwrap();
+    assert!(last[1] >= 0.95, "{last:?}");
+    assert!(
+        r.log.windows(2).all(|w| w[1][0] >= w[0][0]),
+        "time runs forward"
+    );
+    let map = r.light_map.as_ref().expect("a light map");
+    assert!(map.texels.iter().any(|t| t[3] > 0.0));
+    assert!(h.state().revision > r0);
+    // Changing a light drops the solution.
+    h.state_mut().lights_changed();
+    assert!(h.state().radiosity.light_map.is_none());
+}
+
+#[test]
+fn shadow_profile_runs_in_the_background_and_is_shown() {
+    let Some(gpu) = gpu_common::gpu() else { return };
+    let scene = load_scene_or_model(&root().join("assets/models/industrial_area.obj")).unwrap();
+    let mut a = ViewerApp::new(scene, None, RecentFiles::default());
+    a.gpu = Some(Arc::new(gpu));
+    a.sun.profile_resolution = 128;
+    a.sun.profile_step = 60;
+    let mut h = harness(a);
+    h.get_by_label("Sun").click();
+    h.run();
+    h.get_by_label("Compute shadow profile").click();
+    h.step();
+    run_until(&mut h, |a| a.profile.worker.is_none());
+    let app = h.state();
+    let p = app.profile.result.as_ref().expect("a profile");
+    // 08:00 to 16:00 every hour: 9 steps, all with the sun up in June in Vienna.
+    assert_eq!(p.steps.len() + p.skipped.len(), 9);
+    assert_eq!(app.profile.progress, (p.steps.len(), p.steps.len()));
+    assert!(app.profile.texture.is_some());
+    h.get_by_label_contains("steps, ");
+}
