@@ -29,7 +29,7 @@ pub struct Targets {
 impl Targets {
     /// Creates targets of `width` × `height`.
     pub fn new(gpu: &Gpu, width: u32, height: u32) -> Targets {
-        let make = |label, format, usage| {
+        let make = |label, format, usage, view_formats: &[wgpu::TextureFormat]| {
             gpu.device.create_texture(&wgpu::TextureDescriptor {
                 label: Some(label),
                 size: wgpu::Extent3d {
@@ -42,21 +42,29 @@ impl Targets {
                 dimension: wgpu::TextureDimension::D2,
                 format,
                 usage,
-                view_formats: &[],
+                view_formats,
             })
         };
         use wgpu::TextureUsages as U;
-        let depth = make("depth", gpu.depth_stencil_format(), U::RENDER_ATTACHMENT);
+        let depth = make(
+            "depth",
+            gpu.depth_stencil_format(),
+            U::RENDER_ATTACHMENT,
+            &[],
+        );
         let hdr = make(
             "hdr",
             HDR_FORMAT,
             U::RENDER_ATTACHMENT | U::TEXTURE_BINDING | U::COPY_SRC,
+            &[],
         );
-        // Sampled too: the viewer shows it in its window.
+        // Sampled too: the viewer shows its sRGB-encoded bytes as they are (egui's
+        // textures are gamma-encoded `Rgba8Unorm`).
         let ldr = make(
             "ldr",
             LDR_FORMAT,
             U::RENDER_ATTACHMENT | U::COPY_SRC | U::TEXTURE_BINDING,
+            &[wgpu::TextureFormat::Rgba8Unorm],
         );
         Targets {
             width,

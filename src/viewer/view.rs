@@ -124,7 +124,12 @@ impl ViewerApp {
         if self.display.mode == Mode::Illuminance {
             draw_legend(ui, rect, self.status.lux_max);
         }
-        if self.scene.luminaires.is_empty() && !self.sun.enabled {
+        let emissive = self
+            .scene
+            .materials
+            .iter()
+            .any(|m| m.emission.max_element() > 0.0);
+        if self.scene.luminaires.is_empty() && !self.sun.enabled && !emissive {
             let hint = egui::Rect::from_center_size(rect.center(), egui::vec2(rect.width(), 40.0));
             ui.put(
                 hint,

@@ -26,6 +26,8 @@ pub struct Viewport {
     renderer: Renderer,
     scene: Option<(u64, GpuScene)>,
     targets: Option<Targets>,
+    /// The displayable image seen as gamma-encoded bytes (what egui samples).
+    gamma_view: Option<wgpu::TextureView>,
     texture: Option<egui::TextureId>,
     last: Option<RenderedFrom>,
 }
@@ -37,6 +39,7 @@ impl Viewport {
             renderer: Renderer::new(gpu),
             scene: None,
             targets: None,
+            gamma_view: None,
             texture: None,
             last: None,
         }
@@ -67,9 +70,16 @@ impl Viewport {
             .as_ref()
             .is_none_or(|t| t.width != w || t.height != h);
         if resized {
-            self.targets = Some(Targets::new(gpu, w, h));
+            let targets = Targets::new(gpu, w, h);
+            self.gamma_view = Some(targets.ldr.create_view(&wgpu::TextureViewDescriptor {
+                format: Some(wgpu::TextureFormat::Rgba8Unorm),
+                ..Default::default()
+            }));
+            self.targets = Some(targets);
         }
-        let (Some((_, scene)), Some(targets)) = (&self.scene, &self.targets) else {
+        let (Some((_, scene)), Some(targets), Some(gamma_view)) =
+            (&self.scene, &self.targets, &self.gamma_view)
+        else {
             return Ok(());
         };
         let from = RenderedFrom {
@@ -87,7 +97,7 @@ impl Viewport {
             match self.texture {
                 Some(id) if resized => egui.update_egui_texture_from_wgpu_texture(
                     &gpu.device,
-                    &targets.ldr_view,
+                    gamma_view,
                     wgpu::FilterMode::Linear,
                     id,
                 ),
@@ -95,7 +105,7 @@ impl Viewport {
                 None => {
                     self.texture = Some(egui.register_native_texture(
                         &gpu.device,
-                        &targets.ldr_view,
+                        gamma_view,
                         wgpu::FilterMode::Linear,
                     ))
                 }

@@ -113,11 +113,17 @@ impl Handler {
             .context("creating the window's GPU surface")?;
         let gpu = Arc::new(Gpu::with_instance(instance, Some(&surface))?);
         let caps = surface.get_capabilities(&gpu.adapter);
+        // egui blends in gamma space and prefers a plain 8-bit surface.
         let format = caps
             .formats
             .iter()
             .copied()
-            .find(|f| f.is_srgb())
+            .find(|f| {
+                matches!(
+                    f,
+                    wgpu::TextureFormat::Rgba8Unorm | wgpu::TextureFormat::Bgra8Unorm
+                )
+            })
             .or_else(|| caps.formats.first().copied())
             .ok_or_else(|| anyhow!("the GPU {} cannot present to this window", gpu.describe()))?;
         let size = window.inner_size();

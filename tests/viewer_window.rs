@@ -1,0 +1,197 @@
+//! `goniolight view` in a real window under Xvfb on the GPU (lavapipe in CI):
+//! `--frames N --screenshot out.png` for every bundled scene, the viewport's pixels
+//! against `goniolight render` of the same view, bad input and a missing display.
+//! Needs `xvfb-run` (scripts/install-deps.sh installs it); fails, never skips, without
+//! it, unless GPU tests are opted out with GONIOLIGHT_SKIP_GPU_TESTS=1.
+
+mod common;
+
+use std::path::Path;
+use std::process::Command;
+
+use common::{luminaire, root};
+
+fn skip() -> bool {
+    let skip = std::env::var("GONIOLIGHT_SKIP_GPU_TESTS").as_deref() == Ok("1");
+    if skip {
+        eprintln!("viewer window test skipped: GONIOLIGHT_SKIP_GPU_TESTS=1");
+    }
+    skip
+}
+
+/// Runs `goniolight view ARGS` under a fresh Xvfb server; returns (code, stdout, stderr).
+fn view_under_xvfb(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new("xvfb-run")
+        .args(["-a", "-s", "-screen 0 1600x1000x24"])
+        .arg(env!("CARGO_BIN_EXE_goniolight"))
+        .arg("view")
+        .args(args)
+        .env("GONIOLIGHT_CONFIG_DIR", std::env::temp_dir().join("goniolight-test-config"))
+        .output()
+        .unwrap_or_else(|e| {
+            panic!("xvfb-run is needed for the viewer tests ({e}): apt-get install xvfb xauth (scripts/install-deps.sh does)")
+        });
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+fn render(scene: &Path, w: u32, h: u32, out: &Path) {
+    let (code, _, err) = common::run_cli(
+        &[
+            "render",
+            &scene.display().to_string(),
+            "--mode",
+            "shaded",
+            "--width",
+            &w.to_string(),
+            "--height",
+            &h.to_string(),
+            "--out",
+            &out.display().to_string(),
+        ],
+        "",
+    );
+    assert_eq!(code, 0, "{err}");
+}
+
+#[test]
+fn every_bundled_scene_renders_in_the_window_like_the_render_command() {
+    if skip() {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    for name in ["box_room", "cornell_box", "effect_stage", "furnished_room"] {
+        let scene = root().join(format!("assets/scenes/{name}.toml"));
+        let shot = dir.path().join(format!("{name}-window.png"));
+        let (code, out, err) = view_under_xvfb(&[
+            &scene.display().to_string(),
+            "--mode",
+            "shaded",
+            "--width",
+            "900",
+            "--height",
+            "600",
+            "--frames",
+            "4",
+            "--screenshot",
+            &shot.display().to_string(),
+        ]);
+        assert_eq!(code, 0, "{name}: {err}");
+        let summary: serde_json::Value =
+            serde_json::from_str(out.trim()).unwrap_or_else(|e| panic!("{e}: {out}"));
+        assert_eq!(summary["frames"], 4, "{summary}");
+        let window = image::open(&shot).unwrap().to_rgba8();
+        assert_eq!([window.width(), window.height()], [900, 600]);
+        assert_eq!(summary["window_px"], serde_json::json!([900, 600]));
+        let v: Vec<u32> = summary["viewport_px"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_u64().unwrap() as u32)
+            .collect();
+        // The side panel, menu and status bar take their share; the view the rest.
+        assert!(v[0] > 100 && v[2] > 300 && v[3] > 300, "{v:?}");
+        // The viewport shows exactly what `render` makes of the same view.
+        let reference = dir.path().join(format!("{name}-render.png"));
+        render(&scene, v[2], v[3], &reference);
+        let reference = image::open(&reference).unwrap().to_rgba8();
+        let mut off = 0usize;
+        let mut worst = 0i32;
+        for y in 0..v[3] {
+            for x in 0..v[2] {
+                let a = window.get_pixel(v[0] + x, v[1] + y);
+                let b = reference.get_pixel(x, y);
+                let d = (0..3)
+                    .map(|c| (a[c] as i32 - b[c] as i32).abs())
+                    .max()
+                    .unwrap();
+                worst = worst.max(d);
+                off += usize::from(d > 2);
+            }
+        }
+        let total = (v[2] * v[3]) as usize;
+        eprintln!(
+            "{name}: viewport {v:?}, {off} of {total} pixels differ by > 2 levels (worst {worst})"
+        );
+        assert!(
+            off * 1000 <= total,
+            "{name}: {off} of {total} pixels differ (worst {worst})"
+        );
+        // The UI is there: the side panel is egui's panel grey with text on it.
+        let panel: Vec<u8> = (40..v[3])
+            .flat_map(|y| (2..v[0] - 2).map(move |x| (x, y)))
+            .map(|(x, y)| window.get_pixel(x, y)[0])
+            .collect();
+        let grey = panel.iter().filter(|&&p| (20..=40).contains(&p)).count();
+        let bright = panel.iter().filter(|&&p| p > 150).count();
+        assert!(grey * 10 > panel.len() * 7, "{name}: side panel not drawn");
+        assert!(bright > 200, "{name}: no text in the side panel");
+    }
+}
+
+#[test]
+fn a_malformed_luminaire_at_start_is_refused_and_nothing_is_written() {
+    if skip() {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let bad = dir.path().join("broken.ldt");
+    std::fs::write(&bad, "not a luminaire\n").unwrap();
+    let shot = dir.path().join("never.png");
+    let scene = root().join("assets/scenes/box_room.toml");
+    let (code, _, err) = view_under_xvfb(&[
+        &scene.display().to_string(),
+        "--add",
+        &bad.display().to_string(),
+        "--screenshot",
+        &shot.display().to_string(),
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("broken.ldt"), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+    assert!(!shot.exists());
+    // A good one is added (and lights the view).
+    let good = luminaire("eulumdat-luminance/sample_07.ldt");
+    let shot = dir.path().join("added.png");
+    let (code, _, err) = view_under_xvfb(&[
+        &scene.display().to_string(),
+        "--add",
+        &good.display().to_string(),
+        "--frames",
+        "2",
+        "--screenshot",
+        &shot.display().to_string(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(shot.exists());
+}
+
+#[test]
+fn bad_flags_and_a_missing_display_are_clear_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let shot = dir.path().join("x.jpg");
+    let (code, _, err) =
+        common::run_cli(&["view", "--screenshot", &shot.display().to_string()], "");
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains(".png"), "{err}");
+    let (code, _, err) = common::run_cli(&["view", "--frames", "0"], "");
+    assert_eq!(code, 2, "{err}");
+    let (code, _, err) = common::run_cli(&["view", "no/such/scene.toml", "--frames", "1"], "");
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("no/such/scene.toml"), "{err}");
+    // No display at all: a message that says what to do, no panic.
+    let out = Command::new(env!("CARGO_BIN_EXE_goniolight"))
+        .args(["view", "--frames", "1"])
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .env("GONIOLIGHT_CONFIG_DIR", dir.path())
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains("xvfb-run"), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+}
