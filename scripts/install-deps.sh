@@ -11,6 +11,14 @@ if ! compgen -G "/usr/share/vulkan/icd.d/*.json" >/dev/null && ! compgen -G "/et
   need_apt+=(mesa-vulkan-drivers libvulkan1)
 fi
 command -v python3 >/dev/null 2>&1 || need_apt+=(python3)
+# The viewer's window tests run under a virtual X server; winit loads these X libraries.
+command -v xvfb-run >/dev/null 2>&1 || need_apt+=(xvfb xauth)
+for lib in libxkbcommon-x11.so.0 libXcursor.so.1 libXi.so.6 libXrandr.so.2 libX11-xcb.so.1; do
+  if ! ldconfig -p 2>/dev/null | grep -q "$lib"; then
+    need_apt+=(libxkbcommon-x11-0 libxcursor1 libxi6 libxrandr2 libx11-xcb1)
+    break
+  fi
+done
 if [ ${#need_apt[@]} -gt 0 ]; then
   echo "installing: ${need_apt[*]}" >&2
   SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"

@@ -337,7 +337,11 @@ fn save_and_load_round_trip_and_recent_files() {
 
 #[test]
 fn an_obj_model_opens_framed_with_no_lights() {
-    let scene = load_scene_or_model(&root().join("assets/models/industrial_area.obj")).unwrap();
+    let scene = load_scene_or_model(
+        &root().join("assets/models/industrial_area.obj"),
+        goniolight::scene::UpAxis::Z,
+    )
+    .unwrap();
     assert!(scene.luminaires.is_empty());
     assert!(scene.triangle_count() > 0);
     let (lo, hi) = scene.bounds();
@@ -425,7 +429,11 @@ fn radiosity_runs_in_the_background_pauses_and_converges() {
 #[test]
 fn shadow_profile_runs_in_the_background_and_is_shown() {
     let Some(gpu) = gpu_common::gpu() else { return };
-    let scene = load_scene_or_model(&root().join("assets/models/industrial_area.obj")).unwrap();
+    let scene = load_scene_or_model(
+        &root().join("assets/models/industrial_area.obj"),
+        goniolight::scene::UpAxis::Z,
+    )
+    .unwrap();
     let mut a = ViewerApp::new(scene, None, RecentFiles::default());
     a.gpu = Some(Arc::new(gpu));
     a.sun.profile_resolution = 128;
@@ -443,4 +451,67 @@ fn shadow_profile_runs_in_the_background_and_is_shown() {
     assert_eq!(app.profile.progress, (p.steps.len(), p.steps.len()));
     assert!(app.profile.texture.is_some());
     h.get_by_label_contains("steps, ");
+}
+
+#[test]
+fn sunlit_roofs_get_the_clear_sky_illuminance() {
+    let Some(gpu) = gpu_common::gpu() else { return };
+    let scene = load_scene_or_model(
+        &root().join("assets/models/industrial_area.obj"),
+        goniolight::scene::UpAxis::Z,
+    )
+    .unwrap();
+    let mut app = ViewerApp::new(scene, None, RecentFiles::default());
+    app.sun.enabled = true;
+    app.sun.minutes = 13.0 * 60.0;
+    let p = app.sun.position().unwrap();
+    let expected = goniolight::viewer::sun::clear_sky_direct_normal_lux(p.elevation_deg)
+        * p.elevation_deg.to_radians().sin();
+    // Straight down on the site: roofs and ground are horizontal and face the sky.
+    let (lo, hi) = app.scene.bounds();
+    app.camera.yaw_deg = 90.0;
+    app.camera.pitch_deg = -89.0;
+    app.camera.frame(lo, hi);
+    let normal = goniolight::viewer::sun::clear_sky_direct_normal_lux(p.elevation_deg);
+    let renderer = goniolight::render::Renderer::new(&gpu);
+    let mut dark = Vec::new();
+    for technique in [ShadowTechnique::None, ShadowTechnique::Volumes] {
+        app.display.shadows.technique = technique;
+        app.display.mode = goniolight::scene::Mode::Illuminance;
+        let mut settings = app.render_settings(200, 200);
+        settings.read_hdr = true;
+        let uploaded = renderer.upload(&gpu, &app.render_scene());
+        let frame = renderer
+            .render(&gpu, &uploaded, &app.camera.camera(app.extent()), &settings)
+            .unwrap();
+        let lux: Vec<f64> = frame
+            .hdr
+            .unwrap()
+            .iter()
+            .map(|p| p[3] as f64)
+            .filter(|&l| l >= 0.0)
+            .collect();
+        let flat = lux
+            .iter()
+            .filter(|&&l| (l / expected - 1.0).abs() < 0.02)
+            .count();
+        let max = lux.iter().copied().fold(0.0, f64::max);
+        dark.push(lux.iter().filter(|&&l| l < 1.0).count());
+        eprintln!("{technique:?}: {flat} of {} seen pixels at {expected:.0} lx ± 2 % (flat roofs), max {max:.0} (normal {normal:.0}), {} dark", lux.len(), dark.last().unwrap());
+        // The flat roofs are the largest family of surfaces seen from above; no surface
+        // gets more than the normal illuminance.
+        assert!(
+            flat * 4 > lux.len(),
+            "{technique:?}: {flat} of {}",
+            lux.len()
+        );
+        assert!(max <= normal * 1.01, "{max} > {normal}");
+    }
+    // Shadow volumes put the lower roofs partly in the shade of the higher buildings.
+    assert!(
+        dark[1] > dark[0],
+        "dark pixels: no shadows {}, volumes {}",
+        dark[0],
+        dark[1]
+    );
 }

@@ -51,7 +51,7 @@ pub struct SceneFile {
 }
 
 /// The up axis of an OBJ file.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, Default, clap::ValueEnum)]
 #[serde(rename_all = "lowercase")]
 pub enum UpAxis {
     /// +Y up (converted to the world's +Z up).

@@ -194,6 +194,8 @@ pub struct ViewerApp {
     pub add_path: String,
     /// Text of the screenshot path field.
     pub screenshot_path: String,
+    /// The up axis of OBJ models opened.
+    pub obj_up: crate::scene::UpAxis,
 }
 
 impl ViewerApp {
@@ -221,6 +223,7 @@ impl ViewerApp {
             dialog: None,
             add_path: String::new(),
             screenshot_path: "screenshot.png".into(),
+            obj_up: crate::scene::UpAxis::Y,
         };
         app.aims = app
             .scene

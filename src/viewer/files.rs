@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use std::sync::mpsc::{channel, Receiver};
 
 use super::app::ViewerApp;
-use crate::scene::{Scene, SceneError};
+use crate::scene::{Scene, SceneError, UpAxis};
 
 /// Most recent files kept.
 pub const RECENT_MAX: usize = 10;
@@ -70,7 +70,7 @@ impl RecentFiles {
 }
 
 /// Loads a scene file, or wraps an OBJ model in a scene with a camera that frames it.
-pub fn load_scene_or_model(path: &Path) -> Result<Scene, SceneError> {
+pub fn load_scene_or_model(path: &Path, up: UpAxis) -> Result<Scene, SceneError> {
     let is_obj = path
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("obj"));
@@ -79,8 +79,12 @@ pub fn load_scene_or_model(path: &Path) -> Result<Scene, SceneError> {
     }
     let absolute = std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf());
     let text = format!(
-        "[[model]]\npath = {}\n\n[camera]\nposition = [10.0, -10.0, 10.0]\nlook_at = [0.0, 0.0, 0.0]\n",
-        toml::Value::String(absolute.to_string_lossy().into_owned())
+        "[[model]]\npath = {}\nup = \"{}\"\n\n[camera]\nposition = [10.0, -10.0, 10.0]\nlook_at = [0.0, 0.0, 0.0]\n",
+        toml::Value::String(absolute.to_string_lossy().into_owned()),
+        match up {
+            UpAxis::Y => "y",
+            UpAxis::Z => "z",
+        }
     );
     let mut scene = Scene::from_toml(path, &text)?;
     if scene.triangle_count() == 0 {
@@ -187,7 +191,7 @@ impl ViewerApp {
     /// Replaces the scene by the one at `path` (a scene file or an OBJ model); on an
     /// error nothing changes.
     pub fn open_scene(&mut self, path: &Path) {
-        match load_scene_or_model(path) {
+        match load_scene_or_model(path, self.obj_up) {
             Ok(scene) => {
                 let is_scene = !scene.path.as_os_str().is_empty();
                 self.replace_scene(scene, is_scene.then(|| path.to_path_buf()));
@@ -253,6 +257,11 @@ impl ViewerApp {
                     super::camera::CameraMode::Fly,
                     "Fly camera (W A S D Q E)",
                 );
+                ui.separator();
+                ui.label("Up axis of OBJ models opened");
+                ui.radio_value(&mut self.obj_up, UpAxis::Y, "+Y (most exporters)");
+                ui.radio_value(&mut self.obj_up, UpAxis::Z, "+Z");
+                ui.separator();
                 if ui.button("Shadow profile window").clicked() {
                     self.profile.open = true;
                 }

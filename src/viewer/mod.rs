@@ -17,6 +17,7 @@ pub mod work;
 use std::path::PathBuf;
 
 use anyhow::anyhow;
+use chrono::Timelike;
 use clap::Args;
 
 use crate::cli::CliError;
@@ -46,9 +47,16 @@ pub struct ViewArgs {
     /// Luminaire files to add to the scene at start (as if dropped on the window).
     #[arg(long = "add", value_name = "LDT|IES")]
     pub add: Vec<PathBuf>,
+    /// Up axis of an OBJ model given as PATH: y (most exporters) or z.
+    #[arg(long, value_enum, default_value = "y")]
+    pub up: crate::scene::UpAxis,
     /// Mode at start: shaded or illuminance (default: the scene's).
     #[arg(long, value_enum)]
     pub mode: Option<crate::scene::Mode>,
+    /// Turn the sun on at this local time (HH:MM) at start, with shadow volumes (the
+    /// site and date are set in the Sun panel; default Vienna on the summer solstice).
+    #[arg(long, value_name = "HH:MM")]
+    pub sun: Option<String>,
 }
 
 /// Runs `view`.
@@ -71,7 +79,8 @@ pub fn run(args: ViewArgs) -> Result<(), CliError> {
         .path
         .clone()
         .unwrap_or_else(|| PathBuf::from(DEFAULT_SCENE));
-    let scene = load_scene_or_model(&path)?;
+    let up = args.up;
+    let scene = load_scene_or_model(&path, up)?;
     let is_scene = !scene.path.as_os_str().is_empty();
     let mut app = ViewerApp::new(
         scene,
@@ -86,8 +95,16 @@ pub fn run(args: ViewArgs) -> Result<(), CliError> {
             )));
         }
     }
+    app.obj_up = up;
     if let Some(m) = args.mode {
         app.display.mode = m;
+    }
+    if let Some(t) = &args.sun {
+        let time = chrono::NaiveTime::parse_from_str(t.trim(), "%H:%M")
+            .map_err(|e| CliError::input(anyhow!("--sun {t:?}: not a time HH:MM ({e})")))?;
+        app.sun.minutes = f64::from(time.num_seconds_from_midnight()) / 60.0;
+        app.sun.enabled = true;
+        app.display.shadows.technique = crate::render::ShadowTechnique::Volumes;
     }
     let options = window::WindowOptions {
         size: [args.width, args.height],

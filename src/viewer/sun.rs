@@ -206,6 +206,14 @@ mod tests {
             .candela(0.0, 37.0, Interp::CatmullRom, sun.multiplier);
         let lux = cd / to_sun.length_squared();
         assert!((lux - 80_000.0).abs() < 1e-6 * 80_000.0, "{lux}");
+        // The GPU texture says the same in every direction.
+        for (c, g) in [(0.0, 0.0), (90.0, 45.0), (200.0, 120.0), (300.0, 180.0)] {
+            let texel = sun.texture.sample(c, g, Interp::CatmullRom) * sun.candela_scale();
+            assert!(
+                (texel / cd - 1.0).abs() < 1e-6,
+                "C{c} γ{g}: {texel} vs {cd}"
+            );
+        }
     }
 
     #[test]
