@@ -27,7 +27,7 @@ if [ ${#need_apt[@]} -gt 0 ]; then
 fi
 
 if ! command -v cargo >/dev/null 2>&1; then
-  echo "error: cargo not found. goniolight needs Rust 1.87 or newer: install it with rustup" >&2
+  echo "error: cargo not found. goniolight needs Rust 1.95 or newer: install it with rustup" >&2
   echo "       (https://rustup.rs), then run this command again." >&2
   exit 1
 fi

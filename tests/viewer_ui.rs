@@ -515,3 +515,38 @@ fn sunlit_roofs_get_the_clear_sky_illuminance() {
         dark[1]
     );
 }
+
+#[test]
+fn viewport_reads_the_lux_under_the_cursor_and_saves_png_and_exr() {
+    let Some(gpu) = gpu_common::gpu() else { return };
+    let dir = tempfile::tempdir().unwrap();
+    let mut app = app("box_room.toml");
+    app.display.mode = goniolight::scene::Mode::Illuminance;
+    app.status.viewport_px = [200, 150];
+    app.status.cursor_px = Some([100, 120]);
+    let shot = dir.path().join("view.png");
+    app.requests.screenshot = Some(shot.clone());
+    let mut egui_renderer = egui_wgpu::Renderer::new(
+        &gpu.device,
+        wgpu::TextureFormat::Rgba8Unorm,
+        egui_wgpu::RendererOptions::default(),
+    );
+    let mut viewport = goniolight::viewer::viewport::Viewport::new(&gpu);
+    viewport.update(&gpu, &mut app, &mut egui_renderer).unwrap();
+    assert!(app.viewport_texture.is_some());
+    assert_eq!(app.last_error(), None);
+    let png = image::open(&shot).unwrap();
+    assert_eq!((png.width(), png.height()), (200, 150));
+    let exr = image::open(shot.with_extension("exr")).unwrap().to_rgb32f();
+    let at_cursor = exr.get_pixel(100, 120)[0] as f64;
+    let read = app.status.cursor_lux.expect("lux under the cursor");
+    assert!(read > 1.0, "{read}");
+    assert!(
+        (read / at_cursor - 1.0).abs() < 1e-5,
+        "{read} vs {at_cursor}"
+    );
+    app.status.cursor_px = Some([20, 10]);
+    viewport.update(&gpu, &mut app, &mut egui_renderer).unwrap();
+    let other = app.status.cursor_lux.unwrap_or(-1.0);
+    assert!((other - exr.get_pixel(20, 10)[0] as f64).abs() <= 1e-5 * other.abs().max(1.0));
+}
