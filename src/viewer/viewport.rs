@@ -30,6 +30,10 @@ pub struct Viewport {
     gamma_view: Option<wgpu::TextureView>,
     texture: Option<egui::TextureId>,
     last: Option<RenderedFrom>,
+    /// Images rendered so far, and the (image, pixel) the cursor read-out is for: the
+    /// read-back waits for the GPU, so it happens only when either changes.
+    rendered: u64,
+    read_at: Option<(u64, [u32; 2])>,
 }
 
 impl Viewport {
@@ -42,6 +46,8 @@ impl Viewport {
             gamma_view: None,
             texture: None,
             last: None,
+            rendered: 0,
+            read_at: None,
         }
     }
 
@@ -93,6 +99,7 @@ impl Viewport {
                     .render_to(gpu, scene, &from.camera, &from.settings, targets)?;
             app.status.lux_max = tone.lux_max;
             self.last = Some(from);
+            self.rendered += 1;
             // The texture view only changes with the size.
             match self.texture {
                 Some(id) if resized => egui.update_egui_texture_from_wgpu_texture(
@@ -122,12 +129,16 @@ impl Viewport {
         Ok(())
     }
 
-    fn read_cursor(&self, gpu: &Gpu, app: &mut ViewerApp) -> Result<(), GpuError> {
+    fn read_cursor(&mut self, gpu: &Gpu, app: &mut ViewerApp) -> Result<(), GpuError> {
         let (Some(t), Some([x, y])) = (&self.targets, app.status.cursor_px) else {
             app.status.cursor_lux = None;
             app.status.cursor_luminance = None;
+            self.read_at = None;
             return Ok(());
         };
+        if self.read_at.replace((self.rendered, [x, y])) == Some((self.rendered, [x, y])) {
+            return Ok(());
+        }
         if x >= t.width || y >= t.height {
             return Ok(());
         }
