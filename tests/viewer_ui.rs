@@ -276,6 +276,12 @@ fn the_sun_adds_a_light_and_switches_to_shadow_volumes() {
         / to_sun.length_squared();
     let expected = goniolight::viewer::sun::clear_sky_direct_normal_lux(p.elevation_deg);
     assert!((lux / expected - 1.0).abs() < 1e-9, "{lux} vs {expected}");
+    // Turning it off takes it out of the view again.
+    let revision = h.state().revision;
+    h.get_by_label("Sun lights the scene").click();
+    h.run();
+    assert!(h.state().revision > revision);
+    assert_eq!(h.state().render_scene().luminaires.len(), n);
 }
 
 #[test]

@@ -91,7 +91,7 @@ impl ViewerApp {
                 ui.colored_label(ui.visuals().error_fg_color, e);
             }
         }
-        if self.sun.enabled && self.sun != before {
+        if self.sun != before && (self.sun.enabled || before.enabled) {
             self.lights_changed();
         }
         ui.separator();
