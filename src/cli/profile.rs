@@ -5,7 +5,7 @@ use std::sync::atomic::AtomicBool;
 
 use anyhow::anyhow;
 use chrono::{NaiveDate, NaiveTime};
-use clap::{Args, ValueEnum};
+use clap::Args;
 
 use super::CliError;
 use crate::geometry::obj::read_obj;
@@ -13,17 +13,9 @@ use crate::geometry::Mesh;
 use crate::gpu::Gpu;
 use crate::render::profile::{compute, Profile, ProfileError, ProfileSpec};
 use crate::render::profile_output::write_profile;
+use crate::scene::UpAxis;
 use crate::shadow::SilhouetteMethod;
 use crate::sun::{Site, SunOptions, Zone};
-
-/// The up axis of the model file.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum Up {
-    /// +Y up (most OBJ exporters): turned to the world's +Z up.
-    Y,
-    /// +Z up (as the world).
-    Z,
-}
 
 /// Options of `profile`.
 #[derive(Debug, Args)]
@@ -63,7 +55,7 @@ pub struct ProfileArgs {
     pub resolution: u32,
     /// The model's up axis.
     #[arg(long, value_enum, default_value = "y")]
-    pub up: Up,
+    pub up: UpAxis,
     /// Silhouette search.
     #[arg(long, value_enum, default_value = "hextree")]
     pub silhouettes: SilhouetteMethod,
@@ -80,9 +72,9 @@ fn parse_hhmm(s: &str) -> Result<NaiveTime, String> {
 }
 
 /// Reads an OBJ model and turns it to the world's +Z up.
-pub fn load_model(path: &Path, up: Up) -> Result<Mesh, CliError> {
+pub fn load_model(path: &Path, up: UpAxis) -> Result<Mesh, CliError> {
     let mut mesh = read_obj(path)?;
-    if up == Up::Y {
+    if up == UpAxis::Y {
         for p in &mut mesh.positions {
             *p = glam::DVec3::new(p.x, -p.z, p.y);
         }

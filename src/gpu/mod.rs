@@ -24,6 +24,23 @@ pub enum GpuError {
     Operation(String),
 }
 
+/// A colour attachment cleared to `colour` and stored: how every colour pass of the
+/// renderer, the radiosity solver and the viewer starts.
+pub fn cleared_attachment(
+    view: &wgpu::TextureView,
+    colour: wgpu::Color,
+) -> wgpu::RenderPassColorAttachment<'_> {
+    wgpu::RenderPassColorAttachment {
+        view,
+        depth_slice: None,
+        resolve_target: None,
+        ops: wgpu::Operations {
+            load: wgpu::LoadOp::Clear(colour),
+            store: wgpu::StoreOp::Store,
+        },
+    }
+}
+
 /// A headless GPU context.
 pub struct Gpu {
     /// The instance.

@@ -599,20 +599,15 @@ impl<'a> GpuSolver<'a> {
             for f in 0..faces_per_patch {
                 let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
                     label: Some("visibility"),
-                    color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                        view: &self.face_views[f as usize],
-                        resolve_target: None,
-                        depth_slice: None,
-                        ops: wgpu::Operations {
-                            load: wgpu::LoadOp::Clear(wgpu::Color {
-                                r: 1e30,
-                                g: 0.0,
-                                b: 0.0,
-                                a: 0.0,
-                            }),
-                            store: wgpu::StoreOp::Store,
+                    color_attachments: &[Some(crate::gpu::cleared_attachment(
+                        &self.face_views[f as usize],
+                        wgpu::Color {
+                            r: 1e30,
+                            g: 0.0,
+                            b: 0.0,
+                            a: 0.0,
                         },
-                    })],
+                    ))],
                     depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                         view: &self.depth_view,
                         depth_ops: Some(wgpu::Operations {

@@ -216,20 +216,16 @@ impl ScenePasses {
         let shade = self.shade_pipeline(gpu, model);
         let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("shade"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: &targets.hdr_view,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color {
-                        r: 0.0,
-                        g: 0.0,
-                        b: 0.0,
-                        a: -1.0,
-                    }),
-                    store: wgpu::StoreOp::Store,
+            // a = −1 marks pixels that show no surface.
+            color_attachments: &[Some(crate::gpu::cleared_attachment(
+                &targets.hdr_view,
+                wgpu::Color {
+                    r: 0.0,
+                    g: 0.0,
+                    b: 0.0,
+                    a: -1.0,
                 },
-            })],
+            ))],
             depth_stencil_attachment: Some(depth_attachment(&targets.depth_view, false)),
             ..Default::default()
         });

@@ -334,15 +334,10 @@ impl ToneMapper {
         );
         let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("tonemap"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: &targets.ldr_view,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
+            color_attachments: &[Some(crate::gpu::cleared_attachment(
+                &targets.ldr_view,
+                wgpu::Color::BLACK,
+            ))],
             ..Default::default()
         });
         pass.set_pipeline(&self.tonemap);

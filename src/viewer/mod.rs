@@ -112,15 +112,11 @@ pub fn run(args: ViewArgs) -> Result<(), CliError> {
         screenshot: args.screenshot.clone(),
     };
     let summary = window::run(app, options).map_err(CliError::failure)?;
-    if options_printed(&args) {
+    if args.frames.is_some() || args.screenshot.is_some() {
         println!(
             "{}",
             serde_json::to_string(&summary).map_err(|e| CliError::failure(anyhow!(e)))?
         );
     }
     Ok(())
-}
-
-fn options_printed(args: &ViewArgs) -> bool {
-    args.frames.is_some() || args.screenshot.is_some()
 }

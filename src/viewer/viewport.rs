@@ -145,8 +145,9 @@ impl Viewport {
         let texel: [f32; 4] = bytemuck::pod_read_unaligned(&gpu.read_texel(&t.hdr, x, y)?);
         let surface = texel[3] >= 0.0;
         app.status.cursor_lux = surface.then_some(texel[3] as f64);
-        let y_lum = 0.2126 * texel[0] + 0.7152 * texel[1] + 0.0722 * texel[2];
-        app.status.cursor_luminance = surface.then_some(y_lum as f64);
+        let rgb = glam::Vec3::new(texel[0], texel[1], texel[2]).as_dvec3();
+        app.status.cursor_luminance =
+            surface.then_some(rgb.dot(crate::scene::placement::LUMINANCE_WEIGHTS));
         Ok(())
     }
 

@@ -259,15 +259,10 @@ fn paint(
         let mut pass = enc
             .begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("egui"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: target,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
+                color_attachments: &[Some(crate::gpu::cleared_attachment(
+                    target,
+                    wgpu::Color::BLACK,
+                ))],
                 ..Default::default()
             })
             .forget_lifetime();
