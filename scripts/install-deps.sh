@@ -11,6 +11,8 @@ if ! compgen -G "/usr/share/vulkan/icd.d/*.json" >/dev/null && ! compgen -G "/et
   need_apt+=(mesa-vulkan-drivers libvulkan1)
 fi
 command -v python3 >/dev/null 2>&1 || need_apt+=(python3)
+# The Python package's tests run in a virtual environment.
+python3 -c "import venv, ensurepip" >/dev/null 2>&1 || need_apt+=(python3-venv python3-pip)
 # The viewer's window tests run under a virtual X server; winit loads these X libraries.
 command -v xvfb-run >/dev/null 2>&1 || need_apt+=(xvfb xauth)
 for lib in libxkbcommon-x11.so.0 libXcursor.so.1 libXi.so.6 libXrandr.so.2 libX11-xcb.so.1; do

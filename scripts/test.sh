@@ -3,6 +3,13 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
-cargo fmt --check
+cargo fmt --all --check
 cargo clippy --all-targets -- -D warnings
+# The library without its GPU/GUI stack (photometry, sun, geometry, silhouettes, scene files).
+cargo clippy --lib --no-default-features -- -D warnings
+cargo clippy -p goniolight-python -- -D warnings
 cargo test
+cargo test --lib --no-default-features
+RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --lib --no-default-features --quiet
+cargo package -p goniolight --allow-dirty --no-verify --quiet
+scripts/test-python.sh

@@ -1,4 +1,4 @@
-//! Small file helpers shared by the commands.
+//! Small file helpers shared by the commands: atomic writes and the bundled data's folder.
 
 use std::io::Write;
 use std::path::Path;
@@ -31,6 +31,17 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
         return Err(e).with_context(|| format!("writing {}", path.display()));
     }
     Ok(())
+}
+
+/// The folder holding the bundled data (`assets/`, `luminaires/`): the source checkout the
+/// binary was built from when it is still there, else the working directory.
+pub fn data_root() -> std::path::PathBuf {
+    let built = Path::new(env!("CARGO_MANIFEST_DIR"));
+    if built.join("assets").is_dir() && built.join("luminaires").is_dir() {
+        built.to_path_buf()
+    } else {
+        std::path::PathBuf::from(".")
+    }
 }
 
 #[cfg(test)]

@@ -13,10 +13,10 @@ use chrono::{NaiveDate, NaiveTime};
 use common::{root, run_cli};
 use glam::DVec3;
 use goniolight::geometry::generate::cuboid;
-use goniolight::render::profile::{compute, Profile, ProfileSpec, SURFACE_GROUND};
-use goniolight::render::profile_output::{hours_colour, hours_image, hours_scale};
 use goniolight::shadow::raycast::in_shadow;
 use goniolight::shadow::{Light, SilhouetteMethod};
+use goniolight::study::output::{hours_colour, hours_image, hours_scale};
+use goniolight::study::profile::{compute, Profile, ProfileSpec, SURFACE_GROUND};
 use goniolight::sun::{direction_from_angles, Site, SunOptions, Zone};
 
 /// A 20 × 10 × 12 m box on the ground, turned 30° about the vertical so no edge runs

@@ -5,8 +5,8 @@ use clap::Subcommand;
 use serde_json::json;
 
 use super::{silhouette, CliError};
+use crate::bench::render as render_bench;
 use crate::gpu::Gpu;
-use crate::render::bench;
 
 /// Benchmarks.
 #[derive(Debug, Subcommand)]
@@ -105,7 +105,7 @@ pub fn run(cmd: BenchCommand) -> Result<(), CliError> {
             quick,
         } => run_render(
             json,
-            bench::BenchPlan {
+            render_bench::BenchPlan {
                 width,
                 height,
                 frames,
@@ -136,16 +136,17 @@ fn run_radiosity(
     max_shots: usize,
     scene: Option<std::path::PathBuf>,
 ) -> Result<(), CliError> {
-    use crate::radiosity::bench as rbench;
+    use crate::bench::radiosity as rbench;
     use crate::radiosity::gpu::Visibility;
     if !(1..=50_000_000).contains(&elements) || level > 6 || max_shots == 0 {
         return Err(CliError::input(anyhow::anyhow!(
             "--elements must be in 1..=50000000, --level in 0..=6, --max-shots > 0"
         )));
     }
-    let path = scene.unwrap_or_else(|| super::data_root().join("assets/scenes/cornell_box.toml"));
+    let path =
+        scene.unwrap_or_else(|| crate::io::data_root().join("assets/scenes/cornell_box.toml"));
     let scene = crate::scene::Scene::load(&path)?;
-    let gpu = Gpu::headless()?;
+    let gpu = Gpu::shared()?;
     eprintln!("GPU: {}", gpu.describe());
     let visibilities = [Visibility::Hemicube, Visibility::Stereographic];
     let bar = indicatif::ProgressBar::new(1000);
@@ -201,8 +202,8 @@ fn run_radiosity(
     Ok(())
 }
 
-fn run_render(as_json: bool, plan: bench::BenchPlan, quick: bool) -> Result<(), CliError> {
-    let bench::BenchPlan {
+fn run_render(as_json: bool, plan: render_bench::BenchPlan, quick: bool) -> Result<(), CliError> {
+    let render_bench::BenchPlan {
         width,
         height,
         frames,
@@ -213,15 +214,15 @@ fn run_render(as_json: bool, plan: bench::BenchPlan, quick: bool) -> Result<(), 
             "--frames and --rounds must be > 0 and --width/--height in 1..=8192"
         )));
     }
-    let gpu = Gpu::headless()?;
+    let gpu = Gpu::shared()?;
     eprintln!("GPU: {}", gpu.describe());
-    let root = super::data_root();
+    let root = crate::io::data_root();
     let tess = if quick {
-        &bench::TESSELLATIONS[..2]
+        &render_bench::TESSELLATIONS[..2]
     } else {
-        &bench::TESSELLATIONS[..]
+        &render_bench::TESSELLATIONS[..]
     };
-    let rows = bench::run(&gpu, &root, plan, tess, |tris, lights| {
+    let rows = render_bench::run(&gpu, &root, plan, tess, |tris, lights| {
         eprintln!("benchmarking {tris} triangles, {lights} luminaires …")
     })
     .map_err(CliError::failure)?;

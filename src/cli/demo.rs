@@ -39,14 +39,14 @@ pub struct DemoArgs {
 
 /// The bundled furnished room.
 pub fn default_scene() -> PathBuf {
-    super::data_root().join("assets/scenes/furnished_room.toml")
+    crate::io::data_root().join("assets/scenes/furnished_room.toml")
 }
 
 /// Renders the scene shaded and in false-colour illuminance.
 fn render_both(args: &DemoArgs) -> Result<(), CliError> {
     let scene_path = args.scene.clone().unwrap_or_else(default_scene);
     let scene = Scene::load(&scene_path)?;
-    let gpu = Gpu::headless()?;
+    let gpu = Gpu::shared()?;
     println!("GPU: {}", gpu.describe());
     let renderer = Renderer::new(&gpu);
     for (mode, stem) in [

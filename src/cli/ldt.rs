@@ -4,7 +4,6 @@ use std::io::{BufRead, Write};
 use std::path::{Path, PathBuf};
 
 use clap::{Args, Subcommand};
-use serde_json::json;
 
 use super::CliError;
 use crate::io::write_atomic;
@@ -123,33 +122,7 @@ fn info(file: &Path, as_json: bool) -> Result<(), CliError> {
     let grid = lum.distribution.grid();
     let tex = LdtTexture::from_distribution(&lum.distribution);
     if as_json {
-        let intensities: Vec<&[f64]> = (0..grid.c_angles().len()).map(|i| grid.plane(i)).collect();
-        let v = json!({
-            "format": lum.format,
-            "symmetry": lum.data.symmetry.isym(),
-            "ityp": lum.data.ityp,
-            "company": lum.data.company,
-            "luminaire_name": lum.data.luminaire_name,
-            "absolute_photometry": lum.data.is_absolute(),
-            "lamp_sets": lum.data.lamp_sets.iter().map(|l| json!({
-                "count": l.count, "type": l.lamp_type, "flux_lm": l.flux_lm,
-                "color": l.color, "cri": l.cri, "watts": l.watts})).collect::<Vec<_>>(),
-            "c_angles": grid.c_angles(),
-            "gamma_angles": grid.gamma_angles(),
-            "intensities": intensities,
-            "max_intensity": s.max_intensity,
-            "max_direction_deg": s.max_direction_deg,
-            "lamp_flux_lm": s.lamp_flux_lm,
-            "flux_lm": s.flux_lm,
-            "lorl_declared": s.lorl_declared,
-            "lorl_computed": s.lorl_computed,
-            "dff_declared": s.dff_declared,
-            "dff_computed": s.dff_computed,
-            "beam_angle_deg": s.beam_angle_deg,
-            "field_angle_deg": s.field_angle_deg,
-            "hemisphere": tex.hemisphere,
-            "warnings": lum.warnings,
-        });
+        let v = lum.info_json();
         println!(
             "{}",
             serde_json::to_string_pretty(&v).map_err(CliError::failure)?

@@ -1,18 +1,22 @@
 //! The command-line interface: clap definitions and dispatch. Commands call the library
 //! and hold no logic of their own beyond reading input and printing results.
 
+mod batch;
 mod bench;
 mod demo;
+mod error;
 mod ldt;
 mod profile;
 mod radiosity;
 mod render;
 mod silhouette;
 mod sun;
+#[cfg(feature = "viewer")]
+mod view;
 
 use clap::{Parser, Subcommand};
 
-use crate::photometry::PhotometryError;
+pub use error::CliError;
 
 /// goniolight — real luminaires in real-time rendering, radiosity and shadow studies.
 #[derive(Debug, Parser)]
@@ -45,69 +49,39 @@ pub enum Command {
     Profile(profile::ProfileArgs),
     /// Silhouette edges of an OBJ model for a point or directional light.
     Silhouette(silhouette::SilhouetteArgs),
+    /// Run a list of command lines (a TOML jobs file) in one process, optionally one shard
+    /// of it (`--shard K/N`), with a JSON summary.
+    Batch(batch::BatchArgs),
     /// Benchmarks that print tables of ratios measured side by side.
     #[command(subcommand)]
     Bench(bench::BenchCommand),
     /// The interactive viewer: a scene (TOML) or an OBJ model, luminaires, sun, shadows,
     /// radiosity. `--frames N [--screenshot out.png]` renders N frames and exits.
-    View(crate::viewer::ViewArgs),
+    #[cfg(feature = "viewer")]
+    View(view::ViewArgs),
 }
 
-/// A failed command: the error and whether it was the input's fault (exit 2) or not (1).
-#[derive(Debug)]
-pub struct CliError {
-    /// What went wrong, with context.
-    pub error: anyhow::Error,
-    /// True for bad input or usage.
-    pub bad_input: bool,
-}
+pub use crate::io::data_root;
 
-impl CliError {
-    /// An error caused by the user's input (exit code 2).
-    pub fn input(error: impl Into<anyhow::Error>) -> CliError {
-        CliError {
-            error: error.into(),
-            bad_input: true,
-        }
-    }
-
-    /// Any other failure (exit code 1).
-    pub fn failure(error: impl Into<anyhow::Error>) -> CliError {
-        CliError {
-            error: error.into(),
-            bad_input: false,
-        }
-    }
-
-    /// The process exit code.
-    pub fn code(&self) -> u8 {
-        if self.bad_input {
-            2
-        } else {
-            1
-        }
-    }
-}
-
-impl From<PhotometryError> for CliError {
-    fn from(e: PhotometryError) -> CliError {
-        let bad_input = e.is_bad_input();
-        CliError {
-            error: e.into(),
-            bad_input,
-        }
-    }
-}
-
-/// The folder holding the bundled data (`assets/`, `luminaires/`): the source checkout the
-/// binary was built from when it is still there, else the working directory.
-pub fn data_root() -> std::path::PathBuf {
-    let built = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
-    if built.join("assets").is_dir() && built.join("luminaires").is_dir() {
-        built.to_path_buf()
-    } else {
-        std::path::PathBuf::from(".")
-    }
+/// The process-wide Ctrl-C flag (the handler is installed on first use). The first Ctrl-C
+/// sets it: long commands finish their current step and write what they have, a batch
+/// starts no further job; a second one ends the process at once (exit 130).
+pub fn interrupt_flag() -> std::sync::Arc<std::sync::atomic::AtomicBool> {
+    use std::sync::atomic::{AtomicBool, Ordering};
+    use std::sync::{Arc, OnceLock};
+    static FLAG: OnceLock<Arc<AtomicBool>> = OnceLock::new();
+    FLAG.get_or_init(|| {
+        let flag = Arc::new(AtomicBool::new(false));
+        let set = flag.clone();
+        let _ = ctrlc::set_handler(move || {
+            if set.swap(true, Ordering::SeqCst) {
+                std::process::exit(130);
+            }
+            eprintln!("\ninterrupted: finishing the current step (Ctrl-C again to quit)");
+        });
+        flag
+    })
+    .clone()
 }
 
 /// Runs a parsed command line.
@@ -121,7 +95,9 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         Command::Silhouette(args) => silhouette::run(args),
         Command::Profile(args) => profile::run(args),
         Command::Radiosity(args) => radiosity::run(args),
+        Command::Batch(args) => batch::run(args),
         Command::Bench(cmd) => bench::run(cmd),
-        Command::View(args) => crate::viewer::run(args),
+        #[cfg(feature = "viewer")]
+        Command::View(args) => view::run(args),
     }
 }

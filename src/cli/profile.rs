@@ -11,10 +11,10 @@ use super::CliError;
 use crate::geometry::obj::read_obj;
 use crate::geometry::Mesh;
 use crate::gpu::Gpu;
-use crate::render::profile::{compute, Profile, ProfileError, ProfileSpec};
-use crate::render::profile_output::write_profile;
 use crate::scene::UpAxis;
 use crate::shadow::SilhouetteMethod;
+use crate::study::output::write_profile;
+use crate::study::profile::{compute, Profile, ProfileSpec};
 use crate::sun::{Site, SunOptions, Zone};
 
 /// Options of `profile`.
@@ -83,15 +83,6 @@ pub fn load_model(path: &Path, up: UpAxis) -> Result<Mesh, CliError> {
     Ok(mesh)
 }
 
-impl From<ProfileError> for CliError {
-    fn from(e: ProfileError) -> CliError {
-        match e {
-            ProfileError::Input(_) => CliError::input(e),
-            ProfileError::Gpu(_) | ProfileError::Cancelled => CliError::failure(e),
-        }
-    }
-}
-
 /// Runs `profile`.
 pub fn run(a: ProfileArgs) -> Result<(), CliError> {
     let site = Site::new(a.lat, a.lon, 0.0)?;
@@ -114,7 +105,7 @@ pub fn run(a: ProfileArgs) -> Result<(), CliError> {
     };
     // Check the period before starting the GPU.
     let steps = spec.local_times()?.len();
-    let gpu = Gpu::headless().map_err(CliError::failure)?;
+    let gpu = Gpu::shared().map_err(CliError::failure)?;
     let bar = indicatif::ProgressBar::new(steps as u64);
     bar.set_style(
         indicatif::ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} steps, {eta} left")
@@ -188,80 +179,33 @@ pub fn run_bench(as_json: bool, resolution: u32, step: u32, floors: u32) -> Resu
             "--floors {floors} is not in 1..=40"
         )));
     }
-    let model = crate::geometry::generate::building(25, 25, floors);
-    let hm = |h| NaiveTime::from_hms_opt(h, 0, 0).unwrap_or_default();
-    let mut spec = ProfileSpec {
-        site: Site::new(48.21, 16.37, 0.0)?,
-        zone: Zone::parse("Europe/Vienna")?,
-        date: NaiveDate::from_ymd_opt(2026, 3, 21).unwrap_or_default(),
-        from: hm(8),
-        to: hm(16),
-        step_minutes: step,
-        sun: SunOptions::default(),
-        extent_m: None,
-        resolution,
-        silhouette: SilhouetteMethod::Brute,
-    };
-    let gpu = Gpu::headless().map_err(CliError::failure)?;
+    let gpu = Gpu::shared().map_err(CliError::failure)?;
     eprintln!("GPU: {}", gpu.describe());
-    let cancel = AtomicBool::new(false);
-    let mut rows = Vec::new();
-    // A warm-up run (pipelines, hextree build), then each method.
-    for (label, method) in [
-        ("warm-up", SilhouetteMethod::Hextree),
-        ("brute force", SilhouetteMethod::Brute),
-        ("hextree", SilhouetteMethod::Hextree),
-    ] {
-        spec.silhouette = method;
-        let t = std::time::Instant::now();
-        let p = compute(&gpu, &model, &spec, |_, _| {}, &cancel)?;
-        let total = t.elapsed().as_secs_f64();
-        if label != "warm-up" {
-            rows.push((label, p.steps.len(), total, p.timing));
-        }
-    }
+    let rows = crate::bench::profile::run(&gpu, resolution, step, floors)?;
     if as_json {
-        let v: Vec<_> = rows
-            .iter()
-            .map(|(label, steps, total, timing)| {
-                serde_json::json!({
-                    "method": label,
-                    "triangles": model.triangles.len(),
-                    "steps": steps,
-                    "resolution": resolution,
-                    "total_s": total,
-                    "per_step_ms": 1000.0 * total / *steps as f64,
-                    "silhouette_ms_per_step": 1000.0 * timing.silhouette_s / *steps as f64,
-                    "render_ms_per_step": 1000.0 * timing.render_s / *steps as f64,
-                })
-            })
-            .collect();
-        println!("{}", serde_json::json!({ "rows": v }));
+        println!("{}", serde_json::json!({ "rows": rows }));
         return Ok(());
     }
     println!(
         "shadow profile: {} triangles, {} steps, {resolution}² plan",
-        model.triangles.len(),
-        rows.first().map_or(0, |r| r.1)
+        rows.first().map_or(0, |r| r.triangles),
+        rows.first().map_or(0, |r| r.steps)
     );
     println!(
         "| silhouettes | total s | ms/step | silhouette ms/step | volumes + read-back ms/step |"
     );
     println!("|---|---:|---:|---:|---:|");
-    for (label, steps, total, timing) in &rows {
-        let n = *steps as f64;
+    for r in &rows {
         println!(
-            "| {label} | {total:.2} | {:.1} | {:.2} | {:.1} |",
-            1000.0 * total / n,
-            1000.0 * timing.silhouette_s / n,
-            1000.0 * timing.render_s / n
+            "| {} | {:.2} | {:.1} | {:.2} | {:.1} |",
+            r.method, r.total_s, r.per_step_ms, r.silhouette_ms_per_step, r.render_ms_per_step
         );
     }
-    if let [(_, _, brute, bt), (_, _, hex, ht)] = rows.as_slice() {
+    if let [brute, hex] = rows.as_slice() {
         println!(
             "hextree / brute force: total {:.2}×, silhouettes {:.2}× faster",
-            brute / hex,
-            bt.silhouette_s / ht.silhouette_s.max(1e-12)
+            brute.total_s / hex.total_s,
+            brute.silhouette_ms_per_step / hex.silhouette_ms_per_step.max(1e-12)
         );
     }
     Ok(())

@@ -3,25 +3,24 @@
 //! `--points` print the total illuminance at points read from stdin.
 
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use anyhow::anyhow;
 use clap::Args;
 use glam::DVec3;
 
-use super::render::{read_points, render_to_files, ImageOptions};
+use super::render::{render_to_files, ImageOptions};
 use super::CliError;
 use crate::gpu::Gpu;
 use crate::io::write_atomic;
+use crate::lighting::read_points;
+use crate::lighting::SurfacePoint;
 use crate::radiosity::gather;
 use crate::radiosity::gpu::{GpuSettings, GpuSolver, Visibility};
 use crate::radiosity::initial::{InitialState, LuminaireLight};
 use crate::radiosity::scene::{luminance, RadiosityScene};
 use crate::radiosity::solve::{self, ConvergencePoint, StopAt, StopReason};
 use crate::radiosity::{Ambient, FormFactorKind, SolverSettings};
-use crate::render::illuminance::SurfacePoint;
 use crate::render::lightmap::LightMap;
 use crate::render::output::write_image;
 use crate::render::{LightModel, Renderer};
@@ -115,20 +114,6 @@ impl RadiosityArgs {
     }
 }
 
-/// The first Ctrl-C asks the solver to stop (the solution so far is written); a second
-/// one ends the process at once.
-fn cancel_on_ctrl_c() -> Arc<AtomicBool> {
-    let cancel = Arc::new(AtomicBool::new(false));
-    let flag = cancel.clone();
-    let _ = ctrlc::set_handler(move || {
-        if flag.swap(true, Ordering::SeqCst) {
-            std::process::exit(130);
-        }
-        eprintln!("\ninterrupted: finishing the current shot (Ctrl-C again to quit)");
-    });
-    cancel
-}
-
 fn progress_bar() -> Result<indicatif::ProgressBar, CliError> {
     let bar = indicatif::ProgressBar::new(10_000);
     bar.set_style(
@@ -173,7 +158,7 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
         ambient: args.ambient,
         interp,
     };
-    let gpu = Gpu::headless()?;
+    let gpu = Gpu::shared()?;
     let light = LuminaireLight::new(&gpu, &scene, interp);
     let initial = InitialState::from_luminaires_gpu(&gpu, &light, &rscene, &settings.shadows)?;
     let gpu_settings = GpuSettings {
@@ -183,7 +168,7 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
     };
     let prepared_s = started.elapsed().as_secs_f64();
     let mut solver = GpuSolver::new(&gpu, &rscene, &initial, solver_settings, gpu_settings);
-    let cancel = cancel_on_ctrl_c();
+    let cancel = super::interrupt_flag();
     eprintln!(
         "{}: {} elements, {} patches, atlas {}×{}; shooting (Ctrl-C stops and writes the solution so far)",
         args.scene.display(),

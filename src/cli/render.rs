@@ -1,39 +1,25 @@
 //! `goniolight render` and `goniolight illuminance`: a scene to images, and the direct
 //! illuminance at points read from stdin.
 
-use std::io::BufRead;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::anyhow;
 use clap::Args;
-use glam::DVec3;
 
 use super::CliError;
-use crate::gpu::{Gpu, GpuError};
+use crate::gpu::Gpu;
+use crate::lighting::read_points;
 use crate::photometry::Interp;
-use crate::render::illuminance::{illuminance_cpu_in_scene, IlluminanceProbe, SurfacePoint};
-use crate::render::layouts::Layouts;
+use crate::render::illuminance::scene_illuminance;
 use crate::render::lightmap::LightMap;
 use crate::render::output::{linear_image, write_image};
 use crate::render::{
-    GpuScene, LightModel, RenderSettings, RenderedFrame, Renderer, ShadowSettings, ShadowTechnique,
-    VolumeTest, MAX_IMAGE_SIZE,
+    LightModel, RenderSettings, RenderedFrame, Renderer, ShadowTechnique, VolumeTest,
+    MAX_IMAGE_SIZE,
 };
-use crate::scene::{Mode, Scene, SceneError, Tonemap};
+use crate::scene::{Mode, Scene, Tonemap};
 use crate::shadow::SilhouetteMethod;
-
-impl From<SceneError> for CliError {
-    fn from(e: SceneError) -> CliError {
-        CliError::input(e)
-    }
-}
-
-impl From<GpuError> for CliError {
-    fn from(e: GpuError) -> CliError {
-        CliError::failure(e)
-    }
-}
 
 /// Options of `render`.
 #[derive(Debug, Args)]
@@ -223,7 +209,7 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
     }
     let scene = Scene::load(&args.scene)?;
     let settings = args.image.settings(&scene)?;
-    let gpu = Gpu::headless()?;
+    let gpu = Gpu::shared()?;
     let renderer = Renderer::new(&gpu);
     let (_, report) = render_to_files(
         &gpu,
@@ -256,59 +242,13 @@ pub struct IlluminanceArgs {
     pub shadows: Option<ShadowTechnique>,
 }
 
-/// Parses lines `x y z nx ny nz` (blank lines and `#` comments skipped).
-pub fn read_points(input: impl BufRead, name: &str) -> Result<Vec<SurfacePoint>, CliError> {
-    let mut points = Vec::new();
-    for (i, line) in input.lines().enumerate() {
-        let line = line.map_err(|e| CliError::input(anyhow!("{name}: line {}: {e}", i + 1)))?;
-        let t = line.trim();
-        if t.is_empty() || t.starts_with('#') {
-            continue;
-        }
-        let v: Vec<f64> = t
-            .split_whitespace()
-            .map(|w| w.parse::<f64>())
-            .collect::<Result<_, _>>()
-            .map_err(|e| CliError::input(anyhow!("{name}: line {}: {e}: {t:?}", i + 1)))?;
-        if v.len() != 6 || v.iter().any(|x| !x.is_finite()) {
-            return Err(CliError::input(anyhow!(
-                "{name}: line {}: expected six finite numbers \"x y z nx ny nz\", got {t:?}",
-                i + 1
-            )));
-        }
-        let normal = DVec3::new(v[3], v[4], v[5]);
-        if normal.length() < 1e-12 {
-            return Err(CliError::input(anyhow!(
-                "{name}: line {}: the normal has zero length",
-                i + 1
-            )));
-        }
-        points.push(SurfacePoint {
-            position: DVec3::new(v[0], v[1], v[2]),
-            normal,
-        });
-    }
-    Ok(points)
-}
-
 /// Runs `illuminance`.
 pub fn run_illuminance(args: IlluminanceArgs) -> Result<(), CliError> {
     let scene = Scene::load(&args.scene)?;
     let points = read_points(std::io::stdin().lock(), "stdin")?;
     let technique = args.shadows.or(scene.display.shadows).unwrap_or_default();
-    let lux: Vec<f64> = if args.cpu {
-        let casters = (technique != ShadowTechnique::None).then(|| scene.caster_mesh());
-        illuminance_cpu_in_scene(&scene.luminaires, casters.as_ref(), &points, args.interp)
-    } else {
-        let gpu = Gpu::headless()?;
-        let uploaded = GpuScene::new(&gpu, &Layouts::new(&gpu), &scene);
-        IlluminanceProbe::new(&gpu, LightModel::Ldt(args.interp)).run_in_scene(
-            &gpu,
-            &uploaded,
-            &points,
-            &ShadowSettings::with(technique),
-        )?
-    };
+    let gpu = if args.cpu { None } else { Some(Gpu::shared()?) };
+    let lux = scene_illuminance(gpu.as_ref(), &scene, &points, args.interp, technique)?;
     let mut out = String::with_capacity(lux.len() * 12);
     for v in lux {
         out.push_str(&format!("{v:.6}\n"));

@@ -6,9 +6,9 @@ use clap::Args;
 use serde_json::json;
 
 use super::CliError;
+use crate::bench::silhouette as bench;
 use crate::geometry::obj::read_obj;
-use crate::geometry::GeometryError;
-use crate::shadow::{bench, Hextree, Light, SilhouetteMesh};
+use crate::shadow::{Hextree, Light, SilhouetteMesh};
 
 pub use crate::shadow::SilhouetteMethod as Method;
 
@@ -45,22 +45,6 @@ fn parse_light(s: &str) -> Result<[f64; 4], String> {
         .collect::<Result<_, _>>()?;
     <[f64; 4]>::try_from(v)
         .map_err(|v| format!("--light needs X,Y,Z,W (4 numbers), got {}", v.len()))
-}
-
-impl From<GeometryError> for CliError {
-    fn from(e: GeometryError) -> CliError {
-        match &e {
-            GeometryError::Io { source, .. }
-                if !matches!(
-                    source.kind(),
-                    std::io::ErrorKind::NotFound | std::io::ErrorKind::PermissionDenied
-                ) =>
-            {
-                CliError::failure(e)
-            }
-            _ => CliError::input(e),
-        }
-    }
 }
 
 /// Runs `silhouette`.

@@ -1,10 +1,9 @@
 //! `goniolight sun`: the sun's position for a site and an instant.
 
 use clap::Args;
-use serde_json::json;
 
 use super::CliError;
-use crate::sun::{self, parse_time, Site, SunError, SunOptions, Zone};
+use crate::sun::{self, parse_time, Site, SunOptions, Zone};
 
 /// Options of `sun`.
 #[derive(Debug, Args)]
@@ -41,15 +40,6 @@ pub struct SunArgs {
     pub json: bool,
 }
 
-impl From<SunError> for CliError {
-    fn from(e: SunError) -> CliError {
-        match e {
-            SunError::Input(_) => CliError::input(e),
-            SunError::Model(_) => CliError::input(e),
-        }
-    }
-}
-
 /// Runs `sun`.
 pub fn run(a: SunArgs) -> Result<(), CliError> {
     let site = Site::new(a.lat, a.lon, a.elevation)?;
@@ -69,15 +59,7 @@ pub fn run(a: SunArgs) -> Result<(), CliError> {
     };
     let p = sun::position(&site, utc, &opts)?;
     if a.json {
-        let v = json!({
-            "utc": p.utc.to_rfc3339_opts(chrono::SecondsFormat::Millis, true),
-            "zenith_deg": p.zenith_deg,
-            "apparent_zenith_deg": p.apparent_zenith_deg,
-            "elevation_deg": p.elevation_deg,
-            "azimuth_deg": p.azimuth_deg,
-            "direction": p.direction,
-            "delta_t_s": p.delta_t_s,
-        });
+        let v = p.to_json();
         println!("{v}");
     } else {
         println!(

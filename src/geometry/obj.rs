@@ -1,93 +1,242 @@
-//! Wavefront OBJ geometry (`v` and `f` lines) with the file's own vertex numbering, so
-//! results can name OBJ vertices (0-based). Materials and texture coordinates are the
-//! scene loader's business.
+//! The one Wavefront OBJ reader: tobj parses the file, for scenes (materials, normals,
+//! texture coordinates) and for geometry alike. goniolight adds what tobj lacks:
+//! - the file's own vertex numbering: tobj numbers the vertices of each object anew, so
+//!   every `v` line is handed to tobj with its 0-based index in the vertex-colour slot
+//!   (exact in f64), and for geometry an extra object lists every vertex as a point, so
+//!   results can name OBJ vertices and unused vertices keep their place;
+//! - line numbers in errors (tobj stops at the first bad line it reads);
+//! - text that is not UTF-8 (Windows-1252, as many exporters write names) is decoded
+//!   instead of refused; point elements (`p`) are dropped (they carry no surface).
 
+use std::io::{BufRead, Read};
 use std::path::Path;
 
 use glam::DVec3;
 
 use super::{GeometryError, Mesh};
 
-/// Reads positions and faces; polygons are fan-triangulated; the model is taken as is
-/// (no up-axis change).
+/// The name of the object that lists every vertex (geometry reading only).
+const ALL_VERTICES: &str = "__goniolight_all_vertices__";
+/// Vertex indices per `p` line of that object.
+const POINTS_PER_LINE: usize = 64;
+
+/// A parsed OBJ file.
+#[derive(Debug)]
+pub struct ObjFile {
+    /// The objects, as tobj gives them (vertex colours hold file vertex indices).
+    pub models: Vec<tobj::Model>,
+    /// The materials of its `mtllib` files, or why they could not be read.
+    pub materials: Result<Vec<tobj::Material>, tobj::LoadError>,
+    /// Every vertex of the file in file order (filled for [`read_obj`] only).
+    pub positions: Vec<DVec3>,
+    /// True when the text was not UTF-8 and was decoded as Windows-1252.
+    pub decoded_latin1: bool,
+}
+
+impl ObjFile {
+    /// The 0-based file index of vertex `local` of `model` (as tobj numbers it).
+    pub fn file_index(model: &tobj::Model, local: u32) -> u32 {
+        model.mesh.vertex_color[3 * local as usize] as u32
+    }
+}
+
+/// How to read.
+#[derive(Debug, Clone, Copy)]
+pub struct ReadOptions {
+    /// One index per vertex for positions, normals and texture coordinates together (for
+    /// the GPU), or indices into the positions alone (for geometry).
+    pub single_index: bool,
+    /// Add the object listing every vertex, so `positions` holds all of them.
+    pub all_vertices: bool,
+}
+
+/// Reads `path` with tobj; `mtllib` files are looked up next to it.
+pub fn read(path: &Path, options: ReadOptions) -> Result<ObjFile, GeometryError> {
+    let name = path.display().to_string();
+    let bytes = std::fs::read(path).map_err(|source| GeometryError::Io {
+        file: name.clone(),
+        source,
+    })?;
+    let dir = path.parent().unwrap_or(Path::new("")).to_path_buf();
+    parse(&name, &bytes, options, |mtl| tobj::load_mtl(dir.join(mtl)))
+}
+
+/// Parses OBJ bytes; `name` is used in messages, `load_mtl` reads `mtllib` files.
+pub fn parse(
+    name: &str,
+    bytes: &[u8],
+    options: ReadOptions,
+    load_mtl: impl Fn(&Path) -> tobj::MTLLoadResult,
+) -> Result<ObjFile, GeometryError> {
+    let (text, decoded_latin1) = match std::str::from_utf8(bytes) {
+        Ok(t) => (std::borrow::Cow::Borrowed(t), false),
+        Err(_) => (encoding_rs::WINDOWS_1252.decode(bytes).0, true),
+    };
+    let (tagged, file_lines, vertex_count) = tag_vertices(&text, options.all_vertices);
+    let mut reader = LineCounter {
+        inner: std::io::Cursor::new(tagged.as_bytes()),
+        lines: 0,
+    };
+    let load = tobj::LoadOptions {
+        triangulate: true,
+        single_index: options.single_index,
+        ignore_points: !options.all_vertices,
+        ignore_lines: true,
+    };
+    let (models, materials) = tobj::load_obj_buf(&mut reader, &load, load_mtl).map_err(|e| {
+        let at = reader.lines.max(1);
+        let message = e.to_string();
+        if at > file_lines {
+            GeometryError::Invalid(format!("{name}: {message} (at the end of the file)"))
+        } else if matches!(
+            e,
+            tobj::LoadError::FaceVertexOutOfBounds
+                | tobj::LoadError::FaceTexCoordOutOfBounds
+                | tobj::LoadError::FaceNormalOutOfBounds
+                | tobj::LoadError::FaceColorOutOfBounds
+        ) {
+            // tobj checks faces when an object ends: name the object's last line.
+            GeometryError::Parse {
+                file: name.to_string(),
+                line: at,
+                message: format!("{message} (in the object that ends here)"),
+            }
+        } else {
+            GeometryError::Parse {
+                file: name.to_string(),
+                line: at,
+                message,
+            }
+        }
+    })?;
+    let mut file = ObjFile {
+        models,
+        materials,
+        positions: Vec::new(),
+        decoded_latin1,
+    };
+    if options.all_vertices {
+        let k = file
+            .models
+            .iter()
+            .position(|m| m.name == ALL_VERTICES)
+            .filter(|_| vertex_count > 0);
+        if let Some(k) = k {
+            let all = file.models.remove(k);
+            file.positions = all
+                .mesh
+                .positions
+                .chunks_exact(3)
+                .map(|p| DVec3::new(p[0], p[1], p[2]))
+                .collect();
+        }
+        if file.positions.len() != vertex_count {
+            return Err(GeometryError::Invalid(format!(
+                "{name}: read {} of its {vertex_count} vertices",
+                file.positions.len()
+            )));
+        }
+    }
+    Ok(file)
+}
+
+/// The OBJ text with each `v` line as `v x y z INDEX 0 0` and `p` lines blanked (line
+/// numbers unchanged), plus, with `all_vertices`, an object of point elements naming
+/// every vertex. Returns the text, the file's line count and its vertex count.
+fn tag_vertices(text: &str, all_vertices: bool) -> (String, usize, usize) {
+    let mut out = String::with_capacity(text.len() + text.len() / 4);
+    let mut vertices = 0usize;
+    let mut lines = 0usize;
+    for line in text.lines() {
+        lines += 1;
+        let mut words = line.split_whitespace();
+        match words.next() {
+            Some("v") => {
+                out.push('v');
+                for w in words.by_ref().take(3) {
+                    out.push(' ');
+                    out.push_str(w);
+                }
+                // A vertex index is exact in f64 far beyond any file's vertex count.
+                out.push_str(&format!(" {vertices} 0 0\n"));
+                vertices += 1;
+            }
+            Some("p") => out.push('\n'),
+            _ => {
+                out.push_str(line);
+                out.push('\n');
+            }
+        }
+    }
+    if all_vertices && vertices > 0 {
+        out.push_str(&format!("o {ALL_VERTICES}\n"));
+        for start in (1..=vertices).step_by(POINTS_PER_LINE) {
+            out.push('p');
+            for i in start..(start + POINTS_PER_LINE).min(vertices + 1) {
+                out.push_str(&format!(" {i}"));
+            }
+            out.push('\n');
+        }
+    }
+    (out, lines, vertices)
+}
+
+/// Counts the lines a reader has handed out (tobj reads line by line).
+struct LineCounter<R> {
+    inner: R,
+    lines: usize,
+}
+
+impl<R: BufRead> Read for LineCounter<R> {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        let n = self.inner.read(buf)?;
+        self.lines += buf[..n].iter().filter(|&&b| b == b'\n').count();
+        Ok(n)
+    }
+}
+
+impl<R: BufRead> BufRead for LineCounter<R> {
+    fn fill_buf(&mut self) -> std::io::Result<&[u8]> {
+        self.inner.fill_buf()
+    }
+
+    fn consume(&mut self, amt: usize) {
+        if let Ok(buf) = self.inner.fill_buf() {
+            let n = amt.min(buf.len());
+            self.lines += buf[..n].iter().filter(|&&b| b == b'\n').count();
+        }
+        self.inner.consume(amt);
+    }
+}
+
+/// Reads the positions and triangles of an OBJ with the file's own vertex numbering
+/// (0-based); polygons are fan-triangulated; the model is taken as is (no up-axis
+/// change). Materials are not read.
 pub fn read_obj(path: &Path) -> Result<Mesh, GeometryError> {
     let name = path.display().to_string();
     let bytes = std::fs::read(path).map_err(|source| GeometryError::Io {
         file: name.clone(),
         source,
     })?;
-    parse_obj(&name, &String::from_utf8_lossy(&bytes))
+    parse_obj(&name, &bytes)
 }
 
-/// Parses OBJ text; `name` is used in messages.
-pub fn parse_obj(name: &str, text: &str) -> Result<Mesh, GeometryError> {
-    let err = |line: usize, message: String| GeometryError::Parse {
-        file: name.to_string(),
-        line,
-        message,
+/// Parses OBJ bytes into a [`Mesh`] with the file's vertex numbering; `name` is used in
+/// messages.
+pub fn parse_obj(name: &str, bytes: &[u8]) -> Result<Mesh, GeometryError> {
+    let options = ReadOptions {
+        single_index: false,
+        all_vertices: true,
     };
-    let mut mesh = Mesh::default();
-    let mut faces: Vec<(usize, Vec<i64>)> = Vec::new();
-    for (i, raw) in text.lines().enumerate() {
-        let line = i + 1;
-        let mut parts = raw.split_whitespace();
-        match parts.next() {
-            Some("v") => {
-                let mut c = [0.0; 3];
-                for (k, slot) in c.iter_mut().enumerate() {
-                    let tok = parts.next().ok_or_else(|| {
-                        err(line, format!("vertex needs 3 coordinates, found {k}"))
-                    })?;
-                    *slot = tok
-                        .parse::<f64>()
-                        .ok()
-                        .filter(|v| v.is_finite())
-                        .ok_or_else(|| err(line, format!("bad vertex coordinate {tok:?}")))?;
-                }
-                mesh.positions.push(DVec3::from_array(c));
-            }
-            Some("f") => {
-                let idx = parts
-                    .map(|tok| {
-                        tok.split('/')
-                            .next()
-                            .and_then(|s| s.parse::<i64>().ok())
-                            .filter(|&v| v != 0)
-                            .ok_or_else(|| err(line, format!("bad face index {tok:?}")))
-                    })
-                    .collect::<Result<Vec<i64>, _>>()?;
-                if idx.len() < 3 {
-                    return Err(err(
-                        line,
-                        format!("a face needs 3 vertices, found {}", idx.len()),
-                    ));
-                }
-                faces.push((line, idx));
-            }
-            _ => {}
-        }
-    }
-    let n = mesh.positions.len() as i64;
-    for (line, idx) in faces {
-        // Negative indices count back from the vertices defined so far; we resolve them
-        // against all vertices, which equals that for files that define before use.
-        let resolve = |v: i64| -> Result<u32, GeometryError> {
-            let k = if v > 0 { v - 1 } else { n + v };
-            if (0..n).contains(&k) {
-                Ok(k as u32)
-            } else {
-                Err(err(
-                    line,
-                    format!("face index {v} outside the {n} vertices"),
-                ))
-            }
-        };
-        let vs = idx
-            .into_iter()
-            .map(resolve)
-            .collect::<Result<Vec<u32>, _>>()?;
-        for k in 1..vs.len() - 1 {
-            mesh.triangles.push([vs[0], vs[k], vs[k + 1]]);
+    let file = parse(name, bytes, options, |_| Ok(Default::default()))?;
+    let mut mesh = Mesh {
+        positions: file.positions,
+        triangles: Vec::new(),
+    };
+    for m in &file.models {
+        for t in m.mesh.indices.chunks_exact(3) {
+            mesh.triangles
+                .push([0, 1, 2].map(|k| ObjFile::file_index(m, t[k])));
         }
     }
     Ok(mesh)
@@ -116,21 +265,50 @@ mod tests {
     fn quads_negative_indices_and_errors() {
         let m = parse_obj(
             "t.obj",
-            "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1/1/1 2//2 3 4\nf -4 -3 -1\n",
+            b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1/1/1 2//2 3 4\nf -4 -3 -1\n",
         )
         .unwrap();
         assert_eq!(m.triangles, vec![[0, 1, 2], [0, 2, 3], [0, 1, 3]]);
-        let e = parse_obj("t.obj", "v 0 0 0\nv 1 0 x\n")
+        let e = parse_obj("t.obj", b"v 0 0 0\nv 1 0 x\n")
             .unwrap_err()
             .to_string();
         assert!(e.contains("t.obj: line 2"), "{e}");
-        let e = parse_obj("t.obj", "v 0 0 0\nf 1 2 3\n")
+        let e = parse_obj("t.obj", b"v 0 0 0\nf 1 2 3\n")
             .unwrap_err()
             .to_string();
-        assert!(e.contains("line 2") && e.contains("outside"), "{e}");
-        let e = parse_obj("t.obj", "v 0 0 0\nf 1 1\n")
-            .unwrap_err()
-            .to_string();
-        assert!(e.contains("needs 3"), "{e}");
+        assert!(e.contains("line 2") && e.contains("out of bounds"), "{e}");
+    }
+
+    #[test]
+    fn file_numbering_survives_objects_and_unused_vertices() {
+        // Object b uses vertices 5..7 first; vertex 4 (1-based) is used by nobody.
+        let text = b"o a\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 9 9 9\no b\nv 0 0 1\nv 1 0 1\nv 0 1 1\n\
+                     f 5 6 7\no a2\nf 1 2 3\np 4\n";
+        let m = parse_obj("t.obj", text).unwrap();
+        assert_eq!(m.positions.len(), 7);
+        assert_eq!(m.positions[3], DVec3::splat(9.0));
+        let mut t = m.triangles.clone();
+        t.sort();
+        assert_eq!(t, vec![[0, 1, 2], [4, 5, 6]]);
+    }
+
+    #[test]
+    fn windows_1252_names_are_decoded() {
+        let mut text = b"o Stra\xdfe\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n".to_vec();
+        let m = parse_obj("t.obj", &text).unwrap();
+        assert_eq!(m.triangles, vec![[0, 1, 2]]);
+        text.extend_from_slice(b"f 1 2\n");
+        let file = parse(
+            "t.obj",
+            &text[..text.len() - 6],
+            ReadOptions {
+                single_index: true,
+                all_vertices: false,
+            },
+            |_| Ok(Default::default()),
+        )
+        .unwrap();
+        assert!(file.decoded_latin1);
+        assert_eq!(file.models[0].name, "Straße");
     }
 }

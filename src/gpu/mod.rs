@@ -41,7 +41,8 @@ pub fn cleared_attachment(
     }
 }
 
-/// A headless GPU context.
+/// A headless GPU context (cheap to clone: wgpu's handles are shared).
+#[derive(Clone)]
 pub struct Gpu {
     /// The instance.
     pub instance: wgpu::Instance,
@@ -60,6 +61,19 @@ impl Gpu {
         let instance =
             wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
         Gpu::with_instance(instance, None)
+    }
+
+    /// The process's headless context, created on first use and shared by every later
+    /// call (a batch of commands starts the GPU once). A failed start is not kept.
+    pub fn shared() -> Result<Gpu, GpuError> {
+        static SHARED: std::sync::Mutex<Option<Gpu>> = std::sync::Mutex::new(None);
+        let mut shared = SHARED.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(gpu) = shared.as_ref() {
+            return Ok(gpu.clone());
+        }
+        let gpu = Gpu::headless()?;
+        *shared = Some(gpu.clone());
+        Ok(gpu)
     }
 
     /// Creates a context on `instance` whose adapter can present to `surface` (the

@@ -16,11 +16,12 @@ use serde::Serialize;
 
 use super::distribution::{angles_to_direction, Distribution};
 use super::error::PhotometryError;
+use super::flux::integrate_flux;
 use super::grid::{angle_eq, Grid, Interp};
-use super::summary::integrate_flux;
 
 /// Which angles leave-out hides.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "snake_case")]
 pub enum LeaveOut {
     /// Every other γ angle.

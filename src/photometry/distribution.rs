@@ -3,8 +3,8 @@
 use glam::DVec3;
 
 use super::eulumdat::Eulumdat;
+use super::flux::integrate_flux;
 use super::grid::{Grid, Interp};
-use super::summary::integrate_flux;
 use super::symmetry::Symmetry;
 
 /// Intensities over the whole sphere: C ∈ [0°, 360°), γ ∈ [0°, 180°], in cd/klm, plus

@@ -10,9 +10,8 @@
 use serde::Serialize;
 
 /// Interpolation between the measured angles.
-#[derive(
-    Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, serde::Deserialize, clap::ValueEnum,
-)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, serde::Deserialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all(serialize = "snake_case", deserialize = "kebab-case"))]
 pub enum Interp {
     /// The nearest measured value.
@@ -20,7 +19,7 @@ pub enum Interp {
     /// Linear in C and in γ.
     Bilinear,
     /// Bicubic Catmull-Rom (interpolating, may overshoot; clamped at 0).
-    #[value(name = "catmull-rom")]
+    #[cfg_attr(feature = "cli", value(name = "catmull-rom"))]
     CatmullRom,
     /// Shape-preserving bicubic (monotone piecewise cubic, never overshoots the cell).
     Monotone,

@@ -417,7 +417,7 @@ impl IesFile {
         let absolute_photometry = self.lumens_per_lamp < 0.0;
         let lamp_flux = if absolute_photometry {
             let planes: Vec<(f64, Vec<f64>)> = full.iter().map(|&c| (c, plane_at(c))).collect();
-            super::summary::integrate_flux(&planes, &self.vertical).0
+            super::flux::integrate_flux(&planes, &self.vertical).0
         } else {
             self.lamp_count * self.lumens_per_lamp
         };
@@ -491,7 +491,7 @@ impl IesFile {
             intensities,
         };
         let planes = ldt.expanded();
-        let (flux, down) = super::summary::integrate_flux(&planes, &ldt.gamma_angles);
+        let (flux, down) = super::flux::integrate_flux(&planes, &ldt.gamma_angles);
         if flux > 0.0 {
             ldt.lorl_percent = flux / 10.0;
             ldt.dff_percent = down / flux * 100.0;

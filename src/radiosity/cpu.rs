@@ -11,7 +11,7 @@ use super::initial::{DirectSamples, InitialState};
 use super::scene::{luminance, RadiosityScene};
 use super::solve;
 use super::{Ambient, SolverSettings};
-use crate::render::illuminance::SurfacePoint;
+use crate::lighting::SurfacePoint;
 use crate::shadow::{raycast, Light};
 
 /// The state of a CPU solution.

@@ -6,7 +6,8 @@ use std::f64::consts::PI;
 use glam::DVec3;
 
 /// How the solver evaluates the form factor from a receiver element to a shooting patch.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum, serde::Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Deserialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum FormFactorKind {
     /// The disc approximation (Wallace et al.; Wallner Eq. 2.2): A cos φi cos φj / (π d² + A).

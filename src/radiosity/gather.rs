@@ -8,7 +8,7 @@ use rayon::prelude::*;
 
 use super::form_factor::{self, FormFactorKind};
 use super::scene::RadiosityScene;
-use crate::render::illuminance::SurfacePoint;
+use crate::lighting::SurfacePoint;
 use crate::shadow::{raycast, Light};
 
 /// Illuminance (lux, RGB) at `point` from every patch of `scene` with the element

@@ -14,7 +14,8 @@ use crate::gpu::{Gpu, GpuError};
 use crate::render::layouts::{buffer_binding, entry};
 
 /// How a shooting patch sees what it can reach.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum, serde::Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Deserialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum Visibility {
     /// Five perspective faces (Cohen and Greenberg): exact projection, five renders.

@@ -7,8 +7,9 @@ use glam::DVec3;
 
 use super::scene::{luminance, RadiosityScene};
 use crate::gpu::{Gpu, GpuError};
+use crate::lighting::SurfacePoint;
 use crate::photometry::Interp;
-use crate::render::illuminance::{IlluminanceProbe, SurfacePoint};
+use crate::render::illuminance::IlluminanceProbe;
 use crate::render::layouts::Layouts;
 use crate::render::{GpuScene, LightModel, ShadowSettings};
 use crate::scene::Scene;

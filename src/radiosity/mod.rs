@@ -1,7 +1,6 @@
 //! Progressive radiosity (Wallner ch. 2 and 4; Cohen et al. 1988; Coombe et al. 2004):
 //! light-map elements, form factors, and the CPU reference solver.
 
-pub mod bench;
 pub mod cpu;
 pub mod elements;
 pub mod form_factor;
@@ -15,7 +14,8 @@ use crate::photometry::Interp;
 pub use form_factor::FormFactorKind;
 
 /// What the ambient term is used for.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum, serde::Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Deserialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum Ambient {
     /// No ambient term.

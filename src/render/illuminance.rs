@@ -3,81 +3,47 @@
 //! the reference (shadows by ray casting).
 
 use glam::DVec3;
-use rayon::prelude::*;
 use wgpu::util::DeviceExt;
 
 use super::gpu_scene::{GpuLights, GpuScene};
+use super::layouts::Layouts;
 use super::passes::LightModel;
 use super::shadows::{ShadowFrame, ShadowPasses, ShadowSettings};
-use crate::geometry::Mesh;
 use crate::gpu::{shaders, Gpu, GpuError};
 use crate::photometry::Interp;
-use crate::scene::PlacedLuminaire;
-use crate::shadow::{raycast, Light};
+use crate::scene::Scene;
+use crate::shadow::ShadowTechnique;
 
-/// A point on a surface: position (metres) and normal (need not be unit length).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SurfacePoint {
-    /// Position.
-    pub position: DVec3,
-    /// Normal.
-    pub normal: DVec3,
-}
+pub use crate::lighting::{
+    illuminance_cpu, illuminance_cpu_in_scene, point_visibility, SurfacePoint,
+};
 
-/// The CPU reference without shadows: Σ over luminaires of I · cos θ / d², lux.
-pub fn illuminance_cpu(luminaires: &[PlacedLuminaire], p: &SurfacePoint, interp: Interp) -> f64 {
-    let n = p.normal.normalize_or_zero();
-    luminaires
-        .iter()
-        .map(|l| l.illuminance_at(p.position, n, interp))
-        .sum()
-}
-
-/// Which lights reach which points: `visible[light][point]`, by casting a ray from each
-/// point toward each light position against `casters`. These are exact hard shadows: the
-/// CPU reference of every shadow technique, and what `volumes` means for point queries.
-pub fn point_visibility(
-    casters: &Mesh,
-    light_positions: &[DVec3],
-    points: &[SurfacePoint],
-) -> Vec<Vec<bool>> {
-    let eps = raycast::self_hit_epsilon(casters);
-    light_positions
-        .iter()
-        .map(|&at| {
-            let light = Light(at.extend(1.0));
-            points
-                .par_iter()
-                .map(|p| !raycast::in_shadow(casters, &light, p.position, eps))
-                .collect()
-        })
-        .collect()
-}
-
-/// The CPU reference with shadows cast by `casters` (none when `None`): lux at `points`.
-pub fn illuminance_cpu_in_scene(
-    luminaires: &[PlacedLuminaire],
-    casters: Option<&Mesh>,
+/// Direct illuminance (lux) at `points` in `scene` with the shadows of `technique`: on
+/// `gpu` with the renderer's own lighting code, or by the CPU twin when `gpu` is `None`
+/// (ray-cast shadows unless `none`).
+pub fn scene_illuminance(
+    gpu: Option<&Gpu>,
+    scene: &Scene,
     points: &[SurfacePoint],
     interp: Interp,
-) -> Vec<f64> {
-    let visible = casters.map(|mesh| {
-        let positions: Vec<DVec3> = luminaires.iter().map(|l| l.position).collect();
-        point_visibility(mesh, &positions, points)
-    });
-    points
-        .par_iter()
-        .enumerate()
-        .map(|(i, p)| {
-            let n = p.normal.normalize_or_zero();
-            luminaires
-                .iter()
-                .enumerate()
-                .filter(|(k, _)| visible.as_ref().is_none_or(|v| v[*k][i]))
-                .map(|(_, l)| l.illuminance_at(p.position, n, interp))
-                .sum()
-        })
-        .collect()
+    technique: ShadowTechnique,
+) -> Result<Vec<f64>, GpuError> {
+    let Some(gpu) = gpu else {
+        let casters = (technique != ShadowTechnique::None).then(|| scene.caster_mesh());
+        return Ok(illuminance_cpu_in_scene(
+            &scene.luminaires,
+            casters.as_ref(),
+            points,
+            interp,
+        ));
+    };
+    let uploaded = GpuScene::new(gpu, &Layouts::new(gpu), scene);
+    IlluminanceProbe::new(gpu, LightModel::Ldt(interp)).run_in_scene(
+        gpu,
+        &uploaded,
+        points,
+        &ShadowSettings::with(technique),
+    )
 }
 
 #[repr(C)]

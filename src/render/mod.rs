@@ -3,7 +3,6 @@
 //! HDR target, image statistics, and tone mapping (exposure, Reinhard) or false-colour
 //! illuminance with a legend. Headless here; the viewer drives the same passes.
 
-pub mod bench;
 pub mod gpu_scene;
 pub mod illuminance;
 pub mod layouts;
@@ -12,8 +11,6 @@ pub mod lightmap;
 pub mod output;
 pub mod paraboloid;
 pub mod passes;
-pub mod profile;
-pub mod profile_output;
 pub mod shadows;
 pub mod targets;
 pub mod tonemap;
@@ -21,11 +18,12 @@ pub mod volumes;
 
 use glam::Vec3;
 
+pub use crate::scene::MAX_IMAGE_SIZE;
+pub use crate::shadow::{ShadowTechnique, VolumeTest};
 pub use gpu_scene::GpuScene;
 pub use passes::LightModel;
-pub use shadows::{ShadowSettings, ShadowTechnique};
+pub use shadows::ShadowSettings;
 pub use tonemap::{ImageStats, ToneSettings};
-pub use volumes::VolumeTest;
 
 use crate::gpu::{Gpu, GpuError};
 use crate::photometry::Interp;
@@ -35,9 +33,6 @@ use passes::ScenePasses;
 use shadows::{ShadowFrame, ShadowPasses};
 use targets::Targets;
 use tonemap::ToneMapper;
-
-/// Largest image side the renderer accepts (wgpu's guaranteed 2D texture size).
-pub const MAX_IMAGE_SIZE: u32 = 8192;
 
 /// What to render.
 #[derive(Debug, Clone, PartialEq)]

@@ -4,35 +4,11 @@
 use glam::{DVec3, Mat4};
 
 use super::gpu_scene::GpuScene;
-use super::illuminance::{point_visibility, SurfacePoint};
 use super::paraboloid::{ParaboloidMaps, ParaboloidPasses, MAP_FORMAT};
-use super::volumes::{LightVolume, VolumePasses, VolumeTest, MASK_FORMAT};
+use super::volumes::{LightVolume, VolumePasses, MASK_FORMAT};
 use crate::gpu::{Gpu, GpuError};
-use crate::shadow::{Light, SilhouetteMethod};
-
-/// Which shadows the luminaires cast.
-#[derive(
-    Debug,
-    Clone,
-    Copy,
-    PartialEq,
-    Eq,
-    Default,
-    clap::ValueEnum,
-    serde::Deserialize,
-    serde::Serialize,
-)]
-#[serde(rename_all = "lowercase")]
-pub enum ShadowTechnique {
-    /// No shadows: every surface facing a luminaire is lit.
-    None,
-    /// Dual-paraboloid shadow maps with PCF (the default for luminaires: soft-edged,
-    /// cost independent of the geometry's complexity).
-    #[default]
-    Paraboloid,
-    /// Stencil shadow volumes: exact hard shadows (the default for the sun).
-    Volumes,
-}
+use crate::lighting::{point_visibility, SurfacePoint};
+use crate::shadow::{Light, ShadowTechnique, SilhouetteMethod, VolumeTest};
 
 /// Shadow options.
 #[derive(Debug, Clone, PartialEq)]

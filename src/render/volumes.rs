@@ -16,20 +16,7 @@ use crate::geometry::{GeometryError, Mesh};
 use crate::gpu::{shaders, Gpu};
 use crate::shadow::raycast::needs_zfail;
 use crate::shadow::volume::volume_triangles;
-use crate::shadow::{Hextree, Light, Silhouette, SilhouetteMesh, SilhouetteMethod};
-
-/// How a light's volume is counted.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
-pub enum VolumeTest {
-    /// z-fail where the camera's near plane may be inside a volume (the near-clip-volume
-    /// test), z-pass elsewhere.
-    #[default]
-    Auto,
-    /// Count volume faces in front of the visible surface (camera outside every volume).
-    Zpass,
-    /// Count volume faces behind the visible surface (robust, needs the caps).
-    Zfail,
-}
+use crate::shadow::{Hextree, Light, Silhouette, SilhouetteMesh, SilhouetteMethod, VolumeTest};
 
 /// A mesh prepared for shadow volumes: welded, with adjacency, on the GPU as its
 /// vertices (w = 1) followed by their copies to be extruded (w = 0).

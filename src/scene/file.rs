@@ -33,6 +33,10 @@
 
 use serde::{Deserialize, Serialize};
 
+/// Largest image side the renderer accepts (wgpu's guaranteed 2D texture size), for scene
+/// files and image flags alike.
+pub const MAX_IMAGE_SIZE: u32 = 8192;
+
 /// The whole file.
 #[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
@@ -51,7 +55,8 @@ pub struct SceneFile {
 }
 
 /// The up axis of an OBJ file.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, Default, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, Default)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum UpAxis {
     /// +Y up (converted to the world's +Z up).
@@ -160,7 +165,8 @@ pub struct CameraEntry {
 }
 
 /// The output mode.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, Default, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, Default)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum Mode {
     /// Shaded image (luminance, tone mapped).
@@ -171,7 +177,8 @@ pub enum Mode {
 }
 
 /// The tone-mapping operator.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, Default, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, Default)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum Tonemap {
     /// y = 1 − exp(−k·x).
@@ -214,5 +221,5 @@ pub struct DisplayEntry {
     pub background: Option<[f64; 3]>,
     /// Shadows: "none", "paraboloid" (default) or "volumes".
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub shadows: Option<crate::render::ShadowTechnique>,
+    pub shadows: Option<crate::shadow::ShadowTechnique>,
 }

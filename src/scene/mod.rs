@@ -15,7 +15,7 @@ use std::path::{Path, PathBuf};
 use glam::DVec3;
 
 pub use camera::{Camera, Projection};
-pub use file::{DisplayEntry, Mode, SceneFile, Tonemap, UpAxis};
+pub use file::{DisplayEntry, Mode, SceneFile, Tonemap, UpAxis, MAX_IMAGE_SIZE};
 pub use model::{Material, SceneMesh};
 pub use placement::PlacedLuminaire;
 
@@ -156,7 +156,7 @@ fn bounds_of(meshes: &[SceneMesh], luminaires: &[PlacedLuminaire]) -> (DVec3, DV
 fn check_display(path: &Path, d: &DisplayEntry) -> Result<(), SceneError> {
     for (key, v) in [("display.width", d.width), ("display.height", d.height)] {
         if let Some(v) = v {
-            let max = crate::render::MAX_IMAGE_SIZE;
+            let max = file::MAX_IMAGE_SIZE;
             if !(1..=max).contains(&v) {
                 return Err(SceneError::new(
                     path,

@@ -9,6 +9,7 @@ use glam::{DMat3, DMat4, DVec3, Vec2, Vec3};
 
 use super::file::{ModelEntry, Scale, UpAxis};
 use super::{finite_vec, SceneError};
+use crate::geometry::obj::{self as obj_file, ObjFile, ReadOptions};
 
 /// A surface material (MTL subset).
 #[derive(Debug, Clone)]
@@ -144,14 +145,16 @@ pub(super) fn load_model(
             format!("cannot read model {}: no such file", obj.display()),
         ));
     }
-    let options = tobj::LoadOptions {
-        triangulate: true,
+    let options = ReadOptions {
         single_index: true,
-        ignore_points: true,
-        ignore_lines: true,
+        all_vertices: false,
     };
-    let (models, mtl) = tobj::load_obj(&obj, &options)
-        .map_err(|e| SceneError::new(scene, &path_key, format!("{}: {e}", obj.display())))?;
+    let ObjFile {
+        models,
+        materials: mtl,
+        ..
+    } = obj_file::read(&obj, options)
+        .map_err(|e| SceneError::new(scene, &path_key, e.to_string()))?;
     let obj_dir = obj.parent().unwrap_or(Path::new("")).to_path_buf();
     let first_material = materials.len();
     let mut textures = TextureCache::new(&obj_dir);
@@ -221,9 +224,9 @@ fn convert(
     let src = &m.mesh;
     let point = |i: usize| {
         let p = DVec3::new(
-            src.positions[3 * i] as f64,
-            src.positions[3 * i + 1] as f64,
-            src.positions[3 * i + 2] as f64,
+            src.positions[3 * i],
+            src.positions[3 * i + 1],
+            src.positions[3 * i + 2],
         );
         matrix.transform_point3(p)
     };
@@ -253,9 +256,9 @@ fn convert(
             let i = vi as usize;
             let normal = if has_normals {
                 let n = DVec3::new(
-                    src.normals[3 * i] as f64,
-                    src.normals[3 * i + 1] as f64,
-                    src.normals[3 * i + 2] as f64,
+                    src.normals[3 * i],
+                    src.normals[3 * i + 1],
+                    src.normals[3 * i + 2],
                 );
                 let n = (normal_matrix * n).normalize_or_zero().as_vec3();
                 if n == Vec3::ZERO {
@@ -267,7 +270,7 @@ fn convert(
                 face_n
             };
             let uv = if has_uvs {
-                Vec2::new(src.texcoords[2 * i], src.texcoords[2 * i + 1])
+                Vec2::new(src.texcoords[2 * i] as f32, src.texcoords[2 * i + 1] as f32)
             } else {
                 Vec2::ZERO
             };
@@ -321,7 +324,10 @@ impl TextureCache {
     }
 
     fn material(&mut self, m: &tobj::Material) -> Result<Material, String> {
-        let v3 = |v: Option<[f32; 3]>, d: f32| v.map(Vec3::from_array).unwrap_or(Vec3::splat(d));
+        let v3 = |v: Option<[f64; 3]>, d: f32| {
+            v.map(|a| Vec3::from_array(a.map(|x| x as f32)))
+                .unwrap_or(Vec3::splat(d))
+        };
         let diffuse = v3(m.diffuse, 0.6);
         let specular = v3(m.specular, 0.0);
         let emission = v3(m.emissive, 0.0);
@@ -333,7 +339,7 @@ impl TextureCache {
         if diffuse.max_element() > 1.0 {
             return Err(format!("Kd {diffuse} is a reflectance and cannot exceed 1"));
         }
-        let shininess = m.shininess.unwrap_or(1.0).max(0.0);
+        let shininess = m.shininess.unwrap_or(1.0).max(0.0) as f32;
         let diffuse_map = m
             .diffuse_texture
             .as_deref()

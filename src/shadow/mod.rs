@@ -1,19 +1,21 @@
 //! Shadows: silhouettes (brute force and the 4D dual-space hextree), shadow-volume
 //! geometry, the z-pass/z-fail decision and a CPU ray-cast reference.
 
-pub mod bench;
 pub mod hextree;
 pub mod raycast;
 pub mod silhouette;
+pub mod technique;
 pub mod volume;
 
 use glam::{DVec3, DVec4};
 
 pub use hextree::Hextree;
 pub use silhouette::{Silhouette, SilhouetteMesh};
+pub use technique::{ShadowTechnique, VolumeTest};
 
 /// How to find silhouette edges.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum SilhouetteMethod {
     /// Test every edge.
     Brute,

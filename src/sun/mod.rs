@@ -108,6 +108,21 @@ pub struct SunPosition {
     pub delta_t_s: f64,
 }
 
+impl SunPosition {
+    /// The keys of `sun --json` (the instant in RFC 3339 UTC with milliseconds).
+    pub fn to_json(&self) -> serde_json::Value {
+        serde_json::json!({
+            "utc": self.utc.to_rfc3339_opts(chrono::SecondsFormat::Millis, true),
+            "zenith_deg": self.zenith_deg,
+            "apparent_zenith_deg": self.apparent_zenith_deg,
+            "elevation_deg": self.elevation_deg,
+            "azimuth_deg": self.azimuth_deg,
+            "direction": self.direction,
+            "delta_t_s": self.delta_t_s,
+        })
+    }
+}
+
 fn model_err(e: impl std::fmt::Display) -> SunError {
     SunError::Model(e.to_string())
 }

@@ -15,9 +15,9 @@ use super::sun::SunControls;
 use crate::gpu::Gpu;
 use crate::photometry::Interp;
 use crate::render::lightmap::LightMap;
-use crate::render::profile::Profile;
 use crate::render::{LightModel, RenderSettings, ShadowSettings};
 use crate::scene::{Mode, PlacedLuminaire, Scene, Tonemap};
+use crate::study::profile::Profile;
 
 /// How serious a message is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -16,9 +16,9 @@ use crate::radiosity::scene::RadiosityScene;
 use crate::radiosity::solve;
 use crate::radiosity::SolverSettings;
 use crate::render::lightmap::LightMap;
-use crate::render::profile::{Profile, ProfileError, ProfileSpec};
 use crate::render::ShadowSettings;
 use crate::scene::Scene;
+use crate::study::profile::{Profile, ProfileError, ProfileSpec};
 
 /// Flags a worker reads between units of work.
 #[derive(Debug, Default)]
@@ -262,7 +262,7 @@ pub fn start_profile(
         let progress = |done, total| {
             let _ = tx.send(ProfileUpdate::Progress(done, total));
         };
-        let result = crate::render::profile::compute(&gpu, &mesh, &spec, progress, &control.cancel);
+        let result = crate::study::profile::compute(&gpu, &mesh, &spec, progress, &control.cancel);
         let _ = tx.send(match result {
             Ok(p) => ProfileUpdate::Done(Box::new(p)),
             Err(ProfileError::Cancelled) => ProfileUpdate::Failed("cancelled".into()),

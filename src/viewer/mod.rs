@@ -4,6 +4,7 @@
 //! ([`app::ViewerApp`]) is separate from the window so that tests drive it headless.
 
 pub mod app;
+mod app_files;
 pub mod camera;
 pub mod files;
 pub mod jobs;
@@ -16,70 +17,57 @@ pub mod work;
 
 use std::path::PathBuf;
 
-use anyhow::anyhow;
-use chrono::Timelike;
-use clap::Args;
-
-use crate::cli::CliError;
 use app::ViewerApp;
 use files::{load_scene_or_model, RecentFiles};
 
-/// The scene `view` opens without an argument.
+/// The scene `view` opens without an argument, relative to [`crate::io::data_root`].
 pub const DEFAULT_SCENE: &str = "assets/scenes/furnished_room.toml";
 
-/// Options of `view`.
-#[derive(Debug, Args)]
-pub struct ViewArgs {
-    /// A scene file (TOML) or an OBJ model (default: the bundled furnished room).
-    pub path: Option<PathBuf>,
-    /// Render this many frames, then exit (with --screenshot: 3 unless given).
-    #[arg(long)]
-    pub frames: Option<u64>,
-    /// After the last frame, save the whole window (UI included) as PNG and exit.
-    #[arg(long)]
-    pub screenshot: Option<PathBuf>,
-    /// Window width, logical pixels.
-    #[arg(long, default_value_t = 1280)]
-    pub width: u32,
-    /// Window height, logical pixels.
-    #[arg(long, default_value_t = 800)]
-    pub height: u32,
-    /// Luminaire files to add to the scene at start (as if dropped on the window).
-    #[arg(long = "add", value_name = "LDT|IES")]
-    pub add: Vec<PathBuf>,
-    /// Up axis of an OBJ model given as PATH: y (most exporters) or z.
-    #[arg(long, value_enum, default_value = "y")]
-    pub up: crate::scene::UpAxis,
-    /// Mode at start: shaded or illuminance (default: the scene's).
-    #[arg(long, value_enum)]
-    pub mode: Option<crate::scene::Mode>,
-    /// Turn the sun on at this local time (HH:MM) at start, with shadow volumes (the
-    /// site and date are set in the Sun panel; default Vienna on the summer solstice).
-    #[arg(long, value_name = "HH:MM")]
-    pub sun: Option<String>,
+/// A failed viewer start or run.
+#[derive(Debug, thiserror::Error)]
+pub enum ViewerError {
+    /// The scene, model or a luminaire given at start is unusable (bad input).
+    #[error(transparent)]
+    Scene(#[from] crate::scene::SceneError),
+    /// A luminaire given at start was refused (bad input).
+    #[error("{0}")]
+    Luminaire(String),
+    /// The window, the GPU or a screenshot failed.
+    #[error("{0}")]
+    Window(String),
 }
 
-/// Runs `view`.
-pub fn run(args: ViewArgs) -> Result<(), CliError> {
-    let bad = |m: String| Err(CliError::input(anyhow!(m)));
-    if args.frames == Some(0) {
-        return bad("--frames must be at least 1".into());
+impl ViewerError {
+    /// True when the user's input caused it (a command exits 2 then).
+    pub fn is_bad_input(&self) -> bool {
+        !matches!(self, ViewerError::Window(_))
     }
-    for (name, v) in [("--width", args.width), ("--height", args.height)] {
-        if !(64..=8192).contains(&v) {
-            return bad(format!("{name} {v} is not in 64..=8192"));
-        }
-    }
-    if let Some(s) = &args.screenshot {
-        if image::ImageFormat::from_path(s).ok() != Some(image::ImageFormat::Png) {
-            return bad(format!("--screenshot {}: must end in .png", s.display()));
-        }
-    }
-    let path = args
+}
+
+/// What the viewer opens with.
+#[derive(Debug, Clone, Default)]
+pub struct StartOptions {
+    /// A scene file (TOML) or an OBJ model; `None`: the bundled furnished room.
+    pub path: Option<PathBuf>,
+    /// Luminaire files added at start (as if dropped on the window).
+    pub add: Vec<PathBuf>,
+    /// Up axis of an OBJ model given as `path`.
+    pub up: crate::scene::UpAxis,
+    /// Mode at start (default: the scene's).
+    pub mode: Option<crate::scene::Mode>,
+    /// Turn the sun on at this local time, minutes after midnight, with shadow volumes.
+    pub sun_minutes: Option<f64>,
+    /// The window's size, how many frames to render before exiting and the screenshot.
+    pub window: window::WindowOptions,
+}
+
+/// Opens the viewer and runs it until the window closes (or the frames given are drawn).
+pub fn start(options: StartOptions) -> Result<window::RunSummary, ViewerError> {
+    let path = options
         .path
         .clone()
-        .unwrap_or_else(|| PathBuf::from(DEFAULT_SCENE));
-    let up = args.up;
+        .unwrap_or_else(|| crate::io::data_root().join(DEFAULT_SCENE));
+    let up = options.up;
     let scene = load_scene_or_model(&path, up)?;
     let is_scene = !scene.path.as_os_str().is_empty();
     let mut app = ViewerApp::new(
@@ -87,36 +75,20 @@ pub fn run(args: ViewArgs) -> Result<(), CliError> {
         is_scene.then(|| path.clone()),
         RecentFiles::load(RecentFiles::default_store()),
     );
-    for l in &args.add {
+    for l in &options.add {
         if !app.add_luminaire(l) {
-            return Err(CliError::input(anyhow!(
-                "{}",
-                app.last_error().unwrap_or("luminaire not added")
-            )));
+            let why = app.last_error().unwrap_or("luminaire not added");
+            return Err(ViewerError::Luminaire(why.to_string()));
         }
     }
     app.obj_up = up;
-    if let Some(m) = args.mode {
+    if let Some(m) = options.mode {
         app.display.mode = m;
     }
-    if let Some(t) = &args.sun {
-        let time = chrono::NaiveTime::parse_from_str(t.trim(), "%H:%M")
-            .map_err(|e| CliError::input(anyhow!("--sun {t:?}: not a time HH:MM ({e})")))?;
-        app.sun.minutes = f64::from(time.num_seconds_from_midnight()) / 60.0;
+    if let Some(minutes) = options.sun_minutes {
+        app.sun.minutes = minutes;
         app.sun.enabled = true;
-        app.display.shadows.technique = crate::render::ShadowTechnique::Volumes;
+        app.display.shadows.technique = crate::shadow::ShadowTechnique::Volumes;
     }
-    let options = window::WindowOptions {
-        size: [args.width, args.height],
-        frames: args.frames.or(args.screenshot.as_ref().map(|_| 3)),
-        screenshot: args.screenshot.clone(),
-    };
-    let summary = window::run(app, options).map_err(CliError::failure)?;
-    if args.frames.is_some() || args.screenshot.is_some() {
-        println!(
-            "{}",
-            serde_json::to_string(&summary).map_err(|e| CliError::failure(anyhow!(e)))?
-        );
-    }
-    Ok(())
+    window::run(app, options.window).map_err(|e| ViewerError::Window(format!("{e:#}")))
 }

@@ -12,9 +12,9 @@ use super::jobs::{self, ProfileUpdate, RadiosityUpdate};
 use super::view::parsed_field;
 use crate::radiosity::gpu::Visibility;
 use crate::radiosity::{Ambient, FormFactorKind};
-use crate::render::profile::ProfileSpec;
-use crate::render::profile_output::{hours_image, profile_image};
 use crate::render::ShadowTechnique;
+use crate::study::output::{hours_image, profile_image};
+use crate::study::profile::ProfileSpec;
 use crate::sun::{Site, Zone};
 
 impl ViewerApp {

@@ -8,11 +8,11 @@ use std::path::Path;
 
 use anyhow::Context;
 
-use super::legend::with_legend_panel;
-use super::output::write_image;
 use super::profile::{Profile, ProfileStep, SURFACE_GROUND, SURFACE_MODEL, SURFACE_NONE};
-use super::tonemap::{false_colour, linear_to_srgb};
 use crate::io::write_atomic;
+use crate::render::legend::with_legend_panel;
+use crate::render::output::write_image;
+use crate::render::tonemap::{false_colour, linear_to_srgb};
 
 const BACKGROUND: [u8; 3] = [255, 255, 255];
 const GROUND: [u8; 3] = [246, 246, 243];

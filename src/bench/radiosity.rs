@@ -5,12 +5,12 @@
 
 use std::sync::atomic::AtomicBool;
 
-use super::gpu::{GpuSettings, GpuSolver, Visibility};
-use super::initial::{InitialState, LuminaireLight};
-use super::scene::RadiosityScene;
-use super::solve::StopAt;
-use super::SolverSettings;
 use crate::gpu::Gpu;
+use crate::radiosity::gpu::{GpuSettings, GpuSolver, Visibility};
+use crate::radiosity::initial::{InitialState, LuminaireLight};
+use crate::radiosity::scene::RadiosityScene;
+use crate::radiosity::solve::StopAt;
+use crate::radiosity::SolverSettings;
 use crate::scene::Scene;
 
 /// One measured solution.

@@ -7,9 +7,10 @@ use std::time::Instant;
 use glam::DVec3;
 use serde::Serialize;
 
-use super::{Hextree, Light, SilhouetteMesh};
+use super::median;
 use crate::geometry::generate::{building, bumpy_surface, torus};
 use crate::geometry::Mesh;
+use crate::shadow::{Hextree, Light, SilhouetteMesh};
 
 /// One benchmarked mesh.
 #[derive(Debug, Clone, Serialize)]
@@ -44,11 +45,6 @@ pub fn bench_meshes(scale: f64) -> Vec<(String, Mesh)> {
             bumpy_surface(s(707.0), 50.0, 11),
         ),
     ]
-}
-
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
 }
 
 /// Lights orbiting the mesh at twice its size, rising and falling.

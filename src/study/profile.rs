@@ -11,11 +11,11 @@ use chrono::{DateTime, FixedOffset, NaiveDate, NaiveTime};
 use glam::{DVec2, DVec3};
 use wgpu::util::DeviceExt;
 
-use super::shadows::mask_texture;
-use super::volumes::{VolumeGeometry, VolumePasses};
 use crate::geometry::Mesh;
 use crate::gpu::{Gpu, GpuError};
-use crate::scene::Camera;
+use crate::render::shadows::mask_texture;
+use crate::render::volumes::{VolumeGeometry, VolumePasses};
+use crate::scene::{Camera, MAX_IMAGE_SIZE};
 use crate::shadow::{Light, SilhouetteMethod};
 use crate::sun::{self, Site, SunOptions, Zone};
 
@@ -25,12 +25,26 @@ pub enum ProfileError {
     /// Bad options or model (the user can fix them).
     #[error("{0}")]
     Input(String),
+    /// A field of the [`ProfileSpec`] is out of range (the user can fix it).
+    #[error("{field} {message}")]
+    Invalid {
+        /// The field's name in [`ProfileSpec`].
+        field: &'static str,
+        /// What is wrong with its value.
+        message: String,
+    },
     /// The GPU failed.
     #[error(transparent)]
     Gpu(#[from] GpuError),
     /// Interrupted by the caller.
     #[error("interrupted")]
     Cancelled,
+}
+
+impl ProfileError {
+    fn invalid(field: &'static str, message: String) -> ProfileError {
+        ProfileError::Invalid { field, message }
+    }
 }
 
 /// The period, site and image of a profile.
@@ -62,16 +76,20 @@ impl ProfileSpec {
     /// The local instants of the steps.
     pub fn local_times(&self) -> Result<Vec<chrono::NaiveDateTime>, ProfileError> {
         if self.step_minutes == 0 {
-            return Err(ProfileError::Input(
-                "--step must be at least 1 minute".into(),
+            return Err(ProfileError::invalid(
+                "step_minutes",
+                "must be at least 1 minute".into(),
             ));
         }
         if self.from > self.to {
-            return Err(ProfileError::Input(format!(
-                "--from {} is after --to {}",
-                self.from.format("%H:%M"),
-                self.to.format("%H:%M")
-            )));
+            return Err(ProfileError::invalid(
+                "from",
+                format!(
+                    "{} is after the end of the period (to) {}",
+                    self.from.format("%H:%M"),
+                    self.to.format("%H:%M")
+                ),
+            ));
         }
         let start = self.date.and_time(self.from);
         let end = self.date.and_time(self.to);
@@ -208,18 +226,18 @@ pub fn compute(
     mut progress: impl FnMut(usize, usize),
     cancel: &AtomicBool,
 ) -> Result<Profile, ProfileError> {
-    if spec.resolution < 16 || spec.resolution > super::MAX_IMAGE_SIZE {
-        return Err(ProfileError::Input(format!(
-            "--resolution {} is not in 16..={}",
-            spec.resolution,
-            super::MAX_IMAGE_SIZE
-        )));
+    if spec.resolution < 16 || spec.resolution > MAX_IMAGE_SIZE {
+        return Err(ProfileError::invalid(
+            "resolution",
+            format!("{} is not in 16..={}", spec.resolution, MAX_IMAGE_SIZE),
+        ));
     }
     if let Some(e) = spec.extent_m {
         if !(e.is_finite() && e > 0.0) {
-            return Err(ProfileError::Input(format!(
-                "--extent {e} must be a positive number"
-            )));
+            return Err(ProfileError::invalid(
+                "extent_m",
+                format!("{e} must be a positive number"),
+            ));
         }
     }
     // Sun positions first: they decide the extent and which steps are skipped.
@@ -266,7 +284,7 @@ pub fn compute(
     let extent = spec.extent_m.unwrap_or(auto_side);
     let n = spec.resolution;
     let plan = PlanView::new(gpu, center, extent, lo.z, hi.z, n);
-    let passes = VolumePasses::new(gpu, super::targets::LDR_FORMAT);
+    let passes = VolumePasses::new(gpu, crate::render::targets::LDR_FORMAT);
     let camera_bind = passes.bind_group(gpu, plan.view_proj, &[], None);
     let mut enc = gpu.device.create_command_encoder(&Default::default());
     passes.record_surfaces(

@@ -11,12 +11,13 @@ use std::time::Instant;
 
 use glam::{DVec3, Vec3};
 
-use super::passes::LightModel;
-use super::targets::Targets;
-use super::Renderer;
+use super::median;
 use crate::geometry::generate::torus;
 use crate::gpu::Gpu;
 use crate::photometry::{Interp, Luminaire, PhotometryError};
+use crate::render::passes::LightModel;
+use crate::render::targets::Targets;
+use crate::render::Renderer;
 use crate::scene::placement::aim_frame;
 use crate::scene::{Camera, DisplayEntry, Material, PlacedLuminaire, Scene, SceneMesh};
 
@@ -142,16 +143,6 @@ pub fn bench_scene(major: u32, minor: u32, luminaires: &[PlacedLuminaire]) -> Sc
     }
 }
 
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    let n = v.len();
-    if n % 2 == 1 {
-        v[n / 2]
-    } else {
-        (v[n / 2 - 1] + v[n / 2]) / 2.0
-    }
-}
-
 /// How long to measure.
 #[derive(Debug, Clone, Copy)]
 pub struct BenchPlan {
@@ -197,7 +188,7 @@ pub fn run(
                         &scene.camera,
                         &targets,
                         *model,
-                        &super::ShadowSettings::none(),
+                        &crate::render::ShadowSettings::none(),
                         plan.frames,
                     )?;
                     if round > 0 {

@@ -1,0 +1,104 @@
+"""The Python package against the command line: the same numbers from both."""
+
+import json
+import os
+import pathlib
+import subprocess
+
+import numpy as np
+import pytest
+
+import goniolight
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+SAMPLE = ROOT / "luminaires" / "eulumdat-analysis" / "sample_18.ldt"
+SCENE = ROOT / "assets" / "scenes" / "box_room.toml"
+
+
+def cli(*args, stdin=None):
+    exe = os.environ.get("GONIOLIGHT_BIN") or str(ROOT / "target" / "debug" / "goniolight")
+    assert os.path.exists(exe), f"goniolight binary not found at {exe}: build it or set GONIOLIGHT_BIN"
+    done = subprocess.run([exe, *args], input=stdin, capture_output=True, text=True, check=True)
+    return done.stdout
+
+
+def test_info_equals_ldt_info_json():
+    lum = goniolight.read(SAMPLE)
+    expected = json.loads(cli("ldt", "info", str(SAMPLE), "--json"))
+    assert lum.info == expected
+    assert lum.intensities.shape == (len(expected["c_angles"]), len(expected["gamma_angles"]))
+    np.testing.assert_array_equal(lum.intensities, np.asarray(expected["intensities"]))
+    assert lum.info["flux_lm"] == pytest.approx(2445.4, rel=1e-3)
+
+
+@pytest.mark.parametrize("interp", goniolight.INTERPOLATIONS)
+def test_sampling_equals_ldt_sample(interp):
+    lum = goniolight.read(SAMPLE)
+    rng = np.random.default_rng(7)
+    c = rng.uniform(-30.0, 390.0, 200)
+    g = rng.uniform(0.0, 180.0, 200)
+    text = "".join(f"{a!r} {b!r}\n" for a, b in zip(c, g))
+    expected = np.asarray([float(v) for v in cli("ldt", "sample", str(SAMPLE), "--interp", interp, stdin=text).split()])
+    got = lum.sample(c, g, interp=interp)
+    assert got.shape == (200,)
+    # The command prints Rust's shortest round-trip form: equal to the last bit.
+    np.testing.assert_array_equal(got, expected)
+    # Broadcasting keeps the shape; measured angles give the measured values.
+    grid = lum.sample(lum.c_angles[:, None], lum.gamma_angles[None, :], interp=interp)
+    np.testing.assert_allclose(grid, lum.intensities, rtol=0, atol=1e-9 * lum.intensities.max())
+
+
+def test_check_equals_ldt_check_json():
+    lum = goniolight.read(SAMPLE)
+    expected = json.loads(cli("ldt", "check", str(SAMPLE), "--downsample", "15,5", "--json"))
+    assert lum.check(downsample=(15, 5)) == expected
+
+
+def test_write_round_trips(tmp_path):
+    lum = goniolight.read(SAMPLE)
+    for ext in ("ldt", "ies"):
+        out = tmp_path / f"copy.{ext}"
+        lum.write(out)
+        back = goniolight.read(out)
+        np.testing.assert_allclose(back.intensities, lum.intensities, rtol=1e-4, atol=1e-6)
+    with pytest.raises(ValueError):
+        lum.write(tmp_path / "copy.txt")
+
+
+def test_bad_files_name_the_file(tmp_path):
+    bad = tmp_path / "bad.ldt"
+    bad.write_text("not a luminaire\n")
+    with pytest.raises(ValueError, match="bad.ldt"):
+        goniolight.read(bad)
+
+
+def test_sun_position_equals_sun_json():
+    times = ["2026-03-21T09:00", "2026-06-21T12:30", "2026-12-21T15:45"]
+    got = goniolight.sun_position(48.21, 16.37, times, tz="Europe/Vienna")
+    for k, t in enumerate(times):
+        expected = json.loads(cli("sun", "--lat", "48.21", "--lon", "16.37", "--time", t,
+                                  "--tz", "Europe/Vienna", "--json"))
+        assert got["utc"][k] == expected["utc"]
+        for key in ("zenith_deg", "apparent_zenith_deg", "elevation_deg", "azimuth_deg", "delta_t_s"):
+            assert got[key][k] == expected[key], key
+        np.testing.assert_array_equal(got["direction"][k], expected["direction"])
+    # numpy datetime64 (UTC) gives the same instant as the ISO string with an offset.
+    a = goniolight.sun_position(48.21, 16.37, np.array(["2026-06-21T10:30:00"], dtype="datetime64[s]"))
+    b = goniolight.sun_position(48.21, 16.37, "2026-06-21T10:30:00+00:00")
+    assert a["azimuth_deg"][0] == b["azimuth_deg"][0]
+
+
+def test_illuminance_equals_the_illuminance_command():
+    xs = np.linspace(0.5, 3.5, 5)
+    pts = np.array([[x, y, 0.8, 0.0, 0.0, 1.0] for x in xs for y in (1.0, 2.0)])
+    text = "".join(" ".join(repr(v) for v in p) + "\n" for p in pts)
+    for cpu in (False, True):
+        args = ["illuminance", str(SCENE)] + (["--cpu"] if cpu else [])
+        expected = np.asarray([float(v) for v in cli(*args, stdin=text).split()])
+        lux, device = goniolight.illuminance(SCENE, pts, cpu=cpu, return_device=True)
+        assert device == ("cpu" if cpu else "gpu")
+        # The command prints six decimals.
+        np.testing.assert_allclose(lux, expected, rtol=0, atol=5e-7)
+        assert (lux > 1.0).all()
+    with pytest.raises(ValueError, match="N × 6"):
+        goniolight.illuminance(SCENE, np.zeros((3, 5)))

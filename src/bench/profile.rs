@@ -1,0 +1,84 @@
+//! `bench profile`: one sun-path shadow profile of a generated building, with brute-force
+//! and hextree silhouettes, side by side.
+
+use std::sync::atomic::AtomicBool;
+
+use chrono::{NaiveDate, NaiveTime};
+use serde::Serialize;
+
+use crate::gpu::Gpu;
+use crate::shadow::SilhouetteMethod;
+use crate::study::profile::{compute, ProfileError, ProfileSpec};
+use crate::sun::{Site, SunOptions, Zone};
+
+/// One silhouette method's timing.
+#[derive(Debug, Clone, Serialize)]
+pub struct ProfileBenchRow {
+    /// "brute force" or "hextree".
+    pub method: &'static str,
+    /// Triangles of the building.
+    pub triangles: usize,
+    /// Profile steps (sun positions).
+    pub steps: usize,
+    /// Side of the plan, pixels.
+    pub resolution: u32,
+    /// Whole profile, seconds.
+    pub total_s: f64,
+    /// Per step, milliseconds.
+    pub per_step_ms: f64,
+    /// Silhouette search per step, milliseconds.
+    pub silhouette_ms_per_step: f64,
+    /// Volume passes and read-back per step, milliseconds.
+    pub render_ms_per_step: f64,
+}
+
+/// Profiles a `floors`-storey building in Vienna on the 2026 equinox, 08:00–16:00 every
+/// `step` minutes: a warm-up run (pipelines, hextree build), then each method.
+pub fn run(
+    gpu: &Gpu,
+    resolution: u32,
+    step: u32,
+    floors: u32,
+) -> Result<Vec<ProfileBenchRow>, ProfileError> {
+    let model = crate::geometry::generate::building(25, 25, floors);
+    let hm = |h| NaiveTime::from_hms_opt(h, 0, 0).unwrap_or_default();
+    let input = |e: crate::sun::SunError| ProfileError::Input(e.to_string());
+    let mut spec = ProfileSpec {
+        site: Site::new(48.21, 16.37, 0.0).map_err(input)?,
+        zone: Zone::parse("Europe/Vienna").map_err(input)?,
+        date: NaiveDate::from_ymd_opt(2026, 3, 21).unwrap_or_default(),
+        from: hm(8),
+        to: hm(16),
+        step_minutes: step,
+        sun: SunOptions::default(),
+        extent_m: None,
+        resolution,
+        silhouette: SilhouetteMethod::Brute,
+    };
+    let cancel = AtomicBool::new(false);
+    let mut rows = Vec::new();
+    for (label, method) in [
+        ("warm-up", SilhouetteMethod::Hextree),
+        ("brute force", SilhouetteMethod::Brute),
+        ("hextree", SilhouetteMethod::Hextree),
+    ] {
+        spec.silhouette = method;
+        let t = std::time::Instant::now();
+        let p = compute(gpu, &model, &spec, |_, _| {}, &cancel)?;
+        let total_s = t.elapsed().as_secs_f64();
+        let n = p.steps.len().max(1) as f64;
+        if label != "warm-up" {
+            rows.push(ProfileBenchRow {
+                method: label,
+                triangles: model.triangles.len(),
+                steps: p.steps.len(),
+                resolution,
+                total_s,
+                per_step_ms: 1000.0 * total_s / n,
+                silhouette_ms_per_step: 1000.0 * p.timing.silhouette_s / n,
+                render_ms_per_step: 1000.0 * p.timing.render_s / n,
+            });
+        }
+    }
+    Ok(rows)
+}

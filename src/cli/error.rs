@@ -1,0 +1,132 @@
+//! The commands' error: what went wrong and whose fault it was (exit 2 for bad input, 1
+//! for anything else), with a conversion from each library error.
+
+use crate::geometry::GeometryError;
+use crate::gpu::GpuError;
+use crate::photometry::PhotometryError;
+use crate::scene::SceneError;
+use crate::study::profile::ProfileError;
+use crate::sun::SunError;
+#[cfg(feature = "viewer")]
+use crate::viewer::ViewerError;
+
+/// A failed command: the error and whether it was the input's fault (exit 2) or not (1).
+#[derive(Debug)]
+pub struct CliError {
+    /// What went wrong, with context.
+    pub error: anyhow::Error,
+    /// True for bad input or usage.
+    pub bad_input: bool,
+}
+
+impl CliError {
+    /// An error caused by the user's input (exit code 2).
+    pub fn input(error: impl Into<anyhow::Error>) -> CliError {
+        CliError {
+            error: error.into(),
+            bad_input: true,
+        }
+    }
+
+    /// Any other failure (exit code 1).
+    pub fn failure(error: impl Into<anyhow::Error>) -> CliError {
+        CliError {
+            error: error.into(),
+            bad_input: false,
+        }
+    }
+
+    /// The process exit code.
+    pub fn code(&self) -> u8 {
+        if self.bad_input {
+            2
+        } else {
+            1
+        }
+    }
+}
+
+impl From<PhotometryError> for CliError {
+    fn from(e: PhotometryError) -> CliError {
+        let bad_input = e.is_bad_input();
+        CliError {
+            error: e.into(),
+            bad_input,
+        }
+    }
+}
+
+#[cfg(feature = "viewer")]
+impl From<ViewerError> for CliError {
+    fn from(e: ViewerError) -> CliError {
+        let bad_input = e.is_bad_input();
+        CliError {
+            error: e.into(),
+            bad_input,
+        }
+    }
+}
+
+impl From<GeometryError> for CliError {
+    fn from(e: GeometryError) -> CliError {
+        match &e {
+            GeometryError::Io { source, .. }
+                if !matches!(
+                    source.kind(),
+                    std::io::ErrorKind::NotFound | std::io::ErrorKind::PermissionDenied
+                ) =>
+            {
+                CliError::failure(e)
+            }
+            _ => CliError::input(e),
+        }
+    }
+}
+
+impl From<ProfileError> for CliError {
+    fn from(e: ProfileError) -> CliError {
+        match e {
+            // The library names the spec's fields; the command names its flags.
+            ProfileError::Invalid { field, message } => {
+                let flag = match field {
+                    "step_minutes" => "--step",
+                    "extent_m" => "--extent",
+                    "resolution" => "--resolution",
+                    "from" => "--from",
+                    other => other,
+                };
+                let message = message.replace("(to)", "--to");
+                CliError::input(anyhow::anyhow!("{flag} {message}"))
+            }
+            ProfileError::Input(_) => CliError::input(e),
+            ProfileError::Gpu(_) | ProfileError::Cancelled => CliError::failure(e),
+        }
+    }
+}
+
+impl From<SunError> for CliError {
+    fn from(e: SunError) -> CliError {
+        match e {
+            SunError::Input(_) => CliError::input(e),
+            SunError::Model(_) => CliError::input(e),
+        }
+    }
+}
+
+impl From<SceneError> for CliError {
+    fn from(e: SceneError) -> CliError {
+        CliError::input(e)
+    }
+}
+
+impl From<GpuError> for CliError {
+    fn from(e: GpuError) -> CliError {
+        CliError::failure(e)
+    }
+}
+
+impl From<crate::lighting::PointsError> for CliError {
+    fn from(e: crate::lighting::PointsError) -> CliError {
+        CliError::input(e)
+    }
+}

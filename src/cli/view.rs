@@ -1,0 +1,88 @@
+//! `goniolight view`: the viewer's options, checked and handed to [`crate::viewer::start`].
+
+use std::path::PathBuf;
+
+use anyhow::anyhow;
+use chrono::Timelike;
+use clap::Args;
+
+use super::CliError;
+use crate::viewer::{start, window::WindowOptions, StartOptions};
+
+/// Options of `view`.
+#[derive(Debug, Args)]
+pub struct ViewArgs {
+    /// A scene file (TOML) or an OBJ model (default: the bundled furnished room).
+    pub path: Option<PathBuf>,
+    /// Render this many frames, then exit (with --screenshot: 3 unless given).
+    #[arg(long)]
+    pub frames: Option<u64>,
+    /// After the last frame, save the whole window (UI included) as PNG and exit.
+    #[arg(long)]
+    pub screenshot: Option<PathBuf>,
+    /// Window width, logical pixels.
+    #[arg(long, default_value_t = 1280)]
+    pub width: u32,
+    /// Window height, logical pixels.
+    #[arg(long, default_value_t = 800)]
+    pub height: u32,
+    /// Luminaire files to add to the scene at start (as if dropped on the window).
+    #[arg(long = "add", value_name = "LDT|IES")]
+    pub add: Vec<PathBuf>,
+    /// Up axis of an OBJ model given as PATH: y (most exporters) or z.
+    #[arg(long, value_enum, default_value = "y")]
+    pub up: crate::scene::UpAxis,
+    /// Mode at start: shaded or illuminance (default: the scene's).
+    #[arg(long, value_enum)]
+    pub mode: Option<crate::scene::Mode>,
+    /// Turn the sun on at this local time (HH:MM) at start, with shadow volumes (the
+    /// site and date are set in the Sun panel; default Vienna on the summer solstice).
+    #[arg(long, value_name = "HH:MM")]
+    pub sun: Option<String>,
+}
+
+/// Runs `view`.
+pub fn run(args: ViewArgs) -> Result<(), CliError> {
+    let bad = |m: String| Err(CliError::input(anyhow!(m)));
+    if args.frames == Some(0) {
+        return bad("--frames must be at least 1".into());
+    }
+    for (name, v) in [("--width", args.width), ("--height", args.height)] {
+        if !(64..=8192).contains(&v) {
+            return bad(format!("{name} {v} is not in 64..=8192"));
+        }
+    }
+    if let Some(s) = &args.screenshot {
+        if image::ImageFormat::from_path(s).ok() != Some(image::ImageFormat::Png) {
+            return bad(format!("--screenshot {}: must end in .png", s.display()));
+        }
+    }
+    let sun_minutes = match &args.sun {
+        None => None,
+        Some(t) => {
+            let time = chrono::NaiveTime::parse_from_str(t.trim(), "%H:%M")
+                .map_err(|e| CliError::input(anyhow!("--sun {t:?}: not a time HH:MM ({e})")))?;
+            Some(f64::from(time.num_seconds_from_midnight()) / 60.0)
+        }
+    };
+    let options = StartOptions {
+        path: args.path.clone(),
+        add: args.add.clone(),
+        up: args.up,
+        mode: args.mode,
+        sun_minutes,
+        window: WindowOptions {
+            size: [args.width, args.height],
+            frames: args.frames.or(args.screenshot.as_ref().map(|_| 3)),
+            screenshot: args.screenshot.clone(),
+        },
+    };
+    let summary = start(options)?;
+    if args.frames.is_some() || args.screenshot.is_some() {
+        println!(
+            "{}",
+            serde_json::to_string(&summary).map_err(|e| CliError::failure(anyhow!(e)))?
+        );
+    }
+    Ok(())
+}

@@ -1,0 +1,127 @@
+//! The CPU twin of the renderer's lighting: direct illuminance at surface points from
+//! placed luminaires, exact hard shadows by ray casting, and the reader of point lists
+//! ("x y z nx ny nz" lines). The GPU code in `render` is checked against it, and the CPU
+//! radiosity solver uses it without touching the GPU.
+
+use std::io::BufRead;
+
+use glam::DVec3;
+use rayon::prelude::*;
+
+use crate::geometry::Mesh;
+use crate::photometry::Interp;
+use crate::scene::PlacedLuminaire;
+use crate::shadow::{raycast, Light};
+
+/// A malformed line in a list of points.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{source_name}: line {line}: {message}")]
+pub struct PointsError {
+    /// The file (or "stdin") the points came from.
+    pub source_name: String,
+    /// 1-based line number.
+    pub line: usize,
+    /// What is wrong.
+    pub message: String,
+}
+
+/// A point on a surface: position (metres) and normal (need not be unit length).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SurfacePoint {
+    /// Position.
+    pub position: DVec3,
+    /// Normal.
+    pub normal: DVec3,
+}
+
+/// The CPU reference without shadows: Σ over luminaires of I · cos θ / d², lux.
+pub fn illuminance_cpu(luminaires: &[PlacedLuminaire], p: &SurfacePoint, interp: Interp) -> f64 {
+    let n = p.normal.normalize_or_zero();
+    luminaires
+        .iter()
+        .map(|l| l.illuminance_at(p.position, n, interp))
+        .sum()
+}
+
+/// Which lights reach which points: `visible[light][point]`, by casting a ray from each
+/// point toward each light position against `casters`. These are exact hard shadows: the
+/// CPU reference of every shadow technique, and what `volumes` means for point queries.
+pub fn point_visibility(
+    casters: &Mesh,
+    light_positions: &[DVec3],
+    points: &[SurfacePoint],
+) -> Vec<Vec<bool>> {
+    let eps = raycast::self_hit_epsilon(casters);
+    light_positions
+        .iter()
+        .map(|&at| {
+            let light = Light(at.extend(1.0));
+            points
+                .par_iter()
+                .map(|p| !raycast::in_shadow(casters, &light, p.position, eps))
+                .collect()
+        })
+        .collect()
+}
+
+/// The CPU reference with shadows cast by `casters` (none when `None`): lux at `points`.
+pub fn illuminance_cpu_in_scene(
+    luminaires: &[PlacedLuminaire],
+    casters: Option<&Mesh>,
+    points: &[SurfacePoint],
+    interp: Interp,
+) -> Vec<f64> {
+    let visible = casters.map(|mesh| {
+        let positions: Vec<DVec3> = luminaires.iter().map(|l| l.position).collect();
+        point_visibility(mesh, &positions, points)
+    });
+    points
+        .par_iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let n = p.normal.normalize_or_zero();
+            luminaires
+                .iter()
+                .enumerate()
+                .filter(|(k, _)| visible.as_ref().is_none_or(|v| v[*k][i]))
+                .map(|(_, l)| l.illuminance_at(p.position, n, interp))
+                .sum()
+        })
+        .collect()
+}
+
+/// Parses lines `x y z nx ny nz` (blank lines and `#` comments skipped).
+pub fn read_points(input: impl BufRead, name: &str) -> Result<Vec<SurfacePoint>, PointsError> {
+    let mut points = Vec::new();
+    for (i, line) in input.lines().enumerate() {
+        let err = |message: String| PointsError {
+            source_name: name.to_string(),
+            line: i + 1,
+            message,
+        };
+        let line = line.map_err(|e| err(e.to_string()))?;
+        let t = line.trim();
+        if t.is_empty() || t.starts_with('#') {
+            continue;
+        }
+        let v: Vec<f64> = t
+            .split_whitespace()
+            .map(|w| w.parse::<f64>())
+            .collect::<Result<_, _>>()
+            .map_err(|e| err(format!("{e}: {t:?}")))?;
+        if v.len() != 6 || v.iter().any(|x| !x.is_finite()) {
+            return Err(err(format!(
+                "expected six finite numbers \"x y z nx ny nz\", got {t:?}"
+            )));
+        }
+        let normal = DVec3::new(v[3], v[4], v[5]);
+        if normal.length() < 1e-12 {
+            return Err(err("the normal has zero length".into()));
+        }
+        points.push(SurfacePoint {
+            position: DVec3::new(v[0], v[1], v[2]),
+            normal,
+        });
+    }
+    Ok(points)
+}

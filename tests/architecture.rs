@@ -1,0 +1,482 @@
+//! The house's rules, checked on the source itself:
+//! - no import cycle between the library's files (every `use crate::…`, `use super::…`,
+//!   child-module path and inline `crate::…` path counts as an arrow to the file that
+//!   defines the module it names, except a child naming its own ancestors);
+//! - the library without default features pulls in no GPU or GUI crate.
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+
+mod imports {
+    use super::*;
+
+    /// A module path (`["render", "shadows"]`) for each `.rs` file under `src`.
+    pub fn module_files(src: &Path) -> BTreeMap<Vec<String>, PathBuf> {
+        let mut out = BTreeMap::new();
+        let mut stack = vec![src.to_path_buf()];
+        while let Some(dir) = stack.pop() {
+            for entry in std::fs::read_dir(&dir).expect("read src") {
+                let path = entry.expect("dir entry").path();
+                if path.is_dir() {
+                    stack.push(path);
+                    continue;
+                }
+                if path.extension().and_then(|e| e.to_str()) != Some("rs") {
+                    continue;
+                }
+                let rel = path.strip_prefix(src).expect("under src");
+                let mut parts: Vec<String> = rel
+                    .iter()
+                    .map(|p| p.to_string_lossy().trim_end_matches(".rs").to_string())
+                    .collect();
+                match parts.last().map(String::as_str) {
+                    Some("main") if parts.len() == 1 => continue,
+                    Some("lib") if parts.len() == 1 => parts.clear(),
+                    Some("mod") => {
+                        parts.pop();
+                    }
+                    _ => {}
+                }
+                out.insert(parts, path);
+            }
+        }
+        out
+    }
+
+    /// Source without comments, string and char literals, and without inline
+    /// `#[cfg(test)]` modules (tests may reach anywhere).
+    pub fn code_only(text: &str) -> String {
+        let b = text.as_bytes();
+        let mut out = String::with_capacity(text.len());
+        let mut i = 0;
+        while i < b.len() {
+            if b[i..].starts_with(b"//") {
+                while i < b.len() && b[i] != b'\n' {
+                    i += 1;
+                }
+            } else if b[i..].starts_with(b"/*") {
+                let mut depth = 0;
+                while i < b.len() {
+                    if b[i..].starts_with(b"/*") {
+                        depth += 1;
+                        i += 2;
+                    } else if b[i..].starts_with(b"*/") {
+                        depth -= 1;
+                        i += 2;
+                        if depth == 0 {
+                            break;
+                        }
+                    } else {
+                        i += 1;
+                    }
+                }
+            } else if b[i] == b'"'
+                || (b[i] == b'r'
+                    && b.get(i + 1).is_some_and(|c| *c == b'"' || *c == b'#')
+                    && (i == 0 || !(b[i - 1].is_ascii_alphanumeric() || b[i - 1] == b'_')))
+            {
+                // Plain or raw string literal.
+                let mut hashes = 0;
+                if b[i] == b'r' {
+                    i += 1;
+                    while b.get(i) == Some(&b'#') {
+                        hashes += 1;
+                        i += 1;
+                    }
+                    i += 1;
+                    loop {
+                        if i >= b.len() {
+                            break;
+                        }
+                        if b[i] == b'"'
+                            && b[i + 1..]
+                                .iter()
+                                .take(hashes)
+                                .filter(|c| **c == b'#')
+                                .count()
+                                == hashes
+                        {
+                            i += 1 + hashes;
+                            break;
+                        }
+                        i += 1;
+                    }
+                } else {
+                    i += 1;
+                    while i < b.len() && b[i] != b'"' {
+                        if b[i] == b'\\' {
+                            i += 1;
+                        }
+                        i += 1;
+                    }
+                    i += 1;
+                }
+                out.push_str("\"\"");
+            } else if b[i] == b'\''
+                && (b.get(i + 2) == Some(&b'\'') || b.get(i + 1) == Some(&b'\\'))
+            {
+                // A char literal ('a' or '\n'); lifetimes ('a) are left alone.
+                i += 1;
+                while i < b.len() && b[i] != b'\'' {
+                    if b[i] == b'\\' {
+                        i += 1;
+                    }
+                    i += 1;
+                }
+                i += 1;
+                out.push_str("' '");
+            } else {
+                let c = text[i..].chars().next().expect("char");
+                out.push(c);
+                i += c.len_utf8();
+            }
+        }
+        match out.find("#[cfg(test)]\nmod ") {
+            Some(k) => out[..k].to_string(),
+            None => out,
+        }
+    }
+
+    /// Expands a `use` tree (`a::{b, c::{d as e}, f::*}`) into its paths.
+    pub fn use_paths(tree: &str) -> Vec<Vec<String>> {
+        fn expand(prefix: &[String], tree: &str, out: &mut Vec<Vec<String>>) {
+            let tree = tree.trim();
+            if tree.is_empty() {
+                return;
+            }
+            // Split the top level at the first `{`.
+            if let Some(open) = tree.find('{') {
+                let head: Vec<String> = split_path(&tree[..open]);
+                let close = tree.rfind('}').unwrap_or(tree.len());
+                let inner = &tree[open + 1..close];
+                let mut base = prefix.to_vec();
+                base.extend(head);
+                let mut depth = 0;
+                let mut start = 0;
+                for (k, c) in inner.char_indices() {
+                    match c {
+                        '{' => depth += 1,
+                        '}' => depth -= 1,
+                        ',' if depth == 0 => {
+                            expand(&base, &inner[start..k], out);
+                            start = k + 1;
+                        }
+                        _ => {}
+                    }
+                }
+                expand(&base, &inner[start..], out);
+            } else {
+                let name = tree.split(" as ").next().unwrap_or(tree);
+                let mut path = prefix.to_vec();
+                path.extend(split_path(name));
+                if path.last().is_some_and(|s| s == "self" || s == "*") {
+                    path.pop();
+                }
+                out.push(path);
+            }
+        }
+        fn split_path(s: &str) -> Vec<String> {
+            s.split("::")
+                .map(|p| p.trim().to_string())
+                .filter(|p| !p.is_empty())
+                .collect()
+        }
+        let mut out = Vec::new();
+        expand(&[], tree, &mut out);
+        out
+    }
+
+    /// Every path the code names: `use` trees and inline `crate::`/`super::`/`self::` paths.
+    pub fn named_paths(code: &str) -> Vec<Vec<String>> {
+        let mut out = Vec::new();
+        let mut rest = String::new();
+        let mut i = 0;
+        let bytes = code.as_bytes();
+        while i < code.len() {
+            let at_word = i == 0 || !(bytes[i - 1].is_ascii_alphanumeric() || bytes[i - 1] == b'_');
+            if at_word && code[i..].starts_with("use ") {
+                let end = code[i..].find(';').map_or(code.len(), |k| i + k);
+                out.extend(use_paths(&code[i + 4..end]));
+                i = end + 1;
+                continue;
+            }
+            let c = code[i..].chars().next().expect("char");
+            rest.push(c);
+            i += c.len_utf8();
+        }
+        for start in ["crate::", "super::", "self::"] {
+            let mut from = 0;
+            while let Some(k) = rest[from..].find(start) {
+                let at = from + k;
+                from = at + start.len();
+                let before = rest[..at].chars().last();
+                if before.is_some_and(|c| c.is_alphanumeric() || c == '_' || c == ':') {
+                    continue;
+                }
+                let path: Vec<String> = rest[at..]
+                    .split(|c: char| !(c.is_alphanumeric() || c == '_' || c == ':'))
+                    .next()
+                    .unwrap_or("")
+                    .split("::")
+                    .filter(|s| !s.is_empty())
+                    .map(str::to_string)
+                    .collect();
+                out.push(path);
+            }
+        }
+        out
+    }
+
+    /// The arrows between files: `from → to` when `from` names a module `to` defines.
+    pub fn arrows(src: &Path) -> BTreeMap<PathBuf, BTreeSet<PathBuf>> {
+        let modules = module_files(src);
+        let mut graph: BTreeMap<PathBuf, BTreeSet<PathBuf>> = BTreeMap::new();
+        for (module, file) in &modules {
+            let text = std::fs::read_to_string(file).expect("read source");
+            let targets = graph.entry(file.clone()).or_default();
+            for path in named_paths(&code_only(&text)) {
+                let Some(first) = path.first() else { continue };
+                let (mut base, skip) = match first.as_str() {
+                    "crate" => (Vec::new(), 1),
+                    "self" => (module.clone(), 1),
+                    "super" => {
+                        let supers = path.iter().take_while(|s| *s == "super").count();
+                        let keep = module.len().saturating_sub(supers);
+                        (module[..keep].to_vec(), supers)
+                    }
+                    name => {
+                        // A child module named without `self::` (2018 uniform paths).
+                        let mut child = module.clone();
+                        child.push(name.to_string());
+                        if !modules.contains_key(&child) {
+                            continue;
+                        }
+                        (module.clone(), 0)
+                    }
+                };
+                for seg in &path[skip..] {
+                    let mut next = base.clone();
+                    next.push(seg.clone());
+                    if modules.contains_key(&next) {
+                        base = next;
+                    } else {
+                        break;
+                    }
+                }
+                // A file reaching into its own ancestors (`use super::Error` in a child of
+                // the module that declares it) is containment, not an arrow: the folder is
+                // one module. Arrows from a parent into its children count.
+                if module.starts_with(&base) {
+                    continue;
+                }
+                if let Some(target) = modules.get(&base) {
+                    if target != file {
+                        targets.insert(target.clone());
+                    }
+                }
+            }
+        }
+        graph
+    }
+
+    /// The strongly connected components with more than one file (Tarjan).
+    pub fn cycles(graph: &BTreeMap<PathBuf, BTreeSet<PathBuf>>) -> Vec<Vec<PathBuf>> {
+        struct State<'a> {
+            graph: &'a BTreeMap<PathBuf, BTreeSet<PathBuf>>,
+            index: BTreeMap<&'a PathBuf, usize>,
+            low: BTreeMap<&'a PathBuf, usize>,
+            stack: Vec<&'a PathBuf>,
+            on_stack: BTreeSet<&'a PathBuf>,
+            next: usize,
+            out: Vec<Vec<PathBuf>>,
+        }
+        fn visit<'a>(s: &mut State<'a>, v: &'a PathBuf) {
+            s.index.insert(v, s.next);
+            s.low.insert(v, s.next);
+            s.next += 1;
+            s.stack.push(v);
+            s.on_stack.insert(v);
+            let graph = s.graph;
+            for w in graph.get(v).into_iter().flatten() {
+                let Some((w, _)) = graph.get_key_value(w) else {
+                    continue;
+                };
+                if !s.index.contains_key(w) {
+                    visit(s, w);
+                    let lw = s.low[w];
+                    let lv = s.low.get_mut(v).expect("low");
+                    *lv = (*lv).min(lw);
+                } else if s.on_stack.contains(w) {
+                    let iw = s.index[w];
+                    let lv = s.low.get_mut(v).expect("low");
+                    *lv = (*lv).min(iw);
+                }
+            }
+            if s.low[v] == s.index[v] {
+                let mut scc = Vec::new();
+                while let Some(w) = s.stack.pop() {
+                    s.on_stack.remove(w);
+                    scc.push(w.clone());
+                    if w == v {
+                        break;
+                    }
+                }
+                if scc.len() > 1 {
+                    scc.sort();
+                    s.out.push(scc);
+                }
+            }
+        }
+        let mut s = State {
+            graph,
+            index: BTreeMap::new(),
+            low: BTreeMap::new(),
+            stack: Vec::new(),
+            on_stack: BTreeSet::new(),
+            next: 0,
+            out: Vec::new(),
+        };
+        for v in graph.keys() {
+            if !s.index.contains_key(v) {
+                visit(&mut s, v);
+            }
+        }
+        s.out
+    }
+}
+
+fn describe(cycles: &[Vec<PathBuf>], graph: &BTreeMap<PathBuf, BTreeSet<PathBuf>>) -> String {
+    let mut msg = String::new();
+    for c in cycles {
+        msg.push_str("cycle:\n");
+        for a in c {
+            for b in &graph[a] {
+                if c.contains(b) {
+                    msg.push_str(&format!("  {} -> {}\n", a.display(), b.display()));
+                }
+            }
+        }
+    }
+    msg
+}
+
+#[test]
+fn the_library_has_no_import_cycles() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let graph = imports::arrows(&src);
+    // The check sees the real arrows (a broken parser would find none and pass).
+    let arrows: usize = graph.values().map(BTreeSet::len).sum();
+    assert!(
+        arrows > 150,
+        "only {arrows} arrows found: the import parser is broken"
+    );
+    let render = src.join("render/mod.rs");
+    assert!(graph[&src.join("cli/render.rs")].contains(&render));
+    let cycles = imports::cycles(&graph);
+    assert!(cycles.is_empty(), "{}", describe(&cycles, &graph));
+}
+
+#[test]
+fn a_planted_cycle_is_found() {
+    let dir = tempfile::tempdir().unwrap();
+    let src = dir.path();
+    let write = |p: &str, t: &str| {
+        let path = src.join(p);
+        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+        std::fs::write(path, t).unwrap();
+    };
+    write("lib.rs", "pub mod a;\npub mod b;\npub mod c;\n");
+    write(
+        "a/mod.rs",
+        "mod inner;\nuse inner::X;\n// use crate::c; (a comment)\n",
+    );
+    write(
+        "a/inner.rs",
+        "use crate::b::{self, Y as Z};\nuse super::helper;\npub struct X;\n",
+    );
+    write(
+        "b.rs",
+        "pub fn f() { let _ = crate::a::helper(); }\npub struct Y;\n",
+    );
+    write(
+        "c.rs",
+        "const S: &str = \"crate::a\";\n#[cfg(test)]\nmod tests { use crate::a; }\n",
+    );
+    let graph = imports::arrows(src);
+    let cycles = imports::cycles(&graph);
+    assert_eq!(cycles.len(), 1, "{}", describe(&cycles, &graph));
+    let names: Vec<String> = cycles[0]
+        .iter()
+        .map(|p| p.strip_prefix(src).unwrap().display().to_string())
+        .collect();
+    assert_eq!(names, ["a/inner.rs", "a/mod.rs", "b.rs"]);
+    // Strings, comments and test modules are not arrows.
+    assert!(graph[&src.join("c.rs")].is_empty());
+    assert!(!graph[&src.join("a/mod.rs")].contains(&src.join("c.rs")));
+    // A child naming its parent is containment; the parent naming the child is an arrow.
+    assert!(!graph[&src.join("a/inner.rs")].contains(&src.join("a/mod.rs")));
+    assert!(graph[&src.join("a/mod.rs")].contains(&src.join("a/inner.rs")));
+}
+
+#[test]
+fn use_trees_expand_to_every_path() {
+    let paths = imports::use_paths("crate::a::{b, c::{d as e, self}, f::*}");
+    let joined: Vec<String> = paths.iter().map(|p| p.join("::")).collect();
+    assert_eq!(
+        joined,
+        [
+            "crate::a::b",
+            "crate::a::c::d",
+            "crate::a::c",
+            "crate::a::f"
+        ]
+    );
+}
+
+#[test]
+fn the_library_without_default_features_has_no_gpu_or_gui_crates() {
+    let out = std::process::Command::new(env!("CARGO"))
+        .args([
+            "tree",
+            "--offline",
+            "--no-default-features",
+            "-e",
+            "normal",
+            "--prefix",
+            "none",
+            "-p",
+            "goniolight",
+        ])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("run cargo tree");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let tree = String::from_utf8_lossy(&out.stdout);
+    let crates: BTreeSet<&str> = tree
+        .lines()
+        .filter_map(|l| l.split_whitespace().next())
+        .collect();
+    assert!(
+        crates.contains("goniolight") && crates.contains("glam"),
+        "{tree}"
+    );
+    for gui in [
+        "wgpu",
+        "egui",
+        "winit",
+        "rfd",
+        "egui-wgpu",
+        "naga",
+        "clap",
+        "indicatif",
+    ] {
+        assert!(
+            !crates.contains(gui),
+            "{gui} is in the library's tree without default features"
+        );
+    }
+}
