@@ -17,8 +17,6 @@ use super::{GeometryError, Mesh};
 
 /// The name of the object that lists every vertex (geometry reading only).
 const ALL_VERTICES: &str = "__goniolight_all_vertices__";
-/// Vertex indices per `p` line of that object.
-const POINTS_PER_LINE: usize = 64;
 
 /// A parsed OBJ file.
 #[derive(Debug)]
@@ -84,11 +82,10 @@ pub fn parse(
         ignore_lines: true,
     };
     let (models, materials) = tobj::load_obj_buf(&mut reader, &load, load_mtl).map_err(|e| {
-        let at = reader.lines.max(1);
+        // Past the file's end means tobj was closing the file's last object.
+        let at = reader.lines.clamp(1, file_lines.max(1));
         let message = e.to_string();
-        if at > file_lines {
-            GeometryError::Invalid(format!("{name}: {message} (at the end of the file)"))
-        } else if matches!(
+        if matches!(
             e,
             tobj::LoadError::FaceVertexOutOfBounds
                 | tobj::LoadError::FaceTexCoordOutOfBounds
@@ -141,8 +138,8 @@ pub fn parse(
 }
 
 /// The OBJ text with each `v` line as `v x y z INDEX 0 0` and `p` lines blanked (line
-/// numbers unchanged), plus, with `all_vertices`, an object of point elements naming
-/// every vertex. Returns the text, the file's line count and its vertex count.
+/// numbers unchanged), plus, with `all_vertices`, an object of one-vertex faces (points)
+/// naming every vertex. Returns the text, the file's line count and its vertex count.
 fn tag_vertices(text: &str, all_vertices: bool) -> (String, usize, usize) {
     let mut out = String::with_capacity(text.len() + text.len() / 4);
     let mut vertices = 0usize;
@@ -170,12 +167,9 @@ fn tag_vertices(text: &str, all_vertices: bool) -> (String, usize, usize) {
     }
     if all_vertices && vertices > 0 {
         out.push_str(&format!("o {ALL_VERTICES}\n"));
-        for start in (1..=vertices).step_by(POINTS_PER_LINE) {
-            out.push('p');
-            for i in start..(start + POINTS_PER_LINE).min(vertices + 1) {
-                out.push_str(&format!(" {i}"));
-            }
-            out.push('\n');
+        // tobj reads a one-vertex face as a point element.
+        for i in 1..=vertices {
+            out.push_str(&format!("f {i}\n"));
         }
     }
     (out, lines, vertices)
