@@ -33,6 +33,7 @@ fn write_jobs(dir: &Path) -> std::path::PathBuf {
     let ldt = luminaire("eulumdat-analysis/sample_18.ldt");
     let scene = root().join("assets/scenes/box_room.toml");
     std::fs::create_dir_all(dir.join("in")).unwrap();
+    std::fs::create_dir_all(dir.join("out")).unwrap();
     std::fs::write(
         dir.join("in/points.txt"),
         "1 1 0.8 0 0 1\n2 1.5 0.8 0 0 1\n",

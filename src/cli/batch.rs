@@ -255,6 +255,10 @@ fn run_job(job: &Job) -> Result<(), CliError> {
                     .unwrap_or_default(),
                 std::process::id()
             ));
+            if let Some(dir) = p.parent().filter(|d| !d.as_os_str().is_empty()) {
+                std::fs::create_dir_all(dir)
+                    .map_err(|e| CliError::failure(anyhow!("stdout {}: {e}", p.display())))?;
+            }
             let file = std::fs::File::create(&tmp)
                 .map_err(|e| CliError::failure(anyhow!("stdout {}: {e}", p.display())))?;
             let result = {

@@ -95,7 +95,7 @@ impl From<ProfileError> for CliError {
                     "from" => "--from",
                     other => other,
                 };
-                let message = message.replace("(to)", "--to");
+                let message = message.replace("`to`", "--to");
                 CliError::input(anyhow::anyhow!("{flag} {message}"))
             }
             ProfileError::Input(_) => CliError::input(e),

@@ -85,7 +85,7 @@ impl ProfileSpec {
             return Err(ProfileError::invalid(
                 "from",
                 format!(
-                    "{} is after the end of the period (to) {}",
+                    "{} is after `to` {}",
                     self.from.format("%H:%M"),
                     self.to.format("%H:%M")
                 ),
