@@ -37,7 +37,7 @@ def test_sampling_equals_ldt_sample(interp):
     rng = np.random.default_rng(7)
     c = rng.uniform(-30.0, 390.0, 200)
     g = rng.uniform(0.0, 180.0, 200)
-    text = "".join(f"{a!r} {b!r}\n" for a, b in zip(c, g))
+    text = "".join(f"{float(a)!r} {float(b)!r}\n" for a, b in zip(c, g))
     expected = np.asarray([float(v) for v in cli("ldt", "sample", str(SAMPLE), "--interp", interp, stdin=text).split()])
     got = lum.sample(c, g, interp=interp)
     assert got.shape == (200,)
@@ -91,7 +91,7 @@ def test_sun_position_equals_sun_json():
 def test_illuminance_equals_the_illuminance_command():
     xs = np.linspace(0.5, 3.5, 5)
     pts = np.array([[x, y, 0.8, 0.0, 0.0, 1.0] for x in xs for y in (1.0, 2.0)])
-    text = "".join(" ".join(repr(v) for v in p) + "\n" for p in pts)
+    text = "".join(" ".join(repr(float(v)) for v in p) + "\n" for p in pts)
     for cpu in (False, True):
         args = ["illuminance", str(SCENE)] + (["--cpu"] if cpu else [])
         expected = np.asarray([float(v) for v in cli(*args, stdin=text).split()])
