@@ -1,5 +1,5 @@
 //! Scenes: the TOML scene file, OBJ/MTL models (tobj) with their textures (image),
-//! luminaires placed in the world, and the camera. See [`file`] for the format.
+//! luminaires placed in the world, and the camera. See [`mod@file`] for the format.
 //!
 //! Frames: the world is right-handed with +Z up (metres). A luminaire's own frame has
 //! γ = 0 along −Z and C0 along +X; [`PlacedLuminaire::rotation`] maps it to the world.
