@@ -18,15 +18,13 @@ fn value_error(e: impl std::fmt::Display) -> PyErr {
 }
 
 fn parse_interp(name: &str) -> PyResult<Interp> {
-    match name {
-        "nearest" => Ok(Interp::Nearest),
-        "bilinear" => Ok(Interp::Bilinear),
-        "catmull-rom" | "catmull_rom" => Ok(Interp::CatmullRom),
-        "monotone" => Ok(Interp::Monotone),
-        other => Err(value_error(format!(
-            "interp {other:?}: expected nearest, bilinear, catmull-rom or monotone"
-        ))),
-    }
+    Interp::ALL
+        .into_iter()
+        .find(|i| i.name() == name)
+        .ok_or_else(|| {
+            let names: Vec<&str> = Interp::ALL.iter().map(|i| i.name()).collect();
+            value_error(format!("interp {name:?}: expected one of {names:?}"))
+        })
 }
 
 /// A luminaire file (EULUMDAT or IES) read into goniolight's distribution.

@@ -36,6 +36,14 @@ impl CliError {
         }
     }
 
+    /// Bad input (exit 2) or another failure (exit 1), as the library error says.
+    pub fn classified(error: impl Into<anyhow::Error>, bad_input: bool) -> CliError {
+        CliError {
+            error: error.into(),
+            bad_input,
+        }
+    }
+
     /// The process exit code.
     pub fn code(&self) -> u8 {
         if self.bad_input {
@@ -49,10 +57,7 @@ impl CliError {
 impl From<PhotometryError> for CliError {
     fn from(e: PhotometryError) -> CliError {
         let bad_input = e.is_bad_input();
-        CliError {
-            error: e.into(),
-            bad_input,
-        }
+        CliError::classified(e, bad_input)
     }
 }
 
@@ -60,10 +65,7 @@ impl From<PhotometryError> for CliError {
 impl From<ViewerError> for CliError {
     fn from(e: ViewerError) -> CliError {
         let bad_input = e.is_bad_input();
-        CliError {
-            error: e.into(),
-            bad_input,
-        }
+        CliError::classified(e, bad_input)
     }
 }
 

@@ -8,6 +8,7 @@
 //! - text that is not UTF-8 (Windows-1252, as many exporters write names) is decoded
 //!   instead of refused; point elements (`p`) are dropped (they carry no surface).
 
+use std::fmt::Write as _;
 use std::io::{BufRead, Read};
 use std::path::Path;
 
@@ -155,7 +156,7 @@ fn tag_vertices(text: &str, all_vertices: bool) -> (String, usize, usize) {
                     out.push_str(w);
                 }
                 // A vertex index is exact in f64 far beyond any file's vertex count.
-                out.push_str(&format!(" {vertices} 0 0\n"));
+                let _ = writeln!(out, " {vertices} 0 0");
                 vertices += 1;
             }
             Some("p") => out.push('\n'),
@@ -166,10 +167,10 @@ fn tag_vertices(text: &str, all_vertices: bool) -> (String, usize, usize) {
         }
     }
     if all_vertices && vertices > 0 {
-        out.push_str(&format!("o {ALL_VERTICES}\n"));
+        let _ = writeln!(out, "o {ALL_VERTICES}");
         // tobj reads a one-vertex face as a point element.
         for i in 1..=vertices {
-            out.push_str(&format!("f {i}\n"));
+            let _ = writeln!(out, "f {i}");
         }
     }
     (out, lines, vertices)
