@@ -44,6 +44,50 @@ pub fn data_root() -> std::path::PathBuf {
     }
 }
 
+/// Largest luminaire file read: the biggest real ones are a few hundred kB; a 0.1°
+/// grid over the whole sphere (the most `MAX_ANGLES` allows) is about 60 MB of text.
+pub const MAX_LUMINAIRE_BYTES: u64 = 64 << 20;
+/// Largest OBJ, MTL or scene file read (a 10-million-triangle OBJ is about 700 MB).
+pub const MAX_MODEL_BYTES: u64 = 1 << 30;
+
+/// Reads `path` whole, refusing devices (`/dev/zero` never ends) and anything longer
+/// than `limit` bytes before it fills memory. Errors are `std::io::Error`s whose kind is
+/// `InvalidData` for both refusals.
+pub fn read_limited(path: &Path, limit: u64) -> std::io::Result<Vec<u8>> {
+    use std::io::Read;
+    let invalid = |msg: String| std::io::Error::new(std::io::ErrorKind::InvalidData, msg);
+    let file = std::fs::File::open(path)?;
+    let meta = file.metadata()?;
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        let t = meta.file_type();
+        if t.is_char_device() || t.is_block_device() || t.is_socket() {
+            return Err(invalid("a device, not a file".to_string()));
+        }
+    }
+    if meta.is_dir() {
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::IsADirectory,
+            "a directory, not a file",
+        ));
+    }
+    if meta.len() > limit {
+        return Err(invalid(format!(
+            "{} bytes, more than the {limit} bytes goniolight reads from such a file",
+            meta.len()
+        )));
+    }
+    let mut bytes = Vec::with_capacity(meta.len() as usize);
+    file.take(limit + 1).read_to_end(&mut bytes)?;
+    if bytes.len() as u64 > limit {
+        return Err(invalid(format!(
+            "longer than the {limit} bytes goniolight reads from such a file"
+        )));
+    }
+    Ok(bytes)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -14,7 +14,7 @@ fn main() -> ExitCode {
     match goniolight::cli::run(cli) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {:#}", e.error);
+            eprintln!("error: {}", e.message());
             ExitCode::from(e.code())
         }
     }

@@ -99,7 +99,9 @@ fn isym3_stores_c270_to_c90_and_is_not_mirrored() {
     assert_eq!(lum.data.symmetry, Symmetry::C90C270);
     let grid = lum.distribution.grid();
     let plane = |c: f64| grid.plane(grid.c_angles().iter().position(|&a| a == c).unwrap());
-    let interior = |p: &[f64]| p[1..p.len() - 1].to_vec();
+    // (The grid may close a lit γ edge with one more zero column: compare the file's span.)
+    let n = stored[0].len();
+    let interior = |p: &[f64]| p[1..n - 1].to_vec();
     // First stored plane is C270, the tenth C0, the last C90.
     assert_eq!(interior(plane(270.0)), interior(&stored[0]));
     assert_eq!(interior(plane(0.0)), interior(&stored[9]));

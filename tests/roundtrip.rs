@@ -21,7 +21,7 @@ fn ldt_to_ldt_is_exact_for_every_file() {
 fn ldt_to_ies_to_ldt_keeps_the_candela() {
     for path in all_luminaire_files() {
         let lum = Luminaire::load(&path).unwrap();
-        let ies = write_ies(&lum.data);
+        let ies = write_ies(&lum.data, "EULUMDAT");
         let back = Luminaire::from_bytes("written.ies", ies.as_bytes())
             .unwrap_or_else(|e| panic!("{}: {e}\n{ies}", path.display()));
         assert_eq!(back.data.symmetry, lum.data.symmetry, "{}", path.display());

@@ -116,7 +116,7 @@ impl NativeLuminaire {
     fn to_text(&self, format: &str) -> PyResult<String> {
         match format {
             "ldt" => Ok(self.lum.data.to_ldt_string()),
-            "ies" => Ok(write_ies(&self.lum.data)),
+            "ies" => Ok(write_ies(&self.lum.data, self.lum.source_label())),
             other => Err(value_error(format!("format {other:?}: ldt or ies"))),
         }
     }

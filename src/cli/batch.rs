@@ -205,7 +205,7 @@ fn run_jobs(args: &BatchArgs, jobs: &[Job], shard: [usize; 2]) -> Result<Summary
             name,
             args: job.args.clone(),
             exit_code: outcome.as_ref().map_or_else(CliError::code, |_| 0),
-            error: outcome.err().map(|e| format!("{:#}", e.error)),
+            error: outcome.err().map(|e| e.message()),
             seconds: t.elapsed().as_secs_f64(),
         });
         bar.inc(1);
@@ -359,7 +359,7 @@ mod tests {
         ] {
             std::fs::write(&p, text).unwrap();
             let e = read_jobs(&p).unwrap_err();
-            let msg = format!("{:#}", e.error);
+            let msg = e.message();
             assert!(e.bad_input && msg.contains(wanted), "{msg}");
         }
     }

@@ -20,6 +20,20 @@ pub struct CliError {
 }
 
 impl CliError {
+    /// The message with its causes, each cause left out where the message before it
+    /// already ends with it (errors that print their source themselves).
+    pub fn message(&self) -> String {
+        let mut out = self.error.to_string();
+        for cause in self.error.chain().skip(1) {
+            let text = cause.to_string();
+            if !out.ends_with(&text) {
+                out.push_str(": ");
+                out.push_str(&text);
+            }
+        }
+        out
+    }
+
     /// An error caused by the user's input (exit code 2).
     pub fn input(error: impl Into<anyhow::Error>) -> CliError {
         CliError {

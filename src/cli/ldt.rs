@@ -328,7 +328,7 @@ fn convert(file: &Path, out: &Path) -> Result<(), CliError> {
         .unwrap_or_default();
     let text = match ext.as_str() {
         "ldt" => lum.data.to_ldt_string(),
-        "ies" => write_ies(&lum.data),
+        "ies" => write_ies(&lum.data, lum.source_label()),
         _ => {
             return Err(CliError::input(anyhow::anyhow!(
                 "{}: output must end in .ldt or .ies",

@@ -25,11 +25,29 @@ pub struct ObjFile {
     /// The objects, as tobj gives them (vertex colours hold file vertex indices).
     pub models: Vec<tobj::Model>,
     /// The materials of its `mtllib` files, or why they could not be read.
-    pub materials: Result<Vec<tobj::Material>, tobj::LoadError>,
+    pub materials: Result<Vec<tobj::Material>, MtlError>,
     /// Every vertex of the file in file order (filled for [`read_obj`] only).
     pub positions: Vec<DVec3>,
     /// True when the text was not UTF-8 and was decoded as Windows-1252.
     pub decoded_latin1: bool,
+}
+
+/// Why the materials of an OBJ could not be read.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum MtlError {
+    /// The `mtllib` file does not exist (common in exported models).
+    Missing,
+    /// The file exists but is unusable: the message names it and the line.
+    Bad(String),
+}
+
+impl std::fmt::Display for MtlError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            MtlError::Missing => write!(f, "the MTL file could not be opened"),
+            MtlError::Bad(m) => write!(f, "{m}"),
+        }
+    }
 }
 
 impl ObjFile {
@@ -52,12 +70,64 @@ pub struct ReadOptions {
 /// Reads `path` with tobj; `mtllib` files are looked up next to it.
 pub fn read(path: &Path, options: ReadOptions) -> Result<ObjFile, GeometryError> {
     let name = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|source| GeometryError::Io {
-        file: name.clone(),
-        source,
-    })?;
+    let bytes = read_file(path)?;
     let dir = path.parent().unwrap_or(Path::new("")).to_path_buf();
-    parse(&name, &bytes, options, |mtl| tobj::load_mtl(dir.join(mtl)))
+    // tobj keeps only its own error kinds: the first detailed message is kept here.
+    let detail = std::cell::RefCell::new(None);
+    let mut file = parse(&name, &bytes, options, |mtl| {
+        load_mtl(&dir.join(mtl)).map_err(|e| {
+            let kind = match e {
+                MtlError::Missing => tobj::LoadError::OpenFileFailed,
+                MtlError::Bad(_) => tobj::LoadError::MaterialParseError,
+            };
+            detail.borrow_mut().get_or_insert(e);
+            kind
+        })
+    })?;
+    if let (Err(e), Some(d)) = (&mut file.materials, detail.into_inner()) {
+        *e = d;
+    }
+    Ok(file)
+}
+
+fn read_file(path: &Path) -> Result<Vec<u8>, GeometryError> {
+    crate::io::read_limited(path, crate::io::MAX_MODEL_BYTES).map_err(|source| GeometryError::Io {
+        file: path.display().to_string(),
+        source,
+    })
+}
+
+/// What tobj's MTL reader returns on success.
+type MtlContent = <tobj::MTLLoadResult as IntoIterator>::Item;
+
+/// Reads an MTL file. tobj panics on colour lines with fewer than three numbers
+/// (`Kd 0.5`): such lines, and files too large or not files at all, are refused here with
+/// the file and line first.
+fn load_mtl(path: &Path) -> Result<MtlContent, MtlError> {
+    let bytes = crate::io::read_limited(path, crate::io::MAX_MODEL_BYTES).map_err(|e| {
+        if e.kind() == std::io::ErrorKind::NotFound {
+            MtlError::Missing
+        } else {
+            MtlError::Bad(format!("{}: {e}", path.display()))
+        }
+    })?;
+    let text = String::from_utf8_lossy(&bytes);
+    for (i, line) in text.lines().enumerate() {
+        let mut words = line.split_whitespace();
+        let Some(key) = words.next() else { continue };
+        if matches!(key, "Ka" | "Kd" | "Ks" | "Ke" | "Kt" | "Tf") {
+            let numbers = words.take_while(|w| w.parse::<f32>().is_ok()).count();
+            if numbers < 3 {
+                return Err(MtlError::Bad(format!(
+                    "{}: line {}: {key} needs three numbers (r g b), found {numbers}",
+                    path.display(),
+                    i + 1
+                )));
+            }
+        }
+    }
+    tobj::load_mtl_buf(&mut std::io::Cursor::new(&bytes[..]))
+        .map_err(|e| MtlError::Bad(format!("{}: {e}", path.display())))
 }
 
 /// Parses OBJ bytes; `name` is used in messages, `load_mtl` reads `mtllib` files.
@@ -109,7 +179,10 @@ pub fn parse(
     })?;
     let mut file = ObjFile {
         models,
-        materials,
+        materials: materials.map_err(|e| match e {
+            tobj::LoadError::OpenFileFailed => MtlError::Missing,
+            e => MtlError::Bad(e.to_string()),
+        }),
         positions: Vec::new(),
         decoded_latin1,
     };
@@ -209,10 +282,7 @@ impl<R: BufRead> BufRead for LineCounter<R> {
 /// change). Materials are not read.
 pub fn read_obj(path: &Path) -> Result<Mesh, GeometryError> {
     let name = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|source| GeometryError::Io {
-        file: name.clone(),
-        source,
-    })?;
+    let bytes = read_file(path)?;
     parse_obj(&name, &bytes)
 }
 

@@ -230,7 +230,10 @@ fn evaluate(coarse: &Grid, reference: &Grid, hidden: &[(usize, usize)], mode: &s
     let i_max = reference.values().iter().cloned().fold(0.0, f64::max);
     let ref_planes = planes_of(reference, |ci, gi| reference.value(ci, gi));
     let ref_flux = integrate_flux(&ref_planes, rg).0;
-    let ref_solid = solid(reference, &|ci, gi| reference.value(ci, gi));
+    // Squares and k-d tree splits work on values scaled to I_max = 1: intensities near
+    // the ends of the f64 range (1e-300 or 1e150 cd/klm) neither underflow nor overflow.
+    let unit = if i_max > 0.0 { 1.0 / i_max } else { 1.0 };
+    let ref_solid = solid(reference, &|ci, gi| reference.value(ci, gi) * unit);
     let ref_tree = tree_of(&ref_solid);
     let mut methods = BTreeMap::new();
     for interp in Interp::ALL {
@@ -245,7 +248,7 @@ fn evaluate(coarse: &Grid, reference: &Grid, hidden: &[(usize, usize)], mode: &s
             recon[ci * ng + gi] = v;
             let truth = reference.value(ci, gi);
             let err = v - truth;
-            sq += err * err;
+            sq += (err * unit).powi(2);
             max_abs = max_abs.max(err.abs());
             if truth > 0.01 * i_max {
                 max_rel = max_rel.max(err.abs() / truth);
@@ -259,13 +262,14 @@ fn evaluate(coarse: &Grid, reference: &Grid, hidden: &[(usize, usize)], mode: &s
         }
         let planes = planes_of(reference, |ci, gi| recon[ci * ng + gi]);
         let flux = integrate_flux(&planes, rg).0;
-        let solid_r = solid(reference, &|ci, gi| recon[ci * ng + gi]);
+        let solid_r = solid(reference, &|ci, gi| recon[ci * ng + gi] * unit);
         let hausdorff = directed_hausdorff(&solid_r, &ref_tree)
-            .max(directed_hausdorff(&ref_solid, &tree_of(&solid_r)));
+            .max(directed_hausdorff(&ref_solid, &tree_of(&solid_r)))
+            / unit;
         methods.insert(
             method_key(interp).to_string(),
             MethodResult {
-                rms: (sq / hidden.len() as f64).sqrt(),
+                rms: (sq / hidden.len() as f64).sqrt() / unit,
                 max_abs,
                 max_rel,
                 overshoot_count: over_n,
@@ -318,8 +322,15 @@ fn solid(grid: &Grid, value: &dyn Fn(usize, usize) -> f64) -> Vec<[f64; 3]> {
 }
 
 fn tree_of(points: &[[f64; 3]]) -> KdTree<f64, 3> {
-    // Zero intensities all sit at the origin: a k-d tree needs distinct points.
-    let mut unique: Vec<[f64; 3]> = points.to_vec();
+    // Points are in units of I_max. Coordinates are snapped to 2⁻⁴⁰ (1e-12 of I_max, far
+    // below any measurement) so that values like 1e-298 next to ordinary ones cannot make
+    // the tree split ever thinner slabs; zero intensities all sit at the origin, and a
+    // k-d tree needs distinct points.
+    const QUANTUM: f64 = 1.0 / (1u64 << 40) as f64;
+    let mut unique: Vec<[f64; 3]> = points
+        .iter()
+        .map(|p| p.map(|x| (x / QUANTUM).round() * QUANTUM))
+        .collect();
     unique.sort_by(|a, b| {
         a[0].total_cmp(&b[0])
             .then(a[1].total_cmp(&b[1]))

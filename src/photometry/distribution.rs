@@ -6,6 +6,7 @@ use super::eulumdat::Eulumdat;
 use super::flux::integrate_flux;
 use super::grid::{Grid, Interp};
 use super::symmetry::Symmetry;
+use super::text::show;
 
 /// Intensities over the whole sphere: C ∈ [0°, 360°), γ ∈ [0°, 180°], in cd/klm, plus
 /// the lamp flux that turns them into candela.
@@ -22,9 +23,10 @@ impl Distribution {
     pub fn from_eulumdat(ldt: &Eulumdat) -> (Distribution, Vec<String>) {
         let planes = ldt.expanded();
         let c: Vec<f64> = planes.iter().map(|p| p.0).collect();
-        let rows: Vec<Vec<f64>> = planes.into_iter().map(|p| p.1).collect();
+        let mut rows: Vec<Vec<f64>> = planes.into_iter().map(|p| p.1).collect();
+        let gamma = close_lit_edges(ldt.gamma_angles.clone(), &mut rows);
         let mut dist = Distribution {
-            grid: Grid::new(c, ldt.gamma_angles.clone(), &rows),
+            grid: Grid::new(c, gamma, &rows),
             lamp_flux_lm: ldt.lamp_flux_lm(),
             symmetry: ldt.symmetry,
         };
@@ -63,7 +65,10 @@ impl Distribution {
                     self.grid.values_mut()[ci * ng + gi] = mean;
                 }
                 warnings.push(format!(
-                    "C planes disagree at γ = {pole}° ({lo} to {hi} cd/klm) although all meet there: their mean {mean:.4} is used"
+                    "C planes disagree at γ = {pole}° ({} to {} cd/klm) although all meet there: their mean {} is used for sampling (the stored values are kept)",
+                    show(lo),
+                    show(hi),
+                    show(mean)
                 ));
             }
         }
@@ -140,6 +145,31 @@ impl Distribution {
     pub fn flux_lm(&self) -> f64 {
         self.relative_flux().0 * self.lamp_flux_lm / 1000.0
     }
+}
+
+/// Width over which a lit edge of a γ range that stops short of a pole falls to zero.
+pub const EDGE_FALL_DEG: f64 = 0.5;
+
+/// A γ range that stops short of a pole means no light beyond it (LM-63: a file listing
+/// 0°…90° lights the lower hemisphere only). The samplers fall to zero over one grid step
+/// past the range, so where the edge value is not zero a zero column is added
+/// [`EDGE_FALL_DEG`] (or one step, if finer) beyond it: the light beyond the range, and so
+/// the difference between the flux of the file and the flux the renderer emits, stays
+/// below a fraction of a percent.
+fn close_lit_edges(mut gamma: Vec<f64>, rows: &mut [Vec<f64>]) -> Vec<f64> {
+    let n = gamma.len();
+    let lit = |k: usize, rows: &[Vec<f64>]| rows.iter().any(|r| r[k] > 0.0);
+    if gamma[n - 1] < 180.0 && lit(n - 1, rows) {
+        let step = (gamma[n - 1] - gamma[n - 2]).min(EDGE_FALL_DEG);
+        gamma.push((gamma[n - 1] + step).min(180.0));
+        rows.iter_mut().for_each(|r| r.push(0.0));
+    }
+    if gamma[0] > 0.0 && lit(0, rows) {
+        let step = (gamma[1] - gamma[0]).min(EDGE_FALL_DEG);
+        gamma.insert(0, (gamma[0] - step).max(0.0));
+        rows.iter_mut().for_each(|r| r.insert(0, 0.0));
+    }
+    gamma
 }
 
 /// (C, γ) in degrees of a direction in the luminaire frame.

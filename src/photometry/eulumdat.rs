@@ -5,9 +5,12 @@
 //! each, as real files and the other readers do.
 
 use super::error::ParseError;
+use super::flux::integrate_flux;
 use super::grid::angle_eq;
 use super::symmetry::Symmetry;
-use super::text::{check_increasing, decode_text, parse_number, NumberStream, SourceText};
+use super::text::{
+    check_increasing, decode_text, exact, parse_number, show, NumberStream, SourceText, Trailing,
+};
 
 /// Largest number of C planes or γ angles accepted: a 0.1° grid, far beyond any goniometer.
 pub const MAX_ANGLES: usize = 3601;
@@ -150,7 +153,9 @@ impl Eulumdat {
             &self.intensities[k]
         };
         let f = self.conversion_factor;
-        let circle: Vec<f64> = if self.symmetry == Symmetry::Rotational && self.mc() <= 1 {
+        // A rotationally symmetric file stores one plane, whatever Mc says: its table is
+        // that plane (as an IES file of the same luminaire has it).
+        let circle: Vec<f64> = if self.symmetry == Symmetry::Rotational {
             vec![0.0]
         } else {
             self.c_angles.clone()
@@ -184,9 +189,9 @@ impl Eulumdat {
         line(&self.ityp.to_string());
         line(&self.symmetry.isym().to_string());
         line(&self.mc().to_string());
-        line(&num(self.dc));
+        line(&exact(self.dc));
         line(&self.ng().to_string());
-        line(&num(self.dg));
+        line(&exact(self.dg));
         for s in [
             &self.report_number,
             &self.luminaire_name,
@@ -206,16 +211,16 @@ impl Eulumdat {
                 self.tilt_deg,
             ])
         {
-            line(&num(v));
+            line(&exact(v));
         }
         line(&self.lamp_sets.len().to_string());
         for s in &self.lamp_sets {
             line(&s.count.to_string());
             line(&s.lamp_type);
-            line(&num(s.flux_lm));
+            line(&exact(s.flux_lm));
             line(&s.color);
             line(&s.cri);
-            line(&num(s.watts));
+            line(&exact(s.watts));
         }
         let values = self
             .direct_ratios
@@ -224,15 +229,10 @@ impl Eulumdat {
             .chain(&self.gamma_angles)
             .chain(self.intensities.iter().flatten());
         for v in values {
-            line(&num(*v));
+            line(&exact(*v));
         }
         out
     }
-}
-
-/// Shortest decimal text that reads back as exactly `v`.
-fn num(v: f64) -> String {
-    format!("{v}")
 }
 
 /// Reads the fixed-position header fields, tracking the line and collecting warnings.
@@ -381,9 +381,19 @@ impl<'a, 't> HeaderReader<'a, 't> {
         let dff_percent = self.optional("downward flux fraction DFF", 0.0)?;
         let lorl_percent = self.optional("light output ratio LORL", 0.0)?;
         let conversion_factor = self.optional("conversion factor", 1.0)?;
+        if conversion_factor <= 0.0 {
+            return Err(self.src.error(
+                self.line,
+                format!(
+                    "conversion factor must be positive, found {}",
+                    show(conversion_factor)
+                ),
+            ));
+        }
         let tilt_deg = self.optional("tilt during measurement", 0.0)?;
         let n_sets = self.integer("number of lamp sets", 1, MAX_LAMP_SETS as i64)? as usize;
         let mut lamp_sets = Vec::with_capacity(n_sets);
+        let first_lamp_line = self.line + 1;
         for k in 1..=n_sets {
             let count_line = self.line + 1;
             let count = self.required(&format!("number of lamps of set {k}"))?;
@@ -414,11 +424,28 @@ impl<'a, 't> HeaderReader<'a, 't> {
                 watts,
             });
         }
+        if lamp_sets.iter().map(|s| s.flux_lm).sum::<f64>() <= 0.0 {
+            return Err(self.src.error(
+                first_lamp_line + 2,
+                "the lamp flux of every set is 0: the intensities (cd/klm) cannot become candela",
+            ));
+        }
         let first_data_line = self.line + 1;
         let mut numbers = NumberStream::new(self.src, first_data_line, &[]);
+        // EULUMDAT is line-oriented: a blank line here is an empty field, not nothing.
         let mut direct_ratios = [0.0; 10];
+        let mut blank_ratios = Vec::new();
         for (i, r) in direct_ratios.iter_mut().enumerate() {
-            *r = numbers.next(&format!("direct ratio {}", i + 1))?.value;
+            match numbers.next_or_blank(&format!("direct ratio {}", i + 1))? {
+                Some(t) => *r = t.value,
+                None => blank_ratios.push(numbers.line()),
+            }
+        }
+        if let (Some(first), Some(last)) = (blank_ratios.first(), blank_ratios.last()) {
+            self.warnings.push(format!(
+                "lines {first}–{last}: {} direct ratio(s) blank: read as empty fields (0)",
+                blank_ratios.len()
+            ));
         }
         let c_tokens = numbers.take(mc, "C angle")?;
         let g_tokens = numbers.take(ng, "γ angle")?;
@@ -453,18 +480,7 @@ impl<'a, 't> HeaderReader<'a, 't> {
         }
         let intensities: Vec<Vec<f64>> = flat.chunks(ng).map(<[f64]>::to_vec).collect();
         self.note_comma(numbers.saw_comma);
-        if let Some(line) = numbers.remaining_content_line() {
-            return Err(self.src.error(
-                line,
-                format!(
-                    "more data than Isym {} × Mc {} × Ng {} announce ({} values expected)",
-                    symmetry.isym(),
-                    mc,
-                    ng,
-                    stored.len() * ng
-                ),
-            ));
-        }
+        let trailing = numbers.trailing();
         let blank_tail = self
             .src
             .lines
@@ -481,7 +497,7 @@ impl<'a, 't> HeaderReader<'a, 't> {
         if lorl_percent > 100.0 + 1e-9 {
             self.warn(23, format!("LORL {lorl_percent} % exceeds 100 %"));
         }
-        Ok(Eulumdat {
+        let data = Eulumdat {
             company,
             ityp,
             symmetry,
@@ -502,7 +518,52 @@ impl<'a, 't> HeaderReader<'a, 't> {
             c_angles,
             gamma_angles,
             intensities,
-        })
+        };
+        if let Some(t) = trailing {
+            self.accept_trailing(&data, t)?;
+        }
+        Ok(data)
+    }
+
+    /// Data after the table is accepted with a warning when it cannot be misread table
+    /// data: end markers and words always; numbers only when the table as read reproduces
+    /// the declared LORL (so the header's counts did not cut the table short).
+    fn accept_trailing(&mut self, data: &Eulumdat, t: Trailing) -> Result<(), ParseError> {
+        let announced = format!(
+            "Isym {} × Mc {} × Ng {} announce {} values",
+            data.symmetry.isym(),
+            data.mc(),
+            data.ng(),
+            data.stored_plane_indices().len() * data.ng()
+        );
+        if t.numbers > 0 {
+            let lorl = integrate_flux(&data.expanded(), &data.gamma_angles).0 / 10.0;
+            let agrees = data.lorl_percent > 0.0
+                && (lorl - data.lorl_percent).abs() <= 0.01 * data.lorl_percent.max(1.0);
+            if !agrees {
+                return Err(self.src.error(
+                    t.first_line,
+                    format!(
+                        "more data than {announced}: {} follow the table, and the table as read gives LORL {lorl:.2} % against {} % declared, so the counts may be wrong",
+                        t.describe(),
+                        data.lorl_percent
+                    ),
+                ));
+            }
+        }
+        self.warn(
+            t.first_line,
+            format!(
+                "{} after the table ignored ({announced}{})",
+                t.describe(),
+                if t.numbers > 0 {
+                    "; the table reproduces the declared LORL"
+                } else {
+                    ""
+                }
+            ),
+        );
+        Ok(())
     }
 
     /// Every plane of the full circle must fold onto a stored plane.

@@ -7,7 +7,8 @@ use super::error::ParseError;
 use super::eulumdat::{Dimensions, Eulumdat, LampSet, Parsed};
 use super::grid::angle_eq;
 use super::symmetry::Symmetry;
-use super::text::{check_increasing, decode_text, NumberStream, SourceText};
+use super::text::{check_increasing, decode_text, exact, NumberStream, SourceText};
+use super::type_b;
 
 /// Which edition of LM-63 a file declares.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -281,26 +282,31 @@ impl IesFile {
         let n_horiz = whole(&src, nums.next("number of horizontal angles")?, 1, 3601)? as usize;
         let ptype_tok = nums.next("photometric type")?;
         let photometric_type = whole(&src, ptype_tok, 1, 3)? as u8;
-        if photometric_type != 1 {
-            return Err(src.error(
-                ptype_tok.line,
-                format!(
-                    "unsupported photometric type {} (Type {}): only Type C is supported",
-                    photometric_type,
-                    if photometric_type == 2 { "B" } else { "A" }
-                ),
-            ));
-        }
         let units = whole(&src, nums.next("units type")?, 1, 2)? as u8;
         let size = [
             nums.next("opening width")?.value,
             nums.next("opening length")?.value,
             nums.next("opening height")?.value,
         ];
-        let ballast_factor = nums.next("ballast factor")?.value;
-        let blpf = nums
-            .next("ballast-lamp photometric factor / future use")?
-            .value;
+        let ballast = nums.next("ballast factor")?;
+        let ballast_factor = ballast.value;
+        let blpf_tok = nums.next("ballast-lamp photometric factor / future use")?;
+        let blpf = blpf_tok.value;
+        let old_edition = matches!(
+            version,
+            IesVersion::Lm63_1986 | IesVersion::Lm63_1991 | IesVersion::Lm63_1995
+        );
+        for (tok, what, used) in [
+            (ballast, "ballast factor", true),
+            (blpf_tok, "ballast-lamp photometric factor", old_edition),
+        ] {
+            if used && tok.value <= 0.0 {
+                return Err(src.error(
+                    tok.line,
+                    format!("{what} must be positive, found {}", tok.value),
+                ));
+            }
+        }
         let input_watts = nums.next("input watts")?.value;
         if lumens.value <= 0.0 && lumens.value != -1.0 {
             return Err(src.error(
@@ -331,8 +337,13 @@ impl IesFile {
         }
         let v_tok = nums.take(n_vert, "vertical angle")?;
         let h_tok = nums.take(n_horiz, "horizontal angle")?;
-        check_increasing(&src, &v_tok, 0.0..=180.0, "vertical")?;
-        check_increasing(&src, &h_tok, 0.0..=360.0, "horizontal")?;
+        if photometric_type == 1 {
+            check_increasing(&src, &v_tok, 0.0..=180.0, "vertical")?;
+            check_increasing(&src, &h_tok, 0.0..=360.0, "horizontal")?;
+        } else {
+            check_increasing(&src, &v_tok, -90.0..=90.0, "vertical")?;
+            check_increasing(&src, &h_tok, -90.0..=90.0, "horizontal")?;
+        }
         let mut candela = Vec::with_capacity(n_horiz);
         for h in &h_tok {
             let row = nums.take(
@@ -344,10 +355,22 @@ impl IesFile {
             }
             candela.push(row.iter().map(|t| t.value).collect());
         }
-        if let Some(l) = nums.remaining_content_line() {
-            return Err(src.error(
-                l,
-                format!("more data than {n_vert} vertical × {n_horiz} horizontal angles announce"),
+        if let Some(t) = nums.trailing() {
+            // Numbers after the table may be a table the header miscounts: refused. End
+            // markers (END, ^Z) and words cannot be: accepted with a note.
+            if t.numbers > 0 {
+                return Err(src.error(
+                    t.first_line,
+                    format!(
+                        "more data than {n_vert} vertical × {n_horiz} horizontal angles announce: {} follow the table",
+                        t.describe()
+                    ),
+                ));
+            }
+            warnings.push(format!(
+                "line {}: {} after the table ignored",
+                t.first_line,
+                t.describe()
             ));
         }
         if nums.saw_comma {
@@ -370,8 +393,17 @@ impl IesFile {
             horizontal: h_tok.iter().map(|t| t.value).collect(),
             candela,
         };
-        // Validate the horizontal range now so conversion cannot fail later.
-        horizontal_symmetry(&file.horizontal).map_err(|m| src.error(h_tok[0].line, m))?;
+        // Validate the angle ranges now so conversion cannot fail later.
+        if photometric_type == 1 {
+            horizontal_symmetry(&file.horizontal).map_err(|m| src.error(h_tok[0].line, m))?;
+        } else {
+            type_b::check_ranges(&file.vertical, &file.horizontal)
+                .map_err(|m| src.error(v_tok[0].line, m))?;
+            warnings.push(format!(
+                "Type {} photometry converted to the C-γ frame (see the README: beam axis at γ = 0)",
+                if photometric_type == 2 { "B" } else { "A" }
+            ));
+        }
         Ok(Parsed {
             data: file,
             warnings,
@@ -382,6 +414,22 @@ impl IesFile {
     /// photometry (lumens = −1) the lamp flux becomes the integrated luminaire flux and the
     /// lamp count is negative, as EULUMDAT marks absolute photometry.
     pub fn to_eulumdat(&self, file_name: &str) -> Eulumdat {
+        if self.photometric_type != 1 {
+            let c_gamma = type_b::to_c_gamma(
+                self.photometric_type,
+                &self.vertical,
+                &self.horizontal,
+                &self.candela,
+            );
+            let as_c = IesFile {
+                photometric_type: 1,
+                vertical: c_gamma.gamma,
+                horizontal: c_gamma.c,
+                candela: c_gamma.candela,
+                ..self.clone()
+            };
+            return as_c.to_eulumdat(file_name);
+        }
         let stored_symmetry =
             horizontal_symmetry(&self.horizontal).expect("validated when parsing");
         let full = full_circle(&self.horizontal, stored_symmetry);
@@ -500,8 +548,9 @@ impl IesFile {
     }
 }
 
-/// Writes `ldt` as an IES LM-63-2002 file (Type C, metres, TILT=NONE).
-pub fn write_ies(ldt: &Eulumdat) -> String {
+/// Writes `ldt` as an IES LM-63-2002 file (Type C, metres, TILT=NONE); `source` names
+/// where the data came from ("EULUMDAT", "IES Type B", …) in an `[OTHER]` line.
+pub fn write_ies(ldt: &Eulumdat, source: &str) -> String {
     let planes = ldt.expanded();
     let lamp_flux = ldt.lamp_flux_lm();
     let absolute = ldt.is_absolute();
@@ -548,7 +597,7 @@ pub fn write_ies(ldt: &Eulumdat) -> String {
             .unwrap_or_default(),
     );
     kw("DATE", &ldt.date_user);
-    kw("OTHER", "written by goniolight from EULUMDAT");
+    kw("OTHER", &format!("written by goniolight from {source}"));
     out.push_str("TILT=NONE\r\n");
     let d = &ldt.dimensions;
     let (w, l) = if d.width == 0.0 && d.length > 0.0 {
@@ -589,14 +638,9 @@ fn write_values(out: &mut String, values: &[f64]) {
     }
 }
 
-/// Up to six decimals, trailing zeros dropped.
+/// Exact values (the text reads back as the same number), as the LDT writer prints them.
 fn fmt(v: f64) -> String {
-    let r = (v * 1e6).round() / 1e6;
-    if r == 0.0 {
-        "0".to_string()
-    } else {
-        format!("{r}")
-    }
+    exact(v)
 }
 
 fn strip_prefix_ci<'a>(s: &'a str, prefix: &str) -> Option<&'a str> {

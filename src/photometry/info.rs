@@ -13,9 +13,12 @@ impl Luminaire {
         let s = lum.summary();
         let grid = lum.distribution.grid();
         let tex = LdtTexture::from_distribution(&lum.distribution);
-        let intensities: Vec<&[f64]> = (0..grid.c_angles().len()).map(|i| grid.plane(i)).collect();
+        // The values as stored (expanded by the symmetry), the same table `ldt convert`
+        // writes; the distribution may have averaged unequal pole values for sampling.
+        let intensities: Vec<Vec<f64>> = lum.data.expanded().into_iter().map(|p| p.1).collect();
         json!({
             "format": lum.format,
+            "source": lum.source_label(),
             "symmetry": lum.data.symmetry.isym(),
             "ityp": lum.data.ityp,
             "company": lum.data.company,
@@ -25,7 +28,7 @@ impl Luminaire {
                 "count": l.count, "type": l.lamp_type, "flux_lm": l.flux_lm,
                 "color": l.color, "cri": l.cri, "watts": l.watts})).collect::<Vec<_>>(),
             "c_angles": grid.c_angles(),
-            "gamma_angles": grid.gamma_angles(),
+            "gamma_angles": lum.data.gamma_angles,
             "intensities": intensities,
             "max_intensity": s.max_intensity,
             "max_direction_deg": s.max_direction_deg,

@@ -15,6 +15,7 @@ pub mod summary;
 pub mod symmetry;
 pub mod text;
 pub mod texture;
+pub mod type_b;
 
 use std::path::Path;
 
@@ -75,22 +76,89 @@ impl Luminaire {
         };
         let (distribution, dist_warnings) = Distribution::from_eulumdat(&data);
         warnings.extend(dist_warnings);
-        Ok(Luminaire {
+        let lum = Luminaire {
             format,
             data,
             ies,
             distribution,
             warnings,
-        })
+        };
+        lum.checked(name)
+    }
+
+    /// Refuses data whose numbers are not usable (overflowing or vanishing factors), and
+    /// notes a computed LORL above 100 %.
+    fn checked(mut self, name: &str) -> Result<Luminaire, PhotometryError> {
+        let (field, line) = match self.format {
+            Format::Eulumdat => ("intensities × conversion factor", 24),
+            Format::Ies => ("candela × multiplier × ballast factor ÷ lamp lumens", 0),
+        };
+        let grid = self.distribution.grid();
+        if let Some(v) = grid.values().iter().find(|v| !v.is_finite()) {
+            return Err(ParseError::new(
+                name,
+                line,
+                format!("{field} give {v}: the values overflow"),
+            )
+            .into());
+        }
+        let lamp_flux = self.distribution.lamp_flux_lm();
+        let flux = self.distribution.flux_lm();
+        if !(lamp_flux.is_finite() && lamp_flux > 0.0 && flux.is_finite()) {
+            return Err(ParseError::new(
+                name,
+                0,
+                format!(
+                    "lamp flux {} lm and luminaire flux {} lm are not usable numbers",
+                    text::show(lamp_flux),
+                    text::show(flux)
+                ),
+            )
+            .into());
+        }
+        let peak_cd = self.distribution.max_intensity().0 * lamp_flux / 1000.0;
+        if !peak_cd.is_finite() {
+            return Err(ParseError::new(
+                name,
+                line,
+                format!("{field} × lamp flux overflow: the peak intensity is not a finite number of candela"),
+            )
+            .into());
+        }
+        let lorl = self.distribution.relative_flux().0 / 10.0;
+        if lorl > 100.5 {
+            self.warnings.push(format!(
+                "the intensities integrate to {lorl:.2} % of the lamp flux (LORL above 100 %): check the lamp flux and the conversion factor"
+            ));
+        }
+        if grid.values().iter().all(|&v| v == 0.0) {
+            self.warnings
+                .push("every intensity is 0: the file describes no light".to_string());
+        }
+        Ok(self)
+    }
+
+    /// Where the data came from, for the labels of converted files: "EULUMDAT", "IES" or
+    /// "IES Type B" / "IES Type A".
+    pub fn source_label(&self) -> &'static str {
+        match (self.format, self.ies.as_ref().map(|f| f.photometric_type)) {
+            (Format::Eulumdat, _) => "EULUMDAT",
+            (Format::Ies, Some(2)) => "IES Type B",
+            (Format::Ies, Some(3)) => "IES Type A",
+            (Format::Ies, _) => "IES",
+        }
     }
 
     /// Reads a `.ldt` or `.ies` file.
     pub fn load(path: &Path) -> Result<Luminaire, PhotometryError> {
         let name = path.display().to_string();
-        let bytes = std::fs::read(path).map_err(|source| PhotometryError::Io {
-            file: name.clone(),
-            source,
-        })?;
+        let bytes =
+            crate::io::read_limited(path, crate::io::MAX_LUMINAIRE_BYTES).map_err(|source| {
+                PhotometryError::Io {
+                    file: name.clone(),
+                    source,
+                }
+            })?;
         Luminaire::from_bytes(&name, &bytes)
     }
 

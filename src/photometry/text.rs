@@ -148,6 +148,28 @@ pub fn parse_number(token: &str) -> Option<(f64, bool)> {
     Some((value, comma))
 }
 
+/// A number for a message: plain when it is of ordinary size, in exponent form when plain
+/// digits would run to dozens of characters (1e300, 4.9e-324).
+pub fn show(v: f64) -> String {
+    let a = v.abs();
+    if a != 0.0 && !(1e-6..1e12).contains(&a) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
+    }
+}
+
+/// The shortest decimal text that reads back as exactly `v`, in exponent form outside
+/// 1e-5…1e15 so that no value needs hundreds of digits (what the writers print).
+pub fn exact(v: f64) -> String {
+    let a = v.abs();
+    if a != 0.0 && !(1e-5..1e15).contains(&a) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
+    }
+}
+
 /// A number read from the file, with the line it came from.
 #[derive(Debug, Clone, Copy)]
 pub struct Token {
@@ -260,6 +282,46 @@ impl<'a, 't> NumberStream<'a, 't> {
         }
     }
 
+    /// The next field of a line-oriented format: `None` for a blank line met where a
+    /// value should start (an empty field), otherwise the next number.
+    pub fn next_or_blank(&mut self, what: &str) -> Result<Option<Token>, ParseError> {
+        if self.rest.trim().is_empty() {
+            if let Some(line) = self.src.lines.get(self.line) {
+                if line.trim().is_empty() {
+                    self.line += 1;
+                    self.rest = "";
+                    return Ok(None);
+                }
+            }
+        }
+        self.next(what).map(Some)
+    }
+
+    /// Everything after the last value read, if anything is left: where it starts and
+    /// what it is. Consumes the stream.
+    pub fn trailing(&mut self) -> Option<Trailing> {
+        let first_line = self.remaining_content_line()?;
+        let mut t = Trailing {
+            first_line,
+            numbers: 0,
+            end_markers: 0,
+            other: 0,
+        };
+        while self.fill() {
+            let end = self.scan(self.rest, false);
+            let (tok, rest) = self.rest.split_at(end);
+            if parse_number(tok).is_some() {
+                t.numbers += 1;
+            } else if is_end_marker(tok) {
+                t.end_markers += 1;
+            } else {
+                t.other += 1;
+            }
+            self.rest = rest;
+        }
+        Some(t)
+    }
+
     /// Reads `n` numbers.
     pub fn take(&mut self, n: usize, what: &str) -> Result<Vec<Token>, ParseError> {
         (0..n).map(|_| self.next(what)).collect()
@@ -273,6 +335,42 @@ impl<'a, 't> NumberStream<'a, 't> {
             None
         }
     }
+}
+
+/// What follows a table: see [`NumberStream::trailing`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Trailing {
+    /// 1-based line of the first token after the table.
+    pub first_line: usize,
+    /// Tokens that are numbers (more data than the header announced).
+    pub numbers: usize,
+    /// `END` lines and `^Z` bytes.
+    pub end_markers: usize,
+    /// Anything else.
+    pub other: usize,
+}
+
+impl Trailing {
+    /// "N values", "an END marker", … for messages.
+    pub fn describe(&self) -> String {
+        let mut parts = Vec::new();
+        if self.numbers > 0 {
+            parts.push(format!("{} value(s)", self.numbers));
+        }
+        if self.end_markers > 0 {
+            parts.push(format!("{} end marker(s) (END, ^Z)", self.end_markers));
+        }
+        if self.other > 0 {
+            parts.push(format!("{} other word(s)", self.other));
+        }
+        parts.join(" and ")
+    }
+}
+
+/// True for the end markers real files carry after their table: `END` lines and the
+/// DOS end-of-file byte (`^Z`).
+pub fn is_end_marker(token: &str) -> bool {
+    token.eq_ignore_ascii_case("END") || token.chars().all(|c| c == '\u{1a}')
 }
 
 /// Angles must lie in `range` and increase strictly; `what` names them in errors

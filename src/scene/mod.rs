@@ -66,8 +66,10 @@ pub struct Scene {
 impl Scene {
     /// Reads a scene file and everything it refers to.
     pub fn load(path: &Path) -> Result<Scene, SceneError> {
-        let text = std::fs::read_to_string(path)
+        let bytes = crate::io::read_limited(path, crate::io::MAX_MODEL_BYTES)
             .map_err(|e| SceneError::new(path, "file", e.to_string()))?;
+        let text = String::from_utf8(bytes)
+            .map_err(|e| SceneError::new(path, "file", format!("not UTF-8 text: {e}")))?;
         Scene::from_toml(path, &text)
     }
 

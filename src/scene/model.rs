@@ -9,7 +9,7 @@ use glam::{DMat3, DMat4, DVec3, Vec2, Vec3};
 
 use super::file::{ModelEntry, Scale, UpAxis};
 use super::{finite_vec, SceneError};
-use crate::geometry::obj::{self as obj_file, ObjFile, ReadOptions};
+use crate::geometry::obj::{self as obj_file, MtlError, ObjFile, ReadOptions};
 
 /// A surface material (MTL subset).
 #[derive(Debug, Clone)]
@@ -171,7 +171,7 @@ pub(super) fn load_model(
             }
         }
         // A missing MTL is common in exported files: warn and use the default material.
-        Err(tobj::LoadError::OpenFileFailed) => {
+        Err(MtlError::Missing) => {
             eprintln!(
                 "warning: {}: its MTL file could not be opened; using the default material",
                 obj.display()

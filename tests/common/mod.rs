@@ -86,3 +86,18 @@ pub fn run_cli(args: &[&str], stdin: &str) -> (i32, String, String) {
         String::from_utf8_lossy(&out.stderr).into_owned(),
     )
 }
+
+/// The shared test data (`../shared` beside the repository, or `$GONIOLIGHT_SHARED`):
+/// real luminaires, real models and fuzzing reproducers, read in place. Missing data
+/// fails the test with a message rather than skipping it.
+pub fn shared_dir() -> PathBuf {
+    let dir = std::env::var_os("GONIOLIGHT_SHARED")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| root().join("../shared"));
+    assert!(
+        dir.join("luminaires/wild").is_dir(),
+        "shared test data not found at {} (set GONIOLIGHT_SHARED to its folder)",
+        dir.display()
+    );
+    dir
+}

@@ -55,7 +55,10 @@ tilt = next(i for i, l in enumerate(ies) if l.startswith("TILT")) + 1
 case("no_tilt.ies", [l for l in ies if not l.startswith("TILT")], len(ies), "no TILT= line")
 case("tilt_include_truncated.ies", ies[: tilt - 1] + ["TILT=INCLUDE", "1", "5", "0 10 20"], tilt + 4, "unexpected end of file")
 first = ies[tilt].split()
-case("type_a.ies", with_line(ies, tilt + 1, " ".join(first[:5] + ["3"] + first[6:])), tilt + 1, "unsupported photometric type")
+# Type A/B angles run from -90 to 90: a vertical angle of 120 cannot be one.
+type_a = with_line(ies, tilt + 1, " ".join(first[:5] + ["3"] + first[6:]))
+type_a = with_line(type_a, tilt + 4, type_a[tilt + 3].replace("90.0", "120.0"))
+case("type_a_vertical_120.ies", type_a, tilt + 4, "vertical angle 120 outside")
 case("units_3.ies", with_line(ies, tilt + 1, " ".join(first[:6] + ["3"] + first[7:])), tilt + 1, "between 1 and 2")
 last = ies[-1].split()
 case("negative_candela.ies", ies[:-1] + [" ".join(last[:-1] + ["-3"])], len(ies), "negative candela")
