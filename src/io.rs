@@ -44,6 +44,18 @@ pub fn data_root() -> std::path::PathBuf {
     }
 }
 
+/// True when a failed read is the input's fault (a missing, unreadable or unusable file,
+/// a directory or a device given as a file), not the machine's.
+pub fn is_bad_input(e: &std::io::Error) -> bool {
+    matches!(
+        e.kind(),
+        std::io::ErrorKind::NotFound
+            | std::io::ErrorKind::InvalidData
+            | std::io::ErrorKind::IsADirectory
+            | std::io::ErrorKind::PermissionDenied
+    )
+}
+
 /// Largest luminaire file read: the biggest real ones are a few hundred kB; a 0.1°
 /// grid over the whole sphere (the most `MAX_ANGLES` allows) is about 60 MB of text.
 pub const MAX_LUMINAIRE_BYTES: u64 = 64 << 20;

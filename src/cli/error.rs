@@ -86,12 +86,7 @@ impl From<ViewerError> for CliError {
 impl From<GeometryError> for CliError {
     fn from(e: GeometryError) -> CliError {
         match &e {
-            GeometryError::Io { source, .. }
-                if !matches!(
-                    source.kind(),
-                    std::io::ErrorKind::NotFound | std::io::ErrorKind::PermissionDenied
-                ) =>
-            {
+            GeometryError::Io { source, .. } if !crate::io::is_bad_input(source) => {
                 CliError::failure(e)
             }
             _ => CliError::input(e),
@@ -137,7 +132,12 @@ impl From<SceneError> for CliError {
 
 impl From<GpuError> for CliError {
     fn from(e: GpuError) -> CliError {
-        CliError::failure(e)
+        // A scene too large for the device is the input's doing: exit 2.
+        if matches!(e, GpuError::Limit(_)) {
+            CliError::input(e)
+        } else {
+            CliError::failure(e)
+        }
     }
 }
 

@@ -311,7 +311,35 @@ pub(super) fn write_plot(
     plot.save(out).map_err(CliError::failure)
 }
 
+/// Refuses an output that is the input itself, or that lacks one of `exts`, before any
+/// work: a mistyped `--out` must not replace the luminaire file.
+fn check_output(input: &Path, out: &Path, exts: &[&str]) -> Result<(), CliError> {
+    let ext = out
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase())
+        .unwrap_or_default();
+    if !exts.contains(&ext.as_str()) {
+        return Err(CliError::input(anyhow::anyhow!(
+            "{}: --out must end in .{}",
+            out.display(),
+            exts.join(" or .")
+        )));
+    }
+    let same = match (input.canonicalize(), out.canonicalize()) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => false,
+    };
+    if same {
+        return Err(CliError::input(anyhow::anyhow!(
+            "{}: --out is the input file; choose another name",
+            out.display()
+        )));
+    }
+    Ok(())
+}
+
 fn plot(file: &Path, out: &Path, downsample: Option<(f64, f64)>) -> Result<(), CliError> {
+    check_output(file, out, &["png"])?;
     let lum = load(file)?;
     let name = file
         .file_name()
@@ -321,20 +349,15 @@ fn plot(file: &Path, out: &Path, downsample: Option<(f64, f64)>) -> Result<(), C
 }
 
 fn convert(file: &Path, out: &Path) -> Result<(), CliError> {
+    check_output(file, out, &["ldt", "ies"])?;
     let lum = load(file)?;
-    let ext = out
+    let ies = out
         .extension()
-        .map(|e| e.to_string_lossy().to_ascii_lowercase())
-        .unwrap_or_default();
-    let text = match ext.as_str() {
-        "ldt" => lum.data.to_ldt_string(),
-        "ies" => write_ies(&lum.data, lum.source_label()),
-        _ => {
-            return Err(CliError::input(anyhow::anyhow!(
-                "{}: output must end in .ldt or .ies",
-                out.display()
-            )))
-        }
+        .is_some_and(|e| e.eq_ignore_ascii_case("ies"));
+    let text = if ies {
+        write_ies(&lum.data, lum.source_label())
+    } else {
+        lum.data.to_ldt_string()
     };
     write_atomic(out, text.as_bytes()).map_err(CliError::failure)
 }

@@ -1,6 +1,7 @@
 //! `goniolight render` and `goniolight illuminance`: a scene to images, and the direct
 //! illuminance at points read from stdin.
 
+use crate::render::limits::check_scene;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -165,6 +166,7 @@ pub fn render_to_files(
     let mut settings = settings.clone();
     settings.read_hdr = exr.is_some();
     let started = Instant::now();
+    check_scene(gpu, scene, &settings.shadows)?;
     let uploaded = match light_map {
         Some(map) => renderer.upload_solved(gpu, scene, map),
         None => renderer.upload(gpu, scene),

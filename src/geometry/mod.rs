@@ -83,7 +83,8 @@ impl Mesh {
     pub fn validate(&self, name: &str) -> Result<(), GeometryError> {
         if self.triangles.is_empty() {
             return Err(GeometryError::Invalid(format!(
-                "{name}: the mesh has no (non-degenerate) triangles"
+                "{name}: the mesh has no triangles with an area ({} vertices; faces of zero area are dropped)",
+                self.positions.len()
             )));
         }
         if let Some(i) = self.positions.iter().position(|p| !p.is_finite()) {

@@ -137,6 +137,18 @@ pub fn parse(
     options: ReadOptions,
     load_mtl: impl Fn(&Path) -> tobj::MTLLoadResult,
 ) -> Result<ObjFile, GeometryError> {
+    if bytes.starts_with(b"\xFF\xFE")
+        || bytes.starts_with(b"\xFE\xFF")
+        || bytes[..bytes.len().min(4096)].contains(&0)
+    {
+        return Err(GeometryError::Parse {
+            file: name.to_string(),
+            line: 1,
+            message: "not OBJ text: the file is UTF-16 or binary (save it as UTF-8 or ASCII)"
+                .to_string(),
+        });
+    }
+    let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
     let (text, decoded_latin1) = match std::str::from_utf8(bytes) {
         Ok(t) => (std::borrow::Cow::Borrowed(t), false),
         Err(_) => (encoding_rs::WINDOWS_1252.decode(bytes).0, true),

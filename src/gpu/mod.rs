@@ -22,6 +22,10 @@ pub enum GpuError {
     /// A GPU operation failed (validation, mapping, timeout).
     #[error("GPU: {0}")]
     Operation(String),
+    /// The work asks more than the device allows (buffer size, texture layers): refused
+    /// before anything is uploaded.
+    #[error("{0}")]
+    Limit(String),
 }
 
 /// A colour attachment cleared to `colour` and stored: how every colour pass of the

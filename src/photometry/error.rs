@@ -60,13 +60,7 @@ impl PhotometryError {
     /// the machine.
     pub fn is_bad_input(&self) -> bool {
         match self {
-            PhotometryError::Io { source, .. } => matches!(
-                source.kind(),
-                std::io::ErrorKind::NotFound
-                    | std::io::ErrorKind::InvalidData
-                    | std::io::ErrorKind::IsADirectory
-                    | std::io::ErrorKind::PermissionDenied
-            ),
+            PhotometryError::Io { source, .. } => crate::io::is_bad_input(source),
             PhotometryError::Parse(_) | PhotometryError::Invalid(_) => true,
         }
     }

@@ -174,11 +174,21 @@ struct Laid {
     elements: Vec<(u32, u32, f64, DVec2)>,
 }
 
-fn lay_out(t: &InputTriangle) -> Result<Option<Laid>, ElementError> {
+/// Where a triangle's texel grid lies: its plane frame, corners in it, and grid size.
+struct Footprint {
+    frame: Frame,
+    corners_2d: [DVec2; 3],
+    lo: DVec2,
+    cols: u32,
+    rows: u32,
+}
+
+/// The texel grid of `t`, or `None` for a triangle without area.
+fn footprint(t: &InputTriangle) -> Option<Footprint> {
     let [a, b, c] = t.corners;
     let n = (b - a).cross(c - a);
     if n.length() <= 1e-14 || !n.is_finite() {
-        return Ok(None);
+        return None;
     }
     let n = n.normalize();
     let u = (b - a).normalize();
@@ -192,8 +202,30 @@ fn lay_out(t: &InputTriangle) -> Result<Option<Laid>, ElementError> {
     let lo = corners_2d[0].min(corners_2d[1]).min(corners_2d[2]);
     let hi = corners_2d[0].max(corners_2d[1]).max(corners_2d[2]);
     let s = t.texel_m;
+    // Saturating casts: a huge grid is refused by the caller, never allocated.
     let cols = (((hi.x - lo.x) / s).ceil() as u32).max(1);
     let rows = (((hi.y - lo.y) / s).ceil() as u32).max(1);
+    Some(Footprint {
+        frame,
+        corners_2d,
+        lo,
+        cols,
+        rows,
+    })
+}
+
+fn lay_out(t: &InputTriangle) -> Result<Option<Laid>, ElementError> {
+    let Some(Footprint {
+        frame,
+        corners_2d,
+        lo,
+        cols,
+        rows,
+    }) = footprint(t)
+    else {
+        return Ok(None);
+    };
+    let s = t.texel_m;
     let texels = cols as u64 * rows as u64;
     if texels > (MAX_ATLAS as u64).pow(2) {
         return Err(ElementError::TooLarge(texels));
@@ -250,6 +282,19 @@ impl Elements {
             if !(t.texel_m.is_finite() && t.texel_m > 0.0) {
                 return Err(ElementError::TexelSize(t.texel_m));
             }
+        }
+        // Count the texels (with gutters) before laying any out: a density that cannot
+        // fit is refused in milliseconds, not after gigabytes of elements. Shelf packing
+        // needs about 10 % more than the sum (the atlas width below allows for that).
+        let needed: u64 = triangles
+            .iter()
+            .filter_map(footprint)
+            .map(|f| (f.cols as u64 + 2) * (f.rows as u64 + 2))
+            .sum();
+        if needed as f64 * 1.1 > (MAX_ATLAS as f64).powi(2) {
+            return Err(ElementError::TooLarge(needed));
+        }
+        for t in triangles {
             laid.push(lay_out(t)?);
         }
         // Rectangles with one gutter texel on each side.

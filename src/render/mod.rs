@@ -8,6 +8,7 @@ pub mod illuminance;
 pub mod layouts;
 pub mod legend;
 pub mod lightmap;
+pub mod limits;
 pub mod output;
 pub mod paraboloid;
 pub mod passes;

@@ -53,6 +53,35 @@ pub fn tessellate(mesh: &Mesh, max_edge: f64) -> Vec<[DVec3; 3]> {
     out
 }
 
+/// The number of triangles [`tessellate`] makes of `mesh`, counted without storing them
+/// and given up at `stop_at` (a budget: huge faces must not cost time or memory to refuse).
+pub fn tessellated_count(mesh: &Mesh, max_edge: f64, stop_at: usize) -> usize {
+    let limit = max_edge * max_edge;
+    let mut count = 0usize;
+    let mut stack: Vec<[DVec3; 3]> = Vec::new();
+    for t in &mesh.triangles {
+        stack.push(t.map(|i| mesh.positions[i as usize]));
+        while let Some(t) = stack.pop() {
+            let lengths = [0, 1, 2].map(|k| t[k].distance_squared(t[(k + 1) % 3]));
+            let k = (0..3)
+                .max_by(|&a, &b| lengths[a].total_cmp(&lengths[b]))
+                .unwrap_or(0);
+            if lengths[k] <= limit || !lengths[k].is_finite() {
+                count += 1;
+                if count >= stop_at {
+                    return count;
+                }
+                continue;
+            }
+            let (a, b, c) = (t[k], t[(k + 1) % 3], t[(k + 2) % 3]);
+            let m = (a + b) * 0.5;
+            stack.push([a, m, c]);
+            stack.push([m, b, c]);
+        }
+    }
+    count
+}
+
 /// The tessellated shadow casters on the GPU (non-indexed triangles).
 pub struct ParaboloidCasters {
     vertices: wgpu::Buffer,

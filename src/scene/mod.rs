@@ -63,6 +63,10 @@ pub struct Scene {
     pub models: Vec<file::ModelEntry>,
 }
 
+/// Most luminaires one scene may hold (a stadium has a few hundred; the limit keeps a
+/// mistaken file from taking the machine).
+pub const MAX_LUMINAIRES: usize = 10_000;
+
 impl Scene {
     /// Reads a scene file and everything it refers to.
     pub fn load(path: &Path) -> Result<Scene, SceneError> {
@@ -83,12 +87,29 @@ impl Scene {
             let key = format!("model[{i}]");
             meshes.extend(model::load_model(path, &key, &dir, entry, &mut materials)?);
         }
+        if parsed.luminaire.len() > MAX_LUMINAIRES {
+            return Err(SceneError::new(
+                path,
+                "luminaire",
+                format!(
+                    "{} luminaires; goniolight places at most {MAX_LUMINAIRES} in one scene",
+                    parsed.luminaire.len()
+                ),
+            ));
+        }
+        let mut loaded = std::collections::HashMap::new();
         let luminaires = parsed
             .luminaire
             .iter()
             .enumerate()
             .map(|(i, entry)| {
-                PlacedLuminaire::from_entry(path, &format!("luminaire[{i}]"), &dir, entry)
+                PlacedLuminaire::from_entry(
+                    path,
+                    &format!("luminaire[{i}]"),
+                    &dir,
+                    entry,
+                    &mut loaded,
+                )
             })
             .collect::<Result<Vec<_>, _>>()?;
         let bounds = bounds_of(&meshes, &luminaires);

@@ -1,6 +1,7 @@
 //! Luminaires placed in the world: position, orientation (aim + roll and/or Euler
 //! rotation), dimming and colour, and the CPU reference of their direct illuminance.
 
+use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
 use glam::{DMat3, DVec3};
@@ -42,10 +43,20 @@ impl PlacedLuminaire {
         key: &str,
         dir: &Path,
         e: &LuminaireEntry,
+        loaded: &mut HashMap<PathBuf, Luminaire>,
     ) -> Result<PlacedLuminaire, SceneError> {
         let file = dir.join(&e.file);
-        let luminaire = Luminaire::load(&file)
-            .map_err(|err| SceneError::new(scene, format!("{key}.file"), err.to_string()))?;
+        // A file used by many luminaires (a hall of one fitting) is read once.
+        let luminaire = match loaded.get(&file) {
+            Some(l) => l.clone(),
+            None => {
+                let l = Luminaire::load(&file).map_err(|err| {
+                    SceneError::new(scene, format!("{key}.file"), err.to_string())
+                })?;
+                loaded.insert(file.clone(), l.clone());
+                l
+            }
+        };
         let position = finite_vec(scene, &format!("{key}.position"), e.position)?;
         let aim = match (e.aim, e.aim_at) {
             (Some(_), Some(_)) => {

@@ -101,3 +101,56 @@ pub fn shared_dir() -> PathBuf {
     );
     dir
 }
+
+/// Runs the CLI in `dir` with `stdin`, killing it after `limit`: (exit code, stdout,
+/// stderr, timed out). A signal gives code −1.
+pub fn run_cli_in(
+    dir: &Path,
+    args: &[&str],
+    stdin: &str,
+    limit: std::time::Duration,
+) -> (i32, String, String, bool) {
+    use std::io::{Read, Write};
+    use std::process::{Command, Stdio};
+    let mut child = Command::new(env!("CARGO_BIN_EXE_goniolight"))
+        .args(args)
+        .current_dir(dir)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let _ = child.stdin.take().unwrap().write_all(stdin.as_bytes());
+    let mut out_pipe = child.stdout.take().unwrap();
+    let mut err_pipe = child.stderr.take().unwrap();
+    let out_reader = std::thread::spawn(move || {
+        let mut s = Vec::new();
+        let _ = out_pipe.read_to_end(&mut s);
+        s
+    });
+    let err_reader = std::thread::spawn(move || {
+        let mut s = Vec::new();
+        let _ = err_pipe.read_to_end(&mut s);
+        s
+    });
+    let started = std::time::Instant::now();
+    let mut timed_out = false;
+    let status = loop {
+        if let Some(status) = child.try_wait().unwrap() {
+            break status;
+        }
+        if started.elapsed() > limit {
+            timed_out = true;
+            let _ = child.kill();
+            break child.wait().unwrap();
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    };
+    let text = |b: Vec<u8>| String::from_utf8_lossy(&b).into_owned();
+    (
+        status.code().unwrap_or(-1),
+        text(out_reader.join().unwrap()),
+        text(err_reader.join().unwrap()),
+        timed_out,
+    )
+}
