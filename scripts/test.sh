@@ -8,7 +8,8 @@ cargo clippy --all-targets -- -D warnings
 # The library without its GPU/GUI stack (photometry, sun, geometry, silhouettes, scene files).
 cargo clippy --lib --no-default-features -- -D warnings
 cargo clippy -p goniolight-python -- -D warnings
-cargo test
+# The stable-Rust fuzzers (tests/fuzz_parsers.rs) run 90 s per reader in CI.
+GONIOLIGHT_FUZZ_SECONDS="${GONIOLIGHT_FUZZ_SECONDS:-90}" cargo test
 cargo test --lib --no-default-features
 RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --lib --no-default-features --quiet
 cargo package -p goniolight --allow-dirty --no-verify --quiet

@@ -90,7 +90,8 @@ pub fn illuminance_cpu_in_scene(
         .collect()
 }
 
-/// Parses lines `x y z nx ny nz` (blank lines and `#` comments skipped).
+/// Parses lines `x y z nx ny nz` (blank lines and `#` comments skipped); normals are
+/// returned with unit length.
 pub fn read_points(input: impl BufRead, name: &str) -> Result<Vec<SurfacePoint>, PointsError> {
     let mut points = Vec::new();
     for (i, line) in input.lines().enumerate() {
@@ -120,7 +121,8 @@ pub fn read_points(input: impl BufRead, name: &str) -> Result<Vec<SurfacePoint>,
         }
         points.push(SurfacePoint {
             position: DVec3::new(v[0], v[1], v[2]),
-            normal,
+            // Scaled first: a component near f64::MAX must not overflow the length.
+            normal: (normal / normal.abs().max_element()).normalize(),
         });
     }
     Ok(points)

@@ -485,3 +485,62 @@ fn scene_and_silhouette_read_the_same_latin1_obj() {
     assert_eq!(code, 0, "{err}");
     check_lux(&out, "latin-1 scene");
 }
+
+/// A bundled file with 1-based line `n` replaced.
+fn with_line(rel: &str, n: usize, value: &str) -> Vec<u8> {
+    let text = std::fs::read_to_string(common::luminaire(rel)).unwrap();
+    let mut lines: Vec<&str> = text.lines().collect();
+    lines[n - 1] = value;
+    lines.join("\n").into_bytes()
+}
+
+#[test]
+fn inputs_found_by_the_stable_fuzzer() {
+    use goniolight::photometry::Luminaire;
+    let refused = |name: &str, bytes: &[u8], says: &str| {
+        let e = Luminaire::from_bytes(name, bytes).unwrap_err().to_string();
+        assert!(e.contains(says), "{name}: {e}");
+    };
+    // Luminaire dimensions that overflow once converted (LDT mm, IES units).
+    let ldt = "eulumdat-plot/sample_06_isym1.ldt";
+    refused(
+        "big.ldt",
+        &with_line(ldt, 13, "1e305"),
+        "line 13: 1e305 mm is not the size",
+    );
+    let ies = "photometric-viewer/ies95/metric_units.ies";
+    let text = std::fs::read_to_string(common::luminaire(ies)).unwrap();
+    let tilt = text.lines().position(|l| l.starts_with("TILT")).unwrap() + 2;
+    let first: Vec<&str> = text
+        .lines()
+        .nth(tilt - 1)
+        .unwrap()
+        .split_whitespace()
+        .collect();
+    let mut bad = first.clone();
+    bad[7] = "1e305";
+    refused(
+        "big.ies",
+        &with_line(ies, tilt, &bad.join(" ")),
+        "opening width 1e305",
+    );
+    let mut bad = first.clone();
+    bad[0] = "1e9";
+    refused(
+        "lamps.ies",
+        &with_line(ies, tilt, &bad.join(" ")),
+        "exceeds 1 000 000",
+    );
+    // A denormal lamp flux leaves no light in candela: refused, not written as an IES
+    // file nobody can read.
+    refused(
+        "dark.ldt",
+        &with_line(ldt, 29, "4.9e-324"),
+        "emits no light",
+    );
+    // A normal with a component near f64::MAX is still a unit normal.
+    let points =
+        goniolight::lighting::read_points(std::io::Cursor::new("1 1 0.8 0 0 1e308\n"), "<stdin>")
+            .unwrap();
+    assert!((points[0].normal.z - 1.0).abs() < 1e-12);
+}

@@ -123,7 +123,7 @@ fn bad_input_exits_2_naming_the_problem() {
         ),
         (
             vec![empty.clone(), "--light".into(), "0,0,1,0".into()],
-            "no (non-degenerate) triangles",
+            "no triangles with an area",
         ),
         (
             vec![broken.clone(), "--light".into(), "0,0,1,0".into()],

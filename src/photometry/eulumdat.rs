@@ -14,6 +14,8 @@ use super::text::{
 
 /// Largest number of C planes or γ angles accepted: a 0.1° grid, far beyond any goniometer.
 pub const MAX_ANGLES: usize = 3601;
+/// Largest luminaire dimension accepted, millimetres (100 km, as for IES files).
+pub const MAX_SIZE_MM: f64 = 1e8;
 /// Largest number of lamp sets accepted.
 pub const MAX_LAMP_SETS: usize = 64;
 
@@ -369,6 +371,12 @@ impl<'a, 't> HeaderReader<'a, 't> {
         .enumerate()
         {
             dims[i] = self.optional(what, 0.0)?;
+        }
+        if let Some(k) = dims.iter().position(|d| d.abs() > MAX_SIZE_MM) {
+            return Err(self.src.error(
+                13 + k,
+                format!("{} mm is not the size of a luminaire", show(dims[k])),
+            ));
         }
         let dimensions = Dimensions {
             length: dims[0],

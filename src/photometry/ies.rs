@@ -7,8 +7,21 @@ use super::error::ParseError;
 use super::eulumdat::{Dimensions, Eulumdat, LampSet, Parsed};
 use super::grid::angle_eq;
 use super::symmetry::Symmetry;
-use super::text::{check_increasing, decode_text, exact, NumberStream, SourceText};
+use super::text::{check_increasing, decode_text, exact, show, NumberStream, SourceText};
 use super::type_b;
+
+/// Largest luminaire or opening size accepted, metres (100 km: anything larger is a
+/// broken number, and would overflow when converted).
+pub const MAX_SIZE_M: f64 = 1e5;
+
+/// Metres per unit of an IES `units type` (1 feet, 2 metres).
+fn metres_per_unit(units: u8) -> f64 {
+    if units == 1 {
+        0.3048
+    } else {
+        1.0
+    }
+}
 
 /// Which edition of LM-63 a file declares.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -139,11 +152,7 @@ impl IesFile {
 
     /// Metres per file unit.
     pub fn metres_per_unit(&self) -> f64 {
-        if self.units == 1 {
-            0.3048
-        } else {
-            1.0
-        }
+        metres_per_unit(self.units)
     }
 
     /// The luminous opening in metres.
@@ -283,11 +292,12 @@ impl IesFile {
         let ptype_tok = nums.next("photometric type")?;
         let photometric_type = whole(&src, ptype_tok, 1, 3)? as u8;
         let units = whole(&src, nums.next("units type")?, 1, 2)? as u8;
-        let size = [
-            nums.next("opening width")?.value,
-            nums.next("opening length")?.value,
-            nums.next("opening height")?.value,
+        let size_tok = [
+            nums.next("opening width")?,
+            nums.next("opening length")?,
+            nums.next("opening height")?,
         ];
+        let size = size_tok.map(|t| t.value);
         let ballast = nums.next("ballast factor")?;
         let ballast_factor = ballast.value;
         let blpf_tok = nums.next("ballast-lamp photometric factor / future use")?;
@@ -314,6 +324,27 @@ impl IesFile {
                 format!(
                     "lumens per lamp must be positive or -1, found {}",
                     lumens.value
+                ),
+            ));
+        }
+        for (tok, what) in [
+            (size_tok[0], "opening width"),
+            (size_tok[1], "opening length"),
+            (size_tok[2], "opening height"),
+        ] {
+            if tok.value.abs() * metres_per_unit(units) > MAX_SIZE_M {
+                return Err(src.error(
+                    tok.line,
+                    format!("{what} {} is not the size of a luminaire", show(tok.value)),
+                ));
+            }
+        }
+        if lamp_count.value > 1e6 {
+            return Err(src.error(
+                lamp_count.line,
+                format!(
+                    "number of lamps {} exceeds 1 000 000",
+                    show(lamp_count.value)
                 ),
             ));
         }
@@ -570,6 +601,12 @@ pub fn write_ies(ldt: &Eulumdat, source: &str) -> String {
             .filter(|&c| (90.0..=270.0).contains(&c))
             .collect(),
         Symmetry::None => planes.iter().map(|p| p.0).chain([360.0]).collect(),
+    };
+    // Irregular C lists of a symmetric file may not span LM-63's ranges: list them all.
+    let horizontal = if horizontal_symmetry(&horizontal).is_ok() {
+        horizontal
+    } else {
+        planes.iter().map(|p| p.0).chain([360.0]).collect()
     };
     let to_cd = lamp_flux / 1000.0;
     let row = |c: f64| -> Vec<f64> {

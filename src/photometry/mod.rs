@@ -117,6 +117,18 @@ impl Luminaire {
             .into());
         }
         let peak_cd = self.distribution.max_intensity().0 * lamp_flux / 1000.0;
+        if peak_cd < 1e-9 {
+            return Err(ParseError::new(
+                name,
+                0,
+                format!(
+                    "the luminaire emits no light: its peak intensity is {} cd (lamp flux {} lm)",
+                    text::show(peak_cd),
+                    text::show(lamp_flux)
+                ),
+            )
+            .into());
+        }
         if !peak_cd.is_finite() {
             return Err(ParseError::new(
                 name,
@@ -130,10 +142,6 @@ impl Luminaire {
             self.warnings.push(format!(
                 "the intensities integrate to {lorl:.2} % of the lamp flux (LORL above 100 %): check the lamp flux and the conversion factor"
             ));
-        }
-        if grid.values().iter().all(|&v| v == 0.0) {
-            self.warnings
-                .push("every intensity is 0: the file describes no light".to_string());
         }
         Ok(self)
     }
