@@ -1,7 +1,6 @@
 //! `goniolight profile`: sun-path shadow profiles of a model over a period.
 
 use std::path::{Path, PathBuf};
-use std::sync::atomic::AtomicBool;
 
 use anyhow::anyhow;
 use chrono::{NaiveDate, NaiveTime};
@@ -112,7 +111,8 @@ pub fn run(a: ProfileArgs) -> Result<(), CliError> {
             .map_err(|e| CliError::failure(anyhow!(e)))?,
     );
     bar.set_message("shadow profile");
-    let cancel = AtomicBool::new(false);
+    // Ctrl-C stops between steps; nothing is written for an unfinished profile.
+    let cancel = super::interrupt_flag();
     let t = std::time::Instant::now();
     let profile = compute(
         &gpu,

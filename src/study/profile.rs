@@ -37,7 +37,7 @@ pub enum ProfileError {
     #[error(transparent)]
     Gpu(#[from] GpuError),
     /// Interrupted by the caller.
-    #[error("interrupted")]
+    #[error("interrupted before the last step: nothing written")]
     Cancelled,
 }
 
