@@ -333,6 +333,29 @@ fn scenes_beyond_the_gpu_are_refused_before_upload() {
         assert!(err.contains(says), "{scene}: {err}");
         assert!(!png.exists(), "{scene}: no image on refusal");
     }
+    // Ground planes of 300 m and 1 km: the paraboloid casters are tessellated more
+    // coarsely (with a warning) instead of exhausting memory.
+    for scene in [
+        "04-large-triangle-paraboloid/g300.toml",
+        "04-large-triangle-paraboloid/g1000.toml",
+    ] {
+        let tmp = tempfile::tempdir().unwrap();
+        let png = tmp.path().join("x.png");
+        let args = [
+            "render",
+            scene,
+            "--out",
+            png.to_str().unwrap(),
+            "--width",
+            "160",
+            "--height",
+            "120",
+        ];
+        let (code, _, err) = run(&args, "", scene);
+        assert_eq!(code, 0, "{scene}: {err}");
+        assert!(err.contains("casters tessellated to"), "{scene}: {err}");
+        assert!(png.exists());
+    }
     // The same 257 luminaires without shadows render.
     let tmp = tempfile::tempdir().unwrap();
     let png = tmp.path().join("x.png");

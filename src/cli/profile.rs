@@ -78,6 +78,14 @@ pub fn load_model(path: &Path, up: UpAxis) -> Result<Mesh, CliError> {
             *p = glam::DVec3::new(p.x, -p.z, p.y);
         }
     }
+    let total = mesh.triangles.len();
+    let dropped = mesh.remove_degenerate();
+    if dropped > 0 {
+        eprintln!(
+            "warning: {}: {dropped} of its {total} triangles have no area and were dropped",
+            path.display()
+        );
+    }
     mesh.validate(&path.display().to_string())?;
     Ok(mesh)
 }

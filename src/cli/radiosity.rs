@@ -159,7 +159,7 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
         interp,
     };
     let gpu = Gpu::shared()?;
-    crate::render::limits::check_scene(&gpu, &scene, &settings.shadows)?;
+    crate::render::limits::check_scene(&gpu, &scene, &mut settings.shadows)?;
     crate::render::limits::check_radiosity(&gpu, rscene.elements.len())?;
     let light = LuminaireLight::new(&gpu, &scene, interp);
     let initial = InitialState::from_luminaires_gpu(&gpu, &light, &rscene, &settings.shadows)?;

@@ -166,7 +166,7 @@ pub fn render_to_files(
     let mut settings = settings.clone();
     settings.read_hdr = exr.is_some();
     let started = Instant::now();
-    check_scene(gpu, scene, &settings.shadows)?;
+    check_scene(gpu, scene, &mut settings.shadows)?;
     let uploaded = match light_map {
         Some(map) => renderer.upload_solved(gpu, scene, map),
         None => renderer.upload(gpu, scene),
@@ -252,8 +252,15 @@ pub fn run_illuminance(args: IlluminanceArgs) -> Result<(), CliError> {
     let gpu = if args.cpu { None } else { Some(Gpu::shared()?) };
     let lux = scene_illuminance(gpu.as_ref(), &scene, &points, args.interp, technique)?;
     let mut out = String::with_capacity(lux.len() * 12);
-    for v in lux {
-        out.push_str(&format!("{v:.6}\n"));
+    for (i, v) in lux.into_iter().enumerate() {
+        // A wrong number is refused, never printed (−0 and rounding below 0 print as 0).
+        if !v.is_finite() || v < -1e-6 {
+            return Err(CliError::failure(anyhow::anyhow!(
+                "point {}: the computed illuminance {v} lx is not a usable number",
+                i + 1
+            )));
+        }
+        out.push_str(&format!("{:.6}\n", if v > 0.0 { v } else { 0.0 }));
     }
     print!("{out}");
     Ok(())

@@ -62,8 +62,9 @@ pub fn run(a: SilhouetteArgs) -> Result<(), CliError> {
     let sm = SilhouetteMesh::new(&mesh, &name, a.weld)?;
     if sm.degenerate > 0 {
         eprintln!(
-            "warning: {name}: {} degenerate triangles ignored",
-            sm.degenerate
+            "warning: {name}: {} of its {} triangles have no area and were dropped",
+            sm.degenerate,
+            mesh.triangles.len()
         );
     }
     let s = match a.method {

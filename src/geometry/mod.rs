@@ -35,6 +35,15 @@ pub enum GeometryError {
     Invalid(String),
 }
 
+/// Whether a triangle has an area: its cross product is finite and not negligible
+/// against its edges (|n|² > 10⁻²⁴ · L⁴, L the longer of two edges), the one test every
+/// reader and command uses to drop zero-area triangles.
+pub fn has_area([p, q, r]: [glam::DVec3; 3]) -> bool {
+    let n = (q - p).cross(r - p);
+    let scale = (q - p).length_squared().max((r - p).length_squared());
+    n.is_finite() && n.length_squared() > 1e-24 * scale * scale
+}
+
 /// A triangle mesh: positions and counter-clockwise triangles (outward normals).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Mesh {
@@ -71,10 +80,7 @@ impl Mesh {
             if a == b || b == c || a == c {
                 return false;
             }
-            let [p, q, r] = t.map(|i| pos[i as usize]);
-            let n = (q - p).cross(r - p);
-            let scale = (q - p).length_squared().max((r - p).length_squared());
-            n.length_squared() > 1e-24 * scale * scale
+            has_area(t.map(|i| pos[i as usize]))
         });
         before - self.triangles.len()
     }

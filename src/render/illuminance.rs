@@ -37,8 +37,8 @@ pub fn scene_illuminance(
             interp,
         ));
     };
-    let shadows = ShadowSettings::with(technique);
-    super::limits::check_scene(gpu, scene, &shadows)?;
+    let mut shadows = ShadowSettings::with(technique);
+    super::limits::check_scene(gpu, scene, &mut shadows)?;
     let uploaded = GpuScene::new(gpu, &Layouts::new(gpu), scene);
     IlluminanceProbe::new(gpu, LightModel::Ldt(interp))
         .run_in_scene(gpu, &uploaded, points, &shadows)

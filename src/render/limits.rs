@@ -12,11 +12,15 @@ use super::shadows::ShadowSettings;
 
 /// Bytes per tessellated paraboloid caster triangle (three `f32` positions).
 const CASTER_TRIANGLE_BYTES: u64 = 36;
+/// Most bytes of tessellated casters (1.9 M triangles): beyond, the edges get coarser,
+/// so tessellation stays a fraction of a second and a few hundred MB at most.
+const MAX_CASTER_BYTES: u64 = 64 << 20;
 
 /// Checks `scene` drawn with `shadows` fits `gpu`: the vertex buffer, the shadow layers
 /// (two paraboloid maps or one mask layer per luminaire) and the paraboloid casters after
-/// tessellation.
-pub fn check_scene(gpu: &Gpu, scene: &Scene, shadows: &ShadowSettings) -> Result<(), GpuError> {
+/// tessellation, whose edge length is made coarser (with a warning) where the requested
+/// one would not fit.
+pub fn check_scene(gpu: &Gpu, scene: &Scene, shadows: &mut ShadowSettings) -> Result<(), GpuError> {
     let limits = gpu.device.limits();
     let max_buffer = limits.max_buffer_size;
     let triangles = scene.triangle_count() as u64;
@@ -47,16 +51,42 @@ pub fn check_scene(gpu: &Gpu, scene: &Scene, shadows: &ShadowSettings) -> Result
         )));
     }
     if shadows.technique == ShadowTechnique::Paraboloid && lights > 0 {
-        let budget = (max_buffer / CASTER_TRIANGLE_BYTES) as usize;
-        let count = tessellated_count(&scene.caster_mesh(), shadows.tessellation_m, budget + 1);
-        if count > budget {
-            return Err(scene_refusal(scene, format!(
-                "paraboloid shadows tessellate every caster to {} m edges: this scene's large faces would need more than {budget} triangles ({} MB; this GPU allows {} MB). Use --shadows volumes, or split the large faces",
-                shadows.tessellation_m,
-                (count as u64 * CASTER_TRIANGLE_BYTES) >> 20,
-                max_buffer >> 20
-            )));
+        fit_tessellation(scene, shadows, max_buffer)?;
+    }
+    Ok(())
+}
+
+/// Coarsest caster edge tried before paraboloid shadows are refused, metres.
+const MAX_TESSELLATION_M: f64 = 64.0;
+
+/// Doubles `shadows.tessellation_m` until the tessellated casters fit `max_buffer` bytes
+/// (large faces of real buildings: a 300 m ground plane at 0.25 m is 2.9 M triangles).
+fn fit_tessellation(
+    scene: &Scene,
+    shadows: &mut ShadowSettings,
+    max_buffer: u64,
+) -> Result<(), GpuError> {
+    let budget = (max_buffer.min(MAX_CASTER_BYTES) / CASTER_TRIANGLE_BYTES) as usize;
+    let casters = scene.caster_mesh();
+    let asked = shadows.tessellation_m;
+    let mut edge = asked;
+    while tessellated_count(&casters, edge, budget + 1) > budget {
+        edge *= 2.0;
+        if edge > MAX_TESSELLATION_M {
+            return Err(scene_refusal(
+                scene,
+                format!(
+                    "paraboloid shadows tessellate every caster: this scene's faces need more than {budget} triangles even at {MAX_TESSELLATION_M} m edges. Use --shadows volumes, or split the large faces"
+                ),
+            ));
         }
+    }
+    if edge > asked {
+        eprintln!(
+            "warning: {}: paraboloid shadow casters tessellated to {edge} m edges instead of {asked} m to stay within {budget} triangles (shadows of large faces may be less exact; --shadows volumes is exact)",
+            scene.path.display()
+        );
+        shadows.tessellation_m = edge;
     }
     Ok(())
 }

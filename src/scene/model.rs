@@ -188,19 +188,28 @@ pub(super) fn load_model(
     let matrix = model_matrix(entry);
     let normal_matrix = DMat3::from_mat4(matrix).inverse().transpose();
     let mut meshes = Vec::new();
+    let (mut dropped, mut total) = (0usize, 0usize);
     for m in models {
-        let mesh = convert(&m, matrix, normal_matrix, first_material, materials.len()).map_err(
-            |message| {
+        total += m.mesh.indices.len() / 3;
+        let (mesh, zero_area) = convert(&m, matrix, normal_matrix, first_material, materials.len())
+            .map_err(|message| {
                 SceneError::new(
                     scene,
                     &path_key,
                     format!("{}: object {:?}: {message}", obj.display(), m.name),
                 )
-            },
-        )?;
+            })?;
+        dropped += zero_area;
         if !mesh.indices.is_empty() {
             meshes.push(mesh);
         }
+    }
+    if dropped > 0 {
+        eprintln!(
+            "warning: {}: {key} ({}): {dropped} of its {total} triangles have no area and were dropped",
+            scene.display(),
+            obj.display()
+        );
     }
     if meshes.is_empty() {
         return Err(SceneError::new(
@@ -212,15 +221,15 @@ pub(super) fn load_model(
     Ok(meshes)
 }
 
-/// One tobj model to a world-space mesh, dropping zero-area triangles; flat normals where
-/// the OBJ has none.
+/// One tobj model to a world-space mesh, dropping zero-area triangles (returned: how
+/// many); flat normals where the OBJ has none.
 fn convert(
     m: &tobj::Model,
     matrix: DMat4,
     normal_matrix: DMat3,
     first_material: usize,
     material_count: usize,
-) -> Result<SceneMesh, String> {
+) -> Result<(SceneMesh, usize), String> {
     let src = &m.mesh;
     let point = |i: usize| {
         let p = DVec3::new(
@@ -245,12 +254,14 @@ fn convert(
         ..Default::default()
     };
     let mut remap: HashMap<u32, u32> = HashMap::new();
+    let mut dropped = 0;
     for tri in src.indices.chunks_exact(3) {
         let p = [0, 1, 2].map(|k| point(tri[k] as usize));
-        let face = (p[1] - p[0]).cross(p[2] - p[0]);
-        if face.length_squared() <= 1e-24 || !face.is_finite() {
+        if !crate::geometry::has_area(p) {
+            dropped += 1;
             continue;
         }
+        let face = (p[1] - p[0]).cross(p[2] - p[0]);
         let face_n = face.normalize().as_vec3();
         for (k, &vi) in tri.iter().enumerate() {
             let i = vi as usize;
@@ -291,7 +302,7 @@ fn convert(
             out.indices.push(index);
         }
     }
-    Ok(out)
+    Ok((out, dropped))
 }
 
 /// Loads each texture once per model.

@@ -34,6 +34,8 @@ pub struct Viewport {
     /// read-back waits for the GPU, so it happens only when either changes.
     rendered: u64,
     read_at: Option<(u64, [u32; 2])>,
+    /// The paraboloid caster edge the uploaded scene needs to fit the GPU (0: as asked).
+    fitted_tessellation_m: f64,
 }
 
 impl Viewport {
@@ -48,6 +50,7 @@ impl Viewport {
             last: None,
             rendered: 0,
             read_at: None,
+            fitted_tessellation_m: 0.0,
         }
     }
 
@@ -65,6 +68,14 @@ impl Viewport {
         );
         if self.scene.as_ref().map(|s| s.0) != Some(app.revision) {
             let scene = app.render_scene();
+            // A scene beyond the GPU ends the viewer with the reason, never a panic.
+            let mut shadows = app.render_settings(w, h).shadows;
+            crate::render::limits::check_scene(gpu, &scene, &mut shadows)?;
+            // The caster edge paraboloid shadows need, should the view switch to them.
+            shadows.technique = crate::shadow::ShadowTechnique::Paraboloid;
+            if crate::render::limits::check_scene(gpu, &scene, &mut shadows).is_ok() {
+                self.fitted_tessellation_m = shadows.tessellation_m;
+            }
             let uploaded = match &app.radiosity.light_map {
                 Some(map) => self.renderer.upload_solved(gpu, &scene, map),
                 None => self.renderer.upload(gpu, &scene),
@@ -88,10 +99,13 @@ impl Viewport {
         else {
             return Ok(());
         };
+        let mut settings = app.render_settings(w, h);
+        let t = &mut settings.shadows.tessellation_m;
+        *t = t.max(self.fitted_tessellation_m);
         let from = RenderedFrom {
             revision: app.revision,
             camera: app.camera.camera(app.extent()),
-            settings: app.render_settings(w, h),
+            settings,
         };
         if resized || self.last.as_ref() != Some(&from) {
             let (_, _, tone) =
