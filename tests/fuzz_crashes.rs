@@ -290,6 +290,26 @@ fn malformed_scenes_end_cleanly_on_cpu_and_gpu() {
     }
 }
 
+/// `render SCENE` at 160 × 120 with `extra` flags into a temporary folder: (exit code,
+/// stderr, whether the image exists).
+fn render_small(scene: &str, extra: &[&str]) -> (i32, String, bool) {
+    let tmp = tempfile::tempdir().unwrap();
+    let png = tmp.path().join("x.png");
+    let mut args = vec![
+        "render",
+        scene,
+        "--out",
+        png.to_str().unwrap(),
+        "--width",
+        "160",
+        "--height",
+        "120",
+    ];
+    args.extend_from_slice(extra);
+    let (code, _, err) = run(&args, "", scene);
+    (code, err, png.exists())
+}
+
 #[test]
 fn scenes_beyond_the_gpu_are_refused_before_upload() {
     for (scene, shadows, says) in [
@@ -303,35 +323,11 @@ fn scenes_beyond_the_gpu_are_refused_before_upload() {
             "volumes",
             "257 texture layers",
         ),
-        (
-            "04-large-triangle-paraboloid/g300.toml",
-            "paraboloid",
-            "split the large faces",
-        ),
-        (
-            "04-large-triangle-paraboloid/g1000.toml",
-            "paraboloid",
-            "split the large faces",
-        ),
     ] {
-        let tmp = tempfile::tempdir().unwrap();
-        let png = tmp.path().join("x.png");
-        let args = [
-            "render",
-            scene,
-            "--out",
-            png.to_str().unwrap(),
-            "--width",
-            "160",
-            "--height",
-            "120",
-            "--shadows",
-            shadows,
-        ];
-        let (code, _, err) = run(&args, "", scene);
+        let (code, err, image) = render_small(scene, &["--shadows", shadows]);
         assert_eq!(code, 2, "{scene}: {err}");
         assert!(err.contains(says), "{scene}: {err}");
-        assert!(!png.exists(), "{scene}: no image on refusal");
+        assert!(!image, "{scene}: no image on refusal");
     }
     // Ground planes of 300 m and 1 km: the paraboloid casters are tessellated more
     // coarsely (with a warning) instead of exhausting memory.
@@ -339,42 +335,16 @@ fn scenes_beyond_the_gpu_are_refused_before_upload() {
         "04-large-triangle-paraboloid/g300.toml",
         "04-large-triangle-paraboloid/g1000.toml",
     ] {
-        let tmp = tempfile::tempdir().unwrap();
-        let png = tmp.path().join("x.png");
-        let args = [
-            "render",
-            scene,
-            "--out",
-            png.to_str().unwrap(),
-            "--width",
-            "160",
-            "--height",
-            "120",
-        ];
-        let (code, _, err) = run(&args, "", scene);
+        let (code, err, image) = render_small(scene, &[]);
         assert_eq!(code, 0, "{scene}: {err}");
         assert!(err.contains("casters tessellated to"), "{scene}: {err}");
-        assert!(png.exists());
+        assert!(image);
     }
     // The same 257 luminaires without shadows render.
-    let tmp = tempfile::tempdir().unwrap();
-    let png = tmp.path().join("x.png");
     let scene = "03-too-many-luminaires-panic/lum_257.toml";
-    let args = [
-        "render",
-        scene,
-        "--out",
-        png.to_str().unwrap(),
-        "--width",
-        "160",
-        "--height",
-        "120",
-        "--shadows",
-        "none",
-    ];
-    let (code, _, err) = run(&args, "", scene);
+    let (code, err, image) = render_small(scene, &["--shadows", "none"]);
     assert_eq!(code, 0, "{err}");
-    assert!(png.exists());
+    assert!(image);
 }
 
 #[test]

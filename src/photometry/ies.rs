@@ -424,6 +424,23 @@ impl IesFile {
             horizontal: h_tok.iter().map(|t| t.value).collect(),
             candela,
         };
+        // LM-63 closes a full circle with a C360 plane that repeats C0; where it does not,
+        // C0 is used, and the reader is told.
+        if let (Some(&0.0), Some(&360.0)) = (file.horizontal.first(), file.horizontal.last()) {
+            let (first, last) = (&file.candela[0], &file.candela[file.candela.len() - 1]);
+            let diff = first
+                .iter()
+                .zip(last)
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0, f64::max);
+            if diff > 0.0 {
+                warnings.push(format!(
+                    "line {}: the C360 plane differs from C0 by up to {} cd: C0 is used",
+                    h_tok[h_tok.len() - 1].line,
+                    show(diff)
+                ));
+            }
+        }
         // Validate the angle ranges now so conversion cannot fail later.
         if photometric_type == 1 {
             horizontal_symmetry(&file.horizontal).map_err(|m| src.error(h_tok[0].line, m))?;

@@ -37,20 +37,27 @@ pub fn tessellate(mesh: &Mesh, max_edge: f64) -> Vec<[DVec3; 3]> {
         .collect();
     let limit = max_edge * max_edge;
     while let Some(t) = stack.pop() {
-        let lengths = [0, 1, 2].map(|k| t[k].distance_squared(t[(k + 1) % 3]));
-        let k = (0..3)
-            .max_by(|&a, &b| lengths[a].total_cmp(&lengths[b]))
-            .unwrap_or(0);
-        if lengths[k] <= limit {
-            out.push(t);
-            continue;
+        match bisect(t, limit) {
+            Some(halves) => stack.extend(halves),
+            None => out.push(t),
         }
-        let (a, b, c) = (t[k], t[(k + 1) % 3], t[(k + 2) % 3]);
-        let m = (a + b) * 0.5;
-        stack.push([a, m, c]);
-        stack.push([m, b, c]);
     }
     out
+}
+
+/// The two halves of `t` split at the middle of its longest edge, or `None` when every
+/// edge is within √`limit` (or not finite: such a triangle is kept whole).
+fn bisect(t: [DVec3; 3], limit: f64) -> Option<[[DVec3; 3]; 2]> {
+    let lengths = [0, 1, 2].map(|k| t[k].distance_squared(t[(k + 1) % 3]));
+    let k = (0..3)
+        .max_by(|&a, &b| lengths[a].total_cmp(&lengths[b]))
+        .unwrap_or(0);
+    if lengths[k] <= limit || !lengths[k].is_finite() {
+        return None;
+    }
+    let (a, b, c) = (t[k], t[(k + 1) % 3], t[(k + 2) % 3]);
+    let m = (a + b) * 0.5;
+    Some([[a, m, c], [m, b, c]])
 }
 
 /// The number of triangles [`tessellate`] makes of `mesh`, counted without storing them
@@ -62,21 +69,15 @@ pub fn tessellated_count(mesh: &Mesh, max_edge: f64, stop_at: usize) -> usize {
     for t in &mesh.triangles {
         stack.push(t.map(|i| mesh.positions[i as usize]));
         while let Some(t) = stack.pop() {
-            let lengths = [0, 1, 2].map(|k| t[k].distance_squared(t[(k + 1) % 3]));
-            let k = (0..3)
-                .max_by(|&a, &b| lengths[a].total_cmp(&lengths[b]))
-                .unwrap_or(0);
-            if lengths[k] <= limit || !lengths[k].is_finite() {
-                count += 1;
-                if count >= stop_at {
-                    return count;
+            match bisect(t, limit) {
+                Some(halves) => stack.extend(halves),
+                None => {
+                    count += 1;
+                    if count >= stop_at {
+                        return count;
+                    }
                 }
-                continue;
             }
-            let (a, b, c) = (t[k], t[(k + 1) % 3], t[(k + 2) % 3]);
-            let m = (a + b) * 0.5;
-            stack.push([a, m, c]);
-            stack.push([m, b, c]);
         }
     }
     count
@@ -310,5 +311,8 @@ mod tests {
             // Winding is kept.
             assert!((t[1] - t[0]).cross(t[2] - t[0]).z > 0.0);
         }
+        // The counter agrees with the tessellation, and stops at its budget.
+        assert_eq!(tessellated_count(&mesh, 0.3, usize::MAX), tris.len());
+        assert_eq!(tessellated_count(&mesh, 0.3, 100), 100);
     }
 }
