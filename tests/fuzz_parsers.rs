@@ -7,7 +7,8 @@
 //! Every case must end without a panic, and what is accepted must be usable: finite,
 //! non-negative intensities and flux, files the writers produce read back with the same
 //! table, mesh indices inside the mesh. A failing input is written to
-//! `target/fuzz-found/` (keep it as a regression test in `tests/data/fuzz-crashes/`).
+//! `target/fuzz-found/`; once fixed, keep it in `tests/data/fuzz-found/` (`.lum` for
+//! luminaires), where it becomes a seed that must pass.
 //!
 //! `GONIOLIGHT_FUZZ_SECONDS` sets the budget of each target (default 10; CI gives more)
 //! and `GONIOLIGHT_FUZZ_SEED` the first seed (default: fixed, so a run repeats).

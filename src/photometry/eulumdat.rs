@@ -458,6 +458,16 @@ impl<'a, 't> HeaderReader<'a, 't> {
         let c_tokens = numbers.take(mc, "C angle")?;
         let g_tokens = numbers.take(ng, "γ angle")?;
         check_increasing(self.src, &c_tokens, 0.0..360.0, "C")?;
+        // The format's C angles begin with 0° (every writer's full circle starts there).
+        if c_tokens[0].value != 0.0 {
+            return Err(self.src.error(
+                c_tokens[0].line,
+                format!(
+                    "the C angles must begin with 0°, found {}",
+                    show(c_tokens[0].value)
+                ),
+            ));
+        }
         check_increasing(self.src, &g_tokens, 0.0..=180.0, "γ")?;
         let c_angles: Vec<f64> = c_tokens.iter().map(|t| t.value).collect();
         let gamma_angles: Vec<f64> = g_tokens.iter().map(|t| t.value).collect();

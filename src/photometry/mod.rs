@@ -55,13 +55,19 @@ pub struct Luminaire {
 }
 
 impl Luminaire {
-    /// Reads `.ldt` or `.ies` bytes; the format is told by the content (an IES file has a
-    /// `TILT=` line and usually an `IESNA` header), with `name`'s extension as a hint.
+    /// Reads `.ldt` or `.ies` bytes; the format is told by `name`'s extension, or by the
+    /// content (an `IES…` first line) when the name has neither.
     pub fn from_bytes(name: &str, bytes: &[u8]) -> Result<Luminaire, PhotometryError> {
+        // The extension decides; the content only where there is none to go by (an LDT
+        // whose company line starts with "IES" is still an LDT).
         let lower = name.to_ascii_lowercase();
-        let looks_ies = lower.ends_with(".ies")
-            || bytes.starts_with(b"IES")
-            || bytes.starts_with(b"\xEF\xBB\xBFIES");
+        let looks_ies = if lower.ends_with(".ies") {
+            true
+        } else if lower.ends_with(".ldt") {
+            false
+        } else {
+            bytes.starts_with(b"IES") || bytes.starts_with(b"\xEF\xBB\xBFIES")
+        };
         let (format, data, ies, mut warnings) = if looks_ies {
             let parsed = IesFile::parse(name, bytes)?;
             let stem = Path::new(name)
