@@ -10,6 +10,16 @@ fn main() -> ExitCode {
     unsafe {
         libc::signal(libc::SIGPIPE, libc::SIG_DFL);
     }
+    // Without XDG_RUNTIME_DIR, libwayland (probed by the GPU drivers even for headless
+    // work) prints "XDG_RUNTIME_DIR is invalid or not set" twice on every GPU command.
+    // Pointing it at the temporary folder, where no Wayland socket is, keeps it quiet;
+    // a real Wayland session sets the variable and is left alone.
+    if std::env::var_os("XDG_RUNTIME_DIR").is_none()
+        && std::env::var_os("WAYLAND_DISPLAY").is_none()
+    {
+        // SAFETY: no other thread exists yet.
+        unsafe { std::env::set_var("XDG_RUNTIME_DIR", std::env::temp_dir()) };
+    }
     let cli = goniolight::cli::Cli::parse();
     match goniolight::cli::run(cli) {
         Ok(()) => ExitCode::SUCCESS,
