@@ -90,10 +90,15 @@ pub fn illuminance_cpu_in_scene(
         .collect()
 }
 
-/// Parses lines `x y z nx ny nz` (blank lines and `#` comments skipped); normals are
-/// returned with unit length.
-pub fn read_points(input: impl BufRead, name: &str) -> Result<Vec<SurfacePoint>, PointsError> {
-    let mut points = Vec::new();
+/// Reads lines of `count` finite numbers separated by spaces or commas (blank lines and
+/// `#` comments skipped); `what` describes a line in errors. Returns (line, numbers).
+fn read_number_lines(
+    input: impl BufRead,
+    name: &str,
+    count: usize,
+    what: &str,
+) -> Result<Vec<(usize, Vec<f64>)>, PointsError> {
+    let mut rows = Vec::new();
     for (i, line) in input.lines().enumerate() {
         let err = |message: String| PointsError {
             source_name: name.to_string(),
@@ -105,19 +110,32 @@ pub fn read_points(input: impl BufRead, name: &str) -> Result<Vec<SurfacePoint>,
         if t.is_empty() || t.starts_with('#') {
             continue;
         }
-        let v: Vec<f64> = t
-            .split_whitespace()
-            .map(|w| w.parse::<f64>())
-            .collect::<Result<_, _>>()
-            .map_err(|e| err(format!("{e}: {t:?}")))?;
-        if v.len() != 6 || v.iter().any(|x| !x.is_finite()) {
-            return Err(err(format!(
-                "expected six finite numbers \"x y z nx ny nz\", got {t:?}"
-            )));
+        let v: Option<Vec<f64>> = t
+            .split(|c: char| c.is_whitespace() || c == ',')
+            .filter(|w| !w.is_empty())
+            .map(|w| w.parse::<f64>().ok().filter(|x| x.is_finite()))
+            .collect();
+        match v {
+            Some(v) if v.len() == count => rows.push((i + 1, v)),
+            _ => return Err(err(format!("expected {what}, found {t:?}"))),
         }
+    }
+    Ok(rows)
+}
+
+/// Parses lines `x y z nx ny nz` (spaces or commas; blank lines and `#` comments
+/// skipped); normals are returned with unit length.
+pub fn read_points(input: impl BufRead, name: &str) -> Result<Vec<SurfacePoint>, PointsError> {
+    let rows = read_number_lines(input, name, 6, "six finite numbers \"x y z nx ny nz\"")?;
+    let mut points = Vec::with_capacity(rows.len());
+    for (line, v) in rows {
         let normal = DVec3::new(v[3], v[4], v[5]);
         if normal.length() < 1e-12 {
-            return Err(err("the normal has zero length".into()));
+            return Err(PointsError {
+                source_name: name.to_string(),
+                line,
+                message: "the normal has zero length".into(),
+            });
         }
         points.push(SurfacePoint {
             position: DVec3::new(v[0], v[1], v[2]),
@@ -126,4 +144,23 @@ pub fn read_points(input: impl BufRead, name: &str) -> Result<Vec<SurfacePoint>,
         });
     }
     Ok(points)
+}
+
+/// Parses lines `C GAMMA` in degrees (what `ldt sample` reads): γ must lie in [0°, 180°],
+/// C may be any finite angle (it wraps).
+pub fn read_angles(input: impl BufRead, name: &str) -> Result<Vec<(f64, f64)>, PointsError> {
+    let rows = read_number_lines(input, name, 2, "\"C GAMMA\" in degrees")?;
+    rows.into_iter()
+        .map(|(line, v)| {
+            if (0.0..=180.0).contains(&v[1]) {
+                Ok((v[0], v[1]))
+            } else {
+                Err(PointsError {
+                    source_name: name.to_string(),
+                    line,
+                    message: format!("γ {} outside [0°, 180°]", v[1]),
+                })
+            }
+        })
+        .collect()
 }

@@ -1,5 +1,6 @@
 //! Mutation fuzzing of every reader on stable Rust, time-boxed: luminaire files (LDT and
-//! IES), OBJ meshes, scene TOML and the point lists read from stdin. Seeds are the real
+//! IES), OBJ meshes, MTL materials, scene TOML and the point and angle lists read from
+//! stdin. Seeds are the real
 //! files (bundled luminaires, the wild corpus in `../shared`, the bundled scenes); each
 //! case applies a few structure-aware mutations (extreme numbers in place of numbers,
 //! lines deleted, duplicated or swapped, truncation, byte flips, splices).
@@ -19,8 +20,8 @@ use std::panic::AssertUnwindSafe;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
-use goniolight::geometry::obj::parse_obj;
-use goniolight::lighting::read_points;
+use goniolight::geometry::obj::{parse_mtl, parse_obj};
+use goniolight::lighting::{read_angles, read_points};
 use goniolight::photometry::ies::write_ies;
 use goniolight::photometry::{Interp, Luminaire};
 use goniolight::scene::Scene;
@@ -339,6 +340,46 @@ fn fuzz_point_lists() {
             let ok = p.position.is_finite() && p.normal.is_finite() && p.normal.length() > 0.5;
             if !ok {
                 return Err(format!("accepted point {p:?}"));
+            }
+        }
+        Ok(())
+    });
+}
+
+#[test]
+fn fuzz_mtl_reader() {
+    let mut files = Vec::new();
+    files_under(&common::root().join("assets"), &["mtl"], &mut files);
+    let seeds = read_all(files);
+    fuzz("mtl", "mtl", &seeds, |bytes| {
+        let Ok((materials, _)) = parse_mtl("f.mtl", bytes) else {
+            return Ok(());
+        };
+        for m in &materials {
+            if m.diffuse.is_some_and(|d| d.iter().any(|x| !x.is_finite())) {
+                return Err(format!(
+                    "accepted material {:?} with a non-finite colour",
+                    m.name
+                ));
+            }
+        }
+        Ok(())
+    });
+}
+
+#[test]
+fn fuzz_angle_lists() {
+    let seeds = vec![
+        b"0 0\n90 45\n".to_vec(),
+        b"# C gamma\n370,12.5\n\n-15 180\n".to_vec(),
+    ];
+    fuzz("angles", "txt", &seeds, |bytes| {
+        let Ok(angles) = read_angles(std::io::Cursor::new(bytes), "<stdin>") else {
+            return Ok(());
+        };
+        for &(c, g) in &angles {
+            if !c.is_finite() || !(0.0..=180.0).contains(&g) {
+                return Err(format!("accepted C {c}, γ {g}"));
             }
         }
         Ok(())

@@ -172,3 +172,30 @@ fn model_commands_drop_zero_area_triangles_with_a_count() {
         assert!(!has_nan(&csv), "{csv}");
     }
 }
+
+#[test]
+fn the_viewer_opens_the_conference_room() {
+    let m = &MODELS[0];
+    let tmp = tempfile::tempdir().unwrap();
+    let scene = scene_for(m, tmp.path());
+    let shot = tmp.path().join("window.png");
+    let out = std::process::Command::new("xvfb-run")
+        .args(["-a", "-s", "-screen 0 1280x800x24"])
+        .arg(env!("CARGO_BIN_EXE_goniolight"))
+        .args([
+            "view",
+            scene.to_str().unwrap(),
+            "--frames",
+            "2",
+            "--screenshot",
+        ])
+        .arg(&shot)
+        .env("GONIOLIGHT_CONFIG_DIR", tmp.path().join("config"))
+        .output()
+        .expect("xvfb-run is needed (scripts/install-deps.sh installs it)");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    says_dropped(&err, m);
+    assert!(!err.contains("panicked"), "{err}");
+    image::open(&shot).unwrap();
+}

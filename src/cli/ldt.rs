@@ -1,6 +1,6 @@
 //! `goniolight ldt …`: luminaire file tools.
 
-use std::io::{BufRead, Write};
+use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use clap::{Args, Subcommand};
@@ -191,36 +191,10 @@ fn info(file: &Path, as_json: bool) -> Result<(), CliError> {
 
 fn sample(file: &Path, interp: Interp) -> Result<(), CliError> {
     let lum = load(file)?;
+    let angles = crate::lighting::read_angles(std::io::stdin().lock(), "<stdin>")?;
     let mut out = String::new();
-    for (i, line) in std::io::stdin().lock().lines().enumerate() {
-        let line = line.map_err(CliError::failure)?;
-        let t = line.trim();
-        if t.is_empty() || t.starts_with('#') {
-            continue;
-        }
-        let nums: Vec<f64> = t
-            .split(|c: char| c.is_whitespace() || c == ',')
-            .filter(|s| !s.is_empty())
-            .map(|s| s.parse::<f64>().ok().filter(|v| v.is_finite()))
-            .collect::<Option<Vec<f64>>>()
-            .filter(|v| v.len() == 2)
-            .ok_or_else(|| {
-                CliError::input(anyhow::anyhow!(
-                    "<stdin>: line {}: expected \"C GAMMA\" in degrees, found {t:?}",
-                    i + 1
-                ))
-            })?;
-        if !(0.0..=180.0).contains(&nums[1]) {
-            return Err(CliError::input(anyhow::anyhow!(
-                "<stdin>: line {}: γ {} outside [0°, 180°]",
-                i + 1,
-                nums[1]
-            )));
-        }
-        out.push_str(&format!(
-            "{}\n",
-            lum.distribution.sample(nums[0], nums[1], interp)
-        ));
+    for (c, g) in angles {
+        out.push_str(&format!("{}\n", lum.distribution.sample(c, g, interp)));
     }
     std::io::stdout()
         .write_all(out.as_bytes())

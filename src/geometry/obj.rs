@@ -97,12 +97,10 @@ fn read_file(path: &Path) -> Result<Vec<u8>, GeometryError> {
     })
 }
 
-/// What tobj's MTL reader returns on success.
-type MtlContent = <tobj::MTLLoadResult as IntoIterator>::Item;
+/// What tobj's MTL reader returns on success: the materials and their index by name.
+pub type MtlContent = <tobj::MTLLoadResult as IntoIterator>::Item;
 
-/// Reads an MTL file. tobj panics on colour lines with fewer than three numbers
-/// (`Kd 0.5`): such lines, and files too large or not files at all, are refused here with
-/// the file and line first.
+/// Reads an MTL file (bounded, devices refused) and parses it with [`parse_mtl`].
 fn load_mtl(path: &Path) -> Result<MtlContent, MtlError> {
     let bytes = crate::io::read_limited(path, crate::io::MAX_MODEL_BYTES).map_err(|e| {
         if e.kind() == std::io::ErrorKind::NotFound {
@@ -111,23 +109,46 @@ fn load_mtl(path: &Path) -> Result<MtlContent, MtlError> {
             MtlError::Bad(format!("{}: {e}", path.display()))
         }
     })?;
-    let text = String::from_utf8_lossy(&bytes);
+    parse_mtl(&path.display().to_string(), &bytes)
+}
+
+/// Parses MTL bytes into materials; `name` is used in messages. tobj panics on colour
+/// lines with fewer than three numbers (`Kd 0.5`): such lines, and non-finite values of
+/// the numeric keys, are refused here first, naming the line.
+pub fn parse_mtl(name: &str, bytes: &[u8]) -> Result<MtlContent, MtlError> {
+    let text = String::from_utf8_lossy(bytes);
     for (i, line) in text.lines().enumerate() {
         let mut words = line.split_whitespace();
         let Some(key) = words.next() else { continue };
-        if matches!(key, "Ka" | "Kd" | "Ks" | "Ke" | "Kt" | "Tf") {
-            let numbers = words.take_while(|w| w.parse::<f32>().is_ok()).count();
-            if numbers < 3 {
-                return Err(MtlError::Bad(format!(
-                    "{}: line {}: {key} needs three numbers (r g b), found {numbers}",
-                    path.display(),
-                    i + 1
-                )));
-            }
+        let numeric = matches!(
+            key,
+            "Ka" | "Kd" | "Ks" | "Ke" | "Kt" | "Tf" | "Ns" | "Ni" | "d" | "Tr"
+        );
+        if !numeric {
+            continue;
+        }
+        let values: Vec<f32> = words.map_while(|w| w.parse::<f32>().ok()).collect();
+        if let Some(v) = values.iter().find(|v| !v.is_finite()) {
+            return Err(MtlError::Bad(format!(
+                "{name}: line {}: {key} value {v} is not a finite number",
+                i + 1
+            )));
+        }
+        let needed = if matches!(key, "Ns" | "Ni" | "d" | "Tr") {
+            1
+        } else {
+            3
+        };
+        if values.len() < needed {
+            return Err(MtlError::Bad(format!(
+                "{name}: line {}: {key} needs {needed} number(s), found {}",
+                i + 1,
+                values.len()
+            )));
         }
     }
-    tobj::load_mtl_buf(&mut std::io::Cursor::new(&bytes[..]))
-        .map_err(|e| MtlError::Bad(format!("{}: {e}", path.display())))
+    tobj::load_mtl_buf(&mut std::io::Cursor::new(bytes))
+        .map_err(|e| MtlError::Bad(format!("{name}: {e}")))
 }
 
 /// Parses OBJ bytes; `name` is used in messages, `load_mtl` reads `mtllib` files.
