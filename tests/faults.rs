@@ -207,7 +207,7 @@ fn a_file_where_a_folder_should_be_is_named() {
     }
 }
 
-/// Starts `args`, waits until stderr shows `ready` (or `after`), sends SIGINT and waits:
+/// Starts `args`, waits until stderr shows `ready`, then `after`, sends SIGINT and waits:
 /// (exit code or −signal, stderr).
 fn interrupt(args: &[String], ready: &str, after: Duration) -> (i32, String) {
     use std::io::Read;
@@ -232,7 +232,8 @@ fn interrupt(args: &[String], ready: &str, after: Duration) -> (i32, String) {
         all
     });
     let started = Instant::now();
-    while started.elapsed() < Duration::from_secs(300) {
+    // An empty `ready` waits for nothing but `after`.
+    while !ready.is_empty() && started.elapsed() < Duration::from_secs(300) {
         if let Ok(seen) = rx.recv_timeout(Duration::from_millis(100)) {
             if seen.contains(ready) {
                 break;
@@ -301,13 +302,16 @@ fn ctrl_c_stops_profile_writing_nothing() {
         "20:00",
         "--step",
         "1",
+        "--resolution",
+        "2048",
         "--out",
         dir.to_str().unwrap(),
     ]
     .iter()
     .map(|s| s.to_string())
     .collect();
-    let (code, err) = interrupt(&args, "", Duration::from_secs(3));
+    // 900 steps at 2048 px take far longer than the second before Ctrl-C.
+    let (code, err) = interrupt(&args, "Ctrl-C stops", Duration::from_secs(1));
     assert_eq!(code, 1, "a clean exit: {err}");
     assert!(err.contains("interrupted"), "{err}");
     assert!(!err.contains("panicked"), "{err}");

@@ -41,12 +41,10 @@ impl NativeLuminaire {
         serde_json::to_string(&self.lum.info_json()).map_err(value_error)
     }
 
-    /// The full-circle table: C angles × γ angles, cd/klm.
+    /// The full-circle table as stored: C angles × γ angles, cd/klm (what `ldt info`
+    /// lists and `ldt convert` writes).
     fn intensities<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let grid = self.lum.distribution.grid();
-        let rows: Vec<Vec<f64>> = (0..grid.c_angles().len())
-            .map(|i| grid.plane(i).to_vec())
-            .collect();
+        let rows: Vec<Vec<f64>> = self.lum.data.expanded().into_iter().map(|p| p.1).collect();
         PyArray2::from_vec2(py, &rows).map_err(value_error)
     }
 

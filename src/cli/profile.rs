@@ -121,6 +121,10 @@ pub fn run(a: ProfileArgs) -> Result<(), CliError> {
     bar.set_message("shadow profile");
     // Ctrl-C stops between steps; nothing is written for an unfinished profile.
     let cancel = super::interrupt_flag();
+    eprintln!(
+        "{}: {steps} steps (Ctrl-C stops and writes nothing)",
+        a.model.display()
+    );
     let t = std::time::Instant::now();
     let profile = compute(
         &gpu,
