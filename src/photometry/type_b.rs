@@ -107,7 +107,8 @@ fn gamma_step(vertical: &[f64], horizontal: &[f64]) -> f64 {
 }
 
 /// Resamples a Type B (2) or Type A (3) table, candela rows per horizontal angle, onto a
-/// full C-γ grid (C every 2γ-steps, γ at the step of [`gamma_step`]).
+/// full C-γ grid (γ every 0.5°, 1° or 2°: the coarsest not coarser than the table's finest
+/// step; C every two γ steps, at most 5°).
 pub fn to_c_gamma(
     photometric_type: u8,
     vertical: &[f64],
