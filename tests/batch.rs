@@ -10,22 +10,18 @@ use common::{luminaire, root, run_cli};
 
 /// Every file under `dir` (relative path → bytes), summaries left out.
 fn tree(dir: &Path) -> BTreeMap<String, Vec<u8>> {
-    let mut out = BTreeMap::new();
-    let mut stack = vec![dir.to_path_buf()];
-    while let Some(d) = stack.pop() {
-        for e in std::fs::read_dir(&d).unwrap() {
-            let p = e.unwrap().path();
-            if p.is_dir() {
-                stack.push(p);
-            } else if !p.to_string_lossy().contains("summary")
-                && p.extension().is_none_or(|e| e != "toml")
-            {
-                let rel = p.strip_prefix(dir).unwrap().display().to_string();
-                out.insert(rel, std::fs::read(&p).unwrap());
-            }
-        }
-    }
-    out
+    common::files_in(dir)
+        .into_iter()
+        .filter(|p| {
+            !p.to_string_lossy().contains("summary") && p.extension().is_none_or(|e| e != "toml")
+        })
+        .map(|p| {
+            (
+                p.display().to_string(),
+                std::fs::read(dir.join(&p)).unwrap(),
+            )
+        })
+        .collect()
 }
 
 /// A jobs file with five jobs of four kinds (two on the GPU), written into `dir`.

@@ -191,24 +191,11 @@ fn demo_writes_the_check_and_the_plot() {
 #[test]
 fn headless_gpu_commands_print_no_wayland_noise() {
     let scene = common::root().join("assets/scenes/box_room.toml");
-    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_goniolight"))
-        .args(["illuminance", scene.to_str().unwrap()])
-        .env_remove("XDG_RUNTIME_DIR")
-        .env_remove("WAYLAND_DISPLAY")
-        .stdin(std::process::Stdio::piped())
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
-    use std::io::Write;
-    child
-        .stdin
-        .take()
-        .unwrap()
-        .write_all(b"1 1 0.8 0 0 1\n")
-        .unwrap();
-    let out = child.wait_with_output().unwrap();
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert!(out.status.success(), "{err}");
+    let (code, _, err) = common::run_cli_without(
+        &["illuminance", scene.to_str().unwrap()],
+        "1 1 0.8 0 0 1\n",
+        &["XDG_RUNTIME_DIR", "WAYLAND_DISPLAY"],
+    );
+    assert_eq!(code, 0, "{err}");
     assert!(!err.contains("XDG_RUNTIME_DIR"), "{err}");
 }

@@ -55,24 +55,6 @@ fn on_tmpfs(options: &str, args: &[String], copy: &Path) -> (i32, String) {
     (code, err)
 }
 
-/// Every file under `dir`, relative.
-fn files(dir: &Path) -> Vec<PathBuf> {
-    let mut out = Vec::new();
-    let mut stack = vec![dir.to_path_buf()];
-    while let Some(d) = stack.pop() {
-        for e in std::fs::read_dir(&d).unwrap() {
-            let p = e.unwrap().path();
-            if p.is_dir() {
-                stack.push(p);
-            } else {
-                out.push(p.strip_prefix(dir).unwrap().to_path_buf());
-            }
-        }
-    }
-    out.sort();
-    out
-}
-
 /// A file is complete when it decodes (images) or parses (CSV, JSON, luminaires) whole.
 fn assert_complete(path: &Path) {
     let name = path.display().to_string();
@@ -130,26 +112,13 @@ fn writers() -> Vec<(&'static str, Vec<String>)> {
         ),
         (
             "profile",
-            s(&[
-                "profile",
+            common::profile_args(
                 &model,
-                "--lat",
-                "48.2",
-                "--lon",
-                "16.4",
-                "--date",
-                "2026-06-21",
-                "--from",
                 "08:00",
-                "--to",
                 "16:00",
-                "--step",
                 "120",
-                "--resolution",
-                "128",
-                "--out",
-                "{DIR}/p",
-            ]),
+                &["--resolution", "128", "--out", "{DIR}/p"],
+            ),
         ),
     ]
 }
@@ -167,7 +136,7 @@ fn writers_fail_cleanly_on(options: &str, says: &str) {
             "{what} names the path: {err}"
         );
         assert!(!err.contains("panicked"), "{what}: {err}");
-        let left = files(copy.path());
+        let left = common::files_in(copy.path());
         for f in &left {
             assert_complete(&copy.path().join(f));
         }
@@ -203,7 +172,11 @@ fn a_file_where_a_folder_should_be_is_named() {
         assert!(err.contains(d), "{what} names the path: {err}");
         assert!(!err.contains("panicked"), "{what}: {err}");
         assert_eq!(std::fs::read(&blocker).unwrap(), b"keep");
-        assert_eq!(files(dir.path()), vec![PathBuf::from("f")], "{what}");
+        assert_eq!(
+            common::files_in(dir.path()),
+            vec![PathBuf::from("f")],
+            "{what}"
+        );
     }
 }
 
@@ -276,7 +249,7 @@ fn ctrl_c_stops_radiosity_with_a_complete_solution() {
     let (code, err) = interrupt(&args, "shooting", Duration::from_secs(2));
     assert_eq!(code, 0, "writes the solution so far: {err}");
     assert!(err.contains("interrupted"), "{err}");
-    let written = files(out.path());
+    let written = common::files_in(out.path());
     assert!(!written.is_empty(), "{err}");
     for f in written {
         assert_complete(&out.path().join(f));
@@ -287,35 +260,24 @@ fn ctrl_c_stops_radiosity_with_a_complete_solution() {
 fn ctrl_c_stops_profile_writing_nothing() {
     let out = tempfile::tempdir().unwrap();
     let dir = out.path().join("p");
-    let args: Vec<String> = [
-        "profile",
-        &root_path("assets/models/industrial_area.obj"),
-        "--lat",
-        "48.2",
-        "--lon",
-        "16.4",
-        "--date",
-        "2026-06-21",
-        "--from",
+    let model = root_path("assets/models/industrial_area.obj");
+    let args = common::profile_args(
+        &model,
         "05:00",
-        "--to",
         "20:00",
-        "--step",
         "1",
-        "--resolution",
-        "2048",
-        "--out",
-        dir.to_str().unwrap(),
-    ]
-    .iter()
-    .map(|s| s.to_string())
-    .collect();
+        &["--resolution", "2048", "--out", dir.to_str().unwrap()],
+    );
     // 900 steps at 2048 px take far longer than the second before Ctrl-C.
     let (code, err) = interrupt(&args, "Ctrl-C stops", Duration::from_secs(1));
     assert_eq!(code, 1, "a clean exit: {err}");
     assert!(err.contains("interrupted"), "{err}");
     assert!(!err.contains("panicked"), "{err}");
-    assert!(files(out.path()).is_empty(), "{:?}", files(out.path()));
+    assert!(
+        common::files_in(out.path()).is_empty(),
+        "{:?}",
+        common::files_in(out.path())
+    );
 }
 
 #[test]

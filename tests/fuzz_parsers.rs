@@ -211,17 +211,7 @@ fn read_all(files: impl IntoIterator<Item = PathBuf>) -> Vec<Vec<u8>> {
 }
 
 fn files_under(dir: &Path, exts: &[&str], out: &mut Vec<PathBuf>) {
-    for e in std::fs::read_dir(dir).unwrap() {
-        let p = e.unwrap().path();
-        if p.is_dir() {
-            files_under(&p, exts, out);
-        } else if p
-            .extension()
-            .is_some_and(|x| exts.iter().any(|e| x.eq_ignore_ascii_case(e)))
-        {
-            out.push(p);
-        }
-    }
+    out.extend(common::files_with(dir, exts));
 }
 
 /// What an accepted luminaire must be: usable numbers, and both writers' output read back

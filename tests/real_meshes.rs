@@ -144,28 +144,14 @@ fn model_commands_drop_zero_area_triangles_with_a_count() {
         says_dropped(&err, m);
         let v: serde_json::Value = serde_json::from_str(&out).unwrap();
         assert!(v["count"].as_u64().unwrap() > 0);
-        let args = [
-            "profile",
+        let args = common::profile_args(
             o,
-            "--up",
-            m.up,
-            "--lat",
-            "48.2",
-            "--lon",
-            "16.4",
-            "--date",
-            "2026-06-21",
-            "--from",
             "10:00",
-            "--to",
             "14:00",
-            "--step",
             "240",
-            "--resolution",
-            "64",
-            "--out",
-            "p",
-        ];
+            &["--up", m.up, "--resolution", "64", "--out", "p"],
+        );
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
         let (_, err) = run(tmp.path(), &args, "");
         says_dropped(&err, m);
         let csv = std::fs::read_to_string(tmp.path().join("p/profile.csv")).unwrap();

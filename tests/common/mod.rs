@@ -13,31 +13,45 @@ pub fn luminaire(rel: &str) -> PathBuf {
     root().join("luminaires").join(rel)
 }
 
+/// Every file under `dir`, recursively, as paths relative to `dir`, sorted.
+pub fn files_in(dir: &Path) -> Vec<PathBuf> {
+    let mut out = Vec::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        for e in std::fs::read_dir(&d).unwrap() {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                stack.push(p);
+            } else {
+                out.push(p.strip_prefix(dir).unwrap().to_path_buf());
+            }
+        }
+    }
+    out.sort();
+    out
+}
+
+/// Every file under `dir` whose extension is one of `exts` (any case), as full paths.
+pub fn files_with(dir: &Path, exts: &[&str]) -> Vec<PathBuf> {
+    files_in(dir)
+        .into_iter()
+        .filter(|p| {
+            p.extension()
+                .is_some_and(|x| exts.iter().any(|e| x.eq_ignore_ascii_case(e)))
+        })
+        .map(|p| dir.join(p))
+        .collect()
+}
+
 /// Every bundled `.ldt` and `.ies` file.
 pub fn all_luminaire_files() -> Vec<PathBuf> {
-    let mut out = Vec::new();
-    walk(&root().join("luminaires"), &mut out);
-    out.sort();
+    let out = files_with(&root().join("luminaires"), &["ldt", "ies"]);
     assert!(
         out.len() >= 60,
         "expected the bundled luminaires, found {}",
         out.len()
     );
     out
-}
-
-fn walk(dir: &Path, out: &mut Vec<PathBuf>) {
-    for entry in std::fs::read_dir(dir).unwrap() {
-        let p = entry.unwrap().path();
-        if p.is_dir() {
-            walk(&p, out);
-        } else if matches!(
-            p.extension().and_then(|e| e.to_str()),
-            Some("ldt") | Some("ies")
-        ) {
-            out.push(p);
-        }
-    }
 }
 
 /// An independent, minimal EULUMDAT reader used as the oracle for the expansion tests:
@@ -64,15 +78,22 @@ pub fn raw_ldt(path: &Path) -> (u8, Vec<f64>, Vec<f64>, Vec<Vec<f64>>) {
 
 /// Runs the built binary with `args` and `stdin`; returns (exit code, stdout, stderr).
 pub fn run_cli(args: &[&str], stdin: &str) -> (i32, String, String) {
+    run_cli_without(args, stdin, &[])
+}
+
+/// [`run_cli`] with the environment variables `unset` removed.
+pub fn run_cli_without(args: &[&str], stdin: &str, unset: &[&str]) -> (i32, String, String) {
     use std::io::Write;
     use std::process::{Command, Stdio};
-    let mut child = Command::new(env!("CARGO_BIN_EXE_goniolight"))
-        .args(args)
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_goniolight"));
+    cmd.args(args)
         .stdin(Stdio::piped())
         .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
+        .stderr(Stdio::piped());
+    for v in unset {
+        cmd.env_remove(v);
+    }
+    let mut child = cmd.spawn().unwrap();
     child
         .stdin
         .take()
@@ -85,6 +106,31 @@ pub fn run_cli(args: &[&str], stdin: &str) -> (i32, String, String) {
         String::from_utf8_lossy(&out.stdout).into_owned(),
         String::from_utf8_lossy(&out.stderr).into_owned(),
     )
+}
+
+/// The arguments of `goniolight profile MODEL` for Vienna on 2026-06-21 from `from` to
+/// `to` every `step` minutes, then `extra`.
+pub fn profile_args(model: &str, from: &str, to: &str, step: &str, extra: &[&str]) -> Vec<String> {
+    [
+        "profile",
+        model,
+        "--lat",
+        "48.2",
+        "--lon",
+        "16.4",
+        "--date",
+        "2026-06-21",
+        "--from",
+        from,
+        "--to",
+        to,
+        "--step",
+        step,
+    ]
+    .iter()
+    .chain(extra)
+    .map(|s| s.to_string())
+    .collect()
 }
 
 /// The shared test data (`../shared` beside the repository, or `$GONIOLIGHT_SHARED`):
