@@ -71,11 +71,16 @@ impl Viewport {
             // A scene beyond the GPU ends the viewer with the reason, never a panic.
             let mut shadows = app.render_settings(w, h).shadows;
             crate::render::limits::check_scene(gpu, &scene, &mut shadows)?;
-            // The caster edge paraboloid shadows need, should the view switch to them.
-            shadows.technique = crate::shadow::ShadowTechnique::Paraboloid;
-            if crate::render::limits::check_scene(gpu, &scene, &mut shadows).is_ok() {
-                self.fitted_tessellation_m = shadows.tessellation_m;
+            // The caster edge paraboloid shadows need, should the view switch to them
+            // (measured once: the check above already did it for paraboloid views).
+            let paraboloid = crate::shadow::ShadowTechnique::Paraboloid;
+            if shadows.technique != paraboloid {
+                shadows.technique = paraboloid;
+                if crate::render::limits::check_scene(gpu, &scene, &mut shadows).is_err() {
+                    shadows.tessellation_m = 0.0;
+                }
             }
+            self.fitted_tessellation_m = shadows.tessellation_m;
             let uploaded = match &app.radiosity.light_map {
                 Some(map) => self.renderer.upload_solved(gpu, &scene, map),
                 None => self.renderer.upload(gpu, &scene),
