@@ -199,3 +199,35 @@ fn headless_gpu_commands_print_no_wayland_noise() {
     assert_eq!(code, 0, "{err}");
     assert!(!err.contains("XDG_RUNTIME_DIR"), "{err}");
 }
+
+/// wgpu's OpenGL backend (what wgpu picks without a Vulkan driver) computed nothing into
+/// the float targets: `illuminance` printed 0 lux with exit 0. Every GPU command now
+/// refuses it (or finds no adapter) with exit 1 and the fix, and writes nothing.
+#[test]
+fn the_opengl_backend_is_refused_with_the_fix_never_a_wrong_number() {
+    let scene = common::root().join("assets/scenes/box_room.toml");
+    let scene = scene.to_str().unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let out = |name: &str| dir.path().join(name).to_string_lossy().into_owned();
+    let (png, solved) = (out("room.png"), out("solved"));
+    let commands: [(&[&str], &str); 4] = [
+        (&["illuminance", scene], "1 1 0.8 0 0 1\n"),
+        (&["render", scene, "--out", &png], ""),
+        (
+            &["radiosity", scene, "--max-shots", "2", "--out-dir", &solved],
+            "",
+        ),
+        (&["demo", "--out-dir", &solved], ""),
+    ];
+    for (args, stdin) in commands {
+        let (code, stdout, err) = common::run_cli_env(args, stdin, &[("WGPU_BACKEND", "gl")], &[]);
+        assert_eq!(code, 1, "{args:?}: {err}");
+        assert!(err.contains("mesa-vulkan-drivers"), "{args:?}: {err}");
+        assert!(!err.contains("panicked"), "{args:?}: {err}");
+        assert!(stdout.trim().is_empty(), "{args:?} printed {stdout:?}");
+    }
+    assert!(
+        common::files_in(dir.path()).is_empty(),
+        "nothing is written"
+    );
+}

@@ -19,6 +19,11 @@ pub enum GpuError {
         /// What wgpu said.
         source: wgpu::RequestDeviceError,
     },
+    /// The adapter's backend lacks what goniolight's GPU code needs (wgpu's GL backend:
+    /// no float render targets, downlevel compute): refused before any work, so no
+    /// command can print a number it did not compute.
+    #[error("{0}")]
+    Unsupported(String),
     /// A GPU operation failed (validation, mapping, timeout).
     #[error("GPU: {0}")]
     Operation(String),
@@ -43,6 +48,36 @@ pub fn cleared_attachment(
             store: wgpu::StoreOp::Store,
         },
     }
+}
+
+/// Refuses an adapter whose backend goniolight's GPU code does not run correctly on:
+/// wgpu's OpenGL backend (picked when no Vulkan driver is installed) renders nothing into
+/// the 32-bit float targets the renderer and the illuminance queries use, so its numbers
+/// would be zeros; any adapter without float render targets or compute shaders likewise.
+pub fn check_backend(adapter: &wgpu::Adapter) -> Result<(), GpuError> {
+    let info = adapter.get_info();
+    let float_target = adapter
+        .get_texture_format_features(wgpu::TextureFormat::Rgba32Float)
+        .allowed_usages
+        .contains(wgpu::TextureUsages::RENDER_ATTACHMENT);
+    let compute = adapter
+        .get_downlevel_capabilities()
+        .flags
+        .contains(wgpu::DownlevelFlags::COMPUTE_SHADERS);
+    let missing = match () {
+        _ if info.backend == wgpu::Backend::Gl => "the OpenGL backend is not supported",
+        _ if !float_target => "it cannot render into 32-bit float (Rgba32Float) targets",
+        _ if !compute => "it has no compute shaders",
+        _ => return Ok(()),
+    };
+    Err(GpuError::Unsupported(format!(
+        "GPU adapter {:?} ({:?} backend) refused: {missing}, so goniolight's images and lux \
+         values would be wrong. Use a Vulkan, Metal or DirectX 12 driver: on Debian/Ubuntu \
+         without a GPU driver, install the software Vulkan driver (`apt-get install \
+         mesa-vulkan-drivers libvulkan1`); if one is installed, unset WGPU_BACKEND or set \
+         WGPU_BACKEND=vulkan.",
+        info.name, info.backend
+    )))
 }
 
 /// A headless GPU context (cheap to clone: wgpu's handles are shared).
@@ -109,6 +144,7 @@ impl Gpu {
             .map_err(|e| GpuError::NoAdapter(format!(" ({e})")))?,
         };
         let info = adapter.get_info();
+        check_backend(&adapter)?;
         let wanted_features =
             wgpu::Features::DEPTH32FLOAT_STENCIL8 | wgpu::Features::DEPTH_CLIP_CONTROL;
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {

@@ -83,6 +83,16 @@ pub fn run_cli(args: &[&str], stdin: &str) -> (i32, String, String) {
 
 /// [`run_cli`] with the environment variables `unset` removed.
 pub fn run_cli_without(args: &[&str], stdin: &str, unset: &[&str]) -> (i32, String, String) {
+    run_cli_env(args, stdin, &[], unset)
+}
+
+/// [`run_cli`] with the environment variables `set` set and `unset` removed.
+pub fn run_cli_env(
+    args: &[&str],
+    stdin: &str,
+    set: &[(&str, &str)],
+    unset: &[&str],
+) -> (i32, String, String) {
     use std::io::Write;
     use std::process::{Command, Stdio};
     let mut cmd = Command::new(env!("CARGO_BIN_EXE_goniolight"));
@@ -93,6 +103,7 @@ pub fn run_cli_without(args: &[&str], stdin: &str, unset: &[&str]) -> (i32, Stri
     for v in unset {
         cmd.env_remove(v);
     }
+    cmd.envs(set.iter().copied());
     let mut child = cmd.spawn().unwrap();
     child
         .stdin
