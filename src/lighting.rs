@@ -11,7 +11,7 @@ use rayon::prelude::*;
 use crate::geometry::Mesh;
 use crate::photometry::Interp;
 use crate::scene::PlacedLuminaire;
-use crate::shadow::{raycast, Light};
+use crate::shadow::{raycast, IgnoredTriangles, Light};
 
 /// A malformed line in a list of points.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -44,36 +44,43 @@ pub fn illuminance_cpu(luminaires: &[PlacedLuminaire], p: &SurfacePoint, interp:
 }
 
 /// Which lights reach which points: `visible[light][point]`, by casting a ray from each
-/// point toward each light position against `casters`. These are exact hard shadows: the
-/// CPU reference of every shadow technique, and what `volumes` means for point queries.
+/// point toward each light position against `casters`, leaving out the triangles
+/// `ignored[light]` (its housing; none where the slice is shorter). These are exact hard
+/// shadows: the CPU reference of every shadow technique, and what `volumes` means for
+/// point queries.
 pub fn point_visibility(
     casters: &Mesh,
     light_positions: &[DVec3],
+    ignored: &[IgnoredTriangles],
     points: &[SurfacePoint],
 ) -> Vec<Vec<bool>> {
     let eps = raycast::self_hit_epsilon(casters);
+    let none = IgnoredTriangles::default();
     light_positions
         .iter()
-        .map(|&at| {
+        .enumerate()
+        .map(|(k, &at)| {
             let light = Light(at.extend(1.0));
+            let ignored = ignored.get(k).unwrap_or(&none);
             points
                 .par_iter()
-                .map(|p| !raycast::in_shadow(casters, &light, p.position, eps))
+                .map(|p| !raycast::in_shadow_ignoring(casters, &light, p.position, eps, ignored))
                 .collect()
         })
         .collect()
 }
 
-/// The CPU reference with shadows cast by `casters` (none when `None`): lux at `points`.
+/// The CPU reference with shadows cast by `casters` (none when `None`), each luminaire
+/// ignoring its own triangles (`ignored`, in luminaire order): lux at `points`.
 pub fn illuminance_cpu_in_scene(
     luminaires: &[PlacedLuminaire],
-    casters: Option<&Mesh>,
+    casters: Option<(&Mesh, &[IgnoredTriangles])>,
     points: &[SurfacePoint],
     interp: Interp,
 ) -> Vec<f64> {
-    let visible = casters.map(|mesh| {
+    let visible = casters.map(|(mesh, ignored)| {
         let positions: Vec<DVec3> = luminaires.iter().map(|l| l.position).collect();
-        point_visibility(mesh, &positions, points)
+        point_visibility(mesh, &positions, ignored, points)
     });
     points
         .par_iter()

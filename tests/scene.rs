@@ -40,6 +40,21 @@ fn bundled_scenes_load_with_their_luminaires_materials_and_textures() {
     assert_eq!(room.triangle_count(), 12);
     let (lo, hi) = room.bounds();
     assert_eq!((lo, hi), (DVec3::ZERO, DVec3::new(6.0, 4.0, 3.0)));
+    // Each downlight's housing is the `downlight` object above it, not its twin's.
+    for (l, x) in [(&s.luminaires[0], 2.0), (&s.luminaires[1], 4.0)] {
+        let h = l.housing.as_ref().unwrap();
+        assert_eq!((h.name.as_str(), h.meshes.len()), ("downlight", 1));
+        let mesh = &s.meshes[h.meshes[0]];
+        assert_eq!(mesh.name, "downlight");
+        assert!(mesh
+            .positions
+            .iter()
+            .all(|p| (p.x as f64 - x).abs() <= 0.1 + 1e-6));
+        let ignored = s.ignored_by(l);
+        assert_eq!(ignored.0.iter().map(|r| r.len()).sum::<usize>(), 12);
+    }
+    assert!(s.luminaires[2].housing.is_none());
+    assert!(s.ignored_by(&s.luminaires[2]).is_empty());
     let stage = Scene::load(&scene("effect_stage.toml")).unwrap();
     assert_eq!(stage.luminaires[0].luminaire.data.c_angles.len(), 144);
 }
@@ -142,6 +157,22 @@ fn bad_scene_files_name_the_file_and_the_key() {
             format!("{model}[camera]\nposition = [1, 1, 1]\nlook_at = [1, 1, 1]\n"),
             "camera.look_at",
             "",
+        ),
+        (
+            format!(
+                "{model}{}housing = \"lamp\"\n{camera}",
+                luminaire_entry(&lum, "[1, 1, 2]")
+            ),
+            "luminaire[0].housing",
+            "no model object is named \"lamp\"",
+        ),
+        (
+            format!(
+                "{model}{}housing = \"walls\"\n{camera}",
+                luminaire_entry(&lum, "[-1, 1, 2]")
+            ),
+            "luminaire[0].housing",
+            "1.000 m from the luminaire",
         ),
         (model.clone(), "camera", "missing field"),
         (

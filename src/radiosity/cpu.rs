@@ -12,7 +12,7 @@ use super::scene::{luminance, RadiosityScene};
 use super::solve;
 use super::{Ambient, SolverSettings};
 use crate::lighting::SurfacePoint;
-use crate::shadow::{raycast, Light};
+use crate::shadow::{raycast, IgnoredTriangles, Light};
 
 /// The state of a CPU solution.
 #[derive(Debug, Clone)]
@@ -60,11 +60,18 @@ impl<'a> CpuSolver<'a> {
 
     /// Direct illuminance (lux, RGB) from the luminaires at `p` with unit normal `n`.
     pub fn direct(&self, p: DVec3, n: DVec3) -> DVec3 {
+        let none = IgnoredTriangles::default();
         self.scene
             .luminaires
             .iter()
-            .filter(|l| self.visible(l.position, DVec3::ZERO, p, n))
-            .map(|l| l.color * l.illuminance_at(p, n, self.settings.interp))
+            .enumerate()
+            .filter(|(k, l)| {
+                let ignored = self.scene.ignored.get(*k).unwrap_or(&none);
+                let light = Light(l.position.extend(1.0));
+                let q = p + n * self.eps;
+                !raycast::in_shadow_ignoring(&self.scene.casters, &light, q, self.eps, ignored)
+            })
+            .map(|(_, l)| l.color * l.illuminance_at(p, n, self.settings.interp))
             .sum()
     }
 

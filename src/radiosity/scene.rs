@@ -6,6 +6,7 @@ use glam::DVec3;
 use super::elements::{ElementError, Elements, InputTriangle};
 use crate::geometry::Mesh;
 use crate::scene::{PlacedLuminaire, Scene};
+use crate::shadow::IgnoredTriangles;
 
 /// A scene prepared for radiosity.
 #[derive(Debug, Clone)]
@@ -20,6 +21,8 @@ pub struct RadiosityScene {
     pub luminaires: Vec<PlacedLuminaire>,
     /// Every triangle as one mesh (occluders for the CPU's visibility rays).
     pub casters: Mesh,
+    /// Per luminaire, the caster triangles of its housing (they never shadow its light).
+    pub ignored: Vec<IgnoredTriangles>,
     /// Total surface area, m².
     pub total_area: f64,
     /// The area-weighted mean reflectance (luminance), for the ambient term.
@@ -56,6 +59,7 @@ impl RadiosityScene {
                 .collect(),
             luminaires: scene.luminaires.clone(),
             casters: scene.caster_mesh(),
+            ignored: scene.ignored_per_luminaire(),
             total_area: 0.0,
             mean_reflectance: 0.0,
         };

@@ -284,6 +284,7 @@ impl GpuScene {
                     position: l.position,
                     rotation: l.rotation,
                     hemisphere: l.texture.hemisphere,
+                    ignored: scene.ignored_by(l),
                 })
                 .collect(),
             light_map: lightmap::upload(gpu, light_map),

@@ -29,10 +29,11 @@ pub fn scene_illuminance(
     technique: ShadowTechnique,
 ) -> Result<Vec<f64>, GpuError> {
     let Some(gpu) = gpu else {
-        let casters = (technique != ShadowTechnique::None).then(|| scene.caster_mesh());
+        let casters = (technique != ShadowTechnique::None)
+            .then(|| (scene.caster_mesh(), scene.ignored_per_luminaire()));
         return Ok(illuminance_cpu_in_scene(
             &scene.luminaires,
-            casters.as_ref(),
+            casters.as_ref().map(|(m, i)| (m, i.as_slice())),
             points,
             interp,
         ));

@@ -14,9 +14,11 @@ use wgpu::util::DeviceExt;
 use crate::geometry::Mesh;
 use crate::gpu::{shaders, Gpu};
 use crate::photometry::texture::Hemisphere;
+use crate::shadow::IgnoredTriangles;
 
-/// Where a luminaire is, how it is turned and where it emits: what its maps need.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// Where a luminaire is, how it is turned, where it emits and which triangles are its own
+/// housing: what its shadows need.
+#[derive(Debug, Clone, PartialEq)]
 pub struct ShadowLight {
     /// Photometric centre, metres.
     pub position: DVec3,
@@ -24,25 +26,39 @@ pub struct ShadowLight {
     pub rotation: DMat3,
     /// The part of the sphere it lights.
     pub hemisphere: Hemisphere,
+    /// Its housing: caster triangles that never shadow it.
+    pub ignored: IgnoredTriangles,
 }
 
 /// Splits every triangle of `mesh` at the midpoint of its longest edge until no edge is
 /// longer than `max_edge` metres.
 pub fn tessellate(mesh: &Mesh, max_edge: f64) -> Vec<[DVec3; 3]> {
     let mut out = Vec::new();
-    let mut stack: Vec<[DVec3; 3]> = mesh
-        .triangles
-        .iter()
-        .map(|t| t.map(|i| mesh.positions[i as usize]))
-        .collect();
+    tessellate_each(mesh, max_edge, |_, t| {
+        out.push(t);
+        true
+    });
+    out
+}
+
+/// Calls `f(source triangle, piece)` for the pieces of every triangle of `mesh` after
+/// [`tessellate`], triangle after triangle in order; stops when `f` returns false.
+fn tessellate_each(mesh: &Mesh, max_edge: f64, mut f: impl FnMut(usize, [DVec3; 3]) -> bool) {
     let limit = max_edge * max_edge;
-    while let Some(t) = stack.pop() {
-        match bisect(t, limit) {
-            Some(halves) => stack.extend(halves),
-            None => out.push(t),
+    let mut stack: Vec<[DVec3; 3]> = Vec::new();
+    for (k, t) in mesh.triangles.iter().enumerate() {
+        stack.push(t.map(|i| mesh.positions[i as usize]));
+        while let Some(t) = stack.pop() {
+            match bisect(t, limit) {
+                Some(halves) => stack.extend(halves),
+                None => {
+                    if !f(k, t) {
+                        return;
+                    }
+                }
+            }
         }
     }
-    out
 }
 
 /// The two halves of `t` split at the middle of its longest edge, or `None` when every
@@ -63,40 +79,37 @@ fn bisect(t: [DVec3; 3], limit: f64) -> Option<[[DVec3; 3]; 2]> {
 /// The number of triangles [`tessellate`] makes of `mesh`, counted without storing them
 /// and given up at `stop_at` (a budget: huge faces must not cost time or memory to refuse).
 pub fn tessellated_count(mesh: &Mesh, max_edge: f64, stop_at: usize) -> usize {
-    let limit = max_edge * max_edge;
     let mut count = 0usize;
-    let mut stack: Vec<[DVec3; 3]> = Vec::new();
-    for t in &mesh.triangles {
-        stack.push(t.map(|i| mesh.positions[i as usize]));
-        while let Some(t) = stack.pop() {
-            match bisect(t, limit) {
-                Some(halves) => stack.extend(halves),
-                None => {
-                    count += 1;
-                    if count >= stop_at {
-                        return count;
-                    }
-                }
-            }
-        }
-    }
+    tessellate_each(mesh, max_edge, |_, _| {
+        count += 1;
+        count < stop_at
+    });
     count
 }
 
-/// The tessellated shadow casters on the GPU (non-indexed triangles).
+/// The tessellated shadow casters on the GPU (non-indexed triangles, in the order of
+/// the source triangles, so a light can leave out its own housing).
 pub struct ParaboloidCasters {
     vertices: wgpu::Buffer,
     vertex_count: u32,
+    /// Source triangle k's pieces are vertices `first_vertex[k]..first_vertex[k + 1]`.
+    first_vertex: Vec<u32>,
 }
 
 impl ParaboloidCasters {
     /// Tessellates `mesh` to `max_edge` metres and uploads it.
     pub fn new(gpu: &Gpu, mesh: &Mesh, max_edge: f64) -> ParaboloidCasters {
-        let mut data: Vec<[f32; 3]> = tessellate(mesh, max_edge)
-            .iter()
-            .flatten()
-            .map(|p| p.as_vec3().to_array())
-            .collect();
+        let mut data: Vec<[f32; 3]> = Vec::new();
+        let mut first_vertex = vec![0u32; mesh.triangles.len() + 1];
+        tessellate_each(mesh, max_edge, |k, t| {
+            data.extend(t.map(|p| p.as_vec3().to_array()));
+            first_vertex[k + 1] = data.len() as u32;
+            true
+        });
+        // Triangles without pieces (none today) end where the previous one did.
+        for k in 1..first_vertex.len() {
+            first_vertex[k] = first_vertex[k].max(first_vertex[k - 1]);
+        }
         let vertex_count = data.len() as u32;
         if data.is_empty() {
             data.push([0.0; 3]);
@@ -111,7 +124,19 @@ impl ParaboloidCasters {
         ParaboloidCasters {
             vertices,
             vertex_count,
+            first_vertex,
         }
+    }
+
+    /// The vertex ranges a light that ignores `ignored` (source triangles) draws.
+    fn drawn_by(&self, ignored: &IgnoredTriangles) -> Vec<std::ops::Range<u32>> {
+        let triangles = self.first_vertex.len() - 1;
+        ignored
+            .kept(triangles)
+            .into_iter()
+            .map(|r| self.first_vertex[r.start]..self.first_vertex[r.end])
+            .filter(|r| !r.is_empty())
+            .collect()
     }
 
     /// Number of triangles after tessellation.
@@ -262,12 +287,12 @@ impl ParaboloidPasses {
                 }),
                 ..Default::default()
             });
-            if let Some(bind) = bind {
-                if casters.vertex_count > 0 {
-                    pass.set_pipeline(&self.pipeline);
-                    pass.set_bind_group(0, &bind, &[]);
-                    pass.set_vertex_buffer(0, casters.vertices.slice(..));
-                    pass.draw(0..casters.vertex_count, 0..1);
+            if let (Some(bind), Some(light)) = (bind, light) {
+                pass.set_pipeline(&self.pipeline);
+                pass.set_bind_group(0, &bind, &[]);
+                pass.set_vertex_buffer(0, casters.vertices.slice(..));
+                for range in casters.drawn_by(&light.ignored) {
+                    pass.draw(range, 0..1);
                 }
             }
         }

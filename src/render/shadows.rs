@@ -172,8 +172,10 @@ impl ShadowPasses {
             label: Some("shadow comparison"),
             address_mode_u: wgpu::AddressMode::ClampToEdge,
             address_mode_v: wgpu::AddressMode::ClampToEdge,
-            mag_filter: wgpu::FilterMode::Nearest,
-            min_filter: wgpu::FilterMode::Nearest,
+            // Each comparison is bilinear over the four nearest texels, so the PCF kernel
+            // gives a smooth edge rather than steps of 1/9.
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
             compare: Some(wgpu::CompareFunction::LessEqual),
             ..Default::default()
         });
@@ -252,7 +254,13 @@ impl ShadowPasses {
                         let light = Light::new([p.x, p.y, p.z, 1.0])
                             .map_err(|e| GpuError::Operation(format!("luminaire: {e}")))?;
                         let zfail = geometry.zfail(&light, settings.volume_test, near);
-                        volumes.push(geometry.volume(gpu, light, settings.silhouette, zfail));
+                        volumes.push(geometry.volume(
+                            gpu,
+                            light,
+                            settings.silhouette,
+                            zfail,
+                            &l.ignored,
+                        ));
                     }
                     volume_bind = Some(self.volumes.bind_group(gpu, view_proj, &volumes, None));
                     info.mode = 2;
@@ -289,7 +297,8 @@ impl ShadowPasses {
             return self.prepare(gpu, scene, Mat4::IDENTITY, [DVec3::ZERO; 4], 1, 1, settings);
         }
         let positions: Vec<DVec3> = lights.iter().map(|l| l.position).collect();
-        let visible = point_visibility(&scene.casters, &positions, points);
+        let ignored: Vec<_> = lights.iter().map(|l| l.ignored.clone()).collect();
+        let visible = point_visibility(&scene.casters, &positions, &ignored, points);
         let rows = (points.len() as u32).div_ceil(POINT_MASK_WIDTH).max(1);
         let layer_len = (POINT_MASK_WIDTH * rows) as usize;
         let mut data = vec![0u8; layer_len * lights.len()];

@@ -7,7 +7,8 @@
 //! set: the "lit pass where the stencil is 0" of every light folded into one pass, so any
 //! number of lights costs one shading pass and the sum stays exact (no blending).
 
-use std::sync::OnceLock;
+use std::collections::HashMap;
+use std::sync::{Arc, Mutex, OnceLock};
 
 use glam::Mat4;
 use wgpu::util::DeviceExt;
@@ -16,13 +17,19 @@ use crate::geometry::{GeometryError, Mesh};
 use crate::gpu::{shaders, Gpu};
 use crate::shadow::raycast::needs_zfail;
 use crate::shadow::volume::volume_triangles;
-use crate::shadow::{Hextree, Light, Silhouette, SilhouetteMesh, SilhouetteMethod, VolumeTest};
+use crate::shadow::{
+    Hextree, IgnoredTriangles, Light, Silhouette, SilhouetteMesh, SilhouetteMethod, VolumeTest,
+};
 
 /// A mesh prepared for shadow volumes: welded, with adjacency, on the GPU as its
 /// vertices (w = 1) followed by their copies to be extruded (w = 0).
 pub struct VolumeGeometry {
     /// The welded mesh with adjacency and face planes.
     pub mesh: SilhouetteMesh,
+    /// The mesh as given (what lights with a housing leave triangles of).
+    source: Mesh,
+    /// Per housing, the welded mesh without it (same vertices), built on first use.
+    without: Mutex<HashMap<IgnoredTriangles, Arc<SilhouetteMesh>>>,
     hextree: OnceLock<Hextree>,
     vertices: wgpu::Buffer,
     surface: wgpu::Buffer,
@@ -75,6 +82,8 @@ impl VolumeGeometry {
         Ok(VolumeGeometry {
             surface_index_count: triangles.len() as u32,
             mesh: sm,
+            source: mesh.clone(),
+            without: Mutex::new(HashMap::new()),
             hextree: OnceLock::new(),
             vertices,
             surface,
@@ -101,17 +110,52 @@ impl VolumeGeometry {
         }
     }
 
-    /// The volume of `light`: its sides, and for z-fail its caps.
+    /// The welded mesh without the source triangles `ignored`, on the same vertices (the
+    /// weld depends on the positions only), so its volumes index this geometry's
+    /// vertex buffer. `None` when nothing is ignored or nothing would be left.
+    fn without(&self, ignored: &IgnoredTriangles) -> Option<Arc<SilhouetteMesh>> {
+        if ignored.is_empty() {
+            return None;
+        }
+        let mut cache = self.without.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(m) = cache.get(ignored) {
+            return Some(m.clone());
+        }
+        let kept = Mesh {
+            positions: self.source.positions.clone(),
+            triangles: ignored
+                .kept(self.source.triangles.len())
+                .into_iter()
+                .flat_map(|r| self.source.triangles[r].iter().copied())
+                .collect(),
+        };
+        let mesh = Arc::new(SilhouetteMesh::new(&kept, "casters without the housing", 1e-9).ok()?);
+        debug_assert_eq!(
+            mesh.mesh().positions.len(),
+            self.mesh.mesh().positions.len()
+        );
+        cache.insert(ignored.clone(), mesh.clone());
+        Some(mesh)
+    }
+
+    /// The volume of `light`: its sides, and for z-fail its caps. A light with a housing
+    /// (`ignored` triangles) gets the volume of the mesh without it, its silhouette found
+    /// by brute force (exactly what the hextree finds; the tree is built for the whole mesh).
     pub fn volume(
         &self,
         gpu: &Gpu,
         light: Light,
         method: SilhouetteMethod,
         zfail: bool,
+        ignored: &IgnoredTriangles,
     ) -> LightVolume {
-        let silhouette = self.silhouette(&light, method);
+        let without = self.without(ignored);
+        let (mesh, silhouette) = match &without {
+            Some(m) => (m.as_ref(), m.brute(&light)),
+            None => (&self.mesh, self.silhouette(&light, method)),
+        };
         let n = self.mesh.mesh().positions.len() as u32;
-        let mut triangles = volume_triangles(&self.mesh, &light, &silhouette, false);
+        let mut triangles = volume_triangles(mesh, &light, &silhouette, false);
         if !zfail {
             // z-pass counts only faces in front of the visible surface: the caps (on the
             // lit faces and at infinity) never are.

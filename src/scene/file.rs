@@ -125,7 +125,17 @@ pub struct LuminaireEntry {
     /// A display name (defaults to the file name).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub name: Option<String>,
+    /// The model object that is this luminaire's own body (OBJ `o` name): it never
+    /// shadows this luminaire's light (the measured distribution already contains it),
+    /// but it shadows every other luminaire. Of several objects with that name, those
+    /// within [`HOUSING_REACH_M`] of the photometric centre.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub housing: Option<String>,
 }
+
+/// How far (metres) a housing object's bounding box may be from its luminaire's
+/// photometric centre.
+pub const HOUSING_REACH_M: f64 = 0.05;
 
 fn one() -> f64 {
     1.0

@@ -17,7 +17,7 @@ use glam::DVec3;
 pub use camera::{Camera, Projection};
 pub use file::{DisplayEntry, Mode, SceneFile, Tonemap, UpAxis, MAX_IMAGE_SIZE};
 pub use model::{Material, SceneMesh};
-pub use placement::PlacedLuminaire;
+pub use placement::{Housing, PlacedLuminaire};
 
 /// A problem with a scene: the file, the key (`luminaire[2].position`, `model[0].path`, or
 /// `line 7` for syntax errors) and what is wrong.
@@ -112,6 +112,18 @@ impl Scene {
                 )
             })
             .collect::<Result<Vec<_>, _>>()?;
+        let mut luminaires = luminaires;
+        for (i, l) in luminaires.iter_mut().enumerate() {
+            if let Some(h) = &mut l.housing {
+                h.meshes = find_housing(
+                    path,
+                    &format!("luminaire[{i}].housing"),
+                    &meshes,
+                    &h.name,
+                    l.position,
+                )?;
+            }
+        }
         let bounds = bounds_of(&meshes, &luminaires);
         let camera = Camera::from_entry(path, &parsed.camera, bounds)?;
         check_display(path, &parsed.display)?;
@@ -154,10 +166,69 @@ impl Scene {
         mesh
     }
 
+    /// The triangles of [`Scene::caster_mesh`] that luminaire `l` ignores: its housing.
+    pub fn ignored_by(&self, l: &PlacedLuminaire) -> crate::shadow::IgnoredTriangles {
+        let Some(h) = &l.housing else {
+            return Default::default();
+        };
+        let mut first = Vec::with_capacity(self.meshes.len() + 1);
+        let mut at = 0;
+        for m in &self.meshes {
+            first.push(at);
+            at += m.indices.len() / 3;
+        }
+        first.push(at);
+        crate::shadow::IgnoredTriangles(
+            h.meshes
+                .iter()
+                .filter(|&&m| m < self.meshes.len())
+                .map(|&m| first[m]..first[m + 1])
+                .collect(),
+        )
+    }
+
+    /// [`Scene::ignored_by`] for every luminaire, in order.
+    pub fn ignored_per_luminaire(&self) -> Vec<crate::shadow::IgnoredTriangles> {
+        self.luminaires.iter().map(|l| self.ignored_by(l)).collect()
+    }
+
     /// Bounds of the geometry and the luminaires.
     pub fn bounds(&self) -> (DVec3, DVec3) {
         bounds_of(&self.meshes, &self.luminaires)
     }
+}
+
+/// The meshes named `name` whose bounds come within [`file::HOUSING_REACH_M`] of
+/// `position` (a luminaire's housing); an error naming `key` when there is none.
+fn find_housing(
+    path: &Path,
+    key: &str,
+    meshes: &[SceneMesh],
+    name: &str,
+    position: DVec3,
+) -> Result<Vec<usize>, SceneError> {
+    let reach = file::HOUSING_REACH_M;
+    let mut nearest = f64::INFINITY;
+    let mut found = Vec::new();
+    for (k, m) in meshes.iter().enumerate().filter(|(_, m)| m.name == name) {
+        let (lo, hi) = bounds_of(std::slice::from_ref(m), &[]);
+        let gap = (lo - position).max(position - hi).max(DVec3::ZERO).length();
+        nearest = nearest.min(gap);
+        if gap <= reach {
+            found.push(k);
+        }
+    }
+    if found.is_empty() {
+        let message = if nearest.is_finite() {
+            format!(
+                "the nearest object named {name:?} is {nearest:.3} m from the luminaire; a housing must come within {reach} m of its photometric centre"
+            )
+        } else {
+            format!("no model object is named {name:?}")
+        };
+        return Err(SceneError::new(path, key, message));
+    }
+    Ok(found)
 }
 
 fn bounds_of(meshes: &[SceneMesh], luminaires: &[PlacedLuminaire]) -> (DVec3, DVec3) {

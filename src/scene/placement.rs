@@ -31,6 +31,17 @@ pub struct PlacedLuminaire {
     pub multiplier: f64,
     /// Colour normalised to luminance 1 (Rec. 709 weights).
     pub color: DVec3,
+    /// Its own body in the scene's models, which never shadows its light.
+    pub housing: Option<Housing>,
+}
+
+/// A luminaire's own body: the model object(s) named `name` at the luminaire.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Housing {
+    /// The object name (`housing` in the scene file).
+    pub name: String,
+    /// Indices into the scene's meshes.
+    pub meshes: Vec<usize>,
 }
 
 /// Rec. 709 / sRGB luminance weights.
@@ -131,6 +142,11 @@ impl PlacedLuminaire {
             rotation,
             multiplier: e.multiplier,
             color,
+            // Resolved against the models by the scene (`Scene::from_toml`).
+            housing: e.housing.clone().map(|name| Housing {
+                name,
+                meshes: Vec::new(),
+            }),
         })
     }
 
@@ -146,6 +162,7 @@ impl PlacedLuminaire {
             rotation: DMat3::IDENTITY,
             multiplier: 1.0,
             color: DVec3::ONE,
+            housing: None,
         }
     }
 

@@ -79,6 +79,7 @@ fn luminaire_entry(dir: &Path, l: &PlacedLuminaire) -> LuminaireEntry {
         multiplier: l.multiplier,
         color,
         name: Some(l.name.clone()),
+        housing: l.housing.as_ref().map(|h| h.name.clone()),
     }
 }
 

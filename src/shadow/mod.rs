@@ -13,6 +13,43 @@ pub use hextree::Hextree;
 pub use silhouette::{Silhouette, SilhouetteMesh};
 pub use technique::{ShadowTechnique, VolumeTest};
 
+/// Triangles of a caster mesh that one light ignores: its own housing (a measured
+/// distribution already contains the shadow of the luminaire's own body), as ranges of
+/// triangle indices.
+#[derive(Debug, Clone, Default, PartialEq, Eq, Hash)]
+pub struct IgnoredTriangles(pub Vec<std::ops::Range<usize>>);
+
+impl IgnoredTriangles {
+    /// Whether triangle `k` is ignored.
+    pub fn contains(&self, k: usize) -> bool {
+        self.0.iter().any(|r| r.contains(&k))
+    }
+
+    /// Whether no triangle is ignored.
+    pub fn is_empty(&self) -> bool {
+        self.0.iter().all(|r| r.is_empty())
+    }
+
+    /// The ranges of `0..count` that are not ignored, in order.
+    pub fn kept(&self, count: usize) -> Vec<std::ops::Range<usize>> {
+        let mut cut: Vec<_> = self.0.iter().filter(|r| !r.is_empty()).cloned().collect();
+        cut.sort_by_key(|r| r.start);
+        let mut out = Vec::new();
+        let mut at = 0;
+        for r in cut {
+            if r.start > at {
+                out.push(at..r.start.min(count));
+            }
+            at = at.max(r.end);
+        }
+        if at < count {
+            out.push(at..count);
+        }
+        out.retain(|r| !r.is_empty());
+        out
+    }
+}
+
 /// How to find silhouette edges.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]

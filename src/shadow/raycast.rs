@@ -3,7 +3,7 @@
 
 use glam::DVec3;
 
-use super::Light;
+use super::{IgnoredTriangles, Light};
 use crate::geometry::Mesh;
 
 /// Möller–Trumbore: distance along `dir` to triangle (`a`, `b`, `c`), if hit in (tmin, tmax).
@@ -57,6 +57,17 @@ pub fn self_hit_epsilon(mesh: &Mesh) -> f64 {
 /// Whether `p` is in shadow: any triangle strictly between `p` and the light. `eps`
 /// (relative to the scene) keeps a surface from shadowing itself.
 pub fn in_shadow(mesh: &Mesh, light: &Light, p: DVec3, eps: f64) -> bool {
+    in_shadow_ignoring(mesh, light, p, eps, &IgnoredTriangles::default())
+}
+
+/// [`in_shadow`] with the triangles `ignored` (the light's own housing) left out.
+pub fn in_shadow_ignoring(
+    mesh: &Mesh,
+    light: &Light,
+    p: DVec3,
+    eps: f64,
+    ignored: &IgnoredTriangles,
+) -> bool {
     let (dir, tmax) = if light.is_directional() {
         (light.0.truncate(), f64::INFINITY)
     } else {
@@ -64,9 +75,9 @@ pub fn in_shadow(mesh: &Mesh, light: &Light, p: DVec3, eps: f64) -> bool {
         let len = d.length();
         (d / len, len - eps)
     };
-    mesh.triangles
-        .iter()
-        .any(|t| ray_triangle(p, dir, corners(mesh, t), eps, tmax).is_some())
+    mesh.triangles.iter().enumerate().any(|(k, t)| {
+        ray_triangle(p, dir, corners(mesh, t), eps, tmax).is_some() && !ignored.contains(k)
+    })
 }
 
 /// The near-clip volume: the convex hull of the near-plane rectangle and the light (or the

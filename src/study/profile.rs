@@ -310,7 +310,7 @@ pub fn compute(
         let d = p.direction;
         let light = Light::new([d[0], d[1], d[2], 0.0]).map_err(ProfileError::Input)?;
         let t0 = Instant::now();
-        let volume = geometry.volume(gpu, light, spec.silhouette, false);
+        let volume = geometry.volume(gpu, light, spec.silhouette, false, &Default::default());
         timing.silhouette_s += t0.elapsed().as_secs_f64();
         let t1 = Instant::now();
         let volumes = [volume];
