@@ -6,7 +6,8 @@ struct ToneParams {
     // 0 exposure, 1 Reinhard, 2 false-colour illuminance.
     tone_operator: u32,
     stop_count: u32,
-    _pad0: u32,
+    // Hard bands on the false-colour scale (0: continuous).
+    steps: u32,
     _pad1: u32,
     // exposure: k; Reinhard: key / log-average luminance, 1 / L_white²; false colour: lux
     // at the top of the scale.
@@ -31,8 +32,17 @@ fn vs_fullscreen(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> 
     return vec4<f32>(x, y, 0.0, 1.0);
 }
 
+// The middle of t's band on a scale of `steps` bands (t itself when steps is 0).
+fn step_position(t: f32, steps: u32) -> f32 {
+    if (steps == 0u) {
+        return t;
+    }
+    let n = f32(steps);
+    return (min(floor(clamp(t, 0.0, 1.0) * n), n - 1.0) + 0.5) / n;
+}
+
 fn false_colour(t: f32) -> vec3<f32> {
-    let x = clamp(t, 0.0, 1.0);
+    let x = clamp(step_position(t, tone.steps), 0.0, 1.0);
     var c = tone.stops[0].rgb;
     for (var i = 1u; i < tone.stop_count; i++) {
         let a = tone.stops[i - 1u];

@@ -21,7 +21,7 @@ use goniolight::render::tonemap::linear_to_srgb;
 use goniolight::render::{LightModel, RenderSettings, RenderedFrame, Renderer};
 use goniolight::scene::placement::aim_frame;
 use goniolight::scene::{
-    Camera, DisplayEntry, Material, Mode, PlacedLuminaire, Scene, SceneMesh, Tonemap,
+    Camera, DisplayEntry, Material, Mode, Palette, PlacedLuminaire, Scene, SceneMesh, Tonemap,
 };
 
 /// Two luminaires, one asymmetric and tilted, one rotationally symmetric.
@@ -159,20 +159,24 @@ fn tone_mapping_on_the_gpu_equals_its_cpu_formulas() {
     let scene = Scene::load(&root().join("assets/scenes/furnished_room.toml")).unwrap();
     let renderer = Renderer::new(&gpu);
     let uploaded = renderer.upload(&gpu, &scene);
-    for (mode, tonemap) in [
-        (Mode::Shaded, Tonemap::Reinhard),
-        (Mode::Shaded, Tonemap::Exposure),
-        (Mode::Illuminance, Tonemap::Reinhard),
+    for (mode, tonemap, palette, steps) in [
+        (Mode::Shaded, Tonemap::Reinhard, Palette::Rainbow, 0),
+        (Mode::Shaded, Tonemap::Exposure, Palette::Rainbow, 0),
+        (Mode::Illuminance, Tonemap::Reinhard, Palette::Rainbow, 0),
+        (Mode::Illuminance, Tonemap::Reinhard, Palette::Viridis, 6),
+        (Mode::Illuminance, Tonemap::Reinhard, Palette::Cividis, 0),
     ] {
         let mut s = RenderSettings::from_display(&scene.display);
         (s.width, s.height, s.mode, s.tonemap, s.read_hdr) = (200, 120, mode, tonemap, true);
+        (s.palette, s.steps) = (palette, steps);
         let frame = renderer.render(&gpu, &uploaded, &scene.camera, &s).unwrap();
         let hdr = frame.hdr.as_ref().unwrap();
-        // The legend covers the right edge in illuminance mode.
-        let x_end = if mode == Mode::Illuminance { 140 } else { 200 };
+        // The legend is a panel beside the view in illuminance mode, never over it.
+        let width = frame.image.width();
+        assert_eq!(width > 200, mode == Mode::Illuminance, "{width}");
         let (mut bad, mut total) = (0, 0);
         for y in 0..120u32 {
-            for x in 0..x_end {
+            for x in 0..200 {
                 let want = srgb(
                     frame
                         .tone
@@ -187,8 +191,17 @@ fn tone_mapping_on_the_gpu_equals_its_cpu_formulas() {
         }
         assert!(
             bad * 1000 <= total,
-            "{mode:?} {tonemap:?}: {bad} of {total} pixels differ"
+            "{mode:?} {tonemap:?} {palette:?}: {bad} of {total} pixels differ"
         );
+        if steps > 0 {
+            // Hard steps: at most `steps` colours over the surfaces.
+            let colours: std::collections::HashSet<[u8; 4]> = (0..120u32)
+                .flat_map(|y| (0..200u32).map(move |x| (x, y)))
+                .filter(|&(x, y)| hdr[(y * 200 + x) as usize][3] >= 0.0)
+                .map(|(x, y)| frame.image.get_pixel(x, y).0)
+                .collect();
+            assert!(colours.len() <= steps as usize, "{}", colours.len());
+        }
         // The statistics pass equals a CPU pass over the same HDR values.
         let lux: Vec<f64> = hdr
             .iter()
@@ -209,6 +222,32 @@ fn tone_mapping_on_the_gpu_equals_its_cpu_formulas() {
             / lux.len() as f64)
             .exp();
         assert!((frame.stats.log_average_luminance - log_avg).abs() <= 1e-3 * log_avg);
+        if mode == Mode::Illuminance {
+            // Percentiles by nearest rank over the same pixels, and a nice scale top just
+            // above the 95th percentile.
+            let mut sorted = lux.clone();
+            sorted.sort_by(f64::total_cmp);
+            let rank = |q: f64| sorted[(q * sorted.len() as f64).ceil() as usize - 1];
+            let p = frame.stats.lux.unwrap();
+            assert_eq!(
+                (p.median, p.p95, p.p99),
+                (rank(0.5), rank(0.95), rank(0.99))
+            );
+            assert_eq!(p.max, sorted[sorted.len() - 1]);
+            let top = frame.tone.lux_max;
+            assert!(
+                top >= p.p95 && top < 2.0 * p.p95.max(1.0),
+                "{top} vs {}",
+                p.p95
+            );
+            let labels = frame.tone.legend_labels();
+            let step = labels[1] - labels[0];
+            assert_eq!(
+                goniolight::render::tonemap::nice_ceil(step),
+                step,
+                "{labels:?}"
+            );
+        }
     }
 }
 

@@ -13,13 +13,15 @@ use crate::gpu::Gpu;
 use crate::lighting::read_points;
 use crate::photometry::Interp;
 use crate::render::illuminance::scene_illuminance;
+use crate::render::legend::format_lux;
 use crate::render::lightmap::LightMap;
 use crate::render::output::{linear_image, write_image};
 use crate::render::{
     LightModel, RenderSettings, RenderedFrame, Renderer, ShadowTechnique, VolumeTest,
     MAX_IMAGE_SIZE,
 };
-use crate::scene::{Mode, Scene, Tonemap};
+use crate::scene::palette::MAX_STEPS;
+use crate::scene::{Mode, Palette, Scene, Tonemap};
 use crate::shadow::SilhouetteMethod;
 
 /// Options of `render`.
@@ -59,9 +61,17 @@ pub struct ImageOptions {
     /// k of the exposure operator y = 1 − e^(−k·x), in 1/(cd/m²) (default: automatic).
     #[arg(long)]
     pub exposure: Option<f64>,
-    /// Top of the false-colour scale in lux (default: automatic).
+    /// Top of the false-colour scale in lux (default: a nice value at or above the
+    /// image's 99th percentile).
     #[arg(long)]
     pub lux_max: Option<f64>,
+    /// False-colour palette (viridis, cividis and inferno are perceptually uniform and
+    /// readable with colour blindness).
+    #[arg(long, value_enum)]
+    pub palette: Option<Palette>,
+    /// Hard colour bands on the false-colour scale, DIALux style (1–20; default smooth).
+    #[arg(long)]
+    pub steps: Option<u32>,
     /// Shadows of the luminaires (default: the scene's `display.shadows`, else
     /// paraboloid maps, the sensible choice for point-like luminaires).
     #[arg(long, value_enum)]
@@ -116,6 +126,17 @@ impl ImageOptions {
                 }
             }
         }
+        if let Some(p) = self.palette {
+            s.palette = p;
+        }
+        if let Some(n) = self.steps {
+            if !(1..=MAX_STEPS).contains(&n) {
+                return Err(CliError::input(anyhow!(
+                    "--steps {n} is not in 1..={MAX_STEPS}"
+                )));
+            }
+            s.steps = n;
+        }
         if let Some(t) = self.shadows {
             s.shadows.technique = t;
         }
@@ -134,6 +155,26 @@ impl ImageOptions {
         s.exposure = self.exposure.or(s.exposure);
         s.lux_max = self.lux_max.or(s.lux_max);
         Ok(s)
+    }
+}
+
+/// The illuminance line of a report: percentiles over the surface pixels, the maximum
+/// beside the 99th percentile (it is usually a surface touching a luminaire), the scale.
+fn lux_report(frame: &RenderedFrame) -> String {
+    let scale = format!("scale 0–{} lx", format_lux(frame.tone.lux_max));
+    match frame.stats.lux {
+        Some(p) => {
+            let note = if p.max > 5.0 * p.p99 {
+                " (a few pixels next to a luminaire: quote the percentiles)"
+            } else {
+                ""
+            };
+            format!(
+                "illuminance over the surfaces in view: mean {:.0} lx, median {:.0}, 5 % {:.0}, 95 % {:.0}, 99 % {:.0}, max {:.0}{note}; {scale}",
+                p.mean, p.median, p.p5, p.p95, p.p99, p.max
+            )
+        }
+        None => format!("no surface in view; {scale}"),
     }
 }
 
@@ -184,10 +225,7 @@ pub fn render_to_files(
             "log-average luminance {:.1} cd/m², max {:.0} cd/m²",
             frame.stats.log_average_luminance, frame.stats.max_luminance
         ),
-        Mode::Illuminance => format!(
-            "illuminance mean {:.0} lx, max {:.0} lx, scale 0–{} lx",
-            frame.stats.mean_lux, frame.stats.max_lux, frame.tone.lux_max
-        ),
+        Mode::Illuminance => lux_report(&frame),
     };
     let report = format!(
         "{}: {} triangles, {} luminaires, {}×{} in {ms:.0} ms; {what} → {}{}",

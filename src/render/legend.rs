@@ -3,29 +3,33 @@
 
 use plotters::prelude::*;
 
-use super::tonemap::{false_colour, linear_to_srgb};
+use super::tonemap::{linear_to_srgb, ToneSettings};
 use crate::photometry::plot::register_font;
 
-/// Draws the legend for a scale from 0 to `lux_max` into `image`.
-pub fn draw_legend(image: &mut image::RgbaImage, lux_max: f64) {
-    let labels: Vec<String> = (0..=4)
-        .map(|k| {
-            let v = lux_max * k as f64 / 4.0;
-            if k == 4 {
+/// `view` widened by a panel on the right carrying the lux legend of `tone`: its
+/// palette (stepped when it has steps) and nice labels, the top one marked "≥".
+pub fn beside_lux_legend(view: &image::RgbaImage, tone: &ToneSettings) -> image::RgbaImage {
+    let values = tone.legend_labels();
+    let last = values.len() - 1;
+    let labels: Vec<String> = values
+        .iter()
+        .enumerate()
+        .map(|(k, &v)| {
+            if k == last {
                 format!("≥{}", format_lux(v))
             } else {
                 format_lux(v)
             }
         })
         .collect();
-    draw_colour_bar(image, "lux", &labels, |t| {
-        let c = false_colour(t);
+    with_legend_panel(view, "lux", &labels, |t| {
+        let c = tone.palette.stepped_colour(t, tone.steps);
         [
             linear_to_srgb(c.x),
             linear_to_srgb(c.y),
             linear_to_srgb(c.z),
         ]
-    });
+    })
 }
 
 /// `plan` widened by a white panel on the right that carries a colour bar (see
@@ -37,6 +41,9 @@ pub fn with_legend_panel(
     colour: impl Fn(f32) -> [u8; 3],
 ) -> image::RgbaImage {
     let (w, h) = plan.dimensions();
+    if h < font_px(h) * 8 {
+        return plan.clone(); // too small to carry a legend
+    }
     let panel = panel_width(h, labels);
     let mut out = image::RgbaImage::from_pixel(w + panel, h, image::Rgba([255, 255, 255, 255]));
     image::imageops::replace(&mut out, plan, 0, 0);
@@ -116,12 +123,12 @@ pub fn draw_colour_bar(
     }
 }
 
-fn format_lux(v: f64) -> String {
-    if v >= 100.0 || v == 0.0 {
-        format!("{v:.0}")
-    } else if v >= 10.0 {
-        format!("{v:.1}")
-    } else {
-        format!("{v:.2}")
+/// A lux value for a label: whole numbers without decimals (0, 250, 1000), others with
+/// up to two (62.5, 0.25).
+pub fn format_lux(v: f64) -> String {
+    if (v - v.round()).abs() < 1e-9 * v.abs().max(1.0) {
+        return format!("{v:.0}");
     }
+    let s = format!("{v:.2}");
+    s.trim_end_matches('0').trim_end_matches('.').to_string()
 }

@@ -24,11 +24,11 @@ pub use crate::shadow::{ShadowTechnique, VolumeTest};
 pub use gpu_scene::GpuScene;
 pub use passes::LightModel;
 pub use shadows::ShadowSettings;
-pub use tonemap::{ImageStats, ToneSettings};
+pub use tonemap::{ImageStats, LuxPercentiles, ToneSettings};
 
 use crate::gpu::{Gpu, GpuError};
 use crate::photometry::Interp;
-use crate::scene::{Camera, DisplayEntry, Mode, Scene, Tonemap};
+use crate::scene::{Camera, DisplayEntry, Mode, Palette, Scene, Tonemap};
 use layouts::Layouts;
 use passes::ScenePasses;
 use shadows::{ShadowFrame, ShadowPasses};
@@ -52,6 +52,10 @@ pub struct RenderSettings {
     pub exposure: Option<f64>,
     /// Top of the false-colour scale, lux (automatic when `None`).
     pub lux_max: Option<f64>,
+    /// False-colour palette.
+    pub palette: Palette,
+    /// Hard colour bands on the false-colour scale (0: continuous).
+    pub steps: u32,
     /// Display colour where no surface is seen (linear RGB 0..1).
     pub background: Vec3,
     /// Whether to read the HDR values back (for EXR output and tests).
@@ -71,6 +75,8 @@ impl RenderSettings {
             tonemap: d.tonemap.unwrap_or_default(),
             exposure: d.exposure,
             lux_max: d.lux_max,
+            palette: d.palette.unwrap_or_default(),
+            steps: d.steps.unwrap_or(0),
             background: d
                 .background
                 .map(|b| glam::DVec3::from_array(b).as_vec3())
@@ -83,7 +89,8 @@ impl RenderSettings {
 
 /// A rendered image.
 pub struct RenderedFrame {
-    /// The displayable image (sRGB), with the legend in illuminance mode.
+    /// The displayable image (sRGB); in illuminance mode widened by a panel on the right
+    /// that carries the legend (beside the view, never over it).
     pub image: image::RgbaImage,
     /// Linear values when asked for: rgb = luminance (cd/m²), a = lux (−1: no surface).
     pub hdr: Option<Vec<[f32; 4]>>,
@@ -193,7 +200,7 @@ impl Renderer {
         let mut image = image::RgbaImage::from_raw(settings.width, settings.height, pixels)
             .ok_or_else(|| GpuError::Operation("read-back size mismatch".into()))?;
         if settings.mode == Mode::Illuminance {
-            legend::draw_legend(&mut image, tone.lux_max);
+            image = legend::beside_lux_legend(&image, &tone);
         }
         let (hdr, shadow_mask) = if settings.read_hdr {
             (
@@ -235,12 +242,17 @@ impl Renderer {
             &settings.shadows,
             1,
         )?;
-        let stats = self.tonemapper.statistics(gpu, targets)?;
-        let tone = ToneSettings::resolve(
+        let mut stats = self.tonemapper.statistics(gpu, targets)?;
+        if settings.mode == Mode::Illuminance {
+            let hdr: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&gpu.read_texture(&targets.hdr)?);
+            stats.lux = LuxPercentiles::of_pixels(&hdr);
+        }
+        let tone = ToneSettings::resolve_scale(
             settings.mode,
             settings.tonemap,
             settings.exposure,
             settings.lux_max,
+            (settings.palette, settings.steps),
             &stats,
         );
         let mut enc = gpu.device.create_command_encoder(&Default::default());

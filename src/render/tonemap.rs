@@ -13,28 +13,10 @@ use glam::Vec3;
 
 use super::targets::{Targets, LDR_FORMAT};
 use crate::gpu::{shaders, Gpu, GpuError};
-use crate::scene::{Mode, Tonemap};
+use crate::scene::{Mode, Palette, Tonemap};
 
-/// The false-colour scale: (position 0..1, sRGB colour).
-pub const FALSE_COLOUR_STOPS: [(f32, [u8; 3]); 8] = [
-    (0.0, [20, 10, 70]),
-    (0.14, [30, 60, 200]),
-    (0.29, [20, 160, 230]),
-    (0.43, [40, 190, 90]),
-    (0.57, [225, 225, 40]),
-    (0.71, [250, 150, 20]),
-    (0.86, [225, 30, 20]),
-    (1.0, [255, 170, 230]),
-];
-
-fn srgb_to_linear(c: u8) -> f32 {
-    let v = c as f32 / 255.0;
-    if v <= 0.04045 {
-        v / 12.92
-    } else {
-        ((v + 0.055) / 1.055).powf(2.4)
-    }
-}
+/// goniolight's default false-colour scale (see [`Palette`]).
+pub use crate::scene::palette::RAINBOW_STOPS as FALSE_COLOUR_STOPS;
 
 /// Linear → 8-bit sRGB.
 pub fn linear_to_srgb(v: f32) -> u8 {
@@ -47,25 +29,10 @@ pub fn linear_to_srgb(v: f32) -> u8 {
     (s * 255.0 + 0.5) as u8
 }
 
-/// The false colour (linear RGB) of `t` in 0..1: the CPU twin of `false_colour` in
-/// `shaders/tonemap.wgsl` (the legend uses it).
+/// The colour (linear RGB) of `t` in 0..1 on the default palette (the legend of
+/// images that carry no palette, e.g. the profile's hours).
 pub fn false_colour(t: f32) -> Vec3 {
-    let x = t.clamp(0.0, 1.0);
-    let lin = |c: [u8; 3]| {
-        Vec3::new(
-            srgb_to_linear(c[0]),
-            srgb_to_linear(c[1]),
-            srgb_to_linear(c[2]),
-        )
-    };
-    let mut c = lin(FALSE_COLOUR_STOPS[0].1);
-    for w in FALSE_COLOUR_STOPS.windows(2) {
-        let ((a, ca), (b, cb)) = (w[0], w[1]);
-        if x >= a && x <= b {
-            c = lin(ca).lerp(lin(cb), (x - a) / (b - a).max(1e-6));
-        }
-    }
-    c
+    Palette::Rainbow.colour(t)
 }
 
 /// Image statistics over pixels that show a surface.
@@ -83,6 +50,52 @@ pub struct ImageStats {
     pub max_lux: f64,
     /// Mean illuminance, lux.
     pub mean_lux: f64,
+    /// The distribution of illuminance over the surface pixels (illuminance mode).
+    pub lux: Option<LuxPercentiles>,
+}
+
+/// Illuminance over an image's surface pixels: what a designer can quote. The maximum
+/// of a view is usually a surface touching a luminaire (a housing, a ceiling a few
+/// centimetres above a lamp), so it is reported beside the 99th percentile, not alone.
+#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize)]
+pub struct LuxPercentiles {
+    /// Mean, lux.
+    pub mean: f64,
+    /// 5th percentile, lux.
+    pub p5: f64,
+    /// Median, lux.
+    pub median: f64,
+    /// 95th percentile, lux.
+    pub p95: f64,
+    /// 99th percentile, lux.
+    pub p99: f64,
+    /// Maximum, lux.
+    pub max: f64,
+}
+
+impl LuxPercentiles {
+    /// The percentiles of the lux channel (alpha) of `hdr` over surface pixels (alpha ≥
+    /// 0; nearest rank); `None` when no pixel shows a surface.
+    pub fn of_pixels(hdr: &[[f32; 4]]) -> Option<LuxPercentiles> {
+        let mut lux: Vec<f64> = hdr
+            .iter()
+            .filter(|p| p[3] >= 0.0 && p[3].is_finite())
+            .map(|p| p[3] as f64)
+            .collect();
+        if lux.is_empty() {
+            return None;
+        }
+        lux.sort_by(f64::total_cmp);
+        let at = |q: f64| lux[((q * lux.len() as f64).ceil() as usize).clamp(1, lux.len()) - 1];
+        Some(LuxPercentiles {
+            mean: lux.iter().sum::<f64>() / lux.len() as f64,
+            p5: at(0.05),
+            median: at(0.5),
+            p95: at(0.95),
+            p99: at(0.99),
+            max: lux[lux.len() - 1],
+        })
+    }
 }
 
 impl ImageStats {
@@ -114,6 +127,7 @@ impl ImageStats {
             max_luminance: max,
             max_lux,
             mean_lux: sum_lux / count,
+            lux: None,
         }
     }
 }
@@ -137,6 +151,11 @@ pub struct ToneSettings {
     pub white: f64,
     /// Top of the false-colour scale, lux.
     pub lux_max: f64,
+    /// The false-colour palette.
+    #[serde(skip)]
+    pub palette: Palette,
+    /// Hard colour bands on the scale (0: continuous).
+    pub steps: u32,
 }
 
 impl ToneSettings {
@@ -148,6 +167,30 @@ impl ToneSettings {
         lux_max: Option<f64>,
         stats: &ImageStats,
     ) -> ToneSettings {
+        ToneSettings::resolve_scale(
+            mode,
+            tonemap,
+            exposure,
+            lux_max,
+            (Palette::default(), 0),
+            stats,
+        )
+    }
+
+    /// [`ToneSettings::resolve`] with a palette and a number of hard steps (0:
+    /// continuous). The automatic top of the lux scale is the first multiple of a nice
+    /// step (1, 2, 2.5, 5 × 10ⁿ; 4–8 of them) at or above the 95th percentile where the
+    /// percentiles are known (else the maximum, at most 3 × the mean): the brightest
+    /// 5 % show the top colour, labelled "≥", and a few pixels touching a luminaire do
+    /// not squash the scale. With steps, one step is itself a nice value.
+    pub fn resolve_scale(
+        mode: Mode,
+        tonemap: Tonemap,
+        exposure: Option<f64>,
+        lux_max: Option<f64>,
+        (palette, steps): (Palette, u32),
+        stats: &ImageStats,
+    ) -> ToneSettings {
         let avg = stats.log_average_luminance.max(1e-6);
         let exposure_k = exposure.unwrap_or(-(1.0f64 - 0.3).ln() / avg);
         let (lmin, lmax) = (
@@ -157,7 +200,14 @@ impl ToneSettings {
         let range = (lmax - lmin).max(1e-3);
         let key = 0.18 * 4f64.powf((2.0 * avg.log2() - lmin - lmax) / range);
         let white = (1.5 * 2f64.powf(range - 5.0)).max(1.0);
-        let lux_max = lux_max.unwrap_or_else(|| nice_ceil(stats.max_lux.min(3.0 * stats.mean_lux)));
+        let top = match stats.lux {
+            Some(p) => p.p95,
+            None => stats.max_lux.min(3.0 * stats.mean_lux),
+        };
+        let lux_max = lux_max.unwrap_or_else(|| match steps {
+            0 => nice_top(top),
+            n => n as f64 * nice_ceil(top / n as f64),
+        });
         ToneSettings {
             mode,
             tonemap,
@@ -166,8 +216,62 @@ impl ToneSettings {
             key,
             white,
             lux_max,
+            palette,
+            steps,
         }
     }
+
+    /// The false colour (linear RGB) of `lux` on this scale.
+    pub fn lux_colour(&self, lux: f32) -> Vec3 {
+        self.palette
+            .stepped_colour(lux / self.lux_max as f32, self.steps)
+    }
+
+    /// The legend's labels: every step's boundary with steps, else 4–8 nice divisions
+    /// of the scale (0/100/200/…), the top marked "≥".
+    pub fn legend_labels(&self) -> Vec<f64> {
+        scale_labels(self.lux_max, self.steps)
+    }
+}
+
+/// The label values of a scale from 0 to `top` with `steps` hard bands (0: continuous,
+/// labelled at 4–8 nice divisions).
+pub fn scale_labels(top: f64, steps: u32) -> Vec<f64> {
+    let divisions = if steps > 0 {
+        steps
+    } else {
+        nice_divisions(top)
+    };
+    (0..=divisions)
+        .map(|k| top * k as f64 / divisions as f64)
+        .collect()
+}
+
+/// The smallest multiple of a nice step at or above `x`, with at most 8 steps (614 →
+/// 700, 187 → 200, 3418 → 3500; 1 for x ≤ 0).
+pub fn nice_top(x: f64) -> f64 {
+    if !x.is_finite() || x <= 0.0 {
+        return 1.0;
+    }
+    let mut step = nice_ceil(x / 8.0);
+    let top = (x / step * (1.0 - 1e-12)).ceil() * step;
+    if top / step < 4.0 {
+        step = nice_ceil(x / 4.0);
+        return (x / step * (1.0 - 1e-12)).ceil() * step;
+    }
+    top
+}
+
+/// How many equal divisions of 0..`top` make nice labels: 4 to 8 steps of 1, 2, 2.5 or 5
+/// × 10ⁿ where one fits (`top` 250 → 5 of 50, 1000 → 5 of 200), else 4.
+pub fn nice_divisions(top: f64) -> u32 {
+    (4..=8)
+        .rev()
+        .find(|&n| {
+            let step = top / n as f64;
+            (nice_ceil(step) - step).abs() <= 1e-9 * top
+        })
+        .unwrap_or(4)
 }
 
 impl ToneSettings {
@@ -179,7 +283,7 @@ impl ToneSettings {
         }
         let rgb = Vec3::new(hdr[0], hdr[1], hdr[2]);
         match (self.mode, self.tonemap) {
-            (Mode::Illuminance, _) => false_colour(hdr[3] / self.lux_max as f32),
+            (Mode::Illuminance, _) => self.lux_colour(hdr[3]),
             (Mode::Shaded, Tonemap::Exposure) => {
                 Vec3::ONE - (-(self.exposure_k as f32) * rgb).exp()
             }
@@ -216,7 +320,8 @@ pub fn nice_ceil(x: f64) -> f64 {
 struct ToneParamsGpu {
     tone_operator: u32,
     stop_count: u32,
-    pad: [u32; 2],
+    steps: u32,
+    pad: u32,
     k: f32,
     key_scale: f32,
     inv_white2: f32,
@@ -303,9 +408,9 @@ impl ToneMapper {
         tone: &ToneSettings,
         background: Vec3,
     ) {
-        let mut stops = [[0f32; 4]; 16];
-        for (i, (t, _)) in FALSE_COLOUR_STOPS.iter().enumerate() {
-            let c = false_colour(*t);
+        let mut stops = [[0f32; 4]; crate::scene::palette::MAX_STOPS];
+        let palette = tone.palette.stops();
+        for (i, (t, c)) in palette.iter().enumerate() {
             stops[i] = [c.x, c.y, c.z, *t];
         }
         let params = ToneParamsGpu {
@@ -315,8 +420,9 @@ impl ToneMapper {
                 (Mode::Shaded, Tonemap::Exposure) => 0,
                 (Mode::Shaded, Tonemap::Reinhard) => 1,
             },
-            stop_count: FALSE_COLOUR_STOPS.len() as u32,
-            pad: [0; 2],
+            stop_count: palette.len() as u32,
+            steps: tone.steps,
+            pad: 0,
             k: tone.exposure_k as f32,
             inv_white2: (1.0 / (tone.white * tone.white)) as f32,
             lux_max: tone.lux_max as f32,
@@ -349,6 +455,50 @@ impl ToneMapper {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn nice_tops_and_divisions_make_round_labels() {
+        assert_eq!(nice_top(614.0), 700.0);
+        assert_eq!(nice_top(187.0), 200.0);
+        assert_eq!(nice_top(3418.0), 3500.0);
+        assert_eq!(nice_top(250.0), 250.0);
+        assert_eq!(nice_top(0.0), 1.0);
+        assert_eq!(
+            scale_labels(700.0, 0),
+            [0.0, 100.0, 200.0, 300.0, 400.0, 500.0, 600.0, 700.0]
+        );
+        assert_eq!(
+            scale_labels(250.0, 0),
+            [0.0, 50.0, 100.0, 150.0, 200.0, 250.0]
+        );
+        assert_eq!(scale_labels(200.0, 0)[1], 25.0);
+        assert_eq!(scale_labels(300.0, 3), [0.0, 100.0, 200.0, 300.0]);
+        // Every automatic top divides into nice steps.
+        for k in 1..2000 {
+            let top = nice_top(k as f64 * 1.37);
+            let labels = scale_labels(top, 0);
+            let step = labels[1];
+            assert_eq!(nice_ceil(step), step, "{top}: {labels:?}");
+            assert!(
+                top >= k as f64 * 1.37 && (5..=9).contains(&labels.len()),
+                "{top}"
+            );
+        }
+    }
+
+    #[test]
+    fn lux_percentiles_use_surface_pixels_only() {
+        let mut hdr: Vec<[f32; 4]> = (1..=100).map(|k| [0.0, 0.0, 0.0, k as f32]).collect();
+        hdr.push([0.0, 0.0, 0.0, -1.0]);
+        hdr.push([0.0, 0.0, 0.0, 1e6]);
+        let p = LuxPercentiles::of_pixels(&hdr).unwrap();
+        assert_eq!(
+            (p.p5, p.median, p.p95, p.p99, p.max),
+            (6.0, 51.0, 96.0, 100.0, 1e6)
+        );
+        assert!((p.mean - (5050.0 + 1e6) / 101.0).abs() < 1e-9);
+        assert!(LuxPercentiles::of_pixels(&[[0.0, 0.0, 0.0, -1.0]]).is_none());
+    }
 
     #[test]
     fn nice_ceil_rounds_up_to_1_2_2_5_5() {
@@ -387,6 +537,7 @@ mod tests {
             max_luminance: 100.0,
             max_lux: 0.0,
             mean_lux: 0.0,
+            lux: None,
         };
         let t = ToneSettings::resolve(Mode::Shaded, Tonemap::Reinhard, None, None, &stats);
         assert!((t.key - 0.18).abs() < 1e-12);

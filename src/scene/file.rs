@@ -226,6 +226,12 @@ pub struct DisplayEntry {
     /// Top of the false-colour scale, lux (default: from the image).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub lux_max: Option<f64>,
+    /// False-colour palette (`rainbow`, `viridis`, `cividis`, `inferno`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub palette: Option<super::Palette>,
+    /// Hard colour bands on the false-colour scale (DIALux style); continuous when absent.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub steps: Option<u32>,
     /// Colour of pixels that show no surface (linear RGB in cd/m²).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub background: Option<[f64; 3]>,

@@ -7,6 +7,7 @@
 pub mod camera;
 pub mod file;
 pub mod model;
+pub mod palette;
 pub mod placement;
 pub mod save;
 
@@ -17,6 +18,7 @@ use glam::DVec3;
 pub use camera::{Camera, Projection};
 pub use file::{DisplayEntry, Mode, SceneFile, Tonemap, UpAxis, MAX_IMAGE_SIZE};
 pub use model::{Material, SceneMesh};
+pub use palette::Palette;
 pub use placement::{Housing, PlacedLuminaire};
 
 /// A problem with a scene: the file, the key (`luminaire[2].position`, `model[0].path`, or
@@ -276,6 +278,16 @@ fn check_display(path: &Path, d: &DisplayEntry) -> Result<(), SceneError> {
     }
     if let Some(b) = d.background {
         finite_vec(path, "display.background", b)?;
+    }
+    if let Some(n) = d.steps {
+        let max = palette::MAX_STEPS;
+        if !(1..=max).contains(&n) {
+            return Err(SceneError::new(
+                path,
+                "display.steps",
+                format!("{n} is not in 1..={max}"),
+            ));
+        }
     }
     Ok(())
 }

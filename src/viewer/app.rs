@@ -16,7 +16,7 @@ use crate::gpu::Gpu;
 use crate::photometry::Interp;
 use crate::render::lightmap::LightMap;
 use crate::render::{LightModel, RenderSettings, ShadowSettings};
-use crate::scene::{Mode, PlacedLuminaire, Scene, Tonemap};
+use crate::scene::{Mode, Palette, PlacedLuminaire, Scene, Tonemap};
 use crate::study::profile::Profile;
 
 /// How serious a message is.
@@ -50,6 +50,10 @@ pub struct DisplayChoices {
     pub exposure: Option<f64>,
     /// Top of the false-colour scale; `None`: automatic.
     pub lux_max: Option<f64>,
+    /// False-colour palette.
+    pub palette: Palette,
+    /// Hard bands on the false-colour scale (0: continuous).
+    pub steps: u32,
     /// Shadows.
     pub shadows: ShadowSettings,
 }
@@ -344,6 +348,8 @@ impl ViewerApp {
         s.tonemap = d.tonemap;
         s.exposure = d.exposure;
         s.lux_max = d.lux_max;
+        s.palette = d.palette;
+        s.steps = d.steps;
         s.shadows = d.shadows.clone();
         s
     }
@@ -385,6 +391,8 @@ impl ViewerApp {
         e.tonemap = Some(d.tonemap);
         e.exposure = d.exposure;
         e.lux_max = d.lux_max;
+        e.palette = (d.palette != Palette::default()).then_some(d.palette);
+        e.steps = (d.steps > 0).then_some(d.steps);
         e.interp = Some(d.interp);
         e.shadows = Some(d.shadows.technique);
     }
@@ -555,6 +563,8 @@ fn display_choices(scene: &Scene) -> DisplayChoices {
         tonemap: s.tonemap,
         exposure: s.exposure,
         lux_max: s.lux_max,
+        palette: s.palette,
+        steps: s.steps,
         shadows: s.shadows,
     }
 }

@@ -3,9 +3,10 @@
 
 use super::app::ViewerApp;
 use super::camera::CameraMode;
-use crate::render::tonemap::false_colour;
+use crate::render::legend::format_lux;
+use crate::render::tonemap::scale_labels;
 use crate::render::{ShadowTechnique, VolumeTest};
-use crate::scene::{Mode, Tonemap};
+use crate::scene::{Mode, Palette, Tonemap};
 use crate::shadow::SilhouetteMethod;
 
 impl ViewerApp {
@@ -43,6 +44,14 @@ impl ViewerApp {
                     1.0..=1e6,
                     false,
                 );
+                egui::ComboBox::from_label("Palette")
+                    .selected_text(d.palette.name())
+                    .show_ui(ui, |ui| {
+                        for p in Palette::ALL {
+                            ui.selectable_value(&mut d.palette, p, p.name());
+                        }
+                    });
+                ui.add(egui::Slider::new(&mut d.steps, 0..=12).text("Steps (0: smooth)"));
             }
         }
         ui.horizontal(|ui| {
@@ -122,7 +131,12 @@ impl ViewerApp {
             [v.x.max(0.0) as u32, v.y.max(0.0) as u32]
         });
         if self.display.mode == Mode::Illuminance {
-            draw_legend(ui, rect, self.status.lux_max);
+            draw_legend(
+                ui,
+                rect,
+                self.status.lux_max,
+                (self.display.palette, self.display.steps),
+            );
         }
         let emissive = self
             .scene
@@ -239,7 +253,7 @@ fn optional_value(
 }
 
 /// The false-colour scale at the viewport's right edge.
-fn draw_legend(ui: &egui::Ui, rect: egui::Rect, lux_max: f64) {
+fn draw_legend(ui: &egui::Ui, rect: egui::Rect, lux_max: f64, (palette, steps): (Palette, u32)) {
     let bar = egui::Rect::from_min_size(
         egui::pos2(rect.max.x - 90.0, rect.min.y + 20.0),
         egui::vec2(18.0, (rect.height() - 40.0).clamp(40.0, 300.0)),
@@ -251,30 +265,29 @@ fn draw_legend(ui: &egui::Ui, rect: egui::Rect, lux_max: f64) {
         4.0,
         egui::Color32::from_black_alpha(160),
     );
-    let steps = 64;
-    for k in 0..steps {
-        let t0 = k as f32 / steps as f32;
-        let c = false_colour(1.0 - t0);
+    let steps_drawn = 64;
+    for k in 0..steps_drawn {
+        let t0 = k as f32 / steps_drawn as f32;
+        let c = palette.stepped_colour(1.0 - t0 - 0.5 / steps_drawn as f32, steps);
         let colour = egui::Color32::from_rgb(
             crate::render::tonemap::linear_to_srgb(c.x),
             crate::render::tonemap::linear_to_srgb(c.y),
             crate::render::tonemap::linear_to_srgb(c.z),
         );
         let y0 = bar.min.y + bar.height() * t0;
-        let y1 = bar.min.y + bar.height() * (k + 1) as f32 / steps as f32;
+        let y1 = bar.min.y + bar.height() * (k + 1) as f32 / steps_drawn as f32;
         p.rect_filled(
             egui::Rect::from_x_y_ranges(bar.x_range(), y0..=y1),
             0.0,
             colour,
         );
     }
-    for k in 0..=4 {
-        let t = k as f32 / 4.0;
-        let y = bar.max.y - bar.height() * t;
+    for v in scale_labels(lux_max, steps) {
+        let y = bar.max.y - bar.height() * (v / lux_max) as f32;
         p.text(
             egui::pos2(bar.max.x + 4.0, y),
             egui::Align2::LEFT_CENTER,
-            format!("{:.0} lx", lux_max * t as f64),
+            format!("{} lx", format_lux(v)),
             egui::FontId::proportional(11.0),
             egui::Color32::WHITE,
         );
