@@ -11,6 +11,7 @@ use glam::{DMat3, DVec3};
 use goniolight::geometry::generate::XorShift;
 use goniolight::photometry::{angles_to_direction, Interp};
 use goniolight::render::illuminance::{illuminance_cpu, SurfacePoint};
+use goniolight::scene::Projection;
 use goniolight::scene::{Scene, SceneError};
 
 fn scene(rel: &str) -> PathBuf {
@@ -174,7 +175,6 @@ fn bad_scene_files_name_the_file_and_the_key() {
             "luminaire[0].housing",
             "1.000 m from the luminaire",
         ),
-        (model.clone(), "camera", "missing field"),
         (
             format!("{model}{camera}[display]\nwidth = 0\n"),
             "display.width",
@@ -194,9 +194,38 @@ fn bad_scene_files_name_the_file_and_the_key() {
         assert!(msg.contains("bad.toml"), "{msg}");
         assert!(msg.contains(words), "{words:?} not in {msg:?}");
     }
-    // A missing top-level table is named alone, not under the file's first table.
+    // A missing required key of a table is named under that table.
+    let (_dir, r) = load_text(&format!("{model}[camera]\nposition = [1, 1, 1]\n"));
+    assert_eq!(r.expect_err("no look_at").key, "camera.look_at");
+}
+
+/// A scene without `[camera]` loads: commands without an image need none, and images get
+/// a plan view of the bounds, cut above the luminaires hanging under the ceiling.
+#[test]
+fn a_scene_without_a_camera_gets_a_plan_view_cut_under_the_ceiling() {
+    let (model, _) = good_parts();
+    let lum = luminaire("eulumdat-plot/sample_06_isym1.ldt");
+    let (_dir, r) = load_text(&format!("{model}{}", luminaire_entry(&lum, "[3, 2, 2.9]")));
+    let s = r.unwrap();
+    let c = s.camera;
+    assert_eq!(c.up, DVec3::Y);
+    assert!(
+        (c.look_at - DVec3::new(3.0, 2.0, 0.0)).length() < 1e-12,
+        "{:?}",
+        c.look_at
+    );
+    assert_eq!((c.position.x, c.position.y), (3.0, 2.0));
+    // The box room is 6 × 4 × 3 m: the plan shows all of it, and the view starts 1 cm
+    // above the luminaire (2.91 m), under the ceiling (3 m).
+    match c.projection {
+        Projection::Orthographic { height } => assert!(height >= 4.0 && height < 5.0),
+        p => panic!("{p:?}"),
+    }
+    assert!((c.position.z - c.near - 2.91).abs() < 1e-9, "{c:?}");
+    // Without luminaires under the top nothing is cut.
     let (_dir, r) = load_text(&model);
-    assert_eq!(r.expect_err("no camera").key, "camera");
+    let c = r.unwrap().camera;
+    assert!((c.position.z - c.near - 3.0).abs() < 1e-9, "{c:?}");
 }
 
 #[test]

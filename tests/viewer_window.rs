@@ -195,3 +195,61 @@ fn bad_flags_and_a_missing_display_are_clear_errors() {
     assert!(err.contains("xvfb-run"), "{err}");
     assert!(!err.contains("panicked"), "{err}");
 }
+
+/// A scene camera looking straight down (a plan view) showed an empty viewport: the
+/// orbit camera's pitch came out at −90° with no defined view. Its window now shows the
+/// room's floor like `render` does.
+#[test]
+fn a_straight_down_camera_shows_the_room() {
+    if skip() {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("down.toml");
+    let assets = root().join("assets/scenes");
+    std::fs::write(
+        &scene,
+        format!(
+            "[[model]]\npath = {:?}\nup = \"z\"\n[[luminaire]]\nfile = {:?}\nposition = [3, 2, 2.9]\n[camera]\nposition = [3, 2, 2.8]\nlook_at = [3, 2, 0]\nup = [0, 1, 0]\nfov_deg = 90\n",
+            assets.join("box_room.obj").display().to_string(),
+            luminaire("eulumdat-plot/sample_06_isym1.ldt").display().to_string()
+        ),
+    )
+    .unwrap();
+    let shot = dir.path().join("down.png");
+    let (code, out, err) = view_under_xvfb(&[
+        &scene.display().to_string(),
+        "--width",
+        "900",
+        "--height",
+        "600",
+        "--frames",
+        "3",
+        "--screenshot",
+        &shot.display().to_string(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let summary: serde_json::Value = serde_json::from_str(out.trim()).unwrap();
+    let v: Vec<u32> = summary["viewport_px"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_u64().unwrap() as u32)
+        .collect();
+    let window = image::open(&shot).unwrap().to_rgba8();
+    let reference = dir.path().join("down-render.png");
+    render(&scene, v[2], v[3], &reference);
+    let reference = image::open(&reference).unwrap().to_rgba8();
+    // The lit floor fills the view in both (the background is a dark grey, ≤ 40).
+    let lit = |img: &image::RgbaImage, x0: u32, y0: u32| {
+        (0..v[3])
+            .flat_map(|y| (0..v[2]).map(move |x| (x, y)))
+            .filter(|&(x, y)| img.get_pixel(x0 + x, y0 + y).0[..3].iter().any(|&c| c > 60))
+            .count() as f64
+            / (v[2] * v[3]) as f64
+    };
+    let (in_window, in_render) = (lit(&window, v[0], v[1]), lit(&reference, 0, 0));
+    eprintln!("lit: window {in_window:.3}, render {in_render:.3}");
+    assert!(in_render > 0.9, "render: {in_render}");
+    assert!(in_window > 0.9, "the window's view is empty: {in_window}");
+}

@@ -52,6 +52,29 @@ impl Camera {
         }
     }
 
+    /// The camera of a scene file without `[camera]`: a plan view (orthographic, looking
+    /// straight down, north up) of the geometry's bounds `(lo, hi)` with a margin. When
+    /// a luminaire hangs more than 5 cm under the top of the model (under a ceiling),
+    /// the view is cut 1 cm above the highest such luminaire, so the plan shows the
+    /// lit room rather than the roof.
+    pub fn framing((lo, hi): (DVec3, DVec3), luminaires: &[super::PlacedLuminaire]) -> Camera {
+        let size = (hi - lo).max(DVec3::splat(1e-3));
+        let center = (lo + hi) * 0.5;
+        let cut = luminaires
+            .iter()
+            .map(|l| l.position.z)
+            .filter(|&z| z < hi.z - 0.05)
+            .fold(f64::NEG_INFINITY, f64::max);
+        let top = if cut.is_finite() { cut + 0.01 } else { hi.z };
+        let z_eye = hi.z + 1.0;
+        // 16:9 is the default image; a taller image shows more around the plan.
+        let height = size.y.max(size.x * 9.0 / 16.0) * 1.1;
+        Camera {
+            near: z_eye - top,
+            ..Camera::top_down(DVec3::new(center.x, center.y, lo.z), height, z_eye)
+        }
+    }
+
     /// A camera looking straight down at `center`, `height` metres of view, from `z_eye`.
     pub fn top_down(center: DVec3, height: f64, z_eye: f64) -> Camera {
         Camera {

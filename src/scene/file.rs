@@ -47,8 +47,10 @@ pub struct SceneFile {
     /// Light sources.
     #[serde(default)]
     pub luminaire: Vec<LuminaireEntry>,
-    /// The view.
-    pub camera: CameraEntry,
+    /// The view; without it, commands that make an image frame the scene from above
+    /// ([`super::Camera::framing`]), and the others need none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub camera: Option<CameraEntry>,
     /// Display settings.
     #[serde(default)]
     pub display: DisplayEntry,

@@ -127,7 +127,10 @@ impl Scene {
             }
         }
         let bounds = bounds_of(&meshes, &luminaires);
-        let camera = Camera::from_entry(path, &parsed.camera, bounds)?;
+        let camera = match &parsed.camera {
+            Some(entry) => Camera::from_entry(path, entry, bounds)?,
+            None => Camera::framing(bounds, &luminaires),
+        };
         check_display(path, &parsed.display)?;
         Ok(Scene {
             path: path.to_path_buf(),

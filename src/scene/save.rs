@@ -28,7 +28,7 @@ impl Scene {
                 .iter()
                 .map(|l| luminaire_entry(dir, l))
                 .collect(),
-            camera: camera_entry(&self.camera),
+            camera: Some(camera_entry(&self.camera)),
             display: self.display.clone(),
         }
     }

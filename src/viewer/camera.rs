@@ -43,6 +43,7 @@ impl ViewCamera {
     /// The interactive version of a scene's camera (orthographic cameras become a
     /// perspective one of 60°).
     pub fn from_camera(c: &Camera) -> ViewCamera {
+        const MAX_PITCH_DEG: f64 = 89.9;
         let dir = (c.look_at - c.position).normalize_or(DVec3::NEG_Y);
         let fov_deg = match c.projection {
             crate::scene::Projection::Perspective { fov_deg } => fov_deg,
@@ -50,8 +51,21 @@ impl ViewCamera {
         };
         ViewCamera {
             target: c.look_at,
-            yaw_deg: dir.y.atan2(dir.x).to_degrees(),
-            pitch_deg: dir.z.clamp(-1.0, 1.0).asin().to_degrees(),
+            // Straight up or down the orbit's Z-up view would be undefined (an empty
+            // viewport): such a camera keeps a hair of tilt toward its own up vector.
+            // (looking down, the camera faces where its up vector points; looking up, away).
+            yaw_deg: if dir.truncate().length() < 1e-6 {
+                let u = c.up * -dir.z.signum();
+                u.y.atan2(u.x).to_degrees()
+            } else {
+                dir.y.atan2(dir.x).to_degrees()
+            },
+            pitch_deg: dir
+                .z
+                .clamp(-1.0, 1.0)
+                .asin()
+                .to_degrees()
+                .clamp(-MAX_PITCH_DEG, MAX_PITCH_DEG),
             distance: (c.look_at - c.position).length().max(1e-3),
             fov_deg,
             near: c.near,
@@ -131,6 +145,30 @@ mod tests {
             DVec3::new(0.0, 0.0, 1.0),
             60.0,
         ))
+    }
+
+    #[test]
+    fn a_straight_down_camera_keeps_a_defined_view() {
+        let down = Camera {
+            up: DVec3::Y,
+            ..Camera::perspective(DVec3::new(3.0, 2.0, 10.0), DVec3::new(3.0, 2.0, 0.0), 50.0)
+        };
+        let v = ViewCamera::from_camera(&down);
+        assert!(
+            v.pitch_deg < -89.0 && v.pitch_deg > -90.0,
+            "{}",
+            v.pitch_deg
+        );
+        // It still looks (almost) straight down at the target, with north (+Y) up on
+        // screen: the eye is a hair south of the target.
+        let eye = v.eye();
+        assert!((eye - DVec3::new(3.0, 2.0, 10.0)).length() < 0.05, "{eye}");
+        assert!(eye.y < 2.0, "{eye}");
+        let m = v.camera(20.0).view_projection(1.0);
+        let p = m.project_point3(glam::Vec3::new(3.0, 2.0, 0.0));
+        assert!(p.is_finite() && p.x.abs() < 1e-3 && p.y.abs() < 1e-3, "{p}");
+        let north = m.project_point3(glam::Vec3::new(3.0, 3.0, 0.0));
+        assert!(north.y > 0.1 && north.x.abs() < 1e-2, "{north}");
     }
 
     #[test]
