@@ -218,7 +218,7 @@ fn a_scene_without_a_camera_gets_a_plan_view_cut_under_the_ceiling() {
     // The box room is 6 × 4 × 3 m: the plan shows all of it, and the view starts 1 cm
     // above the luminaire (2.91 m), under the ceiling (3 m).
     match c.projection {
-        Projection::Orthographic { height } => assert!(height >= 4.0 && height < 5.0),
+        Projection::Orthographic { height } => assert!((4.0..5.0).contains(&height)),
         p => panic!("{p:?}"),
     }
     assert!((c.position.z - c.near - 2.91).abs() < 1e-9, "{c:?}");
