@@ -59,13 +59,13 @@ fn paraboloid_visibility(l: Light, i: u32, p: vec3<f32>, n: vec3<f32>) -> f32 {
     let m = paraboloid_project(local);
     let uv = vec2<f32>(m.x * 0.5 + 0.5, 0.5 - m.y * 0.5);
     let layer = i32(2u * i + u32(m.z));
-    let cos_i = clamp(abs(dot(n, w)), 0.05, 1.0);
+    let cos_i = clamp(abs(dot(n, w)), 0.02, 1.0);
     let tan_i = sqrt(1.0 - cos_i * cos_i) / cos_i;
     // The widest angle a map texel spans (at the paraboloid's centre: 4 / size), times the
     // kernel's reach, is how far apart in depth the surface is at neighbouring samples.
     let texel = 1.0 / f32(shadow.map_size);
     let reach = 4.0 * texel * (1.5 * f32(shadow.pcf_radius) + 1.0);
-    let slope = dist * min(tan_i, 20.0) * reach * shadow.bias_slope;
+    let slope = dist * min(tan_i, 50.0) * reach * shadow.bias_slope;
     let reference = (dist - shadow.bias - slope) / shadow.far;
     var sum = 0.0;
     var count = 0.0;
