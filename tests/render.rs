@@ -355,17 +355,12 @@ fn render_cli_writes_an_exr_of_lux_that_the_illuminance_command_reproduces() {
         return;
     };
     let dir = tempfile::tempdir().unwrap();
-    let scene = dir.path().join("floor.toml");
-    let assets = root().join("assets/scenes");
-    std::fs::write(
-        &scene,
-        format!(
-            "[[model]]\npath = {:?}\nup = \"z\"\n[[luminaire]]\nfile = {:?}\nposition = [2.5, 2.2, 2.9]\naim = [0.2, 0.1, -1]\n[camera]\nposition = [3, 2, 2.5]\nlook_at = [3, 2, 0]\nup = [0, 1, 0]\northographic_height = 4.0\n",
-            assets.join("box_room.obj").display().to_string(),
-            luminaire("eulumdat-luminance/sample_07.ldt").display().to_string()
-        ),
-    )
-    .unwrap();
+    let scene = common::box_room_scene(
+        dir.path(),
+        "floor",
+        "eulumdat-luminance/sample_07.ldt",
+        "position = [2.5, 2.2, 2.9]\naim = [0.2, 0.1, -1]\n[camera]\nposition = [3, 2, 2.5]\nlook_at = [3, 2, 0]\nup = [0, 1, 0]\northographic_height = 4.0\n",
+    );
     let (png, exr) = (dir.path().join("f.png"), dir.path().join("f.exr"));
     let (code, out, err) = common::run_cli(
         &[

@@ -54,6 +54,11 @@ fn bundled_scenes_load_with_their_luminaires_materials_and_textures() {
         let ignored = s.ignored_by(l);
         assert_eq!(ignored.0.iter().map(|r| r.len()).sum::<usize>(), 12);
     }
+    // Moved away from its body (the viewer moves luminaires), the tie lapses: the
+    // object shadows it like any other geometry, and a save does not write it.
+    let mut moved = s.luminaires[0].clone();
+    moved.position.x += 0.2;
+    assert!(s.ignored_by(&moved).is_empty() && s.housing_in_reach(&moved).is_none());
     assert!(s.luminaires[2].housing.is_none());
     assert!(s.ignored_by(&s.luminaires[2]).is_empty());
     let stage = Scene::load(&scene("effect_stage.toml")).unwrap();

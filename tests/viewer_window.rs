@@ -38,6 +38,16 @@ fn view_under_xvfb(args: &[&str]) -> (i32, String, String) {
     )
 }
 
+/// The viewport rectangle `[x, y, width, height]` of a `view --screenshot` summary.
+fn viewport_px(summary: &serde_json::Value) -> Vec<u32> {
+    summary["viewport_px"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_u64().unwrap() as u32)
+        .collect()
+}
+
 fn render(scene: &Path, w: u32, h: u32, out: &Path) {
     let (code, _, err) = common::run_cli(
         &[
@@ -86,12 +96,7 @@ fn every_bundled_scene_renders_in_the_window_like_the_render_command() {
         let window = image::open(&shot).unwrap().to_rgba8();
         assert_eq!([window.width(), window.height()], [900, 600]);
         assert_eq!(summary["window_px"], serde_json::json!([900, 600]));
-        let v: Vec<u32> = summary["viewport_px"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|x| x.as_u64().unwrap() as u32)
-            .collect();
+        let v = viewport_px(&summary);
         // The side panel, menu and status bar take their share; the view the rest.
         assert!(v[0] > 100 && v[2] > 300 && v[3] > 300, "{v:?}");
         // The viewport shows exactly what `render` makes of the same view.
@@ -205,17 +210,12 @@ fn a_straight_down_camera_shows_the_room() {
         return;
     }
     let dir = tempfile::tempdir().unwrap();
-    let scene = dir.path().join("down.toml");
-    let assets = root().join("assets/scenes");
-    std::fs::write(
-        &scene,
-        format!(
-            "[[model]]\npath = {:?}\nup = \"z\"\n[[luminaire]]\nfile = {:?}\nposition = [3, 2, 2.9]\n[camera]\nposition = [3, 2, 2.8]\nlook_at = [3, 2, 0]\nup = [0, 1, 0]\nfov_deg = 90\n",
-            assets.join("box_room.obj").display().to_string(),
-            luminaire("eulumdat-plot/sample_06_isym1.ldt").display().to_string()
-        ),
-    )
-    .unwrap();
+    let scene = common::box_room_scene(
+        dir.path(),
+        "down",
+        "eulumdat-plot/sample_06_isym1.ldt",
+        "position = [3, 2, 2.9]\n[camera]\nposition = [3, 2, 2.8]\nlook_at = [3, 2, 0]\nup = [0, 1, 0]\nfov_deg = 90\n",
+    );
     let shot = dir.path().join("down.png");
     let (code, out, err) = view_under_xvfb(&[
         &scene.display().to_string(),
@@ -230,12 +230,7 @@ fn a_straight_down_camera_shows_the_room() {
     ]);
     assert_eq!(code, 0, "{err}");
     let summary: serde_json::Value = serde_json::from_str(out.trim()).unwrap();
-    let v: Vec<u32> = summary["viewport_px"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|x| x.as_u64().unwrap() as u32)
-        .collect();
+    let v = viewport_px(&summary);
     let window = image::open(&shot).unwrap().to_rgba8();
     let reference = dir.path().join("down-render.png");
     render(&scene, v[2], v[3], &reference);

@@ -172,8 +172,10 @@ impl Scene {
     }
 
     /// The triangles of [`Scene::caster_mesh`] that luminaire `l` ignores: its housing.
+    /// Nothing when the luminaire has been moved away from it (the viewer moves
+    /// luminaires, not model objects): then the object is other geometry.
     pub fn ignored_by(&self, l: &PlacedLuminaire) -> crate::shadow::IgnoredTriangles {
-        let Some(h) = &l.housing else {
+        let Some(h) = self.housing_in_reach(l) else {
             return Default::default();
         };
         let mut first = Vec::with_capacity(self.meshes.len() + 1);
@@ -190,6 +192,18 @@ impl Scene {
                 .map(|&m| first[m]..first[m + 1])
                 .collect(),
         )
+    }
+
+    /// The luminaire's housing if every one of its objects still comes within
+    /// [`file::HOUSING_REACH_M`] of its photometric centre.
+    pub fn housing_in_reach<'a>(&self, l: &'a PlacedLuminaire) -> Option<&'a Housing> {
+        let h = l.housing.as_ref()?;
+        let near = |&m: &usize| {
+            self.meshes.get(m).is_some_and(|mesh| {
+                gap_to(std::slice::from_ref(mesh), l.position) <= file::HOUSING_REACH_M
+            })
+        };
+        (!h.meshes.is_empty() && h.meshes.iter().all(near)).then_some(h)
     }
 
     /// [`Scene::ignored_by`] for every luminaire, in order.
@@ -216,8 +230,7 @@ fn find_housing(
     let mut nearest = f64::INFINITY;
     let mut found = Vec::new();
     for (k, m) in meshes.iter().enumerate().filter(|(_, m)| m.name == name) {
-        let (lo, hi) = bounds_of(std::slice::from_ref(m), &[]);
-        let gap = (lo - position).max(position - hi).max(DVec3::ZERO).length();
+        let gap = gap_to(std::slice::from_ref(m), position);
         nearest = nearest.min(gap);
         if gap <= reach {
             found.push(k);
@@ -234,6 +247,12 @@ fn find_housing(
         return Err(SceneError::new(path, key, message));
     }
     Ok(found)
+}
+
+/// Distance from `p` to the bounding box of `meshes` (0 inside).
+fn gap_to(meshes: &[SceneMesh], p: DVec3) -> f64 {
+    let (lo, hi) = bounds_of(meshes, &[]);
+    (lo - p).max(p - hi).max(DVec3::ZERO).length()
 }
 
 fn bounds_of(meshes: &[SceneMesh], luminaires: &[PlacedLuminaire]) -> (DVec3, DVec3) {

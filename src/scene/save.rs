@@ -8,7 +8,7 @@ use glam::{DMat3, DVec3};
 
 use super::file::{CameraEntry, LuminaireEntry, ModelEntry, SceneFile};
 use super::placement::aim_frame;
-use super::{Camera, PlacedLuminaire, Projection, Scene};
+use super::{Camera, Housing, PlacedLuminaire, Projection, Scene};
 
 impl Scene {
     /// The file contents that reproduce this scene when saved at `dest`.
@@ -26,7 +26,7 @@ impl Scene {
             luminaire: self
                 .luminaires
                 .iter()
-                .map(|l| luminaire_entry(dir, l))
+                .map(|l| luminaire_entry(dir, l, self.housing_in_reach(l)))
                 .collect(),
             camera: Some(camera_entry(&self.camera)),
             display: self.display.clone(),
@@ -66,7 +66,9 @@ pub fn aim_and_roll(rotation: DMat3) -> (DVec3, f64) {
     (aim, roll.to_degrees())
 }
 
-fn luminaire_entry(dir: &Path, l: &PlacedLuminaire) -> LuminaireEntry {
+/// The entry of `l`; its housing is written only while it is still `housing` (in reach:
+/// a luminaire the viewer moved away from its body leaves that body behind).
+fn luminaire_entry(dir: &Path, l: &PlacedLuminaire, housing: Option<&Housing>) -> LuminaireEntry {
     let (aim, roll) = aim_and_roll(l.rotation);
     let color = (l.color != DVec3::ONE).then(|| l.color.to_array());
     LuminaireEntry {
@@ -79,7 +81,7 @@ fn luminaire_entry(dir: &Path, l: &PlacedLuminaire) -> LuminaireEntry {
         multiplier: l.multiplier,
         color,
         name: Some(l.name.clone()),
-        housing: l.housing.as_ref().map(|h| h.name.clone()),
+        housing: housing.map(|h| h.name.clone()),
     }
 }
 

@@ -211,3 +211,23 @@ pub fn run_cli_in(
         timed_out,
     )
 }
+
+/// Writes `dir/NAME.toml`: the bundled box room with one luminaire `file` (under
+/// `luminaires/`) and `rest` (its placement keys, then further tables such as
+/// `[camera]`) appended; returns its path.
+pub fn box_room_scene(dir: &Path, name: &str, file: &str, rest: &str) -> PathBuf {
+    let scene = dir.join(format!("{name}.toml"));
+    std::fs::write(
+        &scene,
+        format!(
+            "[[model]]\npath = {:?}\nup = \"z\"\n[[luminaire]]\nfile = {:?}\n{rest}",
+            root()
+                .join("assets/scenes/box_room.obj")
+                .display()
+                .to_string(),
+            luminaire(file).display().to_string()
+        ),
+    )
+    .unwrap();
+    scene
+}
