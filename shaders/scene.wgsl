@@ -78,15 +78,18 @@ fn vs_depth(v: VertexIn) -> DepthOut {
 }
 
 // The shading normal: the interpolated normal, turned toward the viewer on back faces,
-// perturbed by the tangent-space normal map when there is one.
+// perturbed by the tangent-space normal map when there is one. On the map's coarser mip
+// levels it is shortened to the mean length of the normals it stands for (alpha), so the
+// diffuse light is the mean over the relief (see render/mipmaps.rs).
 fn shading_normal(in: VertexOut, geometric: vec3<f32>) -> vec3<f32> {
     if (material.flags.x == 0u) {
         return geometric;
     }
     let t = normalize(in.tangent.xyz - geometric * dot(geometric, in.tangent.xyz));
     let b = cross(geometric, t) * in.tangent.w;
-    let m = textureSample(normal_map, material_sampler, in.uv).xyz * 2.0 - 1.0;
-    return normalize(t * m.x + b * m.y + geometric * m.z);
+    let texel = textureSample(normal_map, material_sampler, in.uv);
+    let m = texel.xyz * 2.0 - 1.0;
+    return normalize(t * m.x + b * m.y + geometric * m.z) * texel.a;
 }
 
 @fragment

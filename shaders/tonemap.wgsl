@@ -8,7 +8,8 @@ struct ToneParams {
     stop_count: u32,
     // Hard bands on the false-colour scale (0: continuous).
     steps: u32,
-    _pad1: u32,
+    // Samples per pixel side of `hdr` (1: one sample per output pixel).
+    supersample: u32,
     // exposure: k; Reinhard: key / log-average luminance, 1 / L_white²; false colour: lux
     // at the top of the scale.
     k: f32,
@@ -54,25 +55,47 @@ fn false_colour(t: f32) -> vec3<f32> {
     return c;
 }
 
-@fragment
-fn fs_tonemap(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
-    let texel = textureLoad(hdr, vec2<i32>(pos.xy), 0);
+// The display colour (linear) of one HDR sample: the twin of ToneSettings::map_pixel.
+fn map_sample(texel: vec4<f32>) -> vec3<f32> {
     if (texel.a < 0.0) {
-        return vec4<f32>(tone.background.rgb, 1.0);
+        return tone.background.rgb;
     }
     if (tone.tone_operator == 2u) {
-        return vec4<f32>(false_colour(texel.a / tone.lux_max), 1.0);
+        return false_colour(texel.a / tone.lux_max);
     }
     if (tone.tone_operator == 0u) {
-        return vec4<f32>(1.0 - exp(-tone.k * texel.rgb), 1.0);
+        return 1.0 - exp(-tone.k * texel.rgb);
     }
     let lw = dot(texel.rgb, LUMA);
     if (lw <= 0.0) {
-        return vec4<f32>(0.0, 0.0, 0.0, 1.0);
+        return vec3<f32>(0.0);
     }
     let l = tone.key_scale * lw;
     let ld = l * (1.0 + l * tone.inv_white2) / (1.0 + l);
-    return vec4<f32>(min(texel.rgb * (ld / lw), vec3<f32>(1.0)), 1.0);
+    return min(texel.rgb * (ld / lw), vec3<f32>(1.0));
+}
+
+// The displayed pixel: the mean (in linear light; the target encodes sRGB) of the
+// display colours of its supersample × supersample samples.
+@fragment
+fn fs_tonemap(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
+    let s = i32(tone.supersample);
+    let base = vec2<i32>(pos.xy) * s;
+    var sum = vec3<f32>(0.0);
+    for (var j = 0; j < s; j++) {
+        for (var i = 0; i < s; i++) {
+            sum += map_sample(textureLoad(hdr, base + vec2<i32>(i, j), 0));
+        }
+    }
+    return vec4<f32>(sum / f32(s * s), 1.0);
+}
+
+// The centre sample of each pixel of a supersampled HDR target (supersample is odd): the
+// pixel-centre values the numbers are read from.
+@fragment
+fn fs_centre(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
+    let s = i32(tone.supersample);
+    return textureLoad(hdr, vec2<i32>(pos.xy) * s + vec2<i32>(s / 2), 0);
 }
 
 // Per 16 × 16 tile of surface pixels: (Σ ln(δ + L), count, min L > 0, max L) and

@@ -72,6 +72,10 @@ pub struct ImageOptions {
     /// Hard colour bands on the false-colour scale, DIALux style (1–20; default smooth).
     #[arg(long)]
     pub steps: Option<u32>,
+    /// Anti-aliasing: N × N samples per pixel for the displayed image (1, 3 or 5; the
+    /// lux and luminance values are the pixel centres either way).
+    #[arg(long, default_value_t = 3)]
+    pub supersample: u32,
     /// Shadows of the luminaires (default: the scene's `display.shadows`, else
     /// paraboloid maps, the sensible choice for point-like luminaires).
     #[arg(long, value_enum)]
@@ -148,6 +152,13 @@ impl ImageOptions {
             }
             s.shadows.map_size = size;
         }
+        if ![1, 3, 5].contains(&self.supersample) {
+            return Err(CliError::input(anyhow!(
+                "--supersample {} must be 1, 3 or 5 (an odd count has a sample at the pixel centre)",
+                self.supersample
+            )));
+        }
+        s.supersample = self.supersample;
         s.shadows.volume_test = self.volume_test;
         s.shadows.silhouette = self.silhouettes;
         s.shadows.show_volumes = self.show_volumes;

@@ -8,6 +8,7 @@ use wgpu::util::DeviceExt;
 
 use super::layouts::Layouts;
 use super::lightmap::{self, LightMap};
+use super::mipmaps::{mip_chain, TexelKind};
 use super::paraboloid::{ParaboloidCasters, ShadowLight};
 use super::volumes::VolumeGeometry;
 use crate::geometry::Mesh;
@@ -392,11 +393,22 @@ fn tangents(m: &SceneMesh) -> Vec<[f32; 4]> {
         .collect()
 }
 
+/// Uploads a material texture with its full mip chain (see [`super::mipmaps`]).
 fn upload_rgba(
     gpu: &Gpu,
     img: &image::RgbaImage,
     format: wgpu::TextureFormat,
 ) -> wgpu::TextureView {
+    let kind = if format.is_srgb() {
+        TexelKind::SrgbColour
+    } else {
+        TexelKind::Normal
+    };
+    let chain = mip_chain(img, kind);
+    let data: Vec<u8> = chain
+        .iter()
+        .flat_map(|l| l.as_raw().iter().copied())
+        .collect();
     let texture = gpu.device.create_texture_with_data(
         &gpu.queue,
         &wgpu::TextureDescriptor {
@@ -406,7 +418,7 @@ fn upload_rgba(
                 height: img.height(),
                 depth_or_array_layers: 1,
             },
-            mip_level_count: 1,
+            mip_level_count: chain.len() as u32,
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
             format,
@@ -414,7 +426,7 @@ fn upload_rgba(
             view_formats: &[],
         },
         wgpu::util::TextureDataOrder::LayerMajor,
-        img.as_raw(),
+        &data,
     );
     texture.create_view(&Default::default())
 }

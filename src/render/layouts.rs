@@ -136,6 +136,10 @@ impl Layouts {
             address_mode_v: wgpu::AddressMode::Repeat,
             mag_filter: wgpu::FilterMode::Linear,
             min_filter: wgpu::FilterMode::Linear,
+            // Trilinear over the mip chain, anisotropic at grazing angles (floors, walls
+            // seen along their length).
+            mipmap_filter: wgpu::MipmapFilterMode::Linear,
+            anisotropy_clamp: 16,
             ..Default::default()
         });
         let light_map_sampler = gpu.device.create_sampler(&wgpu::SamplerDescriptor {

@@ -9,6 +9,7 @@ pub mod layouts;
 pub mod legend;
 pub mod lightmap;
 pub mod limits;
+pub mod mipmaps;
 pub mod output;
 pub mod paraboloid;
 pub mod passes;
@@ -62,6 +63,9 @@ pub struct RenderSettings {
     pub read_hdr: bool,
     /// Shadows.
     pub shadows: ShadowSettings,
+    /// Samples per pixel side for the displayed image (1: none; odd, see
+    /// [`targets::Targets`]); the numbers are the pixel centres either way.
+    pub supersample: u32,
 }
 
 impl RenderSettings {
@@ -83,6 +87,7 @@ impl RenderSettings {
                 .unwrap_or(Vec3::splat(0.02)),
             read_hdr: false,
             shadows: ShadowSettings::with(d.shadows.unwrap_or_default()),
+            supersample: 1,
         }
     }
 }
@@ -156,13 +161,14 @@ impl Renderer {
         frames: usize,
     ) -> Result<ShadowFrame, GpuError> {
         let aspect = targets.width as f64 / targets.height as f64;
+        let (render_w, render_h) = targets.render_size();
         let shadow = self.shadows.prepare(
             gpu,
             scene,
             camera.view_projection(aspect),
             camera.near_rectangle(aspect),
-            targets.width,
-            targets.height,
+            render_w,
+            render_h,
             shadows,
         )?;
         let frame = self.passes.frame_bind_group(
@@ -181,6 +187,7 @@ impl Renderer {
             self.passes
                 .record_shade(gpu, &mut enc, &frame, scene, targets, model);
         }
+        self.tonemapper.record_centres(gpu, &mut enc, targets);
         gpu.queue.submit([enc.finish()]);
         gpu.wait()?;
         Ok(shadow)
@@ -194,7 +201,10 @@ impl Renderer {
         camera: &Camera,
         settings: &RenderSettings,
     ) -> Result<RenderedFrame, GpuError> {
-        let targets = Targets::new(gpu, settings.width, settings.height);
+        // The debug views draw over the image with the scene's depth: one sample.
+        let debug = settings.shadows.show_volumes || settings.shadows.show_silhouettes;
+        let supersample = if debug { 1 } else { settings.supersample };
+        let targets = Targets::with_supersample(gpu, settings.width, settings.height, supersample);
         let (shadow, stats, tone) = self.render_to(gpu, scene, camera, settings, &targets)?;
         let pixels = gpu.read_texture(&targets.ldr)?;
         let mut image = image::RgbaImage::from_raw(settings.width, settings.height, pixels)

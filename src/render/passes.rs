@@ -218,7 +218,7 @@ impl ScenePasses {
             label: Some("shade"),
             // a = −1 marks pixels that show no surface.
             color_attachments: &[Some(crate::gpu::cleared_attachment(
-                &targets.hdr_view,
+                &targets.shade_view,
                 wgpu::Color {
                     r: 0.0,
                     g: 0.0,

@@ -1,5 +1,8 @@
 //! Render targets of one image size: depth, HDR (linear luminance + illuminance) and the
-//! displayable sRGB image.
+//! displayable sRGB image. With supersampling s (odd), the scene is drawn at s × s samples
+//! per pixel into a larger HDR target; the numbers (HDR, statistics, EXR) are the centre
+//! sample of each pixel — exactly the pixel-centre values of s = 1 — and the displayed
+//! image averages the s × s tone-mapped samples (anti-aliased edges and textures).
 
 use crate::gpu::Gpu;
 
@@ -14,8 +17,13 @@ pub struct Targets {
     pub width: u32,
     /// Height in pixels.
     pub height: u32,
-    /// Depth and stencil (the stencil counts shadow volumes).
+    /// Samples per pixel side (1 or odd).
+    pub supersample: u32,
+    /// Depth and stencil (the stencil counts shadow volumes), at the render size.
     pub depth_view: wgpu::TextureView,
+    /// The HDR target the scene is drawn into, at the render size (a view of `hdr` when
+    /// `supersample` is 1).
+    pub shade_view: wgpu::TextureView,
     /// HDR texture.
     pub hdr: wgpu::Texture,
     /// Its view.
@@ -27,14 +35,34 @@ pub struct Targets {
 }
 
 impl Targets {
-    /// Creates targets of `width` × `height`.
+    /// Creates targets of `width` × `height` without supersampling.
     pub fn new(gpu: &Gpu, width: u32, height: u32) -> Targets {
-        let make = |label, format, usage, view_formats: &[wgpu::TextureFormat]| {
+        Targets::with_supersample(gpu, width, height, 1)
+    }
+
+    /// The supersampling actually used for `width` × `height` when `wanted` is asked for:
+    /// odd (an even factor has no centre sample), and 1 when the render size would pass
+    /// the device's largest texture.
+    pub fn supersample_for(gpu: &Gpu, width: u32, height: u32, wanted: u32) -> u32 {
+        let s = wanted.max(1) | 1;
+        let max = gpu.device.limits().max_texture_dimension_2d;
+        if width.max(height).saturating_mul(s) <= max {
+            s
+        } else {
+            1
+        }
+    }
+
+    /// Creates targets of `width` × `height` drawn with `supersample` × `supersample`
+    /// samples per pixel (see [`Targets::supersample_for`]).
+    pub fn with_supersample(gpu: &Gpu, width: u32, height: u32, supersample: u32) -> Targets {
+        let s = Targets::supersample_for(gpu, width, height, supersample);
+        let make_sized = |label, format, usage, view_formats: &[wgpu::TextureFormat], k: u32| {
             gpu.device.create_texture(&wgpu::TextureDescriptor {
                 label: Some(label),
                 size: wgpu::Extent3d {
-                    width,
-                    height,
+                    width: width * k,
+                    height: height * k,
                     depth_or_array_layers: 1,
                 },
                 mip_level_count: 1,
@@ -45,12 +73,16 @@ impl Targets {
                 view_formats,
             })
         };
+        let make = |label, format, usage, view_formats: &[wgpu::TextureFormat]| {
+            make_sized(label, format, usage, view_formats, 1)
+        };
         use wgpu::TextureUsages as U;
-        let depth = make(
+        let depth = make_sized(
             "depth",
             gpu.depth_stencil_format(),
             U::RENDER_ATTACHMENT,
             &[],
+            s,
         );
         let hdr = make(
             "hdr",
@@ -66,14 +98,38 @@ impl Targets {
             U::RENDER_ATTACHMENT | U::COPY_SRC | U::TEXTURE_BINDING,
             &[wgpu::TextureFormat::Rgba8Unorm],
         );
+        let shade_view = if s == 1 {
+            hdr.create_view(&Default::default())
+        } else {
+            make_sized(
+                "supersampled hdr",
+                HDR_FORMAT,
+                U::RENDER_ATTACHMENT | U::TEXTURE_BINDING,
+                &[],
+                s,
+            )
+            .create_view(&Default::default())
+        };
         Targets {
             width,
             height,
+            supersample: s,
+            shade_view,
             depth_view: depth.create_view(&Default::default()),
             hdr_view: hdr.create_view(&Default::default()),
             hdr,
             ldr_view: ldr.create_view(&Default::default()),
             ldr,
         }
+    }
+}
+
+impl Targets {
+    /// The size the scene is drawn at: (width, height) × supersample.
+    pub fn render_size(&self) -> (u32, u32) {
+        (
+            self.width * self.supersample,
+            self.height * self.supersample,
+        )
     }
 }

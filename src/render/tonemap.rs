@@ -321,7 +321,7 @@ struct ToneParamsGpu {
     tone_operator: u32,
     stop_count: u32,
     steps: u32,
-    pad: u32,
+    supersample: u32,
     k: f32,
     key_scale: f32,
     inv_white2: f32,
@@ -334,6 +334,7 @@ struct ToneParamsGpu {
 pub struct ToneMapper {
     stats: wgpu::ComputePipeline,
     tonemap: wgpu::RenderPipeline,
+    centres: wgpu::RenderPipeline,
 }
 
 const TILE: u32 = 16;
@@ -357,30 +358,35 @@ impl ToneMapper {
                 compilation_options: Default::default(),
                 cache: None,
             });
-        let tonemap = gpu
-            .device
-            .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some("tonemap"),
-                layout: None,
-                vertex: wgpu::VertexState {
-                    module: &module,
-                    entry_point: Some("vs_fullscreen"),
-                    compilation_options: Default::default(),
-                    buffers: &[],
-                },
-                primitive: Default::default(),
-                depth_stencil: None,
-                multisample: Default::default(),
-                fragment: Some(wgpu::FragmentState {
-                    module: &module,
-                    entry_point: Some("fs_tonemap"),
-                    compilation_options: Default::default(),
-                    targets: &[Some(LDR_FORMAT.into())],
-                }),
-                multiview_mask: None,
-                cache: None,
-            });
-        ToneMapper { stats, tonemap }
+        let fullscreen = |label, entry, format: wgpu::TextureFormat| {
+            gpu.device
+                .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                    label: Some(label),
+                    layout: None,
+                    vertex: wgpu::VertexState {
+                        module: &module,
+                        entry_point: Some("vs_fullscreen"),
+                        compilation_options: Default::default(),
+                        buffers: &[],
+                    },
+                    primitive: Default::default(),
+                    depth_stencil: None,
+                    multisample: Default::default(),
+                    fragment: Some(wgpu::FragmentState {
+                        module: &module,
+                        entry_point: Some(entry),
+                        compilation_options: Default::default(),
+                        targets: &[Some(format.into())],
+                    }),
+                    multiview_mask: None,
+                    cache: None,
+                })
+        };
+        ToneMapper {
+            stats,
+            tonemap: fullscreen("tonemap", "fs_tonemap", LDR_FORMAT),
+            centres: fullscreen("centre samples", "fs_centre", super::targets::HDR_FORMAT),
+        }
     }
 
     /// Statistics of the HDR target (runs on the GPU, reads back one record per tile).
@@ -422,7 +428,7 @@ impl ToneMapper {
             },
             stop_count: palette.len() as u32,
             steps: tone.steps,
-            pad: 0,
+            supersample: targets.supersample,
             k: tone.exposure_k as f32,
             inv_white2: (1.0 / (tone.white * tone.white)) as f32,
             lux_max: tone.lux_max as f32,
@@ -434,7 +440,7 @@ impl ToneMapper {
             "tonemap",
             &self.tonemap.get_bind_group_layout(0),
             &[
-                (0, wgpu::BindingResource::TextureView(&targets.hdr_view)),
+                (0, wgpu::BindingResource::TextureView(&targets.shade_view)),
                 (1, buffer.as_entire_binding()),
             ],
         );
@@ -447,6 +453,38 @@ impl ToneMapper {
             ..Default::default()
         });
         pass.set_pipeline(&self.tonemap);
+        pass.set_bind_group(0, &bind, &[]);
+        pass.draw(0..3, 0..1);
+    }
+
+    /// Records the copy of every pixel's centre sample from the supersampled target into
+    /// the HDR target (nothing without supersampling: the scene was drawn there).
+    pub fn record_centres(&self, gpu: &Gpu, enc: &mut wgpu::CommandEncoder, targets: &Targets) {
+        if targets.supersample == 1 {
+            return;
+        }
+        let params = ToneParamsGpu {
+            supersample: targets.supersample,
+            ..bytemuck::Zeroable::zeroed()
+        };
+        let buffer = gpu.uniform_buffer("centre params", &params);
+        let bind = gpu.bind_group(
+            "centre samples",
+            &self.centres.get_bind_group_layout(0),
+            &[
+                (0, wgpu::BindingResource::TextureView(&targets.shade_view)),
+                (1, buffer.as_entire_binding()),
+            ],
+        );
+        let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("centre samples"),
+            color_attachments: &[Some(crate::gpu::cleared_attachment(
+                &targets.hdr_view,
+                wgpu::Color::TRANSPARENT,
+            ))],
+            ..Default::default()
+        });
+        pass.set_pipeline(&self.centres);
         pass.set_bind_group(0, &bind, &[]);
         pass.draw(0..3, 0..1);
     }
