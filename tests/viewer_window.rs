@@ -55,6 +55,9 @@ fn render(scene: &Path, w: u32, h: u32, out: &Path) {
             &scene.display().to_string(),
             "--mode",
             "shaded",
+            // The viewer draws one sample per pixel.
+            "--supersample",
+            "1",
             "--width",
             &w.to_string(),
             "--height",
@@ -247,4 +250,54 @@ fn a_straight_down_camera_shows_the_room() {
     eprintln!("lit: window {in_window:.3}, render {in_render:.3}");
     assert!(in_render > 0.9, "render: {in_render}");
     assert!(in_window > 0.9, "the window's view is empty: {in_window}");
+}
+
+/// An orthographic scene camera stays orthographic in the viewer: a scene without
+/// `[camera]` gets the plan view (orthographic, from above, cut under the ceiling), and
+/// the window shows what `render` makes of it.
+#[test]
+fn a_plan_view_stays_orthographic_in_the_window() {
+    if skip() {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let scene = common::box_room_scene(
+        dir.path(),
+        "plan",
+        "eulumdat-plot/sample_06_isym1.ldt",
+        "position = [2, 2, 2.9]\n",
+    );
+    let shot = dir.path().join("plan.png");
+    let (code, out, err) = view_under_xvfb(&[
+        &scene.display().to_string(),
+        "--width",
+        "900",
+        "--height",
+        "600",
+        "--frames",
+        "3",
+        "--screenshot",
+        &shot.display().to_string(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let summary: serde_json::Value = serde_json::from_str(out.trim()).unwrap();
+    let v = viewport_px(&summary);
+    let window = image::open(&shot).unwrap().to_rgba8();
+    let reference = dir.path().join("plan-render.png");
+    render(&scene, v[2], v[3], &reference);
+    let reference = image::open(&reference).unwrap().to_rgba8();
+    let mut off = 0usize;
+    for y in 0..v[3] {
+        for x in 0..v[2] {
+            let (a, b) = (
+                window.get_pixel(v[0] + x, v[1] + y),
+                reference.get_pixel(x, y),
+            );
+            off += usize::from((0..3).any(|c| (a[c] as i32 - b[c] as i32).abs() > 8));
+        }
+    }
+    let total = (v[2] * v[3]) as usize;
+    eprintln!("plan view: {off} of {total} pixels differ by more than 8 levels");
+    // A perspective view of the same camera would differ almost everywhere.
+    assert!(off * 100 <= total, "{off} of {total} pixels differ");
 }

@@ -5,7 +5,7 @@ use std::path::Path;
 
 use super::app::ViewerApp;
 use super::files::{load_scene_or_model, Dialog, DialogPurpose};
-use crate::scene::UpAxis;
+use crate::scene::{Camera, UpAxis};
 
 impl ViewerApp {
     /// Opens a native file dialog (the UI keeps running; the answer is polled).
@@ -98,6 +98,20 @@ impl ViewerApp {
                 if ui.button("Frame the scene").clicked() {
                     let (lo, hi) = self.scene.bounds();
                     self.camera.frame(lo, hi);
+                }
+                if ui.button("Plan view (from above, north up)").clicked() {
+                    // The plan a scene without a camera gets: cut above the luminaires
+                    // under the ceiling.
+                    let plan = Camera::framing(self.scene.bounds(), &self.scene.luminaires);
+                    let mode = self.camera.mode;
+                    self.camera = super::camera::ViewCamera::from_camera(&plan);
+                    self.camera.mode = mode;
+                }
+                let mut ortho = self.camera.ortho_height.is_some();
+                if ui.checkbox(&mut ortho, "Orthographic").changed() {
+                    let c = &mut self.camera;
+                    c.ortho_height =
+                        ortho.then(|| 2.0 * c.distance * (c.fov_deg.to_radians() / 2.0).tan());
                 }
                 ui.radio_value(
                     &mut self.camera.mode,
