@@ -10,7 +10,7 @@ struct PointParams {
 };
 
 @group(0) @binding(0) var<uniform> point_params: PointParams;
-// Pairs of vec4: position, normal.
+// Pairs of vec4: position, normal (binding 6, the sector colours, is in lighting.wgsl).
 @group(0) @binding(4) var<storage, read> points: array<vec4<f32>>;
 // Per point: rgb illuminance weighted by each luminaire's colour, a lux.
 @group(0) @binding(5) var<storage, read_write> lux: array<vec4<f32>>;
@@ -27,7 +27,7 @@ fn illuminance_points(@builtin(global_invocation_id) id: vec3<u32>) {
     for (var k = 0u; k < point_params.light_count; k++) {
         let l = lights[k];
         let lit = light_illuminance(l, p, n) * light_visibility(l, k, p, n, i);
-        e += vec4<f32>(l.color.rgb * lit, lit);
+        e += vec4<f32>(light_color(l, normalize(p - l.position.xyz)) * lit, lit);
     }
     lux[i] = e;
 }

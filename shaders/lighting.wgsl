@@ -6,6 +6,8 @@ struct Light {
     // xyz: photometric centre (metres); w: the LDT layer.
     position: vec4<f32>,
     // The luminaire frame's axes in world coordinates: C0, C90 and up (away from γ = 0).
+    // axis_x.w: number of coloured C sectors (0: `color` everywhere); axis_y.w: the
+    // first one's index in `sector_colors`.
     axis_x: vec4<f32>,
     axis_y: vec4<f32>,
     axis_z: vec4<f32>,
@@ -21,6 +23,25 @@ const LIGHT_MODEL_POINT: u32 = 4u;
 @group(0) @binding(1) var<storage, read> lights: array<Light>;
 @group(0) @binding(2) var ldt_tex: texture_2d_array<f32>;
 @group(0) @binding(3) var<storage, read> ldt_info: array<LdtInfo>;
+// Effect lights' sector colours (rgb, luminance 1), every light's run after another.
+@group(0) @binding(6) var<storage, read> sector_colors: array<vec4<f32>>;
+
+const TAU: f32 = 6.28318530717959;
+
+// The colour (luminance 1) light `l` sends along the unit world direction `dir`: its C
+// sector's colour, or its one colour. The twin of PlacedLuminaire::color_toward.
+fn light_color(l: Light, dir: vec3<f32>) -> vec3<f32> {
+    let n = u32(l.axis_x.w);
+    if (n == 0u) {
+        return l.color.rgb;
+    }
+    var c = atan2(dot(dir, l.axis_y.xyz), dot(dir, l.axis_x.xyz));
+    if (c < 0.0) {
+        c = c + TAU;
+    }
+    let k = min(u32(c / TAU * f32(n)), n - 1u);
+    return sector_colors[u32(l.axis_y.w) + k].rgb;
+}
 
 // Intensity in candela of light `l` toward the unit world direction `dir`.
 fn light_intensity(l: Light, dir: vec3<f32>) -> f32 {

@@ -135,7 +135,7 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> @location(0) ve
         let e = visible * inc.normal_lux * max(dot(n, inc.to_light), 0.0);
         let h = normalize(inc.to_light + v);
         let spec = ks * spec_norm * pow(max(dot(n, h), 0.0), ns);
-        radiance += (kd / PI + spec) * l.color.rgb * e;
+        radiance += (kd / PI + spec) * light_color(l, -inc.to_light) * e;
     }
     if (solved) {
         let map = textureSampleLevel(light_map, light_map_sampler, in.lightmap_uv, 0.0);

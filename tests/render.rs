@@ -18,7 +18,7 @@ use goniolight::photometry::{Interp, Luminaire};
 use goniolight::render::gpu_scene::GpuLights;
 use goniolight::render::illuminance::{illuminance_cpu, IlluminanceProbe, SurfacePoint};
 use goniolight::render::tonemap::linear_to_srgb;
-use goniolight::render::{LightModel, RenderSettings, RenderedFrame, Renderer};
+use goniolight::render::{LightModel, RenderSettings, RenderedFrame, Renderer, ShadowSettings};
 use goniolight::scene::placement::aim_frame;
 use goniolight::scene::{
     Camera, DisplayEntry, Material, Mode, Palette, PlacedLuminaire, Scene, SceneMesh, Tonemap,
@@ -665,4 +665,70 @@ fn supersampling_and_mipmaps_approach_a_supersampled_reference() {
             "wall {k}: the test must see the difference"
         );
     }
+}
+
+/// Effect lights: a luminaire turning at 40°/s with four coloured C sectors, probed at
+/// t = 1.3 s: the GPU's colour per point (the shader's `light_color`) = the CPU twin
+/// (`color_toward`) × lux, and the sectors have turned by 52° from t = 0.
+#[test]
+fn effect_lights_turn_and_colour_their_c_sectors_on_the_gpu_like_the_cpu() {
+    let Some(gpu) = gpu_common::gpu() else { return };
+    let mut light = test_luminaires().remove(1);
+    light.spin_deg_per_s = 40.0;
+    light.sector_colors = [
+        [1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [0.0, 0.0, 1.0],
+        [1.0, 1.0, 1.0],
+    ]
+    .map(|c| {
+        let c = DVec3::from_array(c);
+        c / c.dot(DVec3::new(0.2126, 0.7152, 0.0722))
+    })
+    .to_vec();
+    let mut rng = XorShift::new(7);
+    let points: Vec<SurfacePoint> = (0..2000)
+        .map(|_| {
+            let (c, g) = (rng.next_f64() * 360.0, rng.next_f64() * 75.0);
+            let dir = goniolight::photometry::angles_to_direction(c, g);
+            SurfacePoint {
+                position: light.position + dir * 2.0,
+                normal: -dir,
+            }
+        })
+        .collect();
+    let probe = IlluminanceProbe::new(&gpu, LightModel::Ldt(Interp::CatmullRom));
+    let renderer = Renderer::new(&gpu);
+    let gpu_rgb = |l: &PlacedLuminaire| {
+        let scene = floor_scene(vec![l.clone()], 1.0);
+        let uploaded = renderer.upload(&gpu, &scene);
+        probe
+            .run_in_scene_rgb(&gpu, &uploaded, &points, &ShadowSettings::none())
+            .unwrap()
+    };
+    let turned = light.at_time(1.3);
+    let (at_start, at_1_3) = (gpu_rgb(&light.at_time(0.0)), gpu_rgb(&turned));
+    let (mut checked, mut changed) = (0, 0);
+    for (k, p) in points.iter().enumerate() {
+        let dir = (p.position - turned.position).normalize();
+        // Skip points within 0.5° of a sector edge (f32 against f64 there).
+        let local = turned.to_local(dir);
+        let c = local.y.atan2(local.x).to_degrees().rem_euclid(90.0);
+        if !(0.5..=89.5).contains(&c) {
+            continue;
+        }
+        let lux = turned.illuminance_at(p.position, p.normal, Interp::CatmullRom);
+        let want = turned.color_toward(dir) * lux;
+        let got = at_1_3[k];
+        assert!(
+            (got - want).abs().max_element() <= 0.005 * want.max_element().max(1.0),
+            "point {k}: {got} vs {want}"
+        );
+        checked += 1;
+        changed += usize::from((at_start[k] - got).abs().max_element() > 0.1 * lux);
+    }
+    assert!(checked > 1900, "{checked}");
+    // 52° of turn moves 52/90 of every sector's points into the next colour.
+    let share = changed as f64 / checked as f64;
+    assert!((share - 52.0 / 90.0).abs() < 0.05, "{share}");
 }

@@ -62,6 +62,34 @@ fn bundled_scenes_load_with_their_luminaires_materials_and_textures() {
     assert!(s.luminaires[2].housing.is_none());
     assert!(s.ignored_by(&s.luminaires[2]).is_empty());
     let stage = Scene::load(&scene("effect_stage.toml")).unwrap();
+    // The mirror ball turns 30°/s with six coloured sectors, inside its own body.
+    let ball = &stage.luminaires[0];
+    assert_eq!((ball.spin_deg_per_s, ball.sector_colors.len()), (30.0, 6));
+    assert!(stage.is_animated() && !s.is_animated());
+    assert_eq!(stage.ignored_by(ball).is_empty(), false);
+    let turned = ball.at_time(2.0);
+    let axis = ball.rotation.z_axis;
+    assert!(
+        (turned.rotation.z_axis - axis).length() < 1e-12,
+        "turns about its own axis"
+    );
+    let c0 = ball
+        .rotation
+        .x_axis
+        .dot(turned.rotation.x_axis)
+        .acos()
+        .to_degrees();
+    assert!((c0 - 60.0).abs() < 1e-9, "{c0}");
+    // Its C0 direction (sector 0) is sector 0's colour, C90 sector 1's (60–120°).
+    let c = |deg: f64| ball.color_toward(ball.world_direction(deg, 45.0));
+    assert_eq!(
+        (c(10.0), c(90.0), c(359.0)),
+        (
+            ball.sector_colors[0],
+            ball.sector_colors[1],
+            ball.sector_colors[5]
+        )
+    );
     assert_eq!(stage.luminaires[0].luminaire.data.c_angles.len(), 144);
 }
 
@@ -163,6 +191,30 @@ fn bad_scene_files_name_the_file_and_the_key() {
             format!("{model}[camera]\nposition = [1, 1, 1]\nlook_at = [1, 1, 1]\n"),
             "camera.look_at",
             "",
+        ),
+        (
+            format!(
+                "{model}{}sector_colors = []\n{camera}",
+                luminaire_entry(&lum, "[1, 1, 2]")
+            ),
+            "luminaire[0].sector_colors",
+            "give 1 to 360",
+        ),
+        (
+            format!(
+                "{model}{}sector_colors = [[1, 0, 0], [0, 0, 0]]\n{camera}",
+                luminaire_entry(&lum, "[1, 1, 2]")
+            ),
+            "luminaire[0].sector_colors[1]",
+            "not all 0",
+        ),
+        (
+            format!(
+                "{model}{}spin_deg_per_s = inf\n{camera}",
+                luminaire_entry(&lum, "[1, 1, 2]")
+            ),
+            "luminaire[0].spin_deg_per_s",
+            "finite",
         ),
         (
             format!(

@@ -45,7 +45,7 @@ pub fn default_scene() -> PathBuf {
 /// Renders the scene shaded and in false-colour illuminance.
 fn render_both(args: &DemoArgs) -> Result<(), CliError> {
     let scene_path = args.scene.clone().unwrap_or_else(default_scene);
-    let scene = Scene::load(&scene_path)?;
+    let scene = super::render::scene_at(Scene::load(&scene_path)?, args.image.time)?;
     let gpu = Gpu::shared()?;
     println!("GPU: {}", gpu.describe());
     let renderer = Renderer::new(&gpu);

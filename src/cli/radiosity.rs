@@ -134,7 +134,7 @@ struct Outputs {
 /// Runs `radiosity`.
 pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
     args.check()?;
-    let scene = Scene::load(&args.scene)?;
+    let scene = super::render::scene_at(Scene::load(&args.scene)?, args.image.time)?;
     let mut settings = args.image.settings(&scene)?;
     let points = if args.points {
         read_points(std::io::stdin().lock(), "stdin")?

@@ -76,6 +76,10 @@ pub struct ImageOptions {
     /// lux and luminance values are the pixel centres either way).
     #[arg(long, default_value_t = 3)]
     pub supersample: u32,
+    /// Seconds since the start of the animation: effect lights (`spin_deg_per_s`) are
+    /// drawn turned this far (default 0).
+    #[arg(long)]
+    pub time: Option<f64>,
     /// Shadows of the luminaires (default: the scene's `display.shadows`, else
     /// paraboloid maps, the sensible choice for point-like luminaires).
     #[arg(long, value_enum)]
@@ -93,6 +97,17 @@ pub struct ImageOptions {
     /// (pink) over the image (shadow-volume mode).
     #[arg(long)]
     pub show_volumes: bool,
+}
+
+/// `scene` at `--time` seconds (effect lights turned); an error when it is not finite.
+pub fn scene_at(scene: Scene, time: Option<f64>) -> Result<Scene, CliError> {
+    match time {
+        None => Ok(scene),
+        Some(t) if t.is_finite() => Ok(scene.at_time(t)),
+        Some(t) => Err(CliError::input(anyhow!(
+            "--time {t} is not a finite number"
+        ))),
+    }
 }
 
 impl ImageOptions {
@@ -258,7 +273,7 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
     if let Some(e) = &args.exr {
         check_extension(e, "exr", "--exr")?;
     }
-    let scene = Scene::load(&args.scene)?;
+    let scene = scene_at(Scene::load(&args.scene)?, args.image.time)?;
     let settings = args.image.settings(&scene)?;
     let gpu = Gpu::shared()?;
     let renderer = Renderer::new(&gpu);
@@ -291,11 +306,14 @@ pub struct IlluminanceArgs {
     /// point toward each luminaire); `--cpu` always ray casts unless `none`.
     #[arg(long, value_enum)]
     pub shadows: Option<ShadowTechnique>,
+    /// Seconds since the start of the animation (effect lights turned this far).
+    #[arg(long)]
+    pub time: Option<f64>,
 }
 
 /// Runs `illuminance`.
 pub fn run_illuminance(args: IlluminanceArgs) -> Result<(), CliError> {
-    let scene = Scene::load(&args.scene)?;
+    let scene = scene_at(Scene::load(&args.scene)?, args.time)?;
     let points = read_points(std::io::stdin().lock(), "stdin")?;
     let technique = args.shadows.or(scene.display.shadows).unwrap_or_default();
     let gpu = if args.cpu { None } else { Some(Gpu::shared()?) };

@@ -39,6 +39,10 @@ pub struct ViewArgs {
     /// site and date are set in the Sun panel; default Vienna on the summer solstice).
     #[arg(long, value_name = "HH:MM")]
     pub sun: Option<String>,
+    /// Show effect lights turned to this many seconds and hold them there (default: they
+    /// turn from 0 while the window is open).
+    #[arg(long, value_name = "SECONDS")]
+    pub time: Option<f64>,
 }
 
 /// Runs `view`.
@@ -65,12 +69,18 @@ pub fn run(args: ViewArgs) -> Result<(), CliError> {
             Some(f64::from(time.num_seconds_from_midnight()) / 60.0)
         }
     };
+    if let Some(t) = args.time {
+        if !t.is_finite() {
+            return bad(format!("--time {t} is not a finite number"));
+        }
+    }
     let options = StartOptions {
         path: args.path.clone(),
         add: args.add.clone(),
         up: args.up,
         mode: args.mode,
         sun_minutes,
+        time_s: args.time,
         window: WindowOptions {
             size: [args.width, args.height],
             frames: args.frames.or(args.screenshot.as_ref().map(|_| 3)),

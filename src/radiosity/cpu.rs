@@ -71,7 +71,10 @@ impl<'a> CpuSolver<'a> {
                 let q = p + n * self.eps;
                 !raycast::in_shadow_ignoring(&self.scene.casters, &light, q, self.eps, ignored)
             })
-            .map(|(_, l)| l.color * l.illuminance_at(p, n, self.settings.interp))
+            .map(|(_, l)| {
+                let colour = l.color_toward((p - l.position).normalize_or_zero());
+                colour * l.illuminance_at(p, n, self.settings.interp)
+            })
             .sum()
     }
 

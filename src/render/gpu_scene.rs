@@ -59,16 +59,17 @@ pub struct LightGpu {
 }
 
 impl LightGpu {
-    /// The GPU record of `l`, whose distribution is layer `layer` of the atlas.
-    pub fn new(l: &PlacedLuminaire, layer: u32) -> LightGpu {
-        let axis = |v: glam::DVec3| [v.x as f32, v.y as f32, v.z as f32, 0.0];
+    /// The GPU record of `l`, whose distribution is layer `layer` of the atlas and whose
+    /// sector colours (if any) start at `first_sector` of the sector buffer.
+    pub fn new(l: &PlacedLuminaire, layer: u32, first_sector: u32) -> LightGpu {
+        let axis = |v: glam::DVec3, w: f32| [v.x as f32, v.y as f32, v.z as f32, w];
         let p = l.position.as_vec3();
         let c = l.color.as_vec3();
         LightGpu {
             position: [p.x, p.y, p.z, layer as f32],
-            axis_x: axis(l.rotation.x_axis),
-            axis_y: axis(l.rotation.y_axis),
-            axis_z: axis(l.rotation.z_axis),
+            axis_x: axis(l.rotation.x_axis, l.sector_colors.len() as f32),
+            axis_y: axis(l.rotation.y_axis, first_sector as f32),
+            axis_z: axis(l.rotation.z_axis, 0.0),
             color: [c.x, c.y, c.z, l.candela_scale() as f32],
         }
     }
@@ -78,6 +79,8 @@ impl LightGpu {
 pub struct GpuLights {
     /// `array<Light>` (at least one element, so it can be bound).
     pub buffer: wgpu::Buffer,
+    /// The effect lights' sector colours (`sector_colors`, at least one element).
+    pub sectors: wgpu::Buffer,
     /// Number of lights.
     pub count: u32,
     /// The distributions.
@@ -89,6 +92,7 @@ impl GpuLights {
     pub fn new(gpu: &Gpu, luminaires: &[PlacedLuminaire]) -> GpuLights {
         let mut textures: Vec<&LdtTexture> = Vec::new();
         let mut records = Vec::with_capacity(luminaires.len());
+        let mut sectors: Vec<[f32; 4]> = Vec::new();
         for l in luminaires {
             let t = &l.texture;
             let same = |o: &&LdtTexture| {
@@ -104,7 +108,11 @@ impl GpuLights {
                     textures.len() - 1
                 }
             };
-            records.push(LightGpu::new(l, layer as u32));
+            records.push(LightGpu::new(l, layer as u32, sectors.len() as u32));
+            sectors.extend(l.sector_colors.iter().map(|c| {
+                let c = c.as_vec3();
+                [c.x, c.y, c.z, 1.0]
+            }));
         }
         let atlas = if textures.is_empty() {
             LdtAtlas::empty(gpu)
@@ -122,8 +130,19 @@ impl GpuLights {
                 contents: bytemuck::cast_slice(&records),
                 usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
             });
+        if sectors.is_empty() {
+            sectors.push([1.0; 4]);
+        }
+        let sectors = gpu
+            .device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("sector colours"),
+                contents: bytemuck::cast_slice(&sectors),
+                usage: wgpu::BufferUsages::STORAGE,
+            });
         GpuLights {
             buffer,
+            sectors,
             count,
             atlas,
         }

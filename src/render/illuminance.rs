@@ -172,6 +172,7 @@ impl IlluminanceProbe {
                 (1, lights.buffer.as_entire_binding()),
                 (2, wgpu::BindingResource::TextureView(&lights.atlas.view)),
                 (3, lights.atlas.info.as_entire_binding()),
+                (6, lights.sectors.as_entire_binding()),
                 (4, points_buf.as_entire_binding()),
                 (5, out.as_entire_binding()),
                 s8,

@@ -85,6 +85,7 @@ impl Layouts {
                         ),
                     ),
                     entry(3, S::FRAGMENT, storage),
+                    entry(6, S::FRAGMENT, storage),
                     entry(8, S::FRAGMENT, buffer(wgpu::BufferBindingType::Uniform)),
                     entry(
                         9,

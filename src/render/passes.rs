@@ -173,6 +173,7 @@ impl ScenePasses {
                 wgpu::BindingResource::TextureView(&scene.lights.atlas.view),
             ),
             (3, scene.lights.atlas.info.as_entire_binding()),
+            (6, scene.lights.sectors.as_entire_binding()),
             (12, wgpu::BindingResource::TextureView(&scene.light_map)),
             (
                 13,

@@ -133,7 +133,19 @@ pub struct LuminaireEntry {
     /// within [`HOUSING_REACH_M`] of the photometric centre.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub housing: Option<String>,
+    /// Effect lights: turning about the luminaire's own up axis (local +Z, away from
+    /// γ = 0), degrees per second (positive: counter-clockwise seen from above its top).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub spin_deg_per_s: Option<f64>,
+    /// Effect lights: one colour per equal C sector, in the luminaire's own frame (the
+    /// first from C0 counter-clockwise toward C90), each normalised to luminance 1; they
+    /// turn with the luminaire. Replaces `color`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sector_colors: Option<Vec<[f64; 3]>>,
 }
+
+/// Most C sectors an effect light may colour.
+pub const MAX_SECTORS: usize = 360;
 
 /// How far (metres) a housing object's bounding box may be from its luminaire's
 /// photometric centre.

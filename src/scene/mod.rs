@@ -211,6 +211,19 @@ impl Scene {
         self.luminaires.iter().map(|l| self.ignored_by(l)).collect()
     }
 
+    /// The scene `t_s` seconds on: effect lights turned by their spin.
+    pub fn at_time(&self, t_s: f64) -> Scene {
+        Scene {
+            luminaires: self.luminaires.iter().map(|l| l.at_time(t_s)).collect(),
+            ..self.clone()
+        }
+    }
+
+    /// Whether any luminaire moves with time.
+    pub fn is_animated(&self) -> bool {
+        self.luminaires.iter().any(|l| l.spin_deg_per_s != 0.0)
+    }
+
     /// Bounds of the geometry and the luminaires.
     pub fn bounds(&self) -> (DVec3, DVec3) {
         bounds_of(&self.meshes, &self.luminaires)

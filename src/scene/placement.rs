@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 
 use glam::{DMat3, DVec3};
 
-use super::file::LuminaireEntry;
+use super::file::{LuminaireEntry, MAX_SECTORS};
 use super::model::euler_xyz_deg;
 use super::{finite_vec, SceneError};
 use crate::photometry::{angles_to_direction, direction_to_angles, Interp, LdtTexture, Luminaire};
@@ -33,6 +33,11 @@ pub struct PlacedLuminaire {
     pub color: DVec3,
     /// Its own body in the scene's models, which never shadows its light.
     pub housing: Option<Housing>,
+    /// Effect light: turning about its own up axis, degrees per second (0: still).
+    pub spin_deg_per_s: f64,
+    /// Effect light: one colour (luminance 1) per equal C sector of its own frame; empty:
+    /// `color` everywhere.
+    pub sector_colors: Vec<DVec3>,
 }
 
 /// A luminaire's own body: the model object(s) named `name` at the luminaire.
@@ -42,6 +47,21 @@ pub struct Housing {
     pub name: String,
     /// Indices into the scene's meshes.
     pub meshes: Vec<usize>,
+}
+
+/// `c` scaled to luminance 1 (lux stay photometric); an error naming `key` when a
+/// component is negative or not finite, or all are 0.
+fn luminance_one(scene: &Path, key: &str, c: [f64; 3]) -> Result<DVec3, SceneError> {
+    let c = finite_vec(scene, key, c)?;
+    let y = c.dot(LUMINANCE_WEIGHTS);
+    if c.min_element() < 0.0 || y <= 0.0 {
+        return Err(SceneError::new(
+            scene,
+            key,
+            "components must be ≥ 0 and not all 0",
+        ));
+    }
+    Ok(c / y)
 }
 
 /// Rec. 709 / sRGB luminance weights.
@@ -113,19 +133,29 @@ impl PlacedLuminaire {
         }
         let color = match e.color {
             None => DVec3::ONE,
-            Some(c) => {
-                let c = finite_vec(scene, &format!("{key}.color"), c)?;
-                let y = c.dot(LUMINANCE_WEIGHTS);
-                if c.min_element() < 0.0 || y <= 0.0 {
-                    return Err(SceneError::new(
-                        scene,
-                        format!("{key}.color"),
-                        "components must be ≥ 0 and not all 0",
-                    ));
-                }
-                c / y
-            }
+            Some(c) => luminance_one(scene, &format!("{key}.color"), c)?,
         };
+        let spin_deg_per_s = e.spin_deg_per_s.unwrap_or(0.0);
+        if !spin_deg_per_s.is_finite() {
+            return Err(SceneError::new(
+                scene,
+                format!("{key}.spin_deg_per_s"),
+                "not a finite number",
+            ));
+        }
+        let sectors = e.sector_colors.as_deref().unwrap_or(&[]);
+        if e.sector_colors.is_some() && !(1..=MAX_SECTORS).contains(&sectors.len()) {
+            return Err(SceneError::new(
+                scene,
+                format!("{key}.sector_colors"),
+                format!("{} colours; give 1 to {MAX_SECTORS}", sectors.len()),
+            ));
+        }
+        let sector_colors = sectors
+            .iter()
+            .enumerate()
+            .map(|(k, &c)| luminance_one(scene, &format!("{key}.sector_colors[{k}]"), c))
+            .collect::<Result<Vec<_>, _>>()?;
         let rotation = euler_xyz_deg(euler) * aim_frame(aim.map(|a| a.0), e.roll);
         let texture = LdtTexture::from_distribution(&luminaire.distribution);
         let name = e.name.clone().unwrap_or_else(|| {
@@ -147,6 +177,8 @@ impl PlacedLuminaire {
                 name,
                 meshes: Vec::new(),
             }),
+            spin_deg_per_s,
+            sector_colors,
         })
     }
 
@@ -163,7 +195,33 @@ impl PlacedLuminaire {
             multiplier: 1.0,
             color: DVec3::ONE,
             housing: None,
+            spin_deg_per_s: 0.0,
+            sector_colors: Vec::new(),
         }
+    }
+
+    /// The luminaire `t_s` seconds on: turned by its spin about its own up axis.
+    pub fn at_time(&self, t_s: f64) -> PlacedLuminaire {
+        let mut l = self.clone();
+        if self.spin_deg_per_s != 0.0 {
+            let angle = (self.spin_deg_per_s * t_s).rem_euclid(360.0).to_radians();
+            l.rotation = self.rotation * DMat3::from_rotation_z(angle);
+        }
+        l
+    }
+
+    /// The colour (luminance 1) of the light it sends along the world direction
+    /// `world_dir`: its sector's colour, or `color`. The CPU twin of `light_color` in
+    /// `shaders/lighting.wgsl`.
+    pub fn color_toward(&self, world_dir: DVec3) -> DVec3 {
+        let n = self.sector_colors.len();
+        if n == 0 {
+            return self.color;
+        }
+        let local = self.to_local(world_dir);
+        let c = local.y.atan2(local.x).rem_euclid(std::f64::consts::TAU);
+        let k = ((c / std::f64::consts::TAU * n as f64) as usize).min(n - 1);
+        self.sector_colors[k]
     }
 
     /// Candela per texel unit: texel × this = cd (I_max · lamp flux / 1000 · multiplier).

@@ -82,6 +82,9 @@ fn luminaire_entry(dir: &Path, l: &PlacedLuminaire, housing: Option<&Housing>) -
         color,
         name: Some(l.name.clone()),
         housing: housing.map(|h| h.name.clone()),
+        spin_deg_per_s: (l.spin_deg_per_s != 0.0).then_some(l.spin_deg_per_s),
+        sector_colors: (!l.sector_colors.is_empty())
+            .then(|| l.sector_colors.iter().map(|c| c.to_array()).collect()),
     }
 }
 

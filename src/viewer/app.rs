@@ -200,6 +200,10 @@ pub struct ViewerApp {
     pub screenshot_path: String,
     /// The up axis of OBJ models opened.
     pub obj_up: crate::scene::UpAxis,
+    /// Whether effect lights turn (View menu).
+    pub animate_effects: bool,
+    /// Seconds of effect-light animation shown.
+    pub effects_time_s: f64,
 }
 
 impl ViewerApp {
@@ -228,6 +232,8 @@ impl ViewerApp {
             add_path: String::new(),
             screenshot_path: "screenshot.png".into(),
             obj_up: crate::scene::UpAxis::Y,
+            animate_effects: true,
+            effects_time_s: 0.0,
         };
         app.aims = app
             .scene
@@ -318,7 +324,8 @@ impl ViewerApp {
 
     /// The scene the GPU shows: the edited scene plus the sun when it is on and up.
     pub fn render_scene(&self) -> Scene {
-        let mut scene = self.scene.clone();
+        // Effect lights turned as far as the animation has run.
+        let mut scene = self.scene.at_time(self.effects_time_s);
         if self.sun.enabled {
             if let Ok(p) = self.sun.position() {
                 let lux = super::sun::clear_sky_direct_normal_lux(p.elevation_deg);
@@ -412,11 +419,17 @@ impl ViewerApp {
         }
     }
 
+    /// Whether effect lights are turning in the view.
+    pub fn effects_turning(&self) -> bool {
+        self.animate_effects && self.scene.is_animated()
+    }
+
     /// Whether background work is running (the window keeps repainting).
     pub fn busy(&self) -> bool {
         self.radiosity.worker.is_some()
             || self.profile.worker.is_some()
             || self.sun.animate
+            || self.effects_turning()
             || self.dialog.is_some()
     }
 
@@ -426,6 +439,10 @@ impl ViewerApp {
         let dt = ctx.input(|i| i.stable_dt as f64).min(0.5);
         if self.sun.animate && self.sun.enabled {
             self.sun.advance(dt);
+            self.revision += 1;
+        }
+        if self.effects_turning() {
+            self.effects_time_s += dt;
             self.revision += 1;
         }
         self.poll_jobs(&ctx);

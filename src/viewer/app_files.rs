@@ -113,6 +113,9 @@ impl ViewerApp {
                     c.ortho_height =
                         ortho.then(|| 2.0 * c.distance * (c.fov_deg.to_radians() / 2.0).tan());
                 }
+                if self.scene.is_animated() {
+                    ui.checkbox(&mut self.animate_effects, "Animate effect lights");
+                }
                 ui.radio_value(
                     &mut self.camera.mode,
                     super::camera::CameraMode::Orbit,

@@ -57,6 +57,8 @@ pub struct StartOptions {
     pub mode: Option<crate::scene::Mode>,
     /// Turn the sun on at this local time, minutes after midnight, with shadow volumes.
     pub sun_minutes: Option<f64>,
+    /// Hold effect lights at this animation time, seconds (default: they turn).
+    pub time_s: Option<f64>,
     /// The window's size, how many frames to render before exiting and the screenshot.
     pub window: window::WindowOptions,
 }
@@ -84,6 +86,10 @@ pub fn start(options: StartOptions) -> Result<window::RunSummary, ViewerError> {
     app.obj_up = up;
     if let Some(m) = options.mode {
         app.display.mode = m;
+    }
+    if let Some(t) = options.time_s {
+        app.effects_time_s = t;
+        app.animate_effects = false;
     }
     if let Some(minutes) = options.sun_minutes {
         app.sun.minutes = minutes;
