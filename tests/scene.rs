@@ -66,7 +66,7 @@ fn bundled_scenes_load_with_their_luminaires_materials_and_textures() {
     let ball = &stage.luminaires[0];
     assert_eq!((ball.spin_deg_per_s, ball.sector_colors.len()), (30.0, 6));
     assert!(stage.is_animated() && !s.is_animated());
-    assert_eq!(stage.ignored_by(ball).is_empty(), false);
+    assert!(!stage.ignored_by(ball).is_empty());
     let turned = ball.at_time(2.0);
     let axis = ball.rotation.z_axis;
     assert!(
