@@ -136,28 +136,40 @@ fn ldt_along_gamma(tex: texture_2d_array<f32>, layer: u32, info: LdtInfo, plane:
 }
 
 // Normalised intensity at C, γ (degrees), never negative.
-fn ldt_sample(tex: texture_2d_array<f32>, layer: u32, info: LdtInfo, c_deg: f32, gamma_deg: f32, interp: u32) -> f32 {
+// The γ cell of g (degrees, clamped to 0..180): the index gi of its lower knot, or
+// LDT_DARK where the distribution is 0 (more than one step outside the stored range).
+const LDT_DARK: i32 = -1000000;
+
+fn ldt_gamma_cell(info: LdtInfo, g: f32) -> i32 {
     let ng = i32(info.gamma_count);
     let h = info.gamma_step;
     let g0 = info.gamma_start;
     let g_last = g0 + h * f32(ng - 1);
-    let g = clamp(gamma_deg, 0.0, 180.0);
-    var gi: i32;
     if (g < g0) {
         if (g < g0 - h) {
-            return 0.0;
+            return LDT_DARK;
         }
-        gi = -1;
-    } else if (g >= g_last) {
+        return -1;
+    }
+    if (g >= g_last) {
         if (g == g_last) {
-            gi = ng - 2;
-        } else if (g > g_last + h) {
-            return 0.0;
-        } else {
-            gi = ng - 1;
+            return ng - 2;
         }
-    } else {
-        gi = min(i32(floor((g - g0) / h)), ng - 2);
+        if (g > g_last + h) {
+            return LDT_DARK;
+        }
+        return ng - 1;
+    }
+    return min(i32(floor((g - g0) / h)), ng - 2);
+}
+
+fn ldt_sample(tex: texture_2d_array<f32>, layer: u32, info: LdtInfo, c_deg: f32, gamma_deg: f32, interp: u32) -> f32 {
+    let h = info.gamma_step;
+    let g0 = info.gamma_start;
+    let g = clamp(gamma_deg, 0.0, 180.0);
+    let gi = ldt_gamma_cell(info, g);
+    if (gi == LDT_DARK) {
+        return 0.0;
     }
     // Uniform γ knots: across a pole the mirrored angles continue the grid.
     let tg = vec4<f32>(g0 + h * f32(gi - 1), g0 + h * f32(gi), g0 + h * f32(gi + 1), g0 + h * f32(gi + 2));

@@ -429,7 +429,12 @@ fn bench_render_json_has_the_contract_keys() {
     assert_eq!(tris, [108, 108, 108, 1996, 1996, 1996]);
     for r in rows {
         assert!([1, 4, 7].contains(&r["lights"].as_u64().unwrap()));
-        for k in ["point_ms", "bilinear_ms", "catmull_rom_ms"] {
+        for k in [
+            "point_ms",
+            "bilinear_ms",
+            "catmull_rom_ms",
+            "catmull_rom_table_ms",
+        ] {
             assert!(r[k].as_f64().unwrap() > 0.0, "{k}");
         }
     }

@@ -40,12 +40,19 @@ pub struct RenderBenchRow {
     pub bilinear_ms: f64,
     /// Median frame time with Catmull-Rom LDT sampling, ms.
     pub catmull_rom_ms: f64,
+    /// Median frame time with Catmull-Rom from the dense table (one filtered fetch), ms.
+    pub catmull_rom_table_ms: f64,
 }
 
 impl RenderBenchRow {
     /// Catmull-Rom over point lights.
     pub fn catmull_rom_ratio(&self) -> f64 {
         self.catmull_rom_ms / self.point_ms
+    }
+
+    /// Catmull-Rom from the table over point lights.
+    pub fn table_ratio(&self) -> f64 {
+        self.catmull_rom_table_ms / self.point_ms
     }
 
     /// Bilinear over point lights.
@@ -171,6 +178,7 @@ pub fn run(
         LightModel::Point,
         LightModel::Ldt(Interp::Bilinear),
         LightModel::Ldt(Interp::CatmullRom),
+        LightModel::CatmullRomTable,
     ];
     let mut rows = Vec::new();
     for &(major, minor) in tessellations {
@@ -178,7 +186,7 @@ pub fn run(
             let scene = bench_scene(major, minor, &all[..lights]);
             progress(scene.triangle_count(), lights);
             let uploaded = renderer.upload(gpu, &scene);
-            let mut times = [Vec::new(), Vec::new(), Vec::new()];
+            let mut times = [Vec::new(), Vec::new(), Vec::new(), Vec::new()];
             for round in 0..=plan.rounds {
                 for (k, model) in models.iter().enumerate() {
                     let t = Instant::now();
@@ -196,13 +204,14 @@ pub fn run(
                     }
                 }
             }
-            let [p, b, c] = times.map(median);
+            let [p, b, c, t] = times.map(median);
             rows.push(RenderBenchRow {
                 triangles: scene.triangle_count(),
                 lights,
                 point_ms: p,
                 bilinear_ms: b,
                 catmull_rom_ms: c,
+                catmull_rom_table_ms: t,
             });
         }
     }

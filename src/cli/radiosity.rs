@@ -23,7 +23,7 @@ use crate::radiosity::solve::{self, ConvergencePoint, StopAt, StopReason};
 use crate::radiosity::{Ambient, FormFactorKind, SolverSettings};
 use crate::render::lightmap::LightMap;
 use crate::render::output::write_image;
-use crate::render::{LightModel, Renderer};
+use crate::render::Renderer;
 use crate::scene::Scene;
 
 /// Options of `radiosity`.
@@ -149,10 +149,7 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
     let started = Instant::now();
     let rscene = RadiosityScene::new(&scene, args.texel_density, args.level)
         .map_err(|e| CliError::input(anyhow!("{}: {e}", args.scene.display())))?;
-    let interp = match settings.light_model {
-        LightModel::Ldt(i) => i,
-        LightModel::Point => crate::photometry::Interp::CatmullRom,
-    };
+    let interp = settings.light_model.interp();
     let solver_settings = SolverSettings {
         form_factor: args.form_factor,
         ambient: args.ambient,

@@ -3,6 +3,7 @@
 //! compiled in; read-back helpers.
 
 pub mod ldt;
+pub mod ldt_table;
 pub mod shaders;
 
 /// Why no GPU context could be made.

@@ -6,6 +6,8 @@ pub const LDT: &str = include_str!("../../shaders/ldt.wgsl");
 /// Compute entry point that samples one LDT at many directions (tests, checks).
 pub const LDT_PROBE: &str = include_str!("../../shaders/ldt_probe.wgsl");
 
+/// The Catmull-Rom tables of LDT layers (needs [`LDT`]).
+pub const LDT_TABLE: &str = include_str!("../../shaders/ldt_table.wgsl");
 /// Direct light of goniometric luminaires (needs [`LDT`]).
 pub const LIGHTING: &str = include_str!("../../shaders/lighting.wgsl");
 /// Direct illuminance at many points (needs [`LDT`] and [`LIGHTING`]).
@@ -30,6 +32,11 @@ pub fn ldt_probe() -> String {
     format!("{LDT}\n{LDT_PROBE}")
 }
 
+/// The Catmull-Rom table module.
+pub fn ldt_table() -> String {
+    format!("{LDT}\n{LDT_TABLE}")
+}
+
 /// The illuminance-at-points module.
 pub fn illuminance_points() -> String {
     format!("{LDT}\n{LIGHTING}\n{SHADOW}\n{ILLUMINANCE_POINTS}")
@@ -44,6 +51,7 @@ pub fn scene() -> String {
 pub fn modules() -> Vec<(&'static str, String)> {
     vec![
         ("ldt_probe", ldt_probe()),
+        ("ldt_table", ldt_table()),
         ("illuminance_points", illuminance_points()),
         ("scene", scene()),
         ("tonemap", TONEMAP.to_string()),

@@ -13,6 +13,7 @@ use super::paraboloid::{ParaboloidCasters, ShadowLight};
 use super::volumes::VolumeGeometry;
 use crate::geometry::Mesh;
 use crate::gpu::ldt::LdtAtlas;
+use crate::gpu::ldt_table::LdtTables;
 use crate::gpu::Gpu;
 use crate::photometry::LdtTexture;
 use crate::scene::{Material, PlacedLuminaire, Scene, SceneMesh};
@@ -85,6 +86,8 @@ pub struct GpuLights {
     pub count: u32,
     /// The distributions.
     pub atlas: LdtAtlas,
+    /// Their Catmull-Rom tables (the `CatmullRomTable` light model).
+    pub tables: LdtTables,
 }
 
 impl GpuLights {
@@ -144,6 +147,7 @@ impl GpuLights {
             buffer,
             sectors,
             count,
+            tables: LdtTables::new(gpu, &atlas),
             atlas,
         }
     }

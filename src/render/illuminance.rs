@@ -173,6 +173,8 @@ impl IlluminanceProbe {
                 (2, wgpu::BindingResource::TextureView(&lights.atlas.view)),
                 (3, lights.atlas.info.as_entire_binding()),
                 (6, lights.sectors.as_entire_binding()),
+                (7, wgpu::BindingResource::TextureView(&lights.tables.view)),
+                (14, wgpu::BindingResource::Sampler(&lights.tables.sampler)),
                 (4, points_buf.as_entire_binding()),
                 (5, out.as_entire_binding()),
                 s8,

@@ -86,6 +86,19 @@ impl Layouts {
                     ),
                     entry(3, S::FRAGMENT, storage),
                     entry(6, S::FRAGMENT, storage),
+                    entry(
+                        7,
+                        S::FRAGMENT,
+                        texture(
+                            wgpu::TextureSampleType::Float { filterable: true },
+                            wgpu::TextureViewDimension::D2Array,
+                        ),
+                    ),
+                    entry(
+                        14,
+                        S::FRAGMENT,
+                        wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                    ),
                     entry(8, S::FRAGMENT, buffer(wgpu::BufferBindingType::Uniform)),
                     entry(
                         9,

@@ -22,6 +22,8 @@ pub enum LightModel {
     Point,
     /// The luminaire's distribution, sampled with an interpolation.
     Ldt(Interp),
+    /// Catmull-Rom from the dense table: one filtered fetch (see [`crate::gpu::ldt_table`]).
+    CatmullRomTable,
 }
 
 impl LightModel {
@@ -30,6 +32,15 @@ impl LightModel {
         match self {
             LightModel::Point => 4,
             LightModel::Ldt(i) => interp_code(i),
+            LightModel::CatmullRomTable => 5,
+        }
+    }
+
+    /// The interpolation it stands for (Catmull-Rom for the point baseline and the table).
+    pub fn interp(self) -> Interp {
+        match self {
+            LightModel::Ldt(i) => i,
+            LightModel::Point | LightModel::CatmullRomTable => Interp::CatmullRom,
         }
     }
 }
@@ -174,6 +185,14 @@ impl ScenePasses {
             ),
             (3, scene.lights.atlas.info.as_entire_binding()),
             (6, scene.lights.sectors.as_entire_binding()),
+            (
+                7,
+                wgpu::BindingResource::TextureView(&scene.lights.tables.view),
+            ),
+            (
+                14,
+                wgpu::BindingResource::Sampler(&scene.lights.tables.sampler),
+            ),
             (12, wgpu::BindingResource::TextureView(&scene.light_map)),
             (
                 13,

@@ -572,10 +572,7 @@ impl ViewerApp {
 fn display_choices(scene: &Scene) -> DisplayChoices {
     let s = RenderSettings::from_display(&scene.display);
     DisplayChoices {
-        interp: match s.light_model {
-            LightModel::Ldt(i) => i,
-            LightModel::Point => Interp::CatmullRom,
-        },
+        interp: s.light_model.interp(),
         mode: s.mode,
         tonemap: s.tonemap,
         exposure: s.exposure,
