@@ -207,6 +207,37 @@ fn bad_flags_and_a_missing_display_are_clear_errors() {
     assert!(!err.contains("panicked"), "{err}");
 }
 
+/// The window's screenshot of `scene` (900 × 600, 3 frames), its viewport rectangle, and
+/// `render`'s image of the same view at the viewport's size.
+fn window_and_render(
+    dir: &Path,
+    scene: &Path,
+    name: &str,
+) -> (image::RgbaImage, Vec<u32>, image::RgbaImage) {
+    let shot = dir.join(format!("{name}.png"));
+    let (code, out, err) = view_under_xvfb(&[
+        &scene.display().to_string(),
+        "--width",
+        "900",
+        "--height",
+        "600",
+        "--frames",
+        "3",
+        "--screenshot",
+        &shot.display().to_string(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let summary: serde_json::Value = serde_json::from_str(out.trim()).unwrap();
+    let v = viewport_px(&summary);
+    let reference = dir.join(format!("{name}-render.png"));
+    render(scene, v[2], v[3], &reference);
+    (
+        image::open(&shot).unwrap().to_rgba8(),
+        v,
+        image::open(&reference).unwrap().to_rgba8(),
+    )
+}
+
 /// A scene camera looking straight down (a plan view) showed an empty viewport: the
 /// orbit camera's pitch came out at −90° with no defined view. Its window now shows the
 /// room's floor like `render` does.
@@ -222,25 +253,7 @@ fn a_straight_down_camera_shows_the_room() {
         "eulumdat-plot/sample_06_isym1.ldt",
         "position = [3, 2, 2.9]\n[camera]\nposition = [3, 2, 2.8]\nlook_at = [3, 2, 0]\nup = [0, 1, 0]\nfov_deg = 90\n",
     );
-    let shot = dir.path().join("down.png");
-    let (code, out, err) = view_under_xvfb(&[
-        &scene.display().to_string(),
-        "--width",
-        "900",
-        "--height",
-        "600",
-        "--frames",
-        "3",
-        "--screenshot",
-        &shot.display().to_string(),
-    ]);
-    assert_eq!(code, 0, "{err}");
-    let summary: serde_json::Value = serde_json::from_str(out.trim()).unwrap();
-    let v = viewport_px(&summary);
-    let window = image::open(&shot).unwrap().to_rgba8();
-    let reference = dir.path().join("down-render.png");
-    render(&scene, v[2], v[3], &reference);
-    let reference = image::open(&reference).unwrap().to_rgba8();
+    let (window, v, reference) = window_and_render(dir.path(), &scene, "down");
     // The lit floor fills the view in both (the background is a dark grey, ≤ 40).
     let lit = |img: &image::RgbaImage, x0: u32, y0: u32| {
         (0..v[3])
@@ -270,25 +283,7 @@ fn a_plan_view_stays_orthographic_in_the_window() {
         "eulumdat-plot/sample_06_isym1.ldt",
         "position = [2, 2, 2.9]\n",
     );
-    let shot = dir.path().join("plan.png");
-    let (code, out, err) = view_under_xvfb(&[
-        &scene.display().to_string(),
-        "--width",
-        "900",
-        "--height",
-        "600",
-        "--frames",
-        "3",
-        "--screenshot",
-        &shot.display().to_string(),
-    ]);
-    assert_eq!(code, 0, "{err}");
-    let summary: serde_json::Value = serde_json::from_str(out.trim()).unwrap();
-    let v = viewport_px(&summary);
-    let window = image::open(&shot).unwrap().to_rgba8();
-    let reference = dir.path().join("plan-render.png");
-    render(&scene, v[2], v[3], &reference);
-    let reference = image::open(&reference).unwrap().to_rgba8();
+    let (window, v, reference) = window_and_render(dir.path(), &scene, "plan");
     let mut off = 0usize;
     for y in 0..v[3] {
         for x in 0..v[2] {

@@ -61,37 +61,11 @@ impl LdtTables {
                 label: Some("ldt table"),
                 source: wgpu::ShaderSource::Wgsl(shaders::ldt_table().into()),
             });
-        let pipeline = gpu
-            .device
-            .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some("ldt table"),
-                layout: None,
-                vertex: wgpu::VertexState {
-                    module: &module,
-                    entry_point: Some("vs_table"),
-                    compilation_options: Default::default(),
-                    buffers: &[],
-                },
-                primitive: Default::default(),
-                depth_stencil: None,
-                multisample: Default::default(),
-                fragment: Some(wgpu::FragmentState {
-                    module: &module,
-                    entry_point: Some("fs_table"),
-                    compilation_options: Default::default(),
-                    targets: &[Some(TABLE_FORMAT.into())],
-                }),
-                multiview_mask: None,
-                cache: None,
-            });
+        let pipeline =
+            gpu.fullscreen_pipeline("ldt table", &module, ("vs_table", "fs_table"), TABLE_FORMAT);
         let mut enc = gpu.device.create_command_encoder(&Default::default());
         for layer in 0..layers {
-            let view = texture.create_view(&wgpu::TextureViewDescriptor {
-                dimension: Some(wgpu::TextureViewDimension::D2),
-                base_array_layer: layer,
-                array_layer_count: Some(1),
-                ..Default::default()
-            });
+            let view = super::layer_view(&texture, layer);
             let params = gpu.uniform_buffer(
                 "ldt table params",
                 &TableParams {

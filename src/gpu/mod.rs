@@ -81,6 +81,16 @@ pub fn check_backend(adapter: &wgpu::Adapter) -> Result<(), GpuError> {
     )))
 }
 
+/// A `D2` view of layer `layer` of an array texture (a render target per layer).
+pub fn layer_view(texture: &wgpu::Texture, layer: u32) -> wgpu::TextureView {
+    texture.create_view(&wgpu::TextureViewDescriptor {
+        dimension: Some(wgpu::TextureViewDimension::D2),
+        base_array_layer: layer,
+        array_layer_count: Some(1),
+        ..Default::default()
+    })
+}
+
 /// A headless GPU context (cheap to clone: wgpu's handles are shared).
 #[derive(Clone)]
 pub struct Gpu {
@@ -253,6 +263,40 @@ impl Gpu {
             layout,
             entries: &entries,
         })
+    }
+
+    /// A render pipeline that draws one full-screen triangle (no vertex buffers, layout
+    /// from the shader) with the entry points `vs` and `fs` of `module` into `format`: the
+    /// tone-mapping passes and the Catmull-Rom tables.
+    pub fn fullscreen_pipeline(
+        &self,
+        label: &str,
+        module: &wgpu::ShaderModule,
+        (vs, fs): (&str, &str),
+        format: wgpu::TextureFormat,
+    ) -> wgpu::RenderPipeline {
+        self.device
+            .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(label),
+                layout: None,
+                vertex: wgpu::VertexState {
+                    module,
+                    entry_point: Some(vs),
+                    compilation_options: Default::default(),
+                    buffers: &[],
+                },
+                primitive: Default::default(),
+                depth_stencil: None,
+                multisample: Default::default(),
+                fragment: Some(wgpu::FragmentState {
+                    module,
+                    entry_point: Some(fs),
+                    compilation_options: Default::default(),
+                    targets: &[Some(format.into())],
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
     }
 
     /// A render pipeline drawing a bare position stream (`Float32x3`, 12-byte stride) with

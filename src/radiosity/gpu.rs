@@ -398,14 +398,7 @@ impl<'a> GpuSolver<'a> {
         let maps = texture("visibility maps", MAP_FORMAT, 5);
         let depth = texture("visibility depth", wgpu::TextureFormat::Depth32Float, 1);
         let face_views = (0..5)
-            .map(|layer| {
-                maps.create_view(&wgpu::TextureViewDescriptor {
-                    dimension: Some(wgpu::TextureViewDimension::D2),
-                    base_array_layer: layer,
-                    array_layer_count: Some(1),
-                    ..Default::default()
-                })
-            })
+            .map(|layer| crate::gpu::layer_view(&maps, layer))
             .collect();
         let scene_size = mesh.bounds().map_or(1.0, |(lo, hi)| (hi - lo).length());
         let solver = GpuSolver {

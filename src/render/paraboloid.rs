@@ -241,12 +241,7 @@ impl ParaboloidPasses {
             view_formats: &[],
         });
         for layer in 0..layers {
-            let view = texture.create_view(&wgpu::TextureViewDescriptor {
-                dimension: Some(wgpu::TextureViewDimension::D2),
-                base_array_layer: layer,
-                array_layer_count: Some(1),
-                ..Default::default()
-            });
+            let view = crate::gpu::layer_view(&texture, layer);
             let light = lights.get(layer as usize / 2);
             let upper = layer % 2 == 1;
             let wanted = light.is_some_and(|l| match l.hemisphere {

@@ -358,34 +358,20 @@ impl ToneMapper {
                 compilation_options: Default::default(),
                 cache: None,
             });
-        let fullscreen = |label, entry, format: wgpu::TextureFormat| {
-            gpu.device
-                .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                    label: Some(label),
-                    layout: None,
-                    vertex: wgpu::VertexState {
-                        module: &module,
-                        entry_point: Some("vs_fullscreen"),
-                        compilation_options: Default::default(),
-                        buffers: &[],
-                    },
-                    primitive: Default::default(),
-                    depth_stencil: None,
-                    multisample: Default::default(),
-                    fragment: Some(wgpu::FragmentState {
-                        module: &module,
-                        entry_point: Some(entry),
-                        compilation_options: Default::default(),
-                        targets: &[Some(format.into())],
-                    }),
-                    multiview_mask: None,
-                    cache: None,
-                })
-        };
         ToneMapper {
             stats,
-            tonemap: fullscreen("tonemap", "fs_tonemap", LDR_FORMAT),
-            centres: fullscreen("centre samples", "fs_centre", super::targets::HDR_FORMAT),
+            tonemap: gpu.fullscreen_pipeline(
+                "tonemap",
+                &module,
+                ("vs_fullscreen", "fs_tonemap"),
+                LDR_FORMAT,
+            ),
+            centres: gpu.fullscreen_pipeline(
+                "centre samples",
+                &module,
+                ("vs_fullscreen", "fs_centre"),
+                super::targets::HDR_FORMAT,
+            ),
         }
     }
 

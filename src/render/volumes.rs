@@ -539,12 +539,7 @@ impl VolumePasses {
         depth_view: &wgpu::TextureView,
     ) {
         for (i, v) in volumes.iter().enumerate() {
-            let layer = mask.create_view(&wgpu::TextureViewDescriptor {
-                dimension: Some(wgpu::TextureViewDimension::D2),
-                base_array_layer: i as u32,
-                array_layer_count: Some(1),
-                ..Default::default()
-            });
+            let layer = crate::gpu::layer_view(mask, i as u32);
             let mut pass = begin_pass(enc, "shadow volume", &layer, true, depth_view, false, true);
             if v.index_count == 0 {
                 continue;
