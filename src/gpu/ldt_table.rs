@@ -36,6 +36,44 @@ struct TableParams {
 }
 
 impl LdtTables {
+    /// A one-texel table bound where no light uses the tables (WGSL needs every
+    /// binding filled); nothing is drawn.
+    pub fn empty(gpu: &Gpu) -> LdtTables {
+        let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("no catmull-rom tables"),
+            size: wgpu::Extent3d {
+                width: 1,
+                height: 1,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: TABLE_FORMAT,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING,
+            view_formats: &[],
+        });
+        LdtTables::with_texture(gpu, &texture)
+    }
+
+    fn with_texture(gpu: &Gpu, texture: &wgpu::Texture) -> LdtTables {
+        let sampler = gpu.device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("catmull-rom tables"),
+            address_mode_u: wgpu::AddressMode::Repeat,
+            address_mode_v: wgpu::AddressMode::ClampToEdge,
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            ..Default::default()
+        });
+        LdtTables {
+            view: texture.create_view(&wgpu::TextureViewDescriptor {
+                dimension: Some(wgpu::TextureViewDimension::D2Array),
+                ..Default::default()
+            }),
+            sampler,
+        }
+    }
+
     /// Draws the tables of every layer of `atlas` (one layer of zeros when it has none).
     pub fn new(gpu: &Gpu, atlas: &LdtAtlas) -> LdtTables {
         let layers = atlas.layers.max(1) as u32;
@@ -98,21 +136,7 @@ impl LdtTables {
             }
         }
         gpu.queue.submit([enc.finish()]);
-        let sampler = gpu.device.create_sampler(&wgpu::SamplerDescriptor {
-            label: Some("catmull-rom tables"),
-            address_mode_u: wgpu::AddressMode::Repeat,
-            address_mode_v: wgpu::AddressMode::ClampToEdge,
-            mag_filter: wgpu::FilterMode::Linear,
-            min_filter: wgpu::FilterMode::Linear,
-            ..Default::default()
-        });
-        LdtTables {
-            view: texture.create_view(&wgpu::TextureViewDescriptor {
-                dimension: Some(wgpu::TextureViewDimension::D2Array),
-                ..Default::default()
-            }),
-            sampler,
-        }
+        LdtTables::with_texture(gpu, &texture)
     }
 }
 

@@ -86,8 +86,11 @@ pub struct GpuLights {
     pub count: u32,
     /// The distributions.
     pub atlas: LdtAtlas,
-    /// Their Catmull-Rom tables (the `CatmullRomTable` light model).
-    pub tables: LdtTables,
+    /// Their Catmull-Rom tables (the `CatmullRomTable` light model), drawn on first use:
+    /// uploads (every animation frame of the viewer) pay nothing for them otherwise.
+    tables: std::sync::OnceLock<LdtTables>,
+    /// The one-texel stand-in bound for every other light model.
+    no_tables: LdtTables,
 }
 
 impl GpuLights {
@@ -147,8 +150,21 @@ impl GpuLights {
             buffer,
             sectors,
             count,
-            tables: LdtTables::new(gpu, &atlas),
+            tables: std::sync::OnceLock::new(),
+            no_tables: LdtTables::empty(gpu),
             atlas,
+        }
+    }
+}
+
+impl GpuLights {
+    /// The Catmull-Rom tables `model` reads: drawn (once) for `CatmullRomTable`, the
+    /// empty stand-in otherwise.
+    pub fn tables(&self, gpu: &Gpu, model: super::LightModel) -> &LdtTables {
+        if model == super::LightModel::CatmullRomTable {
+            self.tables.get_or_init(|| LdtTables::new(gpu, &self.atlas))
+        } else {
+            &self.no_tables
         }
     }
 }

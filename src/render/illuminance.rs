@@ -56,6 +56,7 @@ struct PointParams {
 /// The compute pipeline of `illuminance_points`, with the shadow passes it reads.
 pub struct IlluminanceProbe {
     pipeline: wgpu::ComputePipeline,
+    model: LightModel,
     shadows: ShadowPasses,
 }
 
@@ -84,6 +85,7 @@ impl IlluminanceProbe {
             });
         IlluminanceProbe {
             pipeline,
+            model,
             shadows: ShadowPasses::new(gpu, super::targets::LDR_FORMAT),
         }
     }
@@ -150,6 +152,7 @@ impl IlluminanceProbe {
         if data.is_empty() {
             data.extend([[0.0; 4]; 2]);
         }
+        let tables = lights.tables(gpu, self.model);
         let dev = &gpu.device;
         let points_buf = dev.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("points"),
@@ -173,8 +176,8 @@ impl IlluminanceProbe {
                 (2, wgpu::BindingResource::TextureView(&lights.atlas.view)),
                 (3, lights.atlas.info.as_entire_binding()),
                 (6, lights.sectors.as_entire_binding()),
-                (7, wgpu::BindingResource::TextureView(&lights.tables.view)),
-                (14, wgpu::BindingResource::Sampler(&lights.tables.sampler)),
+                (7, wgpu::BindingResource::TextureView(&tables.view)),
+                (14, wgpu::BindingResource::Sampler(&tables.sampler)),
                 (4, points_buf.as_entire_binding()),
                 (5, out.as_entire_binding()),
                 s8,

@@ -177,6 +177,7 @@ impl Renderer {
             scene,
             camera,
             targets,
+            model,
             &self.shadows.bindings(&shadow),
         );
         let mut enc = gpu.device.create_command_encoder(&Default::default());

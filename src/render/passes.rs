@@ -152,7 +152,9 @@ impl ScenePasses {
             .clone()
     }
 
-    /// The frame bind group (group 0) for `camera` looking at `scene` in `targets`.
+    /// The frame bind group (group 0) for `camera` looking at `scene` in `targets`, lit
+    /// with `model`.
+    #[allow(clippy::too_many_arguments)]
     pub fn frame_bind_group(
         &self,
         gpu: &Gpu,
@@ -160,8 +162,10 @@ impl ScenePasses {
         scene: &GpuScene,
         camera: &Camera,
         targets: &Targets,
+        model: LightModel,
         shadow: &[(u32, wgpu::BindingResource<'_>)],
     ) -> wgpu::BindGroup {
+        let tables = scene.lights.tables(gpu, model);
         let aspect = targets.width as f64 / targets.height as f64;
         let view_proj: Mat4 = camera.view_projection(aspect);
         let dir = (camera.look_at - camera.position).normalize().as_vec3();
@@ -185,14 +189,8 @@ impl ScenePasses {
             ),
             (3, scene.lights.atlas.info.as_entire_binding()),
             (6, scene.lights.sectors.as_entire_binding()),
-            (
-                7,
-                wgpu::BindingResource::TextureView(&scene.lights.tables.view),
-            ),
-            (
-                14,
-                wgpu::BindingResource::Sampler(&scene.lights.tables.sampler),
-            ),
+            (7, wgpu::BindingResource::TextureView(&tables.view)),
+            (14, wgpu::BindingResource::Sampler(&tables.sampler)),
             (12, wgpu::BindingResource::TextureView(&scene.light_map)),
             (
                 13,
