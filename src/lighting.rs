@@ -11,7 +11,7 @@ use rayon::prelude::*;
 use crate::geometry::Mesh;
 use crate::photometry::Interp;
 use crate::scene::PlacedLuminaire;
-use crate::shadow::{raycast, IgnoredTriangles, Light};
+use crate::shadow::{raycast, IgnoredTriangles, Light, TriangleBvh};
 
 /// A malformed line in a list of points.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -45,8 +45,8 @@ pub fn illuminance_cpu(luminaires: &[PlacedLuminaire], p: &SurfacePoint, interp:
 
 /// Which lights reach which points: `visible[light][point]`, by casting a ray from each
 /// point toward each light position against `casters`, leaving out the triangles
-/// `ignored[light]` (its housing; none where the slice is shorter). These are exact hard
-/// shadows: the CPU reference of every shadow technique, and what `volumes` means for
+/// `ignored[light]` (its housing; none where the slice is shorter), through a BVH built
+/// for the call. These are exact hard shadows: the CPU reference of every shadow technique, and what `volumes` means for
 /// point queries.
 pub fn point_visibility(
     casters: &Mesh,
@@ -55,6 +55,7 @@ pub fn point_visibility(
     points: &[SurfacePoint],
 ) -> Vec<Vec<bool>> {
     let eps = raycast::self_hit_epsilon(casters);
+    let bvh = TriangleBvh::new(casters);
     let none = IgnoredTriangles::default();
     light_positions
         .iter()
@@ -64,7 +65,7 @@ pub fn point_visibility(
             let ignored = ignored.get(k).unwrap_or(&none);
             points
                 .par_iter()
-                .map(|p| !raycast::in_shadow_ignoring(casters, &light, p.position, eps, ignored))
+                .map(|p| !bvh.in_shadow(&light, p.position, eps, ignored))
                 .collect()
         })
         .collect()

@@ -3,6 +3,7 @@
 
 pub mod profile;
 pub mod radiosity;
+pub mod raycast;
 pub mod render;
 pub mod silhouette;
 

@@ -66,6 +66,23 @@ pub enum BenchCommand {
         #[arg(long, default_value_t = 6)]
         floors: u32,
     },
+    /// CPU ray casts (exact shadows at points, the radiosity gather, the CPU references):
+    /// rays per second through the BVH and by brute force, one thread, on terrain meshes
+    /// of about 10 k, 100 k and 1 M triangles.
+    Raycast {
+        /// Print JSON {"rows": [...]}.
+        #[arg(long)]
+        json: bool,
+        /// Rays of each kind (shadow, nearest hit) through the BVH per mesh.
+        #[arg(long, default_value_t = 20_000)]
+        rays: usize,
+        /// How many of them are also cast by brute force (and checked to agree).
+        #[arg(long, default_value_t = 200)]
+        brute_rays: usize,
+        /// Shrink the meshes by this factor (1 = the full sizes).
+        #[arg(long, default_value_t = 1.0)]
+        scale: f64,
+    },
     /// GPU radiosity on a Cornell-box-like scene (Wallner Table 4.1, "Cornell box high":
     /// ~127 000 elements): time to 90 % and 99 % convergence, hemicube vs stereographic.
     Radiosity {
@@ -119,6 +136,12 @@ pub fn run(cmd: BenchCommand) -> Result<(), CliError> {
             step,
             floors,
         } => super::profile::run_bench(json, resolution, step, floors),
+        BenchCommand::Raycast {
+            json,
+            rays,
+            brute_rays,
+            scale,
+        } => run_raycast(json, rays, brute_rays, scale),
         BenchCommand::Radiosity {
             json,
             elements,
@@ -127,6 +150,42 @@ pub fn run(cmd: BenchCommand) -> Result<(), CliError> {
             scene,
         } => run_radiosity(json, elements, level, max_shots, scene),
     }
+}
+
+fn run_raycast(as_json: bool, rays: usize, brute_rays: usize, scale: f64) -> Result<(), CliError> {
+    use crate::bench::raycast as rbench;
+    if rays == 0 || brute_rays == 0 || brute_rays > rays || !(scale > 0.0 && scale <= 1.0) {
+        return Err(CliError::input(anyhow::anyhow!(
+            "--rays and --brute-rays must be > 0, --brute-rays ≤ --rays, --scale in (0, 1]"
+        )));
+    }
+    let meshes = rbench::bench_meshes(scale);
+    let rows = rbench::run(&meshes, rays, brute_rays, |n| {
+        eprintln!("benchmarking {n} triangles …")
+    })
+    .map_err(|e| CliError::failure(anyhow::anyhow!(e)))?;
+    if as_json {
+        println!("{}", json!({ "rows": rows }));
+        return Ok(());
+    }
+    println!("CPU ray casts, one thread: rays/s by brute force and through the BVH");
+    println!("| triangles | BVH build s | shadow brute | shadow BVH | × | nearest hit brute | nearest hit BVH | × | blocked |");
+    println!("|---|---|---|---|---|---|---|---|---|");
+    for r in rows {
+        println!(
+            "| {} | {:.3} | {:.0} | {:.0} | {:.0}× | {:.0} | {:.0} | {:.0}× | {:.0} % |",
+            r.triangles,
+            r.build_s,
+            r.brute_shadow_rays_per_s,
+            r.bvh_shadow_rays_per_s,
+            r.bvh_shadow_rays_per_s / r.brute_shadow_rays_per_s,
+            r.brute_hit_rays_per_s,
+            r.bvh_hit_rays_per_s,
+            r.bvh_hit_rays_per_s / r.brute_hit_rays_per_s,
+            100.0 * r.blocked_fraction
+        );
+    }
+    Ok(())
 }
 
 fn run_radiosity(

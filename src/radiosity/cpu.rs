@@ -55,7 +55,9 @@ impl<'a> CpuSolver<'a> {
 
     fn visible(&self, from: DVec3, from_n: DVec3, to: DVec3, to_n: DVec3) -> bool {
         let light = Light((from + from_n * self.eps).extend(1.0));
-        !raycast::in_shadow(&self.scene.casters, &light, to + to_n * self.eps, self.eps)
+        let none = IgnoredTriangles::default();
+        let bvh = self.scene.caster_bvh();
+        !bvh.in_shadow(&light, to + to_n * self.eps, self.eps, &none)
     }
 
     /// Direct illuminance (lux, RGB) from the luminaires at `p` with unit normal `n`.
@@ -69,7 +71,10 @@ impl<'a> CpuSolver<'a> {
                 let ignored = self.scene.ignored.get(*k).unwrap_or(&none);
                 let light = Light(l.position.extend(1.0));
                 let q = p + n * self.eps;
-                !raycast::in_shadow_ignoring(&self.scene.casters, &light, q, self.eps, ignored)
+                !self
+                    .scene
+                    .caster_bvh()
+                    .in_shadow(&light, q, self.eps, ignored)
             })
             .map(|(_, l)| {
                 let colour = l.color_toward((p - l.position).normalize_or_zero());

@@ -9,7 +9,7 @@ use rayon::prelude::*;
 use super::form_factor::{self, FormFactorKind};
 use super::scene::RadiosityScene;
 use crate::lighting::SurfacePoint;
-use crate::shadow::{raycast, Light};
+use crate::shadow::{raycast, IgnoredTriangles, Light};
 
 /// Illuminance (lux, RGB) at `point` from every patch of `scene` with the element
 /// `radiosity` (lm/m², RGB), emission included.
@@ -22,6 +22,7 @@ pub fn from_patches(
     let (p, n) = (point.position, point.normal.normalize_or_zero());
     let el = &scene.elements;
     let eps = raycast::self_hit_epsilon(&scene.casters);
+    let (bvh, none) = (scene.caster_bvh(), IgnoredTriangles::default());
     let mut e = DVec3::ZERO;
     for te in &el.triangles {
         for patch in &el.patches[te.first_patch as usize..][..te.patch_count as usize] {
@@ -35,7 +36,7 @@ pub fn from_patches(
                 continue;
             }
             let light = Light((patch.centroid + te.normal * eps).extend(1.0));
-            if raycast::in_shadow(&scene.casters, &light, p + n * eps, eps) {
+            if bvh.in_shadow(&light, p + n * eps, eps, &none) {
                 continue;
             }
             let range = patch.first as usize..(patch.first + patch.count) as usize;

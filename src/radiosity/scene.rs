@@ -6,7 +6,7 @@ use glam::DVec3;
 use super::elements::{ElementError, Elements, InputTriangle};
 use crate::geometry::Mesh;
 use crate::scene::{PlacedLuminaire, Scene};
-use crate::shadow::IgnoredTriangles;
+use crate::shadow::{IgnoredTriangles, TriangleBvh};
 
 /// A scene prepared for radiosity.
 #[derive(Debug, Clone)]
@@ -21,6 +21,8 @@ pub struct RadiosityScene {
     pub luminaires: Vec<PlacedLuminaire>,
     /// Every triangle as one mesh (occluders for the CPU's visibility rays).
     pub casters: Mesh,
+    /// The ray-cast hierarchy over `casters`, built on first use.
+    caster_bvh: std::sync::OnceLock<TriangleBvh>,
     /// Per luminaire, the caster triangles of its housing (they never shadow its light).
     pub ignored: Vec<IgnoredTriangles>,
     /// Total surface area, m².
@@ -59,6 +61,7 @@ impl RadiosityScene {
                 .collect(),
             luminaires: scene.luminaires.clone(),
             casters: scene.caster_mesh(),
+            caster_bvh: std::sync::OnceLock::new(),
             ignored: scene.ignored_per_luminaire(),
             total_area: 0.0,
             mean_reflectance: 0.0,
@@ -70,6 +73,12 @@ impl RadiosityScene {
             .sum();
         scene.mean_reflectance = reflected / scene.total_area.max(1e-300);
         Ok(scene)
+    }
+
+    /// The ray-cast hierarchy over [`Self::casters`] (built on the first call).
+    pub fn caster_bvh(&self) -> &TriangleBvh {
+        self.caster_bvh
+            .get_or_init(|| TriangleBvh::new(&self.casters))
     }
 
     /// Reflectance of element `e`.

@@ -1,6 +1,7 @@
 //! Shadows: silhouettes (brute force and the 4D dual-space hextree), shadow-volume
 //! geometry, the z-pass/z-fail decision and a CPU ray-cast reference.
 
+pub mod bvh;
 pub mod hextree;
 pub mod raycast;
 pub mod silhouette;
@@ -9,6 +10,7 @@ pub mod volume;
 
 use glam::{DVec3, DVec4};
 
+pub use bvh::TriangleBvh;
 pub use hextree::Hextree;
 pub use silhouette::{Silhouette, SilhouetteMesh};
 pub use technique::{ShadowTechnique, VolumeTest};

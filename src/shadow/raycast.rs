@@ -1,5 +1,6 @@
-//! CPU references: "is this point in shadow" by ray casting, and the near-clip-volume test
-//! that decides between z-pass and z-fail (Wallner Fig. 1.4).
+//! CPU references: "is this point in shadow" by ray casting (the brute-force loop over
+//! every triangle: the oracle of [`super::bvh::TriangleBvh`], which every caller uses),
+//! and the near-clip-volume test that decides between z-pass and z-fail (Wallner Fig. 1.4).
 
 use glam::DVec3;
 
@@ -7,7 +8,13 @@ use super::{IgnoredTriangles, Light};
 use crate::geometry::Mesh;
 
 /// Möller–Trumbore: distance along `dir` to triangle (`a`, `b`, `c`), if hit in (tmin, tmax).
-fn ray_triangle(o: DVec3, dir: DVec3, [a, b, c]: [DVec3; 3], tmin: f64, tmax: f64) -> Option<f64> {
+pub(crate) fn ray_triangle(
+    o: DVec3,
+    dir: DVec3,
+    [a, b, c]: [DVec3; 3],
+    tmin: f64,
+    tmax: f64,
+) -> Option<f64> {
     let e1 = b - a;
     let e2 = c - a;
     let p = dir.cross(e2);
@@ -68,16 +75,22 @@ pub fn in_shadow_ignoring(
     eps: f64,
     ignored: &IgnoredTriangles,
 ) -> bool {
-    let (dir, tmax) = if light.is_directional() {
+    let (dir, tmax) = shadow_ray(light, p, eps);
+    mesh.triangles.iter().enumerate().any(|(k, t)| {
+        ray_triangle(p, dir, corners(mesh, t), eps, tmax).is_some() && !ignored.contains(k)
+    })
+}
+
+/// The ray from `p` toward `light`: unit direction and the distance where it stops (`eps`
+/// short of a point light; unbounded toward a light at infinity).
+pub(crate) fn shadow_ray(light: &Light, p: DVec3, eps: f64) -> (DVec3, f64) {
+    if light.is_directional() {
         (light.0.truncate(), f64::INFINITY)
     } else {
         let d = light.0.truncate() - p;
         let len = d.length();
         (d / len, len - eps)
-    };
-    mesh.triangles.iter().enumerate().any(|(k, t)| {
-        ray_triangle(p, dir, corners(mesh, t), eps, tmax).is_some() && !ignored.contains(k)
-    })
+    }
 }
 
 /// The near-clip volume: the convex hull of the near-plane rectangle and the light (or the
