@@ -418,3 +418,40 @@ fn cpu_illuminance_equals_intensity_cos_over_d2_at_measured_angles() {
         assert!(checked > 20, "{file}: {checked}");
     }
 }
+
+/// The furnished room bundled in the binary (what `view` and `demo` open outside a
+/// checkout) is complete: extracted anywhere, it loads with the same model, materials,
+/// textures and luminaires as the checkout's. Extracting again rewrites nothing.
+#[test]
+fn the_bundled_scene_extracts_whole() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = goniolight::io::bundled::extract(dir.path()).unwrap();
+    let extracted = Scene::load(&path).unwrap();
+    let checkout = Scene::load(&scene("furnished_room.toml")).unwrap();
+    assert_eq!(extracted.triangle_count(), checkout.triangle_count());
+    assert_eq!(extracted.luminaires.len(), 5);
+    for (a, b) in extracted.luminaires.iter().zip(&checkout.luminaires) {
+        assert_eq!(a.name, b.name);
+        assert_eq!(a.position, b.position);
+        let flux = |l: &goniolight::scene::PlacedLuminaire| l.luminaire.distribution.flux_lm();
+        assert_eq!(flux(a), flux(b), "{}", a.name);
+    }
+    assert_eq!(extracted.materials.len(), checkout.materials.len());
+    let textured = |s: &Scene| {
+        let maps = s
+            .materials
+            .iter()
+            .map(|m| m.diffuse_map.is_some() as usize * 2);
+        maps.zip(&s.materials)
+            .map(|(d, m)| d + m.normal_map.is_some() as usize)
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(textured(&extracted), textured(&checkout));
+    let licence = dir.path().join("luminaires/eulumdat-plot/LICENSE");
+    let written = std::fs::metadata(&licence).unwrap().modified().unwrap();
+    goniolight::io::bundled::extract(dir.path()).unwrap();
+    assert_eq!(
+        std::fs::metadata(&licence).unwrap().modified().unwrap(),
+        written
+    );
+}

@@ -21,7 +21,13 @@ fn skip() -> bool {
 
 /// Runs `goniolight view ARGS` under a fresh Xvfb server; returns (code, stdout, stderr).
 fn view_under_xvfb(args: &[&str]) -> (i32, String, String) {
+    view_under_xvfb_with(args, &[])
+}
+
+/// [`view_under_xvfb`] with environment variables `env` set.
+fn view_under_xvfb_with(args: &[&str], env: &[(&str, &Path)]) -> (i32, String, String) {
     let out = Command::new("xvfb-run")
+        .envs(env.iter().map(|&(k, v)| (k, v)))
         .args(["-a", "-s", "-screen 0 1600x1000x24"])
         .arg(env!("CARGO_BIN_EXE_goniolight"))
         .arg("view")
@@ -70,6 +76,30 @@ fn render(scene: &Path, w: u32, h: u32, out: &Path) {
     assert_eq!(code, 0, "{err}");
 }
 
+/// How many of the viewport `v`'s pixels in `window` differ from `reference` by more than
+/// 2 levels in a channel, and the largest difference.
+fn differing_pixels(
+    window: &image::RgbaImage,
+    v: &[u32],
+    reference: &image::RgbaImage,
+) -> (usize, i32) {
+    let mut off = 0usize;
+    let mut worst = 0i32;
+    for y in 0..v[3] {
+        for x in 0..v[2] {
+            let a = window.get_pixel(v[0] + x, v[1] + y);
+            let b = reference.get_pixel(x, y);
+            let d = (0..3)
+                .map(|c| (a[c] as i32 - b[c] as i32).abs())
+                .max()
+                .unwrap();
+            worst = worst.max(d);
+            off += usize::from(d > 2);
+        }
+    }
+    (off, worst)
+}
+
 #[test]
 fn every_bundled_scene_renders_in_the_window_like_the_render_command() {
     if skip() {
@@ -109,20 +139,7 @@ fn every_bundled_scene_renders_in_the_window_like_the_render_command() {
         let reference = dir.path().join(format!("{name}-render.png"));
         render(&scene, v[2], v[3], &reference);
         let reference = image::open(&reference).unwrap().to_rgba8();
-        let mut off = 0usize;
-        let mut worst = 0i32;
-        for y in 0..v[3] {
-            for x in 0..v[2] {
-                let a = window.get_pixel(v[0] + x, v[1] + y);
-                let b = reference.get_pixel(x, y);
-                let d = (0..3)
-                    .map(|c| (a[c] as i32 - b[c] as i32).abs())
-                    .max()
-                    .unwrap();
-                worst = worst.max(d);
-                off += usize::from(d > 2);
-            }
-        }
+        let (off, worst) = differing_pixels(&window, &v, &reference);
         let total = (v[2] * v[3]) as usize;
         eprintln!(
             "{name}: viewport {v:?}, {off} of {total} pixels differ by > 2 levels (worst {worst})"
@@ -298,4 +315,57 @@ fn a_plan_view_stays_orthographic_in_the_window() {
     eprintln!("plan view: {off} of {total} pixels differ by more than 8 levels");
     // A perspective view of the same camera would differ almost everywhere.
     assert!(off * 100 <= total, "{off} of {total} pixels differ");
+}
+
+/// `view` with no argument outside any checkout (an installed binary): the furnished room
+/// bundled in the binary is extracted to the cache folder and shown, exactly as the
+/// checkout's scene renders.
+#[test]
+fn view_without_a_scene_works_outside_the_checkout() {
+    if skip() {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let (nowhere, cache) = (dir.path().join("no-data"), dir.path().join("cache"));
+    std::fs::create_dir_all(&nowhere).unwrap();
+    let shot = dir.path().join("default.png");
+    let args = [
+        "--width",
+        "900",
+        "--height",
+        "600",
+        "--frames",
+        "3",
+        "--screenshot",
+    ];
+    let (code, out, err) = view_under_xvfb_with(
+        &[&args[..], &[shot.to_str().unwrap()]].concat(),
+        &[
+            ("GONIOLIGHT_DATA_DIR", nowhere.as_path()),
+            ("GONIOLIGHT_CACHE_DIR", cache.as_path()),
+        ],
+    );
+    assert_eq!(code, 0, "{err}");
+    let extracted: Vec<_> = std::fs::read_dir(&cache).unwrap().flatten().collect();
+    assert_eq!(extracted.len(), 1, "one folder per version");
+    let scene = extracted[0]
+        .path()
+        .join("assets/scenes/furnished_room.toml");
+    assert!(scene.is_file(), "{} not extracted", scene.display());
+    let summary: serde_json::Value = serde_json::from_str(out.trim()).unwrap();
+    let v = viewport_px(&summary);
+    let reference = dir.path().join("default-render.png");
+    render(
+        &root().join("assets/scenes/furnished_room.toml"),
+        v[2],
+        v[3],
+        &reference,
+    );
+    let window = image::open(&shot).unwrap().to_rgba8();
+    let (off, worst) = differing_pixels(&window, &v, &image::open(&reference).unwrap().to_rgba8());
+    let total = (v[2] * v[3]) as usize;
+    assert!(
+        off * 1000 <= total,
+        "{off} of {total} pixels differ (worst {worst})"
+    );
 }

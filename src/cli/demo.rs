@@ -37,14 +37,17 @@ pub struct DemoArgs {
     pub image: ImageOptions,
 }
 
-/// The bundled furnished room.
-pub fn default_scene() -> PathBuf {
-    crate::io::data_root().join("assets/scenes/furnished_room.toml")
+/// The bundled furnished room (the checkout's, or the copy extracted from the binary).
+pub fn default_scene() -> Result<PathBuf, CliError> {
+    crate::io::bundled::default_scene().map_err(CliError::failure)
 }
 
 /// Renders the scene shaded and in false-colour illuminance.
 fn render_both(args: &DemoArgs) -> Result<(), CliError> {
-    let scene_path = args.scene.clone().unwrap_or_else(default_scene);
+    let scene_path = match &args.scene {
+        Some(p) => p.clone(),
+        None => default_scene()?,
+    };
     let scene = super::render::scene_at(Scene::load(&scene_path)?, args.image.time)?;
     let gpu = Gpu::shared()?;
     println!("GPU: {}", gpu.describe());

@@ -1,4 +1,7 @@
-//! Small file helpers shared by the commands: atomic writes and the bundled data's folder.
+//! Small file helpers shared by the commands: atomic writes, the bundled data's folder and
+//! the scene bundled in the binary.
+
+pub mod bundled;
 
 use std::io::Write;
 use std::path::Path;
@@ -33,9 +36,13 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// The folder holding the bundled data (`assets/`, `luminaires/`): the source checkout the
-/// binary was built from when it is still there, else the working directory.
+/// The folder holding the bundled data (`assets/`, `luminaires/`): `$GONIOLIGHT_DATA_DIR`
+/// when set (packagers, tests), else the source checkout the binary was built from when it
+/// is still there, else the working directory.
 pub fn data_root() -> std::path::PathBuf {
+    if let Some(dir) = std::env::var_os("GONIOLIGHT_DATA_DIR").filter(|d| !d.is_empty()) {
+        return dir.into();
+    }
     let built = Path::new(env!("CARGO_MANIFEST_DIR"));
     if built.join("assets").is_dir() && built.join("luminaires").is_dir() {
         built.to_path_buf()

@@ -21,7 +21,7 @@ use app::ViewerApp;
 use files::{load_scene_or_model, RecentFiles};
 
 /// The scene `view` opens without an argument, relative to [`crate::io::data_root`].
-pub const DEFAULT_SCENE: &str = "assets/scenes/furnished_room.toml";
+pub use crate::io::bundled::DEFAULT_SCENE;
 
 /// A failed viewer start or run.
 #[derive(Debug, thiserror::Error)]
@@ -65,10 +65,11 @@ pub struct StartOptions {
 
 /// Opens the viewer and runs it until the window closes (or the frames given are drawn).
 pub fn start(options: StartOptions) -> Result<window::RunSummary, ViewerError> {
-    let path = options
-        .path
-        .clone()
-        .unwrap_or_else(|| crate::io::data_root().join(DEFAULT_SCENE));
+    let path = match &options.path {
+        Some(p) => p.clone(),
+        None => crate::io::bundled::default_scene()
+            .map_err(|e| ViewerError::Window(format!("{e:#}")))?,
+    };
     let up = options.up;
     let scene = load_scene_or_model(&path, up)?;
     let is_scene = !scene.path.as_os_str().is_empty();
