@@ -83,6 +83,17 @@ pub enum BenchCommand {
         #[arg(long, default_value_t = 1.0)]
         scale: f64,
     },
+    /// The face-cluster hierarchy (Edström §4.2) of the real models in the shared test data
+    /// (cathedral, conference room, high-rise block): seconds to load and to cluster.
+    Clusters {
+        /// Print JSON {"rows": [...]}.
+        #[arg(long)]
+        json: bool,
+        /// The shared test data (default: `../shared` beside the checkout, or
+        /// `$GONIOLIGHT_SHARED`).
+        #[arg(long)]
+        shared: Option<std::path::PathBuf>,
+    },
     /// GPU radiosity on a Cornell-box-like scene (Wallner Table 4.1, "Cornell box high":
     /// ~127 000 elements): time to 90 % and 99 % convergence, hemicube vs stereographic.
     Radiosity {
@@ -142,6 +153,7 @@ pub fn run(cmd: BenchCommand) -> Result<(), CliError> {
             brute_rays,
             scale,
         } => run_raycast(json, rays, brute_rays, scale),
+        BenchCommand::Clusters { json, shared } => run_clusters(json, shared),
         BenchCommand::Radiosity {
             json,
             elements,
@@ -183,6 +195,28 @@ fn run_raycast(as_json: bool, rays: usize, brute_rays: usize, scale: f64) -> Res
             r.bvh_hit_rays_per_s,
             r.bvh_hit_rays_per_s / r.brute_hit_rays_per_s,
             100.0 * r.blocked_fraction
+        );
+    }
+    Ok(())
+}
+
+fn run_clusters(as_json: bool, shared: Option<std::path::PathBuf>) -> Result<(), CliError> {
+    let shared = shared
+        .or_else(|| std::env::var_os("GONIOLIGHT_SHARED").map(Into::into))
+        .unwrap_or_else(|| crate::io::data_root().join("../shared"));
+    let rows = crate::bench::clusters::run(&shared, |m| eprintln!("clustering the {m} …"))
+        .map_err(CliError::input)?;
+    if as_json {
+        println!("{}", json!({ "rows": rows }));
+        return Ok(());
+    }
+    println!("Face-cluster hierarchy (Edström §4.2), one thread");
+    println!("| model | triangles | load s | cluster s | clusters | roots | depth |");
+    println!("|---|---|---|---|---|---|---|");
+    for r in rows {
+        println!(
+            "| {} | {} | {:.2} | {:.2} | {} | {} | {} |",
+            r.model, r.triangles, r.load_s, r.cluster_s, r.clusters, r.roots, r.depth
         );
     }
     Ok(())

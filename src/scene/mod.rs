@@ -171,6 +171,14 @@ impl Scene {
         mesh
     }
 
+    /// The material of each triangle of [`Scene::caster_mesh`], in its order.
+    pub fn caster_materials(&self) -> Vec<usize> {
+        self.meshes
+            .iter()
+            .flat_map(|m| std::iter::repeat_n(m.material, m.indices.len() / 3))
+            .collect()
+    }
+
     /// The triangles of [`Scene::caster_mesh`] that luminaire `l` ignores: its housing.
     /// Nothing when the luminaire has been moved away from it (the viewer moves
     /// luminaires, not model objects): then the object is other geometry.
