@@ -233,7 +233,12 @@ fn bad_input_exits_2_and_writes_nothing() {
     let scene = scene.to_str().unwrap();
     let out = dir.path().join("never");
     let o = out.to_str().unwrap();
-    let cases: [(&[&str], &str, &str); 6] = [
+    let cases: [(&[&str], &str, &str); 7] = [
+        (
+            &["radiosity", scene, "--export", "/", "--out-dir", o],
+            "",
+            "--export /: is a folder",
+        ),
         (
             &["radiosity", scene, "--converge", "1.5", "--out-dir", o],
             "",
@@ -360,4 +365,118 @@ fn ctrl_c_stops_the_solver_and_writes_the_solution_so_far() {
         .unwrap();
     assert!(last < 1.0, "{csv}");
     assert!(out.join("render.png").is_file() && out.join("lightmap.exr").is_file());
+}
+
+/// Reads a float accessor of a GLB: `width` floats per item.
+fn floats(doc: &gltf::Gltf, accessor: gltf::Accessor, width: usize) -> Vec<Vec<f32>> {
+    let blob = doc.blob.as_ref().unwrap();
+    let view = accessor.view().unwrap();
+    assert_eq!(accessor.data_type(), gltf::accessor::DataType::F32);
+    let at = view.offset() + accessor.offset();
+    (0..accessor.count())
+        .map(|i| {
+            (0..width)
+                .map(|k| {
+                    let o = at + 4 * (i * width + k);
+                    f32::from_le_bytes(blob[o..o + 4].try_into().unwrap())
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// `--export scene.glb`: a glTF binary the `gltf` crate reads back, Y-up, wound like the
+/// model, whose baked values at every corner are the solver's light map under that corner
+/// (`lightmap.exr`, `lightmap_lux.exr` of the same run) and whose colours are those values
+/// over the stated white point.
+#[test]
+fn export_writes_a_gltf_with_the_solution_baked_in() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = root().join("assets/scenes/box_room.toml");
+    let (out, glb) = (dir.path().join("out"), dir.path().join("room.glb"));
+    let (code, _, stderr) = run_cli(
+        &[
+            "radiosity",
+            scene.to_str().unwrap(),
+            "--max-shots",
+            "30",
+            "--out-dir",
+            out.to_str().unwrap(),
+            "--export",
+            glb.to_str().unwrap(),
+        ],
+        "",
+    );
+    assert_eq!(code, 0, "{stderr}");
+    let doc = gltf::Gltf::from_slice(&std::fs::read(&glb).unwrap()).expect("a valid glTF binary");
+    let extras: serde_json::Value =
+        serde_json::from_str(doc.document.as_json().asset.extras.as_ref().unwrap().get()).unwrap();
+    let white = extras["white_lm_per_m2"].as_f64().unwrap();
+    assert!(white > 1.0, "{extras}");
+    let names: Vec<_> = doc
+        .materials()
+        .map(|m| m.name().unwrap().to_string())
+        .collect();
+    assert_eq!(names, ["floor", "wall", "ceiling"]);
+    assert!(doc.materials().all(|m| m.unlit()));
+    let (map, lux) = (
+        read_exr(&out.join("lightmap.exr")),
+        read_exr(&out.join("lightmap_lux.exr")),
+    );
+    let (w, h) = (map.width() as f32, map.height() as f32);
+    let (mut corners, mut lo, mut hi) = (0, [f32::MAX; 3], [f32::MIN; 3]);
+    for prim in doc.meshes().next().unwrap().primitives() {
+        let get = |name: &str, width| {
+            let a = prim
+                .attributes()
+                .find(|(s, _)| s.to_string() == name)
+                .unwrap()
+                .1;
+            floats(&doc, a, width)
+        };
+        let (pos, nrm, col) = (get("POSITION", 3), get("NORMAL", 3), get("COLOR_0", 3));
+        let (uv, rad, ill) = (
+            get("TEXCOORD_0", 2),
+            get("_RADIOSITY", 3),
+            get("_ILLUMINANCE", 1),
+        );
+        for t in 0..pos.len() / 3 {
+            let p: Vec<glam::Vec3> = (0..3)
+                .map(|k| glam::Vec3::from_slice(&pos[3 * t + k]))
+                .collect();
+            let n = (p[1] - p[0]).cross(p[2] - p[0]).normalize();
+            assert!(
+                (n - glam::Vec3::from_slice(&nrm[3 * t])).length() < 1e-5,
+                "winding"
+            );
+            let centre: glam::Vec2 = (0..3)
+                .map(|k| glam::Vec2::from_slice(&uv[3 * t + k]))
+                .sum::<glam::Vec2>()
+                / 3.0;
+            for k in 3 * t..3 * t + 3 {
+                let c = glam::Vec2::from_slice(&uv[k]);
+                let q = (c + (centre - c) * 1e-3) * glam::Vec2::new(w, h);
+                let texel = map.get_pixel(q.x as u32, q.y as u32).0;
+                assert_eq!(rad[k], texel, "radiosity at corner {k}");
+                assert_eq!(ill[k][0], lux.get_pixel(q.x as u32, q.y as u32).0[0]);
+                for c in 0..3 {
+                    let expected = (rad[k][c] as f64 / white).clamp(0.0, 1.0) as f32;
+                    assert!((col[k][c] - expected).abs() < 1e-6);
+                }
+                for a in 0..3 {
+                    lo[a] = lo[a].min(pos[k][a]);
+                    hi[a] = hi[a].max(pos[k][a]);
+                }
+            }
+            corners += 3;
+        }
+    }
+    assert_eq!(corners, 36, "12 triangles");
+    // The room's bounds (Z up) seen Y up: x, height, −y.
+    let room = goniolight::scene::Scene::load(&scene).unwrap().bounds();
+    let expect_lo = [room.0.x, room.0.z, -room.1.y].map(|v| v as f32);
+    let expect_hi = [room.1.x, room.1.z, -room.0.y].map(|v| v as f32);
+    for a in 0..3 {
+        assert!((lo[a] - expect_lo[a]).abs() < 1e-4 && (hi[a] - expect_hi[a]).abs() < 1e-4);
+    }
 }

@@ -63,6 +63,11 @@ pub struct RadiosityArgs {
     /// it is given).
     #[arg(long)]
     pub out_dir: Option<PathBuf>,
+    /// Also write the solved scene as glTF 2.0 binary (.glb): baked vertex colours
+    /// (COLOR_0, unlit materials), the exact radiosity and illuminance per corner
+    /// (_RADIOSITY, _ILLUMINANCE) and the light map (image "lightmap", TEXCOORD_0).
+    #[arg(long, value_name = "SCENE.glb")]
+    pub export: Option<PathBuf>,
     /// Read "x y z nx ny nz" lines from stdin and print the total illuminance (lux,
     /// direct + interreflected) at each, one per line.
     #[arg(long)]
@@ -95,6 +100,11 @@ impl RadiosityArgs {
                 return bad(format!(
                     "--time-limit {t} must be a positive number of seconds"
                 ));
+            }
+        }
+        if let Some(path) = &self.export {
+            if path.is_dir() {
+                return bad(format!("--export {}: is a folder", path.display()));
             }
         }
         if let Some(dir) = &self.out_dir {
@@ -202,9 +212,18 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
         let direct = light.lux(&gpu, &points, &settings.shadows)?;
         print_total_lux(&rscene, &shown, &points, &direct, args.form_factor);
     }
+    let light_map = solve::light_map(&rscene, &shown, &shown_lux);
+    if let Some(path) = &args.export {
+        let names: Vec<String> = scene.materials.iter().map(|m| m.name.clone()).collect();
+        let bytes = crate::radiosity::export::glb(&rscene, &light_map, &names)
+            .map_err(CliError::failure)?;
+        write_atomic(path, &bytes)
+            .map_err(|e| CliError::input(anyhow!("--export {}: {e:#}", path.display())))?;
+        eprintln!("wrote {} ({} kB)", path.display(), bytes.len() >> 10);
+    }
     if let Some(dir) = out_dir {
         let outputs = Outputs {
-            light_map: solve::light_map(&rscene, &shown, &shown_lux),
+            light_map,
             csv: solve::convergence_csv(&log),
         };
         settings.read_hdr = true;

@@ -4,6 +4,7 @@
 pub mod clusters;
 pub mod cpu;
 pub mod elements;
+pub mod export;
 pub mod form_factor;
 pub mod gather;
 pub mod gpu;
