@@ -153,11 +153,13 @@ fn gather_patches(@builtin(global_invocation_id) id: vec3<u32>) {
 
 @compute @workgroup_size(64)
 fn clear_shooter(@builtin(global_invocation_id) id: vec3<u32>) {
-    let r = triangles[params.shooter].range;
-    if (id.x >= r.y) {
+    // The elements of this batch's patches (contiguous, patch after patch).
+    let first = patches[params.patch_first].range.x;
+    let last = patches[params.patch_first + params.patch_count - 1u];
+    if (params.patch_count == 0u || id.x >= last.range.x + last.range.y - first) {
         return;
     }
-    unshot[r.x + id.x] = vec4<f32>(-triangle_power[params.triangle_count + 1u].rgb, 0.0);
+    unshot[first + id.x] = vec4<f32>(-triangle_power[params.triangle_count + 1u].rgb, 0.0);
 }
 
 // One shooting patch as seen by the receive pass.

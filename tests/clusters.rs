@@ -20,7 +20,10 @@ fn surfaces(mesh: &goniolight::geometry::Mesh, materials: &[usize]) -> Vec<Vec<u
         for k in 0..3 {
             let (a, b) = (key(tri[k]), key(tri[(k + 1) % 3]));
             if a != b {
-                by_edge.entry((a.min(b), a.max(b))).or_default().push(t as u32);
+                by_edge
+                    .entry((a.min(b), a.max(b)))
+                    .or_default()
+                    .push(t as u32);
             }
         }
     }
@@ -60,7 +63,10 @@ fn surfaces(mesh: &goniolight::geometry::Mesh, materials: &[usize]) -> Vec<Vec<u
 #[test]
 fn the_cathedral_clusters_into_one_root_per_surface() {
     let obj = common::shared_dir().join("models/sibenik/sibenik.obj");
-    let toml = format!("[[model]]\npath = {:?}\nup = \"y\"\n", obj.display().to_string());
+    let toml = format!(
+        "[[model]]\npath = {:?}\nup = \"y\"\n",
+        obj.display().to_string()
+    );
     let scene = Scene::from_toml(&obj.with_file_name("test.toml"), &toml).unwrap();
     let (mesh, materials) = (scene.caster_mesh(), scene.caster_materials());
     assert_eq!(mesh.triangles.len(), materials.len());
@@ -68,7 +74,11 @@ fn the_cathedral_clusters_into_one_root_per_surface() {
     let n = mesh.triangles.len();
     let mut order = h.order.clone();
     order.sort();
-    assert_eq!(order, (0..n as u32).collect::<Vec<_>>(), "each triangle in one leaf");
+    assert_eq!(
+        order,
+        (0..n as u32).collect::<Vec<_>>(),
+        "each triangle in one leaf"
+    );
     assert_eq!(h.nodes.len(), 2 * n - h.roots.len(), "a binary forest");
     for (k, c) in h.nodes.iter().enumerate() {
         if let Some([a, b]) = c.children {
@@ -79,7 +89,10 @@ fn the_cathedral_clusters_into_one_root_per_surface() {
         let tol = 1e-9 * (1.0 + c.obb.half.length());
         for &t in h.triangles(k as u32) {
             for i in mesh.triangles[t as usize] {
-                assert!(c.obb.contains(mesh.positions[i as usize], tol), "cluster {k}");
+                assert!(
+                    c.obb.contains(mesh.positions[i as usize], tol),
+                    "cluster {k}"
+                );
             }
         }
     }
@@ -95,7 +108,10 @@ fn the_cathedral_clusters_into_one_root_per_surface() {
     roots.sort();
     let expected = surfaces(&mesh, &materials);
     assert_eq!(roots.len(), expected.len());
-    assert!(roots == expected, "roots are not the connected surfaces of one material");
+    assert!(
+        roots == expected,
+        "roots are not the connected surfaces of one material"
+    );
     // Far fewer big clusters than triangles: the cathedral's surfaces are few.
     assert!(h.roots.len() * 100 < n, "{} roots", h.roots.len());
 }
@@ -104,7 +120,12 @@ fn the_cathedral_clusters_into_one_root_per_surface() {
 fn bench_clusters_without_the_shared_data_is_a_clear_error() {
     let dir = tempfile::tempdir().unwrap();
     let (code, out, err) = common::run_cli(
-        &["bench", "clusters", "--shared", &dir.path().display().to_string()],
+        &[
+            "bench",
+            "clusters",
+            "--shared",
+            &dir.path().display().to_string(),
+        ],
         "",
     );
     assert_eq!(code, 2, "{err}");

@@ -8,7 +8,7 @@ use glam::{DVec3, Vec3};
 use goniolight::photometry::{Interp, Luminaire};
 use goniolight::radiosity::cpu::CpuSolver;
 use goniolight::radiosity::form_factor::{self, howell};
-use goniolight::radiosity::gpu::{GpuSettings, GpuSolver, Visibility};
+use goniolight::radiosity::gpu::{GpuSettings, GpuSolver, Visibility, PATCHES_PER_BATCH};
 use goniolight::radiosity::initial::{InitialState, LuminaireLight};
 use goniolight::radiosity::scene::RadiosityScene;
 use goniolight::radiosity::solve;
@@ -346,6 +346,58 @@ fn one_gpu_shot_equals_the_cpu_reference_shot() {
         let te = &r.elements.triangles[t];
         assert!((te.first..te.first + te.count).all(|e| unshot[e as usize] == DVec3::ZERO));
     }
+}
+
+/// A shot stopped between batches of patches (time limit, Ctrl-C) loses no energy and
+/// counts none twice: shooting the rest of the same triangle afterwards gives exactly the
+/// solution of one whole shot.
+#[test]
+fn a_shot_stopped_between_batches_resumes_without_loss() {
+    let Some(gpu) = gpu_common::gpu() else { return };
+    // Level 0: every texel a patch; the largest triangles hold > 1 batch of them.
+    let r = RadiosityScene::new(&furnace(0.5, 100.0), 10.0, 0).unwrap();
+    let settings = SolverSettings::default();
+    let initial = CpuSolver::new(&r, settings).state();
+    let new = || GpuSolver::new(&gpu, &r, &initial, settings, GpuSettings::default());
+    let (mut whole, mut split) = (new(), new());
+    let t = whole.select().unwrap().shooter.unwrap();
+    let patches = r.elements.triangles[t].patch_count as usize;
+    assert!(
+        patches > PATCHES_PER_BATCH,
+        "{patches} patches: one batch only"
+    );
+    whole.shoot(t).unwrap();
+    assert_eq!(split.select().unwrap().shooter, Some(t));
+    let batches = std::cell::Cell::new(0);
+    let after_one = || {
+        batches.set(batches.get() + 1);
+        true
+    };
+    assert!(
+        !split.shoot_until(t, &after_one).unwrap(),
+        "stopped after one batch"
+    );
+    assert_eq!(batches.get(), 1);
+    let part = split.unshot().unwrap();
+    let full = whole.unshot().unwrap();
+    let power = |u: &[DVec3]| -> f64 { u.iter().zip(&r.elements.area).map(|(b, a)| b.x * a).sum() };
+    assert!(
+        power(&part) > power(&full) * 1.01,
+        "part of the triangle is still unshot"
+    );
+    split.shoot(t).unwrap();
+    let (a, b) = (whole.radiosity().unwrap(), split.radiosity().unwrap());
+    let worst = a
+        .iter()
+        .zip(&b)
+        .map(|(x, y)| (x.x - y.x).abs() / x.x.abs().max(1e-9))
+        .fold(0.0, f64::max);
+    assert!(worst < 1e-5, "worst relative difference {worst}");
+    let (ua, ub) = (
+        power(&whole.unshot().unwrap()),
+        power(&split.unshot().unwrap()),
+    );
+    assert!((ua - ub).abs() <= 1e-5 * ua, "unshot {ua} vs {ub}");
 }
 
 #[test]

@@ -47,6 +47,13 @@ impl Default for GpuSettings {
     }
 }
 
+/// Most patches shot per GPU submission; the solver may stop between batches.
+pub const PATCHES_PER_BATCH: usize = 64;
+/// Patches in a solver's first batch (then adapted to the machine and scene).
+const FIRST_BATCH: usize = 4;
+/// The time a batch should take, seconds: how far a time limit or Ctrl-C may be overrun.
+const BATCH_SECONDS: f64 = 0.05;
+
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
 struct SolveParams {
@@ -130,6 +137,9 @@ pub struct GpuSolver<'a> {
     size: f64,
     /// Shots from triangles so far.
     pub shots: usize,
+    /// Patches in the next batch of a shot: adapted so a batch takes about
+    /// [`BATCH_SECONDS`] (between 1 and [`PATCHES_PER_BATCH`]).
+    batch: usize,
 }
 
 fn storage(gpu: &Gpu, label: &str, data: &[u8], writable: bool) -> wgpu::Buffer {
@@ -423,6 +433,7 @@ impl<'a> GpuSolver<'a> {
             depth_view: depth.create_view(&Default::default()),
             size: scene_size,
             shots: 0,
+            batch: FIRST_BATCH,
         };
         solver.write_params(u32::MAX, 0, 0);
         solver
@@ -483,8 +494,9 @@ impl<'a> GpuSolver<'a> {
         })
     }
 
-    /// The shooting records of triangle `t`'s patches and their visibility faces.
-    fn shot_records(&self, t: usize) -> (Vec<u8>, Vec<u8>, u32) {
+    /// The shooting records of triangle `t`'s patches `batch` (indices within the
+    /// triangle) and their visibility faces.
+    fn shot_records(&self, t: usize, batch: std::ops::Range<usize>) -> (Vec<u8>, Vec<u8>, u32) {
         let el = &self.scene.elements;
         let te = &el.triangles[t];
         let n = te.normal;
@@ -495,10 +507,10 @@ impl<'a> GpuSolver<'a> {
         };
         let (near, far) = ((1e-4 * self.size) as f32, (2.0 * self.size) as f32);
         let projection = Mat4::perspective_rh(std::f32::consts::FRAC_PI_2, 1.0, near, far);
-        let mut shots = vec![0u8; te.patch_count as usize * SHOT_STRIDE as usize];
-        let mut faces = vec![0u8; te.patch_count as usize * faces_per_patch * FACE_STRIDE as usize];
-        for k in 0..te.patch_count as usize {
-            let p = &el.patches[te.first_patch as usize + k];
+        let mut shots = vec![0u8; batch.len() * SHOT_STRIDE as usize];
+        let mut faces = vec![0u8; batch.len() * faces_per_patch * FACE_STRIDE as usize];
+        for (k, patch) in batch.enumerate() {
+            let p = &el.patches[te.first_patch as usize + patch];
             let eye = (p.centroid + n * 1e-6 * self.size).as_vec3();
             let (t3, b3, n3) = (tangent.as_vec3(), bitangent.as_vec3(), n.as_vec3());
             let looks = [(n3, t3), (t3, n3), (-t3, n3), (b3, n3), (-b3, n3)];
@@ -549,12 +561,58 @@ impl<'a> GpuSolver<'a> {
 
     /// Shoots triangle `t` (plus the overshoot the last [`GpuSolver::select`] chose).
     pub fn shoot(&mut self, t: usize) -> Result<(), GpuError> {
-        let te = self.scene.elements.triangles[t].clone();
-        if te.patch_count == 0 {
-            return Ok(());
+        self.shoot_until(t, &|| false).map(|_| ())
+    }
+
+    /// [`GpuSolver::shoot`] in batches of patches (at most [`PATCHES_PER_BATCH`], sized so
+    /// one takes about 50 ms), asking `stop` between batches (after the GPU has finished
+    /// the last): a triangle of thousands of patches no longer overruns a time limit or
+    /// Ctrl-C by more than a batch. A batch's elements lose their
+    /// unshot radiosity only as the batch shoots, so a shot stopped early leaves the rest
+    /// unshot for later (energy is neither lost nor counted twice). True when the whole
+    /// triangle was shot.
+    pub fn shoot_until(&mut self, t: usize, stop: &dyn Fn() -> bool) -> Result<bool, GpuError> {
+        let patches = self.scene.elements.triangles[t].patch_count as usize;
+        if patches == 0 {
+            return Ok(true);
         }
-        self.write_params(t as u32, te.first_patch, te.patch_count);
-        let (shots, faces, faces_per_patch) = self.shot_records(t);
+        let mut from = 0;
+        while from < patches {
+            let to = (from + self.batch).min(patches);
+            let started = std::time::Instant::now();
+            self.shoot_batch(t, from..to)?;
+            from = to;
+            if from < patches {
+                self.gpu.wait()?;
+                // Twice as many next time while well under the target, half when over.
+                let took = started.elapsed().as_secs_f64();
+                if took < 0.5 * BATCH_SECONDS {
+                    self.batch = (self.batch * 2).min(PATCHES_PER_BATCH);
+                } else if took > BATCH_SECONDS {
+                    self.batch = (self.batch / 2).max(1);
+                }
+                if stop() {
+                    self.shots += 1;
+                    return Ok(false);
+                }
+            }
+        }
+        self.shots += 1;
+        Ok(true)
+    }
+
+    /// Shoots patches `batch` (indices within the triangle) of triangle `t`.
+    fn shoot_batch(&mut self, t: usize, batch: std::ops::Range<usize>) -> Result<(), GpuError> {
+        let el = &self.scene.elements;
+        let te = el.triangles[t].clone();
+        let first_patch = te.first_patch as usize + batch.start;
+        let patch_count = batch.len() as u32;
+        let batch_elements: u32 = el.patches[first_patch..][..batch.len()]
+            .iter()
+            .map(|p| p.count)
+            .sum();
+        self.write_params(t as u32, first_patch as u32, patch_count);
+        let (shots, faces, faces_per_patch) = self.shot_records(t, batch);
         let dev = &self.gpu.device;
         let uniform = |label: &str, data: &[u8]| {
             dev.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -586,10 +644,10 @@ impl<'a> GpuSolver<'a> {
             &[(0, binding(&face_buf, std::mem::size_of::<FaceGpu>()))],
         );
         let mut enc = dev.create_command_encoder(&Default::default());
-        self.dispatch(&mut enc, &self.pipelines.gather, te.patch_count, 64);
-        self.dispatch(&mut enc, &self.pipelines.clear, te.count, 64);
+        self.dispatch(&mut enc, &self.pipelines.gather, patch_count, 64);
+        self.dispatch(&mut enc, &self.pipelines.clear, batch_elements, 64);
         let elements = self.scene.elements.len() as u32;
-        for k in 0..te.patch_count {
+        for k in 0..patch_count {
             for f in 0..faces_per_patch {
                 let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
                     label: Some("visibility"),
@@ -627,7 +685,6 @@ impl<'a> GpuSolver<'a> {
             pass.dispatch_workgroups(elements.div_ceil(64).max(1), 1, 1);
         }
         self.gpu.queue.submit([enc.finish()]);
-        self.shots += 1;
         Ok(())
     }
 

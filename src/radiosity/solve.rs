@@ -137,7 +137,12 @@ impl GpuSolver<'_> {
                 return Ok((r, log));
             }
             if let Some(t) = s.shooter {
-                self.shoot(t)?;
+                // Stopped between batches of patches when the time is up or Ctrl-C came.
+                let over = || {
+                    cancel.load(Ordering::Relaxed)
+                        || stop.time_budget.is_some_and(|b| started.elapsed() >= b)
+                };
+                self.shoot_until(t, &over)?;
             }
         }
     }
