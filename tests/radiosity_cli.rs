@@ -136,6 +136,17 @@ fn stops_at_the_shot_limit_and_the_log_has_a_line_per_shot() {
         stderr.contains("3 shots") && stderr.contains("shot limit"),
         "{stderr}"
     );
+    // The preprocessing by stage (Edström's Table 7.1) and the peak memory.
+    for stage in [
+        "prepared in",
+        "load ",
+        "elements and atlas ",
+        "direct light ",
+        "12 triangles",
+        "peak memory ",
+    ] {
+        assert!(stderr.contains(stage), "{stage:?} in {stderr}");
+    }
     let csv = std::fs::read_to_string(out.join("convergence.csv")).unwrap();
     let rows: Vec<Vec<f64>> = csv
         .lines()

@@ -144,7 +144,9 @@ struct Outputs {
 /// Runs `radiosity`.
 pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
     args.check()?;
+    let started = Instant::now();
     let scene = super::render::scene_at(Scene::load(&args.scene)?, args.image.time)?;
+    let load_s = started.elapsed().as_secs_f64();
     let mut settings = args.image.settings(&scene)?;
     let points = if args.points {
         read_points(std::io::stdin().lock(), "stdin")?
@@ -156,9 +158,9 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
         (None, false) => Some(PathBuf::from("radiosity-out")),
         (None, true) => None,
     };
-    let started = Instant::now();
     let rscene = RadiosityScene::new(&scene, args.texel_density, args.level)
         .map_err(|e| CliError::input(anyhow!("{}: {e}", args.scene.display())))?;
+    let elements_s = started.elapsed().as_secs_f64() - load_s;
     let interp = settings.light_model.interp();
     let solver_settings = SolverSettings {
         form_factor: args.form_factor,
@@ -176,6 +178,13 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
         ..GpuSettings::default()
     };
     let prepared_s = started.elapsed().as_secs_f64();
+    eprintln!(
+        "{}: prepared in {prepared_s:.2} s — load {load_s:.2} s, elements and atlas {elements_s:.2} s, luminaires' direct light {:.2} s; {} triangles{}",
+        args.scene.display(),
+        prepared_s - load_s - elements_s,
+        scene.triangle_count(),
+        crate::io::peak_memory_mb().map_or(String::new(), |mb| format!(", peak memory {mb} MB")),
+    );
     let mut solver = GpuSolver::new(&gpu, &rscene, &initial, solver_settings, gpu_settings);
     let cancel = super::interrupt_flag();
     eprintln!(
@@ -203,14 +212,22 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
         solve::displayed(&rscene, &radiosity, &illuminance, &unshot, args.ambient);
     let last = log.last().copied();
     eprintln!(
-        "{}: {} shots, {:.2} % converged ({stop}) in {solve_s:.2} s (+{prepared_s:.2} s to prepare and shoot the luminaires)",
+        "{}: {} shots, {:.2} % converged ({stop}) in {solve_s:.2} s (+{prepared_s:.2} s to prepare)",
         args.scene.display(),
         solver.shots,
         100.0 * last.map_or(1.0, |p| p.convergence),
     );
     if !points.is_empty() {
+        let gathered = Instant::now();
         let direct = light.lux(&gpu, &points, &settings.shadows)?;
         print_total_lux(&rscene, &shown, &points, &direct, args.form_factor);
+        eprintln!(
+            "{}: {} points gathered from {} patches in {:.2} s",
+            args.scene.display(),
+            points.len(),
+            rscene.elements.patches.len(),
+            gathered.elapsed().as_secs_f64()
+        );
     }
     let light_map = solve::light_map(&rscene, &shown, &shown_lux);
     if let Some(path) = &args.export {
