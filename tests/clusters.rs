@@ -96,16 +96,7 @@ fn the_cathedral_clusters_into_one_root_per_surface() {
             }
         }
     }
-    let mut roots: Vec<Vec<u32>> = h
-        .roots
-        .iter()
-        .map(|&r| {
-            let mut t = h.triangles(r).to_vec();
-            t.sort();
-            t
-        })
-        .collect();
-    roots.sort();
+    let roots = h.root_surfaces();
     let expected = surfaces(&mesh, &materials);
     assert_eq!(roots.len(), expected.len());
     assert!(

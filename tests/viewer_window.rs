@@ -231,9 +231,21 @@ fn window_and_render(
     scene: &Path,
     name: &str,
 ) -> (image::RgbaImage, Vec<u32>, image::RgbaImage) {
+    window_and_render_with(dir, Some(scene), scene, &[], name)
+}
+
+/// [`window_and_render`] of `scene` (`None`: `view` without a scene) with environment
+/// variables `env`, against `render` of `reference`.
+fn window_and_render_with(
+    dir: &Path,
+    scene: Option<&Path>,
+    reference: &Path,
+    env: &[(&str, &Path)],
+    name: &str,
+) -> (image::RgbaImage, Vec<u32>, image::RgbaImage) {
     let shot = dir.join(format!("{name}.png"));
-    let (code, out, err) = view_under_xvfb(&[
-        &scene.display().to_string(),
+    let shot_arg = shot.display().to_string();
+    let mut args = vec![
         "--width",
         "900",
         "--height",
@@ -241,17 +253,22 @@ fn window_and_render(
         "--frames",
         "3",
         "--screenshot",
-        &shot.display().to_string(),
-    ]);
+        &shot_arg,
+    ];
+    let scene_arg = scene.map(|s| s.display().to_string());
+    if let Some(s) = &scene_arg {
+        args.insert(0, s);
+    }
+    let (code, out, err) = view_under_xvfb_with(&args, env);
     assert_eq!(code, 0, "{err}");
     let summary: serde_json::Value = serde_json::from_str(out.trim()).unwrap();
     let v = viewport_px(&summary);
-    let reference = dir.join(format!("{name}-render.png"));
-    render(scene, v[2], v[3], &reference);
+    let rendered = dir.join(format!("{name}-render.png"));
+    render(reference, v[2], v[3], &rendered);
     (
         image::open(&shot).unwrap().to_rgba8(),
         v,
-        image::open(&reference).unwrap().to_rgba8(),
+        image::open(&rendered).unwrap().to_rgba8(),
     )
 }
 
@@ -328,41 +345,20 @@ fn view_without_a_scene_works_outside_the_checkout() {
     let dir = tempfile::tempdir().unwrap();
     let (nowhere, cache) = (dir.path().join("no-data"), dir.path().join("cache"));
     std::fs::create_dir_all(&nowhere).unwrap();
-    let shot = dir.path().join("default.png");
-    let args = [
-        "--width",
-        "900",
-        "--height",
-        "600",
-        "--frames",
-        "3",
-        "--screenshot",
+    let env = [
+        ("GONIOLIGHT_DATA_DIR", nowhere.as_path()),
+        ("GONIOLIGHT_CACHE_DIR", cache.as_path()),
     ];
-    let (code, out, err) = view_under_xvfb_with(
-        &[&args[..], &[shot.to_str().unwrap()]].concat(),
-        &[
-            ("GONIOLIGHT_DATA_DIR", nowhere.as_path()),
-            ("GONIOLIGHT_CACHE_DIR", cache.as_path()),
-        ],
-    );
-    assert_eq!(code, 0, "{err}");
+    let checkout = root().join("assets/scenes/furnished_room.toml");
+    let (window, v, reference) =
+        window_and_render_with(dir.path(), None, &checkout, &env, "default");
     let extracted: Vec<_> = std::fs::read_dir(&cache).unwrap().flatten().collect();
     assert_eq!(extracted.len(), 1, "one folder per version");
     let scene = extracted[0]
         .path()
         .join("assets/scenes/furnished_room.toml");
     assert!(scene.is_file(), "{} not extracted", scene.display());
-    let summary: serde_json::Value = serde_json::from_str(out.trim()).unwrap();
-    let v = viewport_px(&summary);
-    let reference = dir.path().join("default-render.png");
-    render(
-        &root().join("assets/scenes/furnished_room.toml"),
-        v[2],
-        v[3],
-        &reference,
-    );
-    let window = image::open(&shot).unwrap().to_rgba8();
-    let (off, worst) = differing_pixels(&window, &v, &image::open(&reference).unwrap().to_rgba8());
+    let (off, worst) = differing_pixels(&window, &v, &reference);
     let total = (v[2] * v[3]) as usize;
     assert!(
         off * 1000 <= total,

@@ -70,14 +70,7 @@ pub fn default_scene() -> anyhow::Result<PathBuf> {
 /// The folder the bundled scene is extracted to: `$GONIOLIGHT_CACHE_DIR`, else
 /// `$XDG_CACHE_HOME/goniolight`, else `~/.cache/goniolight`; one subfolder per version.
 pub fn cache_dir() -> Option<PathBuf> {
-    let env = |k| {
-        std::env::var_os(k)
-            .filter(|v| !v.is_empty())
-            .map(PathBuf::from)
-    };
-    let base = env("GONIOLIGHT_CACHE_DIR")
-        .or_else(|| env("XDG_CACHE_HOME").map(|d| d.join("goniolight")))
-        .or_else(|| env("HOME").map(|h| h.join(".cache").join("goniolight")))?;
+    let base = super::xdg_dir("GONIOLIGHT_CACHE_DIR", "XDG_CACHE_HOME", ".cache")?;
     Some(base.join(format!("bundled-{}", env!("CARGO_PKG_VERSION"))))
 }
 

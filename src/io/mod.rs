@@ -116,6 +116,19 @@ pub fn peak_memory_mb() -> Option<u64> {
     Some(kb / 1024)
 }
 
+/// goniolight's folder of one XDG kind: `$own` when set, else `$xdg/goniolight`, else
+/// `~/home_sub/goniolight` (`None` without any of these variables).
+pub fn xdg_dir(own: &str, xdg: &str, home_sub: &str) -> Option<std::path::PathBuf> {
+    let env = |k: &str| {
+        std::env::var_os(k)
+            .filter(|v| !v.is_empty())
+            .map(std::path::PathBuf::from)
+    };
+    env(own)
+        .or_else(|| env(xdg).map(|d| d.join("goniolight")))
+        .or_else(|| env("HOME").map(|h| h.join(home_sub).join("goniolight")))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

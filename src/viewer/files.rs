@@ -37,14 +37,7 @@ impl RecentFiles {
     /// The default store: `$GONIOLIGHT_CONFIG_DIR`, else `$XDG_CONFIG_HOME/goniolight`,
     /// else `~/.config/goniolight`; the file `recent.txt` in it.
     pub fn default_store() -> Option<PathBuf> {
-        let env = |k| {
-            std::env::var_os(k)
-                .filter(|v| !v.is_empty())
-                .map(PathBuf::from)
-        };
-        let dir = env("GONIOLIGHT_CONFIG_DIR")
-            .or_else(|| env("XDG_CONFIG_HOME").map(|d| d.join("goniolight")))
-            .or_else(|| env("HOME").map(|h| h.join(".config").join("goniolight")))?;
+        let dir = crate::io::xdg_dir("GONIOLIGHT_CONFIG_DIR", "XDG_CONFIG_HOME", ".config")?;
         Some(dir.join("recent.txt"))
     }
 

@@ -229,6 +229,22 @@ impl FaceClusters {
         &self.order[c.first as usize..(c.first + c.count) as usize]
     }
 
+    /// Each root's triangles, sorted, the roots in the order of their first triangle:
+    /// the connected one-material surfaces the hierarchy found.
+    pub fn root_surfaces(&self) -> Vec<Vec<u32>> {
+        let mut roots: Vec<Vec<u32>> = self
+            .roots
+            .iter()
+            .map(|&r| {
+                let mut t = self.triangles(r).to_vec();
+                t.sort_unstable();
+                t
+            })
+            .collect();
+        roots.sort();
+        roots
+    }
+
     /// The deepest leaf's distance from its root (0 when every root is a leaf).
     pub fn depth(&self) -> usize {
         let mut depth = vec![0usize; self.nodes.len()];
@@ -422,17 +438,7 @@ mod tests {
             }
         }
         // One root per connected surface of one material.
-        let mut roots: Vec<Vec<u32>> = h
-            .roots
-            .iter()
-            .map(|&r| {
-                let mut t = h.triangles(r).to_vec();
-                t.sort();
-                t
-            })
-            .collect();
-        roots.sort();
-        assert_eq!(roots, surfaces(mesh, materials));
+        assert_eq!(h.root_surfaces(), surfaces(mesh, materials));
     }
 
     #[test]
