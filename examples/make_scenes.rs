@@ -49,62 +49,18 @@ impl Obj {
 
     /// An axis-aligned box with outward faces.
     fn cuboid(&mut self, lo: DVec3, hi: DVec3) {
-        let p = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
-        let (a, b) = (lo, hi);
-        self.quad(
-            [
-                p(a.x, a.y, b.z),
-                p(b.x, a.y, b.z),
-                p(b.x, b.y, b.z),
-                p(a.x, b.y, b.z),
-            ],
-            1.0,
-        );
-        self.quad(
-            [
-                p(a.x, b.y, a.z),
-                p(b.x, b.y, a.z),
-                p(b.x, a.y, a.z),
-                p(a.x, a.y, a.z),
-            ],
-            1.0,
-        );
-        self.quad(
-            [
-                p(a.x, a.y, a.z),
-                p(b.x, a.y, a.z),
-                p(b.x, a.y, b.z),
-                p(a.x, a.y, b.z),
-            ],
-            1.0,
-        );
-        self.quad(
-            [
-                p(b.x, b.y, a.z),
-                p(a.x, b.y, a.z),
-                p(a.x, b.y, b.z),
-                p(b.x, b.y, b.z),
-            ],
-            1.0,
-        );
-        self.quad(
-            [
-                p(a.x, b.y, a.z),
-                p(a.x, a.y, a.z),
-                p(a.x, a.y, b.z),
-                p(a.x, b.y, b.z),
-            ],
-            1.0,
-        );
-        self.quad(
-            [
-                p(b.x, a.y, a.z),
-                p(b.x, b.y, a.z),
-                p(b.x, b.y, b.z),
-                p(b.x, a.y, b.z),
-            ],
-            1.0,
-        );
+        for q in box_quads(lo, hi) {
+            self.quad(q, 1.0);
+        }
+    }
+
+    /// A box standing on the floor: outward faces but no bottom.
+    fn open_box(&mut self, lo: DVec3, hi: DVec3) {
+        for (k, q) in box_quads(lo, hi).into_iter().enumerate() {
+            if k != 1 {
+                self.quad(q, 1.0);
+            }
+        }
     }
 
     /// The inside of a room `size` (floor at z = 0), faces pointing inward.
@@ -162,6 +118,93 @@ impl Obj {
         );
         std::fs::write(path, header + &self.text)
     }
+}
+
+/// The six faces of an axis-aligned box, counter-clockwise from outside: top, bottom,
+/// then the sides at y = lo, y = hi, x = lo and x = hi.
+fn box_quads(a: DVec3, b: DVec3) -> [[DVec3; 4]; 6] {
+    let p = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
+    [
+        [
+            p(a.x, a.y, b.z),
+            p(b.x, a.y, b.z),
+            p(b.x, b.y, b.z),
+            p(a.x, b.y, b.z),
+        ],
+        [
+            p(a.x, b.y, a.z),
+            p(b.x, b.y, a.z),
+            p(b.x, a.y, a.z),
+            p(a.x, a.y, a.z),
+        ],
+        [
+            p(a.x, a.y, a.z),
+            p(b.x, a.y, a.z),
+            p(b.x, a.y, b.z),
+            p(a.x, a.y, b.z),
+        ],
+        [
+            p(b.x, b.y, a.z),
+            p(a.x, b.y, a.z),
+            p(a.x, b.y, b.z),
+            p(b.x, b.y, b.z),
+        ],
+        [
+            p(a.x, b.y, a.z),
+            p(a.x, a.y, a.z),
+            p(a.x, a.y, b.z),
+            p(a.x, b.y, b.z),
+        ],
+        [
+            p(b.x, a.y, a.z),
+            p(b.x, b.y, a.z),
+            p(b.x, b.y, b.z),
+            p(b.x, a.y, b.z),
+        ],
+    ]
+}
+
+/// The box room with four boxes of furniture on its floor: 52 triangles (each box
+/// without its bottom), the case Edström's face clusters are for when tessellated finely.
+fn boxes_room(size: DVec3) -> Obj {
+    let mut o = Obj::default();
+    o.room(size, "floor", "wall", "wall", "ceiling");
+    for (k, (lo, hi)) in [
+        ([0.5, 0.5, 0.0], [2.0, 1.3, 0.75]),
+        ([4.0, 0.4, 0.0], [5.5, 1.0, 0.9]),
+        ([1.0, 2.8, 0.0], [1.8, 3.6, 1.8]),
+        ([3.5, 2.2, 0.0], [4.7, 3.2, 0.45]),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        o.object(&format!("box{k}"), "furniture");
+        o.open_box(DVec3::from_array(lo), DVec3::from_array(hi));
+    }
+    o
+}
+
+/// `mesh` (triangles of one material each, `materials`) as an OBJ with `usemtl` groups.
+fn triangles_obj(
+    mesh: &goniolight::geometry::Mesh,
+    materials: &[(usize, String)],
+    mtl: &str,
+) -> String {
+    let mut text = format!(
+        "# goniolight CAD-like scene geometry (metres, Z up), written by examples/make_scenes.rs\nmtllib {mtl}\n"
+    );
+    for p in &mesh.positions {
+        let _ = writeln!(text, "v {:.6} {:.6} {:.6}", p.x, p.y, p.z);
+    }
+    let mut current = None;
+    for (t, (m, name)) in mesh.triangles.iter().zip(materials) {
+        if current != Some(*m) {
+            current = Some(*m);
+            let _ = writeln!(text, "usemtl {name}");
+        }
+        let _ = writeln!(text, "f {} {} {}", t[0] + 1, t[1] + 1, t[2] + 1);
+    }
+    text
 }
 
 fn furniture(o: &mut Obj) {
@@ -284,6 +327,18 @@ newmtl wall
 Kd 0.5 0.5 0.5
 newmtl ceiling
 Kd 0.7 0.7 0.7
+";
+
+const BOXES_MTL: &str = "# The box room's reflectances (floor 0.2, walls 0.5, ceiling 0.7) and
+# furniture at 0.4.
+newmtl floor
+Kd 0.2 0.2 0.2
+newmtl wall
+Kd 0.5 0.5 0.5
+newmtl ceiling
+Kd 0.7 0.7 0.7
+newmtl furniture
+Kd 0.4 0.4 0.4
 ";
 
 const FURNISHED_MTL: &str = "newmtl floor_wood
@@ -501,6 +556,23 @@ fn main() -> anyhow::Result<()> {
     std::fs::write(scenes.join("furnished_room.mtl"), FURNISHED_MTL)?;
     wood().save(scenes.join("textures/wood.png"))?;
     bricks_normal().save(scenes.join("textures/bricks_normal.png"))?;
+
+    // The 52-triangle room and the same geometry as 2 600 CAD-like strips.
+    boxes_room(size).write(&scenes.join("boxes_room.obj"), "boxes_room.mtl")?;
+    std::fs::write(scenes.join("boxes_room.mtl"), BOXES_MTL)?;
+    let scene = goniolight::scene::Scene::load(&scenes.join("boxes_room.toml"))?;
+    let coarse = scene.caster_mesh();
+    let strips = 50;
+    let fine = goniolight::geometry::generate::fan_split(&coarse, strips);
+    let materials: Vec<(usize, String)> = scene
+        .caster_materials()
+        .into_iter()
+        .flat_map(|m| std::iter::repeat_n((m, scene.materials[m].name.clone()), strips as usize))
+        .collect();
+    std::fs::write(
+        scenes.join("cad_room.obj"),
+        triangles_obj(&fine, &materials, "boxes_room.mtl"),
+    )?;
 
     let mut stage = Obj::default();
     stage.room(size, "floor", "wall", "wall", "ceiling");

@@ -455,3 +455,42 @@ fn the_bundled_scene_extracts_whole() {
         written
     );
 }
+
+/// The radiosity benchmark pair: the box room with four boxes (52 triangles) and the same
+/// surfaces as 2 600 CAD-like strips — equal bounds and equal area per material, the
+/// second made of slivers.
+#[test]
+fn the_cad_room_is_the_boxes_room_in_strips() {
+    let coarse = Scene::load(&scene("boxes_room.toml")).unwrap();
+    let fine = Scene::load(&scene("cad_room.toml")).unwrap();
+    assert_eq!(coarse.triangle_count(), 52);
+    assert_eq!(fine.triangle_count(), 2600);
+    assert_eq!(coarse.bounds(), fine.bounds());
+    let per_material = |s: &Scene| {
+        let (mesh, mats) = (s.caster_mesh(), s.caster_materials());
+        let mut area: std::collections::BTreeMap<String, f64> = Default::default();
+        for (t, m) in mats.iter().enumerate() {
+            *area.entry(s.materials[*m].name.clone()).or_default() +=
+                mesh.face_normal(t).length() / 2.0;
+        }
+        area
+    };
+    let (a, b) = (per_material(&coarse), per_material(&fine));
+    assert_eq!(
+        a.keys().collect::<Vec<_>>(),
+        ["ceiling", "floor", "furniture", "wall"]
+    );
+    for (k, v) in &a {
+        assert!((b[k] - v).abs() < 1e-4 * v, "{k}: {v} vs {}", b[k]);
+    }
+    assert!((a["floor"] - 24.0).abs() < 1e-4, "a 6 × 4 m floor");
+    let mesh = fine.caster_mesh();
+    let slivers = (0..mesh.triangles.len())
+        .filter(|&t| {
+            let [p, q, r] = mesh.triangles[t].map(|i| mesh.positions[i as usize]);
+            let longest = p.distance(q).max(q.distance(r)).max(r.distance(p));
+            longest * longest / mesh.face_normal(t).length() > 50.0
+        })
+        .count();
+    assert!(slivers * 2 > mesh.triangles.len(), "{slivers} slivers");
+}

@@ -242,3 +242,50 @@ pub fn industrial_area() -> Mesh {
     }
     m
 }
+
+/// The same surface as CAD exporters tessellate it: every triangle of `mesh` split into
+/// `strips` long thin triangles, fanned from its first corner to points evenly along the
+/// opposite edge. Area, orientation and outline are unchanged; shared edges gain
+/// T-vertices as they do in real CAD exports.
+pub fn fan_split(mesh: &Mesh, strips: u32) -> Mesh {
+    let strips = strips.max(1);
+    let mut out = Mesh::default();
+    for t in &mesh.triangles {
+        let [a, b, c] = t.map(|i| mesh.positions[i as usize]);
+        let apex = out.positions.len() as u32;
+        out.positions.push(a);
+        for k in 0..=strips {
+            out.positions.push(b + (c - b) * (k as f64 / strips as f64));
+        }
+        for k in 0..strips {
+            out.triangles.push([apex, apex + 1 + k, apex + 2 + k]);
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fan_split_keeps_area_and_orientation() {
+        let mesh = cuboid(DVec3::ZERO, DVec3::new(2.0, 1.0, 0.5));
+        let split = fan_split(&mesh, 50);
+        assert_eq!(split.triangles.len(), 50 * mesh.triangles.len());
+        let area = |m: &Mesh| -> f64 {
+            (0..m.triangles.len())
+                .map(|t| m.face_normal(t).length() / 2.0)
+                .sum()
+        };
+        assert!((area(&split) - area(&mesh)).abs() < 1e-12 * area(&mesh));
+        // Each piece faces the way its triangle does.
+        for (t, _) in mesh.triangles.iter().enumerate() {
+            let n = mesh.face_normal(t).normalize();
+            for k in 0..50 {
+                let m = split.face_normal(50 * t + k).normalize();
+                assert!((m - n).length() < 1e-9);
+            }
+        }
+    }
+}
