@@ -1,7 +1,10 @@
 //! Ray casts against a triangle mesh through a bounding volume hierarchy: the fast path of
 //! every CPU ray cast (exact shadows at points, the radiosity gather, the CPU radiosity
-//! solver). The hierarchy is obvhs's compressed wide BVH (PLOC build, eight children per
-//! node) over f32 boxes; it only culls. Every candidate triangle is intersected in f64 by
+//! solver). The hierarchy is obvhs's binary BVH (PLOC build, reinsertion, leaves of up to 8
+//! triangles) over f32 boxes; it only culls. Its traversal stack is sized to the tree's
+//! measured depth: obvhs's wide BVH has a fixed 32-entry stack that silently drops nodes
+//! when a tree is deeper (the 400 k-triangle high-rise block builds one 252 levels deep),
+//! and its own depth bookkeeping goes stale after reinsertion. Every candidate triangle is intersected in f64 by
 //! the same Möller–Trumbore test as the brute-force loop in [`super::raycast`], which stays
 //! as the oracle: answers are the brute force's, hit for hit and distance for distance.
 //!
@@ -10,15 +13,15 @@
 //! first clipped to the scene's f64 bounds: its f32 origin and length are never far outside
 //! the scene and their rounding stays well inside the pad.
 
-use std::time::Duration;
-
 use glam::DVec3;
 use glam_bvh::Vec3A;
 use obvhs::aabb::Aabb;
-use obvhs::cwbvh::builder::build_cwbvh;
-use obvhs::cwbvh::CwBvh;
+use obvhs::bvh2::leaf_collapser::collapse;
+use obvhs::bvh2::reinsertion::ReinsertionOptimizer;
+use obvhs::bvh2::Bvh2;
+use obvhs::ploc::{PlocBuilder, PlocSearchDistance, SortPrecision};
 use obvhs::ray::Ray;
-use obvhs::{Boundable, BvhBuildParams};
+use obvhs::Boundable;
 
 use super::raycast::ray_triangle;
 use super::{IgnoredTriangles, Light};
@@ -28,15 +31,11 @@ use crate::geometry::Mesh;
 /// rounding of a point inside the scene is below 1e-7 of its size.
 const RELATIVE_PAD: f64 = 1e-5;
 
-/// obvhs's traversal culls boxes the ray leaves before this distance (in units of the
-/// ray's direction), whatever the ray's own tmin.
-const OBVHS_NEAR_CULL: f64 = 1e-4;
-
 /// A triangle mesh's triangles in hierarchy order, with the hierarchy.
-#[derive(Debug, Clone)]
+#[derive(Clone)]
 pub struct TriangleBvh {
     /// The hierarchy (absent for a mesh without triangles).
-    bvh: Option<CwBvh>,
+    bvh: Option<Bvh2>,
     /// Corners of each leaf primitive, in the hierarchy's primitive order.
     corners: Vec<[DVec3; 3]>,
     /// The mesh's triangle index of each leaf primitive.
@@ -48,6 +47,34 @@ pub struct TriangleBvh {
     centre: DVec3,
     /// How far each box is widened, metres.
     pad: f64,
+}
+
+/// The number of levels of `bvh` (1 for a lone leaf), without recursion.
+fn tree_depth(bvh: &Bvh2) -> usize {
+    let mut deepest = 0;
+    let mut stack = vec![(0usize, 1usize)];
+    while let Some((k, depth)) = stack.pop() {
+        let Some(node) = bvh.nodes.get(k) else {
+            continue;
+        };
+        deepest = deepest.max(depth);
+        if !node.is_leaf() {
+            let first = node.first_index as usize;
+            stack.push((first, depth + 1));
+            stack.push((first + 1, depth + 1));
+        }
+    }
+    deepest
+}
+
+impl std::fmt::Debug for TriangleBvh {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("TriangleBvh")
+            .field("triangles", &self.corners.len())
+            .field("depth", &self.bvh.as_ref().map(|b| b.max_depth))
+            .field("pad", &self.pad)
+            .finish()
+    }
 }
 
 /// One triangle's widened box, as obvhs wants it.
@@ -89,11 +116,17 @@ impl TriangleBvh {
                 PaddedBox(Aabb::new(to_f32(min - centre), to_f32(max - centre)))
             })
             .collect();
-        let bvh = build_cwbvh(
+        let mut bvh = PlocBuilder::with_capacity(boxes.len()).build(
+            PlocSearchDistance::Medium,
             &boxes,
-            BvhBuildParams::medium_build(),
-            &mut Duration::default(),
+            (0..boxes.len() as u32).collect(),
+            SortPrecision::U64,
+            3,
         );
+        ReinsertionOptimizer::default().run(&mut bvh, 0.05, None);
+        collapse(&mut bvh, 8, 3.0);
+        // The traversal stack holds at most one node per level (plus the root).
+        bvh.max_depth = tree_depth(&bvh) + 1;
         let ids = bvh.primitive_indices.clone();
         let corners = ids
             .iter()
@@ -149,10 +182,9 @@ impl TriangleBvh {
             return None;
         }
         // Start a pad's worth of travel before the entry so rounding never starts the f32
-        // ray past a triangle the f64 ray reaches, and at least twice obvhs's near cull
-        // before it (its traversal drops boxes that end within that distance).
+        // ray past a triangle the f64 ray reaches.
         let slack = self.pad / dir.length();
-        let start = enter - slack.max(2.0 * OBVHS_NEAR_CULL);
+        let start = enter - slack;
         let length = (leave - start + slack) as f32;
         // obvhs reads a direction's signs with `< 0.0` but inverts -0.0 to a negative
         // number: a -0.0 component (e.g. of -Z) would make it miss every box.
