@@ -329,15 +329,8 @@ newmtl ceiling
 Kd 0.7 0.7 0.7
 ";
 
-const BOXES_MTL: &str = "# The box room's reflectances (floor 0.2, walls 0.5, ceiling 0.7) and
-# furniture at 0.4.
-newmtl floor
-Kd 0.2 0.2 0.2
-newmtl wall
-Kd 0.5 0.5 0.5
-newmtl ceiling
-Kd 0.7 0.7 0.7
-newmtl furniture
+/// The furniture of the boxes room; the rest of its materials are [`ROOM_MTL`]'s.
+const FURNITURE_MTL: &str = "newmtl furniture
 Kd 0.4 0.4 0.4
 ";
 
@@ -559,7 +552,10 @@ fn main() -> anyhow::Result<()> {
 
     // The 52-triangle room and the same geometry as 2 600 CAD-like strips.
     boxes_room(size).write(&scenes.join("boxes_room.obj"), "boxes_room.mtl")?;
-    std::fs::write(scenes.join("boxes_room.mtl"), BOXES_MTL)?;
+    std::fs::write(
+        scenes.join("boxes_room.mtl"),
+        format!("{ROOM_MTL}{FURNITURE_MTL}"),
+    )?;
     let scene = goniolight::scene::Scene::load(&scenes.join("boxes_room.toml"))?;
     let coarse = scene.caster_mesh();
     let strips = 50;
