@@ -1,13 +1,15 @@
 // GPU progressive radiosity (Wallner ch. 2 and 4; Coombe et al. 2004), on element arrays.
-// Per shot: triangle_sums (unshot power per triangle), select_shooter (one workgroup: the
-// ambient term and the triangle with the largest unshot power, with ambient overshooting
-// when asked), gather_patches (the shooter's patches' unshot radiosity: substructuring),
-// clear_shooter, then per patch a visibility map (radiosity_visibility.wgsl) and receive
-// (every element, the form factor to the patch, if visible).
+// A shooter is a triangle (flat) or a flat face cluster (radiosity/shooters.rs): a list of
+// elements in `shooter_elements`. Per shot: shooter_sums (unshot power per shooter),
+// select_shooter (one workgroup: the ambient term and the shooter with the largest unshot
+// power, with ambient overshooting when asked), gather_patches (the shot's patches' unshot
+// radiosity: substructuring), clear_shooter, then per patch a visibility map
+// (radiosity_visibility.wgsl) and receive (every element, the form factor to the patch, if
+// visible).
 
 struct SolveParams {
     element_count: u32,
-    triangle_count: u32,
+    shooter_count: u32,
     shooter: u32,
     overshoot: u32,
     patch_first: u32,
@@ -19,19 +21,21 @@ struct SolveParams {
 struct Element {
     // xyz position, w area.
     position_area: vec4<f32>,
-    // xyz unit normal, w triangle index (as f32 bits).
-    normal_triangle: vec4<f32>,
+    // xyz unit normal, w shooter index (as f32 bits).
+    normal_shooter: vec4<f32>,
+    // rgb reflectance.
+    reflectance: vec4<f32>,
 };
 
-struct TriangleInfo {
-    // first element, element count, first patch, patch count.
+struct ShooterInfo {
+    // first entry of shooter_elements, element count.
     range: vec4<u32>,
     // rgb reflectance, w area.
     reflectance_area: vec4<f32>,
 };
 
 struct PatchInfo {
-    // first element, element count.
+    // first entry of shooter_elements, element count.
     range: vec2<u32>,
     area: f32,
     _pad: f32,
@@ -39,15 +43,17 @@ struct PatchInfo {
 
 @group(0) @binding(0) var<uniform> params: SolveParams;
 @group(0) @binding(1) var<storage, read> elements: array<Element>;
-@group(0) @binding(2) var<storage, read> reflectance: array<vec4<f32>>;
+// Every shooter's elements, shooter after shooter (the shot's in patch order).
+@group(0) @binding(2) var<storage, read> shooter_elements: array<u32>;
 // rgb radiosity, w illuminance received (lux).
 @group(0) @binding(3) var<storage, read_write> radiosity: array<vec4<f32>>;
 @group(0) @binding(4) var<storage, read_write> unshot: array<vec4<f32>>;
-@group(0) @binding(5) var<storage, read> triangles: array<TriangleInfo>;
-// Per triangle: rgb unshot power, w Σ |luminance| power; then the selection record at
-// triangle_count + 0: shooter (bits), its power, Σ |unshot power|; + 1: overshoot rgb;
+@group(0) @binding(5) var<storage, read> shooters: array<ShooterInfo>;
+// Per shooter: rgb unshot power, w Σ |luminance| power; then the selection record at
+// shooter_count + 0: shooter (bits), its power, Σ |unshot power|; + 1: overshoot rgb;
 // + 2: total unshot power rgb.
-@group(0) @binding(6) var<storage, read_write> triangle_power: array<vec4<f32>>;
+@group(0) @binding(6) var<storage, read_write> shooter_power: array<vec4<f32>>;
+// The shot's patches.
 @group(0) @binding(7) var<storage, read> patches: array<PatchInfo>;
 // Per patch of the shooter: rgb unshot radiosity to shoot.
 @group(0) @binding(8) var<storage, read_write> patch_delta: array<vec4<f32>>;
@@ -55,21 +61,22 @@ struct PatchInfo {
 const LUMA = vec3<f32>(0.2126, 0.7152, 0.0722);
 
 @compute @workgroup_size(64)
-fn triangle_sums(@builtin(global_invocation_id) id: vec3<u32>) {
+fn shooter_sums(@builtin(global_invocation_id) id: vec3<u32>) {
     let t = id.x;
-    if (t >= params.triangle_count) {
+    if (t >= params.shooter_count) {
         return;
     }
-    let r = triangles[t].range;
+    let r = shooters[t].range;
     var sum = vec3<f32>(0.0);
     var magnitude = 0.0;
-    for (var e = r.x; e < r.x + r.y; e++) {
+    for (var k = r.x; k < r.x + r.y; k++) {
+        let e = shooter_elements[k];
         let a = elements[e].position_area.w;
         let u = unshot[e].rgb;
         sum += u * a;
         magnitude += abs(dot(u, LUMA)) * a;
     }
-    triangle_power[t] = vec4<f32>(sum, magnitude);
+    shooter_power[t] = vec4<f32>(sum, magnitude);
 }
 
 var<workgroup> wg_sum: array<vec4<f32>, 256>;
@@ -79,8 +86,8 @@ var<workgroup> wg_index: array<u32, 256>;
 @compute @workgroup_size(256)
 fn select_shooter(@builtin(local_invocation_index) l: u32) {
     var sum = vec4<f32>(0.0);
-    for (var t = l; t < params.triangle_count; t += 256u) {
-        sum += triangle_power[t];
+    for (var t = l; t < params.shooter_count; t += 256u) {
+        sum += shooter_power[t];
     }
     wg_sum[l] = sum;
     workgroupBarrier();
@@ -94,13 +101,13 @@ fn select_shooter(@builtin(local_invocation_index) l: u32) {
     let ambient = total.rgb / params.total_area / (1.0 - params.mean_reflectance);
     var best = -1.0;
     var best_index = 0xffffffffu;
-    for (var t = l; t < params.triangle_count; t += 256u) {
-        let info = triangles[t];
+    for (var t = l; t < params.shooter_count; t += 256u) {
+        let info = shooters[t];
         let area = info.reflectance_area.w;
         if (info.range.y == 0u || area <= 0.0) {
             continue;
         }
-        let mean = triangle_power[t].rgb / area;
+        let mean = shooter_power[t].rgb / area;
         var extra = vec3<f32>(0.0);
         if (params.overshoot != 0u) {
             extra = max(min(info.reflectance_area.rgb * ambient, total.rgb / area - mean), vec3<f32>(0.0));
@@ -125,15 +132,15 @@ fn select_shooter(@builtin(local_invocation_index) l: u32) {
         let t = wg_index[0];
         var extra = vec3<f32>(0.0);
         if (params.overshoot != 0u && t != 0xffffffffu) {
-            let info = triangles[t];
+            let info = shooters[t];
             let area = info.reflectance_area.w;
-            let mean = triangle_power[t].rgb / area;
+            let mean = shooter_power[t].rgb / area;
             extra = max(min(info.reflectance_area.rgb * ambient, total.rgb / area - mean), vec3<f32>(0.0));
         }
-        let at = params.triangle_count;
-        triangle_power[at] = vec4<f32>(bitcast<f32>(t), wg_best[0], total.w, 0.0);
-        triangle_power[at + 1u] = vec4<f32>(extra, 0.0);
-        triangle_power[at + 2u] = vec4<f32>(total.rgb, 0.0);
+        let at = params.shooter_count;
+        shooter_power[at] = vec4<f32>(bitcast<f32>(t), wg_best[0], total.w, 0.0);
+        shooter_power[at + 1u] = vec4<f32>(extra, 0.0);
+        shooter_power[at + 2u] = vec4<f32>(total.rgb, 0.0);
     }
 }
 
@@ -143,9 +150,10 @@ fn gather_patches(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let p = patches[params.patch_first + id.x];
-    let extra = triangle_power[params.triangle_count + 1u].rgb;
+    let extra = shooter_power[params.shooter_count + 1u].rgb;
     var power = vec3<f32>(0.0);
-    for (var e = p.range.x; e < p.range.x + p.range.y; e++) {
+    for (var k = p.range.x; k < p.range.x + p.range.y; k++) {
+        let e = shooter_elements[k];
         power += (unshot[e].rgb + extra) * elements[e].position_area.w;
     }
     patch_delta[id.x] = vec4<f32>(power / max(p.area, 1e-30), 0.0);
@@ -153,13 +161,13 @@ fn gather_patches(@builtin(global_invocation_id) id: vec3<u32>) {
 
 @compute @workgroup_size(64)
 fn clear_shooter(@builtin(global_invocation_id) id: vec3<u32>) {
-    // The elements of this batch's patches (contiguous, patch after patch).
+    // The elements of this batch's patches (contiguous in shooter_elements, patch after patch).
     let first = patches[params.patch_first].range.x;
     let last = patches[params.patch_first + params.patch_count - 1u];
     if (params.patch_count == 0u || id.x >= last.range.x + last.range.y - first) {
         return;
     }
-    unshot[first + id.x] = vec4<f32>(-triangle_power[params.triangle_count + 1u].rgb, 0.0);
+    unshot[shooter_elements[first + id.x]] = vec4<f32>(-shooter_power[params.shooter_count + 1u].rgb, 0.0);
 }
 
 // One shooting patch as seen by the receive pass.
@@ -289,11 +297,11 @@ fn receive(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let el = elements[i];
-    if (bitcast<u32>(el.normal_triangle.w) == params.shooter) {
+    if (bitcast<u32>(el.normal_shooter.w) == params.shooter) {
         return;
     }
     let p = el.position_area.xyz;
-    let n = el.normal_triangle.xyz;
+    let n = el.normal_shooter.xyz;
     var f = 0.0;
     if (shot.info.z == 1u) {
         f = polygon_form_factor(p, n);
@@ -304,7 +312,7 @@ fn receive(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let incident = patch_delta[shot.info.x].rgb * f;
-    let gained = reflectance[i].rgb * incident;
+    let gained = el.reflectance.rgb * incident;
     radiosity[i] += vec4<f32>(gained, dot(incident, LUMA));
     unshot[i] += vec4<f32>(gained, 0.0);
 }

@@ -19,6 +19,7 @@ use crate::radiosity::gather;
 use crate::radiosity::gpu::{GpuSettings, GpuSolver, Visibility};
 use crate::radiosity::initial::{InitialState, LuminaireLight};
 use crate::radiosity::scene::{luminance, RadiosityScene};
+use crate::radiosity::shooters::{Hierarchy, Shooters, DEFAULT_CELL_POWER};
 use crate::radiosity::solve::{self, ConvergencePoint, StopAt, StopReason};
 use crate::radiosity::{Ambient, FormFactorKind, SolverSettings};
 use crate::render::lightmap::LightMap;
@@ -52,6 +53,16 @@ pub struct RadiosityArgs {
     /// Side of a hemicube face or of the stereographic map, texels.
     #[arg(long, default_value_t = 256)]
     pub map_size: u32,
+    /// Who shoots: every triangle from its own patches (`none`, the flat solver), or the
+    /// flat face clusters of Edström's hierarchy as a whole (`clusters`): a surface drawn
+    /// as thousands of triangles is one shooter.
+    #[arg(long, value_enum, default_value = "clusters")]
+    pub hierarchy: Hierarchy,
+    /// With `--hierarchy clusters`: the largest share of the initial unshot power one
+    /// shooting cell may carry; smaller is finer and slower (the oracle that sizes a
+    /// cluster's shooting cells from its power).
+    #[arg(long, default_value_t = DEFAULT_CELL_POWER)]
+    pub cell_power: f64,
     /// Form factor from a patch to an element.
     #[arg(long, value_enum, default_value = "polygon")]
     pub form_factor: FormFactorKind,
@@ -91,6 +102,9 @@ impl RadiosityArgs {
         }
         if self.level > 6 {
             return bad(format!("--level {} is not in 0..=6", self.level));
+        }
+        if !(self.cell_power.is_finite() && self.cell_power > 0.0 && self.cell_power <= 1.0) {
+            return bad(format!("--cell-power {} is not in (0, 1]", self.cell_power));
         }
         if !(16..=4096).contains(&self.map_size) {
             return bad(format!("--map-size {} is not in 16..=4096", self.map_size));
@@ -175,6 +189,8 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
     let gpu_settings = GpuSettings {
         visibility: args.visibility,
         map_size: args.map_size,
+        hierarchy: args.hierarchy,
+        cell_power: args.cell_power,
         ..GpuSettings::default()
     };
     let prepared_s = started.elapsed().as_secs_f64();
@@ -185,15 +201,32 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
         scene.triangle_count(),
         crate::io::peak_memory_mb().map_or(String::new(), |mb| format!(", peak memory {mb} MB")),
     );
-    let mut solver = GpuSolver::new(&gpu, &rscene, &initial, solver_settings, gpu_settings);
+    let clustering = Instant::now();
+    let shooters = Shooters::build(&rscene, args.hierarchy);
+    let clustering_s = clustering.elapsed().as_secs_f64();
+    let shooter_count = shooters.len();
+    let cluster_count = shooters.clusters.nodes.len() - shooters.clusters.order.len();
+    let mut solver = GpuSolver::with_shooters(
+        &gpu,
+        &rscene,
+        &initial,
+        solver_settings,
+        gpu_settings,
+        shooters,
+    );
     let cancel = super::interrupt_flag();
     eprintln!(
-        "{}: {} elements, {} patches, atlas {}×{}; shooting (Ctrl-C stops and writes the solution so far)",
+        "{}: {} elements, {} patches, atlas {}×{}; {shooter_count} shooters{}; shooting (Ctrl-C stops and writes the solution so far)",
         args.scene.display(),
         rscene.elements.len(),
         rscene.elements.patches.len(),
         rscene.elements.atlas_width,
         rscene.elements.atlas_height,
+        match args.hierarchy {
+            Hierarchy::None => " (one per triangle: --hierarchy none)".to_string(),
+            Hierarchy::Clusters =>
+                format!(" of {cluster_count} face clusters (built in {clustering_s:.2} s)"),
+        },
     );
     let bar = progress_bar()?;
     let (stop, log) = solver.solve(&args.stop(), &cancel, |p: &ConvergencePoint| {

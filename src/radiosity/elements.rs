@@ -136,7 +136,7 @@ fn clip_left(poly: &[DVec2], a: DVec2, b: DVec2) -> Vec<DVec2> {
 }
 
 /// The axis-aligned square [lo, hi] clipped to the triangle `t` (counter-clockwise).
-fn clip_square(lo: DVec2, hi: DVec2, t: &[DVec2; 3]) -> Vec<DVec2> {
+pub(crate) fn clip_square(lo: DVec2, hi: DVec2, t: &[DVec2; 3]) -> Vec<DVec2> {
     let mut poly = vec![lo, DVec2::new(hi.x, lo.y), hi, DVec2::new(lo.x, hi.y)];
     for k in 0..3 {
         if poly.is_empty() {
@@ -148,7 +148,7 @@ fn clip_square(lo: DVec2, hi: DVec2, t: &[DVec2; 3]) -> Vec<DVec2> {
 }
 
 /// Area and centroid of a simple polygon (shoelace).
-fn area_centroid(poly: &[DVec2]) -> (f64, DVec2) {
+pub(crate) fn area_centroid(poly: &[DVec2]) -> (f64, DVec2) {
     let mut a = 0.0;
     let mut c = DVec2::ZERO;
     for (i, &p) in poly.iter().enumerate() {

@@ -1,7 +1,8 @@
-//! The GPU solver: element arrays in storage buffers; per shot the shooter is chosen on
-//! the GPU by reduction (only a 48-byte selection record is read back), its patches'
-//! unshot radiosity gathered (substructuring), and per patch a visibility map rendered
-//! (hemicube or stereographic) and every element updated in one compute pass.
+//! The GPU solver: element arrays in storage buffers; per shot the shooter (a triangle or
+//! a flat face cluster, [`super::shooters`]) is chosen on the GPU by reduction (only a
+//! 48-byte selection record is read back), its patches' unshot radiosity gathered
+//! (substructuring), and per patch a visibility map rendered (hemicube or stereographic)
+//! and every element updated in one compute pass.
 
 use glam::{DVec3, Mat4, Vec3};
 use wgpu::util::DeviceExt;
@@ -9,6 +10,7 @@ use wgpu::util::DeviceExt;
 use super::form_factor::FormFactorKind;
 use super::initial::InitialState;
 use super::scene::RadiosityScene;
+use super::shooters::{Hierarchy, ShotPlan, Shooters, DEFAULT_CELL_POWER};
 use super::{Ambient, SolverSettings};
 use crate::gpu::{Gpu, GpuError};
 use crate::render::layouts::{buffer_binding, entry};
@@ -35,6 +37,11 @@ pub struct GpuSettings {
     pub map_size: u32,
     /// Relative depth tolerance of the visibility test.
     pub tolerance: f32,
+    /// Who shoots: triangles, or flat face clusters.
+    pub hierarchy: Hierarchy,
+    /// With clusters: the largest share of the initial unshot power one shooting cell
+    /// may carry (smaller: finer cells, slower and closer to the flat solution).
+    pub cell_power: f64,
 }
 
 impl Default for GpuSettings {
@@ -43,6 +50,8 @@ impl Default for GpuSettings {
             visibility: Visibility::Hemicube,
             map_size: 256,
             tolerance: 0.01,
+            hierarchy: Hierarchy::None,
+            cell_power: DEFAULT_CELL_POWER,
         }
     }
 }
@@ -58,7 +67,7 @@ const BATCH_SECONDS: f64 = 0.05;
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
 struct SolveParams {
     element_count: u32,
-    triangle_count: u32,
+    shooter_count: u32,
     shooter: u32,
     overshoot: u32,
     patch_first: u32,
@@ -97,7 +106,7 @@ const MAP_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
 /// The shooter the GPU chose.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Selection {
-    /// The triangle, `None` when nothing is left to shoot.
+    /// The shooter (see [`GpuSolver::shooters`]), `None` when nothing is left to shoot.
     pub shooter: Option<usize>,
     /// Its unshot power (with overshoot), lm (luminance).
     pub power: f64,
@@ -106,7 +115,7 @@ pub struct Selection {
 }
 
 struct Pipelines {
-    triangle_sums: wgpu::ComputePipeline,
+    shooter_sums: wgpu::ComputePipeline,
     select: wgpu::ComputePipeline,
     gather: wgpu::ComputePipeline,
     clear: wgpu::ComputePipeline,
@@ -127,15 +136,22 @@ pub struct GpuSolver<'a> {
     radiosity: wgpu::Buffer,
     unshot: wgpu::Buffer,
     selection: wgpu::Buffer,
-    triangle_power: wgpu::Buffer,
+    shooter_power: wgpu::Buffer,
+    shooter_elements: wgpu::Buffer,
+    patches: wgpu::Buffer,
     shared: wgpu::BindGroup,
+    shooters: Shooters,
+    /// The first selection's total unshot power, lm (the oracle's scale).
+    initial_power: Option<f64>,
+    /// The last selection's shooter power, lm.
+    last_power: f64,
     vertices: wgpu::Buffer,
     vertex_count: u32,
     face_views: Vec<wgpu::TextureView>,
     maps_view: wgpu::TextureView,
     depth_view: wgpu::TextureView,
     size: f64,
-    /// Shots from triangles so far.
+    /// Shots so far.
     pub shots: usize,
     /// Patches in the next batch of a shot: adapted so a batch takes about
     /// [`BATCH_SECONDS`] (between 1 and [`PATCHES_PER_BATCH`]).
@@ -247,7 +263,7 @@ impl Pipelines {
             &[Some(MAP_FORMAT.into())],
         );
         Pipelines {
-            triangle_sums: compute_pipeline("triangle_sums", &shared_only),
+            shooter_sums: compute_pipeline("shooter_sums", &shared_only),
             select: compute_pipeline("select_shooter", &shared_only),
             gather: compute_pipeline("gather_patches", &shared_only),
             clear: compute_pipeline("clear_shooter", &shared_only),
@@ -285,52 +301,51 @@ impl<'a> GpuSolver<'a> {
         settings: SolverSettings,
         gpu_settings: GpuSettings,
     ) -> GpuSolver<'a> {
+        let shooters = Shooters::build(scene, gpu_settings.hierarchy);
+        GpuSolver::with_shooters(gpu, scene, initial, settings, gpu_settings, shooters)
+    }
+
+    /// [`GpuSolver::new`] with shooters built by the caller (`Shooters::build(scene,
+    /// gpu_settings.hierarchy)`, timed on its own).
+    pub fn with_shooters(
+        gpu: &'a Gpu,
+        scene: &'a RadiosityScene,
+        initial: &InitialState,
+        settings: SolverSettings,
+        gpu_settings: GpuSettings,
+        shooters: Shooters,
+    ) -> GpuSolver<'a> {
         let el = &scene.elements;
         let n = el.len();
         let elements: Vec<[f32; 4]> = (0..n)
             .flat_map(|e| {
                 [
                     v4(el.position[e], el.area[e] as f32),
-                    v4(el.normal(e), f32::from_bits(el.triangle[e])),
+                    v4(el.normal(e), f32::from_bits(shooters.element_shooter[e])),
+                    v4(scene.element_reflectance(e), 0.0),
                 ]
             })
-            .collect();
-        let reflect: Vec<[f32; 4]> = (0..n)
-            .map(|e| v4(scene.element_reflectance(e), 0.0))
             .collect();
         let start: Vec<[f32; 4]> = initial.radiosity.iter().map(|b| v4(*b, 0.0)).collect();
         let start_lit: Vec<[f32; 4]> = (0..n)
             .map(|e| v4(initial.radiosity[e], initial.illuminance[e] as f32))
             .collect();
-        let triangles: Vec<[u32; 8]> = el
-            .triangles
-            .iter()
-            .map(|t| {
-                let r = scene.reflectance[t.material].as_vec3();
+        let shooter_info: Vec<[u32; 8]> = (0..shooters.len())
+            .map(|k| {
+                let r = scene.reflectance[shooters.material[k]].as_vec3();
                 [
-                    t.first,
-                    t.count,
-                    t.first_patch,
-                    t.patch_count,
+                    shooters.first[k],
+                    shooters.count[k],
+                    0,
+                    0,
                     r.x.to_bits(),
                     r.y.to_bits(),
                     r.z.to_bits(),
-                    (t.area as f32).to_bits(),
+                    (shooters.area[k] as f32).to_bits(),
                 ]
             })
             .collect();
-        let patches: Vec<[u32; 4]> = el
-            .patches
-            .iter()
-            .map(|p| [p.first, p.count, (p.area as f32).to_bits(), 0])
-            .collect();
-        let max_patches = el
-            .triangles
-            .iter()
-            .map(|t| t.patch_count)
-            .max()
-            .unwrap_or(1)
-            .max(1);
+        let max_patches = shooters.max_elements();
         let pipelines = Pipelines::new(gpu);
         let bytes = |v: &[[f32; 4]]| bytemuck::cast_slice::<[f32; 4], u8>(v).to_vec();
         let params = gpu.device.create_buffer(&wgpu::BufferDescriptor {
@@ -340,36 +355,36 @@ impl<'a> GpuSolver<'a> {
             mapped_at_creation: false,
         });
         let element_buf = storage(gpu, "elements", &bytes(&elements), false);
-        let reflect_buf = storage(gpu, "reflectance", &bytes(&reflect), false);
+        let shooter_elements = storage(
+            gpu,
+            "shooter elements",
+            bytemuck::cast_slice(&shooters.elements),
+            true,
+        );
         let radiosity = storage(gpu, "radiosity", &bytes(&start_lit), true);
         let unshot = storage(gpu, "unshot", &bytes(&start), true);
-        let tri_buf = storage(gpu, "triangles", bytemuck::cast_slice(&triangles), false);
-        // The selection record follows the triangles' sums.
-        let tri_power = storage(
+        let shooter_buf = storage(gpu, "shooters", bytemuck::cast_slice(&shooter_info), false);
+        // The selection record follows the shooters' sums.
+        let shooter_power = storage(
             gpu,
-            "triangle power",
-            &vec![0u8; 16 * (triangles.len() + 3)],
+            "shooter power",
+            &vec![0u8; 16 * (shooter_info.len() + 3)],
             true,
         );
         let selection = storage(gpu, "selection", &[0u8; 48], true);
-        let patch_buf = storage(gpu, "patches", bytemuck::cast_slice(&patches), false);
-        let patch_delta = storage(
-            gpu,
-            "patch delta",
-            &vec![0u8; 16 * max_patches as usize],
-            true,
-        );
+        let patch_buf = storage(gpu, "patches", &vec![0u8; 16 * max_patches], true);
+        let patch_delta = storage(gpu, "patch delta", &vec![0u8; 16 * max_patches], true);
         let shared = gpu.bind_group(
             "radiosity",
-            &pipelines.triangle_sums.get_bind_group_layout(0),
+            &pipelines.shooter_sums.get_bind_group_layout(0),
             &[
                 (0, params.as_entire_binding()),
                 (1, element_buf.as_entire_binding()),
-                (2, reflect_buf.as_entire_binding()),
+                (2, shooter_elements.as_entire_binding()),
                 (3, radiosity.as_entire_binding()),
                 (4, unshot.as_entire_binding()),
-                (5, tri_buf.as_entire_binding()),
-                (6, tri_power.as_entire_binding()),
+                (5, shooter_buf.as_entire_binding()),
+                (6, shooter_power.as_entire_binding()),
                 (7, patch_buf.as_entire_binding()),
                 (8, patch_delta.as_entire_binding()),
             ],
@@ -421,8 +436,13 @@ impl<'a> GpuSolver<'a> {
             radiosity,
             unshot,
             selection,
-            triangle_power: tri_power,
+            shooter_power,
+            shooter_elements,
+            patches: patch_buf,
             shared,
+            shooters,
+            initial_power: None,
+            last_power: 0.0,
             vertices,
             vertex_count: verts.len() as u32,
             face_views,
@@ -443,7 +463,7 @@ impl<'a> GpuSolver<'a> {
         let el = &self.scene.elements;
         let p = SolveParams {
             element_count: el.len() as u32,
-            triangle_count: el.triangles.len() as u32,
+            shooter_count: self.shooters.len() as u32,
             shooter,
             overshoot: u32::from(self.settings.ambient == Ambient::Overshoot),
             patch_first,
@@ -469,17 +489,17 @@ impl<'a> GpuSolver<'a> {
         pass.dispatch_workgroups(threads.div_ceil(group).max(1), 1, 1);
     }
 
-    /// Chooses the next shooter on the GPU (reduction over the triangles).
-    pub fn select(&self) -> Result<Selection, GpuError> {
+    /// Chooses the next shooter on the GPU (reduction over the shooters).
+    pub fn select(&mut self) -> Result<Selection, GpuError> {
         self.write_params(u32::MAX, 0, 0);
         let mut enc = self.gpu.device.create_command_encoder(&Default::default());
-        let triangles = self.scene.elements.triangles.len() as u32;
-        self.dispatch(&mut enc, &self.pipelines.triangle_sums, triangles, 64);
+        let shooters = self.shooters.len() as u32;
+        self.dispatch(&mut enc, &self.pipelines.shooter_sums, shooters, 64);
         self.dispatch(&mut enc, &self.pipelines.select, 1, 1);
         // Only the 48-byte selection record comes back.
         enc.copy_buffer_to_buffer(
-            &self.triangle_power,
-            16 * triangles as u64,
+            &self.shooter_power,
+            16 * shooters as u64,
             &self.selection,
             0,
             48,
@@ -487,30 +507,46 @@ impl<'a> GpuSolver<'a> {
         self.gpu.queue.submit([enc.finish()]);
         let v = self.gpu.read_f32(&self.selection)?;
         let index = v[0].to_bits();
-        Ok(Selection {
+        let selection = Selection {
             shooter: (index != u32::MAX && v[1] > 0.0).then_some(index as usize),
             power: v[1] as f64,
             unshot_power: v[2] as f64,
-        })
+        };
+        self.initial_power.get_or_insert(selection.unshot_power);
+        self.last_power = selection.power;
+        Ok(selection)
     }
 
-    /// The shooting records of triangle `t`'s patches `batch` (indices within the
-    /// triangle) and their visibility faces.
-    fn shot_records(&self, t: usize, batch: std::ops::Range<usize>) -> (Vec<u8>, Vec<u8>, u32) {
-        let el = &self.scene.elements;
-        let te = &el.triangles[t];
-        let n = te.normal;
+    /// The shooters: triangles, or flat face clusters ([`GpuSettings::hierarchy`]).
+    pub fn shooters(&self) -> &Shooters {
+        &self.shooters
+    }
+
+    /// The visibility faces' projection, and its far plane: around the scene's size.
+    fn projection(&self) -> (Mat4, f32) {
+        let (near, far) = ((1e-4 * self.size) as f32, (2.0 * self.size) as f32);
+        let m = Mat4::perspective_rh(std::f32::consts::FRAC_PI_2, 1.0, near, far);
+        (m, far)
+    }
+
+    /// The shooting records of `plan`'s patches `batch` from a shooter facing `n`, and
+    /// their visibility faces.
+    fn shot_records(
+        &self,
+        n: DVec3,
+        plan: &ShotPlan,
+        batch: std::ops::Range<usize>,
+    ) -> (Vec<u8>, Vec<u8>, u32) {
         let (tangent, bitangent) = frame(n);
         let faces_per_patch = match self.gpu_settings.visibility {
             Visibility::Hemicube => 5,
             Visibility::Stereographic => 1,
         };
-        let (near, far) = ((1e-4 * self.size) as f32, (2.0 * self.size) as f32);
-        let projection = Mat4::perspective_rh(std::f32::consts::FRAC_PI_2, 1.0, near, far);
+        let (projection, far) = self.projection();
         let mut shots = vec![0u8; batch.len() * SHOT_STRIDE as usize];
         let mut faces = vec![0u8; batch.len() * faces_per_patch * FACE_STRIDE as usize];
         for (k, patch) in batch.enumerate() {
-            let p = &el.patches[te.first_patch as usize + patch];
+            let p = &plan.patches[patch];
             let eye = (p.centroid + n * 1e-6 * self.size).as_vec3();
             let (t3, b3, n3) = (tangent.as_vec3(), bitangent.as_vec3(), n.as_vec3());
             let looks = [(n3, t3), (t3, n3), (-t3, n3), (b3, n3), (-b3, n3)];
@@ -559,20 +595,45 @@ impl<'a> GpuSolver<'a> {
         (shots, faces, faces_per_patch as u32)
     }
 
-    /// Shoots triangle `t` (plus the overshoot the last [`GpuSolver::select`] chose).
-    pub fn shoot(&mut self, t: usize) -> Result<(), GpuError> {
-        self.shoot_until(t, &|| false).map(|_| ())
+    /// Shoots shooter `s` (plus the overshoot the last [`GpuSolver::select`] chose).
+    pub fn shoot(&mut self, s: usize) -> Result<(), GpuError> {
+        self.shoot_until(s, &|| false).map(|_| ())
+    }
+
+    /// How shooter `s` shoots now: a cluster's cells sized by the oracle from the last
+    /// selection's power ([`Shooters::cell_side`]). Its element order and patches go to
+    /// the GPU.
+    fn plan(&self, s: usize) -> ShotPlan {
+        let budget = self.gpu_settings.cell_power * self.initial_power.unwrap_or(0.0);
+        let side = self.shooters.cell_side(s, self.last_power, budget);
+        let plan = self.shooters.plan(self.scene, s, side);
+        let first = self.shooters.first[s];
+        self.gpu.queue.write_buffer(
+            &self.shooter_elements,
+            4 * first as u64,
+            bytemuck::cast_slice(&plan.order),
+        );
+        let patches: Vec<[u32; 4]> = plan
+            .patches
+            .iter()
+            .map(|p| [first + p.first, p.count, (p.element_area as f32).to_bits(), 0])
+            .collect();
+        self.gpu
+            .queue
+            .write_buffer(&self.patches, 0, bytemuck::cast_slice(&patches));
+        plan
     }
 
     /// [`GpuSolver::shoot`] in batches of patches (at most [`PATCHES_PER_BATCH`], sized so
     /// one takes about 50 ms), asking `stop` between batches (after the GPU has finished
-    /// the last): a triangle of thousands of patches no longer overruns a time limit or
+    /// the last): a shooter of thousands of patches no longer overruns a time limit or
     /// Ctrl-C by more than a batch. A batch's elements lose their
     /// unshot radiosity only as the batch shoots, so a shot stopped early leaves the rest
     /// unshot for later (energy is neither lost nor counted twice). True when the whole
-    /// triangle was shot.
-    pub fn shoot_until(&mut self, t: usize, stop: &dyn Fn() -> bool) -> Result<bool, GpuError> {
-        let patches = self.scene.elements.triangles[t].patch_count as usize;
+    /// shooter was shot.
+    pub fn shoot_until(&mut self, s: usize, stop: &dyn Fn() -> bool) -> Result<bool, GpuError> {
+        let plan = self.plan(s);
+        let patches = plan.patches.len();
         if patches == 0 {
             return Ok(true);
         }
@@ -580,7 +641,7 @@ impl<'a> GpuSolver<'a> {
         while from < patches {
             let to = (from + self.batch).min(patches);
             let started = std::time::Instant::now();
-            self.shoot_batch(t, from..to)?;
+            self.shoot_batch(s, &plan, from..to)?;
             from = to;
             if from < patches {
                 self.gpu.wait()?;
@@ -601,18 +662,18 @@ impl<'a> GpuSolver<'a> {
         Ok(true)
     }
 
-    /// Shoots patches `batch` (indices within the triangle) of triangle `t`.
-    fn shoot_batch(&mut self, t: usize, batch: std::ops::Range<usize>) -> Result<(), GpuError> {
-        let el = &self.scene.elements;
-        let te = el.triangles[t].clone();
-        let first_patch = te.first_patch as usize + batch.start;
+    /// Shoots patches `batch` of shooter `s`'s `plan`.
+    fn shoot_batch(
+        &mut self,
+        s: usize,
+        plan: &ShotPlan,
+        batch: std::ops::Range<usize>,
+    ) -> Result<(), GpuError> {
         let patch_count = batch.len() as u32;
-        let batch_elements: u32 = el.patches[first_patch..][..batch.len()]
-            .iter()
-            .map(|p| p.count)
-            .sum();
-        self.write_params(t as u32, first_patch as u32, patch_count);
-        let (shots, faces, faces_per_patch) = self.shot_records(t, batch);
+        let batch_elements: u32 = plan.patches[batch.clone()].iter().map(|p| p.count).sum();
+        self.write_params(s as u32, batch.start as u32, patch_count);
+        let (shots, faces, faces_per_patch) =
+            self.shot_records(self.shooters.normal[s], plan, batch);
         let dev = &self.gpu.device;
         let uniform = |label: &str, data: &[u8]| {
             dev.create_buffer_init(&wgpu::util::BufferInitDescriptor {

@@ -10,6 +10,7 @@ pub mod gather;
 pub mod gpu;
 pub mod initial;
 pub mod scene;
+pub mod shooters;
 pub mod solve;
 
 use crate::photometry::Interp;

@@ -88,7 +88,7 @@ fn min_area_direction(points: &[DVec2]) -> DVec2 {
 }
 
 /// Andrew's monotone chain: the convex hull, counter-clockwise, collinear points dropped.
-fn convex_hull(points: &[DVec2]) -> Vec<DVec2> {
+pub(crate) fn convex_hull(points: &[DVec2]) -> Vec<DVec2> {
     let mut p: Vec<DVec2> = points.to_vec();
     p.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
     p.dedup();

@@ -1,0 +1,448 @@
+//! Who shoots in the progressive solution. Flat (`--hierarchy none`): every triangle, from
+//! its patches (blocks of 2^level texels). With face clusters (Edström ch. 6, after
+//! Willmott's face-cluster radiosity): every flat cluster of the hierarchy, cut where a
+//! cluster stops being planar, shoots as a whole — a floor drawn as 500 strips is one
+//! shooter, not 500. Its shooting patches are the cells of a square grid laid in the plane
+//! of its oriented box, and the grid's cell is chosen per shot by an oracle: each cell may
+//! carry at most a set share of the initial unshot power (the shooter side of Hanrahan's
+//! B·F refinement), so bright shooters shoot from fine cells (down to the flat solver's
+//! patch) and the many weak late shooters from a few coarse ones. Receivers are always the
+//! elements, so no push-pull is needed: the hierarchy only decides who shoots and from
+//! where. The geometry is never changed.
+
+use glam::{DVec2, DVec3};
+
+use super::clusters::obb::convex_hull;
+use super::clusters::{ClusterSettings, FaceClusters, Obb};
+use super::elements::{area_centroid, clip_square};
+use super::scene::RadiosityScene;
+
+/// How shooters are formed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Deserialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+#[serde(rename_all = "lowercase")]
+pub enum Hierarchy {
+    /// Every triangle shoots from its own patches (the flat progressive solver).
+    #[default]
+    None,
+    /// Flat face clusters shoot as a whole, from cells sized by their power.
+    Clusters,
+}
+
+/// Default largest share of the initial unshot power one shooting cell may carry.
+pub const DEFAULT_CELL_POWER: f64 = 1e-3;
+
+/// A cluster is shot as one plane when its corners lie within this fraction of a texel of
+/// their least-squares plane (root mean square) …
+const PLANAR_RMS_TEXELS: f64 = 0.01;
+/// … and its faces' normals agree: |Σ area normal| / Σ area at least this (about 2.6°).
+const PLANAR_NORMALS: f64 = 0.999;
+
+/// What one shooter is.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ShooterShape {
+    /// One triangle, shot from its patches.
+    Triangle(u32),
+    /// A flat face cluster, shot from grid cells in the plane of its box.
+    Cluster {
+        /// The cluster's node in the hierarchy.
+        node: u32,
+        /// Its box: axes 0 and 1 span the plane, axis 2 is the normal.
+        obb: Obb,
+    },
+}
+
+/// The shooters of a scene: each a set of elements with one normal and one material.
+#[derive(Debug, Clone)]
+pub struct Shooters {
+    /// Per shooter, what it is.
+    pub shapes: Vec<ShooterShape>,
+    /// Per shooter, its first entry in [`Shooters::elements`].
+    pub first: Vec<u32>,
+    /// Per shooter, how many elements it has.
+    pub count: Vec<u32>,
+    /// Every shooter's elements, shooter after shooter.
+    pub elements: Vec<u32>,
+    /// Per shooter, its unit normal.
+    pub normal: Vec<DVec3>,
+    /// Per shooter, its material.
+    pub material: Vec<usize>,
+    /// Per shooter, its area, m².
+    pub area: Vec<f64>,
+    /// Per shooter, the smallest cell side it shoots from, metres (the flat patch side).
+    pub finest_cell: Vec<f64>,
+    /// Per element, its shooter.
+    pub element_shooter: Vec<u32>,
+    /// Face clusters (empty without a hierarchy).
+    pub clusters: FaceClusters,
+}
+
+/// One shooting patch of a shot: a range of the shot's element order and a polygon.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PlannedPatch {
+    /// First entry of [`ShotPlan::order`].
+    pub first: u32,
+    /// Number of elements.
+    pub count: u32,
+    /// Convex polygon counter-clockwise seen from the front, metres.
+    pub polygon: Vec<DVec3>,
+    /// Where it looks from: the area-weighted centre of its elements, metres.
+    pub centroid: DVec3,
+    /// The polygon's area, m².
+    pub area: f64,
+    /// Its elements' area, m²: it shoots their power over this, their mean radiosity.
+    pub element_area: f64,
+}
+
+/// How one shooter shoots: its elements in patch order, and the patches.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ShotPlan {
+    /// The shooter's elements (the same set as in [`Shooters::elements`]), patch after patch.
+    pub order: Vec<u32>,
+    /// The patches.
+    pub patches: Vec<PlannedPatch>,
+}
+
+impl Shooters {
+    /// The shooters `hierarchy` asks for.
+    pub fn build(scene: &RadiosityScene, hierarchy: Hierarchy) -> Shooters {
+        match hierarchy {
+            Hierarchy::None => Shooters::flat(scene),
+            Hierarchy::Clusters => Shooters::clusters(scene, ClusterSettings::default()),
+        }
+    }
+
+    /// Every triangle with elements is a shooter.
+    pub fn flat(scene: &RadiosityScene) -> Shooters {
+        let el = &scene.elements;
+        let mut s = Shooters::empty(el.len());
+        for (t, te) in el.triangles.iter().enumerate() {
+            if te.count == 0 {
+                continue;
+            }
+            let id = s.shapes.len() as u32;
+            s.first.push(s.elements.len() as u32);
+            s.count.push(te.count);
+            for e in te.first..te.first + te.count {
+                s.elements.push(e);
+                s.element_shooter[e as usize] = id;
+            }
+            s.shapes.push(ShooterShape::Triangle(t as u32));
+            s.normal.push(te.normal);
+            s.material.push(te.material);
+            s.area.push(te.area);
+            s.finest_cell.push(te.texel_m * f64::from(1u32 << el.level));
+        }
+        s
+    }
+
+    /// The flat clusters of the face-cluster hierarchy: from each root, the largest
+    /// clusters that are planar (within a hundredth of a texel) shoot as a whole.
+    pub fn clusters(scene: &RadiosityScene, settings: ClusterSettings) -> Shooters {
+        let el = &scene.elements;
+        let materials: Vec<usize> = el.triangles.iter().map(|t| t.material).collect();
+        let clusters = FaceClusters::build(&scene.casters, &materials, settings);
+        let mut s = Shooters::empty(el.len());
+        let mut stack: Vec<u32> = clusters.roots.clone();
+        while let Some(node) = stack.pop() {
+            let tris = clusters.triangles(node);
+            let c = &clusters.nodes[node as usize];
+            let texel = tris
+                .iter()
+                .map(|&t| el.triangles[t as usize].texel_m)
+                .fold(0.0, f64::max);
+            let planar = c.fit_error.sqrt() <= PLANAR_RMS_TEXELS * texel
+                && c.area_normal.length() >= PLANAR_NORMALS * c.area;
+            match c.children {
+                Some(children) if !planar => stack.extend(children),
+                _ => s.push_cluster(scene, &clusters, node, texel),
+            }
+        }
+        s.clusters = clusters;
+        s
+    }
+
+    fn empty(elements: usize) -> Shooters {
+        Shooters {
+            shapes: Vec::new(),
+            first: Vec::new(),
+            count: Vec::new(),
+            elements: Vec::new(),
+            normal: Vec::new(),
+            material: Vec::new(),
+            area: Vec::new(),
+            finest_cell: Vec::new(),
+            element_shooter: vec![u32::MAX; elements],
+            clusters: FaceClusters::default(),
+        }
+    }
+
+    fn push_cluster(
+        &mut self,
+        scene: &RadiosityScene,
+        clusters: &FaceClusters,
+        node: u32,
+        texel: f64,
+    ) {
+        let el = &scene.elements;
+        let id = self.shapes.len() as u32;
+        let first = self.elements.len();
+        for &t in clusters.triangles(node) {
+            let te = &el.triangles[t as usize];
+            for e in te.first..te.first + te.count {
+                self.elements.push(e);
+                self.element_shooter[e as usize] = id;
+            }
+        }
+        let count = self.elements.len() - first;
+        if count == 0 {
+            return; // only triangles without area
+        }
+        let c = &clusters.nodes[node as usize];
+        self.first.push(first as u32);
+        self.count.push(count as u32);
+        // A lone triangle shoots from its own patches, which follow its outline. A
+        // cluster's cells are laid in the tight box around its corners (the hierarchy's
+        // boxes, around the children's boxes, are looser: cells must not stick out).
+        let mesh = &scene.casters;
+        let corners: Vec<DVec3> = clusters
+            .triangles(node)
+            .iter()
+            .flat_map(|&t| mesh.triangles[t as usize].map(|i| mesh.positions[i as usize]))
+            .collect();
+        let obb = Obb::around(&corners, c.area_normal);
+        self.shapes.push(match c.children {
+            None => ShooterShape::Triangle(node),
+            Some(_) => ShooterShape::Cluster { node, obb },
+        });
+        self.normal.push(obb.axes[2]);
+        self.material.push(c.material);
+        self.area.push(c.area);
+        self.finest_cell.push(texel * f64::from(1u32 << el.level));
+    }
+
+    /// Number of shooters.
+    pub fn len(&self) -> usize {
+        self.shapes.len()
+    }
+
+    /// Whether there is no shooter.
+    pub fn is_empty(&self) -> bool {
+        self.shapes.is_empty()
+    }
+
+    /// Shooter `s`'s elements.
+    pub fn elements_of(&self, s: usize) -> &[u32] {
+        &self.elements[self.first[s] as usize..][..self.count[s] as usize]
+    }
+
+    /// The most elements any shooter has (the most patches any shot can have).
+    pub fn max_elements(&self) -> usize {
+        self.count.iter().copied().max().unwrap_or(1).max(1) as usize
+    }
+
+    /// The oracle: the cell side shooter `s` shoots from when it holds `power` lm, so
+    /// that no cell carries more than `budget` lm — the finest cell times a power of two,
+    /// at most one cell over the whole shooter.
+    pub fn cell_side(&self, s: usize, power: f64, budget: f64) -> f64 {
+        let finest = self.finest_cell[s];
+        let ShooterShape::Cluster { obb, .. } = &self.shapes[s] else {
+            return finest;
+        };
+        let whole = 2.0 * obb.half.x.max(obb.half.y);
+        if !(power > 0.0 && budget > 0.0) {
+            return finest;
+        }
+        let wanted = (self.area[s] * budget / power).sqrt();
+        let mut side = finest;
+        while side < wanted && side < whole {
+            side *= 2.0;
+        }
+        side
+    }
+
+    /// How shooter `s` shoots from cells of `side` metres (ignored by a triangle).
+    pub fn plan(&self, scene: &RadiosityScene, s: usize, side: f64) -> ShotPlan {
+        match &self.shapes[s] {
+            ShooterShape::Triangle(t) => triangle_plan(scene, *t as usize),
+            ShooterShape::Cluster { obb, .. } => {
+                cluster_plan(scene, self.elements_of(s), obb, self.normal[s], side)
+            }
+        }
+    }
+}
+
+/// A triangle shoots from its patches (their elements are contiguous).
+fn triangle_plan(scene: &RadiosityScene, t: usize) -> ShotPlan {
+    let el = &scene.elements;
+    let te = &el.triangles[t];
+    let patches = el.patches[te.first_patch as usize..][..te.patch_count as usize]
+        .iter()
+        .map(|p| PlannedPatch {
+            first: p.first - te.first,
+            count: p.count,
+            polygon: p.polygon.clone(),
+            centroid: p.centroid,
+            area: p.area,
+            element_area: p.area,
+        })
+        .collect();
+    ShotPlan {
+        order: (te.first..te.first + te.count).collect(),
+        patches,
+    }
+}
+
+/// A cluster's elements binned by centroid into square cells of `side` metres laid from
+/// its box's corner. Each non-empty cell is a patch whose polygon is the convex hull of
+/// the cluster's triangles clipped to the cell (the exact surface inside the cell wherever
+/// that is convex), in the plane through its elements. The cells' polygons tile the
+/// surface; an element straddling two cells shoots from the one holding its centroid, so
+/// a cell shoots its elements' mean radiosity (power over their area) from its polygon.
+fn cluster_plan(
+    scene: &RadiosityScene,
+    elements: &[u32],
+    obb: &Obb,
+    normal: DVec3,
+    side: f64,
+) -> ShotPlan {
+    let el = &scene.elements;
+    let [u, v, _] = obb.axes;
+    let lo = DVec2::new(obb.centre.dot(u) - obb.half.x, obb.centre.dot(v) - obb.half.y);
+    let hi = lo + 2.0 * DVec2::new(obb.half.x, obb.half.y);
+    let grid = Grid {
+        lo,
+        hi,
+        side,
+        cols: (((hi.x - lo.x) / side).ceil() as u64).max(1),
+        rows: (((hi.y - lo.y) / side).ceil() as u64).max(1),
+        u,
+        v,
+    };
+    let mut keyed: Vec<(u64, u32)> = elements
+        .iter()
+        .map(|&e| (grid.cell(grid.plane(el.position[e as usize])), e))
+        .collect();
+    keyed.sort_unstable();
+    let order: Vec<u32> = keyed.iter().map(|k| k.1).collect();
+    let pieces = grid.triangle_pieces(scene, &order);
+    let mut patches = Vec::new();
+    let mut start = 0;
+    while start < keyed.len() {
+        let key = keyed[start].0;
+        let end = start + keyed[start..].partition_point(|k| k.0 == key);
+        let members = &order[start..end];
+        let element_area: f64 = members.iter().map(|&e| el.area[e as usize]).sum();
+        let centroid = members
+            .iter()
+            .map(|&e| el.position[e as usize] * el.area[e as usize])
+            .sum::<DVec3>()
+            / element_area.max(1e-300);
+        let outline = grid.outline(key, pieces.get(&key).map_or(&[][..], Vec::as_slice));
+        let offset = normal * centroid.dot(normal);
+        let mut polygon: Vec<DVec3> = outline.iter().map(|q| u * q.x + v * q.y + offset).collect();
+        if (polygon[1] - polygon[0]).cross(polygon[2] - polygon[0]).dot(normal) < 0.0 {
+            polygon.reverse();
+        }
+        patches.push(PlannedPatch {
+            first: start as u32,
+            count: (end - start) as u32,
+            polygon,
+            centroid,
+            area: area_centroid(&outline).0.abs(),
+            element_area,
+        });
+        start = end;
+    }
+    ShotPlan { order, patches }
+}
+
+/// A square grid in a cluster's plane: plane coordinates along `u` and `v`, cells of
+/// `side` metres from `lo`, clipped to `hi`.
+struct Grid {
+    lo: DVec2,
+    hi: DVec2,
+    side: f64,
+    cols: u64,
+    rows: u64,
+    u: DVec3,
+    v: DVec3,
+}
+
+impl Grid {
+    fn plane(&self, p: DVec3) -> DVec2 {
+        DVec2::new(p.dot(self.u), p.dot(self.v))
+    }
+
+    /// Column and row of the cell holding `q` (clamped to the grid).
+    fn column_row(&self, q: DVec2) -> (u64, u64) {
+        let q = (q - self.lo) / self.side;
+        let i = (q.x.max(0.0) as u64).min(self.cols - 1);
+        let j = (q.y.max(0.0) as u64).min(self.rows - 1);
+        (i, j)
+    }
+
+    fn cell(&self, q: DVec2) -> u64 {
+        let (i, j) = self.column_row(q);
+        j * self.cols + i
+    }
+
+    fn bounds(&self, cell: u64) -> (DVec2, DVec2) {
+        let (i, j) = (cell % self.cols, cell / self.cols);
+        let lo = self.lo + DVec2::new(i as f64, j as f64) * self.side;
+        (lo, (lo + DVec2::splat(self.side)).min(self.hi))
+    }
+
+    /// Per cell, the corners of the pieces of the elements' triangles inside it.
+    fn triangle_pieces(
+        &self,
+        scene: &RadiosityScene,
+        elements: &[u32],
+    ) -> std::collections::HashMap<u64, Vec<DVec2>> {
+        let mesh = &scene.casters;
+        let mut triangles: Vec<u32> = elements
+            .iter()
+            .map(|&e| scene.elements.triangle[e as usize])
+            .collect();
+        triangles.sort_unstable();
+        triangles.dedup();
+        let mut pieces: std::collections::HashMap<u64, Vec<DVec2>> = Default::default();
+        for t in triangles {
+            let mut c = mesh.triangles[t as usize].map(|i| self.plane(mesh.positions[i as usize]));
+            if (c[1] - c[0]).perp_dot(c[2] - c[0]) < 0.0 {
+                c.swap(1, 2);
+            }
+            let (i0, j0) = self.column_row(c[0].min(c[1]).min(c[2]));
+            let (i1, j1) = self.column_row(c[0].max(c[1]).max(c[2]));
+            for j in j0..=j1 {
+                for i in i0..=i1 {
+                    let cell = j * self.cols + i;
+                    let (lo, hi) = self.bounds(cell);
+                    let piece = clip_square(lo, hi, &c);
+                    if piece.len() >= 3 {
+                        pieces.entry(cell).or_default().extend(piece);
+                    }
+                }
+            }
+        }
+        pieces
+    }
+
+    /// The convex hull of a cell's triangle pieces: at most 8 corners (the shot record's
+    /// limit; more become the hull's bounding rectangle), at least a triangle (the cell
+    /// when the pieces have no area).
+    fn outline(&self, cell: u64, pieces: &[DVec2]) -> Vec<DVec2> {
+        let hull = convex_hull(pieces);
+        if (3..=8).contains(&hull.len()) {
+            return hull;
+        }
+        let (lo, hi) = self.bounds(cell);
+        let (a, b) = if hull.len() > 8 {
+            let a = hull.iter().copied().fold(hi, DVec2::min);
+            (a, hull.iter().copied().fold(lo, DVec2::max))
+        } else {
+            (lo, hi)
+        };
+        vec![a, DVec2::new(b.x, a.y), b, DVec2::new(a.x, b.y)]
+    }
+}

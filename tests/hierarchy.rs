@@ -1,0 +1,170 @@
+//! The face-cluster hierarchy in the solver (`--hierarchy clusters`): shooters are flat
+//! clusters, shot from cells sized by their power. Checked against the flat solver (the
+//! same light within 1 % per element on the box room and the Cornell box), the furnace
+//! (B = E / (1 − ρ) within 0.5 %), and the counts that make it scale (the CAD-like room's
+//! 2 600 strips are a few dozen shooters).
+
+use std::path::Path;
+use std::sync::atomic::AtomicBool;
+
+use glam::{DVec3, Vec3};
+use goniolight::radiosity::cpu::CpuSolver;
+use goniolight::radiosity::gpu::{GpuSettings, GpuSolver};
+use goniolight::radiosity::initial::{InitialState, LuminaireLight};
+use goniolight::radiosity::scene::{luminance, RadiosityScene};
+use goniolight::radiosity::shooters::{Hierarchy, ShooterShape, Shooters};
+use goniolight::radiosity::solve::StopAt;
+use goniolight::radiosity::SolverSettings;
+use goniolight::render::ShadowSettings;
+use goniolight::scene::{Material, Scene, SceneMesh};
+
+#[path = "common/gpu.rs"]
+mod gpu_common;
+
+fn bundled(name: &str) -> Scene {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes").join(name);
+    Scene::load(&path).unwrap()
+}
+
+fn clusters() -> GpuSettings {
+    GpuSettings {
+        hierarchy: Hierarchy::Clusters,
+        ..GpuSettings::default()
+    }
+}
+
+/// Solves to `converge` and returns the radiosity per element.
+fn solve(
+    gpu: &goniolight::gpu::Gpu,
+    r: &RadiosityScene,
+    initial: &InitialState,
+    gpu_settings: GpuSettings,
+    converge: f64,
+) -> (Vec<DVec3>, usize) {
+    let mut solver = GpuSolver::new(gpu, r, initial, SolverSettings::default(), gpu_settings);
+    let stop = StopAt {
+        converge,
+        max_shots: Some(20_000),
+        time_budget: None,
+    };
+    solver.solve(&stop, &AtomicBool::new(false), |_| {}).unwrap();
+    (solver.radiosity().unwrap(), solver.shots)
+}
+
+/// Area-weighted mean |a − b| over the area-weighted mean of b (luminance).
+fn mean_relative_difference(r: &RadiosityScene, a: &[DVec3], b: &[DVec3]) -> f64 {
+    let el = &r.elements;
+    let diff: f64 = (0..el.len())
+        .map(|e| (luminance(a[e]) - luminance(b[e])).abs() * el.area[e])
+        .sum();
+    let mean: f64 = (0..el.len()).map(|e| luminance(b[e]) * el.area[e]).sum();
+    diff / mean
+}
+
+fn clusters_against_flat(name: &str) {
+    let Some(gpu) = gpu_common::gpu() else { return };
+    let scene = bundled(name);
+    let r = RadiosityScene::new(&scene, 10.0, 2).unwrap();
+    let settings = SolverSettings::default();
+    let light = LuminaireLight::new(&gpu, &scene, settings.interp);
+    let initial =
+        InitialState::from_luminaires_gpu(&gpu, &light, &r, &ShadowSettings::default()).unwrap();
+    let (flat, flat_shots) = solve(&gpu, &r, &initial, GpuSettings::default(), 0.999);
+    let (tree, tree_shots) = solve(&gpu, &r, &initial, clusters(), 0.999);
+    let d = mean_relative_difference(&r, &tree, &flat);
+    eprintln!(
+        "{name}: {} elements; flat {flat_shots} shots, clusters {tree_shots} shots; mean difference {:.3} %",
+        r.elements.len(),
+        100.0 * d
+    );
+    assert!(d <= 0.01, "{name}: clusters differ from flat by {d}");
+}
+
+#[test]
+fn clusters_give_the_flat_solution_on_the_box_room() {
+    clusters_against_flat("box_room.toml");
+}
+
+#[test]
+fn clusters_give_the_flat_solution_on_the_cornell_box() {
+    clusters_against_flat("cornell_box.toml");
+}
+
+#[test]
+fn furnace_with_cluster_shooters_gives_e_over_one_minus_rho() {
+    let Some(gpu) = gpu_common::gpu() else { return };
+    // A closed box (every face two triangles, so each face is a cluster of two), ρ = 0.5,
+    // E = 100 lm/m²: B = 200 lm/m² everywhere.
+    let walls = goniolight::geometry::generate::cuboid(DVec3::ZERO, DVec3::new(2.0, 1.5, 1.0));
+    let inward: Vec<[Vec3; 3]> = walls
+        .triangles
+        .iter()
+        .map(|t| [t[0], t[2], t[1]].map(|i| walls.positions[i as usize].as_vec3()))
+        .collect();
+    let scene = Scene {
+        meshes: vec![SceneMesh::from_triangles("box", &inward, 0)],
+        materials: vec![Material {
+            diffuse: Vec3::splat(0.5),
+            emission: Vec3::splat(100.0),
+            ..Material::default()
+        }],
+        luminaires: Vec::new(),
+        models: Vec::new(),
+        ..bundled("box_room.toml")
+    };
+    let r = RadiosityScene::new(&scene, 8.0, 1).unwrap();
+    let settings = SolverSettings::default();
+    let initial = CpuSolver::new(&r, settings).state();
+    let (b, shots) = solve(&gpu, &r, &initial, clusters(), 0.9999);
+    let worst = b.iter().map(|b| (b.x / 200.0 - 1.0).abs()).fold(0.0, f64::max);
+    eprintln!("cluster furnace: {shots} shots, worst {:.3} %", 100.0 * worst);
+    assert!(worst <= 0.005, "worst relative error {worst}");
+}
+
+#[test]
+fn the_cad_room_strips_are_a_few_shooters_and_every_element_shoots_once() {
+    let scene = bundled("cad_room.toml");
+    let r = RadiosityScene::new(&scene, 10.0, 2).unwrap();
+    let triangles = r.elements.triangles.len();
+    let flat = Shooters::build(&r, Hierarchy::None);
+    let tree = Shooters::build(&r, Hierarchy::Clusters);
+    assert_eq!(flat.len(), triangles);
+    // The room: 6 walls + 4 boxes × 5 visible faces (the boxes stand on the floor, their
+    // bottoms are faces too): one shooter per flat face, not one per strip.
+    assert!(tree.len() <= triangles / 10, "{} shooters", tree.len());
+    assert!(
+        tree.shapes
+            .iter()
+            .all(|s| matches!(s, ShooterShape::Cluster { .. })),
+        "every face of the room is a cluster of strips"
+    );
+    for shooters in [&flat, &tree] {
+        let mut seen = vec![0u32; r.elements.len()];
+        for s in 0..shooters.len() {
+            for &e in shooters.elements_of(s) {
+                seen[e as usize] += 1;
+                assert_eq!(shooters.element_shooter[e as usize], s as u32);
+            }
+            // Every plan, whatever its cell, shoots each of the shooter's elements once,
+            // from patches whose area is the elements' within a few per cent (the
+            // room's faces are rectangles: the cells tile them).
+            for side in [0.4, 1.6, 100.0] {
+                let plan = shooters.plan(&r, s, side);
+                let mut a = plan.order.clone();
+                let mut b = shooters.elements_of(s).to_vec();
+                a.sort_unstable();
+                b.sort_unstable();
+                assert_eq!(a, b);
+                let covered: u32 = plan.patches.iter().map(|p| p.count).sum();
+                assert_eq!(covered as usize, b.len());
+                let elements: f64 = b.iter().map(|&e| r.elements.area[e as usize]).sum();
+                let patches: f64 = plan.patches.iter().map(|p| p.area).sum();
+                assert!(
+                    (patches / elements - 1.0).abs() < 0.05,
+                    "patches {patches} m², elements {elements} m²"
+                );
+            }
+        }
+        assert!(seen.iter().all(|&n| n == 1), "an element not shot exactly once");
+    }
+}
