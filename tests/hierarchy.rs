@@ -22,7 +22,9 @@ use goniolight::scene::{Material, Scene, SceneMesh};
 mod gpu_common;
 
 fn bundled(name: &str) -> Scene {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes").join(name);
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("assets/scenes")
+        .join(name);
     Scene::load(&path).unwrap()
 }
 
@@ -47,7 +49,9 @@ fn solve(
         max_shots: Some(20_000),
         time_budget: None,
     };
-    solver.solve(&stop, &AtomicBool::new(false), |_| {}).unwrap();
+    solver
+        .solve(&stop, &AtomicBool::new(false), |_| {})
+        .unwrap();
     (solver.radiosity().unwrap(), solver.shots)
 }
 
@@ -116,8 +120,14 @@ fn furnace_with_cluster_shooters_gives_e_over_one_minus_rho() {
     let settings = SolverSettings::default();
     let initial = CpuSolver::new(&r, settings).state();
     let (b, shots) = solve(&gpu, &r, &initial, clusters(), 0.9999);
-    let worst = b.iter().map(|b| (b.x / 200.0 - 1.0).abs()).fold(0.0, f64::max);
-    eprintln!("cluster furnace: {shots} shots, worst {:.3} %", 100.0 * worst);
+    let worst = b
+        .iter()
+        .map(|b| (b.x / 200.0 - 1.0).abs())
+        .fold(0.0, f64::max);
+    eprintln!(
+        "cluster furnace: {shots} shots, worst {:.3} %",
+        100.0 * worst
+    );
     assert!(worst <= 0.005, "worst relative error {worst}");
 }
 
@@ -165,6 +175,50 @@ fn the_cad_room_strips_are_a_few_shooters_and_every_element_shoots_once() {
                 );
             }
         }
-        assert!(seen.iter().all(|&n| n == 1), "an element not shot exactly once");
+        assert!(
+            seen.iter().all(|&n| n == 1),
+            "an element not shot exactly once"
+        );
+    }
+}
+
+#[test]
+fn the_oracle_gives_bright_clusters_fine_cells_and_weak_ones_one_cell() {
+    let scene = bundled("cad_room.toml");
+    let r = RadiosityScene::new(&scene, 10.0, 2).unwrap();
+    let tree = Shooters::build(&r, Hierarchy::Clusters);
+    let budget = 1.0;
+    for s in 0..tree.len() {
+        let ShooterShape::Cluster { obb, .. } = &tree.shapes[s] else {
+            continue;
+        };
+        let finest = tree.finest_cell[s];
+        assert!((finest - 0.4).abs() < 1e-12, "2^2 texels of 0.1 m");
+        let extent = 2.0 * obb.half.x.max(obb.half.y);
+        // Far more power than cells: the finest cell.
+        assert_eq!(tree.cell_side(s, 1e9, budget), finest);
+        // Almost none: one cell over the whole cluster.
+        let coarse = tree.cell_side(s, 1e-9, budget);
+        assert!(
+            coarse >= extent && coarse < 2.0 * extent.max(finest),
+            "{coarse} {extent}"
+        );
+        // In between: no cell carries more than the budget (area / side² cells share the
+        // power), unless the finest cell is reached; the side is the finest times 2^k.
+        for power in [1.0, 10.0, 100.0, 1000.0] {
+            let side = tree.cell_side(s, power, budget);
+            let k = (side / finest).log2();
+            assert!((k - k.round()).abs() < 1e-9, "{side}");
+            let cells = tree.area[s] / (side * side);
+            let whole = side >= extent;
+            assert!(
+                side == finest || whole || power / cells <= budget,
+                "{power} {side}"
+            );
+            // … and the next coarser cell would carry more.
+            let coarser = cells / 4.0;
+            assert!(whole || power / coarser > budget, "{power} {side}");
+            assert!(side <= tree.cell_side(s, power / 10.0, budget));
+        }
     }
 }

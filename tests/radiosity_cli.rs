@@ -328,6 +328,101 @@ fn bench_radiosity_json_has_the_contract_keys() {
 }
 
 #[test]
+fn bench_radiosity_compares_flat_and_cluster_shooters_side_by_side() {
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/scenes/cad_room.toml");
+    let (code, stdout, stderr) = run_cli(
+        &[
+            "bench",
+            "radiosity",
+            "--scene",
+            scene,
+            "--elements",
+            "3000",
+            "--visibility",
+            "hemicube",
+            "--hierarchy",
+            "none,clusters",
+            "--max-shots",
+            "60",
+            "--json",
+        ],
+        "",
+    );
+    assert_eq!(code, 0, "{stderr}");
+    let v: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    let rows = v["rows"].as_array().unwrap();
+    let pairs: Vec<(&str, &str)> = rows
+        .iter()
+        .map(|r| {
+            (
+                r["visibility"].as_str().unwrap(),
+                r["hierarchy"].as_str().unwrap(),
+            )
+        })
+        .collect();
+    assert_eq!(pairs, [("hemicube", "none"), ("hemicube", "clusters")]);
+    // The CAD-like room: 2 600 strips; every strip shoots without a hierarchy, a few
+    // dozen flat faces with one — and 60 cluster shots get further than 60 strip shots.
+    assert_eq!(rows[0]["triangles"], 2600);
+    assert_eq!(rows[0]["shooters"], 2600);
+    let clusters = rows[1]["shooters"].as_u64().unwrap();
+    assert!((6..=60).contains(&clusters), "{clusters} shooters");
+    let reached = |r: &serde_json::Value| r["convergence"].as_f64().unwrap();
+    assert!(reached(&rows[1]) > reached(&rows[0]) + 0.2, "{rows:?}");
+    assert!(rows[1]["shooters_seconds"].as_f64().unwrap() >= 0.0);
+}
+
+#[test]
+fn ctrl_c_stops_the_gather_at_points_and_prints_nothing() {
+    use std::io::{BufRead, BufReader, Write};
+    use std::process::{Command, Stdio};
+    let scene = root().join("assets/scenes/box_room.toml");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_goniolight"))
+        .args(["radiosity", scene.to_str().unwrap(), "--max-shots", "2"])
+        .arg("--points")
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // A million points over the work plane: minutes of gathering.
+    let mut points = String::new();
+    for k in 0..1_000_000 {
+        let (x, y) = (
+            0.5 + (k % 500) as f64 * 0.01,
+            0.5 + (k / 500) as f64 * 0.0015,
+        );
+        points.push_str(&format!("{x} {y} 0.8 0 0 1\n"));
+    }
+    let mut stdin = child.stdin.take().unwrap();
+    stdin.write_all(points.as_bytes()).unwrap();
+    drop(stdin);
+    let mut stderr = BufReader::new(child.stderr.take().unwrap());
+    let mut text = String::new();
+    while !text.contains("gathering at 1000000 points") {
+        let mut line = String::new();
+        assert!(
+            stderr.read_line(&mut line).unwrap() > 0,
+            "ended early: {text}"
+        );
+        text.push_str(&line);
+    }
+    std::thread::sleep(std::time::Duration::from_millis(300));
+    let started = std::time::Instant::now();
+    unsafe { libc::kill(child.id() as i32, libc::SIGINT) };
+    let mut rest = String::new();
+    std::io::Read::read_to_string(&mut stderr, &mut rest).unwrap();
+    let mut stdout = String::new();
+    std::io::Read::read_to_string(&mut child.stdout.take().unwrap(), &mut stdout).unwrap();
+    let status = child.wait().unwrap();
+    assert_eq!(status.code(), Some(1), "{text}{rest}");
+    assert!(rest.contains("interrupted while gathering"), "{rest}");
+    assert!(stdout.is_empty(), "printed {} bytes", stdout.len());
+    // It stopped within a point's work per thread, not after the remaining minutes.
+    assert!(started.elapsed().as_secs_f64() < 20.0);
+}
+
+#[test]
 fn ctrl_c_stops_the_solver_and_writes_the_solution_so_far() {
     use std::io::{BufRead, BufReader};
     use std::process::{Command, Stdio};

@@ -1,7 +1,7 @@
 //! `goniolight bench radiosity`: time to 90 % and 99 % convergence on a Cornell-box-like
 //! scene at a chosen element count (Wallner Table 4.1: "Cornell box high", ~127 000
-//! elements, 4.97 s to 90 % on a GeForce 8800), hemicube vs stereographic visibility
-//! measured side by side in one run.
+//! elements, 4.97 s to 90 % on a GeForce 8800), hemicube vs stereographic visibility and
+//! flat vs face-cluster shooters (Edström) measured side by side in one run.
 
 use std::sync::atomic::AtomicBool;
 
@@ -9,6 +9,7 @@ use crate::gpu::Gpu;
 use crate::radiosity::gpu::{GpuSettings, GpuSolver, Visibility};
 use crate::radiosity::initial::{InitialState, LuminaireLight};
 use crate::radiosity::scene::RadiosityScene;
+use crate::radiosity::shooters::{Hierarchy, Shooters};
 use crate::radiosity::solve::StopAt;
 use crate::radiosity::SolverSettings;
 use crate::scene::Scene;
@@ -18,6 +19,14 @@ use crate::scene::Scene;
 pub struct RadiosityBenchRow {
     /// "hemicube" or "stereographic".
     pub visibility: String,
+    /// "none" (every triangle shoots) or "clusters" (flat face clusters shoot).
+    pub hierarchy: String,
+    /// Shooters.
+    pub shooters: usize,
+    /// Seconds to build the shooters (the face-cluster hierarchy with clusters).
+    pub shooters_seconds: f64,
+    /// Triangles.
+    pub triangles: usize,
     /// Elements (texels).
     pub elements: usize,
     /// Shooting patches.
@@ -34,6 +43,12 @@ pub struct RadiosityBenchRow {
     pub seconds_99: Option<f64>,
     /// Mean milliseconds per shot over the run.
     pub ms_per_shot: f64,
+    /// Seconds the whole run took (to 99 % or the limits).
+    pub seconds: f64,
+    /// Shots in the whole run.
+    pub shots: usize,
+    /// The convergence reached (fraction of the initial unshot power shot).
+    pub convergence: f64,
 }
 
 /// Total area of a scene's triangles, m².
@@ -50,17 +65,34 @@ pub fn surface_area(scene: &Scene) -> f64 {
         .sum()
 }
 
-/// Solves `scene` with about `elements` elements once per visibility in `visibilities`,
-/// to 99 % or `max_shots`.
+/// What one benchmark run solves with.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RadiosityBenchPlan {
+    /// About this many elements.
+    pub elements: usize,
+    /// Patch level.
+    pub level: u32,
+    /// Give up after this many shots per solution.
+    pub max_shots: usize,
+    /// Give up after this many seconds per solution.
+    pub time_limit: Option<f64>,
+}
+
+/// Solves `scene` with about `plan.elements` elements once per pair of `configs`, to 99 %
+/// or the plan's limits.
 pub fn run(
     gpu: &Gpu,
     scene: &Scene,
-    elements: usize,
-    level: u32,
-    visibilities: &[Visibility],
-    max_shots: usize,
-    mut progress: impl FnMut(Visibility, f64),
+    plan: RadiosityBenchPlan,
+    configs: &[(Visibility, Hierarchy)],
+    mut progress: impl FnMut(Visibility, Hierarchy, f64),
 ) -> anyhow::Result<Vec<RadiosityBenchRow>> {
+    let RadiosityBenchPlan {
+        elements,
+        level,
+        max_shots,
+        time_limit,
+    } = plan;
     let density = (elements as f64 / surface_area(scene).max(1e-9)).sqrt();
     let rscene = RadiosityScene::new(scene, density, level)?;
     let settings = SolverSettings::default();
@@ -68,24 +100,34 @@ pub fn run(
     let light = LuminaireLight::new(gpu, scene, settings.interp);
     let initial = InitialState::from_luminaires_gpu(gpu, &light, &rscene, &shadows)?;
     let mut rows = Vec::new();
-    for &visibility in visibilities {
+    for &(visibility, hierarchy) in configs {
         let gpu_settings = GpuSettings {
             visibility,
+            hierarchy,
             ..GpuSettings::default()
         };
-        let mut solver = GpuSolver::new(gpu, &rscene, &initial, settings, gpu_settings);
+        let built = std::time::Instant::now();
+        let shooters = Shooters::build(&rscene, hierarchy);
+        let shooters_seconds = built.elapsed().as_secs_f64();
+        let shooter_count = shooters.len();
+        let mut solver =
+            GpuSolver::with_shooters(gpu, &rscene, &initial, settings, gpu_settings, shooters);
         let stop = StopAt {
             converge: 0.99,
             max_shots: Some(max_shots),
-            time_budget: None,
+            time_budget: time_limit.map(std::time::Duration::from_secs_f64),
         };
         let (_, log) = solver.solve(&stop, &AtomicBool::new(false), |p| {
-            progress(visibility, p.convergence)
+            progress(visibility, hierarchy, p.convergence)
         })?;
         let reach = |target: f64| log.iter().find(|p| p.convergence >= target);
         let seconds = log.last().map_or(0.0, |p| p.seconds);
         rows.push(RadiosityBenchRow {
             visibility: format!("{visibility:?}").to_lowercase(),
+            hierarchy: format!("{hierarchy:?}").to_lowercase(),
+            shooters: shooter_count,
+            shooters_seconds,
+            triangles: rscene.elements.triangles.len(),
             elements: rscene.elements.len(),
             patches: rscene.elements.patches.len(),
             texel_density: density,
@@ -94,6 +136,9 @@ pub fn run(
             shots_99: reach(0.99).map(|p| p.shot),
             seconds_99: reach(0.99).map(|p| p.seconds),
             ms_per_shot: 1000.0 * seconds / solver.shots.max(1) as f64,
+            seconds,
+            shots: solver.shots,
+            convergence: log.last().map_or(0.0, |p| p.convergence),
         });
     }
     Ok(rows)

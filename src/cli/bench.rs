@@ -95,7 +95,8 @@ pub enum BenchCommand {
         shared: Option<std::path::PathBuf>,
     },
     /// GPU radiosity on a Cornell-box-like scene (Wallner Table 4.1, "Cornell box high":
-    /// ~127 000 elements): time to 90 % and 99 % convergence, hemicube vs stereographic.
+    /// ~127 000 elements): time to 90 % and 99 % convergence, hemicube vs stereographic,
+    /// flat vs face-cluster shooters.
     Radiosity {
         /// Print JSON {"rows": [...]}.
         #[arg(long)]
@@ -109,6 +110,20 @@ pub enum BenchCommand {
         /// Give up after this many shots per solution.
         #[arg(long, default_value_t = 5000)]
         max_shots: usize,
+        /// Give up after this many seconds per solution.
+        #[arg(long)]
+        time_limit: Option<f64>,
+        /// Visibility maps to compare (comma-separated).
+        #[arg(
+            long,
+            value_enum,
+            value_delimiter = ',',
+            default_value = "hemicube,stereographic"
+        )]
+        visibility: Vec<crate::radiosity::gpu::Visibility>,
+        /// Shooters to compare (comma-separated): `none` (every triangle), `clusters`.
+        #[arg(long, value_enum, value_delimiter = ',', default_value = "none")]
+        hierarchy: Vec<crate::radiosity::shooters::Hierarchy>,
         /// The scene (default: the bundled assets/scenes/cornell_box.toml).
         #[arg(long)]
         scene: Option<std::path::PathBuf>,
@@ -159,8 +174,23 @@ pub fn run(cmd: BenchCommand) -> Result<(), CliError> {
             elements,
             level,
             max_shots,
+            time_limit,
+            visibility,
+            hierarchy,
             scene,
-        } => run_radiosity(json, elements, level, max_shots, scene),
+        } => {
+            let plan = crate::bench::radiosity::RadiosityBenchPlan {
+                elements,
+                level,
+                max_shots,
+                time_limit,
+            };
+            let configs: Vec<_> = visibility
+                .iter()
+                .flat_map(|&v| hierarchy.iter().map(move |&h| (v, h)))
+                .collect();
+            run_radiosity(json, plan, &configs, scene)
+        }
     }
 }
 
@@ -224,16 +254,19 @@ fn run_clusters(as_json: bool, shared: Option<std::path::PathBuf>) -> Result<(),
 
 fn run_radiosity(
     as_json: bool,
-    elements: usize,
-    level: u32,
-    max_shots: usize,
+    plan: crate::bench::radiosity::RadiosityBenchPlan,
+    configs: &[(
+        crate::radiosity::gpu::Visibility,
+        crate::radiosity::shooters::Hierarchy,
+    )],
     scene: Option<std::path::PathBuf>,
 ) -> Result<(), CliError> {
     use crate::bench::radiosity as rbench;
-    use crate::radiosity::gpu::Visibility;
-    if !(1..=50_000_000).contains(&elements) || level > 6 || max_shots == 0 {
+    let level = plan.level;
+    let time_ok = plan.time_limit.is_none_or(|t| t.is_finite() && t > 0.0);
+    if !(1..=50_000_000).contains(&plan.elements) || level > 6 || plan.max_shots == 0 || !time_ok {
         return Err(CliError::input(anyhow::anyhow!(
-            "--elements must be in 1..=50000000, --level in 0..=6, --max-shots > 0"
+            "--elements must be in 1..=50000000, --level in 0..=6, --max-shots > 0, --time-limit > 0"
         )));
     }
     let path =
@@ -241,20 +274,11 @@ fn run_radiosity(
     let scene = crate::scene::Scene::load(&path)?;
     let gpu = Gpu::shared()?;
     eprintln!("GPU: {}", gpu.describe());
-    let visibilities = [Visibility::Hemicube, Visibility::Stereographic];
     let bar = indicatif::ProgressBar::new(1000);
-    let rows = rbench::run(
-        &gpu,
-        &scene,
-        elements,
-        level,
-        &visibilities,
-        max_shots,
-        |v, c| {
-            bar.set_message(format!("{v:?}"));
-            bar.set_position((c.clamp(0.0, 1.0) * 1000.0) as u64);
-        },
-    )
+    let rows = rbench::run(&gpu, &scene, plan, configs, |v, h, c| {
+        bar.set_message(format!("{v:?}, hierarchy {h:?}"));
+        bar.set_position((c.clamp(0.0, 1.0) * 1000.0) as u64);
+    })
     .map_err(CliError::failure)?;
     bar.finish_and_clear();
     if as_json {
@@ -266,30 +290,47 @@ fn run_radiosity(
     }
     let first = &rows[0];
     println!(
-        "{}: {}, {} elements ({:.1} texels/m), {} patches (level {level})",
+        "{}: {}, {} triangles, {} elements ({:.1} texels/m), {} patches (level {level})",
         gpu.describe(),
         path.display(),
+        first.triangles,
         first.elements,
         first.texel_density,
         first.patches
     );
-    println!("| visibility | shots to 90 % | s to 90 % | shots to 99 % | s to 99 % | ms/shot | time to 90 % / hemicube |");
-    println!("|---|---|---|---|---|---|---|");
+    println!("| visibility | hierarchy | shooters (built in) | shots to 90 % | s to 90 % | shots to 99 % | s to 99 % | ms/shot | time to 90 % / first row |");
+    println!("|---|---|---|---|---|---|---|---|---|");
     let opt = |v: Option<f64>| v.map_or("—".to_string(), |v| format!("{v:.2}"));
     let shots = |v: Option<usize>| v.map_or("—".to_string(), |v| v.to_string());
     for r in &rows {
         let ratio = match (r.seconds_90, first.seconds_90) {
-            (Some(a), Some(b)) if b > 0.0 => format!("{:.2}", a / b),
+            (Some(a), Some(b)) if b > 0.0 => format!("{:.3}", a / b),
+            // The first row gave up first: an upper bound.
+            (Some(a), None) if first.seconds > 0.0 => format!("< {:.3}", a / first.seconds),
             _ => "—".into(),
         };
         println!(
-            "| {} | {} | {} | {} | {} | {:.1} | {ratio} |",
+            "| {} | {} | {} ({:.2} s) | {} | {} | {} | {} | {:.1} | {ratio} |",
             r.visibility,
+            r.hierarchy,
+            r.shooters,
+            r.shooters_seconds,
             shots(r.shots_90),
             opt(r.seconds_90),
             shots(r.shots_99),
             opt(r.seconds_99),
             r.ms_per_shot
+        );
+    }
+    for r in rows.iter().filter(|r| r.seconds_99.is_none()) {
+        println!(
+            "{} / {}: {:.2} % after {} shots in {:.1} s (— : not reached within --max-shots {} or --time-limit)",
+            r.visibility,
+            r.hierarchy,
+            100.0 * r.convergence,
+            r.shots,
+            r.seconds,
+            plan.max_shots,
         );
     }
     Ok(())

@@ -253,12 +253,18 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
     if !points.is_empty() {
         let gathered = Instant::now();
         let direct = light.lux(&gpu, &points, &settings.shadows)?;
-        print_total_lux(&rscene, &shown, &points, &direct, args.form_factor);
+        let patches = print_total_lux(
+            &rscene,
+            solver.shooters(),
+            &shown,
+            &points,
+            &direct,
+            args.form_factor,
+        )?;
         eprintln!(
-            "{}: {} points gathered from {} patches in {:.2} s",
+            "{}: {} points gathered from {patches} patches in {:.2} s",
             args.scene.display(),
             points.len(),
-            rscene.elements.patches.len(),
             gathered.elapsed().as_secs_f64()
         );
     }
@@ -285,20 +291,47 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
     Ok(())
 }
 
-/// Prints direct + gathered interreflected illuminance (lux) per point.
+/// Prints direct + gathered interreflected illuminance (lux) per point, with a progress
+/// bar; Ctrl-C stops it (nothing is printed then).
 fn print_total_lux(
     rscene: &RadiosityScene,
+    shooters: &Shooters,
     radiosity: &[DVec3],
     points: &[SurfacePoint],
     direct: &[f64],
     kind: FormFactorKind,
-) {
-    let gathered = gather::at_points(rscene, radiosity, points, kind);
+) -> Result<usize, CliError> {
+    let patches = gather::patches(rscene, shooters, radiosity);
+    eprintln!(
+        "gathering at {} points from {} patches (Ctrl-C stops)",
+        points.len(),
+        patches.len()
+    );
+    let bar = indicatif::ProgressBar::new(points.len() as u64);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template(
+            "gather [{bar:40}] {pos}/{len} points ({elapsed_precise}, Ctrl-C stops)",
+        )
+        .map_err(|e| CliError::failure(anyhow!(e)))?,
+    );
+    // A Ctrl-C that stopped the shooting has been answered: the next one stops this.
+    let cancel = super::interrupt_flag();
+    cancel.store(false, std::sync::atomic::Ordering::SeqCst);
+    let gathered = gather::at_points(rscene, &patches, points, kind, &cancel, &|done| {
+        bar.set_position(done as u64)
+    });
+    bar.finish_and_clear();
+    let Some(gathered) = gathered else {
+        return Err(CliError::failure(anyhow!(
+            "interrupted while gathering at the points: no illuminance printed"
+        )));
+    };
     let mut out = String::with_capacity(points.len() * 12);
     for (d, g) in direct.iter().zip(&gathered) {
         out.push_str(&format!("{:.6}\n", d + luminance(*g)));
     }
     print!("{out}");
+    Ok(patches.len())
 }
 
 /// Writes the rendering, the atlas and the log into `dir`.

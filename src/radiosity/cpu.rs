@@ -225,14 +225,21 @@ impl<'a> CpuSolver<'a> {
     /// Total illuminance (lux, RGB) at a point: the luminaires' direct light plus the
     /// light from every patch (its mean radiosity × the form factor, if visible).
     pub fn illuminance(&self, point: &SurfacePoint) -> DVec3 {
-        let (p, n) = (point.position, point.normal.normalize_or_zero());
-        self.direct(p, n)
-            + gather::from_patches(
-                self.scene,
-                &self.radiosity,
-                point,
-                self.settings.form_factor,
-            )
+        self.illuminance_at_points(std::slice::from_ref(point))[0]
+    }
+
+    /// [`CpuSolver::illuminance`] at many points (the patches' radiosity gathered once).
+    pub fn illuminance_at_points(&self, points: &[SurfacePoint]) -> Vec<DVec3> {
+        let shooters = super::shooters::Shooters::flat(self.scene);
+        let patches = gather::patches(self.scene, &shooters, &self.radiosity);
+        points
+            .iter()
+            .map(|point| {
+                let (p, n) = (point.position, point.normal.normalize_or_zero());
+                self.direct(p, n)
+                    + gather::from_patches(self.scene, &patches, point, self.settings.form_factor)
+            })
+            .collect()
     }
 
     /// The state reached so far, as a start for another solver.

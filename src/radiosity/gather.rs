@@ -1,61 +1,119 @@
 //! Illuminance at arbitrary points from a solution: every shooting patch's mean radiosity
 //! times its form factor to the point, where the patch sees the point (a ray cast).
 //! This is how `goniolight radiosity --points` adds the interreflected light at points
-//! that are not on a surface (a work plane).
+//! that are not on a surface (a work plane). The patches are the shooters' finest ones:
+//! each triangle's patches without a hierarchy, each flat cluster's finest cells with one
+//! (a floor of 500 strips is a few hundred cells, not thousands of strip patches).
+
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 use glam::DVec3;
 use rayon::prelude::*;
 
 use super::form_factor::{self, FormFactorKind};
 use super::scene::RadiosityScene;
+use super::shooters::Shooters;
 use crate::lighting::SurfacePoint;
 use crate::shadow::{raycast, IgnoredTriangles, Light};
 
-/// Illuminance (lux, RGB) at `point` from every patch of `scene` with the element
-/// `radiosity` (lm/m², RGB), emission included.
+/// One patch to gather from: its polygon, where it sees from, and its mean radiosity.
+#[derive(Debug, Clone)]
+pub struct GatherPatch {
+    /// Convex polygon, counter-clockwise from the front, metres.
+    pub polygon: Vec<DVec3>,
+    /// Where its visibility rays start, metres.
+    pub centroid: DVec3,
+    /// Unit normal.
+    pub normal: DVec3,
+    /// Polygon area, m².
+    pub area: f64,
+    /// Its elements' mean radiosity, lm/m² (RGB).
+    pub radiosity: DVec3,
+}
+
+/// The finest patches of every shooter with the element `radiosity` (lm/m², RGB).
+pub fn patches(
+    scene: &RadiosityScene,
+    shooters: &Shooters,
+    radiosity: &[DVec3],
+) -> Vec<GatherPatch> {
+    let el = &scene.elements;
+    (0..shooters.len())
+        .into_par_iter()
+        .flat_map_iter(|s| {
+            let plan = shooters.plan(scene, s, shooters.finest_cell[s]);
+            let normal = shooters.normal[s];
+            plan.patches
+                .into_iter()
+                .map(|p| {
+                    let members = &plan.order[p.first as usize..][..p.count as usize];
+                    let power: DVec3 = members
+                        .iter()
+                        .map(|&e| radiosity[e as usize] * el.area[e as usize])
+                        .sum();
+                    GatherPatch {
+                        radiosity: power / p.element_area.max(1e-300),
+                        polygon: p.polygon,
+                        centroid: p.centroid,
+                        normal,
+                        area: p.area,
+                    }
+                })
+                .collect::<Vec<_>>()
+        })
+        .collect()
+}
+
+/// Illuminance (lux, RGB) at `point` from `patches` (emission included).
 pub fn from_patches(
     scene: &RadiosityScene,
-    radiosity: &[DVec3],
+    patches: &[GatherPatch],
     point: &SurfacePoint,
     kind: FormFactorKind,
 ) -> DVec3 {
     let (p, n) = (point.position, point.normal.normalize_or_zero());
-    let el = &scene.elements;
     let eps = raycast::self_hit_epsilon(&scene.casters);
     let (bvh, none) = (scene.caster_bvh(), IgnoredTriangles::default());
     let mut e = DVec3::ZERO;
-    for te in &el.triangles {
-        for patch in &el.patches[te.first_patch as usize..][..te.patch_count as usize] {
-            let f = match kind {
-                FormFactorKind::Disc => {
-                    form_factor::disc(p, n, patch.centroid, te.normal, patch.area)
-                }
-                FormFactorKind::Polygon => form_factor::polygon(p, n, &patch.polygon, te.normal),
-            };
-            if f <= 0.0 {
-                continue;
+    for patch in patches {
+        let f = match kind {
+            FormFactorKind::Disc => {
+                form_factor::disc(p, n, patch.centroid, patch.normal, patch.area)
             }
-            let light = Light((patch.centroid + te.normal * eps).extend(1.0));
-            if bvh.in_shadow(&light, p + n * eps, eps, &none) {
-                continue;
-            }
-            let range = patch.first as usize..(patch.first + patch.count) as usize;
-            let power: DVec3 = range.map(|k| radiosity[k] * el.area[k]).sum();
-            e += power / patch.area * f;
+            FormFactorKind::Polygon => form_factor::polygon(p, n, &patch.polygon, patch.normal),
+        };
+        if f <= 0.0 {
+            continue;
         }
+        let light = Light((patch.centroid + patch.normal * eps).extend(1.0));
+        if bvh.in_shadow(&light, p + n * eps, eps, &none) {
+            continue;
+        }
+        e += patch.radiosity * f;
     }
     e
 }
 
-/// [`from_patches`] at many points, in parallel.
+/// [`from_patches`] at many points, in parallel, calling `progress` with the number of
+/// points done so far; `None` when `cancel` was set before all were done.
 pub fn at_points(
     scene: &RadiosityScene,
-    radiosity: &[DVec3],
+    patches: &[GatherPatch],
     points: &[SurfacePoint],
     kind: FormFactorKind,
-) -> Vec<DVec3> {
+    cancel: &AtomicBool,
+    progress: &(dyn Fn(usize) + Sync),
+) -> Option<Vec<DVec3>> {
+    let done = AtomicUsize::new(0);
     points
         .par_iter()
-        .map(|p| from_patches(scene, radiosity, p, kind))
+        .map(|p| {
+            if cancel.load(Ordering::Relaxed) {
+                return None;
+            }
+            let e = from_patches(scene, patches, p, kind);
+            progress(done.fetch_add(1, Ordering::Relaxed) + 1);
+            Some(e)
+        })
         .collect()
 }

@@ -10,7 +10,7 @@ use wgpu::util::DeviceExt;
 use super::form_factor::FormFactorKind;
 use super::initial::InitialState;
 use super::scene::RadiosityScene;
-use super::shooters::{Hierarchy, ShotPlan, Shooters, DEFAULT_CELL_POWER};
+use super::shooters::{Hierarchy, Shooters, ShotPlan, DEFAULT_CELL_POWER};
 use super::{Ambient, SolverSettings};
 use crate::gpu::{Gpu, GpuError};
 use crate::render::layouts::{buffer_binding, entry};
@@ -616,7 +616,14 @@ impl<'a> GpuSolver<'a> {
         let patches: Vec<[u32; 4]> = plan
             .patches
             .iter()
-            .map(|p| [first + p.first, p.count, (p.element_area as f32).to_bits(), 0])
+            .map(|p| {
+                [
+                    first + p.first,
+                    p.count,
+                    (p.element_area as f32).to_bits(),
+                    0,
+                ]
+            })
             .collect();
         self.gpu
             .queue

@@ -241,9 +241,9 @@ impl Shooters {
         self.count.iter().copied().max().unwrap_or(1).max(1) as usize
     }
 
-    /// The oracle: the cell side shooter `s` shoots from when it holds `power` lm, so
-    /// that no cell carries more than `budget` lm — the finest cell times a power of two,
-    /// at most one cell over the whole shooter.
+    /// The oracle: the cell side shooter `s` shoots from when it holds `power` lm — the
+    /// largest of the finest cell times a power of two whose cells (area / side² of them)
+    /// carry at most `budget` lm each, stopping at one cell over the whole shooter.
     pub fn cell_side(&self, s: usize, power: f64, budget: f64) -> f64 {
         let finest = self.finest_cell[s];
         let ShooterShape::Cluster { obb, .. } = &self.shapes[s] else {
@@ -255,7 +255,7 @@ impl Shooters {
         }
         let wanted = (self.area[s] * budget / power).sqrt();
         let mut side = finest;
-        while side < wanted && side < whole {
+        while 2.0 * side <= wanted && side < whole {
             side *= 2.0;
         }
         side
@@ -308,7 +308,10 @@ fn cluster_plan(
 ) -> ShotPlan {
     let el = &scene.elements;
     let [u, v, _] = obb.axes;
-    let lo = DVec2::new(obb.centre.dot(u) - obb.half.x, obb.centre.dot(v) - obb.half.y);
+    let lo = DVec2::new(
+        obb.centre.dot(u) - obb.half.x,
+        obb.centre.dot(v) - obb.half.y,
+    );
     let hi = lo + 2.0 * DVec2::new(obb.half.x, obb.half.y);
     let grid = Grid {
         lo,
@@ -341,7 +344,11 @@ fn cluster_plan(
         let outline = grid.outline(key, pieces.get(&key).map_or(&[][..], Vec::as_slice));
         let offset = normal * centroid.dot(normal);
         let mut polygon: Vec<DVec3> = outline.iter().map(|q| u * q.x + v * q.y + offset).collect();
-        if (polygon[1] - polygon[0]).cross(polygon[2] - polygon[0]).dot(normal) < 0.0 {
+        if (polygon[1] - polygon[0])
+            .cross(polygon[2] - polygon[0])
+            .dot(normal)
+            < 0.0
+        {
             polygon.reverse();
         }
         patches.push(PlannedPatch {

@@ -13,6 +13,7 @@ use crate::photometry::Interp;
 use crate::radiosity::gpu::{GpuSettings, GpuSolver};
 use crate::radiosity::initial::{InitialState, LuminaireLight};
 use crate::radiosity::scene::RadiosityScene;
+use crate::radiosity::shooters::Hierarchy;
 use crate::radiosity::solve;
 use crate::radiosity::SolverSettings;
 use crate::render::lightmap::LightMap;
@@ -114,7 +115,10 @@ impl Default for RadiositySettings {
             level: 2,
             converge: 0.99,
             solver: SolverSettings::default(),
-            gpu: GpuSettings::default(),
+            gpu: GpuSettings {
+                hierarchy: Hierarchy::Clusters,
+                ..GpuSettings::default()
+            },
             update_every_s: 0.5,
         }
     }

@@ -11,6 +11,7 @@ use super::app::ViewerApp;
 use super::jobs::{self, ProfileUpdate, RadiosityUpdate};
 use super::view::parsed_field;
 use crate::radiosity::gpu::Visibility;
+use crate::radiosity::shooters::Hierarchy;
 use crate::radiosity::{Ambient, FormFactorKind};
 use crate::render::ShadowTechnique;
 use crate::study::output::{hours_image, profile_image};
@@ -198,6 +199,20 @@ impl ViewerApp {
                             &mut st.gpu.visibility,
                             Visibility::Stereographic,
                             "stereographic",
+                        );
+                    });
+                    ui.end_row();
+                    ui.label("Shooters");
+                    ui.horizontal(|ui| {
+                        ui.selectable_value(
+                            &mut st.gpu.hierarchy,
+                            Hierarchy::Clusters,
+                            "face clusters",
+                        );
+                        ui.selectable_value(
+                            &mut st.gpu.hierarchy,
+                            Hierarchy::None,
+                            "every triangle",
                         );
                     });
                     ui.end_row();
