@@ -222,3 +222,78 @@ fn the_oracle_gives_bright_clusters_fine_cells_and_weak_ones_one_cell() {
         }
     }
 }
+
+#[test]
+fn gathering_at_points_from_cluster_cells_is_as_close_to_a_fine_gather_as_from_patches() {
+    use goniolight::lighting::SurfacePoint;
+    use goniolight::radiosity::gather;
+    use goniolight::radiosity::FormFactorKind;
+    // The CAD-like room lit by its luminaire (the CPU reference's direct light): the
+    // reflected light at a work plane gathered from the strips' 15 000 patches and from the
+    // faces' few hundred cells (both 0.4 m), against a gather from every 0.1 m texel.
+    let scene = bundled("cad_room.toml");
+    let points: Vec<SurfacePoint> = (0..24)
+        .map(|k| SurfacePoint {
+            position: DVec3::new(0.6 + 0.9 * (k % 6) as f64, 0.5 + 0.9 * (k / 6) as f64, 0.8),
+            normal: DVec3::Z,
+        })
+        .collect();
+    let gather_with = |level: u32, h: Hierarchy| {
+        let r = RadiosityScene::new(&scene, 10.0, level).unwrap();
+        let radiosity = CpuSolver::new(&r, SolverSettings::default())
+            .state()
+            .radiosity;
+        let patches = gather::patches(&r, &Shooters::build(&r, h), &radiosity);
+        let lux = gather::at_points(
+            &r,
+            &patches,
+            &points,
+            FormFactorKind::Polygon,
+            &AtomicBool::new(false),
+            &|_| {},
+        )
+        .unwrap();
+        (
+            patches.len(),
+            lux.into_iter().map(luminance).collect::<Vec<f64>>(),
+        )
+    };
+    let (_, fine) = gather_with(0, Hierarchy::None);
+    let (flat_patches, flat) = gather_with(2, Hierarchy::None);
+    let (cells, tree) = gather_with(2, Hierarchy::Clusters);
+    assert!(
+        cells * 5 < flat_patches,
+        "{cells} cells vs {flat_patches} patches"
+    );
+    let worst = |values: &[f64]| {
+        let mut worst = 0.0f64;
+        let mut lit = 0;
+        for (a, b) in values.iter().zip(&fine) {
+            if *b == 0.0 {
+                // Inside a box of furniture: it sees only the backs of its faces.
+                assert_eq!(*a, 0.0);
+                continue;
+            }
+            lit += 1;
+            worst = worst.max((a / b - 1.0).abs());
+        }
+        assert!(lit >= 20, "{lit} of 24 points see reflected light");
+        worst
+    };
+    let (flat_worst, tree_worst) = (worst(&flat), worst(&tree));
+    eprintln!(
+        "gather against every texel: {flat_patches} strip patches worst {:.3} %, {cells} cells worst {:.3} %",
+        100.0 * flat_worst,
+        100.0 * tree_worst
+    );
+    // Both are 0.4 m patches: the cells must be no further from the fine gather than the
+    // strips' patches (a quarter to spare), and both within 3 %.
+    assert!(
+        flat_worst < 0.03 && tree_worst < 0.03,
+        "{flat_worst} {tree_worst}"
+    );
+    assert!(
+        tree_worst <= 1.25 * flat_worst,
+        "{tree_worst} vs {flat_worst}"
+    );
+}
