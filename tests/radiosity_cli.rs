@@ -372,9 +372,30 @@ fn bench_radiosity_compares_flat_and_cluster_shooters_side_by_side() {
     assert!(rows[1]["shooters_seconds"].as_f64().unwrap() >= 0.0);
 }
 
+/// Reads `child`'s stderr until it says `marker`, then sends it SIGINT 0.3 s later:
+/// the stderr before and after.
+fn interrupt_after(child: &mut std::process::Child, marker: &str) -> (String, String) {
+    use std::io::{BufRead, BufReader, Read};
+    let mut stderr = BufReader::new(child.stderr.take().unwrap());
+    let mut text = String::new();
+    while !text.contains(marker) {
+        let mut line = String::new();
+        assert!(
+            stderr.read_line(&mut line).unwrap() > 0,
+            "ended early: {text}"
+        );
+        text.push_str(&line);
+    }
+    std::thread::sleep(std::time::Duration::from_millis(300));
+    unsafe { libc::kill(child.id() as i32, libc::SIGINT) };
+    let mut rest = String::new();
+    stderr.read_to_string(&mut rest).unwrap();
+    (text, rest)
+}
+
 #[test]
 fn ctrl_c_stops_the_gather_at_points_and_prints_nothing() {
-    use std::io::{BufRead, BufReader, Write};
+    use std::io::Write;
     use std::process::{Command, Stdio};
     let scene = root().join("assets/scenes/box_room.toml");
     let mut child = Command::new(env!("CARGO_BIN_EXE_goniolight"))
@@ -397,21 +418,8 @@ fn ctrl_c_stops_the_gather_at_points_and_prints_nothing() {
     let mut stdin = child.stdin.take().unwrap();
     stdin.write_all(points.as_bytes()).unwrap();
     drop(stdin);
-    let mut stderr = BufReader::new(child.stderr.take().unwrap());
-    let mut text = String::new();
-    while !text.contains("gathering at 1000000 points") {
-        let mut line = String::new();
-        assert!(
-            stderr.read_line(&mut line).unwrap() > 0,
-            "ended early: {text}"
-        );
-        text.push_str(&line);
-    }
-    std::thread::sleep(std::time::Duration::from_millis(300));
     let started = std::time::Instant::now();
-    unsafe { libc::kill(child.id() as i32, libc::SIGINT) };
-    let mut rest = String::new();
-    std::io::Read::read_to_string(&mut stderr, &mut rest).unwrap();
+    let (text, rest) = interrupt_after(&mut child, "gathering at 1000000 points");
     let mut stdout = String::new();
     std::io::Read::read_to_string(&mut child.stdout.take().unwrap(), &mut stdout).unwrap();
     let status = child.wait().unwrap();
@@ -424,7 +432,6 @@ fn ctrl_c_stops_the_gather_at_points_and_prints_nothing() {
 
 #[test]
 fn ctrl_c_stops_the_solver_and_writes_the_solution_so_far() {
-    use std::io::{BufRead, BufReader};
     use std::process::{Command, Stdio};
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("out");
@@ -438,21 +445,8 @@ fn ctrl_c_stops_the_solver_and_writes_the_solution_so_far() {
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
-    let mut stderr = BufReader::new(child.stderr.take().unwrap());
-    let mut text = String::new();
-    // Wait until it says it is shooting (the handler is in place), then interrupt.
-    while !text.contains("shooting") {
-        let mut line = String::new();
-        assert!(
-            stderr.read_line(&mut line).unwrap() > 0,
-            "ended early: {text}"
-        );
-        text.push_str(&line);
-    }
-    std::thread::sleep(std::time::Duration::from_millis(300));
-    unsafe { libc::kill(child.id() as i32, libc::SIGINT) };
-    let mut rest = String::new();
-    std::io::Read::read_to_string(&mut stderr, &mut rest).unwrap();
+    // Once it says it is shooting (the handler is in place).
+    let (text, rest) = interrupt_after(&mut child, "shooting");
     let status = child.wait().unwrap();
     assert!(status.success(), "{status:?}: {text}{rest}");
     assert!(

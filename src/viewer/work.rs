@@ -188,59 +188,43 @@ impl ViewerApp {
                     ui.add(egui::Slider::new(&mut st.converge, 0.5..=0.999).fixed_decimals(3))
                         .labelled_by(label.id);
                     ui.end_row();
-                    ui.label("Visibility");
-                    ui.horizontal(|ui| {
-                        ui.selectable_value(
-                            &mut st.gpu.visibility,
-                            Visibility::Hemicube,
-                            "hemicube",
-                        );
-                        ui.selectable_value(
-                            &mut st.gpu.visibility,
-                            Visibility::Stereographic,
-                            "stereographic",
-                        );
-                    });
-                    ui.end_row();
-                    ui.label("Shooters");
-                    ui.horizontal(|ui| {
-                        ui.selectable_value(
-                            &mut st.gpu.hierarchy,
-                            Hierarchy::Clusters,
-                            "face clusters",
-                        );
-                        ui.selectable_value(
-                            &mut st.gpu.hierarchy,
-                            Hierarchy::None,
-                            "every triangle",
-                        );
-                    });
-                    ui.end_row();
-                    ui.label("Form factor");
-                    ui.horizontal(|ui| {
-                        ui.selectable_value(
-                            &mut st.solver.form_factor,
-                            FormFactorKind::Polygon,
-                            "polygon",
-                        );
-                        ui.selectable_value(
-                            &mut st.solver.form_factor,
-                            FormFactorKind::Disc,
-                            "disc",
-                        );
-                    });
-                    ui.end_row();
-                    ui.label("Ambient term");
-                    ui.horizontal(|ui| {
-                        ui.selectable_value(&mut st.solver.ambient, Ambient::Display, "display");
-                        ui.selectable_value(
-                            &mut st.solver.ambient,
-                            Ambient::Overshoot,
-                            "overshoot",
-                        );
-                        ui.selectable_value(&mut st.solver.ambient, Ambient::None, "none");
-                    });
-                    ui.end_row();
+                    choice_row(
+                        ui,
+                        "Visibility",
+                        &mut st.gpu.visibility,
+                        &[
+                            (Visibility::Hemicube, "hemicube"),
+                            (Visibility::Stereographic, "stereographic"),
+                        ],
+                    );
+                    choice_row(
+                        ui,
+                        "Shooters",
+                        &mut st.gpu.hierarchy,
+                        &[
+                            (Hierarchy::Clusters, "face clusters"),
+                            (Hierarchy::None, "every triangle"),
+                        ],
+                    );
+                    choice_row(
+                        ui,
+                        "Form factor",
+                        &mut st.solver.form_factor,
+                        &[
+                            (FormFactorKind::Polygon, "polygon"),
+                            (FormFactorKind::Disc, "disc"),
+                        ],
+                    );
+                    choice_row(
+                        ui,
+                        "Ambient term",
+                        &mut st.solver.ambient,
+                        &[
+                            (Ambient::Display, "display"),
+                            (Ambient::Overshoot, "overshoot"),
+                            (Ambient::None, "none"),
+                        ],
+                    );
                 });
         });
         ui.horizontal(|ui| {
@@ -435,4 +419,20 @@ impl ViewerApp {
             });
         self.profile.open = open;
     }
+}
+
+/// A grid row: `label`, then one selectable button per option setting `value`.
+fn choice_row<T: PartialEq + Copy>(
+    ui: &mut egui::Ui,
+    label: &str,
+    value: &mut T,
+    options: &[(T, &str)],
+) {
+    ui.label(label);
+    ui.horizontal(|ui| {
+        for &(option, text) in options {
+            ui.selectable_value(value, option, text);
+        }
+    });
+    ui.end_row();
 }
