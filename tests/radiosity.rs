@@ -82,11 +82,11 @@ fn area_form_factor(r: &RadiosityScene, kind: FormFactorKind) -> f64 {
     let half = el.triangles.len() / 2;
     let (mut sum, mut area) = (0.0, 0.0);
     for i in 0..el.len() {
-        if el.triangle[i] as usize >= half {
+        if el.chart[i] as usize >= half {
             continue;
         }
         area += el.area[i];
-        for te in &el.triangles[half..] {
+        for te in &el.charts[half..] {
             for p in &el.patches[te.first_patch as usize..][..te.patch_count as usize] {
                 let (pi, ni) = (el.position[i], el.normal(i));
                 let f = match kind {
@@ -218,7 +218,7 @@ fn one_shot_in_a_closed_box_delivers_all_its_power() {
     );
     let before = solver.radiosity.clone();
     let (t, extra) = solver.select().unwrap();
-    let te = r.elements.triangles[t].clone();
+    let te = r.elements.charts[t].clone();
     let shot: f64 = (te.first..te.first + te.count)
         .map(|e| solver.unshot[e as usize].x * r.elements.area[e as usize])
         .sum();
@@ -288,7 +288,7 @@ fn one_gpu_shot_equals_the_cpu_reference_shot() {
         // The same shooter, or one with the same power (the two ceiling triangles tie).
         let t = chosen.shooter.unwrap();
         let power = |t: usize| {
-            let te = &r.elements.triangles[t];
+            let te = &r.elements.charts[t];
             (te.first..te.first + te.count)
                 .map(|e| cpu.unshot[e as usize].x * r.elements.area[e as usize])
                 .sum::<f64>()
@@ -307,7 +307,7 @@ fn one_gpu_shot_equals_the_cpu_reference_shot() {
             let have = got[e].x - initial[e].x;
             agree += ((have - want).abs() <= 0.01 * want.max(0.02 * max_gain)) as usize;
             lit += (want > 0.0) as usize;
-            shadowed += (want == 0.0 && r.elements.triangle[e] as usize != t) as usize;
+            shadowed += (want == 0.0 && r.elements.chart[e] as usize != t) as usize;
         }
         let fraction = agree as f64 / r.elements.len() as f64;
         let total = |b: &[DVec3]| -> f64 {
@@ -343,7 +343,7 @@ fn one_gpu_shot_equals_the_cpu_reference_shot() {
         );
         assert!(lit > 500 && shadowed > 50, "{lit} lit, {shadowed} unlit");
         let unshot = solver.unshot().unwrap();
-        let te = &r.elements.triangles[t];
+        let te = &r.elements.charts[t];
         assert!((te.first..te.first + te.count).all(|e| unshot[e as usize] == DVec3::ZERO));
     }
 }
@@ -361,7 +361,7 @@ fn a_shot_stopped_between_batches_resumes_without_loss() {
     let new = || GpuSolver::new(&gpu, &r, &initial, settings, GpuSettings::default());
     let (mut whole, mut split) = (new(), new());
     let t = whole.select().unwrap().shooter.unwrap();
-    let patches = r.elements.triangles[t].patch_count as usize;
+    let patches = r.elements.charts[t].patch_count as usize;
     assert!(
         patches > PATCHES_PER_BATCH,
         "{patches} patches: one batch only"
@@ -550,7 +550,7 @@ fn a_patch_lights_nothing_behind_its_plane() {
     let mean = |b: &[DVec3], tris: std::ops::Range<usize>| {
         let el = &r.elements;
         let elements = tris.flat_map(|t| {
-            let te = &el.triangles[t];
+            let te = &el.charts[t];
             te.first as usize..(te.first + te.count) as usize
         });
         let (sum, area) = elements.fold((0.0, 0.0), |(s, a), e| {

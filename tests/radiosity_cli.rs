@@ -140,6 +140,7 @@ fn stops_at_the_shot_limit_and_the_log_has_a_line_per_shot() {
     for stage in [
         "prepared in",
         "load ",
+        "face clusters ",
         "elements and atlas ",
         "direct light ",
         "12 triangles",

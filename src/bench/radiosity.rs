@@ -94,24 +94,32 @@ pub fn run(
         time_limit,
     } = plan;
     let density = (elements as f64 / surface_area(scene).max(1e-9)).sqrt();
-    let rscene = RadiosityScene::new(scene, density, level)?;
     let settings = SolverSettings::default();
     let shadows = crate::render::ShadowSettings::default();
     let light = LuminaireLight::new(gpu, scene, settings.interp);
-    let initial = InitialState::from_luminaires_gpu(gpu, &light, &rscene, &shadows)?;
+    // The hierarchy lays the charts too, so each has its own elements.
+    let mut prepared: Vec<(Hierarchy, RadiosityScene, InitialState)> = Vec::new();
     let mut rows = Vec::new();
     for &(visibility, hierarchy) in configs {
+        if !prepared.iter().any(|p| p.0 == hierarchy) {
+            let rscene = RadiosityScene::with_hierarchy(scene, density, level, hierarchy)?;
+            let initial = InitialState::from_luminaires_gpu(gpu, &light, &rscene, &shadows)?;
+            prepared.push((hierarchy, rscene, initial));
+        }
+        let Some((_, rscene, initial)) = prepared.iter().find(|p| p.0 == hierarchy) else {
+            continue;
+        };
         let gpu_settings = GpuSettings {
             visibility,
             hierarchy,
             ..GpuSettings::default()
         };
         let built = std::time::Instant::now();
-        let shooters = Shooters::build(&rscene, hierarchy);
+        let shooters = Shooters::build(rscene, hierarchy);
         let shooters_seconds = built.elapsed().as_secs_f64();
         let shooter_count = shooters.len();
         let mut solver =
-            GpuSolver::with_shooters(gpu, &rscene, &initial, settings, gpu_settings, shooters);
+            GpuSolver::with_shooters(gpu, rscene, initial, settings, gpu_settings, shooters);
         let stop = StopAt {
             converge: 0.99,
             max_shots: Some(max_shots),

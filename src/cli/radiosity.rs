@@ -172,8 +172,9 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
         (None, false) => Some(PathBuf::from("radiosity-out")),
         (None, true) => None,
     };
-    let rscene = RadiosityScene::new(&scene, args.texel_density, args.level)
-        .map_err(|e| CliError::input(anyhow!("{}: {e}", args.scene.display())))?;
+    let rscene =
+        RadiosityScene::with_hierarchy(&scene, args.texel_density, args.level, args.hierarchy)
+            .map_err(|e| CliError::input(anyhow!("{}: {e}", args.scene.display())))?;
     let elements_s = started.elapsed().as_secs_f64() - load_s;
     let interp = settings.light_model.interp();
     let solver_settings = SolverSettings {
@@ -195,15 +196,18 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
     };
     let prepared_s = started.elapsed().as_secs_f64();
     eprintln!(
-        "{}: prepared in {prepared_s:.2} s — load {load_s:.2} s, elements and atlas {elements_s:.2} s, luminaires' direct light {:.2} s; {} triangles{}",
+        "{}: prepared in {prepared_s:.2} s — load {load_s:.2} s, {}elements and atlas {:.2} s, luminaires' direct light {:.2} s; {} triangles{}",
         args.scene.display(),
+        match args.hierarchy {
+            Hierarchy::None => String::new(),
+            Hierarchy::Clusters => format!("face clusters {:.2} s, ", rscene.clustering_seconds),
+        },
+        elements_s - rscene.clustering_seconds,
         prepared_s - load_s - elements_s,
         scene.triangle_count(),
         crate::io::peak_memory_mb().map_or(String::new(), |mb| format!(", peak memory {mb} MB")),
     );
-    let clustering = Instant::now();
     let shooters = Shooters::build(&rscene, args.hierarchy);
-    let clustering_s = clustering.elapsed().as_secs_f64();
     let shooter_count = shooters.len();
     let cluster_count = shooters.clusters.nodes.len() - shooters.clusters.order.len();
     let mut solver = GpuSolver::with_shooters(
@@ -216,16 +220,16 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
     );
     let cancel = super::interrupt_flag();
     eprintln!(
-        "{}: {} elements, {} patches, atlas {}×{}; {shooter_count} shooters{}; shooting (Ctrl-C stops and writes the solution so far)",
+        "{}: {} elements in {} charts, {} patches, atlas {}×{}; {shooter_count} shooters{}; shooting (Ctrl-C stops and writes the solution so far)",
         args.scene.display(),
         rscene.elements.len(),
+        rscene.elements.charts.len(),
         rscene.elements.patches.len(),
         rscene.elements.atlas_width,
         rscene.elements.atlas_height,
         match args.hierarchy {
             Hierarchy::None => " (one per triangle: --hierarchy none)".to_string(),
-            Hierarchy::Clusters =>
-                format!(" of {cluster_count} face clusters (built in {clustering_s:.2} s)"),
+            Hierarchy::Clusters => format!(" of {cluster_count} face clusters"),
         },
     );
     let bar = progress_bar()?;

@@ -120,28 +120,28 @@ impl<'a> CpuSolver<'a> {
         solve::ambient_term(self.scene, &self.unshot)
     }
 
-    /// Per triangle: unshot radiosity (area-weighted mean) and area.
-    fn triangle_unshot(&self, t: usize) -> DVec3 {
+    /// Chart `t`'s unshot radiosity (area-weighted mean).
+    fn chart_unshot(&self, t: usize) -> DVec3 {
         let el = &self.scene.elements;
-        let te = &el.triangles[t];
+        let te = &el.charts[t];
         let range = te.first as usize..(te.first + te.count) as usize;
         let power: DVec3 = range.map(|e| self.unshot[e] * el.area[e]).sum();
         power / te.area.max(1e-300)
     }
 
-    /// The next shooter and the overshoot it adds to its unshot radiosity: the triangle
-    /// with the largest unshot power, with ambient overshooting (Feda and Purgathofer;
+    /// The next shooter and the overshoot it adds to its unshot radiosity: the chart
+    /// (with per-triangle charts: the triangle) with the largest unshot power, with ambient overshooting (Feda and Purgathofer;
     /// Wallner Eq. 4.9) the largest (ΔB + ΔB′) A.
     pub fn select(&self) -> Option<(usize, DVec3)> {
         let el = &self.scene.elements;
         let total: DVec3 = (0..el.len()).map(|e| self.unshot[e] * el.area[e]).sum();
         let ambient = self.ambient();
         let mut best: Option<(usize, DVec3, f64)> = None;
-        for (t, te) in el.triangles.iter().enumerate() {
+        for (t, te) in el.charts.iter().enumerate() {
             if te.count == 0 {
                 continue;
             }
-            let unshot = self.triangle_unshot(t);
+            let unshot = self.chart_unshot(t);
             let extra = match self.settings.ambient {
                 Ambient::Overshoot => {
                     let rho = self.scene.reflectance[te.material];
@@ -159,18 +159,18 @@ impl<'a> CpuSolver<'a> {
         best.filter(|b| b.2 > 0.0).map(|b| (b.0, b.1))
     }
 
-    /// Shoots triangle `t`'s unshot radiosity plus `extra` from each of its patches to
+    /// Shoots chart `t`'s unshot radiosity plus `extra` from each of its patches to
     /// every visible element; its unshot radiosity becomes −`extra`.
     pub fn shoot(&mut self, t: usize, extra: DVec3) {
         let el = &self.scene.elements;
-        let te = &el.triangles[t];
+        let te = &el.charts[t];
         let nt = te.normal;
         for p in &el.patches[te.first_patch as usize..][..te.patch_count as usize] {
             let range = p.first as usize..(p.first + p.count) as usize;
             let power: DVec3 = range.map(|e| (self.unshot[e] + extra) * el.area[e]).sum();
             let delta = power / p.area.max(1e-300);
             for i in 0..el.len() {
-                if el.triangle[i] as usize == t {
+                if el.chart[i] as usize == t {
                     continue;
                 }
                 let (pi, ni) = (el.position[i], el.normal(i));

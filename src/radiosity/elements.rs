@@ -1,14 +1,18 @@
-//! Radiosity elements: every triangle gets a rectangle of texels in a light-map atlas
-//! (Wallner §2.3, §4.2). Texel size per object comes from the user's texel density; every
-//! texel whose square touches the triangle is an element (conservative coverage, §2.3.1),
-//! with the exact area, centroid and normal of the part of the triangle inside it, so
-//! edge texels exist and the elements of a triangle tile it exactly. Elements are grouped
-//! into shooting patches of 2^level × 2^level texels (substructuring: a coarser mip level
-//! shoots, the fine elements receive), each patch a convex polygon. Texels around the
-//! covered ones get a display source (gutter fill) so bilinear filtering never reads
-//! an empty texel.
+//! Radiosity elements: every chart gets a rectangle of texels in a light-map atlas
+//! (Wallner §2.3, §4.2). A chart is one triangle, or a set of coplanar triangles (with face
+//! clusters: each planar cluster, Edström ch. 5) laid in one plane frame and one rectangle,
+//! so the light map runs on across their shared edges without a seam. Texel size per object
+//! comes from the user's texel density; every texel whose square touches a triangle of the
+//! chart is an element (conservative coverage, §2.3.1), with the exact area and centroid of
+//! the part of the chart's triangles inside it, so the elements of a chart tile it exactly.
+//! Elements are grouped into shooting patches of 2^level × 2^level texels (substructuring:
+//! a coarser mip level shoots, the fine elements receive). Texels around the covered ones
+//! get a display source (gutter fill) so bilinear filtering never reads an empty texel.
 
 use glam::{DVec2, DVec3};
+
+use super::clusters::obb::{convex_hull, Obb};
+use super::polygon::{area_centroid, clip_square, outline};
 
 /// One triangle to be split into elements.
 #[derive(Debug, Clone, Copy)]
@@ -21,25 +25,27 @@ pub struct InputTriangle {
     pub texel_m: f64,
 }
 
-/// A shooting patch: a block of a triangle's texels (one texel of a coarser mip level).
+/// A shooting patch: a block of a chart's texels (one texel of a coarser mip level).
 #[derive(Debug, Clone)]
 pub struct Patch {
     /// First element (the patch's elements are contiguous).
     pub first: u32,
     /// Number of elements.
     pub count: u32,
-    /// The block clipped to the triangle: a convex polygon, counter-clockwise from the front.
+    /// The block clipped to the chart, counter-clockwise from the front: exact for a
+    /// chart of one triangle, the convex hull of the clipped triangles (at most 8
+    /// corners) for a chart of several.
     pub polygon: Vec<DVec3>,
     /// Area-weighted centre, metres.
     pub centroid: DVec3,
-    /// Area, m².
+    /// Its elements' area, m².
     pub area: f64,
 }
 
-/// The elements and patches of one triangle and where it sits in the atlas.
+/// A chart: triangles sharing one plane frame and one rectangle of the atlas.
 #[derive(Debug, Clone)]
-pub struct TriangleElements {
-    /// First element.
+pub struct Chart {
+    /// First element (a chart's elements are contiguous, patch after patch).
     pub first: u32,
     /// Number of elements.
     pub count: u32,
@@ -47,21 +53,53 @@ pub struct TriangleElements {
     pub first_patch: u32,
     /// Number of patches.
     pub patch_count: u32,
-    /// Unit face normal.
+    /// Unit normal of its plane.
     pub normal: DVec3,
     /// Material index.
     pub material: usize,
-    /// Area, m².
+    /// Area, m² (its triangles' exact area).
     pub area: f64,
     /// Atlas rectangle: x, y, width, height in texels (one gutter texel on each side).
     pub rect: [u32; 4],
     /// Texel side, metres.
     pub texel_m: f64,
+    /// Its triangles (those with an area).
+    pub triangles: Vec<u32>,
+    /// Plane frame: a point of the plane …
+    pub origin: DVec3,
+    /// … and two unit axes in it (`u × v` is the normal).
+    pub axes: [DVec3; 2],
+    /// Plane coordinates of the texel grid's corner (column 0, row 0), metres.
+    pub lo: DVec2,
+}
+
+impl Chart {
+    /// The point of the chart's plane at atlas coordinates `p` (texels from the atlas's
+    /// top-left corner).
+    pub fn atlas_to_world(&self, p: DVec2) -> DVec3 {
+        let rows = self.rect[3].saturating_sub(2) as f64;
+        let x = self.lo.x + (p.x - self.rect[0] as f64 - 1.0) * self.texel_m;
+        let y = self.lo.y + (self.rect[1] as f64 + 1.0 + rows - p.y) * self.texel_m;
+        self.origin + self.axes[0] * x + self.axes[1] * y
+    }
+}
+
+/// Where one triangle lies in the atlas.
+#[derive(Debug, Clone)]
+pub struct TriangleElements {
+    /// Its chart; `u32::MAX` for a triangle without area (it has no elements).
+    pub chart: u32,
+    /// Unit face normal.
+    pub normal: DVec3,
+    /// Material index.
+    pub material: usize,
+    /// Area, m² (0 for a triangle without area).
+    pub area: f64,
     /// Atlas coordinates (texels, from the atlas's top-left corner) of the corners.
     pub atlas_uv: [DVec2; 3],
 }
 
-/// All elements of a scene, in triangle order.
+/// All elements of a scene, chart after chart.
 #[derive(Debug, Clone, Default)]
 pub struct Elements {
     /// Atlas width, texels.
@@ -74,11 +112,13 @@ pub struct Elements {
     pub area: Vec<f64>,
     /// Element atlas texels.
     pub texel: Vec<[u32; 2]>,
-    /// Element → triangle.
-    pub triangle: Vec<u32>,
-    /// Per input triangle (degenerate ones have no elements).
+    /// Element → chart.
+    pub chart: Vec<u32>,
+    /// The charts, in the order of their first triangle.
+    pub charts: Vec<Chart>,
+    /// Per input triangle.
     pub triangles: Vec<TriangleElements>,
-    /// Shooting patches, in triangle order.
+    /// Shooting patches, in chart order.
     pub patches: Vec<Patch>,
     /// Substructuring level: patches are 2^level texels square.
     pub level: u32,
@@ -103,155 +143,214 @@ pub enum ElementError {
     /// No triangle with an area.
     #[error("the scene has no triangle with an area")]
     Empty,
+    /// A chart id list of the wrong length.
+    #[error("{given} chart ids for {triangles} triangles")]
+    ChartIds {
+        /// Ids given.
+        given: usize,
+        /// Triangles.
+        triangles: usize,
+    },
 }
 
-/// Local 2D frame of a triangle: origin at corner 0, u along edge 0→1, v in the plane.
-struct Frame {
+/// One chart before packing: its triangles, plane frame and texel grid.
+struct ChartPlan {
+    material: usize,
+    texel_m: f64,
+    /// Triangles with an area, with their corners in plane coordinates (as given) and
+    /// the factor from plane area to their true area (1 for a chart of one triangle).
+    triangles: Vec<(u32, [DVec2; 3], f64)>,
     origin: DVec3,
-    u: DVec3,
-    v: DVec3,
-}
-
-impl Frame {
-    fn to_world(&self, p: DVec2) -> DVec3 {
-        self.origin + self.u * p.x + self.v * p.y
-    }
-}
-
-/// Clips a convex polygon to the half-plane left of the directed edge a → b.
-fn clip_left(poly: &[DVec2], a: DVec2, b: DVec2) -> Vec<DVec2> {
-    let side = |p: DVec2| (b - a).perp_dot(p - a);
-    let mut out = Vec::with_capacity(poly.len() + 1);
-    for (i, &p) in poly.iter().enumerate() {
-        let q = poly[(i + 1) % poly.len()];
-        let (sp, sq) = (side(p), side(q));
-        if sp >= 0.0 {
-            out.push(p);
-        }
-        if (sp >= 0.0) != (sq >= 0.0) {
-            out.push(p + (q - p) * (sp / (sp - sq)));
-        }
-    }
-    out
-}
-
-/// The axis-aligned square [lo, hi] clipped to the triangle `t` (counter-clockwise).
-pub(crate) fn clip_square(lo: DVec2, hi: DVec2, t: &[DVec2; 3]) -> Vec<DVec2> {
-    let mut poly = vec![lo, DVec2::new(hi.x, lo.y), hi, DVec2::new(lo.x, hi.y)];
-    for k in 0..3 {
-        if poly.is_empty() {
-            break;
-        }
-        poly = clip_left(&poly, t[k], t[(k + 1) % 3]);
-    }
-    poly
-}
-
-/// Area and centroid of a simple polygon (shoelace).
-pub(crate) fn area_centroid(poly: &[DVec2]) -> (f64, DVec2) {
-    let mut a = 0.0;
-    let mut c = DVec2::ZERO;
-    for (i, &p) in poly.iter().enumerate() {
-        let q = poly[(i + 1) % poly.len()];
-        let cross = p.perp_dot(q);
-        a += cross;
-        c += (p + q) * cross;
-    }
-    if a.abs() < 1e-300 {
-        let mean = poly.iter().copied().sum::<DVec2>() / poly.len().max(1) as f64;
-        return (0.0, mean);
-    }
-    (a / 2.0, c / (3.0 * a))
-}
-
-/// One triangle's elements before packing: texel (i, j) within its grid, area, centroid.
-struct Laid {
-    frame: Frame,
-    corners_2d: [DVec2; 3],
-    lo: DVec2,
-    cols: u32,
-    rows: u32,
-    elements: Vec<(u32, u32, f64, DVec2)>,
-}
-
-/// Where a triangle's texel grid lies: its plane frame, corners in it, and grid size.
-struct Footprint {
-    frame: Frame,
-    corners_2d: [DVec2; 3],
+    axes: [DVec3; 2],
+    normal: DVec3,
     lo: DVec2,
     cols: u32,
     rows: u32,
 }
 
-/// The texel grid of `t`, or `None` for a triangle without area.
-fn footprint(t: &InputTriangle) -> Option<Footprint> {
+/// One element before packing: column, row, area (m²) and centroid (plane coordinates).
+type Laid = (u32, u32, f64, DVec2);
+
+fn has_area(t: &InputTriangle) -> Option<DVec3> {
     let [a, b, c] = t.corners;
     let n = (b - a).cross(c - a);
-    if n.length() <= 1e-14 || !n.is_finite() {
-        return None;
-    }
-    let n = n.normalize();
-    let u = (b - a).normalize();
-    let frame = Frame {
-        origin: a,
-        u,
-        v: n.cross(u),
-    };
-    let to_2d = |p: DVec3| DVec2::new((p - a).dot(frame.u), (p - a).dot(frame.v));
-    let corners_2d = [DVec2::ZERO, to_2d(b), to_2d(c)];
-    let lo = corners_2d[0].min(corners_2d[1]).min(corners_2d[2]);
-    let hi = corners_2d[0].max(corners_2d[1]).max(corners_2d[2]);
-    let s = t.texel_m;
-    // Saturating casts: a huge grid is refused by the caller, never allocated.
-    let cols = (((hi.x - lo.x) / s).ceil() as u32).max(1);
-    let rows = (((hi.y - lo.y) / s).ceil() as u32).max(1);
-    Some(Footprint {
-        frame,
-        corners_2d,
-        lo,
-        cols,
-        rows,
-    })
+    (n.length() > 1e-14 && n.is_finite()).then_some(n)
 }
 
-fn lay_out(t: &InputTriangle) -> Result<Option<Laid>, ElementError> {
-    let Some(Footprint {
-        frame,
-        corners_2d,
-        lo,
-        cols,
-        rows,
-    }) = footprint(t)
-    else {
-        return Ok(None);
-    };
-    let s = t.texel_m;
-    let texels = cols as u64 * rows as u64;
-    if texels > (MAX_ATLAS as u64).pow(2) {
-        return Err(ElementError::TooLarge(texels));
+/// `corners` counter-clockwise in the plane (clipping needs that orientation).
+fn counter_clockwise(mut corners: [DVec2; 3]) -> [DVec2; 3] {
+    if (corners[1] - corners[0]).perp_dot(corners[2] - corners[0]) < 0.0 {
+        corners.swap(1, 2);
     }
-    let mut elements = Vec::new();
-    for j in 0..rows {
-        for i in 0..cols {
-            let sq_lo = lo + DVec2::new(i as f64, j as f64) * s;
-            let poly = clip_square(sq_lo, sq_lo + DVec2::splat(s), &corners_2d);
-            if poly.len() < 3 {
-                continue;
+    corners
+}
+
+impl ChartPlan {
+    /// The plan of the triangles `members` (one material, one texel size).
+    fn new(triangles: &[InputTriangle], members: &[u32]) -> ChartPlan {
+        let first = &triangles[members[0] as usize];
+        let with_area: Vec<(u32, DVec3)> = members
+            .iter()
+            .filter_map(|&t| has_area(&triangles[t as usize]).map(|n| (t, n)))
+            .collect();
+        let area_normal: DVec3 = with_area.iter().map(|(_, n)| *n).sum();
+        let (origin, axes, normal) = match with_area.as_slice() {
+            [] => (DVec3::ZERO, [DVec3::X, DVec3::Y], DVec3::Z),
+            // One triangle: its own frame, u along its first edge.
+            [(t, n)] => {
+                let [a, b, _] = triangles[*t as usize].corners;
+                let n = n.normalize();
+                let u = (b - a).normalize();
+                (a, [u, n.cross(u)], n)
             }
-            let (area, centroid) = area_centroid(&poly);
-            if area > 1e-12 * s * s {
-                elements.push((i, j, area, centroid));
+            // Several: the plane through their corners' mean along their summed normal,
+            // axes along the minimum-area rectangle (a tight rectangle in the atlas).
+            many => {
+                let corners: Vec<DVec3> = many
+                    .iter()
+                    .flat_map(|(t, _)| triangles[*t as usize].corners)
+                    .collect();
+                let n = area_normal.normalize_or(DVec3::Z);
+                let u = Obb::around(&corners, n).axes[0];
+                let mean = corners.iter().sum::<DVec3>() / corners.len() as f64;
+                (mean, [u, n.cross(u)], n)
             }
+        };
+        let single = with_area.len() == 1;
+        let to_2d = |p: DVec3| DVec2::new((p - origin).dot(axes[0]), (p - origin).dot(axes[1]));
+        let laid: Vec<(u32, [DVec2; 3], f64)> = with_area
+            .iter()
+            .map(|&(t, n)| {
+                let c = triangles[t as usize].corners.map(to_2d);
+                let plane = (c[1] - c[0]).perp_dot(c[2] - c[0]).abs();
+                let scale = if single || plane <= 0.0 {
+                    1.0
+                } else {
+                    n.length() / plane
+                };
+                (t, c, scale)
+            })
+            .collect();
+        let lo = laid
+            .iter()
+            .flat_map(|l| l.1)
+            .fold(DVec2::splat(f64::INFINITY), DVec2::min);
+        let hi = laid
+            .iter()
+            .flat_map(|l| l.1)
+            .fold(DVec2::splat(f64::NEG_INFINITY), DVec2::max);
+        let s = first.texel_m;
+        // Saturating casts: a huge grid is refused by the caller, never allocated.
+        let (cols, rows) = if laid.is_empty() {
+            (0, 0)
+        } else {
+            (
+                (((hi.x - lo.x) / s).ceil() as u32).max(1),
+                (((hi.y - lo.y) / s).ceil() as u32).max(1),
+            )
+        };
+        ChartPlan {
+            material: first.material,
+            texel_m: s,
+            triangles: laid,
+            origin,
+            axes,
+            normal,
+            lo: if cols == 0 { DVec2::ZERO } else { lo },
+            cols,
+            rows,
         }
     }
-    Ok(Some(Laid {
-        frame,
-        corners_2d,
-        lo,
-        cols,
-        rows,
-        elements,
-    }))
+
+    fn to_world(&self, p: DVec2) -> DVec3 {
+        self.origin + self.axes[0] * p.x + self.axes[1] * p.y
+    }
+
+    /// Texels (with a one-texel gutter on each side) of its atlas rectangle.
+    fn texels(&self) -> u64 {
+        if self.cols == 0 {
+            return 0;
+        }
+        (self.cols as u64 + 2) * (self.rows as u64 + 2)
+    }
+
+    /// The texel columns and rows a triangle's bounding box touches.
+    fn span(&self, c: &[DVec2; 3]) -> (std::ops::Range<u32>, std::ops::Range<u32>) {
+        let s = self.texel_m;
+        let lo = (c[0].min(c[1]).min(c[2]) - self.lo) / s;
+        let hi = (c[0].max(c[1]).max(c[2]) - self.lo) / s;
+        let first = |v: f64| (v.floor().max(0.0) as u32).min(u32::MAX - 1);
+        (
+            first(lo.x)..(hi.x.ceil() as u32).clamp(first(lo.x) + 1, self.cols.max(1)),
+            first(lo.y)..(hi.y.ceil() as u32).clamp(first(lo.y) + 1, self.rows.max(1)),
+        )
+    }
+
+    /// The elements: every texel the chart's triangles touch, with the area and centroid
+    /// of the triangles' parts inside it.
+    fn elements(&self) -> Vec<Laid> {
+        let s = self.texel_m;
+        let cells = self.cols as usize * self.rows as usize;
+        let mut area = vec![0.0f64; cells];
+        let mut moment = vec![DVec2::ZERO; cells];
+        for (_, c, scale) in &self.triangles {
+            let ccw = counter_clockwise(*c);
+            let (columns, rows) = self.span(c);
+            for j in rows {
+                for i in columns.clone() {
+                    let sq_lo = self.lo + DVec2::new(i as f64, j as f64) * s;
+                    let poly = clip_square(sq_lo, sq_lo + DVec2::splat(s), &ccw);
+                    if poly.len() < 3 {
+                        continue;
+                    }
+                    let (a, centroid) = area_centroid(&poly);
+                    let k = j as usize * self.cols as usize + i as usize;
+                    area[k] += a * scale;
+                    moment[k] += centroid * (a * scale);
+                }
+            }
+        }
+        let mut out = Vec::new();
+        for j in 0..self.rows {
+            for i in 0..self.cols {
+                let k = j as usize * self.cols as usize + i as usize;
+                if area[k] > 1e-12 * s * s {
+                    out.push((i, j, area[k], moment[k] / area[k]));
+                }
+            }
+        }
+        out
+    }
+
+    /// Per block of `block` texels, the chart's triangles (indices into `triangles`)
+    /// whose bounding boxes touch it.
+    fn triangles_by_block(&self, block: u32) -> std::collections::HashMap<(u32, u32), Vec<usize>> {
+        let mut bins: std::collections::HashMap<(u32, u32), Vec<usize>> = Default::default();
+        for (k, (_, c, _)) in self.triangles.iter().enumerate() {
+            let (columns, rows) = self.span(c);
+            for j in rows.start / block..=(rows.end - 1) / block {
+                for i in columns.start / block..=(columns.end - 1) / block {
+                    bins.entry((i, j)).or_default().push(k);
+                }
+            }
+        }
+        bins
+    }
+
+    /// The polygon of the block of `side` metres at `lo` clipped to the chart's
+    /// triangles `touching`.
+    fn block_polygon(&self, lo: DVec2, side: f64, touching: &[usize]) -> Vec<DVec2> {
+        let hi = lo + DVec2::splat(side);
+        let pieces = touching.iter().filter_map(|&k| {
+            let piece = clip_square(lo, hi, &counter_clockwise(self.triangles[k].1));
+            (piece.len() >= 3).then_some(piece)
+        });
+        if self.triangles.len() == 1 {
+            return pieces.into_iter().next().unwrap_or_default();
+        }
+        let points: Vec<DVec2> = pieces.flatten().collect();
+        outline(&convex_hull(&points), lo, hi)
+    }
 }
 
 /// Shelf packing of rectangles (w, h) into an atlas of `width`: positions and height.
@@ -274,42 +373,75 @@ fn pack(sizes: &[(u32, u32)], width: u32) -> (Vec<[u32; 2]>, u32) {
     (at, y + shelf)
 }
 
+/// Groups triangles by chart id, material and texel size, in the order of their first
+/// triangle.
+fn group(triangles: &[InputTriangle], chart_of: &[u32]) -> Vec<Vec<u32>> {
+    let mut index = std::collections::HashMap::new();
+    let mut groups: Vec<Vec<u32>> = Vec::new();
+    for (t, (tri, &id)) in triangles.iter().zip(chart_of).enumerate() {
+        let key = (id, tri.material, tri.texel_m.to_bits());
+        let g = *index.entry(key).or_insert_with(|| {
+            groups.push(Vec::new());
+            groups.len() - 1
+        });
+        groups[g].push(t as u32);
+    }
+    groups
+}
+
 impl Elements {
-    /// Splits `triangles` into elements with shooting patches of 2^`level` texels.
+    /// Splits `triangles` into elements with shooting patches of 2^`level` texels, each
+    /// triangle its own chart.
     pub fn build(triangles: &[InputTriangle], level: u32) -> Result<Elements, ElementError> {
-        let mut laid = Vec::with_capacity(triangles.len());
+        let ids: Vec<u32> = (0..triangles.len() as u32).collect();
+        Elements::build_charts(triangles, &ids, level)
+    }
+
+    /// [`Elements::build`] with the triangles of equal `chart_of` (and equal material and
+    /// texel size) sharing one chart, laid in their summed normal's plane: give only
+    /// triangles that are coplanar (within a small fraction of a texel) and connected.
+    pub fn build_charts(
+        triangles: &[InputTriangle],
+        chart_of: &[u32],
+        level: u32,
+    ) -> Result<Elements, ElementError> {
+        if chart_of.len() != triangles.len() {
+            return Err(ElementError::ChartIds {
+                given: chart_of.len(),
+                triangles: triangles.len(),
+            });
+        }
         for t in triangles {
             if !(t.texel_m.is_finite() && t.texel_m > 0.0) {
                 return Err(ElementError::TexelSize(t.texel_m));
             }
         }
+        let plans: Vec<ChartPlan> = group(triangles, chart_of)
+            .iter()
+            .map(|members| ChartPlan::new(triangles, members))
+            .collect();
         // Count the texels (with gutters) before laying any out: a density that cannot
         // fit is refused in milliseconds, not after gigabytes of elements. Shelf packing
         // needs about 10 % more than the sum (the atlas width below allows for that).
-        let needed: u64 = triangles
-            .iter()
-            .filter_map(footprint)
-            .map(|f| (f.cols as u64 + 2) * (f.rows as u64 + 2))
-            .sum();
-        if needed as f64 * 1.1 > (MAX_ATLAS as f64).powi(2) {
-            return Err(ElementError::TooLarge(needed));
-        }
-        for t in triangles {
-            laid.push(lay_out(t)?);
-        }
-        // Rectangles with one gutter texel on each side.
-        let sizes: Vec<(u32, u32)> = laid
-            .iter()
-            .map(|l| l.as_ref().map_or((0, 0), |l| (l.cols + 2, l.rows + 2)))
-            .collect();
-        let total: u64 = sizes.iter().map(|&(w, h)| w as u64 * h as u64).sum();
+        let total: u64 = plans.iter().map(ChartPlan::texels).sum();
         if total == 0 {
             return Err(ElementError::Empty);
         }
-        let widest = sizes.iter().map(|s| s.0).max().unwrap_or(1);
-        if total > (MAX_ATLAS as u64).pow(2) || widest > MAX_ATLAS {
+        let widest = plans
+            .iter()
+            .map(|p| p.cols.saturating_add(2))
+            .max()
+            .unwrap_or(1);
+        if total as f64 * 1.1 > (MAX_ATLAS as f64).powi(2) || widest > MAX_ATLAS {
             return Err(ElementError::TooLarge(total));
         }
+        let sizes: Vec<(u32, u32)> = plans
+            .iter()
+            .map(|p| match p.cols {
+                0 => (0, 0),
+                _ => (p.cols + 2, p.rows + 2),
+            })
+            .collect();
         let width = (((total as f64 * 1.1).sqrt().ceil() as u32).max(widest))
             .next_multiple_of(64)
             .min(MAX_ATLAS);
@@ -322,99 +454,118 @@ impl Elements {
             atlas_height: height.max(1),
             level,
             display_source: vec![u32::MAX; width as usize * height.max(1) as usize],
-            ..Default::default()
-        };
-        let block = 1u32 << level;
-        for (k, (t, l)) in triangles.iter().zip(&laid).enumerate() {
-            let [x0, y0] = origins[k];
-            let Some(l) = l else {
-                out.triangles.push(TriangleElements {
-                    first: out.position.len() as u32,
-                    count: 0,
-                    first_patch: out.patches.len() as u32,
-                    patch_count: 0,
+            triangles: triangles
+                .iter()
+                .map(|t| TriangleElements {
+                    chart: u32::MAX,
                     normal: DVec3::Z,
                     material: t.material,
                     area: 0.0,
-                    rect: [x0, y0, 0, 0],
-                    texel_m: t.texel_m,
                     atlas_uv: [DVec2::ZERO; 3],
-                });
-                continue;
-            };
-            out.push_triangle(t, l, [x0, y0], block);
+                })
+                .collect(),
+            ..Default::default()
+        };
+        let block = 1u32 << level;
+        for (plan, origin) in plans.iter().zip(origins) {
+            out.push_chart(triangles, plan, origin, block);
         }
         out.fill_gutters();
         Ok(out)
     }
 
-    fn push_triangle(&mut self, t: &InputTriangle, l: &Laid, origin: [u32; 2], block: u32) {
-        let s = t.texel_m;
+    fn push_chart(
+        &mut self,
+        triangles: &[InputTriangle],
+        plan: &ChartPlan,
+        origin: [u32; 2],
+        block: u32,
+    ) {
+        let s = plan.texel_m;
         let first = self.position.len() as u32;
         let first_patch = self.patches.len() as u32;
-        let tri_index = self.triangles.len() as u32;
+        let chart = self.charts.len() as u32;
         // Patch by patch, so each patch's elements are contiguous.
-        let mut order: Vec<&(u32, u32, f64, DVec2)> = l.elements.iter().collect();
+        let mut order = plan.elements();
         order.sort_by_key(|e| (e.1 / block, e.0 / block, e.1, e.0));
-        let mut area_sum = 0.0;
+        let bins = plan.triangles_by_block(block);
         let mut current: Option<(u32, u32)> = None;
-        for &&(i, j, area, centroid) in &order {
+        for &(i, j, area, centroid) in &order {
             let key = (i / block, j / block);
             if current != Some(key) {
                 current = Some(key);
-                let lo = l.lo + DVec2::new(key.0 as f64, key.1 as f64) * s * block as f64;
-                let poly = clip_square(lo, lo + DVec2::splat(s * block as f64), &l.corners_2d);
-                let (a, c) = area_centroid(&poly);
+                let lo = plan.lo + DVec2::new(key.0 as f64, key.1 as f64) * s * block as f64;
+                let touching = bins.get(&key).map_or(&[][..], Vec::as_slice);
+                let poly = plan.block_polygon(lo, s * block as f64, touching);
                 self.patches.push(Patch {
                     first: self.position.len() as u32,
                     count: 0,
-                    polygon: poly.iter().map(|&p| l.frame.to_world(p)).collect(),
-                    centroid: l.frame.to_world(c),
-                    area: a,
+                    polygon: poly.iter().map(|&p| plan.to_world(p)).collect(),
+                    centroid: DVec3::ZERO,
+                    area: 0.0,
                 });
             }
             if let Some(p) = self.patches.last_mut() {
                 p.count += 1;
+                p.area += area;
+                p.centroid += plan.to_world(centroid) * area;
             }
-            let texel = [origin[0] + 1 + i, origin[1] + 1 + l.rows - 1 - j];
+            let texel = [origin[0] + 1 + i, origin[1] + 1 + plan.rows - 1 - j];
             let slot = (texel[1] * self.atlas_width + texel[0]) as usize;
             self.display_source[slot] = self.position.len() as u32;
-            self.position.push(l.frame.to_world(centroid));
+            self.position.push(plan.to_world(centroid));
             self.area.push(area);
             self.texel.push(texel);
-            self.triangle.push(tri_index);
-            area_sum += area;
+            self.chart.push(chart);
+        }
+        for p in &mut self.patches[first_patch as usize..] {
+            p.centroid /= p.area.max(1e-300);
         }
         // Atlas coordinates of the corners: x right with u, y down against v.
-        let atlas_uv = l.corners_2d.map(|p| {
-            let q = (p - l.lo) / s;
-            DVec2::new(
-                origin[0] as f64 + 1.0 + q.x,
-                origin[1] as f64 + 1.0 + l.rows as f64 - q.y,
-            )
-        });
-        self.triangles.push(TriangleElements {
+        for &(t, c, _) in &plan.triangles {
+            let te = &mut self.triangles[t as usize];
+            te.chart = chart;
+            te.atlas_uv = c.map(|p| {
+                let q = (p - plan.lo) / s;
+                DVec2::new(
+                    origin[0] as f64 + 1.0 + q.x,
+                    origin[1] as f64 + 1.0 + plan.rows as f64 - q.y,
+                )
+            });
+            let [a, b, d] = triangles[t as usize].corners;
+            let n = (b - a).cross(d - a);
+            te.normal = n.normalize();
+            te.area = 0.5 * n.length();
+        }
+        let rect = match plan.cols {
+            0 => [origin[0], origin[1], 0, 0],
+            _ => [origin[0], origin[1], plan.cols + 2, plan.rows + 2],
+        };
+        self.charts.push(Chart {
             first,
             count: self.position.len() as u32 - first,
             first_patch,
             patch_count: self.patches.len() as u32 - first_patch,
-            normal: l.frame.u.cross(l.frame.v),
-            material: t.material,
-            area: area_sum,
-            rect: [origin[0], origin[1], l.cols + 2, l.rows + 2],
+            normal: plan.normal,
+            material: plan.material,
+            area: self.area[first as usize..].iter().sum(),
+            rect,
             texel_m: s,
-            atlas_uv,
+            triangles: plan.triangles.iter().map(|t| t.0).collect(),
+            origin: plan.origin,
+            axes: plan.axes,
+            lo: plan.lo,
         });
     }
 
-    /// Gives every empty texel of a triangle's rectangle next to a filled one (two
-    /// rings) the value of a filled neighbour of the same triangle.
+    /// Gives every empty texel of a chart's rectangle next to a filled one (two rings)
+    /// the value of a filled neighbour of the same chart.
     fn fill_gutters(&mut self) {
         let w = self.atlas_width as i64;
         for _ring in 0..2 {
             let mut fills = Vec::new();
-            for t in &self.triangles {
-                let [x0, y0, rw, rh] = t.rect.map(|v| v as i64);
+            for c in &self.charts {
+                let [x0, y0, rw, rh] = c.rect.map(|v| v as i64);
                 for y in y0..y0 + rh {
                     for x in x0..x0 + rw {
                         if self.display_source[(y * w + x) as usize] != u32::MAX {
@@ -447,37 +598,48 @@ impl Elements {
         self.position.is_empty()
     }
 
-    /// Unit normal of element `e` (its triangle's).
+    /// Unit normal of element `e` (its chart's).
     pub fn normal(&self, e: usize) -> DVec3 {
-        self.triangles[self.triangle[e] as usize].normal
+        self.charts[self.chart[e] as usize].normal
     }
 
-    /// Points of an `n` × `n` grid over element `e`'s texel that lie on its triangle, whose
-    /// `corners` are as given to [`Elements::build`]; the element's centroid when `n` ≤ 1
-    /// or no grid point does. Averages over these integrate steep gradients (a luminaire
-    /// close to a surface) that one sample at the centroid would miss.
-    pub fn texel_samples(&self, e: usize, corners: &[DVec3; 3], n: u32) -> Vec<DVec3> {
-        let [a, b, c] = self.triangles[self.triangle[e] as usize].atlas_uv;
-        let (v0, v1) = (b - a, c - a);
-        let det = v0.perp_dot(v1);
-        if n <= 1 || det.abs() < 1e-12 {
+    /// Points of an `n` × `n` grid over element `e`'s texel that lie on its chart's
+    /// triangles; the element's centroid when `n` ≤ 1 or no grid point does. Averages over
+    /// these integrate steep gradients (a luminaire close to a surface) that one sample at
+    /// the centroid would miss.
+    pub fn texel_samples(&self, e: usize, n: u32) -> Vec<DVec3> {
+        if n <= 1 {
             return vec![self.position[e]];
         }
+        let chart = &self.charts[self.chart[e] as usize];
         let [tx, ty] = self.texel[e];
+        let (lo, hi) = (
+            DVec2::new(tx as f64, ty as f64),
+            DVec2::new(tx as f64 + 1.0, ty as f64 + 1.0),
+        );
+        let touching: Vec<[DVec2; 3]> = chart
+            .triangles
+            .iter()
+            .map(|&t| self.triangles[t as usize].atlas_uv)
+            .filter(|c| {
+                let (a, b) = (c[0].min(c[1]).min(c[2]), c[0].max(c[1]).max(c[2]));
+                a.x <= hi.x && a.y <= hi.y && b.x >= lo.x && b.y >= lo.y
+            })
+            .collect();
+        let inside = |p: DVec2, [a, b, c]: &[DVec2; 3]| {
+            let (v0, v1) = (*b - *a, *c - *a);
+            let det = v0.perp_dot(v1);
+            let d = p - *a;
+            let (u, v) = (d.perp_dot(v1) / det, v0.perp_dot(d) / det);
+            det.abs() >= 1e-12 && u >= 0.0 && v >= 0.0 && u + v <= 1.0
+        };
         let step = 1.0 / n as f64;
         let mut out = Vec::with_capacity((n * n) as usize);
         for j in 0..n {
             for i in 0..n {
-                let p = DVec2::new(
-                    tx as f64 + (i as f64 + 0.5) * step,
-                    ty as f64 + (j as f64 + 0.5) * step,
-                );
-                let d = p - a;
-                let (u, v) = (d.perp_dot(v1) / det, v0.perp_dot(d) / det);
-                if u >= 0.0 && v >= 0.0 && u + v <= 1.0 {
-                    out.push(
-                        corners[0] + (corners[1] - corners[0]) * u + (corners[2] - corners[0]) * v,
-                    );
+                let p = lo + DVec2::new(i as f64 + 0.5, j as f64 + 0.5) * step;
+                if touching.iter().any(|t| inside(p, t)) {
+                    out.push(chart.atlas_to_world(p));
                 }
             }
         }
@@ -512,7 +674,7 @@ mod tests {
         let n = el.normal(0);
         let mut full = 0;
         for e in 0..el.len() {
-            let samples = el.texel_samples(e, &corners, 8);
+            let samples = el.texel_samples(e, 8);
             let mean = samples.iter().sum::<DVec3>() / samples.len() as f64;
             for p in &samples {
                 // On the triangle's plane, within the texel around the centroid.
@@ -529,7 +691,7 @@ mod tests {
             }
         }
         assert!(full > 50, "{full}");
-        assert_eq!(el.texel_samples(3, &corners, 1), vec![el.position[3]]);
+        assert_eq!(el.texel_samples(3, 1), vec![el.position[3]]);
     }
 
     #[test]
@@ -554,7 +716,7 @@ mod tests {
         ];
         for level in 0..4 {
             let e = Elements::build(&t, level).unwrap();
-            for (k, te) in e.triangles.iter().enumerate() {
+            for (k, te) in e.charts.iter().enumerate() {
                 let [a, b, c] = t[k].corners;
                 let want = 0.5 * (b - a).cross(c - a).length();
                 let range = te.first as usize..(te.first + te.count) as usize;
@@ -610,6 +772,67 @@ mod tests {
         // The gutter: more texels show a value than there are elements.
         let shown = e.display_source.iter().filter(|&&s| s != u32::MAX).count();
         assert!(shown > e.len() + 50 * 8, "{shown} vs {}", e.len());
+    }
+
+    #[test]
+    fn a_chart_of_several_triangles_tiles_them_in_one_rectangle() {
+        // A hexagon fan of six triangles in a tilted plane, plus one degenerate triangle.
+        let (u, v) = (
+            DVec3::new(1.0, 0.2, 0.3).normalize(),
+            DVec3::new(-0.1, 1.0, 0.4).normalize(),
+        );
+        let v = (v - u * u.dot(v)).normalize();
+        let centre = DVec3::new(0.5, -1.0, 2.0);
+        let ring: Vec<DVec3> = (0..6)
+            .map(|k| {
+                let a = k as f64 * std::f64::consts::TAU / 6.0;
+                centre + (u * a.cos() + v * a.sin()) * 1.3
+            })
+            .collect();
+        let mut t: Vec<InputTriangle> = (0..6)
+            .map(|k| tri([centre, ring[k], ring[(k + 1) % 6]], 0.09))
+            .collect();
+        t.push(tri([centre, ring[0], ring[0]], 0.09));
+        let e = Elements::build_charts(&t, &[7; 7], 1).unwrap();
+        assert_eq!(e.charts.len(), 1);
+        let chart = &e.charts[0];
+        assert_eq!(chart.triangles, (0..6).collect::<Vec<u32>>());
+        assert_eq!(e.triangles[6].chart, u32::MAX, "no area, no chart");
+        let want = 6.0 * 0.25 * 3f64.sqrt() * 1.3 * 1.3;
+        let sum: f64 = e.area.iter().sum();
+        assert!((sum - want).abs() < 1e-12 * want, "{sum} vs {want}");
+        assert!((chart.area - want).abs() < 1e-12 * want);
+        assert!((chart.normal - u.cross(v)).length() < 1e-12);
+        for p in &e.patches {
+            let s: f64 = e.area[p.first as usize..][..p.count as usize].iter().sum();
+            assert!((s - p.area).abs() < 1e-12);
+            assert!((3..=8).contains(&p.polygon.len()));
+        }
+        // One texel grid: every element in its own texel, on the plane, and the texel's
+        // samples around it; the corners shared by two triangles meet in the atlas.
+        let mut seen = std::collections::HashSet::new();
+        for k in 0..e.len() {
+            assert!(seen.insert(e.texel[k]));
+            assert!((e.position[k] - centre).dot(chart.normal).abs() < 1e-12);
+            for p in e.texel_samples(k, 4) {
+                assert!((p - centre).dot(chart.normal).abs() < 1e-12);
+                assert!(p.distance(e.position[k]) <= 0.09 * 1.5);
+            }
+        }
+        for k in 0..6 {
+            let next = (k + 1) % 6;
+            let (a, b) = (e.triangles[k].atlas_uv, e.triangles[next].atlas_uv);
+            assert!(a[0].distance(b[0]) < 1e-9 && a[2].distance(b[1]) < 1e-9);
+        }
+        // The atlas maps back onto the plane where the corners are.
+        for (k, c) in ring.iter().enumerate() {
+            let back = chart.atlas_to_world(e.triangles[k].atlas_uv[1]);
+            assert!(back.distance(*c) < 1e-9, "{back} vs {c}");
+        }
+        assert!(matches!(
+            Elements::build_charts(&t, &[0; 3], 0),
+            Err(ElementError::ChartIds { .. })
+        ));
     }
 
     #[test]

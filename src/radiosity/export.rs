@@ -63,7 +63,7 @@ pub fn bake(scene: &RadiosityScene, map: &LightMap) -> (Vec<BakedCorner>, Vec<us
     let mut corners = Vec::new();
     let mut materials = Vec::new();
     for (t, te) in scene.elements.triangles.iter().enumerate() {
-        if te.count == 0 {
+        if te.chart == u32::MAX {
             continue;
         }
         let uv = map.triangle_uv[t];

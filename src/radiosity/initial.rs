@@ -118,23 +118,20 @@ impl DirectSamples {
     /// The samples of every element of `scene` for its luminaires.
     pub fn new(scene: &RadiosityScene) -> DirectSamples {
         let el = &scene.elements;
-        let mesh = &scene.casters;
         let mut points = Vec::with_capacity(el.len());
         let mut first = Vec::with_capacity(el.len() + 1);
         for e in 0..el.len() {
             first.push(points.len());
-            let t = el.triangle[e] as usize;
-            let texel_m = el.triangles[t].texel_m;
+            let texel_m = el.charts[el.chart[e] as usize].texel_m;
             let nearest = scene
                 .luminaires
                 .iter()
                 .map(|l| l.position.distance(el.position[e]))
                 .fold(f64::INFINITY, f64::min);
             let n = ((4.0 * texel_m / nearest.max(1e-9)).ceil() as u32).clamp(1, 8);
-            let corners = mesh.triangles[t].map(|i| mesh.positions[i as usize]);
             let normal = el.normal(e);
             points.extend(
-                el.texel_samples(e, &corners, n)
+                el.texel_samples(e, n)
                     .into_iter()
                     .map(|position| SurfacePoint { position, normal }),
             );

@@ -9,12 +9,27 @@ pub mod form_factor;
 pub mod gather;
 pub mod gpu;
 pub mod initial;
+mod polygon;
 pub mod scene;
 pub mod shooters;
 pub mod solve;
 
 use crate::photometry::Interp;
 pub use form_factor::FormFactorKind;
+
+/// How the light map's charts and the shooters are formed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Deserialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+#[serde(rename_all = "lowercase")]
+pub enum Hierarchy {
+    /// Every triangle is its own chart and shoots from its own patches (the flat
+    /// progressive solver).
+    #[default]
+    None,
+    /// Planar face clusters are the charts (one light-map rectangle, no seams between
+    /// their triangles) and shoot as a whole, from cells sized by their power.
+    Clusters,
+}
 
 /// What the ambient term is used for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Deserialize)]

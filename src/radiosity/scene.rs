@@ -3,7 +3,9 @@
 
 use glam::DVec3;
 
+use super::clusters::PlanarClusters;
 use super::elements::{ElementError, Elements, InputTriangle};
+use super::Hierarchy;
 use crate::geometry::Mesh;
 use crate::scene::{PlacedLuminaire, Scene};
 use crate::shadow::{IgnoredTriangles, TriangleBvh};
@@ -23,6 +25,10 @@ pub struct RadiosityScene {
     pub casters: Mesh,
     /// The ray-cast hierarchy over `casters`, built on first use.
     caster_bvh: std::sync::OnceLock<TriangleBvh>,
+    /// Seconds spent building the face clusters for the charts (0 without them).
+    pub clustering_seconds: f64,
+    /// The planar face clusters of `casters`, built on first use.
+    planar: std::sync::OnceLock<PlanarClusters>,
     /// Per luminaire, the caster triangles of its housing (they never shadow its light).
     pub ignored: Vec<IgnoredTriangles>,
     /// Total surface area, m².
@@ -33,8 +39,19 @@ pub struct RadiosityScene {
 
 impl RadiosityScene {
     /// Splits `scene` into elements of `1 / texel_density` metres with shooting patches of
-    /// 2^`level` texels.
+    /// 2^`level` texels, every triangle its own chart.
     pub fn new(scene: &Scene, texel_density: f64, level: u32) -> Result<Self, ElementError> {
+        Self::with_hierarchy(scene, texel_density, level, Hierarchy::None)
+    }
+
+    /// [`RadiosityScene::new`] with charts as `hierarchy` asks: with
+    /// [`Hierarchy::Clusters`] each planar face cluster is one chart.
+    pub fn with_hierarchy(
+        scene: &Scene,
+        texel_density: f64,
+        level: u32,
+        hierarchy: Hierarchy,
+    ) -> Result<Self, ElementError> {
         let texel_m = 1.0 / texel_density;
         let mut triangles = Vec::with_capacity(scene.triangle_count());
         for m in &scene.meshes {
@@ -46,7 +63,26 @@ impl RadiosityScene {
                 });
             }
         }
-        let elements = Elements::build(&triangles, level)?;
+        let casters = scene.caster_mesh();
+        let planar = std::sync::OnceLock::new();
+        let clustering = std::time::Instant::now();
+        let mut clustering_seconds = 0.0;
+        let elements = match hierarchy {
+            Hierarchy::None => Elements::build(&triangles, level)?,
+            Hierarchy::Clusters => {
+                if !(texel_m.is_finite() && texel_m > 0.0) {
+                    return Err(ElementError::TexelSize(texel_m));
+                }
+                let materials: Vec<usize> = triangles.iter().map(|t| t.material).collect();
+                let clusters =
+                    PlanarClusters::new(&casters, &materials, &vec![texel_m; triangles.len()]);
+                clustering_seconds = clustering.elapsed().as_secs_f64();
+                let elements =
+                    Elements::build_charts(&triangles, &clusters.cluster_of_triangle(), level)?;
+                let _ = planar.set(clusters);
+                elements
+            }
+        };
         let mut scene = RadiosityScene {
             elements,
             reflectance: scene
@@ -60,8 +96,10 @@ impl RadiosityScene {
                 .map(|m| m.emission.as_dvec3().max(DVec3::ZERO))
                 .collect(),
             luminaires: scene.luminaires.clone(),
-            casters: scene.caster_mesh(),
+            casters,
             caster_bvh: std::sync::OnceLock::new(),
+            planar,
+            clustering_seconds,
             ignored: scene.ignored_per_luminaire(),
             total_area: 0.0,
             mean_reflectance: 0.0,
@@ -81,16 +119,33 @@ impl RadiosityScene {
             .get_or_init(|| TriangleBvh::new(&self.casters))
     }
 
+    /// The planar face clusters of [`Self::casters`] (built on the first call unless the
+    /// charts came from them).
+    pub fn planar_clusters(&self) -> &PlanarClusters {
+        self.planar.get_or_init(|| {
+            let el = &self.elements;
+            let materials: Vec<usize> = el.triangles.iter().map(|t| t.material).collect();
+            let texel: Vec<f64> = el
+                .triangles
+                .iter()
+                .map(|t| el.charts.get(t.chart as usize).map_or(0.0, |c| c.texel_m))
+                .collect();
+            PlanarClusters::new(&self.casters, &materials, &texel)
+        })
+    }
+
     /// Reflectance of element `e`.
     pub fn element_reflectance(&self, e: usize) -> DVec3 {
-        let t = &self.elements.triangles[self.elements.triangle[e] as usize];
-        self.reflectance[t.material]
+        self.reflectance[self.element_material(e)]
     }
 
     /// Exitance of element `e`, lm/m².
     pub fn element_emission(&self, e: usize) -> DVec3 {
-        let t = &self.elements.triangles[self.elements.triangle[e] as usize];
-        self.emission[t.material]
+        self.emission[self.element_material(e)]
+    }
+
+    fn element_material(&self, e: usize) -> usize {
+        self.elements.charts[self.elements.chart[e] as usize].material
     }
 }
 

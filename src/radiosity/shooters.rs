@@ -1,5 +1,5 @@
-//! Who shoots in the progressive solution. Flat (`--hierarchy none`): every triangle, from
-//! its patches (blocks of 2^level texels). With face clusters (Edström ch. 6, after
+//! Who shoots in the progressive solution. Flat (`--hierarchy none`): every chart of the
+//! light map — there every triangle — from its patches (blocks of 2^level texels). With face clusters (Edström ch. 6, after
 //! Willmott's face-cluster radiosity): every flat cluster of the hierarchy, cut where a
 //! cluster stops being planar, shoots as a whole — a floor drawn as 500 strips is one
 //! shooter, not 500. Its shooting patches are the cells of a square grid laid in the plane
@@ -13,36 +13,20 @@
 use glam::{DVec2, DVec3};
 
 use super::clusters::obb::convex_hull;
-use super::clusters::{ClusterSettings, FaceClusters, Obb};
-use super::elements::{area_centroid, clip_square};
+use super::clusters::{FaceClusters, Obb};
+use super::polygon::{area_centroid, clip_square, outline};
 use super::scene::RadiosityScene;
 
-/// How shooters are formed.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Deserialize)]
-#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
-#[serde(rename_all = "lowercase")]
-pub enum Hierarchy {
-    /// Every triangle shoots from its own patches (the flat progressive solver).
-    #[default]
-    None,
-    /// Flat face clusters shoot as a whole, from cells sized by their power.
-    Clusters,
-}
+pub use super::Hierarchy;
 
 /// Default largest share of the initial unshot power one shooting cell may carry.
 pub const DEFAULT_CELL_POWER: f64 = 1e-3;
 
-/// A cluster is shot as one plane when its corners lie within this fraction of a texel of
-/// their least-squares plane (root mean square) …
-const PLANAR_RMS_TEXELS: f64 = 0.01;
-/// … and its faces' normals agree: |Σ area normal| / Σ area at least this (about 2.6°).
-const PLANAR_NORMALS: f64 = 0.999;
-
 /// What one shooter is.
 #[derive(Debug, Clone, PartialEq)]
 pub enum ShooterShape {
-    /// One triangle, shot from its patches.
-    Triangle(u32),
+    /// One chart (a triangle, or a planar cluster's triangles), shot from its patches.
+    Chart(u32),
     /// A flat face cluster, shot from grid cells in the plane of its box.
     Cluster {
         /// The cluster's node in the hierarchy.
@@ -108,57 +92,47 @@ impl Shooters {
     pub fn build(scene: &RadiosityScene, hierarchy: Hierarchy) -> Shooters {
         match hierarchy {
             Hierarchy::None => Shooters::flat(scene),
-            Hierarchy::Clusters => Shooters::clusters(scene, ClusterSettings::default()),
+            Hierarchy::Clusters => Shooters::clusters(scene),
         }
     }
 
-    /// Every triangle with elements is a shooter.
+    /// Every chart with elements is a shooter (with per-triangle charts: every triangle).
     pub fn flat(scene: &RadiosityScene) -> Shooters {
         let el = &scene.elements;
         let mut s = Shooters::empty(el.len());
-        for (t, te) in el.triangles.iter().enumerate() {
-            if te.count == 0 {
+        for (c, chart) in el.charts.iter().enumerate() {
+            if chart.count == 0 {
                 continue;
             }
             let id = s.shapes.len() as u32;
             s.first.push(s.elements.len() as u32);
-            s.count.push(te.count);
-            for e in te.first..te.first + te.count {
+            s.count.push(chart.count);
+            for e in chart.first..chart.first + chart.count {
                 s.elements.push(e);
                 s.element_shooter[e as usize] = id;
             }
-            s.shapes.push(ShooterShape::Triangle(t as u32));
-            s.normal.push(te.normal);
-            s.material.push(te.material);
-            s.area.push(te.area);
-            s.finest_cell.push(te.texel_m * f64::from(1u32 << el.level));
+            s.shapes.push(ShooterShape::Chart(c as u32));
+            s.normal.push(chart.normal);
+            s.material.push(chart.material);
+            s.area.push(chart.area);
+            s.finest_cell
+                .push(chart.texel_m * f64::from(1u32 << el.level));
         }
         s
     }
 
-    /// The flat clusters of the face-cluster hierarchy: from each root, the largest
-    /// clusters that are planar (within a hundredth of a texel) shoot as a whole.
-    pub fn clusters(scene: &RadiosityScene, settings: ClusterSettings) -> Shooters {
+    /// The flat clusters of the face-cluster hierarchy ([`RadiosityScene::planar_clusters`]):
+    /// from each root, the largest clusters that are planar (within a hundredth of a texel)
+    /// shoot as a whole.
+    pub fn clusters(scene: &RadiosityScene) -> Shooters {
         let el = &scene.elements;
-        let materials: Vec<usize> = el.triangles.iter().map(|t| t.material).collect();
-        let clusters = FaceClusters::build(&scene.casters, &materials, settings);
+        let planar = scene.planar_clusters();
         let mut s = Shooters::empty(el.len());
-        let mut stack: Vec<u32> = clusters.roots.clone();
-        while let Some(node) = stack.pop() {
-            let tris = clusters.triangles(node);
-            let c = &clusters.nodes[node as usize];
-            let texel = tris
-                .iter()
-                .map(|&t| el.triangles[t as usize].texel_m)
-                .fold(0.0, f64::max);
-            let planar = c.fit_error.sqrt() <= PLANAR_RMS_TEXELS * texel
-                && c.area_normal.length() >= PLANAR_NORMALS * c.area;
-            match c.children {
-                Some(children) if !planar => stack.extend(children),
-                _ => s.push_cluster(scene, &clusters, node, texel),
-            }
+        for &node in &planar.cut {
+            let texel = planar.texel[node as usize];
+            s.push_cluster(scene, &planar.tree, node, texel);
         }
-        s.clusters = clusters;
+        s.clusters = planar.tree.clone();
         s
     }
 
@@ -187,9 +161,24 @@ impl Shooters {
         let el = &scene.elements;
         let id = self.shapes.len() as u32;
         let first = self.elements.len();
-        for &t in clusters.triangles(node) {
-            let te = &el.triangles[t as usize];
-            for e in te.first..te.first + te.count {
+        // Its triangles' charts' elements (a chart is never split between clusters when
+        // the charts are the planar clusters; otherwise the first cluster claims it).
+        let mut charts: Vec<u32> = clusters
+            .triangles(node)
+            .iter()
+            .map(|&t| el.triangles[t as usize].chart)
+            .filter(|&c| c != u32::MAX)
+            .collect();
+        charts.sort_unstable();
+        charts.dedup();
+        let mut lone_chart = None;
+        for c in charts {
+            let chart = &el.charts[c as usize];
+            if chart.count == 0 || self.element_shooter[chart.first as usize] != u32::MAX {
+                continue;
+            }
+            lone_chart = Some(c);
+            for e in chart.first..chart.first + chart.count {
                 self.elements.push(e);
                 self.element_shooter[e as usize] = id;
             }
@@ -211,9 +200,9 @@ impl Shooters {
             .flat_map(|&t| mesh.triangles[t as usize].map(|i| mesh.positions[i as usize]))
             .collect();
         let obb = Obb::around(&corners, c.area_normal);
-        self.shapes.push(match c.children {
-            None => ShooterShape::Triangle(node),
-            Some(_) => ShooterShape::Cluster { node, obb },
+        self.shapes.push(match (c.children, lone_chart) {
+            (None, Some(chart)) => ShooterShape::Chart(chart),
+            _ => ShooterShape::Cluster { node, obb },
         });
         self.normal.push(obb.axes[2]);
         self.material.push(c.material);
@@ -264,7 +253,7 @@ impl Shooters {
     /// How shooter `s` shoots from cells of `side` metres (ignored by a triangle).
     pub fn plan(&self, scene: &RadiosityScene, s: usize, side: f64) -> ShotPlan {
         match &self.shapes[s] {
-            ShooterShape::Triangle(t) => triangle_plan(scene, *t as usize),
+            ShooterShape::Chart(c) => chart_plan(scene, *c as usize),
             ShooterShape::Cluster { obb, .. } => {
                 cluster_plan(scene, self.elements_of(s), obb, self.normal[s], side)
             }
@@ -272,14 +261,14 @@ impl Shooters {
     }
 }
 
-/// A triangle shoots from its patches (their elements are contiguous).
-fn triangle_plan(scene: &RadiosityScene, t: usize) -> ShotPlan {
+/// A chart shoots from its patches (their elements are contiguous).
+fn chart_plan(scene: &RadiosityScene, c: usize) -> ShotPlan {
     let el = &scene.elements;
-    let te = &el.triangles[t];
-    let patches = el.patches[te.first_patch as usize..][..te.patch_count as usize]
+    let chart = &el.charts[c];
+    let patches = el.patches[chart.first_patch as usize..][..chart.patch_count as usize]
         .iter()
         .map(|p| PlannedPatch {
-            first: p.first - te.first,
+            first: p.first - chart.first,
             count: p.count,
             polygon: p.polygon.clone(),
             centroid: p.centroid,
@@ -288,7 +277,7 @@ fn triangle_plan(scene: &RadiosityScene, t: usize) -> ShotPlan {
         })
         .collect();
     ShotPlan {
-        order: (te.first..te.first + te.count).collect(),
+        order: (chart.first..chart.first + chart.count).collect(),
         patches,
     }
 }
@@ -407,12 +396,13 @@ impl Grid {
         elements: &[u32],
     ) -> std::collections::HashMap<u64, Vec<DVec2>> {
         let mesh = &scene.casters;
-        let mut triangles: Vec<u32> = elements
+        let el = &scene.elements;
+        let mut charts: Vec<u32> = elements.iter().map(|&e| el.chart[e as usize]).collect();
+        charts.sort_unstable();
+        charts.dedup();
+        let triangles = charts
             .iter()
-            .map(|&e| scene.elements.triangle[e as usize])
-            .collect();
-        triangles.sort_unstable();
-        triangles.dedup();
+            .flat_map(|&c| el.charts[c as usize].triangles.iter().copied());
         let mut pieces: std::collections::HashMap<u64, Vec<DVec2>> = Default::default();
         for t in triangles {
             let mut c = mesh.triangles[t as usize].map(|i| self.plane(mesh.positions[i as usize]));
@@ -439,17 +429,7 @@ impl Grid {
     /// limit; more become the hull's bounding rectangle), at least a triangle (the cell
     /// when the pieces have no area).
     fn outline(&self, cell: u64, pieces: &[DVec2]) -> Vec<DVec2> {
-        let hull = convex_hull(pieces);
-        if (3..=8).contains(&hull.len()) {
-            return hull;
-        }
         let (lo, hi) = self.bounds(cell);
-        let (a, b) = if hull.len() > 8 {
-            let a = hull.iter().copied().fold(hi, DVec2::min);
-            (a, hull.iter().copied().fold(lo, DVec2::max))
-        } else {
-            (lo, hi)
-        };
-        vec![a, DVec2::new(b.x, a.y), b, DVec2::new(a.x, b.y)]
+        outline(&convex_hull(pieces), lo, hi)
     }
 }

@@ -175,8 +175,13 @@ fn solve_radiosity(
     control: &JobControl,
 ) -> Result<String, String> {
     let err = |e: &dyn std::fmt::Display| e.to_string();
-    let rscene =
-        RadiosityScene::new(scene, settings.texel_density, settings.level).map_err(|e| err(&e))?;
+    let rscene = RadiosityScene::with_hierarchy(
+        scene,
+        settings.texel_density,
+        settings.level,
+        settings.gpu.hierarchy,
+    )
+    .map_err(|e| err(&e))?;
     let interp: Interp = settings.solver.interp;
     let light = LuminaireLight::new(gpu, scene, interp);
     let initial =

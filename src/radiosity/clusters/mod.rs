@@ -34,6 +34,67 @@ impl Default for ClusterSettings {
     }
 }
 
+/// A cluster is planar when its corners lie within this fraction of a texel of their
+/// least-squares plane (root mean square) …
+pub const PLANAR_RMS_TEXELS: f64 = 0.01;
+/// … and its faces' normals agree: |Σ area normal| / Σ area at least this (about 2.6°).
+pub const PLANAR_NORMALS: f64 = 0.999;
+
+/// The hierarchy cut where clusters stop being planar: the light map's charts and the
+/// shooters of `--hierarchy clusters`.
+#[derive(Debug, Clone, Default)]
+pub struct PlanarClusters {
+    /// The whole hierarchy.
+    pub tree: FaceClusters,
+    /// From each root, the largest planar clusters; every triangle lies in exactly one.
+    pub cut: Vec<u32>,
+    /// Per node, the largest texel side of its triangles, metres.
+    pub texel: Vec<f64>,
+}
+
+impl PlanarClusters {
+    /// Builds the hierarchy of `mesh` (triangle `t` of material `materials[t]` and texel
+    /// side `texel[t]` metres) and cuts it where clusters stop being planar.
+    pub fn new(mesh: &Mesh, materials: &[usize], texel: &[f64]) -> PlanarClusters {
+        let tree = FaceClusters::build(mesh, materials, ClusterSettings::default());
+        let mut node_texel = vec![0.0f64; tree.nodes.len()];
+        // Children come before their parents.
+        for k in 0..tree.nodes.len() {
+            node_texel[k] = match tree.nodes[k].children {
+                None => texel[tree.triangles(k as u32)[0] as usize],
+                Some([a, b]) => node_texel[a as usize].max(node_texel[b as usize]),
+            };
+        }
+        let mut cut = Vec::new();
+        let mut stack: Vec<u32> = tree.roots.clone();
+        while let Some(node) = stack.pop() {
+            let c = &tree.nodes[node as usize];
+            let planar = c.fit_error.sqrt() <= PLANAR_RMS_TEXELS * node_texel[node as usize]
+                && c.area_normal.length() >= PLANAR_NORMALS * c.area;
+            match c.children {
+                Some(children) if !planar => stack.extend(children),
+                _ => cut.push(node),
+            }
+        }
+        PlanarClusters {
+            tree,
+            cut,
+            texel: node_texel,
+        }
+    }
+
+    /// Per triangle, the index in [`PlanarClusters::cut`] of its cluster.
+    pub fn cluster_of_triangle(&self) -> Vec<u32> {
+        let mut of = vec![u32::MAX; self.tree.order.len()];
+        for (k, &node) in self.cut.iter().enumerate() {
+            for &t in self.tree.triangles(node) {
+                of[t as usize] = k as u32;
+            }
+        }
+        of
+    }
+}
+
 /// One cluster of the hierarchy.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FaceCluster {

@@ -1,0 +1,342 @@
+//! Light-map charts from face clusters (`--hierarchy clusters`): a planar cluster's
+//! triangles share one rectangle of the atlas, so the light map runs on across their shared
+//! edges. Checked: no seam along the box-room floor's diagonal (and the check sees the seam
+//! of one rectangle per triangle), the same light at the same points as the per-triangle
+//! layout, the furnace, and that charts tile their triangles exactly on the CAD-like room.
+
+use std::path::Path;
+use std::sync::atomic::AtomicBool;
+
+use glam::{DVec2, DVec3, Vec3};
+use goniolight::radiosity::cpu::CpuSolver;
+use goniolight::radiosity::gpu::{GpuSettings, GpuSolver};
+use goniolight::radiosity::initial::{InitialState, LuminaireLight};
+use goniolight::radiosity::scene::{luminance, RadiosityScene};
+use goniolight::radiosity::shooters::Hierarchy;
+use goniolight::radiosity::solve::{self, StopAt};
+use goniolight::radiosity::SolverSettings;
+use goniolight::render::lightmap::LightMap;
+use goniolight::render::ShadowSettings;
+use goniolight::scene::{Material, Scene, SceneMesh};
+
+#[path = "common/gpu.rs"]
+mod gpu_common;
+
+fn bundled(name: &str) -> Scene {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("assets/scenes")
+        .join(name);
+    Scene::load(&path).unwrap()
+}
+
+/// A scene laid out by `hierarchy`, solved with its shooters to `converge`: the scene, the
+/// radiosity per element and the displayed light map.
+fn solved(
+    gpu: &goniolight::gpu::Gpu,
+    scene: &Scene,
+    hierarchy: Hierarchy,
+    converge: f64,
+) -> (RadiosityScene, Vec<DVec3>, LightMap) {
+    let r = RadiosityScene::with_hierarchy(scene, 10.0, 2, hierarchy).unwrap();
+    let settings = SolverSettings::default();
+    let initial = if scene.luminaires.is_empty() {
+        CpuSolver::new(&r, settings).state()
+    } else {
+        let light = LuminaireLight::new(gpu, scene, settings.interp);
+        InitialState::from_luminaires_gpu(gpu, &light, &r, &ShadowSettings::default()).unwrap()
+    };
+    let gpu_settings = GpuSettings {
+        hierarchy,
+        ..GpuSettings::default()
+    };
+    let mut solver = GpuSolver::new(gpu, &r, &initial, settings, gpu_settings);
+    let stop = StopAt {
+        converge,
+        max_shots: Some(20_000),
+        time_budget: None,
+    };
+    solver
+        .solve(&stop, &AtomicBool::new(false), |_| {})
+        .unwrap();
+    let (b, e) = solver.radiosity_and_illuminance().unwrap();
+    let map = solve::light_map(&r, &b, &e);
+    (r, b, map)
+}
+
+/// The scene's triangle corners, in its order.
+fn corners(scene: &Scene) -> Vec<[DVec3; 3]> {
+    let mesh = scene.caster_mesh();
+    mesh.triangles
+        .iter()
+        .map(|t| t.map(|i| mesh.positions[i as usize]))
+        .collect()
+}
+
+/// Barycentric coordinates of `p` in the triangle `c` (in its plane).
+fn barycentric(c: &[DVec3; 3], p: DVec3) -> [f64; 3] {
+    let (v0, v1, d) = (c[1] - c[0], c[2] - c[0], p - c[0]);
+    let (d00, d01, d11) = (v0.dot(v0), v0.dot(v1), v1.dot(v1));
+    let (d20, d21) = (d.dot(v0), d.dot(v1));
+    let den = d00 * d11 - d01 * d01;
+    let v = (d11 * d20 - d01 * d21) / den;
+    let w = (d00 * d21 - d01 * d20) / den;
+    [1.0 - v - w, v, w]
+}
+
+/// The displayed illuminance (the light map's alpha) at `p` on triangle `t`, filtered
+/// bilinearly through the triangle's atlas coordinates as the renderer does.
+fn shown(map: &LightMap, corners: &[[DVec3; 3]], t: usize, p: DVec3) -> f64 {
+    let b = barycentric(&corners[t], p);
+    let uv = map.triangle_uv[t];
+    let q = (uv[0] * b[0] as f32 + uv[1] * b[1] as f32 + uv[2] * b[2] as f32)
+        * glam::Vec2::new(map.width as f32, map.height as f32)
+        - glam::Vec2::splat(0.5);
+    let (x0, y0) = (q.x.floor(), q.y.floor());
+    let (fx, fy) = ((q.x - x0) as f64, (q.y - y0) as f64);
+    let at = |x: f32, y: f32| {
+        let x = (x.max(0.0) as u32).min(map.width - 1);
+        let y = (y.max(0.0) as u32).min(map.height - 1);
+        map.texels[(y * map.width + x) as usize][3] as f64
+    };
+    let top = at(x0, y0) * (1.0 - fx) + at(x0 + 1.0, y0) * fx;
+    let bottom = at(x0, y0 + 1.0) * (1.0 - fx) + at(x0 + 1.0, y0 + 1.0) * fx;
+    top * (1.0 - fy) + bottom * fy
+}
+
+/// Seam measures on the box-room floor (triangles 0 and 1 share the diagonal from (0, 0)
+/// to (6, 4)): the largest jump between the two triangles' values at points of the
+/// diagonal; the mean |second difference| across the diagonal (one texel each way); and
+/// the same second difference on lines 0.5 m inside either triangle.
+fn floor_seam(map: &LightMap, corners: &[[DVec3; 3]], texel: f64) -> (f64, f64, f64) {
+    let along = DVec3::new(6.0, 4.0, 0.0);
+    let across = DVec3::new(-4.0, 6.0, 0.0).normalize();
+    let inside = |t: usize, p: DVec3| barycentric(&corners[t], p).iter().all(|&b| b >= 0.0);
+    let value = |p: DVec3| {
+        let t = if inside(0, p) { 0 } else { 1 };
+        shown(map, corners, t, p)
+    };
+    let (mut jump, mut seam, mut interior) = (0.0f64, Vec::new(), Vec::new());
+    for k in 1..40 {
+        let p = along * (k as f64 / 40.0);
+        let (a, b) = (shown(map, corners, 0, p), shown(map, corners, 1, p));
+        jump = jump.max((a - b).abs() / a.abs().max(b.abs()).max(1e-9));
+        let second = |q: DVec3, centre: f64| {
+            (value(q + across * texel) - 2.0 * centre + value(q - across * texel)).abs()
+        };
+        seam.push(second(p, 0.5 * (a + b)));
+        for offset in [-0.5, 0.5] {
+            let q = p + across * offset;
+            let both = [q, q + across * texel, q - across * texel];
+            for t in 0..2 {
+                if both.iter().all(|&x| inside(t, x)) {
+                    interior.push(second(q, shown(map, corners, t, q)));
+                }
+            }
+        }
+    }
+    let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len().max(1) as f64;
+    (jump, mean(&seam), mean(&interior))
+}
+
+#[test]
+fn the_box_room_floor_has_no_seam_along_its_diagonal() {
+    let Some(gpu) = gpu_common::gpu() else { return };
+    let scene = bundled("box_room.toml");
+    let c = corners(&scene);
+    // The floor is triangles 0 and 1 (the fan of its quad).
+    assert!(c[0].iter().chain(&c[1]).all(|p| p.z == 0.0));
+    let (r, _, map) = solved(&gpu, &scene, Hierarchy::Clusters, 0.95);
+    let el = &r.elements;
+    assert_eq!(el.triangles[0].chart, el.triangles[1].chart, "one chart");
+    let (jump, seam, interior) = floor_seam(&map, &c, 0.1);
+    eprintln!("charts: jump {jump:.2e}, seam {seam:.3} lx, interior {interior:.3} lx");
+    assert!(
+        jump < 1e-5,
+        "the two triangles show different values: {jump}"
+    );
+    assert!(
+        seam <= 1.5 * interior,
+        "across the diagonal {seam} lx, inside {interior} lx"
+    );
+    // The check sees the seam of one rectangle per triangle.
+    let (_, _, per_triangle) = solved(&gpu, &scene, Hierarchy::None, 0.95);
+    let (jump, seam, interior) = floor_seam(&per_triangle, &c, 0.1);
+    eprintln!("per triangle: jump {jump:.2e}, seam {seam:.3} lx, interior {interior:.3} lx");
+    assert!(
+        jump > 1e-3 || seam > 1.5 * interior,
+        "no seam seen: {jump} {seam} {interior}"
+    );
+}
+
+/// Radiosity luminance × area and area per cube of `side` metres and facing direction
+/// (elements binned by centroid).
+fn binned(
+    r: &RadiosityScene,
+    b: &[DVec3],
+    side: f64,
+) -> std::collections::HashMap<[i64; 6], (f64, f64)> {
+    let el = &r.elements;
+    let mut bins: std::collections::HashMap<[i64; 6], (f64, f64)> = Default::default();
+    for (e, b) in b.iter().enumerate() {
+        // 12.5 cm in front of the surface: rounding across it moves nothing.
+        let cell = ((el.position[e] + el.normal(e) * 0.125) / side)
+            .floor()
+            .as_i64vec3();
+        let facing = el.normal(e).round().as_i64vec3();
+        let key = [cell.x, cell.y, cell.z, facing.x, facing.y, facing.z];
+        let bin = bins.entry(key).or_default();
+        bin.0 += luminance(*b) * el.area[e];
+        bin.1 += el.area[e];
+    }
+    bins
+}
+
+#[test]
+fn charts_give_the_per_triangle_light_over_the_same_areas() {
+    let Some(gpu) = gpu_common::gpu() else { return };
+    for name in ["box_room.toml", "boxes_room.toml"] {
+        let scene = bundled(name);
+        let (flat, flat_b, _) = solved(&gpu, &scene, Hierarchy::None, 0.999);
+        let (charted, chart_b, _) = solved(&gpu, &scene, Hierarchy::Clusters, 0.999);
+        assert!(charted.elements.charts.len() < flat.elements.charts.len());
+        // The same surfaces, cut into texels along other axes: the power each direction's
+        // surfaces send out, and the mean radiosity over half-metre pieces of them (but
+        // next to a luminaire, 5 cm under the ceiling: there the texel at its foot carries
+        // ten times its neighbours', and which piece it falls in depends on the grid).
+        let (a, f) = (binned(&charted, &chart_b, 1e3), binned(&flat, &flat_b, 1e3));
+        for (key, &(power, _)) in &f {
+            let p = a[key].0;
+            eprintln!("{name}: facing {:?}: {p:.1} vs {power:.1} lm", &key[3..]);
+            assert!(
+                (p / power - 1.0).abs() < 0.01,
+                "{name} {key:?}: {p} vs {power}"
+            );
+        }
+        let (a, f) = (binned(&charted, &chart_b, 0.5), binned(&flat, &flat_b, 0.5));
+        let near_luminaire = |key: &[i64; 6]| {
+            let centre = DVec3::new(key[0] as f64, key[1] as f64, key[2] as f64) * 0.5 + 0.25;
+            let d = |l: &goniolight::scene::PlacedLuminaire| l.position.distance(centre);
+            scene.luminaires.iter().any(|l| d(l) < 0.75)
+        };
+        let (mut diff, mut total) = (0.0, 0.0);
+        for (key, &(power, area)) in f.iter().filter(|(k, _)| !near_luminaire(k)) {
+            let Some(&(p, q)) = a.get(key) else {
+                assert!(
+                    area < 0.01,
+                    "{name}: {key:?} ({area} m²) missing from the charts"
+                );
+                continue;
+            };
+            diff += (p / q - power / area).abs() * area;
+            total += power;
+        }
+        let d = diff / total;
+        eprintln!(
+            "{name}: {} elements in {} charts vs {} in {}: mean difference {:.3} %",
+            charted.elements.len(),
+            charted.elements.charts.len(),
+            flat.elements.len(),
+            flat.elements.charts.len(),
+            100.0 * d
+        );
+        assert!(d <= 0.01, "{name}: {d}");
+    }
+}
+
+#[test]
+fn furnace_with_charts_gives_e_over_one_minus_rho() {
+    let Some(gpu) = gpu_common::gpu() else { return };
+    let walls = goniolight::geometry::generate::cuboid(DVec3::ZERO, DVec3::new(2.0, 1.5, 1.0));
+    let inward: Vec<[Vec3; 3]> = walls
+        .triangles
+        .iter()
+        .map(|t| [t[0], t[2], t[1]].map(|i| walls.positions[i as usize].as_vec3()))
+        .collect();
+    let scene = Scene {
+        meshes: vec![SceneMesh::from_triangles("box", &inward, 0)],
+        materials: vec![Material {
+            diffuse: Vec3::splat(0.5),
+            emission: Vec3::splat(100.0),
+            ..Material::default()
+        }],
+        luminaires: Vec::new(),
+        models: Vec::new(),
+        ..bundled("box_room.toml")
+    };
+    let (r, b, _) = solved(&gpu, &scene, Hierarchy::Clusters, 0.9999);
+    assert_eq!(r.elements.charts.len(), 6, "one chart per face");
+    let worst = b
+        .iter()
+        .map(|b| (b.x / 200.0 - 1.0).abs())
+        .fold(0.0, f64::max);
+    eprintln!("chart furnace: worst {:.3} %", 100.0 * worst);
+    assert!(worst <= 0.005, "worst relative error {worst}");
+}
+
+#[test]
+fn the_cad_room_strips_share_charts_that_tile_them_exactly() {
+    let scene = bundled("cad_room.toml");
+    let flat = RadiosityScene::new(&scene, 10.0, 2).unwrap();
+    let r = RadiosityScene::with_hierarchy(&scene, 10.0, 2, Hierarchy::Clusters).unwrap();
+    let el = &r.elements;
+    let c = corners(&scene);
+    eprintln!(
+        "CAD room: {} triangles; per triangle {} elements, charts {} elements in {} charts",
+        c.len(),
+        flat.elements.len(),
+        el.len(),
+        el.charts.len()
+    );
+    assert!(el.charts.len() * 20 < c.len(), "{} charts", el.charts.len());
+    assert!(el.len() * 2 < flat.elements.len());
+    let mut seen = vec![0; c.len()];
+    for (k, chart) in el.charts.iter().enumerate() {
+        let want: f64 = chart
+            .triangles
+            .iter()
+            .map(|&t| {
+                seen[t as usize] += 1;
+                assert_eq!(el.triangles[t as usize].chart, k as u32);
+                let [a, b, d] = c[t as usize];
+                0.5 * (b - a).cross(d - a).length()
+            })
+            .sum();
+        let elements = chart.first as usize..(chart.first + chart.count) as usize;
+        let sum: f64 = el.area[elements.clone()].iter().sum();
+        assert!(
+            (sum - want).abs() <= 1e-9 * want.max(1.0),
+            "{sum} vs {want}"
+        );
+        let patches = &el.patches[chart.first_patch as usize..][..chart.patch_count as usize];
+        assert_eq!(
+            patches.iter().map(|p| p.count).sum::<u32>(),
+            chart.count,
+            "patches cover the chart"
+        );
+        // Every element lies in the chart's plane, on one of its triangles' boxes.
+        for e in elements {
+            let p = el.position[e];
+            assert!((p - chart.origin).dot(chart.normal).abs() < 1e-9);
+            let on = chart.triangles.iter().any(|&t| {
+                let [a, b, d] = c[t as usize];
+                let (lo, hi) = (a.min(b).min(d), a.max(b).max(d));
+                (p.cmpge(lo - 1e-9) & p.cmple(hi + 1e-9)).all()
+            });
+            assert!(on, "element {e} off its chart");
+        }
+        // Shared corners have the same atlas coordinates in every triangle.
+        let mut at: std::collections::HashMap<[u64; 3], DVec2> = Default::default();
+        for &t in &chart.triangles {
+            for (k, p) in c[t as usize].iter().enumerate() {
+                let uv = el.triangles[t as usize].atlas_uv[k];
+                let key = p.to_array().map(f64::to_bits);
+                let first = *at.entry(key).or_insert(uv);
+                assert!(
+                    first.distance(uv) < 1e-9,
+                    "a shared corner moves in the atlas"
+                );
+            }
+        }
+    }
+    assert!(seen.iter().all(|&n| n == 1), "every triangle in one chart");
+}
