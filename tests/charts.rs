@@ -340,3 +340,14 @@ fn the_cad_room_strips_share_charts_that_tile_them_exactly() {
     }
     assert!(seen.iter().all(|&n| n == 1), "every triangle in one chart");
 }
+
+#[test]
+fn a_density_that_cannot_fit_is_refused_before_clustering() {
+    let scene = bundled("cad_room.toml");
+    let err = RadiosityScene::with_hierarchy(&scene, 1e6, 2, Hierarchy::Clusters).unwrap_err();
+    assert!(
+        matches!(err, goniolight::radiosity::elements::ElementError::TooLarge(n) if n > 1_000_000_000_000),
+        "{err}"
+    );
+    assert!(err.to_string().starts_with("about 1."), "{err}");
+}

@@ -149,6 +149,32 @@ fn progress_bar() -> Result<indicatif::ProgressBar, CliError> {
     Ok(bar)
 }
 
+/// A spinner naming the preparation stage that runs (drawn on a terminal only), cleared
+/// when dropped, so an error is printed on a clean line.
+struct StageSpinner(indicatif::ProgressBar);
+
+impl StageSpinner {
+    fn new() -> Result<StageSpinner, CliError> {
+        let spinner = indicatif::ProgressBar::new_spinner();
+        spinner.set_style(
+            indicatif::ProgressStyle::with_template("{spinner} radiosity: {msg} ({elapsed})")
+                .map_err(|e| CliError::failure(anyhow!(e)))?,
+        );
+        spinner.enable_steady_tick(Duration::from_millis(100));
+        Ok(StageSpinner(spinner))
+    }
+
+    fn set(&self, stage: &'static str) {
+        self.0.set_message(stage);
+    }
+}
+
+impl Drop for StageSpinner {
+    fn drop(&mut self) {
+        self.0.finish_and_clear();
+    }
+}
+
 /// Everything the command writes, computed before anything is written.
 struct Outputs {
     light_map: LightMap,
@@ -160,6 +186,7 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
     args.check()?;
     let started = Instant::now();
     let scene = super::render::scene_at(Scene::load(&args.scene)?, args.image.time)?;
+    let stage = StageSpinner::new()?;
     let load_s = started.elapsed().as_secs_f64();
     let mut settings = args.image.settings(&scene)?;
     let points = if args.points {
@@ -172,6 +199,10 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
         (None, false) => Some(PathBuf::from("radiosity-out")),
         (None, true) => None,
     };
+    stage.set(match args.hierarchy {
+        Hierarchy::None => "elements and atlas",
+        Hierarchy::Clusters => "face clusters, charts, elements and atlas",
+    });
     let rscene =
         RadiosityScene::with_hierarchy(&scene, args.texel_density, args.level, args.hierarchy)
             .map_err(|e| CliError::input(anyhow!("{}: {e}", args.scene.display())))?;
@@ -185,8 +216,10 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
     let gpu = Gpu::shared()?;
     crate::render::limits::check_scene(&gpu, &scene, &mut settings.shadows)?;
     crate::render::limits::check_radiosity(&gpu, rscene.elements.len())?;
+    stage.set("the luminaires' direct light");
     let light = LuminaireLight::new(&gpu, &scene, interp);
     let initial = InitialState::from_luminaires_gpu(&gpu, &light, &rscene, &settings.shadows)?;
+    drop(stage);
     let gpu_settings = GpuSettings {
         visibility: args.visibility,
         map_size: args.map_size,

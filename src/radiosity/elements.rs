@@ -137,7 +137,8 @@ pub enum ElementError {
     TexelSize(f64),
     /// Too many texels for the largest atlas.
     #[error(
-        "{0} texels do not fit in an {MAX_ATLAS} × {MAX_ATLAS} atlas: lower the texel density"
+        "{} texels do not fit in an {MAX_ATLAS} × {MAX_ATLAS} atlas: lower the texel density",
+        texel_count(*.0)
     )]
     TooLarge(u64),
     /// No triangle with an area.
@@ -151,6 +152,15 @@ pub enum ElementError {
         /// Triangles.
         triangles: usize,
     },
+}
+
+/// A texel count as people read it: digits up to a trillion, then "about 1.4e19".
+fn texel_count(n: u64) -> String {
+    if n < 1_000_000_000_000 {
+        n.to_string()
+    } else {
+        format!("about {:.1e}", n as f64)
+    }
 }
 
 /// One chart before packing: its triangles, plane frame and texel grid.

@@ -4,7 +4,7 @@
 use glam::DVec3;
 
 use super::clusters::PlanarClusters;
-use super::elements::{ElementError, Elements, InputTriangle};
+use super::elements::{ElementError, Elements, InputTriangle, MAX_ATLAS};
 use super::Hierarchy;
 use crate::geometry::Mesh;
 use crate::scene::{PlacedLuminaire, Scene};
@@ -72,6 +72,18 @@ impl RadiosityScene {
             Hierarchy::Clusters => {
                 if !(texel_m.is_finite() && texel_m > 0.0) {
                     return Err(ElementError::TexelSize(texel_m));
+                }
+                // The elements cover the area: refuse what cannot fit before clustering.
+                let area: f64 = triangles
+                    .iter()
+                    .map(|t| {
+                        let [a, b, c] = t.corners;
+                        0.5 * (b - a).cross(c - a).length()
+                    })
+                    .sum();
+                let texels = area / (texel_m * texel_m);
+                if texels > (MAX_ATLAS as f64).powi(2) {
+                    return Err(ElementError::TooLarge(texels.min(u64::MAX as f64) as u64));
                 }
                 let materials: Vec<usize> = triangles.iter().map(|t| t.material).collect();
                 let clusters =
