@@ -199,7 +199,7 @@ impl ViewerApp {
                     );
                     choice_row(
                         ui,
-                        "Shooters",
+                        "Charts and shooters",
                         &mut st.gpu.hierarchy,
                         &[
                             (Hierarchy::Clusters, "face clusters"),
