@@ -337,8 +337,8 @@ fn bench_radiosity_compares_flat_and_cluster_shooters_side_by_side() {
             "radiosity",
             "--scene",
             scene,
-            "--elements",
-            "3000",
+            "--texel-density",
+            "5",
             "--visibility",
             "hemicube",
             "--hierarchy",
@@ -371,6 +371,13 @@ fn bench_radiosity_compares_flat_and_cluster_shooters_side_by_side() {
     let reached = |r: &serde_json::Value| r["convergence"].as_f64().unwrap();
     assert!(reached(&rows[1]) > reached(&rows[0]) + 0.2, "{rows:?}");
     assert!(rows[1]["shooters_seconds"].as_f64().unwrap() >= 0.0);
+    // Each hierarchy lays its own charts at the density asked: the strips' shared edges
+    // cost elements only without charts.
+    for r in rows {
+        assert_eq!(r["texel_density"].as_f64(), Some(5.0), "{r}");
+    }
+    let elements = |r: &serde_json::Value| r["elements"].as_u64().unwrap();
+    assert!(2 * elements(&rows[1]) < elements(&rows[0]), "{rows:?}");
 }
 
 /// Reads `child`'s stderr until it says `marker`, then sends it SIGINT 0.3 s later:

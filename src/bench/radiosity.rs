@@ -68,8 +68,10 @@ pub fn surface_area(scene: &Scene) -> f64 {
 /// What one benchmark run solves with.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RadiosityBenchPlan {
-    /// About this many elements.
+    /// About this many elements (by area: a texel density of √(elements / area)) …
     pub elements: usize,
+    /// … unless a texel density (texels per metre) is given.
+    pub texel_density: Option<f64>,
     /// Patch level.
     pub level: u32,
     /// Give up after this many shots per solution.
@@ -89,11 +91,13 @@ pub fn run(
 ) -> anyhow::Result<Vec<RadiosityBenchRow>> {
     let RadiosityBenchPlan {
         elements,
+        texel_density,
         level,
         max_shots,
         time_limit,
     } = plan;
-    let density = (elements as f64 / surface_area(scene).max(1e-9)).sqrt();
+    let density =
+        texel_density.unwrap_or_else(|| (elements as f64 / surface_area(scene).max(1e-9)).sqrt());
     let settings = SolverSettings::default();
     let shadows = crate::render::ShadowSettings::default();
     let light = LuminaireLight::new(gpu, scene, settings.interp);
