@@ -185,3 +185,43 @@ fn the_viewer_opens_the_conference_room() {
     assert!(!err.contains("panicked"), "{err}");
     image::open(&shot).unwrap();
 }
+
+#[test]
+fn charts_tile_the_conference_room_exactly_with_fewer_elements() {
+    use goniolight::radiosity::scene::RadiosityScene;
+    use goniolight::radiosity::Hierarchy;
+    let m = &MODELS[0];
+    let tmp = tempfile::tempdir().unwrap();
+    let scene = goniolight::scene::Scene::load(&scene_for(m, tmp.path())).unwrap();
+    let charted = RadiosityScene::with_hierarchy(&scene, 2.0, 2, Hierarchy::Clusters).unwrap();
+    let flat = RadiosityScene::new(&scene, 2.0, 2).unwrap();
+    let el = &charted.elements;
+    let mesh = &charted.casters;
+    let area = |t: usize| {
+        let [a, b, c] = mesh.triangles[t].map(|i| mesh.positions[i as usize]);
+        0.5 * (b - a).cross(c - a).length()
+    };
+    let mut seen = vec![0u32; mesh.triangles.len()];
+    for chart in &el.charts {
+        let want: f64 = chart.triangles.iter().map(|&t| area(t as usize)).sum();
+        let got: f64 = el.area[chart.first as usize..][..chart.count as usize]
+            .iter()
+            .sum();
+        assert!(
+            (got - want).abs() <= 1e-9 * want.max(1e-6),
+            "{got} vs {want}"
+        );
+        for &t in &chart.triangles {
+            seen[t as usize] += 1;
+        }
+    }
+    assert!(seen.iter().all(|&n| n == 1), "every triangle in one chart");
+    eprintln!(
+        "conference room at 2 texels/m: {} elements in {} charts, {} per triangle",
+        el.len(),
+        el.charts.len(),
+        flat.elements.len()
+    );
+    assert!(el.charts.len() * 2 < mesh.triangles.len());
+    assert!(el.len() < flat.elements.len());
+}
