@@ -447,6 +447,7 @@ fn ambient_overshooting_on_the_gpu_converges_in_fewer_shots() {
         goniolight::radiosity::Hierarchy::Clusters,
     )
     .unwrap();
+    assert_eq!(r.elements.charts.len(), 6, "one chart per face");
     for hierarchy in [
         goniolight::radiosity::Hierarchy::None,
         goniolight::radiosity::Hierarchy::Clusters,

@@ -1,0 +1,257 @@
+//! How a chart is laid out before packing: its plane frame, its triangles in plane
+//! coordinates, its texel grid and the elements the triangles cover.
+
+use glam::{DVec2, DVec3};
+
+use crate::radiosity::clusters::obb::{convex_hull, Obb};
+use crate::radiosity::polygon::{area_centroid, clip_square, outline};
+
+/// One triangle to be split into elements.
+#[derive(Debug, Clone, Copy)]
+pub struct InputTriangle {
+    /// Corners, metres, counter-clockwise seen from the front.
+    pub corners: [DVec3; 3],
+    /// Index of its material.
+    pub material: usize,
+    /// Texel side, metres (1 / the object's texel density).
+    pub texel_m: f64,
+}
+
+/// One chart before packing: its triangles, plane frame and texel grid.
+pub(super) struct ChartPlan {
+    pub(super) material: usize,
+    pub(super) texel_m: f64,
+    /// Triangles with an area, with their corners in plane coordinates (as given) and
+    /// the factor from plane area to their true area (1 for a chart of one triangle).
+    pub(super) triangles: Vec<(u32, [DVec2; 3], f64)>,
+    pub(super) origin: DVec3,
+    pub(super) axes: [DVec3; 2],
+    pub(super) normal: DVec3,
+    pub(super) lo: DVec2,
+    pub(super) cols: u32,
+    pub(super) rows: u32,
+}
+
+/// One element before packing: column, row, area (m²) and centroid (plane coordinates).
+pub(super) type Laid = (u32, u32, f64, DVec2);
+
+fn has_area(t: &InputTriangle) -> Option<DVec3> {
+    let [a, b, c] = t.corners;
+    let n = (b - a).cross(c - a);
+    (n.length() > 1e-14 && n.is_finite()).then_some(n)
+}
+
+/// `corners` counter-clockwise in the plane (clipping needs that orientation).
+fn counter_clockwise(mut corners: [DVec2; 3]) -> [DVec2; 3] {
+    if (corners[1] - corners[0]).perp_dot(corners[2] - corners[0]) < 0.0 {
+        corners.swap(1, 2);
+    }
+    corners
+}
+
+impl ChartPlan {
+    /// The plan of the triangles `members` (one material, one texel size).
+    pub(super) fn new(triangles: &[InputTriangle], members: &[u32]) -> ChartPlan {
+        let first = &triangles[members[0] as usize];
+        let with_area: Vec<(u32, DVec3)> = members
+            .iter()
+            .filter_map(|&t| has_area(&triangles[t as usize]).map(|n| (t, n)))
+            .collect();
+        let area_normal: DVec3 = with_area.iter().map(|(_, n)| *n).sum();
+        let (origin, axes, normal) = match with_area.as_slice() {
+            [] => (DVec3::ZERO, [DVec3::X, DVec3::Y], DVec3::Z),
+            // One triangle: its own frame, u along its first edge.
+            [(t, n)] => {
+                let [a, b, _] = triangles[*t as usize].corners;
+                let n = n.normalize();
+                let u = (b - a).normalize();
+                (a, [u, n.cross(u)], n)
+            }
+            // Several: the plane through their corners' mean along their summed normal,
+            // axes along the minimum-area rectangle (a tight rectangle in the atlas).
+            many => {
+                let corners: Vec<DVec3> = many
+                    .iter()
+                    .flat_map(|(t, _)| triangles[*t as usize].corners)
+                    .collect();
+                let n = area_normal.normalize_or(DVec3::Z);
+                let u = Obb::around(&corners, n).axes[0];
+                let mean = corners.iter().sum::<DVec3>() / corners.len() as f64;
+                (mean, [u, n.cross(u)], n)
+            }
+        };
+        let single = with_area.len() == 1;
+        let to_2d = |p: DVec3| DVec2::new((p - origin).dot(axes[0]), (p - origin).dot(axes[1]));
+        let laid: Vec<(u32, [DVec2; 3], f64)> = with_area
+            .iter()
+            .map(|&(t, n)| {
+                let c = triangles[t as usize].corners.map(to_2d);
+                let plane = (c[1] - c[0]).perp_dot(c[2] - c[0]).abs();
+                let scale = if single || plane <= 0.0 {
+                    1.0
+                } else {
+                    n.length() / plane
+                };
+                (t, c, scale)
+            })
+            .collect();
+        let lo = laid
+            .iter()
+            .flat_map(|l| l.1)
+            .fold(DVec2::splat(f64::INFINITY), DVec2::min);
+        let hi = laid
+            .iter()
+            .flat_map(|l| l.1)
+            .fold(DVec2::splat(f64::NEG_INFINITY), DVec2::max);
+        let s = first.texel_m;
+        // Saturating casts: a huge grid is refused by the caller, never allocated.
+        let (cols, rows) = if laid.is_empty() {
+            (0, 0)
+        } else {
+            (
+                (((hi.x - lo.x) / s).ceil() as u32).max(1),
+                (((hi.y - lo.y) / s).ceil() as u32).max(1),
+            )
+        };
+        ChartPlan {
+            material: first.material,
+            texel_m: s,
+            triangles: laid,
+            origin,
+            axes,
+            normal,
+            lo: if cols == 0 { DVec2::ZERO } else { lo },
+            cols,
+            rows,
+        }
+    }
+
+    pub(super) fn to_world(&self, p: DVec2) -> DVec3 {
+        self.origin + self.axes[0] * p.x + self.axes[1] * p.y
+    }
+
+    /// Texels (with a one-texel gutter on each side) of its atlas rectangle.
+    pub(super) fn texels(&self) -> u64 {
+        if self.cols == 0 {
+            return 0;
+        }
+        (self.cols as u64 + 2) * (self.rows as u64 + 2)
+    }
+
+    /// The texel columns and rows a triangle's bounding box touches.
+    fn span(&self, c: &[DVec2; 3]) -> (std::ops::Range<u32>, std::ops::Range<u32>) {
+        let s = self.texel_m;
+        let lo = (c[0].min(c[1]).min(c[2]) - self.lo) / s;
+        let hi = (c[0].max(c[1]).max(c[2]) - self.lo) / s;
+        let first = |v: f64| (v.floor().max(0.0) as u32).min(u32::MAX - 1);
+        (
+            first(lo.x)..(hi.x.ceil() as u32).clamp(first(lo.x) + 1, self.cols.max(1)),
+            first(lo.y)..(hi.y.ceil() as u32).clamp(first(lo.y) + 1, self.rows.max(1)),
+        )
+    }
+
+    /// The elements: every texel the chart's triangles touch, with the area and centroid
+    /// of the triangles' parts inside it.
+    pub(super) fn elements(&self) -> Vec<Laid> {
+        let s = self.texel_m;
+        let cells = self.cols as usize * self.rows as usize;
+        let mut area = vec![0.0f64; cells];
+        let mut moment = vec![DVec2::ZERO; cells];
+        for (_, c, scale) in &self.triangles {
+            let ccw = counter_clockwise(*c);
+            let (columns, rows) = self.span(c);
+            for j in rows {
+                for i in columns.clone() {
+                    let sq_lo = self.lo + DVec2::new(i as f64, j as f64) * s;
+                    let poly = clip_square(sq_lo, sq_lo + DVec2::splat(s), &ccw);
+                    if poly.len() < 3 {
+                        continue;
+                    }
+                    let (a, centroid) = area_centroid(&poly);
+                    let k = j as usize * self.cols as usize + i as usize;
+                    area[k] += a * scale;
+                    moment[k] += centroid * (a * scale);
+                }
+            }
+        }
+        let mut out = Vec::new();
+        for j in 0..self.rows {
+            for i in 0..self.cols {
+                let k = j as usize * self.cols as usize + i as usize;
+                if area[k] > 1e-12 * s * s {
+                    out.push((i, j, area[k], moment[k] / area[k]));
+                }
+            }
+        }
+        out
+    }
+
+    /// Per block of `block` texels, the chart's triangles (indices into `triangles`)
+    /// whose bounding boxes touch it.
+    pub(super) fn triangles_by_block(
+        &self,
+        block: u32,
+    ) -> std::collections::HashMap<(u32, u32), Vec<usize>> {
+        let mut bins: std::collections::HashMap<(u32, u32), Vec<usize>> = Default::default();
+        for (k, (_, c, _)) in self.triangles.iter().enumerate() {
+            let (columns, rows) = self.span(c);
+            for j in rows.start / block..=(rows.end - 1) / block {
+                for i in columns.start / block..=(columns.end - 1) / block {
+                    bins.entry((i, j)).or_default().push(k);
+                }
+            }
+        }
+        bins
+    }
+
+    /// The polygon of the block of `side` metres at `lo` clipped to the chart's
+    /// triangles `touching`.
+    pub(super) fn block_polygon(&self, lo: DVec2, side: f64, touching: &[usize]) -> Vec<DVec2> {
+        let hi = lo + DVec2::splat(side);
+        let pieces = touching.iter().filter_map(|&k| {
+            let piece = clip_square(lo, hi, &counter_clockwise(self.triangles[k].1));
+            (piece.len() >= 3).then_some(piece)
+        });
+        if self.triangles.len() == 1 {
+            return pieces.into_iter().next().unwrap_or_default();
+        }
+        let points: Vec<DVec2> = pieces.flatten().collect();
+        outline(&convex_hull(&points), lo, hi)
+    }
+}
+
+/// Shelf packing of rectangles (w, h) into an atlas of `width`: positions and height.
+pub(super) fn pack(sizes: &[(u32, u32)], width: u32) -> (Vec<[u32; 2]>, u32) {
+    let mut order: Vec<usize> = (0..sizes.len()).collect();
+    order.sort_by_key(|&k| (std::cmp::Reverse(sizes[k].1), std::cmp::Reverse(sizes[k].0)));
+    let mut at = vec![[0u32; 2]; sizes.len()];
+    let (mut x, mut y, mut shelf) = (0u32, 0u32, 0u32);
+    for k in order {
+        let (w, h) = sizes[k];
+        if x + w > width {
+            x = 0;
+            y += shelf;
+            shelf = 0;
+        }
+        at[k] = [x, y];
+        x += w;
+        shelf = shelf.max(h);
+    }
+    (at, y + shelf)
+}
+
+/// Groups triangles by chart id, material and texel size, in the order of their first
+/// triangle.
+pub(super) fn group(triangles: &[InputTriangle], chart_of: &[u32]) -> Vec<Vec<u32>> {
+    let mut index = std::collections::HashMap::new();
+    let mut groups: Vec<Vec<u32>> = Vec::new();
+    for (t, (tri, &id)) in triangles.iter().zip(chart_of).enumerate() {
+        let key = (id, tri.material, tri.texel_m.to_bits());
+        let g = *index.entry(key).or_insert_with(|| {
+            groups.push(Vec::new());
+            groups.len() - 1
+        });
+        groups[g].push(t as u32);
+    }
+    groups
+}
