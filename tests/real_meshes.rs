@@ -225,3 +225,35 @@ fn charts_tile_the_conference_room_exactly_with_fewer_elements() {
     assert!(el.charts.len() * 2 < mesh.triangles.len());
     assert!(el.len() < flat.elements.len());
 }
+
+#[test]
+fn the_real_model_scene_files_read_the_shared_models_in_place() {
+    // assets/real_models/*.toml point at ../shared next to the repository.
+    assert!(common::shared_dir().join("models").is_dir());
+    for (file, triangles, luminaires) in [
+        ("sibenik.toml", 73_553, 5),
+        ("conference.toml", 331_179 - 53_627, 4),
+    ] {
+        let path = common::root().join("assets/real_models").join(file);
+        let scene = goniolight::scene::Scene::load(&path).unwrap();
+        assert_eq!(scene.triangle_count(), triangles, "{file}");
+        assert_eq!(scene.luminaires.len(), luminaires, "{file}");
+        // Every luminaire hangs inside the model's bounds.
+        let mesh = scene.caster_mesh();
+        let lo = mesh
+            .positions
+            .iter()
+            .fold(glam::DVec3::MAX, |a, &p| a.min(p));
+        let hi = mesh
+            .positions
+            .iter()
+            .fold(glam::DVec3::MIN, |a, &p| a.max(p));
+        for l in &scene.luminaires {
+            assert!(
+                (l.position.cmpgt(lo) & l.position.cmplt(hi)).all(),
+                "{file}: {} outside {lo} … {hi}",
+                l.position
+            );
+        }
+    }
+}
