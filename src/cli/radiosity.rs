@@ -242,7 +242,6 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
     );
     let shooters = Shooters::build(&rscene, args.hierarchy);
     let shooter_count = shooters.len();
-    let cluster_count = shooters.clusters.nodes.len() - shooters.clusters.order.len();
     let mut solver = GpuSolver::with_shooters(
         &gpu,
         &rscene,
@@ -262,7 +261,10 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
         rscene.elements.atlas_height,
         match args.hierarchy {
             Hierarchy::None => " (one per triangle: --hierarchy none)".to_string(),
-            Hierarchy::Clusters => format!(" of {cluster_count} face clusters"),
+            Hierarchy::Clusters => {
+                let tree = &rscene.planar_clusters().tree;
+                format!(" of {} face clusters", tree.nodes.len() - tree.order.len())
+            }
         },
     );
     let bar = progress_bar()?;

@@ -1,6 +1,7 @@
 //! Who shoots in the progressive solution. Flat (`--hierarchy none`): every chart of the
-//! light map — there every triangle — from its patches (blocks of 2^level texels). With face clusters (Edström ch. 6, after
-//! Willmott's face-cluster radiosity): every flat cluster of the hierarchy, cut where a
+//! light map — there every triangle — from its patches (blocks of 2^level texels). With
+//! face clusters (Edström ch. 6, after Willmott's face-cluster radiosity): every flat
+//! cluster of the hierarchy ([`RadiosityScene::planar_clusters`]), cut where a
 //! cluster stops being planar, shoots as a whole — a floor drawn as 500 strips is one
 //! shooter, not 500. Its shooting patches are the cells of a square grid laid in the plane
 //! of its oriented box, and the grid's cell is chosen per shot by an oracle: each cell may
@@ -57,8 +58,6 @@ pub struct Shooters {
     pub finest_cell: Vec<f64>,
     /// Per element, its shooter.
     pub element_shooter: Vec<u32>,
-    /// Face clusters (empty without a hierarchy).
-    pub clusters: FaceClusters,
 }
 
 /// One shooting patch of a shot: a range of the shot's element order and a polygon.
@@ -132,7 +131,6 @@ impl Shooters {
             let texel = planar.texel[node as usize];
             s.push_cluster(scene, &planar.tree, node, texel);
         }
-        s.clusters = planar.tree.clone();
         s
     }
 
@@ -147,7 +145,6 @@ impl Shooters {
             area: Vec::new(),
             finest_cell: Vec::new(),
             element_shooter: vec![u32::MAX; elements],
-            clusters: FaceClusters::default(),
         }
     }
 

@@ -143,11 +143,13 @@ impl ChartPlan {
         let s = self.texel_m;
         let lo = (c[0].min(c[1]).min(c[2]) - self.lo) / s;
         let hi = (c[0].max(c[1]).max(c[2]) - self.lo) / s;
-        let first = |v: f64| (v.floor().max(0.0) as u32).min(u32::MAX - 1);
-        (
-            first(lo.x)..(hi.x.ceil() as u32).clamp(first(lo.x) + 1, self.cols.max(1)),
-            first(lo.y)..(hi.y.ceil() as u32).clamp(first(lo.y) + 1, self.rows.max(1)),
-        )
+        // At least one texel, inside the grid, whatever rounding did to a sliver's box.
+        let range = |lo: f64, hi: f64, n: u32| {
+            let last = n.max(1) - 1;
+            let start = (lo.floor().max(0.0) as u32).min(last);
+            start..(hi.ceil().max(0.0) as u32).clamp(start + 1, last + 1)
+        };
+        (range(lo.x, hi.x, self.cols), range(lo.y, hi.y, self.rows))
     }
 
     /// The elements: every texel the chart's triangles touch, with the area and centroid
@@ -254,4 +256,39 @@ pub(super) fn group(triangles: &[InputTriangle], chart_of: &[u32]) -> Vec<Vec<u3
         groups[g].push(t as u32);
     }
     groups
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_triangle_box_at_the_grid_edge_spans_one_texel_inside_the_grid() {
+        // One triangle: its own frame, u along its first edge (+x), v along +y.
+        let t = InputTriangle {
+            corners: [
+                DVec3::ZERO,
+                DVec3::new(2.5, 0.0, 0.0),
+                DVec3::new(0.0, 2.5, 0.0),
+            ],
+            material: 0,
+            texel_m: 1.0,
+        };
+        let plan = ChartPlan::new(&[t], &[0]);
+        assert_eq!((plan.cols, plan.rows), (3, 3));
+        // A box starting on the grid's far edge (rounding in a sliver's corners) and one
+        // past it: both clamp to the last texel instead of an empty or inverted range.
+        for x in [3.0, 3.5] {
+            let c = [
+                DVec2::new(x, 0.0),
+                DVec2::new(x + 1e-3, 0.0),
+                DVec2::new(x, 1.0),
+            ];
+            let (columns, rows) = plan.span(&c);
+            assert_eq!(columns, 2..3, "{x}");
+            assert_eq!(rows, 0..1);
+        }
+        let whole = [DVec2::ZERO, DVec2::new(3.0, 0.0), DVec2::new(0.0, 3.0)];
+        assert_eq!(plan.span(&whole), (0..3, 0..3));
+    }
 }
