@@ -16,6 +16,10 @@ struct SolveParams {
     patch_count: u32,
     total_area: f32,
     mean_reflectance: f32,
+    // The elements whose unshot radiosity this batch shoots: a range of shooter_elements.
+    clear_first: u32,
+    clear_count: u32,
+    _pad: vec2<u32>,
 };
 
 struct Element {
@@ -161,13 +165,11 @@ fn gather_patches(@builtin(global_invocation_id) id: vec3<u32>) {
 
 @compute @workgroup_size(64)
 fn clear_shooter(@builtin(global_invocation_id) id: vec3<u32>) {
-    // The elements of this batch's patches (contiguous in shooter_elements, patch after patch).
-    let first = patches[params.patch_first].range.x;
-    let last = patches[params.patch_first + params.patch_count - 1u];
-    if (params.patch_count == 0u || id.x >= last.range.x + last.range.y - first) {
+    // The elements of this batch's top cells (contiguous in shooter_elements).
+    if (id.x >= params.clear_count) {
         return;
     }
-    unshot[shooter_elements[first + id.x]] = vec4<f32>(-shooter_power[params.shooter_count + 1u].rgb, 0.0);
+    unshot[shooter_elements[params.clear_first + id.x]] = vec4<f32>(-shooter_power[params.shooter_count + 1u].rgb, 0.0);
 }
 
 // One shooting patch as seen by the receive pass.
@@ -185,6 +187,12 @@ struct Shot {
     info: vec4<u32>,
     // area, relative depth tolerance, absolute depth tolerance (m), visibility (0 hemicube, 1 stereographic).
     extra: vec4<f32>,
+    // The cells above this one, nearest first (radiosity/links.rs): xyz centre, w reach
+    // (m; negative: none).
+    ancestors: array<vec4<f32>, 4>,
+    // Its reach (m), the plane tolerance (m), the form factor's scale (a coarse cell's
+    // elements' area over its polygon's), 1 for a top cell.
+    link: vec4<f32>,
 };
 
 @group(1) @binding(0) var<uniform> shot: Shot;
@@ -290,6 +298,25 @@ fn visible_from_patch(p: vec3<f32>) -> bool {
     return false;
 }
 
+// Whether a receiver at `p` takes its light from this cell (radiosity/links.rs,
+// takes_light_from): beyond its reach and within every ancestor's; receivers next to the
+// shooter's plane take it from top cells only.
+fn takes_light(p: vec3<f32>) -> bool {
+    if (dot(shot.normal.xyz, p - shot.centroid.xyz) <= shot.link.y) {
+        return shot.link.w > 0.5;
+    }
+    if (distance(p, shot.centroid.xyz) < shot.link.x) {
+        return false;
+    }
+    for (var a = 0u; a < 4u; a++) {
+        let up = shot.ancestors[a];
+        if (up.w >= 0.0 && distance(p, up.xyz) >= up.w) {
+            return false;
+        }
+    }
+    return true;
+}
+
 @compute @workgroup_size(64)
 fn receive(@builtin(global_invocation_id) id: vec3<u32>) {
     let i = id.x;
@@ -302,6 +329,9 @@ fn receive(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let p = el.position_area.xyz;
     let n = el.normal_shooter.xyz;
+    if (!takes_light(p)) {
+        return;
+    }
     var f = 0.0;
     if (shot.info.z == 1u) {
         f = polygon_form_factor(p, n);
@@ -311,7 +341,7 @@ fn receive(@builtin(global_invocation_id) id: vec3<u32>) {
     if (f <= 0.0 || !visible_from_patch(p)) {
         return;
     }
-    let incident = patch_delta[shot.info.x].rgb * f;
+    let incident = patch_delta[shot.info.x].rgb * f * shot.link.z;
     let gained = el.reflectance.rgb * incident;
     radiosity[i] += vec4<f32>(gained, dot(incident, LUMA));
     unshot[i] += vec4<f32>(gained, 0.0);

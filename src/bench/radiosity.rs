@@ -21,6 +21,10 @@ pub struct RadiosityBenchRow {
     pub visibility: String,
     /// "none" (every triangle shoots) or "clusters" (flat face clusters shoot).
     pub hierarchy: String,
+    /// The links' error (`--link-error`; 0: every receiver takes the finest cells).
+    pub link_error: f64,
+    /// Visibility maps drawn (one per drawn cell or patch).
+    pub maps: usize,
     /// Shooters.
     pub shooters: usize,
     /// Seconds to build the shooters (the face-cluster hierarchy with clusters).
@@ -80,13 +84,16 @@ pub struct RadiosityBenchPlan {
     pub time_limit: Option<f64>,
 }
 
-/// Solves `scene` with about `plan.elements` elements once per pair of `configs`, to 99 %
+/// One solution to measure: visibility, shooters and the links' error.
+pub type RadiosityBenchConfig = (Visibility, Hierarchy, f64);
+
+/// Solves `scene` with about `plan.elements` elements once per entry of `configs`, to 99 %
 /// or the plan's limits.
 pub fn run(
     gpu: &Gpu,
     scene: &Scene,
     plan: RadiosityBenchPlan,
-    configs: &[(Visibility, Hierarchy)],
+    configs: &[RadiosityBenchConfig],
     mut progress: impl FnMut(Visibility, Hierarchy, f64),
 ) -> anyhow::Result<Vec<RadiosityBenchRow>> {
     let RadiosityBenchPlan {
@@ -104,7 +111,7 @@ pub fn run(
     // The hierarchy lays the charts too, so each has its own elements.
     let mut prepared: Vec<(Hierarchy, RadiosityScene, InitialState)> = Vec::new();
     let mut rows = Vec::new();
-    for &(visibility, hierarchy) in configs {
+    for &(visibility, hierarchy, link_error) in configs {
         if !prepared.iter().any(|p| p.0 == hierarchy) {
             let rscene = RadiosityScene::with_hierarchy(scene, density, level, hierarchy)?;
             let initial = InitialState::from_luminaires_gpu(gpu, &light, &rscene, &shadows)?;
@@ -116,6 +123,7 @@ pub fn run(
         let gpu_settings = GpuSettings {
             visibility,
             hierarchy,
+            link_error,
             ..GpuSettings::default()
         };
         let built = std::time::Instant::now();
@@ -137,6 +145,8 @@ pub fn run(
         rows.push(RadiosityBenchRow {
             visibility: format!("{visibility:?}").to_lowercase(),
             hierarchy: format!("{hierarchy:?}").to_lowercase(),
+            link_error,
+            maps: solver.drawn,
             shooters: shooter_count,
             shooters_seconds,
             triangles: rscene.elements.triangles.len(),

@@ -128,6 +128,10 @@ pub enum BenchCommand {
         /// Shooters to compare (comma-separated): `none` (every triangle), `clusters`.
         #[arg(long, value_enum, value_delimiter = ',', default_value = "none")]
         hierarchy: Vec<crate::radiosity::shooters::Hierarchy>,
+        /// Links' errors to compare with `--hierarchy clusters` (comma-separated; 0: every
+        /// receiver takes the finest cells). One row per value for clusters.
+        #[arg(long, value_delimiter = ',', default_value = "0.05")]
+        link_error: Vec<f64>,
         /// The scene (default: the bundled assets/scenes/cornell_box.toml).
         #[arg(long)]
         scene: Option<std::path::PathBuf>,
@@ -182,6 +186,7 @@ pub fn run(cmd: BenchCommand) -> Result<(), CliError> {
             time_limit,
             visibility,
             hierarchy,
+            link_error,
             scene,
         } => {
             let plan = crate::bench::radiosity::RadiosityBenchPlan {
@@ -191,10 +196,26 @@ pub fn run(cmd: BenchCommand) -> Result<(), CliError> {
                 max_shots,
                 time_limit,
             };
-            let configs: Vec<_> = visibility
+            use crate::radiosity::shooters::Hierarchy;
+            if link_error
                 .iter()
-                .flat_map(|&v| hierarchy.iter().map(move |&h| (v, h)))
-                .collect();
+                .any(|e| !(e.is_finite() && (0.0..=1.0).contains(e)))
+            {
+                return Err(CliError::input(anyhow::anyhow!(
+                    "--link-error values must be in [0, 1]"
+                )));
+            }
+            let mut configs = Vec::new();
+            for &v in &visibility {
+                for &h in &hierarchy {
+                    match h {
+                        Hierarchy::None => configs.push((v, h, 0.0)),
+                        Hierarchy::Clusters => {
+                            configs.extend(link_error.iter().map(|&e| (v, h, e)))
+                        }
+                    }
+                }
+            }
             run_radiosity(json, plan, &configs, scene)
         }
     }
@@ -261,10 +282,7 @@ fn run_clusters(as_json: bool, shared: Option<std::path::PathBuf>) -> Result<(),
 fn run_radiosity(
     as_json: bool,
     plan: crate::bench::radiosity::RadiosityBenchPlan,
-    configs: &[(
-        crate::radiosity::gpu::Visibility,
-        crate::radiosity::shooters::Hierarchy,
-    )],
+    configs: &[crate::bench::radiosity::RadiosityBenchConfig],
     scene: Option<std::path::PathBuf>,
 ) -> Result<(), CliError> {
     use crate::bench::radiosity as rbench;
@@ -308,8 +326,8 @@ fn run_radiosity(
         first.triangles,
         first.texel_density,
     );
-    println!("| visibility | hierarchy | elements | patches | shooters (built in) | shots to 90 % | s to 90 % | shots to 99 % | s to 99 % | ms/shot | time to 90 % / first row |");
-    println!("|---|---|---|---|---|---|---|---|---|---|---|");
+    println!("| visibility | hierarchy | link error | elements | patches | shooters (built in) | maps drawn | shots to 90 % | s to 90 % | shots to 99 % | s to 99 % | ms/shot | time to 90 % / first row |");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     let opt = |v: Option<f64>| v.map_or("—".to_string(), |v| format!("{v:.2}"));
     let shots = |v: Option<usize>| v.map_or("—".to_string(), |v| v.to_string());
     for r in &rows {
@@ -319,14 +337,20 @@ fn run_radiosity(
             (Some(a), None) if first.seconds > 0.0 => format!("< {:.3}", a / first.seconds),
             _ => "—".into(),
         };
+        let link = if r.hierarchy == "none" {
+            "—".to_string()
+        } else {
+            r.link_error.to_string()
+        };
         println!(
-            "| {} | {} | {} | {} | {} ({:.2} s) | {} | {} | {} | {} | {:.1} | {ratio} |",
+            "| {} | {} | {link} | {} | {} | {} ({:.2} s) | {} | {} | {} | {} | {} | {:.1} | {ratio} |",
             r.visibility,
             r.hierarchy,
             r.elements,
             r.patches,
             r.shooters,
             r.shooters_seconds,
+            r.maps,
             shots(r.shots_90),
             opt(r.seconds_90),
             shots(r.shots_99),
@@ -336,9 +360,10 @@ fn run_radiosity(
     }
     for r in rows.iter().filter(|r| r.seconds_99.is_none()) {
         println!(
-            "{} / {}: {:.2} % after {} shots in {:.1} s (— : not reached within --max-shots {} or --time-limit)",
+            "{} / {} / link error {}: {:.2} % after {} shots in {:.1} s (— : not reached within --max-shots {} or --time-limit)",
             r.visibility,
             r.hierarchy,
+            r.link_error,
             100.0 * r.convergence,
             r.shots,
             r.seconds,

@@ -3,6 +3,7 @@
 pub mod adjacency;
 pub mod generate;
 pub mod obj;
+pub mod simplify;
 pub mod weld;
 
 use glam::DVec3;

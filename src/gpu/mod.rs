@@ -357,6 +357,13 @@ impl Gpu {
         Ok(bytemuck::pod_collect_to_vec(&bytes))
     }
 
+    /// Copies the first `bytes` bytes of `buffer` (which must allow COPY_SRC; a multiple
+    /// of 4, at most its size) back to the CPU as `f32`s.
+    pub fn read_f32_prefix(&self, buffer: &wgpu::Buffer, bytes: u64) -> Result<Vec<f32>, GpuError> {
+        let bytes = self.read_bytes_prefix(buffer, bytes.min(buffer.size()), |_| {})?;
+        Ok(bytemuck::pod_collect_to_vec(&bytes))
+    }
+
     /// Copies `buffer` (which must allow COPY_SRC) back to the CPU as `u32`s.
     pub fn read_u32(&self, buffer: &wgpu::Buffer) -> Result<Vec<u32>, GpuError> {
         let bytes = self.read_bytes(buffer, |_| {})?;
@@ -457,7 +464,19 @@ impl Gpu {
         buffer: &wgpu::Buffer,
         before: impl FnOnce(&mut wgpu::CommandEncoder),
     ) -> Result<Vec<u8>, GpuError> {
-        let size = buffer.size();
+        self.read_bytes_prefix(buffer, buffer.size(), before)
+    }
+
+    /// [`Gpu::read_bytes`] of the first `size` bytes.
+    fn read_bytes_prefix(
+        &self,
+        buffer: &wgpu::Buffer,
+        size: u64,
+        before: impl FnOnce(&mut wgpu::CommandEncoder),
+    ) -> Result<Vec<u8>, GpuError> {
+        if size == 0 {
+            return Ok(Vec::new());
+        }
         let staging = self.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("read-back"),
             size,

@@ -9,6 +9,7 @@ use wgpu::util::DeviceExt;
 
 use super::form_factor::FormFactorKind;
 use super::initial::InitialState;
+use super::links::{Links, ReceiverBoxes, DEFAULT_LINK_ERROR, LINK_LEVELS};
 use super::scene::RadiosityScene;
 use super::shooters::{Hierarchy, Shooters, ShotPlan, DEFAULT_CELL_POWER};
 use super::{Ambient, SolverSettings};
@@ -42,6 +43,10 @@ pub struct GpuSettings {
     /// With clusters: the largest share of the initial unshot power one shooting cell
     /// may carry (smaller: finer cells, slower and closer to the flat solution).
     pub cell_power: f64,
+    /// With clusters: the irradiance error a receiver accepts from a coarse cell, as a
+    /// share of the mean initial exitance ([`super::links`]); 0 links every receiver to
+    /// the finest cells.
+    pub link_error: f64,
 }
 
 impl Default for GpuSettings {
@@ -52,6 +57,7 @@ impl Default for GpuSettings {
             tolerance: 0.01,
             hierarchy: Hierarchy::None,
             cell_power: DEFAULT_CELL_POWER,
+            link_error: DEFAULT_LINK_ERROR,
         }
     }
 }
@@ -74,6 +80,9 @@ struct SolveParams {
     patch_count: u32,
     total_area: f32,
     mean_reflectance: f32,
+    clear_first: u32,
+    clear_count: u32,
+    _pad: [u32; 2],
 }
 
 #[repr(C)]
@@ -87,6 +96,8 @@ struct ShotGpu {
     polygon: [[f32; 4]; 8],
     info: [u32; 4],
     extra: [f32; 4],
+    ancestors: [[f32; 4]; LINK_LEVELS as usize],
+    link: [f32; 4],
 }
 
 #[repr(C)]
@@ -156,6 +167,15 @@ pub struct GpuSolver<'a> {
     /// Patches in the next batch of a shot: adapted so a batch takes about
     /// [`BATCH_SECONDS`] (between 1 and [`PATCHES_PER_BATCH`]).
     batch: usize,
+    /// Per cell of the shot: rgb unshot radiosity it shoots.
+    patch_delta: wgpu::Buffer,
+    /// The receivers' boxes, for the links.
+    receivers: ReceiverBoxes,
+    /// Visibility maps drawn so far (one per drawn cell or patch).
+    pub drawn: usize,
+    /// Cells or patches whose visibility map was skipped so far: no receiver takes light
+    /// from them (behind the shooter, or linked to a coarser or finer cell).
+    pub skipped: usize,
 }
 
 fn storage(gpu: &Gpu, label: &str, data: &[u8], writable: bool) -> wgpu::Buffer {
@@ -345,7 +365,8 @@ impl<'a> GpuSolver<'a> {
                 ]
             })
             .collect();
-        let max_patches = shooters.max_elements();
+        // A cell holds at least one element, and a plan has at most LINK_LEVELS + 1 levels.
+        let max_patches = shooters.max_elements() * (LINK_LEVELS as usize + 1);
         let pipelines = Pipelines::new(gpu);
         let bytes = |v: &[[f32; 4]]| bytemuck::cast_slice::<[f32; 4], u8>(v).to_vec();
         let params = gpu.device.create_buffer(&wgpu::BufferDescriptor {
@@ -389,7 +410,13 @@ impl<'a> GpuSolver<'a> {
                 (8, patch_delta.as_entire_binding()),
             ],
         );
-        let mesh = &scene.casters;
+        // Visibility needs only the surfaces, not their tessellation: a CAD fan's strips
+        // are drawn as the triangle they fill (the same points, far fewer triangles).
+        let scene_size = scene
+            .casters
+            .bounds()
+            .map_or(1.0, |(lo, hi)| (hi - lo).length());
+        let mesh = &crate::geometry::simplify::merge_strips(&scene.casters, 1e-6 * scene_size);
         let verts: Vec<[f32; 3]> = mesh
             .triangles
             .iter()
@@ -425,7 +452,6 @@ impl<'a> GpuSolver<'a> {
         let face_views = (0..5)
             .map(|layer| crate::gpu::layer_view(&maps, layer))
             .collect();
-        let scene_size = mesh.bounds().map_or(1.0, |(lo, hi)| (hi - lo).length());
         let solver = GpuSolver {
             gpu,
             scene,
@@ -454,12 +480,22 @@ impl<'a> GpuSolver<'a> {
             size: scene_size,
             shots: 0,
             batch: FIRST_BATCH,
+            patch_delta,
+            receivers: ReceiverBoxes::new(scene),
+            drawn: 0,
+            skipped: 0,
         };
-        solver.write_params(u32::MAX, 0, 0);
+        solver.write_params(u32::MAX, 0, 0, 0..0);
         solver
     }
 
-    fn write_params(&self, shooter: u32, patch_first: u32, patch_count: u32) {
+    fn write_params(
+        &self,
+        shooter: u32,
+        patch_first: u32,
+        patch_count: u32,
+        clear: std::ops::Range<u32>,
+    ) {
         let el = &self.scene.elements;
         let p = SolveParams {
             element_count: el.len() as u32,
@@ -470,6 +506,9 @@ impl<'a> GpuSolver<'a> {
             patch_count,
             total_area: self.scene.total_area as f32,
             mean_reflectance: self.scene.mean_reflectance as f32,
+            clear_first: clear.start,
+            clear_count: clear.len() as u32,
+            _pad: [0; 2],
         };
         self.gpu
             .queue
@@ -491,7 +530,7 @@ impl<'a> GpuSolver<'a> {
 
     /// Chooses the next shooter on the GPU (reduction over the shooters).
     pub fn select(&mut self) -> Result<Selection, GpuError> {
-        self.write_params(u32::MAX, 0, 0);
+        self.write_params(u32::MAX, 0, 0, 0..0);
         let mut enc = self.gpu.device.create_command_encoder(&Default::default());
         let shooters = self.shooters.len() as u32;
         self.dispatch(&mut enc, &self.pipelines.shooter_sums, shooters, 64);
@@ -529,13 +568,14 @@ impl<'a> GpuSolver<'a> {
         (m, far)
     }
 
-    /// The shooting records of `plan`'s patches `batch` from a shooter facing `n`, and
-    /// their visibility faces.
+    /// The shooting records of `plan`'s patches `drawn` (indices) from a shooter facing
+    /// `n`, with their links, and their visibility faces.
     fn shot_records(
         &self,
         n: DVec3,
         plan: &ShotPlan,
-        batch: std::ops::Range<usize>,
+        links: &Links,
+        drawn: &[usize],
     ) -> (Vec<u8>, Vec<u8>, u32) {
         let (tangent, bitangent) = frame(n);
         let faces_per_patch = match self.gpu_settings.visibility {
@@ -543,9 +583,11 @@ impl<'a> GpuSolver<'a> {
             Visibility::Stereographic => 1,
         };
         let (projection, far) = self.projection();
-        let mut shots = vec![0u8; batch.len() * SHOT_STRIDE as usize];
-        let mut faces = vec![0u8; batch.len() * faces_per_patch * FACE_STRIDE as usize];
-        for (k, patch) in batch.enumerate() {
+        let tolerance = self.receivers.plane_tolerance() as f32;
+        let finite = |r: f64| r.min(f64::from(f32::MAX)) as f32;
+        let mut shots = vec![0u8; drawn.len() * SHOT_STRIDE as usize];
+        let mut faces = vec![0u8; drawn.len() * faces_per_patch * FACE_STRIDE as usize];
+        for (k, &patch) in drawn.iter().enumerate() {
             let p = &plan.patches[patch];
             let eye = (p.centroid + n * 1e-6 * self.size).as_vec3();
             let (t3, b3, n3) = (tangent.as_vec3(), bitangent.as_vec3(), n.as_vec3());
@@ -555,6 +597,24 @@ impl<'a> GpuSolver<'a> {
             for (slot, v) in polygon.iter_mut().zip(&p.polygon) {
                 *slot = v4(*v, 1.0);
             }
+            // The cells above it, nearest first (reach −1: none).
+            let mut ancestors = [[0.0, 0.0, 0.0, -1.0]; LINK_LEVELS as usize];
+            let mut up = p.parent;
+            for slot in &mut ancestors {
+                if up == u32::MAX {
+                    break;
+                }
+                let a = &plan.patches[up as usize];
+                *slot = v4(a.centroid, finite(links.reach[up as usize]));
+                up = a.parent;
+            }
+            // A coarse cell's polygon may be its hull's bounding rectangle: far away, the
+            // form factor goes with the area, so it is scaled to its elements' area.
+            let scale = if p.level > 0 && p.area > 0.0 {
+                p.element_area / p.area
+            } else {
+                1.0
+            };
             let stereographic = self.gpu_settings.visibility == Visibility::Stereographic;
             let record = ShotGpu {
                 faces: matrices.map(|m| m.to_cols_array()),
@@ -564,7 +624,7 @@ impl<'a> GpuSolver<'a> {
                 centroid: v4(p.centroid, 1.0),
                 polygon,
                 info: [
-                    k as u32,
+                    patch as u32,
                     p.polygon.len().min(8) as u32,
                     u32::from(self.settings.form_factor == FormFactorKind::Polygon),
                     self.gpu_settings.map_size,
@@ -574,6 +634,13 @@ impl<'a> GpuSolver<'a> {
                     self.gpu_settings.tolerance,
                     (1e-4 * self.size) as f32,
                     if stereographic { 1.0 } else { 0.0 },
+                ],
+                ancestors,
+                link: [
+                    finite(links.reach[patch]),
+                    tolerance,
+                    scale as f32,
+                    if p.parent == u32::MAX { 1.0 } else { 0.0 },
                 ],
             };
             let at = k * SHOT_STRIDE as usize;
@@ -601,12 +668,20 @@ impl<'a> GpuSolver<'a> {
     }
 
     /// How shooter `s` shoots now: a cluster's cells sized by the oracle from the last
-    /// selection's power ([`Shooters::cell_side`]). Its element order and patches go to
-    /// the GPU.
-    fn plan(&self, s: usize) -> ShotPlan {
-        let budget = self.gpu_settings.cell_power * self.initial_power.unwrap_or(0.0);
+    /// selection's power ([`Shooters::cell_side`]), with [`LINK_LEVELS`] coarser levels
+    /// when links are on. Its element order and cells go to the GPU, every cell's unshot
+    /// radiosity is gathered there (before any is cleared), and — when there are coarse
+    /// cells — read back for the links' oracle.
+    fn plan(&mut self, s: usize) -> Result<(ShotPlan, Links), GpuError> {
+        let initial = self.initial_power.unwrap_or(0.0);
+        let budget = self.gpu_settings.cell_power * initial;
         let side = self.shooters.cell_side(s, self.last_power, budget);
-        let plan = self.shooters.plan(self.scene, s, side);
+        let levels = if self.gpu_settings.link_error > 0.0 {
+            LINK_LEVELS
+        } else {
+            0
+        };
+        let plan = self.shooters.plan_levels(self.scene, s, side, levels);
         let first = self.shooters.first[s];
         self.gpu.queue.write_buffer(
             &self.shooter_elements,
@@ -628,29 +703,64 @@ impl<'a> GpuSolver<'a> {
         self.gpu
             .queue
             .write_buffer(&self.patches, 0, bytemuck::cast_slice(&patches));
-        plan
+        let cells = plan.patches.len() as u32;
+        self.write_params(s as u32, 0, cells, 0..0);
+        let mut enc = self.gpu.device.create_command_encoder(&Default::default());
+        self.dispatch(&mut enc, &self.pipelines.gather, cells, 64);
+        self.gpu.queue.submit([enc.finish()]);
+        let radiosity: Vec<f64> = if plan.patches.iter().any(|p| p.level > 0) {
+            let delta = self
+                .gpu
+                .read_f32_prefix(&self.patch_delta, 16 * cells as u64)?;
+            let luma = Vec3::new(0.2126, 0.7152, 0.0722);
+            delta
+                .chunks_exact(4)
+                .map(|d| Vec3::new(d[0], d[1], d[2]).dot(luma) as f64)
+                .collect()
+        } else {
+            vec![0.0; plan.patches.len()]
+        };
+        let epsilon = self.gpu_settings.link_error * initial / self.scene.total_area.max(1e-300);
+        let links = super::links::link(
+            &plan,
+            &radiosity,
+            self.shooters.normal[s],
+            &self.receivers,
+            epsilon,
+        );
+        Ok((plan, links))
     }
 
-    /// [`GpuSolver::shoot`] in batches of patches (at most [`PATCHES_PER_BATCH`], sized so
-    /// one takes about 50 ms), asking `stop` between batches (after the GPU has finished
-    /// the last): a shooter of thousands of patches no longer overruns a time limit or
-    /// Ctrl-C by more than a batch. A batch's elements lose their
-    /// unshot radiosity only as the batch shoots, so a shot stopped early leaves the rest
-    /// unshot for later (energy is neither lost nor counted twice). True when the whole
-    /// shooter was shot.
+    /// [`GpuSolver::shoot`] in batches of top cells (drawing at most
+    /// [`PATCHES_PER_BATCH`] visibility maps, sized so one takes about 50 ms), asking
+    /// `stop` between batches (after the GPU has finished the last): a shooter of
+    /// thousands of patches no longer overruns a time limit or Ctrl-C by more than a
+    /// batch. A batch's elements lose their unshot radiosity only as the batch shoots,
+    /// so a shot stopped early leaves the rest unshot for later (energy is neither lost
+    /// nor counted twice). True when the whole shooter was shot.
     pub fn shoot_until(&mut self, s: usize, stop: &dyn Fn() -> bool) -> Result<bool, GpuError> {
-        let plan = self.plan(s);
-        let patches = plan.patches.len();
-        if patches == 0 {
-            return Ok(true);
-        }
-        let mut from = 0;
-        while from < patches {
-            let to = (from + self.batch).min(patches);
+        let (plan, links) = self.plan(s)?;
+        // Top cells and their subtrees (depth first: a subtree runs to the next top).
+        let tops: Vec<usize> = (0..plan.patches.len())
+            .filter(|&k| plan.patches[k].parent == u32::MAX)
+            .collect();
+        let subtree_end = |t: usize| tops.get(t + 1).copied().unwrap_or(plan.patches.len());
+        let mut t = 0;
+        while t < tops.len() {
             let started = std::time::Instant::now();
-            self.shoot_batch(s, &plan, from..to)?;
-            from = to;
-            if from < patches {
+            let mut drawn = Vec::new();
+            let from = t;
+            while t < tops.len() && (t == from || drawn.len() < self.batch) {
+                drawn.extend((tops[t]..subtree_end(t)).filter(|&k| links.drawn[k]));
+                t += 1;
+            }
+            let first = plan.patches[tops[from]].first;
+            let last = &plan.patches[tops[t - 1]];
+            self.shoot_batch(s, &plan, &links, &drawn, first..last.first + last.count)?;
+            let cells: usize = (tops[from]..subtree_end(t - 1)).count();
+            self.drawn += drawn.len();
+            self.skipped += cells - drawn.len();
+            if t < tops.len() {
                 self.gpu.wait()?;
                 // Twice as many next time while well under the target, half when over.
                 let took = started.elapsed().as_secs_f64();
@@ -669,19 +779,28 @@ impl<'a> GpuSolver<'a> {
         Ok(true)
     }
 
-    /// Shoots patches `batch` of shooter `s`'s `plan`.
+    /// Shoots the cells `drawn` of shooter `s`'s `plan`, clearing the unshot radiosity of
+    /// the elements `clear` (a range of the plan's order: the batch's top cells).
     fn shoot_batch(
         &mut self,
         s: usize,
         plan: &ShotPlan,
-        batch: std::ops::Range<usize>,
+        links: &Links,
+        drawn: &[usize],
+        clear: std::ops::Range<u32>,
     ) -> Result<(), GpuError> {
-        let patch_count = batch.len() as u32;
-        let batch_elements: u32 = plan.patches[batch.clone()].iter().map(|p| p.count).sum();
-        self.write_params(s as u32, batch.start as u32, patch_count);
+        let first = self.shooters.first[s];
+        let cells = plan.patches.len() as u32;
+        self.write_params(s as u32, 0, cells, first + clear.start..first + clear.end);
         let (shots, faces, faces_per_patch) =
-            self.shot_records(self.shooters.normal[s], plan, batch);
+            self.shot_records(self.shooters.normal[s], plan, links, drawn);
         let dev = &self.gpu.device;
+        let mut enc = dev.create_command_encoder(&Default::default());
+        self.dispatch(&mut enc, &self.pipelines.clear, clear.len() as u32, 64);
+        if drawn.is_empty() {
+            self.gpu.queue.submit([enc.finish()]);
+            return Ok(());
+        }
         let uniform = |label: &str, data: &[u8]| {
             dev.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some(label),
@@ -711,11 +830,8 @@ impl<'a> GpuSolver<'a> {
             &self.pipelines.face_layout,
             &[(0, binding(&face_buf, std::mem::size_of::<FaceGpu>()))],
         );
-        let mut enc = dev.create_command_encoder(&Default::default());
-        self.dispatch(&mut enc, &self.pipelines.gather, patch_count, 64);
-        self.dispatch(&mut enc, &self.pipelines.clear, batch_elements, 64);
         let elements = self.scene.elements.len() as u32;
-        for k in 0..patch_count {
+        for k in 0..drawn.len() as u32 {
             for f in 0..faces_per_patch {
                 let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
                     label: Some("visibility"),

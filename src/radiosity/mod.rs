@@ -9,6 +9,7 @@ pub mod form_factor;
 pub mod gather;
 pub mod gpu;
 pub mod initial;
+pub mod links;
 mod polygon;
 pub mod scene;
 pub mod shooters;

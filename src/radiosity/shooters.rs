@@ -75,15 +75,40 @@ pub struct PlannedPatch {
     pub area: f64,
     /// Its elements' area, m²: it shoots their power over this, their mean radiosity.
     pub element_area: f64,
+    /// Its level in the cell quadtree: 0 the finest cells, each level up doubles the side.
+    pub level: u32,
+    /// The cell one level up that holds it, an index into [`ShotPlan::patches`];
+    /// `u32::MAX` for a top cell.
+    pub parent: u32,
+    /// The largest distance from `centroid` to its polygon's corners or its elements'
+    /// centres, metres.
+    pub radius: f64,
 }
 
 /// How one shooter shoots: its elements in patch order, and the patches.
+///
+/// With several levels ([`Shooters::plan_levels`]) the patches are the cells of a quadtree
+/// listed depth first (a cell, then its children's subtrees): every cell's elements are
+/// one range of `order`, inside its parent's, and the top cells' ranges tile `order`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ShotPlan {
     /// The shooter's elements (the same set as in [`Shooters::elements`]), patch after patch.
     pub order: Vec<u32>,
     /// The patches.
     pub patches: Vec<PlannedPatch>,
+}
+
+impl ShotPlan {
+    /// The children of each patch (indices into [`ShotPlan::patches`]).
+    pub fn children(&self) -> Vec<Vec<u32>> {
+        let mut children = vec![Vec::new(); self.patches.len()];
+        for (k, p) in self.patches.iter().enumerate() {
+            if p.parent != u32::MAX {
+                children[p.parent as usize].push(k as u32);
+            }
+        }
+        children
+    }
 }
 
 impl Shooters {
@@ -249,10 +274,25 @@ impl Shooters {
 
     /// How shooter `s` shoots from cells of `side` metres (ignored by a triangle).
     pub fn plan(&self, scene: &RadiosityScene, s: usize, side: f64) -> ShotPlan {
+        self.plan_levels(scene, s, side, 0)
+    }
+
+    /// [`Shooters::plan`] with up to `levels` coarser levels of cells above those of
+    /// `side` (each doubling the side, stopping at one cell over the cluster), for
+    /// [`super::links`]: far receivers take their light from a coarse cell, near ones from
+    /// its children. A chart's patches have one level.
+    pub fn plan_levels(
+        &self,
+        scene: &RadiosityScene,
+        s: usize,
+        side: f64,
+        levels: u32,
+    ) -> ShotPlan {
         match &self.shapes[s] {
             ShooterShape::Chart(c) => chart_plan(scene, *c as usize),
             ShooterShape::Cluster { obb, .. } => {
-                cluster_plan(scene, self.elements_of(s), obb, self.normal[s], side)
+                let grid = Grid::new(obb, side);
+                cluster_plan(scene, self.elements_of(s), &grid, self.normal[s], levels)
             }
         }
     }
@@ -271,6 +311,9 @@ fn chart_plan(scene: &RadiosityScene, c: usize) -> ShotPlan {
             centroid: p.centroid,
             area: p.area,
             element_area: p.area,
+            level: 0,
+            parent: u32::MAX,
+            radius: radius(p.centroid, &p.polygon, &[]),
         })
         .collect();
     ShotPlan {
@@ -279,75 +322,172 @@ fn chart_plan(scene: &RadiosityScene, c: usize) -> ShotPlan {
     }
 }
 
-/// A cluster's elements binned by centroid into square cells of `side` metres laid from
-/// its box's corner. Each non-empty cell is a patch whose polygon is the convex hull of
-/// the cluster's triangles clipped to the cell (the exact surface inside the cell wherever
-/// that is convex), in the plane through its elements. The cells' polygons tile the
-/// surface; an element straddling two cells shoots from the one holding its centroid, so
-/// a cell shoots its elements' mean radiosity (power over their area) from its polygon.
+/// A cluster's elements binned by centroid into square cells of the grid's side laid from
+/// its box's corner, plus up to `levels` coarser levels (sides doubling; the top level has
+/// at least one cell over the whole cluster or is `levels` up). Each non-empty cell is a
+/// patch whose polygon is the convex hull of the cluster's triangles clipped to the cell
+/// (the exact surface inside the cell wherever that is convex), in the plane through its
+/// elements. A level's cells' polygons tile the surface; an element straddling two cells
+/// shoots from the one holding its centroid, so a cell shoots its elements' mean
+/// radiosity (power over their area) from its polygon. Elements are ordered along the
+/// Z-order curve of their finest cells, so every cell's elements are one range.
 fn cluster_plan(
     scene: &RadiosityScene,
     elements: &[u32],
-    obb: &Obb,
+    grid: &Grid,
     normal: DVec3,
-    side: f64,
+    levels: u32,
 ) -> ShotPlan {
     let el = &scene.elements;
-    let [u, v, _] = obb.axes;
-    let lo = DVec2::new(
-        obb.centre.dot(u) - obb.half.x,
-        obb.centre.dot(v) - obb.half.y,
-    );
-    let hi = lo + 2.0 * DVec2::new(obb.half.x, obb.half.y);
-    let grid = Grid {
-        lo,
-        hi,
-        side,
-        cols: (((hi.x - lo.x) / side).ceil() as u64).max(1),
-        rows: (((hi.y - lo.y) / side).ceil() as u64).max(1),
-        u,
-        v,
-    };
-    let mut keyed: Vec<(u64, u32)> = elements
+    let top = levels.min(grid.levels_to_one_cell());
+    let mut keyed: Vec<(u64, u32, (u64, u64))> = elements
         .iter()
-        .map(|&e| (grid.cell(grid.plane(el.position[e as usize])), e))
+        .map(|&e| {
+            let ij = grid.column_row(grid.plane(el.position[e as usize]));
+            (z_order(ij), e, ij)
+        })
         .collect();
     keyed.sort_unstable();
     let order: Vec<u32> = keyed.iter().map(|k| k.1).collect();
-    let pieces = grid.triangle_pieces(scene, &order);
-    let mut patches = Vec::new();
-    let mut start = 0;
-    while start < keyed.len() {
-        let key = keyed[start].0;
-        let end = start + keyed[start..].partition_point(|k| k.0 == key);
-        let members = &order[start..end];
-        let element_area: f64 = members.iter().map(|&e| el.area[e as usize]).sum();
-        let centroid = members
-            .iter()
-            .map(|&e| el.position[e as usize] * el.area[e as usize])
-            .sum::<DVec3>()
-            / element_area.max(1e-300);
-        let outline = grid.outline(key, pieces.get(&key).map_or(&[][..], Vec::as_slice));
-        let offset = normal * centroid.dot(normal);
-        let mut polygon: Vec<DVec3> = outline.iter().map(|q| u * q.x + v * q.y + offset).collect();
-        if (polygon[1] - polygon[0])
-            .cross(polygon[2] - polygon[0])
-            .dot(normal)
-            < 0.0
-        {
-            polygon.reverse();
+    let grids: Vec<Grid> = (0..=top).map(|k| grid.coarser(k)).collect();
+    let pieces: Vec<_> = grids
+        .iter()
+        .map(|g| g.triangle_pieces(scene, &order))
+        .collect();
+    let mut plan = ShotPlan {
+        order,
+        patches: Vec::new(),
+    };
+    // Depth first: a cell, then its children (the next level's groups in its range).
+    let mut stack: Vec<(u32, usize, usize, u32)> = groups(&keyed, 0, keyed.len(), top)
+        .into_iter()
+        .rev()
+        .map(|(a, b)| (top, a, b, u32::MAX))
+        .collect();
+    while let Some((level, start, end, parent)) = stack.pop() {
+        let (i, j) = keyed[start].2;
+        let g = &grids[level as usize];
+        let cell = (j >> level).min(g.rows - 1) * g.cols + (i >> level).min(g.cols - 1);
+        let members = &plan.order[start..end];
+        let outline = g.outline(
+            cell,
+            pieces[level as usize]
+                .get(&cell)
+                .map_or(&[][..], Vec::as_slice),
+        );
+        let here = plan.patches.len() as u32;
+        plan.patches.push(cell_patch(
+            scene, members, &outline, g, normal, start, level, parent,
+        ));
+        if level > 0 {
+            for (a, b) in groups(&keyed, start, end, level - 1).into_iter().rev() {
+                stack.push((level - 1, a, b, here));
+            }
         }
-        patches.push(PlannedPatch {
-            first: start as u32,
-            count: (end - start) as u32,
-            polygon,
-            centroid,
-            area: area_centroid(&outline).0.abs(),
-            element_area,
-        });
-        start = end;
     }
-    ShotPlan { order, patches }
+    plan
+}
+
+/// The ranges of `keyed[start..end]` that share a cell at `level` (Z-order keys agree
+/// above their lowest 2 · level bits).
+fn groups(
+    keyed: &[(u64, u32, (u64, u64))],
+    start: usize,
+    end: usize,
+    level: u32,
+) -> Vec<(usize, usize)> {
+    let shift = 2 * level;
+    let mut out = Vec::new();
+    let mut a = start;
+    while a < end {
+        let key = keyed[a].0 >> shift;
+        let b = a + keyed[a..end].partition_point(|k| k.0 >> shift == key);
+        out.push((a, b));
+        a = b;
+    }
+    out
+}
+
+/// The patch of one cell: its `members` (from `order[start..]`) and its outline in the
+/// grid's plane coordinates.
+#[allow(clippy::too_many_arguments)]
+fn cell_patch(
+    scene: &RadiosityScene,
+    members: &[u32],
+    outline: &[DVec2],
+    grid: &Grid,
+    normal: DVec3,
+    start: usize,
+    level: u32,
+    parent: u32,
+) -> PlannedPatch {
+    let el = &scene.elements;
+    let element_area: f64 = members.iter().map(|&e| el.area[e as usize]).sum();
+    let mut centroid = members
+        .iter()
+        .map(|&e| el.position[e as usize] * el.area[e as usize])
+        .sum::<DVec3>()
+        / element_area.max(1e-300);
+    if level > 0 {
+        // A coarse cell of a cluster that is not convex may have its centre off the
+        // surface (inside a column standing on the floor): it looks from its element
+        // nearest to that centre.
+        centroid = members
+            .iter()
+            .map(|&e| el.position[e as usize])
+            .min_by(|a, b| {
+                a.distance_squared(centroid)
+                    .total_cmp(&b.distance_squared(centroid))
+            })
+            .unwrap_or(centroid);
+    }
+    let offset = normal * centroid.dot(normal);
+    let mut polygon: Vec<DVec3> = outline
+        .iter()
+        .map(|q| grid.u * q.x + grid.v * q.y + offset)
+        .collect();
+    if (polygon[1] - polygon[0])
+        .cross(polygon[2] - polygon[0])
+        .dot(normal)
+        < 0.0
+    {
+        polygon.reverse();
+    }
+    let positions: Vec<DVec3> = members.iter().map(|&e| el.position[e as usize]).collect();
+    PlannedPatch {
+        first: start as u32,
+        count: members.len() as u32,
+        radius: radius(centroid, &polygon, &positions),
+        polygon,
+        centroid,
+        area: area_centroid(outline).0.abs(),
+        element_area,
+        level,
+        parent,
+    }
+}
+
+/// The largest distance from `centre` to any of `polygon` and `points`.
+fn radius(centre: DVec3, polygon: &[DVec3], points: &[DVec3]) -> f64 {
+    polygon
+        .iter()
+        .chain(points)
+        .map(|p| p.distance(centre))
+        .fold(0.0, f64::max)
+}
+
+/// The Z-order (Morton) key of a cell: the bits of column and row interleaved, so the
+/// cells of any coarser aligned cell are one range of keys.
+fn z_order((i, j): (u64, u64)) -> u64 {
+    fn spread(x: u64) -> u64 {
+        let mut x = x & 0xffff_ffff;
+        x = (x | (x << 16)) & 0x0000_ffff_0000_ffff;
+        x = (x | (x << 8)) & 0x00ff_00ff_00ff_00ff;
+        x = (x | (x << 4)) & 0x0f0f_0f0f_0f0f_0f0f;
+        x = (x | (x << 2)) & 0x3333_3333_3333_3333;
+        (x | (x << 1)) & 0x5555_5555_5555_5555
+    }
+    spread(i) | (spread(j) << 1)
 }
 
 /// A square grid in a cluster's plane: plane coordinates along `u` and `v`, cells of
@@ -363,6 +503,45 @@ struct Grid {
 }
 
 impl Grid {
+    /// Cells of `side` metres over the plane of `obb` (axes 0 and 1).
+    fn new(obb: &Obb, side: f64) -> Grid {
+        let [u, v, _] = obb.axes;
+        let lo = DVec2::new(
+            obb.centre.dot(u) - obb.half.x,
+            obb.centre.dot(v) - obb.half.y,
+        );
+        let hi = lo + 2.0 * DVec2::new(obb.half.x, obb.half.y);
+        Grid::with_side(lo, hi, side, u, v)
+    }
+
+    fn with_side(lo: DVec2, hi: DVec2, side: f64, u: DVec3, v: DVec3) -> Grid {
+        Grid {
+            lo,
+            hi,
+            side,
+            cols: (((hi.x - lo.x) / side).ceil() as u64).max(1),
+            rows: (((hi.y - lo.y) / side).ceil() as u64).max(1),
+            u,
+            v,
+        }
+    }
+
+    /// The grid `level` levels up: cells 2^level times the side, from the same corner, so
+    /// cell (i, j) holds the fine cells (i ≫ level, j ≫ level) maps to it.
+    fn coarser(&self, level: u32) -> Grid {
+        let side = self.side * f64::from(1u32 << level);
+        Grid::with_side(self.lo, self.hi, side, self.u, self.v)
+    }
+
+    /// How many levels up one cell covers the grid.
+    fn levels_to_one_cell(&self) -> u32 {
+        let mut level = 0;
+        while (self.cols.max(self.rows) - 1) >> level > 0 {
+            level += 1;
+        }
+        level
+    }
+
     fn plane(&self, p: DVec3) -> DVec2 {
         DVec2::new(p.dot(self.u), p.dot(self.v))
     }
@@ -373,11 +552,6 @@ impl Grid {
         let i = (q.x.max(0.0) as u64).min(self.cols - 1);
         let j = (q.y.max(0.0) as u64).min(self.rows - 1);
         (i, j)
-    }
-
-    fn cell(&self, q: DVec2) -> u64 {
-        let (i, j) = self.column_row(q);
-        j * self.cols + i
     }
 
     fn bounds(&self, cell: u64) -> (DVec2, DVec2) {

@@ -1,0 +1,403 @@
+//! Links from a shooter's cells to its receivers: which level of a cluster's cell quadtree
+//! each receiver takes its light from (Hanrahan et al.'s hierarchical radiosity with a
+//! refinement oracle per link, Edström §3.2.2 and ch. 4, on the shooter side of
+//! progressive shooting).
+//!
+//! A cluster's cells ([`super::shooters::Shooters::plan_levels`]) form a quadtree: the
+//! finest cells the power oracle chose and up to [`LINK_LEVELS`] coarser levels. The form
+//! factor from a receiver to a cell's polygon is exact (Lambert's contour integral), so a
+//! coarse cell errs only where its radiosity is not uniform and where its centre sees
+//! differently from its parts. A receiver at distance d from a cell of area A whose fine
+//! cells' radiosity differs from its mean by up to ΔB takes at most A / (π d²) of that
+//! difference, so the link's error is below ε beyond the cell's **reach**
+//! sqrt(A ΔB / (π ε)), and at least [`MIN_REACH`] radii (visibility from its centre); the
+//! finest cells reach everything. A receiver takes its light from the first cell down the
+//! tree that it is beyond the reach of: a uniformly lit ceiling sends its light to the
+//! floor from a few coarse cells, a hot spot from the fine cells around it. Every receiver
+//! so takes the light of every part of the shooter exactly once.
+//!
+//! A cell is drawn (its visibility map rendered) only when some receiver in front of it
+//! takes light from it, and refined only when some receiver is within its reach: those
+//! questions go to a BVH over the charts' boxes of element centres ([`ReceiverBoxes`]),
+//! and are answered conservatively (a box stands for every element in it). Receivers stay
+//! elements — one GPU thread each, so receiving per cluster and pushing the light down
+//! would save nothing there and blur shadows: nothing is pushed or pulled.
+
+use glam::DVec3;
+use glam_bvh::Vec3A;
+use obvhs::aabb::Aabb;
+use obvhs::bvh2::Bvh2;
+use obvhs::ploc::{PlocBuilder, PlocSearchDistance, SortPrecision};
+
+use super::scene::RadiosityScene;
+use super::shooters::ShotPlan;
+
+/// Default link error ε, as a share of the mean initial exitance (initial unshot power
+/// over the scene's area): the irradiance error a receiver accepts from a coarse cell.
+pub const DEFAULT_LINK_ERROR: f64 = 0.05;
+/// Most levels of coarser cells above the finest (cells up to 16 times the side).
+pub const LINK_LEVELS: u32 = 4;
+/// A receiver takes light from a coarse cell only at least this many cell radii away
+/// (beyond the sphere around it: visibility is tested from its centre).
+pub const MIN_REACH: f64 = 1.0;
+/// Receivers closer to a shooter's plane than this share of the scene's size take light
+/// from its top cells only (their form factor is next to nothing).
+const PLANE_TOLERANCE: f64 = 1e-4;
+/// Relative slack of the conservative questions (f32 distances on the GPU).
+const SLACK: f64 = 1e-5;
+
+/// The charts' boxes of element centres in a bounding volume hierarchy: does any receiver
+/// lie in a region?
+pub struct ReceiverBoxes {
+    bvh: Option<Bvh2>,
+    /// Per chart with elements, its box (lowest and highest corner), metres.
+    boxes: Vec<(DVec3, DVec3)>,
+    /// The f32 hierarchy's origin.
+    centre: DVec3,
+    /// How far the f32 boxes are widened, metres.
+    pad: f64,
+    /// The scene's size (diagonal), metres.
+    size: f64,
+}
+
+fn to_f32(v: DVec3) -> Vec3A {
+    Vec3A::new(v.x as f32, v.y as f32, v.z as f32)
+}
+
+impl ReceiverBoxes {
+    /// The hierarchy over `scene`'s charts.
+    pub fn new(scene: &RadiosityScene) -> ReceiverBoxes {
+        let el = &scene.elements;
+        let boxes: Vec<(DVec3, DVec3)> = el
+            .charts
+            .iter()
+            .filter(|c| c.count > 0)
+            .map(|c| {
+                let points = &el.position[c.first as usize..][..c.count as usize];
+                let lo = points.iter().copied().fold(DVec3::INFINITY, DVec3::min);
+                (
+                    lo,
+                    points.iter().copied().fold(DVec3::NEG_INFINITY, DVec3::max),
+                )
+            })
+            .collect();
+        let lo = boxes.iter().map(|b| b.0).fold(DVec3::INFINITY, DVec3::min);
+        let hi = boxes
+            .iter()
+            .map(|b| b.1)
+            .fold(DVec3::NEG_INFINITY, DVec3::max);
+        let size = if boxes.is_empty() {
+            1.0
+        } else {
+            (hi - lo).length()
+        };
+        let centre = if boxes.is_empty() {
+            DVec3::ZERO
+        } else {
+            (lo + hi) * 0.5
+        };
+        let pad = 1e-5 * (1.0 + size);
+        let aabbs: Vec<Aabb> = boxes
+            .iter()
+            .map(|(a, b)| Aabb::new(to_f32(*a - centre - pad), to_f32(*b - centre + pad)))
+            .collect();
+        let bvh = (!aabbs.is_empty()).then(|| {
+            PlocBuilder::with_capacity(aabbs.len()).build(
+                PlocSearchDistance::Medium,
+                &aabbs,
+                (0..aabbs.len() as u32).collect(),
+                SortPrecision::U64,
+                1,
+            )
+        });
+        ReceiverBoxes {
+            bvh,
+            boxes,
+            centre,
+            pad,
+            size,
+        }
+    }
+
+    /// Whether some chart's box satisfies `wanted`, which must hold for every box around
+    /// one it holds for (so whole subtrees are skipped where a node's box fails it).
+    pub fn any(&self, wanted: impl Fn(DVec3, DVec3) -> bool) -> bool {
+        let Some(bvh) = &self.bvh else {
+            return false;
+        };
+        let mut stack = vec![0usize];
+        while let Some(k) = stack.pop() {
+            let Some(node) = bvh.nodes.get(k) else {
+                continue;
+            };
+            let aabb = node.aabb();
+            let lo = DVec3::new(aabb.min.x as f64, aabb.min.y as f64, aabb.min.z as f64);
+            let hi = DVec3::new(aabb.max.x as f64, aabb.max.y as f64, aabb.max.z as f64);
+            if !wanted(lo + self.centre - self.pad, hi + self.centre + self.pad) {
+                continue;
+            }
+            let first = node.first_index as usize;
+            if node.is_leaf() {
+                let prims = &bvh.primitive_indices[first..][..node.prim_count as usize];
+                if prims.iter().any(|&p| {
+                    let (a, b) = self.boxes[p as usize];
+                    wanted(a, b)
+                }) {
+                    return true;
+                }
+            } else {
+                stack.push(first);
+                stack.push(first + 1);
+            }
+        }
+        false
+    }
+
+    /// Receivers closer to a shooter's plane than this take light from its top cells only,
+    /// metres.
+    pub fn plane_tolerance(&self) -> f64 {
+        PLANE_TOLERANCE * self.size
+    }
+}
+
+/// The links of one shot: per patch of the plan, its reach and whether it is drawn.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Links {
+    /// Per patch, how far a receiver must be to take its light from it, metres (0 for the
+    /// finest cells, infinite where the link error is 0).
+    pub reach: Vec<f64>,
+    /// Per patch, whether some receiver in front takes light from it.
+    pub drawn: Vec<bool>,
+}
+
+impl Links {
+    /// How many patches are drawn.
+    pub fn drawn_count(&self) -> usize {
+        self.drawn.iter().filter(|&&d| d).count()
+    }
+}
+
+/// A cell's reach: the distance beyond which a receiver's error from taking the cell's
+/// mean radiosity (its fine cells' differing from it by up to `variation`, lm/m²) over
+/// its `area` (m²) as one source is below `epsilon` (lux).
+pub fn reach(level: u32, radius: f64, area: f64, variation: f64, epsilon: f64) -> f64 {
+    if level == 0 {
+        return 0.0;
+    }
+    if epsilon.is_nan() || epsilon <= 0.0 {
+        return f64::INFINITY;
+    }
+    let oracle = (area * variation.abs() / (std::f64::consts::PI * epsilon)).sqrt();
+    oracle.max(MIN_REACH * radius)
+}
+
+/// Per cell of `plan`, how far its fine cells' `radiosity` (per cell, lm/m²) strays from
+/// its own.
+fn variation(plan: &ShotPlan, radiosity: &[f64]) -> Vec<f64> {
+    let mut lo = radiosity.to_vec();
+    let mut hi = radiosity.to_vec();
+    // Depth first: children follow their parent, so backwards reaches children first.
+    for k in (0..plan.patches.len()).rev() {
+        let up = plan.patches[k].parent;
+        if up != u32::MAX {
+            let up = up as usize;
+            lo[up] = lo[up].min(lo[k]);
+            hi[up] = hi[up].max(hi[k]);
+        }
+    }
+    (0..radiosity.len())
+        .map(|k| (hi[k] - radiosity[k]).max(radiosity[k] - lo[k]))
+        .collect()
+}
+
+/// Nearest distance from `p` to the box [lo, hi].
+fn nearest(lo: DVec3, hi: DVec3, p: DVec3) -> f64 {
+    p.clamp(lo, hi).distance(p)
+}
+
+/// Farthest distance from `p` to the box [lo, hi].
+fn farthest(lo: DVec3, hi: DVec3, p: DVec3) -> f64 {
+    (p - lo).abs().max((hi - p).abs()).length()
+}
+
+/// Links `plan`'s cells (facing `normal`, each with mean unshot `radiosity`, lm/m²) to the
+/// receivers for the link error `epsilon` (lux): each cell's reach, and which cells are
+/// drawn.
+///
+/// A coarse cell is used only where it saves visibility maps: drawing it costs one map,
+/// and it spares its subtree the receivers beyond its reach. Each cell takes the cheaper
+/// choice given its ancestors' (a small search over at most [`LINK_LEVELS`] levels; a
+/// tie keeps the finer cells). In a small room every fine cell has a wall within reach,
+/// so nothing coarse is used; in a hall the far side takes a floor's light from a few
+/// cells.
+pub fn link(
+    plan: &ShotPlan,
+    radiosity: &[f64],
+    normal: DVec3,
+    receivers: &ReceiverBoxes,
+    epsilon: f64,
+) -> Links {
+    let patches = &plan.patches;
+    let oracle: Vec<f64> = patches
+        .iter()
+        .zip(variation(plan, radiosity))
+        .map(|(p, dv)| reach(p.level, p.radius, p.element_area, dv, epsilon))
+        .collect();
+    let search = Search {
+        plan,
+        children: plan.children(),
+        oracle: &oracle,
+        normal,
+        receivers,
+        slack: receivers.pad + SLACK * receivers.size,
+    };
+    let mut reach: Vec<f64> = patches
+        .iter()
+        .map(|p| if p.level == 0 { 0.0 } else { f64::INFINITY })
+        .collect();
+    let mut drawn = vec![false; patches.len()];
+    for k in (0..patches.len()).filter(|&k| patches[k].parent == u32::MAX) {
+        let (_, choice) = search.cheapest(k, &[]);
+        for (cell, used, draw) in choice {
+            if used {
+                reach[cell] = oracle[cell];
+            }
+            drawn[cell] = draw;
+        }
+    }
+    Links { reach, drawn }
+}
+
+/// The search for the cheapest links of one plan.
+struct Search<'a> {
+    plan: &'a ShotPlan,
+    children: Vec<Vec<u32>>,
+    oracle: &'a [f64],
+    normal: DVec3,
+    receivers: &'a ReceiverBoxes,
+    /// Absolute slack of the conservative questions, metres.
+    slack: f64,
+}
+
+impl Search<'_> {
+    /// Whether the box [lo, hi] is in front of cell `k`'s plane.
+    fn in_front(&self, lo: DVec3, hi: DVec3, k: usize) -> bool {
+        let at = self.plan.patches[k].centroid;
+        let tolerance = self.receivers.plane_tolerance() - self.slack;
+        let mut best = f64::NEG_INFINITY;
+        for x in [lo.x, hi.x] {
+            for y in [lo.y, hi.y] {
+                for z in [lo.z, hi.z] {
+                    best = best.max(self.normal.dot(DVec3::new(x, y, z) - at));
+                }
+            }
+        }
+        best > tolerance
+    }
+
+    /// Whether the box [lo, hi] may hold a receiver within the reach of used cell `k`.
+    fn within(&self, lo: DVec3, hi: DVec3, k: usize) -> bool {
+        let at = self.plan.patches[k].centroid;
+        nearest(lo, hi, at) < self.oracle[k] * (1.0 + SLACK) + self.slack
+    }
+
+    /// Whether the box [lo, hi] may hold a receiver beyond the reach of cell `k`.
+    fn beyond(&self, lo: DVec3, hi: DVec3, k: usize) -> bool {
+        let at = self.plan.patches[k].centroid;
+        farthest(lo, hi, at) >= self.oracle[k] * (1.0 - SLACK) - self.slack
+    }
+
+    /// Cell `k`'s subtree with nothing used or drawn (`k` last).
+    fn idle(&self, k: usize) -> Vec<(usize, bool, bool)> {
+        let mut out = Vec::new();
+        let mut stack = vec![k];
+        while let Some(c) = stack.pop() {
+            out.push((c, false, false));
+            stack.extend(self.children[c].iter().map(|&d| d as usize));
+        }
+        out.reverse();
+        out
+    }
+
+    /// The fewest maps cell `k`'s subtree needs when the receivers are those in front and
+    /// within the reach of every cell of `used` (its used ancestors), and the choices that
+    /// give it: (cell, used, drawn).
+    fn cheapest(&self, k: usize, used: &[usize]) -> (usize, Vec<(usize, bool, bool)>) {
+        let level = self.plan.patches[k].level;
+        let some = |extra: &dyn Fn(DVec3, DVec3) -> bool| {
+            self.receivers.any(|lo, hi| {
+                self.in_front(lo, hi, k)
+                    && used.iter().all(|&a| self.within(lo, hi, a))
+                    && extra(lo, hi)
+            })
+        };
+        if level == 0 {
+            let draw = some(&|_, _| true);
+            return (usize::from(draw), vec![(k, false, draw)]);
+        }
+        let subtree = |used: &[usize]| {
+            let mut cost = 0;
+            let mut choice = Vec::new();
+            for &c in &self.children[k] {
+                let (n, mut more) = self.cheapest(c as usize, used);
+                cost += n;
+                choice.append(&mut more);
+            }
+            (cost, choice)
+        };
+        if !some(&|_, _| true) {
+            return (0, self.idle(k));
+        }
+        // Not used: every receiver looks further down.
+        let (finer, mut finer_choice) = subtree(used);
+        // Used: the receivers beyond its reach take its light, the rest look further down.
+        let draw = some(&|lo, hi| self.beyond(lo, hi, k));
+        let mut inner = used.to_vec();
+        inner.push(k);
+        let (below, mut below_choice) = if some(&|lo, hi| self.within(lo, hi, k)) {
+            subtree(&inner)
+        } else {
+            let mut none = self.idle(k);
+            none.pop();
+            (0, none)
+        };
+        let coarse = usize::from(draw) + below;
+        if coarse < finer {
+            below_choice.push((k, true, draw));
+            (coarse, below_choice)
+        } else {
+            finer_choice.push((k, false, false));
+            (finer, finer_choice)
+        }
+    }
+}
+
+/// Whether a receiver at `p` takes light from cell `k` of `plan` (facing `normal`) — the
+/// GPU receive pass's rule, in f64: in front of the shooter's plane (beyond `tolerance`),
+/// beyond the cell's reach and within every ancestor's; nearer the plane, from top cells
+/// only.
+pub fn takes_light_from(
+    plan: &ShotPlan,
+    links: &Links,
+    k: usize,
+    normal: DVec3,
+    tolerance: f64,
+    p: DVec3,
+) -> bool {
+    let cell = &plan.patches[k];
+    if normal.dot(p - cell.centroid) <= tolerance {
+        return cell.parent == u32::MAX;
+    }
+    if p.distance(cell.centroid) < links.reach[k] {
+        return false;
+    }
+    let mut a = cell.parent;
+    while a != u32::MAX {
+        let up = &plan.patches[a as usize];
+        if p.distance(up.centroid) >= links.reach[a as usize] {
+            return false;
+        }
+        a = up.parent;
+    }
+    true
+}
