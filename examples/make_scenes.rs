@@ -1,6 +1,8 @@
 //! Writes the bundled scenes' models and textures in `assets/scenes/` and the effect
 //! light's distribution `luminaires/effects/disco.ldt`:
 //! `cargo run --example make_scenes`. Everything is procedural, so the output is ours.
+//! `cargo run --release --example make_scenes -- cad-office DIR` writes only the large
+//! CAD-like office (256 200 long thin triangles, 17 MB, not bundled) into DIR.
 
 use std::fmt::Write as _;
 use std::path::Path;
@@ -182,6 +184,97 @@ fn boxes_room(size: DVec3) -> Obj {
         o.open_box(DVec3::from_array(lo), DVec3::from_array(hi));
     }
     o
+}
+
+/// An open-plan office of 24 × 16 × 3 m: 48 desks (1.6 × 0.8 × 0.75 m) in six rows and 24
+/// cabinets (0.8 × 0.45 × 1.2 m) along the long walls, as boxes without bottoms.
+fn office() -> Obj {
+    let mut o = Obj::default();
+    o.room(
+        DVec3::new(24.0, 16.0, 3.0),
+        "floor",
+        "wall",
+        "wall",
+        "ceiling",
+    );
+    let mut k = 0;
+    for row in 0..6 {
+        for col in 0..8 {
+            let lo = DVec3::new(1.5 + 2.8 * col as f64, 2.0 + 2.2 * row as f64, 0.0);
+            o.object(&format!("desk{k}"), "furniture");
+            o.open_box(lo, lo + DVec3::new(1.6, 0.8, 0.75));
+            k += 1;
+        }
+    }
+    for side in 0..2 {
+        for n in 0..12 {
+            let y = if side == 0 { 0.05 } else { 15.5 };
+            let lo = DVec3::new(0.8 + 1.9 * n as f64, y, 0.0);
+            o.object(&format!("cabinet{side}_{n}"), "furniture");
+            o.open_box(lo, lo + DVec3::new(0.8, 0.45, 1.2));
+        }
+    }
+    o
+}
+
+/// The scene file of the CAD-like office (`dir`: where it is written; luminaires by
+/// absolute path into this repository).
+fn office_toml(root: &Path) -> String {
+    let ldt = root.join("luminaires/eulumdat-plot/sample_06_isym1.ldt");
+    let mut text = String::from(
+        "# An open-plan office (24 × 16 × 3 m, 48 desks, 24 cabinets; reflectances 0.2 floor,\n\
+         # 0.5 walls, 0.7 ceiling, 0.4 furniture) drawn as CAD exporters do: every face fanned\n\
+         # into long thin strips. Written by `cargo run --release --example make_scenes --\n\
+         # cad-office DIR`; the large radiosity benchmark of Edström's face clusters.\n\n\
+         [[model]]\npath = \"cad_office.obj\"\nup = \"z\"\n",
+    );
+    for j in 0..3 {
+        for i in 0..4 {
+            let _ = write!(
+                text,
+                "\n[[luminaire]]\nfile = {:?}\nposition = [{:.1}, {:.1}, 2.95]\n",
+                ldt.display().to_string(),
+                3.0 + 6.0 * i as f64,
+                2.7 + 5.3 * j as f64,
+            );
+        }
+    }
+    text.push_str(
+        "\n[camera]\nposition = [0.5, 0.5, 1.6]\nlook_at = [12.0, 8.0, 0.8]\nfov_deg = 70.0\n\n[display]\nmode = \"illuminance\"\n",
+    );
+    text
+}
+
+/// Writes the CAD-like office (≥ 250 000 long thin triangles) into `dir`: the coarse
+/// boxes fanned into `strips` strips each.
+fn cad_office(root: &Path, dir: &Path, strips: u32) -> anyhow::Result<()> {
+    std::fs::create_dir_all(dir)?;
+    office().write(&dir.join("cad_office.obj"), "cad_office.mtl")?;
+    std::fs::write(
+        dir.join("cad_office.mtl"),
+        format!("{ROOM_MTL}{FURNITURE_MTL}"),
+    )?;
+    std::fs::write(dir.join("cad_office.toml"), office_toml(root))?;
+    let scene = goniolight::scene::Scene::load(&dir.join("cad_office.toml"))?;
+    let coarse = scene.caster_mesh();
+    let fine = goniolight::geometry::generate::fan_split(&coarse, strips);
+    let materials: Vec<(usize, String)> = scene
+        .caster_materials()
+        .into_iter()
+        .flat_map(|m| std::iter::repeat_n((m, scene.materials[m].name.clone()), strips as usize))
+        .collect();
+    std::fs::write(
+        dir.join("cad_office.obj"),
+        triangles_obj(&fine, &materials, "cad_office.mtl"),
+    )?;
+    println!(
+        "wrote {} ({} triangles from {} faces' {} triangles, {strips} strips each)",
+        dir.join("cad_office.toml").display(),
+        fine.triangles.len(),
+        coarse.triangles.len() / 2,
+        coarse.triangles.len(),
+    );
+    Ok(())
 }
 
 /// `mesh` (triangles of one material each, `materials`) as an OBJ with `usemtl` groups.
@@ -533,6 +626,13 @@ fn cornell_box(o: &mut Obj) {
 
 fn main() -> anyhow::Result<()> {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    // `make_scenes cad-office DIR`: only the large CAD-like office (not bundled: 17 MB).
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    if let [what, dir] = args.as_slice() {
+        anyhow::ensure!(what == "cad-office", "usage: make_scenes [cad-office DIR]");
+        return cad_office(root, Path::new(dir), 350);
+    }
+    anyhow::ensure!(args.is_empty(), "usage: make_scenes [cad-office DIR]");
     let scenes = root.join("assets/scenes");
     std::fs::create_dir_all(scenes.join("textures"))?;
     let size = DVec3::new(6.0, 4.0, 3.0);

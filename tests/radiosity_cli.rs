@@ -439,6 +439,35 @@ fn ctrl_c_stops_the_gather_at_points_and_prints_nothing() {
 }
 
 #[test]
+fn ctrl_c_while_preparing_stops_and_writes_nothing() {
+    use std::process::{Command, Stdio};
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    // The CAD-like room at 40 texels/m: seconds of clustering, charts and direct light.
+    let scene = root().join("assets/scenes/cad_room.toml");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_goniolight"))
+        .args([
+            "radiosity",
+            scene.to_str().unwrap(),
+            "--texel-density",
+            "40",
+        ])
+        .arg("--out-dir")
+        .arg(&out)
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let (text, rest) = interrupt_after(&mut child, "preparing");
+    let status = child.wait().unwrap();
+    assert_eq!(status.code(), Some(1), "{text}{rest}");
+    assert!(rest.contains("interrupted while preparing ("), "{rest}");
+    assert!(!rest.contains("shooting"), "it went on to shoot: {rest}");
+    assert!(!out.exists(), "wrote {}", out.display());
+}
+
+#[test]
 fn ctrl_c_stops_the_solver_and_writes_the_solution_so_far() {
     use std::process::{Command, Stdio};
     let dir = tempfile::tempdir().unwrap();

@@ -18,6 +18,7 @@ use crate::lighting::SurfacePoint;
 use crate::radiosity::gather;
 use crate::radiosity::gpu::{GpuSettings, GpuSolver, Visibility};
 use crate::radiosity::initial::{InitialState, LuminaireLight};
+use crate::radiosity::links::DEFAULT_LINK_ERROR;
 use crate::radiosity::scene::{luminance, RadiosityScene};
 use crate::radiosity::shooters::{Hierarchy, Shooters, DEFAULT_CELL_POWER};
 use crate::radiosity::solve::{self, ConvergencePoint, StopAt, StopReason};
@@ -63,6 +64,12 @@ pub struct RadiosityArgs {
     /// cluster's shooting cells from its power).
     #[arg(long, default_value_t = DEFAULT_CELL_POWER)]
     pub cell_power: f64,
+    /// With `--hierarchy clusters`: the irradiance error a receiver accepts from taking a
+    /// coarse cell's light as one source, as a share of the mean initial exitance (the
+    /// links' oracle: far receivers take a cluster's light from a few coarse cells, near
+    /// ones from the fine cells); 0 links every receiver to the finest cells.
+    #[arg(long, default_value_t = DEFAULT_LINK_ERROR)]
+    pub link_error: f64,
     /// Form factor from a patch to an element.
     #[arg(long, value_enum, default_value = "polygon")]
     pub form_factor: FormFactorKind,
@@ -105,6 +112,9 @@ impl RadiosityArgs {
         }
         if !(self.cell_power.is_finite() && self.cell_power > 0.0 && self.cell_power <= 1.0) {
             return bad(format!("--cell-power {} is not in (0, 1]", self.cell_power));
+        }
+        if !(self.link_error.is_finite() && (0.0..=1.0).contains(&self.link_error)) {
+            return bad(format!("--link-error {} is not in [0, 1]", self.link_error));
         }
         if !(16..=4096).contains(&self.map_size) {
             return bad(format!("--map-size {} is not in 16..=4096", self.map_size));
@@ -150,28 +160,55 @@ fn progress_bar() -> Result<indicatif::ProgressBar, CliError> {
 }
 
 /// A spinner naming the preparation stage that runs (drawn on a terminal only), cleared
-/// when dropped, so an error is printed on a clean line.
-struct StageSpinner(indicatif::ProgressBar);
+/// when dropped, so an error is printed on a clean line. Ctrl-C during a stage stops the
+/// command when that stage ends, before anything is written.
+struct StageSpinner {
+    spinner: indicatif::ProgressBar,
+    stage: std::cell::Cell<&'static str>,
+    cancel: std::sync::Arc<std::sync::atomic::AtomicBool>,
+}
 
 impl StageSpinner {
-    fn new() -> Result<StageSpinner, CliError> {
+    fn new(first: &'static str) -> Result<StageSpinner, CliError> {
         let spinner = indicatif::ProgressBar::new_spinner();
         spinner.set_style(
             indicatif::ProgressStyle::with_template("{spinner} radiosity: {msg} ({elapsed})")
                 .map_err(|e| CliError::failure(anyhow!(e)))?,
         );
         spinner.enable_steady_tick(Duration::from_millis(100));
-        Ok(StageSpinner(spinner))
+        spinner.set_message(first);
+        let cancel = super::interrupt_flag();
+        cancel.store(false, std::sync::atomic::Ordering::SeqCst);
+        Ok(StageSpinner {
+            spinner,
+            stage: std::cell::Cell::new(first),
+            cancel,
+        })
     }
 
-    fn set(&self, stage: &'static str) {
-        self.0.set_message(stage);
+    /// Ends the current stage (an error if Ctrl-C came during it) and names the next.
+    fn set(&self, stage: &'static str) -> Result<(), CliError> {
+        self.check()?;
+        self.stage.set(stage);
+        self.spinner.set_message(stage);
+        Ok(())
+    }
+
+    /// An error if Ctrl-C came during the current stage.
+    fn check(&self) -> Result<(), CliError> {
+        if self.cancel.load(std::sync::atomic::Ordering::SeqCst) {
+            return Err(CliError::failure(anyhow!(
+                "interrupted while preparing ({}): nothing written",
+                self.stage.get()
+            )));
+        }
+        Ok(())
     }
 }
 
 impl Drop for StageSpinner {
     fn drop(&mut self) {
-        self.0.finish_and_clear();
+        self.spinner.finish_and_clear();
     }
 }
 
@@ -185,8 +222,12 @@ struct Outputs {
 pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
     args.check()?;
     let started = Instant::now();
+    let stage = StageSpinner::new("loading the scene")?;
+    eprintln!(
+        "{}: preparing (Ctrl-C stops; nothing is written)",
+        args.scene.display()
+    );
     let scene = super::render::scene_at(Scene::load(&args.scene)?, args.image.time)?;
-    let stage = StageSpinner::new()?;
     let load_s = started.elapsed().as_secs_f64();
     let mut settings = args.image.settings(&scene)?;
     let points = if args.points {
@@ -202,7 +243,7 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
     stage.set(match args.hierarchy {
         Hierarchy::None => "elements and atlas",
         Hierarchy::Clusters => "face clusters, charts, elements and atlas",
-    });
+    })?;
     let rscene =
         RadiosityScene::with_hierarchy(&scene, args.texel_density, args.level, args.hierarchy)
             .map_err(|e| CliError::input(anyhow!("{}: {e}", args.scene.display())))?;
@@ -216,15 +257,17 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
     let gpu = Gpu::shared()?;
     crate::render::limits::check_scene(&gpu, &scene, &mut settings.shadows)?;
     crate::render::limits::check_radiosity(&gpu, rscene.elements.len())?;
-    stage.set("the luminaires' direct light");
+    stage.set("the luminaires' direct light")?;
     let light = LuminaireLight::new(&gpu, &scene, interp);
     let initial = InitialState::from_luminaires_gpu(&gpu, &light, &rscene, &settings.shadows)?;
+    stage.check()?;
     drop(stage);
     let gpu_settings = GpuSettings {
         visibility: args.visibility,
         map_size: args.map_size,
         hierarchy: args.hierarchy,
         cell_power: args.cell_power,
+        link_error: args.link_error,
         ..GpuSettings::default()
     };
     let prepared_s = started.elapsed().as_secs_f64();
@@ -284,10 +327,12 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
         solve::displayed(&rscene, &radiosity, &illuminance, &unshot, args.ambient);
     let last = log.last().copied();
     eprintln!(
-        "{}: {} shots, {:.2} % converged ({stop}) in {solve_s:.2} s (+{prepared_s:.2} s to prepare)",
+        "{}: {} shots, {:.2} % converged ({stop}) in {solve_s:.2} s (+{prepared_s:.2} s to prepare); {} visibility maps drawn, {} cells skipped (no receiver takes light from them)",
         args.scene.display(),
         solver.shots,
         100.0 * last.map_or(1.0, |p| p.convergence),
+        solver.drawn,
+        solver.skipped,
     );
     if !points.is_empty() {
         let gathered = Instant::now();
