@@ -88,7 +88,8 @@ pub struct RadiosityBenchPlan {
 pub type RadiosityBenchConfig = (Visibility, Hierarchy, f64);
 
 /// Solves `scene` with about `plan.elements` elements once per entry of `configs`, to 99 %
-/// or the plan's limits.
+/// or the plan's limits. The scene and each hierarchy's elements are checked against the
+/// GPU's limits first (as `radiosity` does), so a scene too large is refused, not a panic.
 pub fn run(
     gpu: &Gpu,
     scene: &Scene,
@@ -106,7 +107,8 @@ pub fn run(
     let density =
         texel_density.unwrap_or_else(|| (elements as f64 / surface_area(scene).max(1e-9)).sqrt());
     let settings = SolverSettings::default();
-    let shadows = crate::render::ShadowSettings::default();
+    let mut shadows = crate::render::ShadowSettings::default();
+    crate::render::limits::check_scene(gpu, scene, &mut shadows)?;
     let light = LuminaireLight::new(gpu, scene, settings.interp);
     // The hierarchy lays the charts too, so each has its own elements.
     let mut prepared: Vec<(Hierarchy, RadiosityScene, InitialState)> = Vec::new();
@@ -114,6 +116,7 @@ pub fn run(
     for &(visibility, hierarchy, link_error) in configs {
         if !prepared.iter().any(|p| p.0 == hierarchy) {
             let rscene = RadiosityScene::with_hierarchy(scene, density, level, hierarchy)?;
+            crate::render::limits::check_radiosity(gpu, rscene.elements.len())?;
             let initial = InitialState::from_luminaires_gpu(gpu, &light, &rscene, &shadows)?;
             prepared.push((hierarchy, rscene, initial));
         }

@@ -295,7 +295,7 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
     );
     let cancel = super::interrupt_flag();
     eprintln!(
-        "{}: {} elements in {} charts, {} patches, atlas {}×{}; {shooter_count} shooters{}; shooting (Ctrl-C stops and writes the solution so far)",
+        "{}: {} elements in {} charts, {} patches, atlas {}×{}; {shooter_count} shooters{}; visibility maps draw {} triangles; shooting (Ctrl-C stops and writes the solution so far)",
         args.scene.display(),
         rscene.elements.len(),
         rscene.elements.charts.len(),
@@ -309,6 +309,7 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
                 format!(" of {} face clusters", tree.nodes.len() - tree.order.len())
             }
         },
+        solver.visibility_triangles(),
     );
     let bar = progress_bar()?;
     let (stop, log) = solver.solve(&args.stop(), &cancel, |p: &ConvergencePoint| {

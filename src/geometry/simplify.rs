@@ -9,7 +9,6 @@ use std::collections::HashMap;
 
 use glam::DVec3;
 
-use super::weld::weld;
 use super::Mesh;
 
 type EdgeKey = (u32, u32);
@@ -23,13 +22,31 @@ fn edges(t: [u32; 3]) -> [EdgeKey; 3] {
 }
 
 /// `mesh` with every pair of adjacent triangles whose union is a triangle merged, until
-/// none is left. `tolerance` (metres): how far the shared corner may lie off the segment;
-/// vertices closer than a thousandth of it are welded first.
+/// none is left. `tolerance` (metres): how far the shared corner may lie off the segment.
+/// Vertices at exactly the same position are one vertex.
 pub fn merge_strips(mesh: &Mesh, tolerance: f64) -> Mesh {
-    let welded = weld(mesh, tolerance * 1e-3).mesh;
+    merge_strips_within(mesh, &[], tolerance).mesh
+}
+
+/// A merged mesh and where its triangles came from.
+#[derive(Debug, Clone)]
+pub struct Merged {
+    /// The merged mesh, its triangles ordered by [`Merged::origin`].
+    pub mesh: Mesh,
+    /// Per merged triangle, the lowest-numbered source triangle in it.
+    pub origin: Vec<u32>,
+}
+
+/// [`merge_strips`] merging only triangles of the same `group` (per source triangle; empty:
+/// one group), e.g. the scene's objects, so a light that leaves out its own housing can
+/// still leave out exactly its triangles.
+pub fn merge_strips_within(mesh: &Mesh, group: &[u32], tolerance: f64) -> Merged {
+    let same_group = |a: u32, b: u32| group.is_empty() || group[a as usize] == group[b as usize];
+    let welded = weld_exact(mesh);
     let p = &welded.positions;
     let mut triangles = welded.triangles.clone();
     let mut alive = vec![true; triangles.len()];
+    let mut origin: Vec<u32> = (0..triangles.len() as u32).collect();
     let mut by_edge: HashMap<EdgeKey, Vec<u32>> = HashMap::new();
     for (t, tri) in triangles.iter().enumerate() {
         for e in edges(*tri) {
@@ -58,6 +75,9 @@ pub fn merge_strips(mesh: &Mesh, tolerance: f64) -> Mesh {
         let [t1, t2] = list[..] else {
             continue;
         };
+        if !same_group(t1, t2) {
+            continue;
+        }
         let (a, b) = (triangles[t1 as usize], triangles[t2 as usize]);
         let far = |t: [u32; 3]| t.into_iter().find(|&v| v != e.0 && v != e.1);
         let (Some(f1), Some(f2)) = (far(a), far(b)) else {
@@ -85,17 +105,50 @@ pub fn merge_strips(mesh: &Mesh, tolerance: f64) -> Mesh {
         }
         alive[t2 as usize] = false;
         triangles[t1 as usize] = merged;
+        origin[t1 as usize] = origin[t1 as usize].min(origin[t2 as usize]);
         for k in edges(merged) {
             by_edge.entry(k).or_default().push(t1);
             work.push(k);
         }
     }
+    let mut kept: Vec<(u32, [u32; 3])> = (0..triangles.len())
+        .filter(|&t| alive[t])
+        .map(|t| (origin[t], triangles[t]))
+        .collect();
+    kept.sort_unstable_by_key(|k| k.0);
+    Merged {
+        mesh: Mesh {
+            positions: welded.positions,
+            triangles: kept.iter().map(|k| k.1).collect(),
+        },
+        origin: kept.iter().map(|k| k.0).collect(),
+    }
+}
+
+/// `mesh` with vertices at bit-identical positions merged (linear time; the tolerant
+/// [`super::weld::weld`] sweeps along x and is quadratic where many vertices share an x,
+/// as the corners of a CAD fan along an edge do).
+fn weld_exact(mesh: &Mesh) -> Mesh {
+    let mut index: HashMap<[u64; 3], u32> = HashMap::with_capacity(mesh.positions.len());
+    let mut positions = Vec::new();
+    let map: Vec<u32> = mesh
+        .positions
+        .iter()
+        .map(|p| {
+            // +0.0 so that -0.0 and 0.0 are one position.
+            let key = (*p + DVec3::ZERO).to_array().map(f64::to_bits);
+            *index.entry(key).or_insert_with(|| {
+                positions.push(*p);
+                positions.len() as u32 - 1
+            })
+        })
+        .collect();
     Mesh {
-        positions: welded.positions.clone(),
-        triangles: triangles
-            .into_iter()
-            .zip(alive)
-            .filter_map(|(t, keep)| keep.then_some(t))
+        positions,
+        triangles: mesh
+            .triangles
+            .iter()
+            .map(|t| t.map(|i| map[i as usize]))
             .collect(),
     }
 }
@@ -179,5 +232,24 @@ mod tests {
         };
         assert_eq!(merge_strips(&bent, 1e-4).triangles.len(), 2);
         assert_eq!(merge_strips(&bent, 2e-3).triangles.len(), 1);
+    }
+
+    #[test]
+    fn groups_never_merge_and_origins_name_their_first_source() {
+        let coarse = cuboid(DVec3::ZERO, DVec3::new(2.0, 1.0, 0.5));
+        let fine = fan_split(&coarse, 10);
+        // Every strip its own group: nothing merges.
+        let apart: Vec<u32> = (0..fine.triangles.len() as u32).collect();
+        assert_eq!(
+            merge_strips_within(&fine, &apart, 1e-9)
+                .mesh
+                .triangles
+                .len(),
+            120
+        );
+        // Each coarse triangle's fan one group: one triangle each, from its first strip.
+        let fans: Vec<u32> = (0..fine.triangles.len() as u32).map(|t| t / 10).collect();
+        let m = merge_strips_within(&fine, &fans, 1e-9);
+        assert_eq!(m.origin, (0..12).map(|k| 10 * k).collect::<Vec<u32>>());
     }
 }

@@ -62,6 +62,12 @@ impl Default for GpuSettings {
     }
 }
 
+/// An element's record on the GPU: position and area, normal and shooter, reflectance.
+type ElementGpu = [[f32; 4]; 3];
+const _: () = assert!(
+    std::mem::size_of::<ElementGpu>() as u64 == crate::render::limits::RADIOSITY_ELEMENT_BYTES
+);
+
 /// Most patches shot per GPU submission; the solver may stop between batches.
 pub const PATCHES_PER_BATCH: usize = 64;
 /// Patches in a solver's first batch (then adapted to the machine and scene).
@@ -337,8 +343,8 @@ impl<'a> GpuSolver<'a> {
     ) -> GpuSolver<'a> {
         let el = &scene.elements;
         let n = el.len();
-        let elements: Vec<[f32; 4]> = (0..n)
-            .flat_map(|e| {
+        let records: Vec<ElementGpu> = (0..n)
+            .map(|e| {
                 [
                     v4(el.position[e], el.area[e] as f32),
                     v4(el.normal(e), f32::from_bits(shooters.element_shooter[e])),
@@ -346,6 +352,7 @@ impl<'a> GpuSolver<'a> {
                 ]
             })
             .collect();
+        let elements: Vec<[f32; 4]> = records.into_iter().flatten().collect();
         let start: Vec<[f32; 4]> = initial.radiosity.iter().map(|b| v4(*b, 0.0)).collect();
         let start_lit: Vec<[f32; 4]> = (0..n)
             .map(|e| v4(initial.radiosity[e], initial.illuminance[e] as f32))
@@ -365,8 +372,19 @@ impl<'a> GpuSolver<'a> {
                 ]
             })
             .collect();
-        // A cell holds at least one element, and a plan has at most LINK_LEVELS + 1 levels.
-        let max_patches = shooters.max_elements() * (LINK_LEVELS as usize + 1);
+        // Room for the largest plan; links are left out where its cells would not fit
+        // one binding (a cluster of millions of elements).
+        let max_binding = gpu
+            .device
+            .limits()
+            .max_storage_buffer_binding_size
+            .min(gpu.device.limits().max_buffer_size);
+        let mut gpu_settings = gpu_settings;
+        let mut max_patches = shooters.max_cells(scene, LINK_LEVELS);
+        if 16 * max_patches as u64 > max_binding {
+            gpu_settings.link_error = 0.0;
+            max_patches = shooters.max_cells(scene, 0);
+        }
         let pipelines = Pipelines::new(gpu);
         let bytes = |v: &[[f32; 4]]| bytemuck::cast_slice::<[f32; 4], u8>(v).to_vec();
         let params = gpu.device.create_buffer(&wgpu::BufferDescriptor {
@@ -554,6 +572,11 @@ impl<'a> GpuSolver<'a> {
         self.initial_power.get_or_insert(selection.unshot_power);
         self.last_power = selection.power;
         Ok(selection)
+    }
+
+    /// Triangles each visibility map draws (the casters with CAD fans merged).
+    pub fn visibility_triangles(&self) -> usize {
+        self.vertex_count as usize / 3
     }
 
     /// The shooters: triangles, or flat face clusters ([`GpuSettings::hierarchy`]).

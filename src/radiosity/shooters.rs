@@ -247,9 +247,36 @@ impl Shooters {
         &self.elements[self.first[s] as usize..][..self.count[s] as usize]
     }
 
-    /// The most elements any shooter has (the most patches any shot can have).
+    /// The most elements any shooter has.
     pub fn max_elements(&self) -> usize {
         self.count.iter().copied().max().unwrap_or(1).max(1) as usize
+    }
+
+    /// The most cells any plan with up to `levels` coarser levels can have
+    /// ([`Shooters::plan_levels`] at the finest side: coarser sides have fewer cells).
+    pub fn max_cells(&self, scene: &RadiosityScene, levels: u32) -> usize {
+        let el = &scene.elements;
+        let cells = |s: usize| match &self.shapes[s] {
+            ShooterShape::Chart(c) => el.charts[*c as usize].patch_count as usize,
+            ShooterShape::Cluster { obb, .. } => {
+                let grid = Grid::new(obb, self.finest_cell[s]);
+                let top = levels.min(grid.levels_to_one_cell());
+                let mut keys: Vec<u64> = self
+                    .elements_of(s)
+                    .iter()
+                    .map(|&e| z_order(grid.column_row(grid.plane(el.position[e as usize]))))
+                    .collect();
+                keys.sort_unstable();
+                (0..=top)
+                    .map(|k| {
+                        let mut level: Vec<u64> = keys.iter().map(|m| m >> (2 * k)).collect();
+                        level.dedup();
+                        level.len()
+                    })
+                    .sum()
+            }
+        };
+        (0..self.len()).map(cells).max().unwrap_or(1).max(1)
     }
 
     /// The oracle: the cell side shooter `s` shoots from when it holds `power` lm — the

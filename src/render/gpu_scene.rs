@@ -205,6 +205,8 @@ pub struct GpuScene {
     pub triangle_count: usize,
     /// Every triangle as one mesh: the shadow casters.
     pub casters: Mesh,
+    /// The object of each caster triangle ([`Scene::caster_objects`]).
+    caster_objects: Vec<u32>,
     /// The luminaires as shadow-casting lights, in the order of `lights`.
     pub shadow_lights: Vec<ShadowLight>,
     /// The radiosity light map (a 1 × 1 black texture when there is none).
@@ -317,6 +319,7 @@ impl GpuScene {
             lights: GpuLights::new(gpu, &scene.luminaires),
             triangle_count: scene.triangle_count(),
             casters: scene.caster_mesh(),
+            caster_objects: scene.caster_objects(),
             shadow_lights: scene
                 .luminaires
                 .iter()
@@ -356,7 +359,9 @@ impl GpuScene {
         match &*cache {
             Some((edge, casters)) if *edge == max_edge => casters.clone(),
             _ => {
-                let casters = Arc::new(ParaboloidCasters::new(gpu, &self.casters, max_edge));
+                let merged = super::paraboloid::merged_casters(&self.casters, &self.caster_objects);
+                let sources = self.casters.triangles.len();
+                let casters = Arc::new(ParaboloidCasters::new(gpu, &merged, sources, max_edge));
                 *cache = Some((max_edge, casters.clone()));
                 casters
             }

@@ -67,7 +67,8 @@ fn fit_tessellation(
     max_buffer: u64,
 ) -> Result<(), GpuError> {
     let budget = (max_buffer.min(MAX_CASTER_BYTES) / CASTER_TRIANGLE_BYTES) as usize;
-    let casters = scene.caster_mesh();
+    let casters =
+        super::paraboloid::merged_casters(&scene.caster_mesh(), &scene.caster_objects()).mesh;
     let asked = shadows.tessellation_m;
     let mut edge = asked;
     while tessellated_count(&casters, edge, budget + 1) > budget {
@@ -100,8 +101,8 @@ fn scene_refusal(scene: &Scene, message: String) -> GpuError {
 }
 
 /// Bytes per radiosity element in the solver's largest storage buffer (position + area,
-/// normal + triangle).
-const RADIOSITY_ELEMENT_BYTES: u64 = 32;
+/// normal + shooter, reflectance: `radiosity/gpu.rs` checks its record against this).
+pub const RADIOSITY_ELEMENT_BYTES: u64 = 48;
 
 /// Checks the radiosity solver's per-element buffers for `elements` fit `gpu`.
 pub fn check_radiosity(gpu: &Gpu, elements: usize) -> Result<(), GpuError> {

@@ -171,6 +171,16 @@ impl Scene {
         mesh
     }
 
+    /// The object (index into [`Scene::meshes`]) of each triangle of
+    /// [`Scene::caster_mesh`], in its order.
+    pub fn caster_objects(&self) -> Vec<u32> {
+        self.meshes
+            .iter()
+            .enumerate()
+            .flat_map(|(k, m)| std::iter::repeat_n(k as u32, m.indices.len() / 3))
+            .collect()
+    }
+
     /// The material of each triangle of [`Scene::caster_mesh`], in its order.
     pub fn caster_materials(&self) -> Vec<usize> {
         self.meshes
