@@ -4,8 +4,8 @@
 // select_shooter (one workgroup: the ambient term and the shooter with the largest unshot
 // power, with ambient overshooting when asked), gather_patches (the shot's patches' unshot
 // radiosity: substructuring), clear_shooter, then per patch a visibility map
-// (radiosity_visibility.wgsl) and receive (every element, the form factor to the patch, if
-// visible).
+// (radiosity_visibility.wgsl) and receive (the elements of the charts in front of the
+// shooter, the form factor to the patch, if visible).
 
 struct SolveParams {
     element_count: u32,
@@ -19,7 +19,15 @@ struct SolveParams {
     // The elements whose unshot radiosity this batch shoots: a range of shooter_elements.
     clear_first: u32,
     clear_count: u32,
-    _pad: vec2<u32>,
+    // The shot's receivers (receiver culling): patches[range_first..][..range_count] hold
+    // per chart in front of the shooter its first element and first thread (range.xy);
+    // range_total threads in all.
+    range_count: u32,
+    range_total: u32,
+    range_first: u32,
+    _pad2: u32,
+    _pad3: u32,
+    _pad4: u32,
 };
 
 struct Element {
@@ -317,12 +325,28 @@ fn takes_light(p: vec3<f32>) -> bool {
     return true;
 }
 
+// The element of receive thread `t`: the last range starting at or before it.
+fn receiver_element(t: u32) -> u32 {
+    var lo = 0u;
+    var hi = params.range_count;
+    while (hi - lo > 1u) {
+        let mid = (lo + hi) / 2u;
+        if (patches[params.range_first + mid].range.y <= t) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let r = patches[params.range_first + lo].range;
+    return r.x + (t - r.y);
+}
+
 @compute @workgroup_size(64)
 fn receive(@builtin(global_invocation_id) id: vec3<u32>) {
-    let i = id.x;
-    if (i >= params.element_count) {
+    if (id.x >= params.range_total) {
         return;
     }
+    let i = receiver_element(id.x);
     let el = elements[i];
     if (bitcast<u32>(el.normal_shooter.w) == params.shooter) {
         return;

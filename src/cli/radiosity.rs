@@ -328,12 +328,15 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
         solve::displayed(&rscene, &radiosity, &illuminance, &unshot, args.ambient);
     let last = log.last().copied();
     eprintln!(
-        "{}: {} shots, {:.2} % converged ({stop}) in {solve_s:.2} s (+{prepared_s:.2} s to prepare); {} visibility maps drawn, {} cells skipped (no receiver takes light from them)",
+        "{}: {} shots, {:.2} % converged ({stop}) in {solve_s:.2} s (+{prepared_s:.2} s to prepare); {} visibility maps drawn, {} cells skipped (no receiver takes light from them); receivers culled to {:.0} % of the elements per map{}",
         args.scene.display(),
         solver.shots,
         100.0 * last.map_or(1.0, |p| p.convergence),
         solver.drawn,
         solver.skipped,
+        100.0 * solver.receiver_threads as f64
+            / (solver.drawn.max(1) as f64 * rscene.elements.len().max(1) as f64),
+        crate::io::peak_memory_mb().map_or(String::new(), |mb| format!("; peak memory {mb} MB")),
     );
     if !points.is_empty() {
         let gathered = Instant::now();

@@ -88,7 +88,10 @@ struct SolveParams {
     mean_reflectance: f32,
     clear_first: u32,
     clear_count: u32,
-    _pad: [u32; 2],
+    range_count: u32,
+    range_total: u32,
+    range_first: u32,
+    _pad: [u32; 3],
 }
 
 #[repr(C)]
@@ -175,6 +178,12 @@ pub struct GpuSolver<'a> {
     batch: usize,
     /// Per cell of the shot: rgb unshot radiosity it shoots.
     patch_delta: wgpu::Buffer,
+    /// Entries of the patch buffer for cells; the receiver ranges follow.
+    max_patches: usize,
+    /// The shot's receiver ranges and threads (every element of them).
+    culled: (u32, u32),
+    /// Receiver threads dispatched so far (elements in front of the shooters, per map).
+    pub receiver_threads: u64,
     /// The receivers' boxes, for the links.
     receivers: ReceiverBoxes,
     /// Visibility maps drawn so far (one per drawn cell or patch).
@@ -411,7 +420,13 @@ impl<'a> GpuSolver<'a> {
             true,
         );
         let selection = storage(gpu, "selection", &[0u8; 48], true);
-        let patch_buf = storage(gpu, "patches", &vec![0u8; 16 * max_patches], true);
+        // The shot's cells, then per chart in front of the shooter its receivers' range.
+        let patch_buf = storage(
+            gpu,
+            "patches",
+            &vec![0u8; 16 * (max_patches + el.charts.len().max(1))],
+            true,
+        );
         let patch_delta = storage(gpu, "patch delta", &vec![0u8; 16 * max_patches], true);
         let shared = gpu.bind_group(
             "radiosity",
@@ -499,6 +514,9 @@ impl<'a> GpuSolver<'a> {
             shots: 0,
             batch: FIRST_BATCH,
             patch_delta,
+            max_patches,
+            culled: (0, 0),
+            receiver_threads: 0,
             receivers: ReceiverBoxes::new(scene),
             drawn: 0,
             skipped: 0,
@@ -526,7 +544,10 @@ impl<'a> GpuSolver<'a> {
             mean_reflectance: self.scene.mean_reflectance as f32,
             clear_first: clear.start,
             clear_count: clear.len() as u32,
-            _pad: [0; 2],
+            range_count: self.culled.0,
+            range_total: self.culled.1,
+            range_first: self.max_patches as u32,
+            _pad: [0; 3],
         };
         self.gpu
             .queue
@@ -726,6 +747,32 @@ impl<'a> GpuSolver<'a> {
         self.gpu
             .queue
             .write_buffer(&self.patches, 0, bytemuck::cast_slice(&patches));
+        // Receiver culling: only the charts in front of the shooter's plane receive.
+        let normal = self.shooters.normal[s];
+        let at = plan.patches.first().map_or(DVec3::ZERO, |p| p.centroid);
+        let thickness = plan
+            .patches
+            .iter()
+            .map(|p| normal.dot(p.centroid - at).abs())
+            .fold(0.0, f64::max);
+        let ranges = self.receivers.in_front(normal, at, thickness);
+        let mut threads = 0u32;
+        let records: Vec<[u32; 4]> = ranges
+            .iter()
+            .map(|&(first, count)| {
+                let r = [first, threads, 0, 0];
+                threads += count;
+                r
+            })
+            .collect();
+        if !records.is_empty() {
+            self.gpu.queue.write_buffer(
+                &self.patches,
+                16 * self.max_patches as u64,
+                bytemuck::cast_slice(&records),
+            );
+        }
+        self.culled = (records.len() as u32, threads);
         let cells = plan.patches.len() as u32;
         self.write_params(s as u32, 0, cells, 0..0);
         let mut enc = self.gpu.device.create_command_encoder(&Default::default());
@@ -853,7 +900,8 @@ impl<'a> GpuSolver<'a> {
             &self.pipelines.face_layout,
             &[(0, binding(&face_buf, std::mem::size_of::<FaceGpu>()))],
         );
-        let elements = self.scene.elements.len() as u32;
+        let receivers = self.culled.1;
+        self.receiver_threads += u64::from(receivers) * drawn.len() as u64;
         for k in 0..drawn.len() as u32 {
             for f in 0..faces_per_patch {
                 let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
@@ -889,7 +937,7 @@ impl<'a> GpuSolver<'a> {
             pass.set_pipeline(&self.pipelines.receive);
             pass.set_bind_group(0, &self.shared, &[]);
             pass.set_bind_group(1, &shot_bind, &[(k as u64 * SHOT_STRIDE) as u32]);
-            pass.dispatch_workgroups(elements.div_ceil(64).max(1), 1, 1);
+            pass.dispatch_workgroups(receivers.div_ceil(64).max(1), 1, 1);
         }
         self.gpu.queue.submit([enc.finish()]);
         Ok(())

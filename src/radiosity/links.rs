@@ -52,6 +52,8 @@ pub struct ReceiverBoxes {
     bvh: Option<Bvh2>,
     /// Per chart with elements, its box (lowest and highest corner), metres.
     boxes: Vec<(DVec3, DVec3)>,
+    /// Per chart with elements, its elements (first, count).
+    ranges: Vec<(u32, u32)>,
     /// The f32 hierarchy's origin.
     centre: DVec3,
     /// How far the f32 boxes are widened, metres.
@@ -68,10 +70,10 @@ impl ReceiverBoxes {
     /// The hierarchy over `scene`'s charts.
     pub fn new(scene: &RadiosityScene) -> ReceiverBoxes {
         let el = &scene.elements;
-        let boxes: Vec<(DVec3, DVec3)> = el
-            .charts
+        let charts: Vec<_> = el.charts.iter().filter(|c| c.count > 0).collect();
+        let ranges = charts.iter().map(|c| (c.first, c.count)).collect();
+        let boxes: Vec<(DVec3, DVec3)> = charts
             .iter()
-            .filter(|c| c.count > 0)
             .map(|c| {
                 let points = &el.position[c.first as usize..][..c.count as usize];
                 let lo = points.iter().copied().fold(DVec3::INFINITY, DVec3::min);
@@ -113,6 +115,7 @@ impl ReceiverBoxes {
         ReceiverBoxes {
             bvh,
             boxes,
+            ranges,
             centre,
             pad,
             size,
@@ -122,6 +125,34 @@ impl ReceiverBoxes {
     /// Whether some chart's box satisfies `wanted`, which must hold for every box around
     /// one it holds for (so whole subtrees are skipped where a node's box fails it).
     pub fn any(&self, wanted: impl Fn(DVec3, DVec3) -> bool) -> bool {
+        self.visit(wanted, true, &mut |_| {})
+    }
+
+    /// The element ranges (first, count) of the charts that may lie in front of the plane
+    /// through `at` facing `normal` (a shooter `thickness` metres thick about it), in
+    /// element order: every element behind the shooter or in its plane (where a patch's
+    /// form factor is 0) is in a chart left out — receiver culling.
+    pub fn in_front(&self, normal: DVec3, at: DVec3, thickness: f64) -> Vec<(u32, u32)> {
+        let slack = self.pad + SLACK * self.size + thickness;
+        let mut charts = Vec::new();
+        self.visit(
+            |lo, hi| highest(lo, hi, normal, at) > -slack,
+            false,
+            &mut |k| charts.push(k),
+        );
+        let mut out: Vec<(u32, u32)> = charts.into_iter().map(|k| self.ranges[k]).collect();
+        out.sort_unstable();
+        out
+    }
+
+    /// Walks the hierarchy where `wanted` holds, calling `found` with each chart whose
+    /// box satisfies it; with `first` stops at the first (and says whether there was one).
+    fn visit(
+        &self,
+        wanted: impl Fn(DVec3, DVec3) -> bool,
+        first: bool,
+        found: &mut dyn FnMut(usize),
+    ) -> bool {
         let Some(bvh) = &self.bvh else {
             return false;
         };
@@ -136,18 +167,22 @@ impl ReceiverBoxes {
             if !wanted(lo + self.centre - self.pad, hi + self.centre + self.pad) {
                 continue;
             }
-            let first = node.first_index as usize;
+            let child = node.first_index as usize;
             if node.is_leaf() {
-                let prims = &bvh.primitive_indices[first..][..node.prim_count as usize];
-                if prims.iter().any(|&p| {
+                for &p in
+                    &bvh.primitive_indices[node.first_index as usize..][..node.prim_count as usize]
+                {
                     let (a, b) = self.boxes[p as usize];
-                    wanted(a, b)
-                }) {
-                    return true;
+                    if wanted(a, b) {
+                        found(p as usize);
+                        if first {
+                            return true;
+                        }
+                    }
                 }
             } else {
-                stack.push(first);
-                stack.push(first + 1);
+                stack.push(child);
+                stack.push(child + 1);
             }
         }
         false
@@ -208,6 +243,19 @@ fn variation(plan: &ShotPlan, radiosity: &[f64]) -> Vec<f64> {
     (0..radiosity.len())
         .map(|k| (hi[k] - radiosity[k]).max(radiosity[k] - lo[k]))
         .collect()
+}
+
+/// The highest corner of the box [lo, hi] above the plane through `at` facing `normal`.
+fn highest(lo: DVec3, hi: DVec3, normal: DVec3, at: DVec3) -> f64 {
+    let mut best = f64::NEG_INFINITY;
+    for x in [lo.x, hi.x] {
+        for y in [lo.y, hi.y] {
+            for z in [lo.z, hi.z] {
+                best = best.max(normal.dot(DVec3::new(x, y, z) - at));
+            }
+        }
+    }
+    best
 }
 
 /// Nearest distance from `p` to the box [lo, hi].
@@ -284,15 +332,7 @@ impl Search<'_> {
     fn in_front(&self, lo: DVec3, hi: DVec3, k: usize) -> bool {
         let at = self.plan.patches[k].centroid;
         let tolerance = self.receivers.plane_tolerance() - self.slack;
-        let mut best = f64::NEG_INFINITY;
-        for x in [lo.x, hi.x] {
-            for y in [lo.y, hi.y] {
-                for z in [lo.z, hi.z] {
-                    best = best.max(self.normal.dot(DVec3::new(x, y, z) - at));
-                }
-            }
-        }
-        best > tolerance
+        highest(lo, hi, self.normal, at) > tolerance
     }
 
     /// Whether the box [lo, hi] may hold a receiver within the reach of used cell `k`.
