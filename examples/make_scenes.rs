@@ -245,6 +245,25 @@ fn office_toml(root: &Path) -> String {
     text
 }
 
+/// Writes `scene`'s triangles to `obj`, each fanned into `strips` long thin strips as CAD
+/// exporters do, with its material from `mtl`; returns the triangles and the strips.
+fn write_fanned(
+    scene: &goniolight::scene::Scene,
+    strips: u32,
+    obj: &Path,
+    mtl: &str,
+) -> anyhow::Result<(goniolight::geometry::Mesh, goniolight::geometry::Mesh)> {
+    let coarse = scene.caster_mesh();
+    let fine = goniolight::geometry::generate::fan_split(&coarse, strips);
+    let materials: Vec<(usize, String)> = scene
+        .caster_materials()
+        .into_iter()
+        .flat_map(|m| std::iter::repeat_n((m, scene.materials[m].name.clone()), strips as usize))
+        .collect();
+    std::fs::write(obj, triangles_obj(&fine, &materials, mtl))?;
+    Ok((coarse, fine))
+}
+
 /// Writes the CAD-like office (≥ 250 000 long thin triangles) into `dir`: the coarse
 /// boxes fanned into `strips` strips each.
 fn cad_office(root: &Path, dir: &Path, strips: u32) -> anyhow::Result<()> {
@@ -256,16 +275,11 @@ fn cad_office(root: &Path, dir: &Path, strips: u32) -> anyhow::Result<()> {
     )?;
     std::fs::write(dir.join("cad_office.toml"), office_toml(root))?;
     let scene = goniolight::scene::Scene::load(&dir.join("cad_office.toml"))?;
-    let coarse = scene.caster_mesh();
-    let fine = goniolight::geometry::generate::fan_split(&coarse, strips);
-    let materials: Vec<(usize, String)> = scene
-        .caster_materials()
-        .into_iter()
-        .flat_map(|m| std::iter::repeat_n((m, scene.materials[m].name.clone()), strips as usize))
-        .collect();
-    std::fs::write(
-        dir.join("cad_office.obj"),
-        triangles_obj(&fine, &materials, "cad_office.mtl"),
+    let (coarse, fine) = write_fanned(
+        &scene,
+        strips,
+        &dir.join("cad_office.obj"),
+        "cad_office.mtl",
     )?;
     println!(
         "wrote {} ({} triangles from {} faces' {} triangles, {strips} strips each)",
@@ -657,18 +671,7 @@ fn main() -> anyhow::Result<()> {
         format!("{ROOM_MTL}{FURNITURE_MTL}"),
     )?;
     let scene = goniolight::scene::Scene::load(&scenes.join("boxes_room.toml"))?;
-    let coarse = scene.caster_mesh();
-    let strips = 50;
-    let fine = goniolight::geometry::generate::fan_split(&coarse, strips);
-    let materials: Vec<(usize, String)> = scene
-        .caster_materials()
-        .into_iter()
-        .flat_map(|m| std::iter::repeat_n((m, scene.materials[m].name.clone()), strips as usize))
-        .collect();
-    std::fs::write(
-        scenes.join("cad_room.obj"),
-        triangles_obj(&fine, &materials, "boxes_room.mtl"),
-    )?;
+    write_fanned(&scene, 50, &scenes.join("cad_room.obj"), "boxes_room.mtl")?;
 
     let mut stage = Obj::default();
     stage.room(size, "floor", "wall", "wall", "ceiling");

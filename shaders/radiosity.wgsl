@@ -25,18 +25,10 @@ struct SolveParams {
     range_count: u32,
     range_total: u32,
     range_first: u32,
-    _pad2: u32,
+    // Shooters of more than SMALL_SHOOTER elements (listed after the shooters).
+    large_shooters: u32,
     _pad3: u32,
     _pad4: u32,
-};
-
-struct Element {
-    // xyz position, w area.
-    position_area: vec4<f32>,
-    // xyz unit normal, w shooter index (as f32 bits).
-    normal_shooter: vec4<f32>,
-    // rgb reflectance.
-    reflectance: vec4<f32>,
 };
 
 struct ShooterInfo {
@@ -54,7 +46,10 @@ struct PatchInfo {
 };
 
 @group(0) @binding(0) var<uniform> params: SolveParams;
-@group(0) @binding(1) var<storage, read> elements: array<Element>;
+// Per element two 16-byte records in two bindings, so one binding of 128 MiB holds 8.4 M
+// elements: xyz position, w area; xyz unit normal, w shooter index (as f32 bits). The
+// reflectance is its shooter's (one material per shooter).
+@group(0) @binding(1) var<storage, read> element_points: array<vec4<f32>>;
 // Every shooter's elements, shooter after shooter (the shot's in patch order).
 @group(0) @binding(2) var<storage, read> shooter_elements: array<u32>;
 // rgb radiosity, w illuminance received (lux).
@@ -69,31 +64,93 @@ struct PatchInfo {
 @group(0) @binding(7) var<storage, read> patches: array<PatchInfo>;
 // Per patch of the shooter: rgb unshot radiosity to shoot.
 @group(0) @binding(8) var<storage, read_write> patch_delta: array<vec4<f32>>;
+@group(0) @binding(9) var<storage, read> element_normals: array<vec4<f32>>;
 
 const LUMA = vec3<f32>(0.2126, 0.7152, 0.0722);
-
-@compute @workgroup_size(64)
-fn shooter_sums(@builtin(global_invocation_id) id: vec3<u32>) {
-    let t = id.x;
-    if (t >= params.shooter_count) {
-        return;
-    }
-    let r = shooters[t].range;
-    var sum = vec3<f32>(0.0);
-    var magnitude = 0.0;
-    for (var k = r.x; k < r.x + r.y; k++) {
-        let e = shooter_elements[k];
-        let a = elements[e].position_area.w;
-        let u = unshot[e].rgb;
-        sum += u * a;
-        magnitude += abs(dot(u, LUMA)) * a;
-    }
-    shooter_power[t] = vec4<f32>(sum, magnitude);
-}
+// Shooters of at most this many elements are summed by one thread (SMALL_SHOOTER in gpu.rs).
+const SMALL_SHOOTER = 1024u;
 
 var<workgroup> wg_sum: array<vec4<f32>, 256>;
 var<workgroup> wg_best: array<f32, 256>;
 var<workgroup> wg_index: array<u32, 256>;
+
+// Dispatches wider than 65 535 workgroups are two-dimensional (rows of `nw.x` groups).
+fn linear_thread(id: vec3<u32>, nw: vec3<u32>, size: u32) -> u32 {
+    return id.y * nw.x * size + id.x;
+}
+
+fn linear_group(wid: vec3<u32>, nw: vec3<u32>) -> u32 {
+    return wid.y * nw.x + wid.x;
+}
+
+// Sums over a range of shooter_elements with one workgroup, each thread striding over a
+// share: a cluster of millions of elements is neither added one by one in f32 (the sum
+// outgrows the terms) nor looped over by one thread (llvmpipe ends every loop of an
+// invocation after 65 535 iterations in all). rgb: Σ (unshot + extra) × area; w: Σ
+// |unshot luminance| × area. The total is in wg_sum[0] on return.
+fn workgroup_range_sum(first: u32, count: u32, extra: vec3<f32>, l: u32) -> vec4<f32> {
+    var part = vec4<f32>(0.0);
+    for (var k = first + l; k < first + count; k += 256u) {
+        let e = shooter_elements[k];
+        let a = element_points[e].w;
+        let u = unshot[e].rgb;
+        part += vec4<f32>((u + extra) * a, abs(dot(u, LUMA)) * a);
+    }
+    wg_sum[l] = part;
+    workgroupBarrier();
+    for (var s = 128u; s > 0u; s >>= 1u) {
+        if (l < s) {
+            wg_sum[l] += wg_sum[l + s];
+        }
+        workgroupBarrier();
+    }
+    return wg_sum[0];
+}
+
+// Per shooter: rgb unshot power, w Σ |luminance| power. Shooters of at most SMALL_SHOOTER
+// elements (a triangle, a small cluster) are summed by one thread each here; the larger
+// ones by large_shooter_sums.
+@compute @workgroup_size(64)
+fn shooter_sums(
+    @builtin(global_invocation_id) id: vec3<u32>,
+    @builtin(num_workgroups) nw: vec3<u32>,
+) {
+    let t = linear_thread(id, nw, 64u);
+    if (t >= params.shooter_count) {
+        return;
+    }
+    let r = shooters[t].range;
+    if (r.y > SMALL_SHOOTER) {
+        return;
+    }
+    var sum = vec4<f32>(0.0);
+    for (var k = r.x; k < r.x + r.y; k++) {
+        let e = shooter_elements[k];
+        let a = element_points[e].w;
+        let u = unshot[e].rgb;
+        sum += vec4<f32>(u * a, abs(dot(u, LUMA)) * a);
+    }
+    shooter_power[t] = sum;
+}
+
+// The shooters of more than SMALL_SHOOTER elements, one workgroup each: listed after the
+// shooters' records (range.z: the shooter).
+@compute @workgroup_size(256)
+fn large_shooter_sums(
+    @builtin(workgroup_id) wid: vec3<u32>,
+    @builtin(num_workgroups) nw: vec3<u32>,
+    @builtin(local_invocation_index) l: u32,
+) {
+    let g = linear_group(wid, nw);
+    if (g >= params.large_shooters) {
+        return;
+    }
+    let r = shooters[params.shooter_count + g].range;
+    let sum = workgroup_range_sum(r.x, r.y, vec3<f32>(0.0), l);
+    if (l == 0u) {
+        shooter_power[r.z] = sum;
+    }
+}
 
 @compute @workgroup_size(256)
 fn select_shooter(@builtin(local_invocation_index) l: u32) {
@@ -156,28 +213,36 @@ fn select_shooter(@builtin(local_invocation_index) l: u32) {
     }
 }
 
-@compute @workgroup_size(64)
-fn gather_patches(@builtin(global_invocation_id) id: vec3<u32>) {
-    if (id.x >= params.patch_count) {
+// Per patch of the shot (one workgroup each): its unshot radiosity to shoot.
+@compute @workgroup_size(256)
+fn gather_patches(
+    @builtin(workgroup_id) wid: vec3<u32>,
+    @builtin(num_workgroups) nw: vec3<u32>,
+    @builtin(local_invocation_index) l: u32,
+) {
+    let i = linear_group(wid, nw);
+    if (i >= params.patch_count) {
         return;
     }
-    let p = patches[params.patch_first + id.x];
+    let p = patches[params.patch_first + i];
     let extra = shooter_power[params.shooter_count + 1u].rgb;
-    var power = vec3<f32>(0.0);
-    for (var k = p.range.x; k < p.range.x + p.range.y; k++) {
-        let e = shooter_elements[k];
-        power += (unshot[e].rgb + extra) * elements[e].position_area.w;
+    let power = workgroup_range_sum(p.range.x, p.range.y, extra, l).rgb;
+    if (l == 0u) {
+        patch_delta[i] = vec4<f32>(power / max(p.area, 1e-30), 0.0);
     }
-    patch_delta[id.x] = vec4<f32>(power / max(p.area, 1e-30), 0.0);
 }
 
 @compute @workgroup_size(64)
-fn clear_shooter(@builtin(global_invocation_id) id: vec3<u32>) {
+fn clear_shooter(
+    @builtin(global_invocation_id) id: vec3<u32>,
+    @builtin(num_workgroups) nw: vec3<u32>,
+) {
     // The elements of this batch's top cells (contiguous in shooter_elements).
-    if (id.x >= params.clear_count) {
+    let i = linear_thread(id, nw, 64u);
+    if (i >= params.clear_count) {
         return;
     }
-    unshot[shooter_elements[params.clear_first + id.x]] = vec4<f32>(-shooter_power[params.shooter_count + 1u].rgb, 0.0);
+    unshot[shooter_elements[params.clear_first + i]] = vec4<f32>(-shooter_power[params.shooter_count + 1u].rgb, 0.0);
 }
 
 // One shooting patch as seen by the receive pass.
@@ -342,17 +407,22 @@ fn receiver_element(t: u32) -> u32 {
 }
 
 @compute @workgroup_size(64)
-fn receive(@builtin(global_invocation_id) id: vec3<u32>) {
-    if (id.x >= params.range_total) {
+fn receive(
+    @builtin(global_invocation_id) id: vec3<u32>,
+    @builtin(num_workgroups) nw: vec3<u32>,
+) {
+    let thread = linear_thread(id, nw, 64u);
+    if (thread >= params.range_total) {
         return;
     }
-    let i = receiver_element(id.x);
-    let el = elements[i];
-    if (bitcast<u32>(el.normal_shooter.w) == params.shooter) {
+    let i = receiver_element(thread);
+    let normal_shooter = element_normals[i];
+    let shooter = bitcast<u32>(normal_shooter.w);
+    if (shooter == params.shooter) {
         return;
     }
-    let p = el.position_area.xyz;
-    let n = el.normal_shooter.xyz;
+    let p = element_points[i].xyz;
+    let n = normal_shooter.xyz;
     if (!takes_light(p)) {
         return;
     }
@@ -366,7 +436,7 @@ fn receive(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let incident = patch_delta[shot.info.x].rgb * f * shot.link.z;
-    let gained = el.reflectance.rgb * incident;
+    let gained = shooters[shooter].reflectance_area.rgb * incident;
     radiosity[i] += vec4<f32>(gained, dot(incident, LUMA));
     unshot[i] += vec4<f32>(gained, 0.0);
 }

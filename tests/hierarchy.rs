@@ -9,17 +9,18 @@ use std::sync::atomic::AtomicBool;
 
 use glam::{DVec3, Vec3};
 use goniolight::radiosity::cpu::CpuSolver;
-use goniolight::radiosity::gpu::{GpuSettings, GpuSolver};
+use goniolight::radiosity::gpu::GpuSettings;
 use goniolight::radiosity::initial::{InitialState, LuminaireLight};
 use goniolight::radiosity::scene::{luminance, RadiosityScene};
 use goniolight::radiosity::shooters::{Hierarchy, ShooterShape, Shooters};
-use goniolight::radiosity::solve::StopAt;
 use goniolight::radiosity::SolverSettings;
 use goniolight::render::ShadowSettings;
 use goniolight::scene::{Material, Scene, SceneMesh};
 
 #[path = "common/gpu.rs"]
 mod gpu_common;
+#[path = "common/solve.rs"]
+mod solve_common;
 
 fn bundled(name: &str) -> Scene {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -35,7 +36,7 @@ fn clusters() -> GpuSettings {
     }
 }
 
-/// Solves to `converge` and returns the radiosity per element.
+/// Solves to `converge` and returns the radiosity per element and the shots.
 fn solve(
     gpu: &goniolight::gpu::Gpu,
     r: &RadiosityScene,
@@ -43,16 +44,8 @@ fn solve(
     gpu_settings: GpuSettings,
     converge: f64,
 ) -> (Vec<DVec3>, usize) {
-    let mut solver = GpuSolver::new(gpu, r, initial, SolverSettings::default(), gpu_settings);
-    let stop = StopAt {
-        converge,
-        max_shots: Some(20_000),
-        time_budget: None,
-    };
-    solver
-        .solve(&stop, &AtomicBool::new(false), |_| {})
-        .unwrap();
-    (solver.radiosity().unwrap(), solver.shots)
+    let s = solve_common::solve(gpu, r, initial, gpu_settings, converge);
+    (s.radiosity, s.shots)
 }
 
 /// Area-weighted mean |a − b| over the area-weighted mean of b (luminance).
@@ -296,4 +289,32 @@ fn gathering_at_points_from_cluster_cells_is_as_close_to_a_fine_gather_as_from_p
         tree_worst <= 1.25 * flat_worst,
         "{tree_worst} vs {flat_worst}"
     );
+}
+
+/// Rays between surfaces are cast against the casters with CAD fans merged back: in the
+/// CAD room (2 600 strips drawn as 52 triangles) every ray between two elements' points is
+/// blocked or not as it is by the strips themselves.
+#[test]
+fn rays_against_the_merged_strips_see_what_the_strips_see() {
+    let r = RadiosityScene::new(&bundled("cad_room.toml"), 4.0, 2).unwrap();
+    assert!(r.visibility_mesh().triangles.len() * 20 < r.casters.triangles.len());
+    let el = &r.elements;
+    let eps = r.self_hit_epsilon;
+    let none = goniolight::shadow::IgnoredTriangles::default();
+    let (mut blocked, mut differ) = (0, 0);
+    let n = el.len();
+    for k in 0..20_000usize {
+        // Pairs of elements spread over the room (a multiplicative hash of k).
+        let (a, b) = ((k * 7919) % n, (k * 104_729 + n / 2) % n);
+        let from = el.position[a] + el.normal(a) * eps;
+        let light = goniolight::shadow::Light(from.extend(1.0));
+        let to = el.position[b] + el.normal(b) * eps;
+        let strips = r.caster_bvh().in_shadow(&light, to, eps, &none);
+        let merged = r.visibility_bvh().in_shadow(&light, to, eps, &none);
+        blocked += strips as usize;
+        differ += (strips != merged) as usize;
+    }
+    eprintln!("20000 rays: {blocked} blocked by the strips, {differ} answered otherwise");
+    assert!(blocked > 2_000, "{blocked}");
+    assert_eq!(differ, 0);
 }

@@ -7,23 +7,23 @@
 //! 0`), and the furnace stays within 0.5 % of E / (1 − ρ).
 
 use std::path::Path;
-use std::sync::atomic::AtomicBool;
 
 use glam::{DVec3, Vec3};
 use goniolight::geometry::generate::cuboid;
 use goniolight::radiosity::cpu::CpuSolver;
-use goniolight::radiosity::gpu::{GpuSettings, GpuSolver};
+use goniolight::radiosity::gpu::GpuSettings;
 use goniolight::radiosity::initial::{InitialState, LuminaireLight};
 use goniolight::radiosity::links::{self, ReceiverBoxes, LINK_LEVELS};
 use goniolight::radiosity::scene::{luminance, RadiosityScene};
 use goniolight::radiosity::shooters::{Hierarchy, ShooterShape, Shooters};
-use goniolight::radiosity::solve::StopAt;
 use goniolight::radiosity::SolverSettings;
 use goniolight::render::ShadowSettings;
 use goniolight::scene::{Material, Scene, SceneMesh};
 
 #[path = "common/gpu.rs"]
 mod gpu_common;
+#[path = "common/solve.rs"]
+mod solve_common;
 
 fn bundled(name: &str) -> Scene {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -244,16 +244,8 @@ fn solve(
         link_error,
         ..GpuSettings::default()
     };
-    let mut solver = GpuSolver::new(gpu, r, initial, SolverSettings::default(), gpu_settings);
-    let stop = StopAt {
-        converge,
-        max_shots: Some(20_000),
-        time_budget: None,
-    };
-    solver
-        .solve(&stop, &AtomicBool::new(false), |_| {})
-        .unwrap();
-    (solver.radiosity().unwrap(), solver.shots, solver.drawn)
+    let s = solve_common::solve(gpu, r, initial, gpu_settings, converge);
+    (s.radiosity, s.shots, s.drawn)
 }
 
 #[test]

@@ -704,3 +704,92 @@ fn solved_display_is_the_light_map_plus_the_direct_specular_term() {
     );
     assert!(median < 0.03, "{median}");
 }
+
+/// More elements than one 128 MiB binding held as the solver's first 48-byte records
+/// (2 796 202): every per-element buffer is 16 bytes wide now (8.4 M elements per binding),
+/// and 4.46 M receivers need more than 65 535 workgroups of 64 (a two-dimensional dispatch).
+/// One shot in the furnace box picks the strongest triangle (its 515 000 elements summed
+/// by a workgroup: one llvmpipe thread stops after 65 535 loop iterations), delivers all
+/// its power, and the elements past the old limit receive what the form factors to the
+/// shooter's patches give (a convex box: all visible).
+#[test]
+fn elements_past_one_binding_of_the_old_records_receive_their_light() {
+    let Some(gpu) = gpu_common::gpu() else { return };
+    let rho = 0.5;
+    let r = RadiosityScene::new(&furnace(rho as f32, 100.0), 585.0, 8).unwrap();
+    let el = &r.elements;
+    let old_limit = (128usize << 20) / 48;
+    assert!(el.len() > old_limit, "{} elements", el.len());
+    goniolight::render::limits::check_radiosity(&gpu, el.len()).unwrap();
+    let settings = SolverSettings::default();
+    let initial = CpuSolver::new(&r, settings).state();
+    let mut solver = GpuSolver::new(&gpu, &r, &initial, settings, GpuSettings::default());
+    // Millions of elements (a floor triangle alone has 339 000) still pick the strongest shooter (a floor
+    // triangle, 150 lm) and the right unshot power.
+    let chosen = solver.select().unwrap();
+    let t = chosen.shooter.unwrap();
+    let cpu = CpuSolver::new(&r, settings);
+    let (best, _) = cpu.select().unwrap();
+    let power = |t: usize| 100.0 * el.charts[t].area;
+    assert!((power(t) / power(best) - 1.0).abs() < 1e-4, "{t} vs {best}");
+    let unshot_power = chosen.unshot_power / cpu.unshot_power();
+    assert!((unshot_power - 1.0).abs() < 1e-4, "{unshot_power}");
+    solver.shoot(t).unwrap();
+    let b = solver.radiosity().unwrap();
+    let chart = &el.charts[t];
+    let shot: f64 = (chart.first..chart.first + chart.count)
+        .map(|e| 100.0 * el.area[e as usize])
+        .sum();
+    let gain = |e: usize| b[e].x - initial.radiosity[e].x;
+    let received: f64 = (0..el.len()).map(|e| gain(e) * el.area[e] / rho).sum();
+    eprintln!(
+        "{} elements: shot {shot:.3} lm, received {received:.3} lm",
+        el.len()
+    );
+    assert!((received / shot - 1.0).abs() < 0.01, "{received} vs {shot}");
+    let patches = &el.patches[chart.first_patch as usize..][..chart.patch_count as usize];
+    let (mut worst, mut lit) = (0.0f64, 0);
+    for e in old_limit..el.len() {
+        if el.chart[e] as usize == t {
+            continue;
+        }
+        let want: f64 = patches
+            .iter()
+            .map(|p| {
+                rho * 100.0
+                    * form_factor::polygon(el.position[e], el.normal(e), &p.polygon, chart.normal)
+            })
+            .sum();
+        // Relative to at least 0.01 lm/m²: radiosity is stored as f32 (a step of 8e-6 at
+        // the 100 lm/m² the elements start from).
+        let d = (gain(e) - want).abs() / want.max(0.01);
+        worst = worst.max(d);
+        lit += (want > 1e-3) as usize;
+    }
+    eprintln!(
+        "past the old limit: {lit} lit elements, worst {:.4} %",
+        100.0 * worst
+    );
+    assert!(lit > 10_000, "{lit}");
+    assert!(worst < 0.01, "worst relative difference {worst}");
+}
+
+/// One element more than a binding holds is refused with what to do, before any buffer is
+/// made (a panic inside wgpu otherwise); as many as it holds are accepted.
+#[test]
+fn more_elements_than_one_binding_holds_are_refused() {
+    let Some(gpu) = gpu_common::gpu() else { return };
+    let limits = gpu.device.limits();
+    let fit = limits
+        .max_storage_buffer_binding_size
+        .min(limits.max_buffer_size)
+        / goniolight::render::limits::RADIOSITY_ELEMENT_BYTES;
+    let check = |n: u64| goniolight::render::limits::check_radiosity(&gpu, n as usize);
+    check(fit).unwrap();
+    let message = check(fit + 1).unwrap_err().to_string();
+    assert!(
+        message.contains("lower --texel-density")
+            && message.contains(&format!("about {fit} elements fit")),
+        "{message}"
+    );
+}

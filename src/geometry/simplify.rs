@@ -5,9 +5,8 @@
 //! covered point set does not change (up to `tolerance`); vertices are never moved.
 //! The GPU radiosity solver draws its visibility maps from this mesh.
 
-use std::collections::HashMap;
-
 use glam::DVec3;
+use rustc_hash::FxHashMap;
 
 use super::Mesh;
 
@@ -19,6 +18,46 @@ fn key(a: u32, b: u32) -> EdgeKey {
 
 fn edges(t: [u32; 3]) -> [EdgeKey; 3] {
     [key(t[0], t[1]), key(t[1], t[2]), key(t[2], t[0])]
+}
+
+/// The triangles on an edge. Only an edge of exactly two can be merged across, so it keeps
+/// two and marks itself crowded once it ever had more (never merged across after that:
+/// conservative, and no list per edge to allocate).
+#[derive(Debug, Clone, Copy, Default)]
+struct EdgeUse {
+    triangles: [u32; 2],
+    count: u32,
+    crowded: bool,
+}
+
+impl EdgeUse {
+    fn add(&mut self, t: u32) {
+        if self.count < 2 {
+            self.triangles[self.count as usize] = t;
+        } else {
+            self.crowded = true;
+        }
+        self.count += 1;
+    }
+
+    fn remove(&mut self, t: u32) {
+        if !self.crowded {
+            match self.triangles[..self.count as usize]
+                .iter()
+                .position(|&x| x == t)
+            {
+                Some(0) => self.triangles[0] = self.triangles[1],
+                Some(_) => {}
+                None => return,
+            }
+        }
+        self.count -= 1;
+    }
+
+    /// The two triangles on the edge, when there are exactly two.
+    fn pair(&self) -> Option<(u32, u32)> {
+        (self.count == 2 && !self.crowded).then_some((self.triangles[0], self.triangles[1]))
+    }
 }
 
 /// `mesh` with every pair of adjacent triangles whose union is a triangle merged, until
@@ -47,10 +86,11 @@ pub fn merge_strips_within(mesh: &Mesh, group: &[u32], tolerance: f64) -> Merged
     let mut triangles = welded.triangles.clone();
     let mut alive = vec![true; triangles.len()];
     let mut origin: Vec<u32> = (0..triangles.len() as u32).collect();
-    let mut by_edge: HashMap<EdgeKey, Vec<u32>> = HashMap::new();
+    let mut by_edge: FxHashMap<EdgeKey, EdgeUse> = FxHashMap::default();
+    by_edge.reserve(triangles.len() * 3 / 2);
     for (t, tri) in triangles.iter().enumerate() {
         for e in edges(*tri) {
-            by_edge.entry(e).or_default().push(t as u32);
+            by_edge.entry(e).or_default().add(t as u32);
         }
     }
     let normal = |t: [u32; 3]| {
@@ -69,10 +109,7 @@ pub fn merge_strips_within(mesh: &Mesh, group: &[u32], tolerance: f64) -> Merged
     };
     let mut work: Vec<EdgeKey> = by_edge.keys().copied().collect();
     while let Some(e) = work.pop() {
-        let Some(list) = by_edge.get(&e) else {
-            continue;
-        };
-        let [t1, t2] = list[..] else {
+        let Some((t1, t2)) = by_edge.get(&e).and_then(EdgeUse::pair) else {
             continue;
         };
         if !same_group(t1, t2) {
@@ -99,7 +136,7 @@ pub fn merge_strips_within(mesh: &Mesh, group: &[u32], tolerance: f64) -> Merged
         for (t, tri) in [(t1, a), (t2, b)] {
             for k in edges(tri) {
                 if let Some(l) = by_edge.get_mut(&k) {
-                    l.retain(|&x| x != t);
+                    l.remove(t);
                 }
             }
         }
@@ -107,7 +144,7 @@ pub fn merge_strips_within(mesh: &Mesh, group: &[u32], tolerance: f64) -> Merged
         triangles[t1 as usize] = merged;
         origin[t1 as usize] = origin[t1 as usize].min(origin[t2 as usize]);
         for k in edges(merged) {
-            by_edge.entry(k).or_default().push(t1);
+            by_edge.entry(k).or_default().add(t1);
             work.push(k);
         }
     }
@@ -129,7 +166,8 @@ pub fn merge_strips_within(mesh: &Mesh, group: &[u32], tolerance: f64) -> Merged
 /// [`super::weld::weld`] sweeps along x and is quadratic where many vertices share an x,
 /// as the corners of a CAD fan along an edge do).
 fn weld_exact(mesh: &Mesh) -> Mesh {
-    let mut index: HashMap<[u64; 3], u32> = HashMap::with_capacity(mesh.positions.len());
+    let mut index: FxHashMap<[u64; 3], u32> = FxHashMap::default();
+    index.reserve(mesh.positions.len());
     let mut positions = Vec::new();
     let map: Vec<u32> = mesh
         .positions
@@ -177,6 +215,32 @@ mod tests {
                 .iter()
                 .all(|&(u, v)| (v - u).cross(q - u).dot(n) >= -tol * len)
         })
+    }
+
+    #[test]
+    fn an_edge_of_three_triangles_is_never_merged_across() {
+        // Two strips of a fan (their union is the triangle a, b, c) and a fin standing on
+        // their shared edge: merging the strips would leave the fin on an edge that no
+        // longer exists, so nothing merges; without the fin they do.
+        let (a, b, c, m) = (
+            DVec3::ZERO,
+            DVec3::new(2.0, 0.0, 0.0),
+            DVec3::new(0.0, 2.0, 0.0),
+            DVec3::new(1.0, 1.0, 0.0),
+        );
+        let fin = DVec3::new(0.5, 0.5, 1.0);
+        let mesh = |with_fin: bool| {
+            let mut triangles = vec![[0, 1, 3], [0, 3, 2]];
+            if with_fin {
+                triangles.push([0, 3, 4]);
+            }
+            Mesh {
+                positions: vec![a, b, c, m, fin],
+                triangles,
+            }
+        };
+        assert_eq!(merge_strips(&mesh(false), 1e-9).triangles.len(), 1);
+        assert_eq!(merge_strips(&mesh(true), 1e-9).triangles.len(), 3);
     }
 
     #[test]

@@ -161,12 +161,7 @@ impl Gpu {
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("goniolight"),
             required_features: adapter.features() & wanted_features,
-            required_limits: wgpu::Limits {
-                // The radiosity solver binds 8 storage buffers (WebGPU's default limit).
-                max_storage_buffers_per_shader_stage:
-                    adapter.limits().max_storage_buffers_per_shader_stage.min(8),
-                ..wgpu::Limits::downlevel_defaults().using_resolution(adapter.limits())
-            },
+            required_limits: required_limits(&adapter.limits()),
             ..Default::default()
         }))
         .map_err(|source| GpuError::Device {
@@ -511,5 +506,21 @@ impl Gpu {
             .poll(wgpu::PollType::wait_indefinitely())
             .map(|_| ())
             .map_err(|e| GpuError::Operation(e.to_string()))
+    }
+}
+
+/// The limits asked of a device: WebGPU's downlevel defaults (buffers of up to 256 MiB),
+/// raised to what the adapter offers for texture sizes, storage buffers per stage (up to
+/// 16; the radiosity solver binds
+/// [`RADIOSITY_STORAGE_BUFFERS`](crate::render::limits::RADIOSITY_STORAGE_BUFFERS)) and the
+/// size of one storage binding (lavapipe: 128 MiB; most GPUs: the whole buffer).
+fn required_limits(adapter: &wgpu::Limits) -> wgpu::Limits {
+    let defaults = wgpu::Limits::downlevel_defaults().using_resolution(adapter.clone());
+    wgpu::Limits {
+        max_storage_buffers_per_shader_stage: adapter.max_storage_buffers_per_shader_stage.min(16),
+        max_storage_buffer_binding_size: adapter
+            .max_storage_buffer_binding_size
+            .min(defaults.max_buffer_size),
+        ..defaults
     }
 }

@@ -12,7 +12,7 @@ use super::scene::{luminance, RadiosityScene};
 use super::solve;
 use super::{Ambient, SolverSettings};
 use crate::lighting::SurfacePoint;
-use crate::shadow::{raycast, IgnoredTriangles, Light};
+use crate::shadow::{IgnoredTriangles, Light};
 
 /// The state of a CPU solution.
 #[derive(Debug, Clone)]
@@ -46,7 +46,7 @@ impl<'a> CpuSolver<'a> {
             illuminance: vec![0.0; n],
             initial_unshot: 0.0,
             shots: 0,
-            eps: raycast::self_hit_epsilon(&scene.casters),
+            eps: scene.self_hit_epsilon,
         };
         s.shoot_luminaires();
         s.initial_unshot = s.unshot_power();
@@ -56,7 +56,7 @@ impl<'a> CpuSolver<'a> {
     fn visible(&self, from: DVec3, from_n: DVec3, to: DVec3, to_n: DVec3) -> bool {
         let light = Light((from + from_n * self.eps).extend(1.0));
         let none = IgnoredTriangles::default();
-        let bvh = self.scene.caster_bvh();
+        let bvh = self.scene.visibility_bvh();
         !bvh.in_shadow(&light, to + to_n * self.eps, self.eps, &none)
     }
 

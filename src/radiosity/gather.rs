@@ -14,7 +14,7 @@ use super::form_factor::{self, FormFactorKind};
 use super::scene::RadiosityScene;
 use super::shooters::Shooters;
 use crate::lighting::SurfacePoint;
-use crate::shadow::{raycast, IgnoredTriangles, Light};
+use crate::shadow::{IgnoredTriangles, Light};
 
 /// One patch to gather from: its polygon, where it sees from, and its mean radiosity.
 #[derive(Debug, Clone)]
@@ -72,8 +72,8 @@ pub fn from_patches(
     kind: FormFactorKind,
 ) -> DVec3 {
     let (p, n) = (point.position, point.normal.normalize_or_zero());
-    let eps = raycast::self_hit_epsilon(&scene.casters);
-    let (bvh, none) = (scene.caster_bvh(), IgnoredTriangles::default());
+    let eps = scene.self_hit_epsilon;
+    let (bvh, none) = (scene.visibility_bvh(), IgnoredTriangles::default());
     let mut e = DVec3::ZERO;
     for patch in patches {
         let f = match kind {

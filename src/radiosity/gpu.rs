@@ -62,10 +62,12 @@ impl Default for GpuSettings {
     }
 }
 
-/// An element's record on the GPU: position and area, normal and shooter, reflectance.
-type ElementGpu = [[f32; 4]; 3];
+/// An element's records on the GPU, each in its own binding: position and area; normal
+/// and shooter (the reflectance is the shooter's). With radiosity and unshot radiosity
+/// they are the solver's per-element buffers, none wider than this.
+type ElementRecord = [f32; 4];
 const _: () = assert!(
-    std::mem::size_of::<ElementGpu>() as u64 == crate::render::limits::RADIOSITY_ELEMENT_BYTES
+    std::mem::size_of::<ElementRecord>() as u64 == crate::render::limits::RADIOSITY_ELEMENT_BYTES
 );
 
 /// Most patches shot per GPU submission; the solver may stop between batches.
@@ -91,7 +93,8 @@ struct SolveParams {
     range_count: u32,
     range_total: u32,
     range_first: u32,
-    _pad: [u32; 3],
+    large_shooters: u32,
+    _pad: [u32; 2],
 }
 
 #[repr(C)]
@@ -136,6 +139,7 @@ pub struct Selection {
 
 struct Pipelines {
     shooter_sums: wgpu::ComputePipeline,
+    large_shooter_sums: wgpu::ComputePipeline,
     select: wgpu::ComputePipeline,
     gather: wgpu::ComputePipeline,
     clear: wgpu::ComputePipeline,
@@ -182,6 +186,8 @@ pub struct GpuSolver<'a> {
     max_patches: usize,
     /// The shot's receiver ranges and threads (every element of them).
     culled: (u32, u32),
+    /// Shooters of more than [`SMALL_SHOOTER`] elements (a workgroup sums each).
+    large_shooters: u32,
     /// Receiver threads dispatched so far (elements in front of the shooters, per map).
     pub receiver_threads: u64,
     /// The receivers' boxes, for the links.
@@ -223,6 +229,7 @@ impl Pipelines {
             B::Storage { read_only: false },
             B::Storage { read_only: true },
             B::Storage { read_only: false },
+            B::Storage { read_only: true },
         ];
         let entries: Vec<_> = kinds
             .iter()
@@ -299,6 +306,7 @@ impl Pipelines {
         );
         Pipelines {
             shooter_sums: compute_pipeline("shooter_sums", &shared_only),
+            large_shooter_sums: compute_pipeline("large_shooter_sums", &shared_only),
             select: compute_pipeline("select_shooter", &shared_only),
             gather: compute_pipeline("gather_patches", &shared_only),
             clear: compute_pipeline("clear_shooter", &shared_only),
@@ -319,6 +327,22 @@ fn frame(n: DVec3) -> (DVec3, DVec3) {
     }
     .normalize();
     (t, n.cross(t))
+}
+
+/// Shooters of at most this many elements are summed by one GPU thread each (in f32, and
+/// llvmpipe ends a thread's loops after 65 535 iterations); larger ones by a workgroup.
+/// `SMALL_SHOOTER` in radiosity.wgsl.
+const SMALL_SHOOTER: u32 = 1024;
+
+/// Most workgroups along one dimension of a dispatch (WebGPU's limit).
+const MAX_GROUPS_X: u32 = 65_535;
+
+/// Dispatches `groups` workgroups (at least one), in rows of at most [`MAX_GROUPS_X`]: the
+/// shaders number them row by row (`linear_group`, `linear_thread` in radiosity.wgsl).
+fn dispatch_groups(pass: &mut wgpu::ComputePass<'_>, groups: u32) {
+    let groups = groups.max(1);
+    let rows = groups.div_ceil(MAX_GROUPS_X);
+    pass.dispatch_workgroups(groups.div_ceil(rows), rows, 1);
 }
 
 fn v4(v: DVec3, w: f32) -> [f32; 4] {
@@ -352,21 +376,21 @@ impl<'a> GpuSolver<'a> {
     ) -> GpuSolver<'a> {
         let el = &scene.elements;
         let n = el.len();
-        let records: Vec<ElementGpu> = (0..n)
-            .map(|e| {
-                [
-                    v4(el.position[e], el.area[e] as f32),
-                    v4(el.normal(e), f32::from_bits(shooters.element_shooter[e])),
-                    v4(scene.element_reflectance(e), 0.0),
-                ]
-            })
+        debug_assert!((0..n).all(|e| {
+            let k = shooters.element_shooter[e] as usize;
+            scene.reflectance[shooters.material[k]] == scene.element_reflectance(e)
+        }));
+        let points: Vec<ElementRecord> = (0..n)
+            .map(|e| v4(el.position[e], el.area[e] as f32))
             .collect();
-        let elements: Vec<[f32; 4]> = records.into_iter().flatten().collect();
+        let normals: Vec<ElementRecord> = (0..n)
+            .map(|e| v4(el.normal(e), f32::from_bits(shooters.element_shooter[e])))
+            .collect();
         let start: Vec<[f32; 4]> = initial.radiosity.iter().map(|b| v4(*b, 0.0)).collect();
         let start_lit: Vec<[f32; 4]> = (0..n)
             .map(|e| v4(initial.radiosity[e], initial.illuminance[e] as f32))
             .collect();
-        let shooter_info: Vec<[u32; 8]> = (0..shooters.len())
+        let mut shooter_info: Vec<[u32; 8]> = (0..shooters.len())
             .map(|k| {
                 let r = scene.reflectance[shooters.material[k]].as_vec3();
                 [
@@ -381,6 +405,18 @@ impl<'a> GpuSolver<'a> {
                 ]
             })
             .collect();
+        // Shooters of more than SMALL_SHOOTER elements are summed by a workgroup each:
+        // listed after the shooters (range.z: the shooter).
+        let large: Vec<[u32; 8]> = (0..shooters.len())
+            .filter(|&k| shooters.count[k] > SMALL_SHOOTER)
+            .map(|k| {
+                let mut record = shooter_info[k];
+                record[2] = k as u32;
+                record
+            })
+            .collect();
+        let large_shooters = large.len() as u32;
+        shooter_info.extend(large);
         // Room for the largest plan; links are left out where its cells would not fit
         // one binding (a cluster of millions of elements).
         let max_binding = gpu
@@ -402,7 +438,8 @@ impl<'a> GpuSolver<'a> {
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let element_buf = storage(gpu, "elements", &bytes(&elements), false);
+        let element_points = storage(gpu, "element points", &bytes(&points), false);
+        let element_normals = storage(gpu, "element normals", &bytes(&normals), false);
         let shooter_elements = storage(
             gpu,
             "shooter elements",
@@ -416,7 +453,7 @@ impl<'a> GpuSolver<'a> {
         let shooter_power = storage(
             gpu,
             "shooter power",
-            &vec![0u8; 16 * (shooter_info.len() + 3)],
+            &vec![0u8; 16 * (shooters.len() + 3)],
             true,
         );
         let selection = storage(gpu, "selection", &[0u8; 48], true);
@@ -433,7 +470,7 @@ impl<'a> GpuSolver<'a> {
             &pipelines.shooter_sums.get_bind_group_layout(0),
             &[
                 (0, params.as_entire_binding()),
-                (1, element_buf.as_entire_binding()),
+                (1, element_points.as_entire_binding()),
                 (2, shooter_elements.as_entire_binding()),
                 (3, radiosity.as_entire_binding()),
                 (4, unshot.as_entire_binding()),
@@ -441,15 +478,16 @@ impl<'a> GpuSolver<'a> {
                 (6, shooter_power.as_entire_binding()),
                 (7, patch_buf.as_entire_binding()),
                 (8, patch_delta.as_entire_binding()),
+                (9, element_normals.as_entire_binding()),
             ],
         );
         // Visibility needs only the surfaces, not their tessellation: a CAD fan's strips
         // are drawn as the triangle they fill (the same points, far fewer triangles).
+        let mesh = scene.visibility_mesh();
         let scene_size = scene
             .casters
             .bounds()
             .map_or(1.0, |(lo, hi)| (hi - lo).length());
-        let mesh = &crate::geometry::simplify::merge_strips(&scene.casters, 1e-6 * scene_size);
         let verts: Vec<[f32; 3]> = mesh
             .triangles
             .iter()
@@ -516,6 +554,7 @@ impl<'a> GpuSolver<'a> {
             patch_delta,
             max_patches,
             culled: (0, 0),
+            large_shooters,
             receiver_threads: 0,
             receivers: ReceiverBoxes::new(scene),
             drawn: 0,
@@ -547,13 +586,16 @@ impl<'a> GpuSolver<'a> {
             range_count: self.culled.0,
             range_total: self.culled.1,
             range_first: self.max_patches as u32,
-            _pad: [0; 3],
+            large_shooters: self.large_shooters,
+            _pad: [0; 2],
         };
         self.gpu
             .queue
             .write_buffer(&self.params, 0, bytemuck::bytes_of(&p));
     }
 
+    /// Runs `pipeline` over `threads` threads in groups of `group` (a group per item for
+    /// the passes that sum with one workgroup each: `group` 1).
     fn dispatch(
         &self,
         enc: &mut wgpu::CommandEncoder,
@@ -564,7 +606,7 @@ impl<'a> GpuSolver<'a> {
         let mut pass = enc.begin_compute_pass(&Default::default());
         pass.set_pipeline(pipeline);
         pass.set_bind_group(0, &self.shared, &[]);
-        pass.dispatch_workgroups(threads.div_ceil(group).max(1), 1, 1);
+        dispatch_groups(&mut pass, threads.div_ceil(group));
     }
 
     /// Chooses the next shooter on the GPU (reduction over the shooters).
@@ -573,6 +615,12 @@ impl<'a> GpuSolver<'a> {
         let mut enc = self.gpu.device.create_command_encoder(&Default::default());
         let shooters = self.shooters.len() as u32;
         self.dispatch(&mut enc, &self.pipelines.shooter_sums, shooters, 64);
+        self.dispatch(
+            &mut enc,
+            &self.pipelines.large_shooter_sums,
+            self.large_shooters,
+            1,
+        );
         self.dispatch(&mut enc, &self.pipelines.select, 1, 1);
         // Only the 48-byte selection record comes back.
         enc.copy_buffer_to_buffer(
@@ -776,7 +824,7 @@ impl<'a> GpuSolver<'a> {
         let cells = plan.patches.len() as u32;
         self.write_params(s as u32, 0, cells, 0..0);
         let mut enc = self.gpu.device.create_command_encoder(&Default::default());
-        self.dispatch(&mut enc, &self.pipelines.gather, cells, 64);
+        self.dispatch(&mut enc, &self.pipelines.gather, cells, 1);
         self.gpu.queue.submit([enc.finish()]);
         let radiosity: Vec<f64> = if plan.patches.iter().any(|p| p.level > 0) {
             let delta = self
@@ -937,7 +985,7 @@ impl<'a> GpuSolver<'a> {
             pass.set_pipeline(&self.pipelines.receive);
             pass.set_bind_group(0, &self.shared, &[]);
             pass.set_bind_group(1, &shot_bind, &[(k as u64 * SHOT_STRIDE) as u32]);
-            pass.dispatch_workgroups(receivers.div_ceil(64).max(1), 1, 1);
+            dispatch_groups(&mut pass, receivers.div_ceil(64));
         }
         self.gpu.queue.submit([enc.finish()]);
         Ok(())
@@ -978,5 +1026,16 @@ impl<'a> GpuSolver<'a> {
     /// Unshot radiosity per element.
     pub fn unshot(&self) -> Result<Vec<DVec3>, GpuError> {
         self.read_rgb(&self.unshot)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::SMALL_SHOOTER;
+
+    #[test]
+    fn the_shader_sums_the_shooters_the_solver_lists_as_small() {
+        let line = format!("const SMALL_SHOOTER = {SMALL_SHOOTER}u;");
+        assert!(crate::gpu::shaders::RADIOSITY.contains(&line), "{line}");
     }
 }

@@ -25,12 +25,17 @@ pub struct RadiosityScene {
     pub casters: Mesh,
     /// The ray-cast hierarchy over `casters`, built on first use.
     caster_bvh: std::sync::OnceLock<TriangleBvh>,
+    /// `casters` with CAD fans merged back, and its ray-cast hierarchy, built on first use.
+    visibility: std::sync::OnceLock<(Mesh, TriangleBvh)>,
     /// Seconds spent building the face clusters for the charts (0 without them).
     pub clustering_seconds: f64,
     /// The planar face clusters of `casters`, built on first use.
     planar: std::sync::OnceLock<PlanarClusters>,
     /// Per luminaire, the caster triangles of its housing (they never shadow its light).
     pub ignored: Vec<IgnoredTriangles>,
+    /// How far rays between surfaces start off them, metres
+    /// ([`crate::shadow::raycast::self_hit_epsilon`] of `casters`).
+    pub self_hit_epsilon: f64,
     /// Total surface area, m².
     pub total_area: f64,
     /// The area-weighted mean reflectance (luminance), for the ambient term.
@@ -95,6 +100,7 @@ impl RadiosityScene {
                 elements
             }
         };
+        let self_hit_epsilon = crate::shadow::raycast::self_hit_epsilon(&casters);
         let mut scene = RadiosityScene {
             elements,
             reflectance: scene
@@ -110,9 +116,11 @@ impl RadiosityScene {
             luminaires: scene.luminaires.clone(),
             casters,
             caster_bvh: std::sync::OnceLock::new(),
+            visibility: std::sync::OnceLock::new(),
             planar,
             clustering_seconds,
             ignored: scene.ignored_per_luminaire(),
+            self_hit_epsilon,
             total_area: 0.0,
             mean_reflectance: 0.0,
         };
@@ -129,6 +137,32 @@ impl RadiosityScene {
     pub fn caster_bvh(&self) -> &TriangleBvh {
         self.caster_bvh
             .get_or_init(|| TriangleBvh::new(&self.casters))
+    }
+
+    /// What blocks light between surfaces: [`Self::casters`] with CAD fans merged back
+    /// into the triangles they fill ([`crate::geometry::simplify::merge_strips`]: the same
+    /// points, far fewer and better-shaped triangles), built on the first call. The GPU's
+    /// visibility maps draw it; rays between surfaces are cast against it. Its triangles
+    /// are not the casters' (a luminaire's ignored housing needs [`Self::caster_bvh`]).
+    pub fn visibility_mesh(&self) -> &Mesh {
+        &self.visibility_parts().0
+    }
+
+    /// The ray-cast hierarchy over [`Self::visibility_mesh`].
+    pub fn visibility_bvh(&self) -> &TriangleBvh {
+        &self.visibility_parts().1
+    }
+
+    fn visibility_parts(&self) -> &(Mesh, TriangleBvh) {
+        self.visibility.get_or_init(|| {
+            let size = self
+                .casters
+                .bounds()
+                .map_or(1.0, |(lo, hi)| (hi - lo).length());
+            let mesh = crate::geometry::simplify::merge_strips(&self.casters, 1e-6 * size);
+            let bvh = TriangleBvh::new(&mesh);
+            (mesh, bvh)
+        })
     }
 
     /// The planar face clusters of [`Self::casters`] (built on the first call unless the

@@ -100,13 +100,24 @@ fn scene_refusal(scene: &Scene, message: String) -> GpuError {
     refusal(format!("{}: {message}", scene.path.display()))
 }
 
-/// Bytes per radiosity element in the solver's largest storage buffer (position + area,
-/// normal + shooter, reflectance: `radiosity/gpu.rs` checks its record against this).
-pub const RADIOSITY_ELEMENT_BYTES: u64 = 48;
+/// Bytes per radiosity element in each of the solver's per-element storage buffers
+/// (position and area; normal and shooter; radiosity; unshot radiosity: `radiosity/gpu.rs`
+/// checks its records against this), so a binding of 128 MiB holds 8.4 M elements.
+pub const RADIOSITY_ELEMENT_BYTES: u64 = 16;
 
-/// Checks the radiosity solver's per-element buffers for `elements` fit `gpu`.
+/// Storage buffers the radiosity solver binds per compute stage.
+pub const RADIOSITY_STORAGE_BUFFERS: u32 = 9;
+
+/// Checks the radiosity solver's per-element buffers for `elements` fit `gpu`, and that it
+/// binds as many storage buffers as the solver needs.
 pub fn check_radiosity(gpu: &Gpu, elements: usize) -> Result<(), GpuError> {
     let limits = gpu.device.limits();
+    if limits.max_storage_buffers_per_shader_stage < RADIOSITY_STORAGE_BUFFERS {
+        return Err(refusal(format!(
+            "radiosity binds {RADIOSITY_STORAGE_BUFFERS} storage buffers per shader stage; this GPU binds at most {}",
+            limits.max_storage_buffers_per_shader_stage
+        )));
+    }
     let max = limits
         .max_buffer_size
         .min(limits.max_storage_buffer_binding_size);
