@@ -6,15 +6,14 @@
 //! `tests/radiosity.rs`, with ambient overshooting).
 
 use std::path::Path;
-use std::sync::atomic::AtomicBool;
 
 use glam::{DVec2, DVec3};
 use goniolight::radiosity::cpu::CpuSolver;
-use goniolight::radiosity::gpu::{GpuSettings, GpuSolver};
+use goniolight::radiosity::gpu::GpuSettings;
 use goniolight::radiosity::initial::{InitialState, LuminaireLight};
 use goniolight::radiosity::scene::{luminance, RadiosityScene};
 use goniolight::radiosity::shooters::Hierarchy;
-use goniolight::radiosity::solve::{self, StopAt};
+use goniolight::radiosity::solve;
 use goniolight::radiosity::SolverSettings;
 use goniolight::render::lightmap::LightMap;
 use goniolight::render::ShadowSettings;
@@ -22,6 +21,8 @@ use goniolight::scene::Scene;
 
 #[path = "common/gpu.rs"]
 mod gpu_common;
+#[path = "common/solve.rs"]
+mod solve_common;
 
 fn bundled(name: &str) -> Scene {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -50,18 +51,9 @@ fn solved(
         hierarchy,
         ..GpuSettings::default()
     };
-    let mut solver = GpuSolver::new(gpu, &r, &initial, settings, gpu_settings);
-    let stop = StopAt {
-        converge,
-        max_shots: Some(20_000),
-        time_budget: None,
-    };
-    solver
-        .solve(&stop, &AtomicBool::new(false), |_| {})
-        .unwrap();
-    let (b, e) = solver.radiosity_and_illuminance().unwrap();
-    let map = solve::light_map(&r, &b, &e);
-    (r, b, map)
+    let solved = solve_common::solve(gpu, &r, &initial, gpu_settings, converge);
+    let map = solve::light_map(&r, &solved.radiosity, &solved.illuminance);
+    (r, solved.radiosity, map)
 }
 
 /// The scene's triangle corners, in its order.
@@ -321,4 +313,93 @@ fn a_density_that_cannot_fit_is_refused_before_clustering() {
         "{err}"
     );
     assert!(err.to_string().starts_with("about 1."), "{err}");
+}
+
+/// A 4 m floor of two triangles (material 1) and, above it, a wavy 0.4 m sheet of 800
+/// triangles 2 cm across (material 2), laid out at 10 texels per metre.
+fn floor_and_sheet() -> RadiosityScene {
+    use goniolight::scene::{Camera, DisplayEntry, Material, SceneMesh};
+    let v = |x: f64, y: f64, z: f64| glam::Vec3::new(x as f32, y as f32, z as f32);
+    let floor = [
+        [v(0.0, 0.0, 0.0), v(4.0, 0.0, 0.0), v(4.0, 4.0, 0.0)],
+        [v(0.0, 0.0, 0.0), v(4.0, 4.0, 0.0), v(0.0, 4.0, 0.0)],
+    ];
+    let (cells, side) = (20, 0.4);
+    let at = |i: usize, j: usize| {
+        let (x, y) = (
+            1.0 + side * i as f64 / cells as f64,
+            1.0 + side * j as f64 / cells as f64,
+        );
+        v(x, y, 0.5 + 0.02 * (std::f64::consts::TAU * x / 0.2).sin())
+    };
+    let mut sheet = Vec::new();
+    for i in 0..cells {
+        for j in 0..cells {
+            sheet.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+            sheet.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+        }
+    }
+    let scene = Scene {
+        path: "floor and sheet".into(),
+        meshes: vec![
+            SceneMesh::from_triangles("floor", &floor, 1),
+            SceneMesh::from_triangles("sheet", &sheet, 2),
+        ],
+        materials: vec![Material::default(); 3],
+        luminaires: Vec::new(),
+        camera: Camera::perspective(DVec3::ONE, DVec3::ZERO, 60.0),
+        display: DisplayEntry::default(),
+        models: Vec::new(),
+    };
+    RadiosityScene::with_hierarchy(&scene, 10.0, 2, Hierarchy::Clusters).unwrap()
+}
+
+/// Edström §5.3: surfaces that vertex lighting would split most are light-mapped until the
+/// triangles it introduces fit the budget (default 10 % of the model's triangles); a
+/// surface finer than its light map introduces none and keeps its vertices; the scene
+/// file's choice and `--bake map|vertex` override the heuristic. The introduced triangles
+/// are counted here from the geometry: each side split into its length in texels.
+#[test]
+fn representation_follows_the_introduced_triangles_and_the_overrides() {
+    use goniolight::radiosity::bake::{plan, BakeChoice};
+    use goniolight::scene::file::Bake::{Map, Vertex};
+    let r = floor_and_sheet();
+    let texel = r.elements.charts[r.elements.triangles[0].chart as usize].texel_m;
+    let splits = ((4.0 * 2f64.sqrt() / texel).ceil() as u64).min(32);
+    assert_eq!(splits, 32);
+    let floor_introduced = 2 * (splits * splits - 1);
+    let is = |p: &goniolight::radiosity::bake::BakePlan, floor, sheet| {
+        p.bake[..2].iter().all(|&b| b == Some(floor))
+            && p.bake[2..].iter().all(|&b| b == Some(sheet))
+    };
+    let auto = plan(&r, &[], BakeChoice::Auto, None);
+    assert!(is(&auto, Map, Vertex), "{:?}", auto.surfaces);
+    assert_eq!(
+        auto.splits[2..].iter().max(),
+        Some(&1),
+        "the sheet is finer than its texels"
+    );
+    assert_eq!((auto.budget, auto.introduced), (80, 0));
+    assert_eq!((auto.surfaces, auto.triangles), ([1, 1], [2, 800]));
+    // A budget that holds the floor's split triangles keeps it vertex-lit.
+    let roomy = plan(&r, &[], BakeChoice::Auto, Some(floor_introduced));
+    assert!(is(&roomy, Vertex, Vertex));
+    assert_eq!(roomy.introduced, floor_introduced);
+    assert!((roomy.overhead() - floor_introduced as f64 / 802.0).abs() < 1e-12);
+    assert!(is(
+        &plan(&r, &[], BakeChoice::Auto, Some(floor_introduced - 1)),
+        Map,
+        Vertex
+    ));
+    // The scene file's choice stands over the budget.
+    let fixed = plan(&r, &[None, Some(Vertex), Some(Map)], BakeChoice::Auto, None);
+    assert!(is(&fixed, Vertex, Map));
+    assert_eq!(fixed.introduced, floor_introduced);
+    // --bake map|vertex over everything.
+    let all_map = plan(&r, &[None, Some(Vertex), None], BakeChoice::Map, None);
+    assert!(is(&all_map, Map, Map));
+    assert_eq!(all_map.introduced, 0);
+    let all_vertex = plan(&r, &[None, None, Some(Map)], BakeChoice::Vertex, None);
+    assert!(is(&all_vertex, Vertex, Vertex));
+    assert_eq!(all_vertex.introduced, floor_introduced);
 }

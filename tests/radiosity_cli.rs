@@ -522,38 +522,53 @@ fn floats(doc: &gltf::Gltf, accessor: gltf::Accessor, width: usize) -> Vec<Vec<f
         .collect()
 }
 
-/// `--export scene.glb`: a glTF binary the `gltf` crate reads back, Y-up, wound like the
-/// model, whose baked values at every corner are the solver's light map under that corner
-/// (`lightmap.exr`, `lightmap_lux.exr` of the same run) and whose colours are those values
-/// over the stated white point.
-#[test]
-fn export_writes_a_gltf_with_the_solution_baked_in() {
+/// What an export of the box room holds, as read back by the `gltf` crate.
+struct Exported {
+    /// Triangles exported.
+    triangles: usize,
+    /// Light-mapped and vertex-lit triangles.
+    by_bake: [usize; 2],
+    /// Their summed area, m².
+    area: f64,
+    /// The longest side of any vertex-lit triangle, m.
+    longest_vertex_side: f32,
+    /// What the command printed.
+    stderr: String,
+}
+
+/// Runs `radiosity --export` on the box room with `extra` flags and checks the file: a
+/// glTF binary, Y-up, wound like the model, whose baked values at every corner are the
+/// solver's light map under that corner (`lightmap.exr`, `lightmap_lux.exr` of the same
+/// run); vertex-lit primitives carry colours that are those values over the stated white
+/// point, light-mapped ones carry the light map as their base colour texture (bilinear,
+/// clamped) and no colours.
+fn export_box_room(extra: &[&str]) -> Exported {
     let dir = tempfile::tempdir().unwrap();
     let scene = root().join("assets/scenes/box_room.toml");
     let (out, glb) = (dir.path().join("out"), dir.path().join("room.glb"));
-    let (code, _, stderr) = run_cli(
-        &[
-            "radiosity",
-            scene.to_str().unwrap(),
-            "--max-shots",
-            "30",
-            "--out-dir",
-            out.to_str().unwrap(),
-            "--export",
-            glb.to_str().unwrap(),
-        ],
-        "",
-    );
+    let mut args = vec![
+        "radiosity",
+        scene.to_str().unwrap(),
+        "--max-shots",
+        "30",
+        "--out-dir",
+        out.to_str().unwrap(),
+        "--export",
+        glb.to_str().unwrap(),
+    ];
+    args.extend_from_slice(extra);
+    let (code, _, stderr) = run_cli(&args, "");
     assert_eq!(code, 0, "{stderr}");
     let doc = gltf::Gltf::from_slice(&std::fs::read(&glb).unwrap()).expect("a valid glTF binary");
     let extras: serde_json::Value =
         serde_json::from_str(doc.document.as_json().asset.extras.as_ref().unwrap().get()).unwrap();
     let white = extras["white_lm_per_m2"].as_f64().unwrap();
     assert!(white > 1.0, "{extras}");
-    let names: Vec<_> = doc
+    let mut names: Vec<_> = doc
         .materials()
         .map(|m| m.name().unwrap().to_string())
         .collect();
+    names.dedup();
     assert_eq!(names, ["floor", "wall", "ceiling"]);
     assert!(doc.materials().all(|m| m.unlit()));
     let (map, lux) = (
@@ -561,17 +576,40 @@ fn export_writes_a_gltf_with_the_solution_baked_in() {
         read_exr(&out.join("lightmap_lux.exr")),
     );
     let (w, h) = (map.width() as f32, map.height() as f32);
-    let (mut corners, mut lo, mut hi) = (0, [f32::MAX; 3], [f32::MIN; 3]);
+    let mut found = Exported {
+        triangles: 0,
+        by_bake: [0; 2],
+        area: 0.0,
+        longest_vertex_side: 0.0,
+        stderr,
+    };
+    let (mut lo, mut hi) = ([f32::MAX; 3], [f32::MIN; 3]);
     for prim in doc.meshes().next().unwrap().primitives() {
-        let get = |name: &str, width| {
-            let a = prim
-                .attributes()
+        let attribute = |name: &str| {
+            prim.attributes()
                 .find(|(s, _)| s.to_string() == name)
-                .unwrap()
-                .1;
-            floats(&doc, a, width)
+                .map(|a| a.1)
         };
-        let (pos, nrm, col) = (get("POSITION", 3), get("NORMAL", 3), get("COLOR_0", 3));
+        let get = |name: &str, width| floats(&doc, attribute(name).unwrap(), width);
+        let texture = prim
+            .material()
+            .pbr_metallic_roughness()
+            .base_color_texture();
+        let vertex_lit = texture.is_none();
+        assert_eq!(
+            attribute("COLOR_0").is_some(),
+            vertex_lit,
+            "colours xor light map"
+        );
+        if let Some(info) = texture {
+            assert_eq!(info.texture().name(), Some("lightmap"));
+            assert_eq!(info.tex_coord(), 0);
+            let sampler = info.texture().sampler();
+            assert_eq!(sampler.mag_filter(), Some(gltf::texture::MagFilter::Linear));
+            assert_eq!(sampler.min_filter(), Some(gltf::texture::MinFilter::Linear));
+            assert_eq!(sampler.wrap_s(), gltf::texture::WrappingMode::ClampToEdge);
+        }
+        let (pos, nrm) = (get("POSITION", 3), get("NORMAL", 3));
         let (uv, rad, ill) = (
             get("TEXCOORD_0", 2),
             get("_RADIOSITY", 3),
@@ -581,11 +619,16 @@ fn export_writes_a_gltf_with_the_solution_baked_in() {
             let p: Vec<glam::Vec3> = (0..3)
                 .map(|k| glam::Vec3::from_slice(&pos[3 * t + k]))
                 .collect();
-            let n = (p[1] - p[0]).cross(p[2] - p[0]).normalize();
+            let n = (p[1] - p[0]).cross(p[2] - p[0]);
+            found.area += 0.5 * n.length() as f64;
             assert!(
-                (n - glam::Vec3::from_slice(&nrm[3 * t])).length() < 1e-5,
+                (n.normalize() - glam::Vec3::from_slice(&nrm[3 * t])).length() < 1e-4,
                 "winding"
             );
+            if vertex_lit {
+                let side = (0..3).map(|k| (p[(k + 1) % 3] - p[k]).length());
+                found.longest_vertex_side = side.fold(found.longest_vertex_side, f32::max);
+            }
             let centre: glam::Vec2 = (0..3)
                 .map(|k| glam::Vec2::from_slice(&uv[3 * t + k]))
                 .sum::<glam::Vec2>()
@@ -596,19 +639,22 @@ fn export_writes_a_gltf_with_the_solution_baked_in() {
                 let texel = map.get_pixel(q.x as u32, q.y as u32).0;
                 assert_eq!(rad[k], texel, "radiosity at corner {k}");
                 assert_eq!(ill[k][0], lux.get_pixel(q.x as u32, q.y as u32).0[0]);
-                for c in 0..3 {
-                    let expected = (rad[k][c] as f64 / white).clamp(0.0, 1.0) as f32;
-                    assert!((col[k][c] - expected).abs() < 1e-6);
+                if vertex_lit {
+                    let col = get("COLOR_0", 3);
+                    for c in 0..3 {
+                        let expected = (rad[k][c] as f64 / white).clamp(0.0, 1.0) as f32;
+                        assert!((col[k][c] - expected).abs() < 1e-6);
+                    }
                 }
                 for a in 0..3 {
                     lo[a] = lo[a].min(pos[k][a]);
                     hi[a] = hi[a].max(pos[k][a]);
                 }
             }
-            corners += 3;
+            found.triangles += 1;
+            found.by_bake[usize::from(vertex_lit)] += 1;
         }
     }
-    assert_eq!(corners, 36, "12 triangles");
     // The room's bounds (Z up) seen Y up: x, height, −y.
     let room = goniolight::scene::Scene::load(&scene).unwrap().bounds();
     let expect_lo = [room.0.x, room.0.z, -room.1.y].map(|v| v as f32);
@@ -616,4 +662,55 @@ fn export_writes_a_gltf_with_the_solution_baked_in() {
     for a in 0..3 {
         assert!((lo[a] - expect_lo[a]).abs() < 1e-4 && (hi[a] - expect_hi[a]).abs() < 1e-4);
     }
+    found
+}
+
+/// The number after `before` in `text`.
+fn number_after(text: &str, before: &str) -> u64 {
+    let at = text
+        .find(before)
+        .unwrap_or_else(|| panic!("{before:?} in {text}"));
+    text[at + before.len()..]
+        .split(|c: char| !c.is_ascii_digit())
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap()
+}
+
+/// The box room's surfaces (floor, walls, ceiling: 12 triangles of 6 × 4 × 3 m) are far
+/// coarser than its light map: vertex lighting would add thousands of triangles, so the
+/// default export light-maps every one and draws the model's own 12 triangles.
+#[test]
+fn export_light_maps_the_box_rooms_large_surfaces() {
+    let e = export_box_room(&[]);
+    assert_eq!((e.triangles, e.by_bake), (12, [12, 0]), "{}", e.stderr);
+    assert!((e.area - 108.0).abs() < 1e-3, "{}", e.area);
+    assert!(
+        e.stderr
+            .contains("3 surfaces (12 triangles) light-mapped, 0 (0 triangles) vertex-lit")
+            && e.stderr.contains("+0.0 % triangles over the model"),
+        "{}",
+        e.stderr
+    );
+}
+
+/// `--bake vertex`: every triangle split until no side spans more than a texel (the box
+/// room's 0.1 m at 10 texels per metre, its longest side 7.2 m: 32 splits at most), the
+/// same area, as many triangles as the command says it introduced, colours at every
+/// corner.
+#[test]
+fn export_bake_vertex_splits_triangles_to_the_light_maps_texels() {
+    let e = export_box_room(&["--bake", "vertex", "--texel-density", "10"]);
+    let introduced = number_after(&e.stderr, "vertex-lit with ");
+    assert_eq!(e.triangles as u64, 12 + introduced, "{}", e.stderr);
+    assert_eq!(e.by_bake[0], 0);
+    assert!((e.area - 108.0).abs() < 1e-3, "{}", e.area);
+    // The walls' diagonals (5 m and 7.2 m) exceed 32 texels: they stop at 32 splits.
+    assert!(
+        e.longest_vertex_side <= 7.22 / 32.0 + 1e-4,
+        "{}",
+        e.longest_vertex_side
+    );
+    assert!(introduced > 12 * 900, "{introduced}");
 }

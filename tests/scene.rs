@@ -11,6 +11,7 @@ use glam::{DMat3, DVec3};
 use goniolight::geometry::generate::XorShift;
 use goniolight::photometry::{angles_to_direction, Interp};
 use goniolight::render::illuminance::{illuminance_cpu, SurfacePoint};
+use goniolight::scene::file::Bake;
 use goniolight::scene::Projection;
 use goniolight::scene::{Scene, SceneError};
 
@@ -233,6 +234,16 @@ fn bad_scene_files_name_the_file_and_the_key() {
             "1.000 m from the luminaire",
         ),
         (
+            format!("{model}bake_materials = {{ marble = \"map\" }}\n{camera}"),
+            "model[0].bake_materials.marble",
+            "no material \"marble\"",
+        ),
+        (
+            format!("{model}bake = \"texture\"\n{camera}"),
+            "model",
+            "unknown variant",
+        ),
+        (
             format!("{model}{camera}[display]\nwidth = 0\n"),
             "display.width",
             "",
@@ -254,6 +265,31 @@ fn bad_scene_files_name_the_file_and_the_key() {
     // A missing required key of a table is named under that table.
     let (_dir, r) = load_text(&format!("{model}[camera]\nposition = [1, 1, 1]\n"));
     assert_eq!(r.expect_err("no look_at").key, "camera.look_at");
+}
+
+/// `bake` sets every material of a model (and its faces without one), `bake_materials`
+/// one by name over it; without either the choice is left to the export.
+#[test]
+fn bake_keys_set_the_models_materials() {
+    let (model, camera) = good_parts();
+    let (_dir, r) = load_text(&format!(
+        "{model}bake = \"vertex\"\nbake_materials = {{ floor = \"map\" }}\n{camera}"
+    ));
+    let s = r.unwrap();
+    let bake = |name: &str| s.materials.iter().find(|m| m.name == name).unwrap().bake;
+    assert_eq!(bake("floor"), Some(Bake::Map));
+    assert_eq!(bake("wall"), Some(Bake::Vertex));
+    assert_eq!(bake("ceiling"), Some(Bake::Vertex));
+    // The default material keeps no choice; faces without a material get a copy that does.
+    assert_eq!(s.materials[0].bake, None);
+    assert_eq!(s.materials.last().unwrap().bake, Some(Bake::Vertex));
+    let saved = s.to_toml(&s.path).unwrap();
+    assert!(
+        saved.contains("bake = \"vertex\"") && saved.contains("floor = \"map\""),
+        "{saved}"
+    );
+    let (_dir, r) = load_text(&format!("{model}{camera}"));
+    assert!(r.unwrap().materials.iter().all(|m| m.bake.is_none()));
 }
 
 /// A scene without `[camera]` loads: commands without an image need none, and images get

@@ -15,6 +15,7 @@ use crate::gpu::Gpu;
 use crate::io::write_atomic;
 use crate::lighting::read_points;
 use crate::lighting::SurfacePoint;
+use crate::radiosity::bake::{self, BakeChoice, BakePlan};
 use crate::radiosity::gather;
 use crate::radiosity::gpu::{GpuSettings, GpuSolver, Visibility};
 use crate::radiosity::initial::{InitialState, LuminaireLight};
@@ -81,11 +82,21 @@ pub struct RadiosityArgs {
     /// it is given).
     #[arg(long)]
     pub out_dir: Option<PathBuf>,
-    /// Also write the solved scene as glTF 2.0 binary (.glb): baked vertex colours
-    /// (COLOR_0, unlit materials), the exact radiosity and illuminance per corner
-    /// (_RADIOSITY, _ILLUMINANCE) and the light map (image "lightmap", TEXCOORD_0).
+    /// Also write the solved scene as glTF 2.0 binary (.glb), unlit materials: each
+    /// surface light-mapped (base colour texture "lightmap", TEXCOORD_0) or vertex-lit
+    /// (COLOR_0, triangles split to the light map's texels), as --bake chooses; the exact
+    /// radiosity and illuminance per corner (_RADIOSITY, _ILLUMINANCE) on both.
     #[arg(long, value_name = "SCENE.glb")]
     pub export: Option<PathBuf>,
+    /// With --export: per surface, light map or vertex colours by the scene file's `bake`
+    /// keys and else Edström's heuristic (auto); or every surface one way.
+    #[arg(long, value_enum, default_value = "auto")]
+    pub bake: BakeChoice,
+    /// With --export and --bake auto: how many triangles vertex lighting may add to the
+    /// model (default: 10 % of its triangles); surfaces that would add most are
+    /// light-mapped until the rest fit.
+    #[arg(long, value_name = "TRIANGLES")]
+    pub bake_budget: Option<u64>,
     /// Read "x y z nx ny nz" lines from stdin and print the total illuminance (lux,
     /// direct + interreflected) at each, one per line.
     #[arg(long)]
@@ -98,6 +109,15 @@ pub struct RadiosityArgs {
 impl RadiosityArgs {
     fn check(&self) -> Result<(), CliError> {
         let bad = |what: String| Err(CliError::input(anyhow!(what)));
+        if self.export.is_none() && (self.bake != BakeChoice::Auto || self.bake_budget.is_some()) {
+            return bad(
+                "--bake and --bake-budget choose how --export bakes the scene: give --export SCENE.glb"
+                    .into(),
+            );
+        }
+        if self.bake != BakeChoice::Auto && self.bake_budget.is_some() {
+            return bad("--bake-budget applies to --bake auto only".into());
+        }
         if !(self.converge.is_finite() && (0.0..=1.0).contains(&self.converge)) {
             return bad(format!("--converge {} is not in 0..=1", self.converge));
         }
@@ -359,7 +379,10 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
     let light_map = solve::light_map(&rscene, &shown, &shown_lux);
     if let Some(path) = &args.export {
         let names: Vec<String> = scene.materials.iter().map(|m| m.name.clone()).collect();
-        let bytes = crate::radiosity::export::glb(&rscene, &light_map, &names)
+        let material_bake: Vec<_> = scene.materials.iter().map(|m| m.bake).collect();
+        let plan = bake::plan(&rscene, &material_bake, args.bake, args.bake_budget);
+        eprintln!("{}", bake_summary(&plan, &light_map));
+        let bytes = crate::radiosity::export::glb(&rscene, &light_map, &plan, &names)
             .map_err(CliError::failure)?;
         write_atomic(path, &bytes)
             .map_err(|e| CliError::input(anyhow!("--export {}: {e:#}", path.display())))?;
@@ -377,6 +400,22 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
         eprintln!("stopped early: the solution so far was written");
     }
     Ok(())
+}
+
+/// What the export's representation costs (Edström §5.3, §7.6).
+fn bake_summary(plan: &BakePlan, map: &LightMap) -> String {
+    format!(
+        "bake: {} surfaces ({} triangles) light-mapped, {} ({} triangles) vertex-lit with {} triangles introduced (budget {}): the exported mesh draws {:+.1} % triangles over the model; light map {}×{} texels",
+        plan.surfaces[0],
+        plan.triangles[0],
+        plan.surfaces[1],
+        plan.triangles[1],
+        plan.introduced,
+        plan.budget,
+        100.0 * plan.overhead(),
+        map.width,
+        map.height,
+    )
 }
 
 /// Prints direct + gathered interreflected illuminance (lux) per point, with a progress

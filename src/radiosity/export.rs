@@ -1,16 +1,19 @@
 //! The solved scene as glTF 2.0 binary (`radiosity --export scene.glb`), for Blender,
-//! three.js and any glTF viewer: every triangle with an area, grouped by material, with
-//! the solution baked in.
+//! three.js and any glTF viewer: every triangle with an area, grouped by material and
+//! representation, with the solution baked in. Each surface is light-mapped or
+//! vertex-lit as [`super::bake`] chose (Edström §5.3); materials are unlit
+//! (`KHR_materials_unlit`), so viewers show the light as it is.
 //!
-//! - `COLOR_0`: the radiosity at each corner as a linear colour, divided by a white point
-//!   (the 99th percentile of the element radiosity's luminance by area, given in the
-//!   asset's `extras` as `white_lm_per_m2`) and clamped to 1; materials are unlit
-//!   (`KHR_materials_unlit`) with a white base colour, so viewers show the colours as
-//!   they are. Each corner takes the value of the element that covers it (the light-map
-//!   texel under the corner, nudged into the triangle).
-//! - `_RADIOSITY` (lm/m², RGB) and `_ILLUMINANCE` (lux): the exact values behind them.
-//! - `TEXCOORD_0`: the corner's place in the light-map atlas, which is embedded as the
-//!   image `lightmap` (PNG, sRGB, same white point), for engines that use light maps.
+//! - Light-mapped primitives: the model's triangles; the material's base colour texture
+//!   is the light map (the image `lightmap`, PNG, sRGB, over `TEXCOORD_0`, bilinear,
+//!   clamped, no mipmaps: the atlas's gutters keep charts apart).
+//! - Vertex-lit primitives: the model's triangles, each split into `n²` where its longest
+//!   side spans `n` texels; `COLOR_0` is the radiosity at each corner as a linear colour,
+//!   over the white point (the 99th percentile of the element radiosity's luminance by
+//!   area, given in the asset's `extras` as `white_lm_per_m2`), clamped to 1.
+//! - Every primitive: `_RADIOSITY` (lm/m², RGB) and `_ILLUMINANCE` (lux) at each corner,
+//!   the exact values of the element that covers it (the light-map texel under the corner,
+//!   nudged into its triangle), and `TEXCOORD_0`, the corner's place in the atlas.
 //!
 //! goniolight's frame is metres with +Z up; glTF's is +Y up: (x, y, z) → (x, z, −y).
 
@@ -22,8 +25,10 @@ use gltf::json;
 use json::validation::Checked::Valid;
 use json::validation::USize64;
 
+use super::bake::BakePlan;
 use super::scene::RadiosityScene;
 use crate::render::lightmap::LightMap;
+use crate::scene::file::Bake;
 
 /// One corner's baked values.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -38,6 +43,17 @@ pub struct BakedCorner {
     pub illuminance: f32,
     /// Light-map coordinates (0..1 from the atlas's top-left corner).
     pub lightmap_uv: [f32; 2],
+}
+
+/// The exported triangles: three corners each, with a material and a representation.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Baked {
+    /// Three per triangle.
+    pub corners: Vec<BakedCorner>,
+    /// Per triangle, its material.
+    pub material: Vec<usize>,
+    /// Per triangle, how it carries its light.
+    pub bake: Vec<Bake>,
 }
 
 /// Z-up metres to glTF's Y-up.
@@ -56,32 +72,76 @@ fn texel_at(map: &LightMap, uv: Vec2, inside: Vec2) -> [f32; 4] {
     map.texels[(y * map.width + x) as usize]
 }
 
-/// The corners of every triangle with elements, three per triangle, and each triangle's
-/// material, in the scene's triangle order.
-pub fn bake(scene: &RadiosityScene, map: &LightMap) -> (Vec<BakedCorner>, Vec<usize>) {
-    let mesh = &scene.casters;
-    let mut corners = Vec::new();
-    let mut materials = Vec::new();
-    for (t, te) in scene.elements.triangles.iter().enumerate() {
-        if te.chart == u32::MAX {
-            continue;
+/// The points of triangle `p` split `n` times per side, and the split triangles as
+/// indices into them, wound as `p`.
+fn split<T>(p: [T; 3], n: u32, lerp: impl Fn(T, T, T, f64, f64) -> T) -> (Vec<T>, Vec<[usize; 3]>)
+where
+    T: Copy,
+{
+    let n = n.max(1) as usize;
+    let mut points = Vec::with_capacity((n + 1) * (n + 2) / 2);
+    let mut row_start = Vec::with_capacity(n + 1);
+    for i in 0..=n {
+        row_start.push(points.len());
+        for j in 0..=n - i {
+            points.push(lerp(
+                p[0],
+                p[1],
+                p[2],
+                i as f64 / n as f64,
+                j as f64 / n as f64,
+            ));
         }
-        let uv = map.triangle_uv[t];
-        let centre = (uv[0] + uv[1] + uv[2]) / 3.0;
-        let normal = to_gltf(te.normal);
-        for (k, &i) in mesh.triangles[t].iter().enumerate() {
-            let v = texel_at(map, uv[k], centre);
-            corners.push(BakedCorner {
-                position: to_gltf(mesh.positions[i as usize]),
-                normal,
-                radiosity: [v[0], v[1], v[2]],
-                illuminance: v[3],
-                lightmap_uv: uv[k].to_array(),
-            });
-        }
-        materials.push(te.material);
     }
-    (corners, materials)
+    let at = |i: usize, j: usize| row_start[i] + j;
+    let mut triangles = Vec::with_capacity(n * n);
+    for i in 0..n {
+        for j in 0..n - i {
+            triangles.push([at(i, j), at(i + 1, j), at(i, j + 1)]);
+            if i + j + 2 <= n {
+                triangles.push([at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)]);
+            }
+        }
+    }
+    (points, triangles)
+}
+
+/// The exported triangles of every triangle with elements, in the scene's triangle
+/// order: light-mapped ones as they are, vertex-lit ones split as `plan` says.
+pub fn bake(scene: &RadiosityScene, map: &LightMap, plan: &BakePlan) -> Baked {
+    let mesh = &scene.casters;
+    let mut out = Baked::default();
+    for (t, te) in scene.elements.triangles.iter().enumerate() {
+        let Some(bake) = plan.bake[t] else {
+            continue;
+        };
+        let n = match bake {
+            Bake::Map => 1,
+            Bake::Vertex => plan.splits[t],
+        };
+        let corners = mesh.triangles[t].map(|i| mesh.positions[i as usize]);
+        let (points, parts) = split(corners, n, |a, b, c, u, v| a + (b - a) * u + (c - a) * v);
+        let (uvs, _) = split(map.triangle_uv[t], n, |a, b, c, u, v| {
+            a + (b - a) * u as f32 + (c - a) * v as f32
+        });
+        let normal = to_gltf(te.normal);
+        for part in parts {
+            let centre = (uvs[part[0]] + uvs[part[1]] + uvs[part[2]]) / 3.0;
+            for k in part {
+                let v = texel_at(map, uvs[k], centre);
+                out.corners.push(BakedCorner {
+                    position: to_gltf(points[k]),
+                    normal,
+                    radiosity: [v[0], v[1], v[2]],
+                    illuminance: v[3],
+                    lightmap_uv: uvs[k].to_array(),
+                });
+            }
+            out.material.push(te.material);
+            out.bake.push(bake);
+        }
+    }
+    out
 }
 
 /// The white point: the 99th percentile of the elements' radiosity luminance, weighted by
@@ -235,42 +295,33 @@ impl GlbBuilder {
     }
 }
 
-/// The solved scene as a glTF binary: one primitive per material (named as in the MTL),
-/// the light map as the image `lightmap`.
+/// The solved scene as a glTF binary: one primitive per material (named as in the MTL)
+/// and representation, as `plan` chose; the light map as the image `lightmap`.
 pub fn glb(
     scene: &RadiosityScene,
     map: &LightMap,
+    plan: &BakePlan,
     material_names: &[String],
 ) -> anyhow::Result<Vec<u8>> {
-    let (corners, materials) = bake(scene, map);
+    let baked = bake(scene, map, plan);
     let white = white_point(scene, map);
     let mut b = GlbBuilder::new();
-    let png = lightmap_png(map, white)?;
-    let image_view = b.view(&png, None);
-    let image = b.root.push(json::Image {
-        buffer_view: Some(image_view),
-        mime_type: Some(json::image::MimeType("image/png".into())),
-        name: Some("lightmap".into()),
-        uri: None,
-        extensions: None,
-        extras: None,
-    });
-    b.root.push(json::Texture {
-        name: Some("lightmap".into()),
-        sampler: None,
-        source: image,
-        extensions: None,
-        extras: None,
-    });
+    let texture = lightmap_texture(&mut b, map, white)?;
+    let mut groups: Vec<(usize, Bake)> = baked
+        .material
+        .iter()
+        .copied()
+        .zip(baked.bake.iter().copied())
+        .collect();
+    groups.sort_by_key(|&(m, bake)| (m, bake == Bake::Vertex));
+    groups.dedup();
     let mut primitives = Vec::new();
-    let mut used: Vec<usize> = materials.clone();
-    used.sort();
-    used.dedup();
-    for m in used {
-        let mine: Vec<&BakedCorner> = corners
+    for (m, bake) in groups {
+        let mine: Vec<&BakedCorner> = baked
+            .corners
             .chunks_exact(3)
-            .zip(&materials)
-            .filter(|(_, &tm)| tm == m)
+            .zip(baked.material.iter().zip(&baked.bake))
+            .filter(|(_, (&tm, &tb))| tm == m && tb == bake)
             .flat_map(|(c, _)| c)
             .collect();
         let flat = |f: &dyn Fn(&BakedCorner) -> Vec<f32>| -> Vec<f32> {
@@ -285,12 +336,14 @@ pub fn glb(
         use json::mesh::Semantic;
         add(Semantic::Positions, flat(&|c| c.position.to_vec()), 3, true);
         add(Semantic::Normals, flat(&|c| c.normal.to_vec()), 3, false);
-        add(
-            Semantic::Colors(0),
-            flat(&|c| colour(c.radiosity, white).to_vec()),
-            3,
-            false,
-        );
+        if bake == Bake::Vertex {
+            add(
+                Semantic::Colors(0),
+                flat(&|c| colour(c.radiosity, white).to_vec()),
+                3,
+                false,
+            );
+        }
         add(
             Semantic::TexCoords(0),
             flat(&|c| c.lightmap_uv.to_vec()),
@@ -309,6 +362,12 @@ pub fn glb(
             1,
             false,
         );
+        let base_color_texture = (bake == Bake::Map).then_some(json::texture::Info {
+            index: texture,
+            tex_coord: 0,
+            extensions: None,
+            extras: None,
+        });
         let material = b.root.push(json::Material {
             name: Some(
                 material_names
@@ -317,9 +376,16 @@ pub fn glb(
                     .unwrap_or_else(|| format!("material {m}")),
             ),
             double_sided: true,
+            pbr_metallic_roughness: json::material::PbrMetallicRoughness {
+                base_color_texture,
+                ..Default::default()
+            },
             extensions: Some(json::extensions::material::Material {
                 unlit: Some(json::extensions::material::Unlit {}),
             }),
+            extras: Some(serde_json::value::to_raw_value(&serde_json::json!({
+                "bake": match bake { Bake::Map => "map", Bake::Vertex => "vertex" },
+            }))?),
             ..Default::default()
         });
         primitives.push(json::mesh::Primitive {
@@ -356,8 +422,45 @@ pub fn glb(
     b.root.asset.extras = Some(serde_json::value::to_raw_value(&serde_json::json!({
         "white_lm_per_m2": white,
         "units": "metres, +Y up; _RADIOSITY lm/m², _ILLUMINANCE lux",
+        "introduced_triangles": plan.introduced,
     }))?);
     b.finish()
+}
+
+/// The light map as the texture `lightmap`: an embedded sRGB PNG at white point `white`,
+/// sampled bilinearly without mipmaps and clamped at the atlas's edges.
+fn lightmap_texture(
+    b: &mut GlbBuilder,
+    map: &LightMap,
+    white: f64,
+) -> anyhow::Result<json::Index<json::Texture>> {
+    let png = lightmap_png(map, white)?;
+    let image_view = b.view(&png, None);
+    let image = b.root.push(json::Image {
+        buffer_view: Some(image_view),
+        mime_type: Some(json::image::MimeType("image/png".into())),
+        name: Some("lightmap".into()),
+        uri: None,
+        extensions: None,
+        extras: None,
+    });
+    use json::texture::{MagFilter, MinFilter, WrappingMode};
+    let sampler = b.root.push(json::texture::Sampler {
+        mag_filter: Some(Valid(MagFilter::Linear)),
+        min_filter: Some(Valid(MinFilter::Linear)),
+        name: None,
+        wrap_s: Valid(WrappingMode::ClampToEdge),
+        wrap_t: Valid(WrappingMode::ClampToEdge),
+        extensions: None,
+        extras: None,
+    });
+    Ok(b.root.push(json::Texture {
+        name: Some("lightmap".into()),
+        sampler: Some(sampler),
+        source: image,
+        extensions: None,
+        extras: None,
+    }))
 }
 
 /// The light map as an sRGB PNG at white point `white`.
@@ -381,4 +484,33 @@ fn lightmap_png(map: &LightMap, white: f64) -> anyhow::Result<Vec<u8>> {
     let mut out = std::io::Cursor::new(Vec::new());
     img.write_to(&mut out, image::ImageFormat::Png)?;
     Ok(out.into_inner())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Splitting a triangle `n` times per side gives `n²` triangles wound as it, of area
+    /// `1/n²` of it each, whose corners lie on the grid of `n`ths.
+    #[test]
+    fn split_tiles_the_triangle_with_n_squared_parts() {
+        let p = [
+            DVec3::new(0.0, 0.0, 0.0),
+            DVec3::new(3.0, 0.5, 0.0),
+            DVec3::new(1.0, 2.0, 1.0),
+        ];
+        let normal = (p[1] - p[0]).cross(p[2] - p[0]);
+        for n in [1u32, 2, 5, 32] {
+            let (points, parts) = split(p, n, |a, b, c, u, v| a + (b - a) * u + (c - a) * v);
+            assert_eq!(parts.len(), (n * n) as usize);
+            assert_eq!(points.len(), ((n + 1) * (n + 2) / 2) as usize);
+            for t in &parts {
+                let part = (points[t[1]] - points[t[0]]).cross(points[t[2]] - points[t[0]]);
+                assert!(
+                    (part * (n * n) as f64 - normal).length() < 1e-9,
+                    "{n}: {part}"
+                );
+            }
+        }
+    }
 }

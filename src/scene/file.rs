@@ -8,6 +8,9 @@
 //! translation = [0.0, 0.0, 0.0] # optional transform: scale, then rotation, then translation
 //! rotation_deg = [0.0, 0.0, 90.0]
 //! scale = 1.0
+//! bake = "map"                  # optional: radiosity export bakes every surface into the
+//!                               # light map ("map") or vertex colours ("vertex")
+//! bake_materials = { chrome = "vertex" } # optional, per MTL material, over `bake`
 //!
 //! [[luminaire]]
 //! file = "../luminaires/eulumdat-plot/sample_06_isym1.ldt"
@@ -96,6 +99,22 @@ pub struct ModelEntry {
     /// Scale (applied first).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub scale: Option<Scale>,
+    /// How `radiosity --export` bakes this model's surfaces (default: chosen per surface).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub bake: Option<Bake>,
+    /// Per MTL material name, how its surfaces are baked (over `bake`).
+    #[serde(default, skip_serializing_if = "std::collections::BTreeMap::is_empty")]
+    pub bake_materials: std::collections::BTreeMap<String, Bake>,
+}
+
+/// How a solved surface carries its light in the exported scene (Edström §5.3).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Bake {
+    /// A light-map texture over the surface's input triangles.
+    Map,
+    /// Colours at the corners of its triangles, split where the light map is finer.
+    Vertex,
 }
 
 /// `[[luminaire]]`.

@@ -28,6 +28,9 @@ pub struct Material {
     pub diffuse_map: Option<Arc<image::RgbaImage>>,
     /// `map_Bump` / `bump` / `norm`: tangent-space normal map.
     pub normal_map: Option<Arc<image::RgbaImage>>,
+    /// How radiosity export bakes its surfaces, as the scene file says (`None`: chosen
+    /// per surface).
+    pub bake: Option<super::file::Bake>,
 }
 
 impl Default for Material {
@@ -40,6 +43,7 @@ impl Default for Material {
             emission: Vec3::ZERO,
             diffuse_map: None,
             normal_map: None,
+            bake: None,
         }
     }
 }
@@ -185,20 +189,22 @@ pub(super) fn load_model(
             ))
         }
     }
+    let mtl_end = materials.len();
+    let fallback = bake_overrides(scene, key, entry, first_material, materials)?;
     let matrix = model_matrix(entry);
     let normal_matrix = DMat3::from_mat4(matrix).inverse().transpose();
     let mut meshes = Vec::new();
     let (mut dropped, mut total) = (0usize, 0usize);
     for m in models {
         total += m.mesh.indices.len() / 3;
-        let (mesh, zero_area) = convert(&m, matrix, normal_matrix, first_material, materials.len())
-            .map_err(|message| {
-                SceneError::new(
-                    scene,
-                    &path_key,
-                    format!("{}: object {:?}: {message}", obj.display(), m.name),
-                )
-            })?;
+        let range = (first_material, mtl_end, fallback);
+        let (mesh, zero_area) = convert(&m, matrix, normal_matrix, range).map_err(|message| {
+            SceneError::new(
+                scene,
+                &path_key,
+                format!("{}: object {:?}: {message}", obj.display(), m.name),
+            )
+        })?;
         dropped += zero_area;
         if !mesh.indices.is_empty() {
             meshes.push(mesh);
@@ -221,15 +227,51 @@ pub(super) fn load_model(
     Ok(meshes)
 }
 
+/// Sets `bake` on the materials `entry` appended (from `first`): `bake_materials` by
+/// name, else `bake`. Returns the material for faces without one: the default, or a copy
+/// of it carrying `bake`.
+fn bake_overrides(
+    scene: &Path,
+    key: &str,
+    entry: &ModelEntry,
+    first: usize,
+    materials: &mut Vec<Material>,
+) -> Result<usize, SceneError> {
+    for name in entry.bake_materials.keys() {
+        if !materials[first..].iter().any(|m| &m.name == name) {
+            let known: Vec<&str> = materials[first..].iter().map(|m| m.name.as_str()).collect();
+            return Err(SceneError::new(
+                scene,
+                format!("{key}.bake_materials.{name}"),
+                format!("the model has no material {name:?} (its materials: {known:?})"),
+            ));
+        }
+    }
+    for m in &mut materials[first..] {
+        m.bake = entry.bake_materials.get(&m.name).copied().or(entry.bake);
+    }
+    Ok(match entry.bake {
+        None => 0,
+        Some(bake) => {
+            materials.push(Material {
+                bake: Some(bake),
+                ..Material::default()
+            });
+            materials.len() - 1
+        }
+    })
+}
+
 /// One tobj model to a world-space mesh, dropping zero-area triangles (returned: how
-/// many); flat normals where the OBJ has none.
+/// many); flat normals where the OBJ has none. `materials` is the model's range of the
+/// scene's materials (first, end) and the material of faces without one.
 fn convert(
     m: &tobj::Model,
     matrix: DMat4,
     normal_matrix: DMat3,
-    first_material: usize,
-    material_count: usize,
+    materials: (usize, usize, usize),
 ) -> Result<(SceneMesh, usize), String> {
+    let (first_material, material_count, fallback) = materials;
     let src = &m.mesh;
     let point = |i: usize| {
         let p = DVec3::new(
@@ -246,7 +288,7 @@ fn convert(
     let has_uvs = src.texcoords.len() / 2 == src.positions.len() / 3;
     let material = match src.material_id {
         Some(id) if first_material + id < material_count => first_material + id,
-        _ => 0,
+        _ => fallback,
     };
     let mut out = SceneMesh {
         name: m.name.clone(),
@@ -369,6 +411,7 @@ impl TextureCache {
             emission,
             diffuse_map,
             normal_map,
+            bake: None,
         })
     }
 }
