@@ -615,6 +615,7 @@ fn export_box_room(extra: &[&str]) -> Exported {
             get("_RADIOSITY", 3),
             get("_ILLUMINANCE", 1),
         );
+        let colours = vertex_lit.then(|| get("COLOR_0", 3));
         for t in 0..pos.len() / 3 {
             let p: Vec<glam::Vec3> = (0..3)
                 .map(|k| glam::Vec3::from_slice(&pos[3 * t + k]))
@@ -639,8 +640,7 @@ fn export_box_room(extra: &[&str]) -> Exported {
                 let texel = map.get_pixel(q.x as u32, q.y as u32).0;
                 assert_eq!(rad[k], texel, "radiosity at corner {k}");
                 assert_eq!(ill[k][0], lux.get_pixel(q.x as u32, q.y as u32).0[0]);
-                if vertex_lit {
-                    let col = get("COLOR_0", 3);
+                if let Some(col) = &colours {
                     for c in 0..3 {
                         let expected = (rad[k][c] as f64 / white).clamp(0.0, 1.0) as f32;
                         assert!((col[k][c] - expected).abs() < 1e-6);
