@@ -358,25 +358,31 @@ fn floor_and_sheet() -> RadiosityScene {
 /// triangles it introduces fit the budget (default 10 % of the model's triangles); a
 /// surface finer than its light map introduces none and keeps its vertices; the scene
 /// file's choice and `--bake map|vertex` override the heuristic. The introduced triangles
-/// are counted here from the geometry: each side split into its length in texels.
+/// are those of Edström's patch refinement: the floor's patches are at most a 32nd of its
+/// diagonal long.
 #[test]
 fn representation_follows_the_introduced_triangles_and_the_overrides() {
-    use goniolight::radiosity::bake::{plan, BakeChoice};
+    use goniolight::radiosity::bake::{patch_size, plan, BakeChoice};
     use goniolight::scene::file::Bake::{Map, Vertex};
     let r = floor_and_sheet();
-    let texel = r.elements.charts[r.elements.triangles[0].chart as usize].texel_m;
-    let splits = ((4.0 * 2f64.sqrt() / texel).ceil() as u64).min(32);
-    assert_eq!(splits, 32);
-    let floor_introduced = 2 * (splits * splits - 1);
+    let size = patch_size(&r, 0);
+    assert!((size - 4.0 * 2f64.sqrt() / 32.0).abs() < 1e-12, "{size}");
+    // Each patch fits a size × size square, so the 16 m² floor has at least 16 / size²
+    // of them; regular refinement (32 parts per side) would add 2 · (32² − 1) triangles.
+    let floor_introduced = plan(&r, &[], BakeChoice::Vertex, None).introduced;
+    let fewest = (16.0 / (size * size)).ceil() as u64 - 2;
+    assert!(
+        (fewest..2 * (32 * 32 - 1)).contains(&floor_introduced),
+        "{floor_introduced} (at least {fewest})"
+    );
     let is = |p: &goniolight::radiosity::bake::BakePlan, floor, sheet| {
         p.bake[..2].iter().all(|&b| b == Some(floor))
             && p.bake[2..].iter().all(|&b| b == Some(sheet))
     };
     let auto = plan(&r, &[], BakeChoice::Auto, None);
     assert!(is(&auto, Map, Vertex), "{:?}", auto.surfaces);
-    assert_eq!(
-        auto.splits[2..].iter().max(),
-        Some(&1),
+    assert!(
+        auto.parts[2..].iter().all(|p| p.len() == 1),
         "the sheet is finer than its texels"
     );
     assert_eq!((auto.budget, auto.introduced), (80, 0));
@@ -402,4 +408,51 @@ fn representation_follows_the_introduced_triangles_and_the_overrides() {
     let all_vertex = plan(&r, &[None, None, Some(Map)], BakeChoice::Vertex, None);
     assert!(is(&all_vertex, Vertex, Vertex));
     assert_eq!(all_vertex.introduced, floor_introduced);
+}
+
+/// Edström §4.4 on the CAD room's strips (each 2–4 m long and a few cm wide, 10 texels
+/// per metre): vertex lighting refines each strip into patches no longer than a texel
+/// rather than into `n²` strips as thin as itself, so it draws a fraction of regular
+/// refinement's triangles, and their angles are no longer the strips' slivers.
+#[test]
+fn the_cad_room_strips_refine_into_few_well_shaped_patches() {
+    use goniolight::radiosity::bake::{patch_size, plan, BakeChoice};
+    use goniolight::radiosity::refine::smallest_angle;
+    let r = RadiosityScene::with_hierarchy(&bundled("cad_room.toml"), 10.0, 2, Hierarchy::Clusters)
+        .unwrap();
+    let vertex = plan(&r, &[], BakeChoice::Vertex, None);
+    let corners = |t: usize| r.casters.triangles[t].map(|i| r.casters.positions[i as usize]);
+    let flat = |p: [DVec3; 3]| {
+        let x = (p[1] - p[0]).normalize();
+        let y = (p[1] - p[0]).cross(p[2] - p[0]).normalize().cross(x);
+        p.map(|q| DVec2::new((q - p[0]).dot(x), (q - p[0]).dot(y)))
+    };
+    let (mut regular, mut input_angles, mut part_angles) = (0u64, Vec::new(), Vec::new());
+    for (t, parts) in vertex.parts.iter().enumerate() {
+        if parts.is_empty() {
+            continue;
+        }
+        let p = corners(t);
+        let longest = (0..3)
+            .map(|k| p[k].distance(p[(k + 1) % 3]))
+            .fold(0.0, f64::max);
+        let n = (longest / patch_size(&r, t) * (1.0 - 1e-9)).ceil() as u64;
+        regular += n * n - 1;
+        input_angles.push(smallest_angle(flat(p)).to_degrees());
+        for w in parts {
+            let q = w.map(|w| p[0] * w.x + p[1] * w.y + p[2] * w.z);
+            part_angles.push(smallest_angle(flat(q)).to_degrees());
+        }
+    }
+    let median = |v: &mut Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        v[v.len() / 2]
+    };
+    let (input, parts) = (median(&mut input_angles), median(&mut part_angles));
+    eprintln!(
+        "CAD room, vertex-lit at 10 texels/m: {} introduced (regular refinement {regular}); median smallest angle {parts:.1}° (strips {input:.1}°)",
+        vertex.introduced
+    );
+    assert!(vertex.introduced * 5 < regular);
+    assert!(parts > 5.0 * input);
 }

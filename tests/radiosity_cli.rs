@@ -635,8 +635,11 @@ fn export_box_room(extra: &[&str]) -> Exported {
                 .sum::<glam::Vec2>()
                 / 3.0;
             for k in 3 * t..3 * t + 3 {
-                let c = glam::Vec2::from_slice(&uv[k]);
-                let q = (c + (centre - c) * 1e-3) * glam::Vec2::new(w, h);
+                // The texel under the corner nudged a thousandth of the way to the
+                // centroid, in texels (in f64, as the exporter reads it).
+                let size = glam::DVec2::new(w as f64, h as f64);
+                let c = glam::Vec2::from_slice(&uv[k]).as_dvec2() * size;
+                let q = c + (centre.as_dvec2() * size - c) * 1e-3;
                 let texel = map.get_pixel(q.x as u32, q.y as u32).0;
                 assert_eq!(rad[k], texel, "radiosity at corner {k}");
                 assert_eq!(ill[k][0], lux.get_pixel(q.x as u32, q.y as u32).0[0]);
@@ -695,22 +698,35 @@ fn export_light_maps_the_box_rooms_large_surfaces() {
     );
 }
 
-/// `--bake vertex`: every triangle split until no side spans more than a texel (the box
-/// room's 0.1 m at 10 texels per metre, its longest side 7.2 m: 32 splits at most), the
-/// same area, as many triangles as the command says it introduced, colours at every
-/// corner.
+/// `--bake vertex`: every triangle refined (Edström's patch refinement) into patches no
+/// longer than a texel (the box room's 0.1 m at 10 texels per metre) or a 32nd of the
+/// triangle's longest side (7.2 m on the floor), the same area, as many triangles as the
+/// command says it introduced, colours at every corner.
 #[test]
-fn export_bake_vertex_splits_triangles_to_the_light_maps_texels() {
+fn export_bake_vertex_refines_triangles_to_the_light_maps_texels() {
     let e = export_box_room(&["--bake", "vertex", "--texel-density", "10"]);
     let introduced = number_after(&e.stderr, "vertex-lit with ");
     assert_eq!(e.triangles as u64, 12 + introduced, "{}", e.stderr);
     assert_eq!(e.by_bake[0], 0);
     assert!((e.area - 108.0).abs() < 1e-3, "{}", e.area);
-    // The walls' diagonals (5 m and 7.2 m) exceed 32 texels: they stop at 32 splits.
+    // A patch is at most 7.21 / 32 m long, so no side of its triangles exceeds its
+    // rectangle's diagonal.
+    let size = 52f64.sqrt() / 32.0;
     assert!(
-        e.longest_vertex_side <= 7.22 / 32.0 + 1e-4,
+        e.longest_vertex_side <= (2f64.sqrt() * size) as f32 + 1e-4,
         "{}",
         e.longest_vertex_side
     );
-    assert!(introduced > 12 * 900, "{introduced}");
+    // Each patch fits in a square of its triangle's size: 2 752 patches at least (floor
+    // and ceiling 2 × 24 m² at 7.21 / 32 m, walls 2 × 18 m² at 6.71 / 32 m and 2 × 12 m²
+    // at 5 / 32 m). These right triangles are well shaped: regular refinement (32 parts
+    // per side, 12 · (32² − 1) introduced) is the cheaper refinement for each.
+    let fewest: f64 = [(48.0, 52f64), (36.0, 45.0), (24.0, 25.0)]
+        .iter()
+        .map(|&(area, diagonal2)| area / (diagonal2 / 1024.0))
+        .sum();
+    assert!(
+        introduced as f64 >= fewest - 12.0 && introduced <= 12 * 1023,
+        "{introduced} (at least {fewest})"
+    );
 }

@@ -3,12 +3,13 @@
 //! surface of one material), and it gets one representation, so no seam runs between a
 //! Gouraud-shaded part and a textured part of it.
 //!
-//! Vertex lighting draws the input triangles, split where the light map is finer than
-//! they are: a triangle whose longest side spans `n` texels becomes `n²` triangles, so
-//! `n² − 1` are *introduced*. A surface not refined below its triangles (every side at
-//! most one texel: curved, finely tessellated parts) introduces none and is best drawn
-//! with its vertices; a wall of two triangles under a fine light map would introduce
-//! thousands and is best textured. The heuristic: surfaces sorted by introduced triangles,
+//! Vertex lighting draws the input triangles, refined where the light map is finer than
+//! they are: Edström's patch refinement ([`super::refine`]) splits each triangle into
+//! patches no longer than a texel (well shaped even where the triangle is a sliver,
+//! conforming across the surface's shared edges); the triangles beyond the model's are
+//! *introduced*. A surface not refined below its triangles (curved, finely tessellated
+//! parts) introduces none and is best drawn with its vertices; a wall of two triangles
+//! under a fine light map would introduce thousands and is best textured. The heuristic: surfaces sorted by introduced triangles,
 //! most first, turn to light maps until the introduced triangles left fall within the
 //! budget. The scene file may fix a model's or a material's choice (`bake`,
 //! `bake_materials`), and `--bake map|vertex` fixes every surface.
@@ -17,12 +18,17 @@
 //! about 10 % on his car exterior, 35 % on its interior): what the exported mesh draws
 //! beyond the model.
 
+use glam::DVec3;
+use rayon::prelude::*;
+
 use crate::scene::file::Bake;
 
+use super::refine::refine_surface;
 use super::scene::RadiosityScene;
 
-/// The most parts one side of a triangle is split into for vertex lighting (a triangle
-/// becomes at most `MAX_SPLITS²` triangles).
+/// The most parts the longest side of a triangle is cut into for vertex lighting: its
+/// patches are at least `1 / MAX_SPLITS` of it long, so a triangle becomes at most about
+/// `MAX_SPLITS²` patches.
 pub const MAX_SPLITS: u32 = 32;
 
 /// The default budget of introduced triangles: this share of the model's triangles
@@ -48,8 +54,10 @@ pub struct BakePlan {
     /// Per triangle of the scene's casters: its representation (`None`: it has no
     /// elements and is not exported).
     pub bake: Vec<Option<Bake>>,
-    /// Per triangle: into how many parts each side is split when vertex-lit (1: not split).
-    pub splits: Vec<u32>,
+    /// Per triangle: the triangles it is drawn as when vertex-lit, each as three corners in
+    /// barycentric weights over the triangle's corners (one part, the triangle itself,
+    /// where it is not refined); empty when it is light-mapped or not exported.
+    pub parts: Vec<Vec<[DVec3; 3]>>,
     /// Surfaces light-mapped and vertex-lit.
     pub surfaces: [usize; 2],
     /// Triangles of the model light-mapped and vertex-lit.
@@ -67,20 +75,21 @@ impl BakePlan {
     }
 }
 
-/// Into how many parts each side of triangle `t` is split for vertex lighting: its
-/// longest side in texels of its chart, rounded up (1 to [`MAX_SPLITS`]).
-pub fn splits(scene: &RadiosityScene, t: usize) -> u32 {
+/// How long the patches of triangle `t` may be for vertex lighting, metres: a texel of
+/// its chart, or a [`MAX_SPLITS`]th of its longest side where that is longer.
+pub fn patch_size(scene: &RadiosityScene, t: usize) -> f64 {
     let te = &scene.elements.triangles[t];
-    let Some(chart) = scene.elements.charts.get(te.chart as usize) else {
-        return 1;
-    };
     let p = scene.casters.triangles[t].map(|i| scene.casters.positions[i as usize]);
     let longest = (p[1] - p[0])
         .length()
         .max((p[2] - p[1]).length())
         .max((p[0] - p[2]).length());
-    let texels = (longest / chart.texel_m.max(1e-12)).ceil();
-    texels.clamp(1.0, MAX_SPLITS as f64) as u32
+    let texel = scene
+        .elements
+        .charts
+        .get(te.chart as usize)
+        .map_or(longest, |chart| chart.texel_m);
+    texel.max(longest / f64::from(MAX_SPLITS))
 }
 
 /// Chooses each surface's representation. `material_bake` is the scene file's choice per
@@ -93,17 +102,17 @@ pub fn plan(
     budget: Option<u64>,
 ) -> BakePlan {
     let count = scene.elements.triangles.len();
-    let splits: Vec<u32> = (0..count).map(|t| splits(scene, t)).collect();
     let has_elements = |t: u32| scene.elements.triangles[t as usize].chart != u32::MAX;
     let tree = &scene.planar_clusters().tree;
     struct Surface {
         triangles: Vec<u32>,
+        parts: Vec<Vec<[DVec3; 3]>>,
         introduced: u64,
         fixed: Option<Bake>,
     }
     let mut surfaces: Vec<Surface> = tree
         .roots
-        .iter()
+        .par_iter()
         .map(|&root| {
             let triangles: Vec<u32> = tree
                 .triangles(root)
@@ -111,10 +120,11 @@ pub fn plan(
                 .copied()
                 .filter(|&t| has_elements(t))
                 .collect();
-            let introduced = triangles
-                .iter()
-                .map(|&t| (splits[t as usize] as u64).pow(2) - 1)
-                .sum();
+            let parts = refine_surface(&scene.casters, &triangles, |t| {
+                patch_size(scene, t as usize)
+            });
+            let drawn: usize = parts.iter().map(Vec::len).sum();
+            let introduced = (drawn - triangles.len()) as u64;
             let fixed = match choice {
                 BakeChoice::Map => Some(Bake::Map),
                 BakeChoice::Vertex => Some(Bake::Vertex),
@@ -125,6 +135,7 @@ pub fn plan(
             };
             Surface {
                 triangles,
+                parts,
                 introduced,
                 fixed,
             }
@@ -155,18 +166,22 @@ pub fn plan(
         introduced -= surfaces[k].introduced;
     }
     let mut bake = vec![None; count];
+    let mut parts = vec![Vec::new(); count];
     let (mut surface_count, mut triangle_count) = ([0; 2], [0; 2]);
     for (s, &b) in surfaces.iter_mut().zip(&chosen) {
         let slot = usize::from(b == Bake::Vertex);
         surface_count[slot] += 1;
         triangle_count[slot] += s.triangles.len();
-        for &t in &s.triangles {
+        for (&t, p) in s.triangles.iter().zip(&mut s.parts) {
             bake[t as usize] = Some(b);
+            if b == Bake::Vertex {
+                parts[t as usize] = std::mem::take(p);
+            }
         }
     }
     BakePlan {
         bake,
-        splits,
+        parts,
         surfaces: surface_count,
         triangles: triangle_count,
         introduced,

@@ -7,8 +7,8 @@
 //! - Light-mapped primitives: the model's triangles; the material's base colour texture
 //!   is the light map (the image `lightmap`, PNG, sRGB, over `TEXCOORD_0`, bilinear,
 //!   clamped, no mipmaps: the atlas's gutters keep charts apart).
-//! - Vertex-lit primitives: the model's triangles, each split into `n²` where its longest
-//!   side spans `n` texels; `COLOR_0` is the radiosity at each corner as a linear colour,
+//! - Vertex-lit primitives: the model's triangles, refined where the light map is finer
+//!   (Edström's patch refinement, [`super::refine`]); `COLOR_0` is the radiosity at each corner as a linear colour,
 //!   over the white point (the 99th percentile of the element radiosity's luminance by
 //!   area, given in the asset's `extras` as `white_lm_per_m2`), clamped to 1.
 //! - Every primitive: `_RADIOSITY` (lm/m², RGB) and `_ILLUMINANCE` (lux) at each corner,
@@ -72,62 +72,32 @@ fn texel_at(map: &LightMap, uv: Vec2, inside: Vec2) -> [f32; 4] {
     map.texels[(y * map.width + x) as usize]
 }
 
-/// The points of triangle `p` split `n` times per side, and the split triangles as
-/// indices into them, wound as `p`.
-fn split<T>(p: [T; 3], n: u32, lerp: impl Fn(T, T, T, f64, f64) -> T) -> (Vec<T>, Vec<[usize; 3]>)
-where
-    T: Copy,
-{
-    let n = n.max(1) as usize;
-    let mut points = Vec::with_capacity((n + 1) * (n + 2) / 2);
-    let mut row_start = Vec::with_capacity(n + 1);
-    for i in 0..=n {
-        row_start.push(points.len());
-        for j in 0..=n - i {
-            points.push(lerp(
-                p[0],
-                p[1],
-                p[2],
-                i as f64 / n as f64,
-                j as f64 / n as f64,
-            ));
-        }
-    }
-    let at = |i: usize, j: usize| row_start[i] + j;
-    let mut triangles = Vec::with_capacity(n * n);
-    for i in 0..n {
-        for j in 0..n - i {
-            triangles.push([at(i, j), at(i + 1, j), at(i, j + 1)]);
-            if i + j + 2 <= n {
-                triangles.push([at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)]);
-            }
-        }
-    }
-    (points, triangles)
-}
-
 /// The exported triangles of every triangle with elements, in the scene's triangle
-/// order: light-mapped ones as they are, vertex-lit ones split as `plan` says.
+/// order: light-mapped ones as they are, vertex-lit ones as the parts `plan` refined them
+/// into.
 pub fn bake(scene: &RadiosityScene, map: &LightMap, plan: &BakePlan) -> Baked {
     let mesh = &scene.casters;
+    let whole = [[DVec3::X, DVec3::Y, DVec3::Z]];
     let mut out = Baked::default();
     for (t, te) in scene.elements.triangles.iter().enumerate() {
         let Some(bake) = plan.bake[t] else {
             continue;
         };
-        let n = match bake {
-            Bake::Map => 1,
-            Bake::Vertex => plan.splits[t],
+        let parts: &[[DVec3; 3]] = match bake {
+            Bake::Map => &whole,
+            Bake::Vertex => &plan.parts[t],
         };
         let corners = mesh.triangles[t].map(|i| mesh.positions[i as usize]);
-        let (points, parts) = split(corners, n, |a, b, c, u, v| a + (b - a) * u + (c - a) * v);
-        let (uvs, _) = split(map.triangle_uv[t], n, |a, b, c, u, v| {
-            a + (b - a) * u as f32 + (c - a) * v as f32
-        });
+        let uv = map.triangle_uv[t];
         let normal = to_gltf(te.normal);
         for part in parts {
-            let centre = (uvs[part[0]] + uvs[part[1]] + uvs[part[2]]) / 3.0;
-            for k in part {
+            let points = part.map(|w| corners[0] * w.x + corners[1] * w.y + corners[2] * w.z);
+            let uvs = part.map(|w| {
+                let w = w.as_vec3();
+                uv[0] * w.x + uv[1] * w.y + uv[2] * w.z
+            });
+            let centre = (uvs[0] + uvs[1] + uvs[2]) / 3.0;
+            for k in 0..3 {
                 let v = texel_at(map, uvs[k], centre);
                 out.corners.push(BakedCorner {
                     position: to_gltf(points[k]),
@@ -484,33 +454,4 @@ fn lightmap_png(map: &LightMap, white: f64) -> anyhow::Result<Vec<u8>> {
     let mut out = std::io::Cursor::new(Vec::new());
     img.write_to(&mut out, image::ImageFormat::Png)?;
     Ok(out.into_inner())
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// Splitting a triangle `n` times per side gives `n²` triangles wound as it, of area
-    /// `1/n²` of it each, whose corners lie on the grid of `n`ths.
-    #[test]
-    fn split_tiles_the_triangle_with_n_squared_parts() {
-        let p = [
-            DVec3::new(0.0, 0.0, 0.0),
-            DVec3::new(3.0, 0.5, 0.0),
-            DVec3::new(1.0, 2.0, 1.0),
-        ];
-        let normal = (p[1] - p[0]).cross(p[2] - p[0]);
-        for n in [1u32, 2, 5, 32] {
-            let (points, parts) = split(p, n, |a, b, c, u, v| a + (b - a) * u + (c - a) * v);
-            assert_eq!(parts.len(), (n * n) as usize);
-            assert_eq!(points.len(), ((n + 1) * (n + 2) / 2) as usize);
-            for t in &parts {
-                let part = (points[t[1]] - points[t[0]]).cross(points[t[2]] - points[t[0]]);
-                assert!(
-                    (part * (n * n) as f64 - normal).length() < 1e-9,
-                    "{n}: {part}"
-                );
-            }
-        }
-    }
 }

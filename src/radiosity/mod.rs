@@ -12,6 +12,7 @@ pub mod gpu;
 pub mod initial;
 pub mod links;
 mod polygon;
+pub mod refine;
 pub mod scene;
 pub mod shooters;
 pub mod solve;

@@ -64,27 +64,42 @@ impl Obb {
     }
 }
 
-/// The unit direction of one side of the minimum-area rectangle around `points`: each
-/// convex hull edge is tried (the optimal rectangle has a side along one of them).
+/// The unit direction of one side of the minimum-area rectangle around `points`.
 fn min_area_direction(points: &[DVec2]) -> DVec2 {
+    min_area_rectangle(points).0
+}
+
+/// The minimum-area rectangle around `points`: the unit direction `e` of one side, and the
+/// rectangle's corners `lo`, `hi` in the frame (along `e`, along `e.perp()`).
+pub(crate) fn min_area_rectangle(points: &[DVec2]) -> (DVec2, DVec2, DVec2) {
+    let area = |r: &(DVec2, DVec2, DVec2)| (r.2.x - r.1.x) * (r.2.y - r.1.y);
+    enclosing_rectangles(points)
+        .into_iter()
+        .fold(None, |best: Option<(DVec2, DVec2, DVec2)>, r| match best {
+            Some(b) if area(&b) <= area(&r) => Some(b),
+            _ => Some(r),
+        })
+        .unwrap_or((DVec2::X, DVec2::ZERO, DVec2::ZERO))
+}
+
+/// The rectangle around `points` with a side along each edge of their convex hull (the
+/// minimum-area one is among them; rotating calipers find it in linear time, which hulls of
+/// a few points do not need): per edge, its unit direction `e` and the corners `lo`, `hi`
+/// in the frame (along `e`, along `e.perp()`).
+pub(crate) fn enclosing_rectangles(points: &[DVec2]) -> Vec<(DVec2, DVec2, DVec2)> {
     let hull = convex_hull(points);
-    let mut best = (f64::INFINITY, DVec2::X);
-    for i in 0..hull.len() {
-        let Some(e) = (hull[(i + 1) % hull.len()] - hull[i]).try_normalize() else {
-            continue;
-        };
-        let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
-        for p in &hull {
-            let q = DVec2::new(p.dot(e), e.perp_dot(*p));
-            lo = lo.min(q);
-            hi = hi.max(q);
-        }
-        let area = (hi.x - lo.x) * (hi.y - lo.y);
-        if area < best.0 {
-            best = (area, e);
-        }
-    }
-    best.1
+    (0..hull.len())
+        .filter_map(|i| (hull[(i + 1) % hull.len()] - hull[i]).try_normalize())
+        .map(|e| {
+            let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
+            for p in &hull {
+                let q = DVec2::new(p.dot(e), e.perp_dot(*p));
+                lo = lo.min(q);
+                hi = hi.max(q);
+            }
+            (e, lo, hi)
+        })
+        .collect()
 }
 
 /// Andrew's monotone chain: the convex hull, counter-clockwise, collinear points dropped.
