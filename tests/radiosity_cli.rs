@@ -245,11 +245,24 @@ fn bad_input_exits_2_and_writes_nothing() {
     let scene = scene.to_str().unwrap();
     let out = dir.path().join("never");
     let o = out.to_str().unwrap();
-    let cases: [(&[&str], &str, &str); 7] = [
+    let under_a_file = format!("{scene}/models/room.glb");
+    let cases: [(&[&str], &str, &str); 8] = [
         (
             &["radiosity", scene, "--export", "/", "--out-dir", o],
             "",
             "--export /: is a folder",
+        ),
+        (
+            &[
+                "radiosity",
+                scene,
+                "--export",
+                &under_a_file,
+                "--out-dir",
+                o,
+            ],
+            "",
+            "is a file, not a folder",
         ),
         (
             &["radiosity", scene, "--converge", "1.5", "--out-dir", o],
@@ -541,11 +554,12 @@ struct Exported {
 /// solver's light map under that corner (`lightmap.exr`, `lightmap_lux.exr` of the same
 /// run); vertex-lit primitives carry colours that are those values over the stated white
 /// point, light-mapped ones carry the light map as their base colour texture (bilinear,
-/// clamped) and no colours.
+/// clamped) and no colours. The export's folder is made where it is missing.
 fn export_box_room(extra: &[&str]) -> Exported {
     let dir = tempfile::tempdir().unwrap();
     let scene = root().join("assets/scenes/box_room.toml");
-    let (out, glb) = (dir.path().join("out"), dir.path().join("room.glb"));
+    // The export's folder does not exist yet: the command makes it, as it does --out-dir.
+    let (out, glb) = (dir.path().join("out"), dir.path().join("models/room.glb"));
     let mut args = vec![
         "radiosity",
         scene.to_str().unwrap(),

@@ -150,6 +150,14 @@ impl RadiosityArgs {
             if path.is_dir() {
                 return bad(format!("--export {}: is a folder", path.display()));
             }
+            // Missing folders are made; one that is a file would fail only after the solve.
+            if let Some(file) = path.ancestors().skip(1).find(|a| a.is_file()) {
+                return bad(format!(
+                    "--export {}: {} is a file, not a folder",
+                    path.display(),
+                    file.display()
+                ));
+            }
         }
         if let Some(dir) = &self.out_dir {
             if dir.is_file() {
@@ -384,7 +392,11 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
         eprintln!("{}", bake_summary(&plan, &light_map));
         let bytes = crate::radiosity::export::glb(&rscene, &light_map, &plan, &names)
             .map_err(CliError::failure)?;
-        write_atomic(path, &bytes)
+        let folder = path.parent().filter(|p| !p.as_os_str().is_empty());
+        folder
+            .map_or(Ok(()), std::fs::create_dir_all)
+            .map_err(anyhow::Error::from)
+            .and_then(|()| write_atomic(path, &bytes))
             .map_err(|e| CliError::input(anyhow!("--export {}: {e:#}", path.display())))?;
         eprintln!("wrote {} ({} kB)", path.display(), bytes.len() >> 10);
     }
