@@ -103,23 +103,18 @@ pub fn plan(
 ) -> BakePlan {
     let count = scene.elements.triangles.len();
     let has_elements = |t: u32| scene.elements.triangles[t as usize].chart != u32::MAX;
-    let tree = &scene.planar_clusters().tree;
     struct Surface {
         triangles: Vec<u32>,
         parts: Vec<Vec<[DVec3; 3]>>,
         introduced: u64,
         fixed: Option<Bake>,
     }
-    let mut surfaces: Vec<Surface> = tree
-        .roots
-        .par_iter()
-        .map(|&root| {
-            let triangles: Vec<u32> = tree
-                .triangles(root)
-                .iter()
-                .copied()
-                .filter(|&t| has_elements(t))
-                .collect();
+    let mut surfaces: Vec<Surface> = scene
+        .surfaces()
+        .into_par_iter()
+        .map(|surface| {
+            let material = scene.elements.triangles[surface[0] as usize].material;
+            let triangles: Vec<u32> = surface.into_iter().filter(|&t| has_elements(t)).collect();
             let parts = refine_surface(&scene.casters, &triangles, |t| {
                 patch_size(scene, t as usize)
             });
@@ -128,10 +123,7 @@ pub fn plan(
             let fixed = match choice {
                 BakeChoice::Map => Some(Bake::Map),
                 BakeChoice::Vertex => Some(Bake::Vertex),
-                BakeChoice::Auto => material_bake
-                    .get(tree.nodes[root as usize].material)
-                    .copied()
-                    .flatten(),
+                BakeChoice::Auto => material_bake.get(material).copied().flatten(),
             };
             Surface {
                 triangles,

@@ -180,6 +180,20 @@ impl RadiosityScene {
         })
     }
 
+    /// The connected surfaces of one material (each a root of the face-cluster hierarchy),
+    /// each's triangles ascending: from the hierarchy when it is built, else from the mesh's
+    /// dual graph alone (`--hierarchy none` needs no clustering for them).
+    pub fn surfaces(&self) -> Vec<Vec<u32>> {
+        match self.planar.get() {
+            Some(planar) => planar.tree.root_surfaces(),
+            None => {
+                let materials: Vec<usize> =
+                    self.elements.triangles.iter().map(|t| t.material).collect();
+                super::clusters::connected_surfaces(&self.casters, &materials)
+            }
+        }
+    }
+
     /// Reflectance of element `e`.
     pub fn element_reflectance(&self, e: usize) -> DVec3 {
         self.reflectance[self.element_material(e)]

@@ -217,6 +217,35 @@ fn add_length(list: &mut Vec<(u32, f64)>, to: u32, length: f64) {
     }
 }
 
+/// The connected surfaces of one material of `mesh` (what the roots of its hierarchy
+/// cover), found from the dual graph without building the hierarchy: each surface's
+/// triangles ascending, the surfaces in order, as [`FaceClusters::root_surfaces`] lists
+/// them.
+pub fn connected_surfaces(mesh: &Mesh, materials: &[usize]) -> Vec<Vec<u32>> {
+    let adjacent = dual_graph(mesh, materials);
+    let mut seen = vec![false; mesh.triangles.len()];
+    let mut surfaces = Vec::new();
+    for start in 0..mesh.triangles.len() {
+        if seen[start] {
+            continue;
+        }
+        seen[start] = true;
+        let (mut surface, mut stack) = (Vec::new(), vec![start as u32]);
+        while let Some(t) = stack.pop() {
+            surface.push(t);
+            for &(u, _) in &adjacent[t as usize] {
+                if !std::mem::replace(&mut seen[u as usize], true) {
+                    stack.push(u);
+                }
+            }
+        }
+        surface.sort_unstable();
+        surfaces.push(surface);
+    }
+    surfaces.sort();
+    surfaces
+}
+
 impl FaceClusters {
     /// Builds the hierarchy of `mesh`, whose triangle `t` has material `materials[t]`.
     pub fn build(mesh: &Mesh, materials: &[usize], settings: ClusterSettings) -> FaceClusters {
@@ -500,6 +529,10 @@ mod tests {
         }
         // One root per connected surface of one material.
         assert_eq!(h.root_surfaces(), surfaces(mesh, materials));
+        assert_eq!(
+            connected_surfaces(mesh, materials),
+            surfaces(mesh, materials)
+        );
     }
 
     #[test]
