@@ -233,13 +233,15 @@ RADIANCE_LADDER = [
     "-ab 6 -ad 1024 -as 512 -aa 0.1 -ar 256 -lw 1e-5",
     "-ab 8 -ad 1024 -as 512 -aa 0.05 -ar 256 -lw 1e-5",
 ]
-GONIOLIGHT_LADDER = ["0.5", "0.7", "0.8", "0.9", "0.95", "0.98", "0.99"]
+# The solver stops at the first shot whose convergence reaches the setting, so 0.1 is one
+# shot (the luminaires' direct light, then the brightest surface's): the cheapest run.
+GONIOLIGHT_LADDER = ["0.1", "0.5", "0.7", "0.8", "0.9", "0.95", "0.98", "0.99"]
 
 
 def bench(binary, env, octree, points, rad_converged, gl_converged):
     """Per tool the cheapest setting within 2 % (mean absolute difference) of its own
     converged work plane, and its wall-clock time (the whole process: start-up, scene,
-    GPU or CPU work), side by side on this machine."""
+    GPU or CPU work; the median of three runs under 10 s), side by side on this machine."""
     print("\ntime to within 2 % of the converged work plane (wall clock, this machine):")
     print("| tool | setting | MAD to own converged | MAD to Radiance converged | seconds |")
     print("|---|---|---|---|---|")
@@ -253,6 +255,10 @@ def bench(binary, env, octree, points, rad_converged, gl_converged):
         if tool in found:
             continue
         lux, seconds = run()
+        if seconds < 10:
+            # Short runs vary by a third from run to run (process and GPU start-up): the
+            # median of three.
+            seconds = sorted([seconds] + [run()[1] for _ in range(2)])[1]
         d_own, d_rad = mad(lux, own), mad(lux, rad_converged)
         print(f"| {tool} | `{setting}` | {100 * d_own:.2f} % | {100 * d_rad:.2f} % | {seconds:.2f} |")
         if d_own <= 0.02:
