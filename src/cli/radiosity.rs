@@ -388,8 +388,13 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
     if let Some(path) = &args.export {
         let names: Vec<String> = scene.materials.iter().map(|m| m.name.clone()).collect();
         let material_bake: Vec<_> = scene.materials.iter().map(|m| m.bake).collect();
+        let planning = Instant::now();
         let plan = bake::plan(&rscene, &material_bake, args.bake, args.bake_budget);
-        eprintln!("{}", bake_summary(&plan, &light_map));
+        eprintln!(
+            "{}; chosen and refined in {:.2} s",
+            bake_summary(&plan, &light_map),
+            planning.elapsed().as_secs_f64()
+        );
         let bytes = crate::radiosity::export::glb(&rscene, &light_map, &plan, &names)
             .map_err(CliError::failure)?;
         let folder = path.parent().filter(|p| !p.as_os_str().is_empty());

@@ -111,24 +111,18 @@ pub fn plan(
     }
     let mut surfaces: Vec<Surface> = scene
         .surfaces()
-        .into_par_iter()
+        .into_iter()
         .map(|surface| {
             let material = scene.elements.triangles[surface[0] as usize].material;
-            let triangles: Vec<u32> = surface.into_iter().filter(|&t| has_elements(t)).collect();
-            let parts = refine_surface(&scene.casters, &triangles, |t| {
-                patch_size(scene, t as usize)
-            });
-            let drawn: usize = parts.iter().map(Vec::len).sum();
-            let introduced = (drawn - triangles.len()) as u64;
             let fixed = match choice {
                 BakeChoice::Map => Some(Bake::Map),
                 BakeChoice::Vertex => Some(Bake::Vertex),
                 BakeChoice::Auto => material_bake.get(material).copied().flatten(),
             };
             Surface {
-                triangles,
-                parts,
-                introduced,
+                triangles: surface.into_iter().filter(|&t| has_elements(t)).collect(),
+                parts: Vec::new(),
+                introduced: 0,
                 fixed,
             }
         })
@@ -136,6 +130,36 @@ pub fn plan(
         .collect();
     let modelled: usize = surfaces.iter().map(|s| s.triangles.len()).sum();
     let budget = budget.unwrap_or((DEFAULT_BUDGET_SHARE * modelled as f64).round() as u64);
+    // Refined where the surface may be vertex-lit. A free surface that must introduce
+    // more than the whole budget is light-mapped whatever the rest do (the heuristic turns
+    // it before any smaller one), so its lower bound suffices: every patch fits a square
+    // of the patch size, so a triangle draws at least its area over that square.
+    surfaces.par_iter_mut().for_each(|s| {
+        let at_least = || -> u64 {
+            s.triangles
+                .iter()
+                .map(|&t| {
+                    let size = patch_size(scene, t as usize);
+                    let p = scene.casters.triangles[t as usize]
+                        .map(|i| scene.casters.positions[i as usize]);
+                    let area = 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).length();
+                    ((area / (size * size)) * (1.0 - 1e-9)).ceil().max(1.0) as u64 - 1
+                })
+                .sum()
+        };
+        let bound = if s.fixed.is_none() { at_least() } else { 0 };
+        match s.fixed {
+            Some(Bake::Map) => {}
+            None if bound > budget => s.introduced = bound,
+            _ => {
+                s.parts = refine_surface(&scene.casters, &s.triangles, |t| {
+                    patch_size(scene, t as usize)
+                });
+                let drawn: usize = s.parts.iter().map(Vec::len).sum();
+                s.introduced = (drawn - s.triangles.len()) as u64;
+            }
+        }
+    });
     let mut chosen: Vec<Bake> = surfaces
         .iter()
         .map(|s| s.fixed.unwrap_or(Bake::Vertex))
@@ -164,10 +188,13 @@ pub fn plan(
         let slot = usize::from(b == Bake::Vertex);
         surface_count[slot] += 1;
         triangle_count[slot] += s.triangles.len();
-        for (&t, p) in s.triangles.iter().zip(&mut s.parts) {
+        for &t in &s.triangles {
             bake[t as usize] = Some(b);
-            if b == Bake::Vertex {
-                parts[t as usize] = std::mem::take(p);
+        }
+        if b == Bake::Vertex {
+            // A vertex-lit surface was refined: its parts, triangle by triangle.
+            for (&t, p) in s.triangles.iter().zip(std::mem::take(&mut s.parts)) {
+                parts[t as usize] = p;
             }
         }
     }

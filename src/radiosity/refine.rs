@@ -148,30 +148,91 @@ struct Refinement {
     points: Vec<DVec2>,
     patches: Vec<Vec<u32>>,
     live: Vec<bool>,
+    /// Each live patch's sides, directed as it runs (point to next point): which patch.
+    /// A side's neighbour across it runs it backwards, since every patch carries every
+    /// point on its boundary.
+    sides: FxHashMap<(u32, u32), usize>,
     eps: f64,
 }
 
 impl Refinement {
-    /// Inserts point `p` (index `i`) into every live patch but `except` with a side that
-    /// has `p` strictly inside it (the neighbour across that side).
-    fn insert_on_sides(&mut self, i: u32, except: usize) {
-        let p = self.points[i as usize];
-        for k in 0..self.patches.len() {
-            if k == except || !self.live[k] {
-                continue;
+    /// The refinement of `patches` (all live) over `points`.
+    fn new(points: Vec<DVec2>, patches: Vec<Vec<u32>>, eps: f64) -> Refinement {
+        let mut r = Refinement {
+            points,
+            live: Vec::with_capacity(patches.len()),
+            patches: Vec::with_capacity(patches.len()),
+            sides: FxHashMap::default(),
+            eps,
+        };
+        for patch in patches {
+            r.push(patch);
+        }
+        r
+    }
+
+    /// Adds a live patch.
+    fn push(&mut self, patch: Vec<u32>) -> usize {
+        let k = self.patches.len();
+        for s in 0..patch.len() {
+            self.sides
+                .insert((patch[s], patch[(s + 1) % patch.len()]), k);
+        }
+        self.patches.push(patch);
+        self.live.push(true);
+        k
+    }
+
+    /// Retires patch `k` (split into pieces pushed after it).
+    fn retire(&mut self, k: usize) {
+        let patch = std::mem::take(&mut self.patches[k]);
+        for s in 0..patch.len() {
+            let side = (patch[s], patch[(s + 1) % patch.len()]);
+            if self.sides.get(&side) == Some(&k) {
+                self.sides.remove(&side);
             }
+        }
+        self.live[k] = false;
+    }
+
+    /// Inserts point `i` into the live patch that runs side `a → b`, between them.
+    fn insert_into_side(&mut self, a: u32, b: u32, i: u32) {
+        let Some(k) = self.sides.remove(&(a, b)) else {
+            return;
+        };
+        let patch = &mut self.patches[k];
+        let at = patch
+            .iter()
+            .position(|&x| x == a)
+            .expect("a side's patch holds it");
+        patch.insert(at + 1, i);
+        self.sides.insert((a, i), k);
+        self.sides.insert((i, b), k);
+    }
+
+    /// Inserts point `i` into every live patch with a side that has it strictly inside
+    /// (a search over all patches, for points from outside the refinement).
+    fn insert_on_sides(&mut self, i: u32) {
+        let p = self.points[i as usize];
+        let mut found = Vec::new();
+        for k in (0..self.patches.len()).filter(|&k| self.live[k]) {
             let poly = &self.patches[k];
             let n = poly.len();
-            if let Some(s) = (0..n).find(|&s| {
-                inside_segment(
-                    p,
-                    self.points[poly[s] as usize],
-                    self.points[poly[(s + 1) % n] as usize],
-                    self.eps,
-                )
-            }) {
-                self.patches[k].insert(s + 1, i);
-            }
+            found.extend(
+                (0..n)
+                    .map(|s| (poly[s], poly[(s + 1) % n]))
+                    .find(|&(a, b)| {
+                        inside_segment(
+                            p,
+                            self.points[a as usize],
+                            self.points[b as usize],
+                            self.eps,
+                        )
+                    }),
+            );
+        }
+        for (a, b) in found {
+            self.insert_into_side(a, b, i);
         }
     }
 
@@ -181,7 +242,7 @@ impl Refinement {
         for &p in extra {
             if self.points.iter().all(|q| q.distance(p) > self.eps) {
                 self.points.push(p);
-                self.insert_on_sides((self.points.len() - 1) as u32, usize::MAX);
+                self.insert_on_sides((self.points.len() - 1) as u32);
             }
         }
     }
@@ -272,14 +333,23 @@ impl Refinement {
             return None;
         }
         self.points = points;
-        self.live[k] = false;
-        for &i in &new_points {
-            self.insert_on_sides(i, k);
+        // The new points' neighbours across the sides they split (before k, which runs
+        // those sides forwards, retires).
+        let outside: Vec<(u32, u32, u32)> = [(ends[0], ia), (ends[1], ib)]
+            .into_iter()
+            .filter_map(|(e, i)| match (e, i) {
+                (End::Side(s, _), Some(i)) => {
+                    let old = &self.patches[k];
+                    Some((old[(s + 1) % n], old[s], i))
+                }
+                _ => None,
+            })
+            .collect();
+        self.retire(k);
+        let ids = [self.push(first), self.push(second)];
+        for (b, a, i) in outside {
+            self.insert_into_side(b, a, i);
         }
-        let ids = [self.patches.len(), self.patches.len() + 1];
-        self.patches.push(first);
-        self.patches.push(second);
-        self.live.extend([true, true]);
         Some(ids)
     }
 }
@@ -293,19 +363,20 @@ pub fn refine(corners: [DVec2; 3], size: f64, boundary: &[DVec2]) -> Patches {
         .iter()
         .map(|c| c.distance(corners[0]))
         .fold(0.0, f64::max);
-    let mut r = Refinement {
-        points: corners.to_vec(),
-        patches: vec![vec![0, 1, 2]],
-        live: vec![true],
-        eps: 1e-9 * scale,
-    };
     let size = size.max(1e-6 * scale);
-    if area2(&r.points, &r.patches[0]) <= 1e-12 * scale * scale {
+    // No side longer than `size`: no rectangle around it is longer either (nor when the
+    // triangle has no area to refine).
+    let longest = (0..3)
+        .map(|k| corners[k].distance(corners[(k + 1) % 3]))
+        .fold(0.0, f64::max);
+    let whole = area2(&corners, &[0, 1, 2]);
+    if longest <= size || whole <= 1e-12 * scale * scale {
         return Patches {
-            points: r.points,
-            leaves: r.patches,
+            points: corners.to_vec(),
+            leaves: vec![vec![0, 1, 2]],
         };
     }
+    let mut r = Refinement::new(corners.to_vec(), vec![vec![0, 1, 2]], 1e-9 * scale);
     r.add_points(boundary);
     // Largest first (a positive f64's bits sort as the number), so a coarse split's points
     // are on the boundary of the finer patches by the time those snap.
@@ -392,12 +463,11 @@ pub fn refine_triangle(corners: [DVec2; 3], size: f64, boundary: &[DVec2]) -> Pa
 /// Inserts the points `extra` (each on the boundary of some leaf) into the leaves whose
 /// side holds them, skipping any within `eps` of a point already there.
 fn add_boundary_points(patches: &mut Patches, extra: &[DVec2], eps: f64) {
-    let mut r = Refinement {
-        points: std::mem::take(&mut patches.points),
-        live: vec![true; patches.leaves.len()],
-        patches: std::mem::take(&mut patches.leaves),
+    let mut r = Refinement::new(
+        std::mem::take(&mut patches.points),
+        std::mem::take(&mut patches.leaves),
         eps,
-    };
+    );
     r.add_points(extra);
     patches.points = r.points;
     patches.leaves = r.patches;
