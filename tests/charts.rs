@@ -416,7 +416,7 @@ fn representation_follows_the_introduced_triangles_and_the_overrides() {
 /// refinement's triangles, and their angles are no longer the strips' slivers.
 #[test]
 fn the_cad_room_strips_refine_into_few_well_shaped_patches() {
-    use goniolight::radiosity::bake::{patch_size, plan, BakeChoice};
+    use goniolight::radiosity::bake::{introduced_at_least, patch_size, plan, BakeChoice};
     use goniolight::radiosity::refine::smallest_angle;
     let r = RadiosityScene::with_hierarchy(&bundled("cad_room.toml"), 10.0, 2, Hierarchy::Clusters)
         .unwrap();
@@ -432,6 +432,9 @@ fn the_cad_room_strips_refine_into_few_well_shaped_patches() {
         if parts.is_empty() {
             continue;
         }
+        // The bound that lets `--bake auto` light-map a surface without refining it.
+        let bound = introduced_at_least(&r, &[t as u32]);
+        assert!(parts.len() as u64 > bound, "{t}: {} < {bound}", parts.len());
         let p = corners(t);
         let longest = (0..3)
             .map(|k| p[k].distance(p[(k + 1) % 3]))

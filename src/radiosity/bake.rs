@@ -92,6 +92,22 @@ pub fn patch_size(scene: &RadiosityScene, t: usize) -> f64 {
     texel.max(longest / f64::from(MAX_SPLITS))
 }
 
+/// The fewest triangles vertex lighting can introduce on `triangles`: each patch fits a
+/// square of its triangle's [`patch_size`], so a triangle draws at least its area over
+/// that square.
+pub fn introduced_at_least(scene: &RadiosityScene, triangles: &[u32]) -> u64 {
+    triangles
+        .iter()
+        .map(|&t| {
+            let size = patch_size(scene, t as usize);
+            let p =
+                scene.casters.triangles[t as usize].map(|i| scene.casters.positions[i as usize]);
+            let area = 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).length();
+            ((area / (size * size)) * (1.0 - 1e-9)).ceil().max(1.0) as u64 - 1
+        })
+        .sum()
+}
+
 /// Chooses each surface's representation. `material_bake` is the scene file's choice per
 /// material; `budget` the introduced triangles allowed (default: [`DEFAULT_BUDGET_SHARE`]
 /// of the triangles with elements).
@@ -132,22 +148,13 @@ pub fn plan(
     let budget = budget.unwrap_or((DEFAULT_BUDGET_SHARE * modelled as f64).round() as u64);
     // Refined where the surface may be vertex-lit. A free surface that must introduce
     // more than the whole budget is light-mapped whatever the rest do (the heuristic turns
-    // it before any smaller one), so its lower bound suffices: every patch fits a square
-    // of the patch size, so a triangle draws at least its area over that square.
+    // it before any smaller one), so its lower bound suffices.
     surfaces.par_iter_mut().for_each(|s| {
-        let at_least = || -> u64 {
-            s.triangles
-                .iter()
-                .map(|&t| {
-                    let size = patch_size(scene, t as usize);
-                    let p = scene.casters.triangles[t as usize]
-                        .map(|i| scene.casters.positions[i as usize]);
-                    let area = 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).length();
-                    ((area / (size * size)) * (1.0 - 1e-9)).ceil().max(1.0) as u64 - 1
-                })
-                .sum()
+        let bound = if s.fixed.is_none() {
+            introduced_at_least(scene, &s.triangles)
+        } else {
+            0
         };
-        let bound = if s.fixed.is_none() { at_least() } else { 0 };
         match s.fixed {
             Some(Bake::Map) => {}
             None if bound > budget => s.introduced = bound,
