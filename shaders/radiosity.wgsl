@@ -32,7 +32,8 @@ struct SolveParams {
 };
 
 struct ShooterInfo {
-    // first entry of shooter_elements, element count.
+    // first entry of shooter_elements, element count, (a workgroup's record: the
+    // shooter), first piece.
     range: vec4<u32>,
     // rgb reflectance, w area.
     reflectance_area: vec4<f32>,
@@ -42,7 +43,8 @@ struct PatchInfo {
     // first entry of shooter_elements, element count.
     range: vec2<u32>,
     area: f32,
-    _pad: f32,
+    // 1 for a top cell (its elements are no other top cell's).
+    top: u32,
 };
 
 @group(0) @binding(0) var<uniform> params: SolveParams;
@@ -65,6 +67,8 @@ struct PatchInfo {
 // Per patch of the shooter: rgb unshot radiosity to shoot.
 @group(0) @binding(8) var<storage, read_write> patch_delta: array<vec4<f32>>;
 @group(0) @binding(9) var<storage, read> element_normals: array<vec4<f32>>;
+// Per element of the shot, in its order: its unshot radiosity when clear_shooter took it.
+@group(0) @binding(10) var<storage, read_write> held: array<vec4<f32>>;
 
 const LUMA = vec3<f32>(0.2126, 0.7152, 0.0722);
 // Shooters of at most this many elements are summed by one thread (SMALL_SHOOTER in gpu.rs).
@@ -242,7 +246,30 @@ fn clear_shooter(
     if (i >= params.clear_count) {
         return;
     }
-    unshot[shooter_elements[params.clear_first + i]] = vec4<f32>(-shooter_power[params.shooter_count + 1u].rgb, 0.0);
+    let e = shooter_elements[params.clear_first + i];
+    held[params.clear_first + i - shooters[params.shooter].range.x] = unshot[e];
+    unshot[e] = vec4<f32>(-shooter_power[params.shooter_count + 1u].rgb, 0.0);
+}
+
+// A shot stopped early (one workgroup per patch from patch_first): the elements of every
+// top cell not shot get back what clear_shooter held (and the overshoot it took).
+@compute @workgroup_size(64)
+fn restore_unshot(
+    @builtin(workgroup_id) wid: vec3<u32>,
+    @builtin(num_workgroups) nw: vec3<u32>,
+    @builtin(local_invocation_index) l: u32,
+) {
+    let i = params.patch_first + linear_group(wid, nw);
+    if (i >= params.patch_first + params.patch_count || patches[i].top == 0u) {
+        return;
+    }
+    let r = patches[i].range;
+    let base = shooters[params.shooter].range.x;
+    let extra = shooter_power[params.shooter_count + 1u].rgb;
+    for (var j = l; j < r.y; j += 64u) {
+        let at = r.x + j;
+        unshot[shooter_elements[at]] += vec4<f32>(held[at - base].rgb + extra, 0.0);
+    }
 }
 
 // One shooting patch as seen by the receive pass.
@@ -266,6 +293,8 @@ struct Shot {
     // Its reach (m), the plane tolerance (m), the form factor's scale (a coarse cell's
     // elements' area over its polygon's), 1 for a top cell.
     link: vec4<f32>,
+    // The pieces it shoots (first, end): their elements do not receive from it.
+    pieces: vec4<u32>,
 };
 
 @group(1) @binding(0) var<uniform> shot: Shot;
@@ -406,6 +435,21 @@ fn receiver_element(t: u32) -> u32 {
     return r.x + (t - r.y);
 }
 
+// The shooter holding `piece`: the last whose first piece (range.w) is at most it.
+fn shooter_of_piece(piece: u32) -> u32 {
+    var lo = 0u;
+    var hi = params.shooter_count;
+    while (hi - lo > 1u) {
+        let mid = (lo + hi) / 2u;
+        if (shooters[mid].range.w <= piece) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    return lo;
+}
+
 @compute @workgroup_size(64)
 fn receive(
     @builtin(global_invocation_id) id: vec3<u32>,
@@ -416,13 +460,13 @@ fn receive(
         return;
     }
     let i = receiver_element(thread);
-    let normal_shooter = element_normals[i];
-    let shooter = bitcast<u32>(normal_shooter.w);
-    if (shooter == params.shooter) {
+    let normal_piece = element_normals[i];
+    let piece = bitcast<u32>(normal_piece.w);
+    if (piece >= shot.pieces.x && piece < shot.pieces.y) {
         return;
     }
     let p = element_points[i].xyz;
-    let n = normal_shooter.xyz;
+    let n = normal_piece.xyz;
     if (!takes_light(p)) {
         return;
     }
@@ -436,7 +480,7 @@ fn receive(
         return;
     }
     let incident = patch_delta[shot.info.x].rgb * f * shot.link.z;
-    let gained = shooters[shooter].reflectance_area.rgb * incident;
+    let gained = shooters[shooter_of_piece(piece)].reflectance_area.rgb * incident;
     radiosity[i] += vec4<f32>(gained, dot(incident, LUMA));
     unshot[i] += vec4<f32>(gained, 0.0);
 }

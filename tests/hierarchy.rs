@@ -136,9 +136,9 @@ fn the_cad_room_strips_are_a_few_shooters_and_every_element_shoots_once() {
     // bottoms are faces too): one shooter per flat face, not one per strip.
     assert!(tree.len() <= triangles / 10, "{} shooters", tree.len());
     assert!(
-        tree.shapes
+        tree.pieces
             .iter()
-            .all(|s| matches!(s, ShooterShape::Cluster { .. })),
+            .all(|p| matches!(p.shape, ShooterShape::Cluster { .. })),
         "every face of the room is a cluster of strips"
     );
     for shooters in [&flat, &tree] {
@@ -181,11 +181,11 @@ fn the_oracle_gives_bright_clusters_fine_cells_and_weak_ones_one_cell() {
     let r = RadiosityScene::new(&scene, 10.0, 2).unwrap();
     let tree = Shooters::build(&r, Hierarchy::Clusters);
     let budget = 1.0;
-    for s in 0..tree.len() {
-        let ShooterShape::Cluster { obb, .. } = &tree.shapes[s] else {
+    for s in 0..tree.pieces.len() {
+        let ShooterShape::Cluster { obb, .. } = &tree.pieces[s].shape else {
             continue;
         };
-        let finest = tree.finest_cell[s];
+        let finest = tree.pieces[s].finest_cell;
         assert!((finest - 0.4).abs() < 1e-12, "2^2 texels of 0.1 m");
         let extent = 2.0 * obb.half.x.max(obb.half.y);
         // Far more power than cells: the finest cell.
@@ -202,7 +202,7 @@ fn the_oracle_gives_bright_clusters_fine_cells_and_weak_ones_one_cell() {
             let side = tree.cell_side(s, power, budget);
             let k = (side / finest).log2();
             assert!((k - k.round()).abs() < 1e-9, "{side}");
-            let cells = tree.area[s] / (side * side);
+            let cells = tree.pieces[s].area / (side * side);
             let whole = side >= extent;
             assert!(
                 side == finest || whole || power / cells <= budget,

@@ -80,7 +80,8 @@ fn cells_nest_and_every_receiver_takes_each_part_of_a_shooter_once() {
         ("CAD room", bundled("cad_room.toml")),
     ] {
         let r = RadiosityScene::with_hierarchy(&scene, 2.0, 1, Hierarchy::Clusters).unwrap();
-        let shooters = Shooters::build(&r, Hierarchy::Clusters);
+        // Each flat cluster on its own: its cells' quadtree.
+        let shooters = Shooters::planar(&r);
         let receivers = ReceiverBoxes::new(&r);
         let tolerance = receivers.plane_tolerance();
         let el = &r.elements;
@@ -88,10 +89,12 @@ fn cells_nest_and_every_receiver_takes_each_part_of_a_shooter_once() {
         let mut drawn = 0;
         let mut cells = 0;
         for s in 0..shooters.len() {
-            if !matches!(shooters.shapes[s], ShooterShape::Cluster { .. }) {
+            let piece = &shooters.pieces[shooters.first_piece[s] as usize];
+            if !matches!(piece.shape, ShooterShape::Cluster { .. }) {
                 continue;
             }
-            let plan = shooters.plan_levels(&r, s, shooters.finest_cell[s], LINK_LEVELS);
+            let normal = piece.normal;
+            let plan = shooters.plan_levels(&r, s, 0.0, LINK_LEVELS);
             let p = &plan.patches;
             // Cells nest: a child's range lies in its parent's, one level down, and the
             // children tile their parent; the top cells tile the order.
@@ -150,8 +153,7 @@ fn cells_nest_and_every_receiver_takes_each_part_of_a_shooter_once() {
                         / c.element_area
                 })
                 .collect();
-            let normal = shooters.normal[s];
-            let l = links::link(&plan, &radiosity, normal, &receivers, 0.5);
+            let l = links::link(&plan, &radiosity, &receivers, 0.5);
             used += l
                 .reach
                 .iter()
@@ -168,7 +170,7 @@ fn cells_nest_and_every_receiver_takes_each_part_of_a_shooter_once() {
                 }
                 let at = el.position[e];
                 let takes: Vec<bool> = (0..p.len())
-                    .map(|k| links::takes_light_from(&plan, &l, k, normal, tolerance, at))
+                    .map(|k| links::takes_light_from(&plan, &l, k, tolerance, at))
                     .collect();
                 for (k, cell) in p.iter().enumerate() {
                     if takes[k] && normal.dot(at - cell.centroid) > tolerance {
@@ -205,30 +207,51 @@ fn receiver_culling_keeps_every_element_in_front_of_a_shooter() {
     let shooters = Shooters::build(&r, Hierarchy::Clusters);
     let receivers = ReceiverBoxes::new(&r);
     let el = &r.elements;
-    let mut kept_total = 0;
-    for s in 0..shooters.len() {
-        let normal = shooters.normal[s];
-        let at = el.position[shooters.elements_of(s)[0] as usize];
-        let ranges = receivers.in_front(normal, at, 0.0);
+    let kept_by = |ranges: &[(u32, u32)]| {
         let mut kept = vec![false; el.len()];
-        for (first, count) in &ranges {
+        for (first, count) in ranges {
             kept[*first as usize..][..*count as usize].fill(true);
         }
+        kept
+    };
+    // One plane: each flat piece.
+    let mut kept_total = 0;
+    for piece in &shooters.pieces {
+        let normal = piece.normal;
+        let at = el.position[shooters.elements[piece.first as usize] as usize];
+        let kept = kept_by(&receivers.in_front(normal, at, 0.0));
         kept_total += kept.iter().filter(|&&k| k).count();
         for (e, &k) in kept.iter().enumerate() {
             if normal.dot(el.position[e] - at) > 1e-9 {
-                assert!(k, "shooter {s}: element {e} in front was culled");
+                assert!(k, "element {e} in front of a piece was culled");
             }
         }
     }
     // Whole charts are kept or culled, so a box's side keeps the floor and the ceiling:
     // 83 % are kept on average (without culling: 100 %).
-    let mean = kept_total as f64 / (shooters.len() * el.len()) as f64;
+    let mean = kept_total as f64 / (shooters.pieces.len() * el.len()) as f64;
     eprintln!(
-        "receivers kept: {:.1} % of the elements per shooter",
+        "receivers kept: {:.1} % of the elements per piece",
         100.0 * mean
     );
     assert!(mean < 0.9, "culling kept {mean}");
+    // A whole shooter (the room's shell: floor, walls and ceiling) keeps everything in
+    // front of any of its cells.
+    assert!(shooters.len() < shooters.pieces.len());
+    for s in 0..shooters.len() {
+        let plan = shooters.plan(&r, s, 0.0);
+        let kept = kept_by(&receivers.in_front_of_any(&plan.planes()));
+        for (e, &k) in kept.iter().enumerate() {
+            let p = el.position[e];
+            if plan
+                .patches
+                .iter()
+                .any(|c| c.normal.dot(p - c.centroid) > 1e-9)
+            {
+                assert!(k, "shooter {s}: element {e} in front of a cell was culled");
+            }
+        }
+    }
 }
 
 /// Solves to `converge`: radiosity per element, shots, visibility maps drawn.

@@ -440,14 +440,24 @@ fn ambient_overshooting_on_the_gpu_converges_in_fewer_shots() {
     let Some(gpu) = gpu_common::gpu() else { return };
     // The furnace laid in charts (one per face), both GPU shooter kinds: overshooting
     // (Feda and Purgathofer; Wallner §4.3.5) reaches 99.99 % in fewer shots, to the same B.
-    let r = RadiosityScene::with_hierarchy(
-        &furnace(0.5, 100.0),
-        8.0,
-        1,
-        goniolight::radiosity::Hierarchy::Clusters,
-    )
-    .unwrap();
+    // Each face has its own material (the same ρ and E), so with clusters each face is a
+    // surface and a shooter: one shooter holding all the light has no ambient to overshoot.
+    let faces = inward_box(DVec3::ZERO, DVec3::new(2.0, 1.5, 1.0));
+    let meshes = faces
+        .chunks(2)
+        .enumerate()
+        .map(|(k, pair)| SceneMesh::from_triangles(&format!("face {k}"), pair, k))
+        .collect();
+    let six = scene_of(meshes, vec![material(0.5, 100.0); 6]);
+    let r =
+        RadiosityScene::with_hierarchy(&six, 8.0, 1, goniolight::radiosity::Hierarchy::Clusters)
+            .unwrap();
     assert_eq!(r.elements.charts.len(), 6, "one chart per face");
+    assert_eq!(
+        goniolight::radiosity::shooters::Shooters::clusters(&r).len(),
+        6,
+        "one shooter per face"
+    );
     for hierarchy in [
         goniolight::radiosity::Hierarchy::None,
         goniolight::radiosity::Hierarchy::Clusters,

@@ -126,6 +126,15 @@ fn radiosity_reads_the_conference_room() {
     ];
     let (_, err) = run(tmp.path(), &args, "");
     says_dropped(&err, m);
+    // Its surfaces shoot as a whole: at most a tenth of its triangles are shooters.
+    let shooters: usize = err
+        .split(" shooters of ")
+        .next()
+        .and_then(|head| head.rsplit(' ').next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("no shooter count in {err}"));
+    eprintln!("conference room: {shooters} shooters");
+    assert!(shooters * 10 <= m.triangles, "{shooters} shooters");
     let csv = std::fs::read_to_string(tmp.path().join("r/convergence.csv")).unwrap();
     assert!(!has_nan(&csv), "{csv}");
 }

@@ -41,8 +41,7 @@ pub fn patches(
     (0..shooters.len())
         .into_par_iter()
         .flat_map_iter(|s| {
-            let plan = shooters.plan(scene, s, shooters.finest_cell[s]);
-            let normal = shooters.normal[s];
+            let plan = shooters.plan(scene, s, 0.0);
             plan.patches
                 .into_iter()
                 .map(|p| {
@@ -52,10 +51,10 @@ pub fn patches(
                         .map(|&e| radiosity[e as usize] * el.area[e as usize])
                         .sum();
                     GatherPatch {
-                        radiosity: power / p.element_area.max(1e-300),
+                        radiosity: power / p.element_area.max(1e-300) * p.power_scale(),
                         polygon: p.polygon,
                         centroid: p.centroid,
-                        normal,
+                        normal: p.normal,
                         area: p.area,
                     }
                 })

@@ -10,6 +10,7 @@ use wgpu::util::DeviceExt;
 use super::form_factor::FormFactorKind;
 use super::initial::InitialState;
 use super::links::{Links, ReceiverBoxes, DEFAULT_LINK_ERROR, LINK_LEVELS};
+use super::polygon::frame;
 use super::scene::RadiosityScene;
 use super::shooters::{Hierarchy, Shooters, ShotPlan, DEFAULT_CELL_POWER};
 use super::{Ambient, SolverSettings};
@@ -63,7 +64,8 @@ impl Default for GpuSettings {
 }
 
 /// An element's records on the GPU, each in its own binding: position and area; normal
-/// and shooter (the reflectance is the shooter's). With radiosity and unshot radiosity
+/// and piece (its shooter's reflectance is the element's; it does not receive from a
+/// cell that shoots its piece). With radiosity and unshot radiosity
 /// they are the solver's per-element buffers, none wider than this.
 type ElementRecord = [f32; 4];
 const _: () = assert!(
@@ -110,6 +112,7 @@ struct ShotGpu {
     extra: [f32; 4],
     ancestors: [[f32; 4]; LINK_LEVELS as usize],
     link: [f32; 4],
+    pieces: [u32; 4],
 }
 
 #[repr(C)]
@@ -143,6 +146,7 @@ struct Pipelines {
     select: wgpu::ComputePipeline,
     gather: wgpu::ComputePipeline,
     clear: wgpu::ComputePipeline,
+    restore: wgpu::ComputePipeline,
     receive: wgpu::ComputePipeline,
     visibility: wgpu::RenderPipeline,
     shot_layout: wgpu::BindGroupLayout,
@@ -230,6 +234,7 @@ impl Pipelines {
             B::Storage { read_only: true },
             B::Storage { read_only: false },
             B::Storage { read_only: true },
+            B::Storage { read_only: false },
         ];
         let entries: Vec<_> = kinds
             .iter()
@@ -310,23 +315,13 @@ impl Pipelines {
             select: compute_pipeline("select_shooter", &shared_only),
             gather: compute_pipeline("gather_patches", &shared_only),
             clear: compute_pipeline("clear_shooter", &shared_only),
+            restore: compute_pipeline("restore_unshot", &shared_only),
             receive: compute_pipeline("receive", &with_shot),
             visibility,
             shot_layout,
             face_layout,
         }
     }
-}
-
-/// An orthonormal frame (t, b, n) around unit `n`.
-fn frame(n: DVec3) -> (DVec3, DVec3) {
-    let t = if n.z.abs() < 0.9 {
-        DVec3::Z.cross(n)
-    } else {
-        DVec3::X.cross(n)
-    }
-    .normalize();
-    (t, n.cross(t))
 }
 
 /// Shooters of at most this many elements are summed by one GPU thread each (in f32, and
@@ -384,7 +379,7 @@ impl<'a> GpuSolver<'a> {
             .map(|e| v4(el.position[e], el.area[e] as f32))
             .collect();
         let normals: Vec<ElementRecord> = (0..n)
-            .map(|e| v4(el.normal(e), f32::from_bits(shooters.element_shooter[e])))
+            .map(|e| v4(el.normal(e), f32::from_bits(shooters.element_piece[e])))
             .collect();
         let start: Vec<[f32; 4]> = initial.radiosity.iter().map(|b| v4(*b, 0.0)).collect();
         let start_lit: Vec<[f32; 4]> = (0..n)
@@ -397,7 +392,7 @@ impl<'a> GpuSolver<'a> {
                     shooters.first[k],
                     shooters.count[k],
                     0,
-                    0,
+                    shooters.first_piece[k],
                     r.x.to_bits(),
                     r.y.to_bits(),
                     r.z.to_bits(),
@@ -465,6 +460,13 @@ impl<'a> GpuSolver<'a> {
             true,
         );
         let patch_delta = storage(gpu, "patch delta", &vec![0u8; 16 * max_patches], true);
+        // The shot's elements' unshot radiosity as cleared, for a shot stopped early.
+        let held = storage(
+            gpu,
+            "held unshot",
+            &vec![0u8; 16 * shooters.max_elements()],
+            true,
+        );
         let shared = gpu.bind_group(
             "radiosity",
             &pipelines.shooter_sums.get_bind_group_layout(0),
@@ -479,6 +481,7 @@ impl<'a> GpuSolver<'a> {
                 (7, patch_buf.as_entire_binding()),
                 (8, patch_delta.as_entire_binding()),
                 (9, element_normals.as_entire_binding()),
+                (10, held.as_entire_binding()),
             ],
         );
         // Visibility needs only the surfaces, not their tessellation: a CAD fan's strips
@@ -660,16 +663,14 @@ impl<'a> GpuSolver<'a> {
         (m, far)
     }
 
-    /// The shooting records of `plan`'s patches `drawn` (indices) from a shooter facing
-    /// `n`, with their links, and their visibility faces.
+    /// The shooting records of `plan`'s patches `drawn` (indices), each facing its own
+    /// normal, with their links, and their visibility faces.
     fn shot_records(
         &self,
-        n: DVec3,
         plan: &ShotPlan,
         links: &Links,
         drawn: &[usize],
     ) -> (Vec<u8>, Vec<u8>, u32) {
-        let (tangent, bitangent) = frame(n);
         let faces_per_patch = match self.gpu_settings.visibility {
             Visibility::Hemicube => 5,
             Visibility::Stereographic => 1,
@@ -681,6 +682,8 @@ impl<'a> GpuSolver<'a> {
         let mut faces = vec![0u8; drawn.len() * faces_per_patch * FACE_STRIDE as usize];
         for (k, &patch) in drawn.iter().enumerate() {
             let p = &plan.patches[patch];
+            let n = p.normal;
+            let (tangent, bitangent) = frame(n);
             let eye = (p.centroid + n * 1e-6 * self.size).as_vec3();
             let (t3, b3, n3) = (tangent.as_vec3(), bitangent.as_vec3(), n.as_vec3());
             let looks = [(n3, t3), (t3, n3), (-t3, n3), (b3, n3), (-b3, n3)];
@@ -700,13 +703,10 @@ impl<'a> GpuSolver<'a> {
                 *slot = v4(a.centroid, finite(links.reach[up as usize]));
                 up = a.parent;
             }
-            // A coarse cell's polygon may be its hull's bounding rectangle: far away, the
-            // form factor goes with the area, so it is scaled to its elements' area.
-            let scale = if p.level > 0 && p.area > 0.0 {
-                p.element_area / p.area
-            } else {
-                1.0
-            };
+            // A coarse cell's polygon may be its hull's bounding rectangle, a merged
+            // cell's is a projection: far away, the form factor goes with the area, so
+            // it is scaled to its elements' area.
+            let scale = p.power_scale();
             let stereographic = self.gpu_settings.visibility == Visibility::Stereographic;
             let record = ShotGpu {
                 faces: matrices.map(|m| m.to_cols_array()),
@@ -734,6 +734,7 @@ impl<'a> GpuSolver<'a> {
                     scale as f32,
                     if p.parent == u32::MAX { 1.0 } else { 0.0 },
                 ],
+                pieces: [p.pieces[0], p.pieces[1], 0, 0],
             };
             let at = k * SHOT_STRIDE as usize;
             shots[at..at + std::mem::size_of::<ShotGpu>()]
@@ -759,21 +760,24 @@ impl<'a> GpuSolver<'a> {
         self.shoot_until(s, &|| false).map(|_| ())
     }
 
-    /// How shooter `s` shoots now: a cluster's cells sized by the oracle from the last
-    /// selection's power ([`Shooters::cell_side`]), with [`LINK_LEVELS`] coarser levels
-    /// when links are on. Its element order and cells go to the GPU, every cell's unshot
+    /// How shooter `s` shoots now ([`Shooters::plan_shot`]): each piece's cells sized by
+    /// the oracle from its own unshot power ([`GpuSolver::piece_powers`]), with
+    /// [`LINK_LEVELS`] coarser levels when links are on; weak curved parts merged, the
+    /// weakest deferred. Its element order and cells go to the GPU, every cell's unshot
     /// radiosity is gathered there (before any is cleared), and — when there are coarse
     /// cells — read back for the links' oracle.
     fn plan(&mut self, s: usize) -> Result<(ShotPlan, Links), GpuError> {
         let initial = self.initial_power.unwrap_or(0.0);
         let budget = self.gpu_settings.cell_power * initial;
-        let side = self.shooters.cell_side(s, self.last_power, budget);
         let levels = if self.gpu_settings.link_error > 0.0 {
             LINK_LEVELS
         } else {
             0
         };
-        let plan = self.shooters.plan_levels(self.scene, s, side, levels);
+        let power = self.piece_powers(s)?;
+        let plan = self
+            .shooters
+            .plan_shot(self.scene, s, &power, budget, levels);
         let first = self.shooters.first[s];
         self.gpu.queue.write_buffer(
             &self.shooter_elements,
@@ -788,22 +792,15 @@ impl<'a> GpuSolver<'a> {
                     first + p.first,
                     p.count,
                     (p.element_area as f32).to_bits(),
-                    0,
+                    u32::from(p.parent == u32::MAX),
                 ]
             })
             .collect();
         self.gpu
             .queue
             .write_buffer(&self.patches, 0, bytemuck::cast_slice(&patches));
-        // Receiver culling: only the charts in front of the shooter's plane receive.
-        let normal = self.shooters.normal[s];
-        let at = plan.patches.first().map_or(DVec3::ZERO, |p| p.centroid);
-        let thickness = plan
-            .patches
-            .iter()
-            .map(|p| normal.dot(p.centroid - at).abs())
-            .fold(0.0, f64::max);
-        let ranges = self.receivers.in_front(normal, at, thickness);
+        // Receiver culling: only the charts in front of some cell's plane receive.
+        let ranges = self.receivers.in_front_of_any(&plan.planes());
         let mut threads = 0u32;
         let records: Vec<[u32; 4]> = ranges
             .iter()
@@ -839,23 +836,57 @@ impl<'a> GpuSolver<'a> {
             vec![0.0; plan.patches.len()]
         };
         let epsilon = self.gpu_settings.link_error * initial / self.scene.total_area.max(1e-300);
-        let links = super::links::link(
-            &plan,
-            &radiosity,
-            self.shooters.normal[s],
-            &self.receivers,
-            epsilon,
-        );
+        let links = super::links::link(&plan, &radiosity, &self.receivers, epsilon);
         Ok((plan, links))
+    }
+
+    /// Per piece of shooter `s`, its unshot power (with the overshoot), lm: summed on the
+    /// GPU over the pieces' elements (laid out piece after piece again first) and read
+    /// back. A lone piece's is the selection's.
+    fn piece_powers(&mut self, s: usize) -> Result<Vec<f64>, GpuError> {
+        let pieces = self.shooters.pieces_of(s);
+        if pieces.len() == 1 {
+            return Ok(vec![self.last_power]);
+        }
+        let first = self.shooters.first[s];
+        self.gpu.queue.write_buffer(
+            &self.shooter_elements,
+            4 * first as u64,
+            bytemuck::cast_slice(self.shooters.elements_of(s)),
+        );
+        let records: Vec<[u32; 4]> = pieces
+            .clone()
+            .map(|p| {
+                let piece = &self.shooters.pieces[p];
+                [piece.first, piece.count, 1f32.to_bits(), 0]
+            })
+            .collect();
+        self.gpu
+            .queue
+            .write_buffer(&self.patches, 0, bytemuck::cast_slice(&records));
+        let count = records.len() as u32;
+        self.write_params(s as u32, 0, count, 0..0);
+        let mut enc = self.gpu.device.create_command_encoder(&Default::default());
+        self.dispatch(&mut enc, &self.pipelines.gather, count, 1);
+        self.gpu.queue.submit([enc.finish()]);
+        let sums = self
+            .gpu
+            .read_f32_prefix(&self.patch_delta, 16 * u64::from(count))?;
+        Ok(sums
+            .chunks_exact(4)
+            .map(|d| super::scene::luminance(DVec3::new(d[0] as f64, d[1] as f64, d[2] as f64)))
+            .collect())
     }
 
     /// [`GpuSolver::shoot`] in batches of top cells (drawing at most
     /// [`PATCHES_PER_BATCH`] visibility maps, sized so one takes about 50 ms), asking
     /// `stop` between batches (after the GPU has finished the last): a shooter of
     /// thousands of patches no longer overruns a time limit or Ctrl-C by more than a
-    /// batch. A batch's elements lose their unshot radiosity only as the batch shoots,
-    /// so a shot stopped early leaves the rest unshot for later (energy is neither lost
-    /// nor counted twice). True when the whole shooter was shot.
+    /// batch. Every shot element loses its unshot radiosity before the first batch (a
+    /// shooter's pieces light each other: light one takes from another during the shot
+    /// stays unshot) and the GPU holds it; a shot stopped early gives the elements of the
+    /// cells it did not shoot what it held back, so energy is neither lost nor counted
+    /// twice. True when the whole shooter was shot.
     pub fn shoot_until(&mut self, s: usize, stop: &dyn Fn() -> bool) -> Result<bool, GpuError> {
         let (plan, links) = self.plan(s)?;
         // Top cells and their subtrees (depth first: a subtree runs to the next top).
@@ -872,9 +903,8 @@ impl<'a> GpuSolver<'a> {
                 drawn.extend((tops[t]..subtree_end(t)).filter(|&k| links.drawn[k]));
                 t += 1;
             }
-            let first = plan.patches[tops[from]].first;
-            let last = &plan.patches[tops[t - 1]];
-            self.shoot_batch(s, &plan, &links, &drawn, first..last.first + last.count)?;
+            let clear = if from == 0 { 0..plan.shot } else { 0..0 };
+            self.shoot_batch(s, &plan, &links, &drawn, clear)?;
             let cells: usize = (tops[from]..subtree_end(t - 1)).count();
             self.drawn += drawn.len();
             self.skipped += cells - drawn.len();
@@ -888,6 +918,7 @@ impl<'a> GpuSolver<'a> {
                     self.batch = (self.batch / 2).max(1);
                 }
                 if stop() {
+                    self.restore(s, tops[t], plan.patches.len());
                     self.shots += 1;
                     return Ok(false);
                 }
@@ -897,8 +928,18 @@ impl<'a> GpuSolver<'a> {
         Ok(true)
     }
 
-    /// Shoots the cells `drawn` of shooter `s`'s `plan`, clearing the unshot radiosity of
-    /// the elements `clear` (a range of the plan's order: the batch's top cells).
+    /// Gives the elements of the top cells among patches `first..end` of shooter `s`'s
+    /// plan the unshot radiosity the shot's clear held (a shot stopped before them).
+    fn restore(&self, s: usize, first: usize, end: usize) {
+        let count = (end - first) as u32;
+        self.write_params(s as u32, first as u32, count, 0..0);
+        let mut enc = self.gpu.device.create_command_encoder(&Default::default());
+        self.dispatch(&mut enc, &self.pipelines.restore, count, 1);
+        self.gpu.queue.submit([enc.finish()]);
+    }
+
+    /// Shoots the cells `drawn` of shooter `s`'s `plan`, first clearing the unshot
+    /// radiosity of the elements `clear` (a range of the plan's order).
     fn shoot_batch(
         &mut self,
         s: usize,
@@ -910,11 +951,12 @@ impl<'a> GpuSolver<'a> {
         let first = self.shooters.first[s];
         let cells = plan.patches.len() as u32;
         self.write_params(s as u32, 0, cells, first + clear.start..first + clear.end);
-        let (shots, faces, faces_per_patch) =
-            self.shot_records(self.shooters.normal[s], plan, links, drawn);
+        let (shots, faces, faces_per_patch) = self.shot_records(plan, links, drawn);
         let dev = &self.gpu.device;
         let mut enc = dev.create_command_encoder(&Default::default());
-        self.dispatch(&mut enc, &self.pipelines.clear, clear.len() as u32, 64);
+        if !clear.is_empty() {
+            self.dispatch(&mut enc, &self.pipelines.clear, clear.len() as u32, 64);
+        }
         if drawn.is_empty() {
             self.gpu.queue.submit([enc.finish()]);
             return Ok(());

@@ -43,6 +43,8 @@ pub const MIN_REACH: f64 = 1.0;
 /// Receivers closer to a shooter's plane than this share of the scene's size take light
 /// from its top cells only (their form factor is next to nothing).
 const PLANE_TOLERANCE: f64 = 1e-4;
+/// Most plane tests per box in receiver culling ([`ReceiverBoxes::in_front_of_any`]).
+pub const MAX_CULLING_PLANES: usize = 64;
 /// Relative slack of the conservative questions (f32 distances on the GPU).
 const SLACK: f64 = 1e-5;
 
@@ -133,10 +135,23 @@ impl ReceiverBoxes {
     /// element order: every element behind the shooter or in its plane (where a patch's
     /// form factor is 0) is in a chart left out — receiver culling.
     pub fn in_front(&self, normal: DVec3, at: DVec3, thickness: f64) -> Vec<(u32, u32)> {
-        let slack = self.pad + SLACK * self.size + thickness;
+        self.in_front_of_any(&[(normal, at, thickness)])
+    }
+
+    /// [`ReceiverBoxes::in_front`] of any of `planes` (normal, point, thickness): the
+    /// receivers of a shooter whose cells face several ways. Up to
+    /// [`MAX_CULLING_PLANES`] planes are tested one by one; more (a curved shooter) are
+    /// taken in that many runs of consecutive planes, each bounded by the cone of its
+    /// normals around the sphere of its points.
+    pub fn in_front_of_any(&self, planes: &[(DVec3, DVec3, f64)]) -> Vec<(u32, u32)> {
+        let runs: Vec<PlaneRun> = planes
+            .chunks(planes.len().div_ceil(MAX_CULLING_PLANES).max(1))
+            .map(PlaneRun::new)
+            .collect();
+        let slack = self.pad + SLACK * self.size;
         let mut charts = Vec::new();
         self.visit(
-            |lo, hi| highest(lo, hi, normal, at) > -slack,
+            |lo, hi| runs.iter().any(|run| run.highest(lo, hi) > -slack),
             false,
             &mut |k| charts.push(k),
         );
@@ -245,6 +260,49 @@ fn variation(plan: &ShotPlan, radiosity: &[f64]) -> Vec<f64> {
         .collect()
 }
 
+/// Consecutive planes (normal n_i through a_i, t_i thick) bounded together: for x in a
+/// box, n_i · (x − a_i) + t_i ≤ m · (x − c) + δ |x − c| + ρ (1 + δ) + t, with m their mean
+/// normal, δ the largest |n_i − m|, c the centre of the a_i and ρ their largest distance
+/// from it, t the largest t_i. One plane: its own test.
+struct PlaneRun {
+    normal: DVec3,
+    centre: DVec3,
+    spread: f64,
+    radius: f64,
+    thickness: f64,
+}
+
+impl PlaneRun {
+    fn new(planes: &[(DVec3, DVec3, f64)]) -> PlaneRun {
+        let sum: DVec3 = planes.iter().map(|p| p.0).sum();
+        let normal = sum.try_normalize().unwrap_or(planes[0].0);
+        let centre = planes.iter().map(|p| p.1).sum::<DVec3>() / planes.len() as f64;
+        let most =
+            |f: &dyn Fn(&(DVec3, DVec3, f64)) -> f64| planes.iter().map(f).fold(0.0, f64::max);
+        PlaneRun {
+            normal,
+            centre,
+            spread: most(&|p| (p.0 - normal).length()),
+            radius: most(&|p| (p.1 - centre).length()),
+            thickness: most(&|p| p.2),
+        }
+    }
+
+    /// An upper bound of the highest point of the box [lo, hi] above the run's planes.
+    fn highest(&self, lo: DVec3, hi: DVec3) -> f64 {
+        let mut best = f64::NEG_INFINITY;
+        for x in [lo.x, hi.x] {
+            for y in [lo.y, hi.y] {
+                for z in [lo.z, hi.z] {
+                    let d = DVec3::new(x, y, z) - self.centre;
+                    best = best.max(self.normal.dot(d) + self.spread * d.length());
+                }
+            }
+        }
+        best + self.radius * (1.0 + self.spread) + self.thickness
+    }
+}
+
 /// The highest corner of the box [lo, hi] above the plane through `at` facing `normal`.
 fn highest(lo: DVec3, hi: DVec3, normal: DVec3, at: DVec3) -> f64 {
     let mut best = f64::NEG_INFINITY;
@@ -268,7 +326,7 @@ fn farthest(lo: DVec3, hi: DVec3, p: DVec3) -> f64 {
     (p - lo).abs().max((hi - p).abs()).length()
 }
 
-/// Links `plan`'s cells (facing `normal`, each with mean unshot `radiosity`, lm/m²) to the
+/// Links `plan`'s cells (each with mean unshot `radiosity`, lm/m²) to the
 /// receivers for the link error `epsilon` (lux): each cell's reach, and which cells are
 /// drawn.
 ///
@@ -278,13 +336,7 @@ fn farthest(lo: DVec3, hi: DVec3, p: DVec3) -> f64 {
 /// tie keeps the finer cells). In a small room every fine cell has a wall within reach,
 /// so nothing coarse is used; in a hall the far side takes a floor's light from a few
 /// cells.
-pub fn link(
-    plan: &ShotPlan,
-    radiosity: &[f64],
-    normal: DVec3,
-    receivers: &ReceiverBoxes,
-    epsilon: f64,
-) -> Links {
+pub fn link(plan: &ShotPlan, radiosity: &[f64], receivers: &ReceiverBoxes, epsilon: f64) -> Links {
     let patches = &plan.patches;
     let oracle: Vec<f64> = patches
         .iter()
@@ -295,7 +347,6 @@ pub fn link(
         plan,
         children: plan.children(),
         oracle: &oracle,
-        normal,
         receivers,
         slack: receivers.pad + SLACK * receivers.size,
     };
@@ -321,7 +372,6 @@ struct Search<'a> {
     plan: &'a ShotPlan,
     children: Vec<Vec<u32>>,
     oracle: &'a [f64],
-    normal: DVec3,
     receivers: &'a ReceiverBoxes,
     /// Absolute slack of the conservative questions, metres.
     slack: f64,
@@ -330,9 +380,9 @@ struct Search<'a> {
 impl Search<'_> {
     /// Whether the box [lo, hi] is in front of cell `k`'s plane.
     fn in_front(&self, lo: DVec3, hi: DVec3, k: usize) -> bool {
-        let at = self.plan.patches[k].centroid;
+        let cell = &self.plan.patches[k];
         let tolerance = self.receivers.plane_tolerance() - self.slack;
-        highest(lo, hi, self.normal, at) > tolerance
+        highest(lo, hi, cell.normal, cell.centroid) > tolerance
     }
 
     /// Whether the box [lo, hi] may hold a receiver within the reach of used cell `k`.
@@ -412,20 +462,19 @@ impl Search<'_> {
     }
 }
 
-/// Whether a receiver at `p` takes light from cell `k` of `plan` (facing `normal`) — the
-/// GPU receive pass's rule, in f64: in front of the shooter's plane (beyond `tolerance`),
+/// Whether a receiver at `p` takes light from cell `k` of `plan` — the GPU receive pass's
+/// rule, in f64: in front of the cell's plane (beyond `tolerance`),
 /// beyond the cell's reach and within every ancestor's; nearer the plane, from top cells
 /// only.
 pub fn takes_light_from(
     plan: &ShotPlan,
     links: &Links,
     k: usize,
-    normal: DVec3,
     tolerance: f64,
     p: DVec3,
 ) -> bool {
     let cell = &plan.patches[k];
-    if normal.dot(p - cell.centroid) <= tolerance {
+    if cell.normal.dot(p - cell.centroid) <= tolerance {
         return cell.parent == u32::MAX;
     }
     if p.distance(cell.centroid) < links.reach[k] {

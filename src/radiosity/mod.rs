@@ -30,7 +30,8 @@ pub enum Hierarchy {
     #[default]
     None,
     /// Planar face clusters are the charts (one light-map rectangle, no seams between
-    /// their triangles) and shoot as a whole, from cells sized by their power.
+    /// their triangles); each connected surface of one material shoots as a whole, its
+    /// flat clusters from cells sized by their power.
     Clusters,
 }
 

@@ -1,6 +1,6 @@
 //! Planar polygon helpers shared by the element layout and the shooters' cells.
 
-use glam::DVec2;
+use glam::{DVec2, DVec3};
 
 /// Clips a convex polygon to the half-plane left of the directed edge a → b.
 fn clip_left(poly: &[DVec2], a: DVec2, b: DVec2) -> Vec<DVec2> {
@@ -61,4 +61,15 @@ pub(crate) fn outline(hull: &[DVec2], lo: DVec2, hi: DVec2) -> Vec<DVec2> {
         (lo, hi)
     };
     vec![a, DVec2::new(b.x, a.y), b, DVec2::new(a.x, b.y)]
+}
+
+/// An orthonormal frame (t, b, n) around unit `n`.
+pub(crate) fn frame(n: DVec3) -> (DVec3, DVec3) {
+    let t = if n.z.abs() < 0.9 {
+        DVec3::Z.cross(n)
+    } else {
+        DVec3::X.cross(n)
+    }
+    .normalize();
+    (t, n.cross(t))
 }

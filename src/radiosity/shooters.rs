@@ -1,21 +1,32 @@
 //! Who shoots in the progressive solution. Flat (`--hierarchy none`): every chart of the
 //! light map — there every triangle — from its patches (blocks of 2^level texels). With
-//! face clusters (Edström ch. 6, after Willmott's face-cluster radiosity): every flat
-//! cluster of the hierarchy ([`RadiosityScene::planar_clusters`]), cut where a
-//! cluster stops being planar, shoots as a whole — a floor drawn as 500 strips is one
-//! shooter, not 500. Its shooting patches are the cells of a square grid laid in the plane
-//! of its oriented box, and the grid's cell is chosen per shot by an oracle: each cell may
-//! carry at most a set share of the initial unshot power (the shooter side of Hanrahan's
-//! B·F refinement), so bright shooters shoot from fine cells (down to the flat solver's
-//! patch) and the many weak late shooters from a few coarse ones. Receivers are always the
-//! elements, so no push-pull is needed: the hierarchy only decides who shoots and from
-//! where. The geometry is never changed.
+//! face clusters (Edström ch. 4 and 6, after Willmott's face-cluster radiosity): every
+//! connected surface of one material (a root of the hierarchy) is one shooter, chosen by
+//! its summed unshot power, and its **pieces** are its flat clusters
+//! ([`RadiosityScene::planar_clusters`], cut where a cluster stops being planar) — a floor
+//! drawn as 500 strips is one piece, a column of 60 facets one shooter, not 60.
+//!
+//! Per shot ([`Shooters::plan_shot`]), with each piece's unshot power summed on the GPU:
+//! - a piece shoots from the cells of a square grid laid in the plane of its oriented box,
+//!   the cell chosen by an oracle: each cell may carry at most a set share of the initial
+//!   unshot power (the shooter side of Hanrahan's B·F refinement), so bright pieces shoot
+//!   from fine cells (down to the flat solver's patch) and weak ones from a few coarse ones;
+//! - the largest face clusters of two pieces or more that together carry at most that
+//!   share and whose normals agree (|ΣA·n| ≥ [`MERGE_NORMALS`] ΣA) shoot from one merged
+//!   cell facing their summed area normal — Willmott's power vector S·b for a curved
+//!   cluster, its error bounded by the cell's power times the normals' spread;
+//! - pieces (or merged cells) with less than [`SKIP_SHARE`] of the strongest one's power
+//!   wait for a later shot.
+//!
+//! Receivers are always the elements (a shooter's pieces light each other, a cell never
+//! its own pieces), so no push-pull is needed: the hierarchy only decides who shoots and
+//! from where. The geometry is never changed.
 
 use glam::{DVec2, DVec3};
 
 use super::clusters::obb::convex_hull;
 use super::clusters::{FaceClusters, Obb};
-use super::polygon::{area_centroid, clip_square, outline};
+use super::polygon::{area_centroid, clip_square, frame, outline};
 use super::scene::RadiosityScene;
 
 pub use super::Hierarchy;
@@ -23,7 +34,7 @@ pub use super::Hierarchy;
 /// Default largest share of the initial unshot power one shooting cell may carry.
 pub const DEFAULT_CELL_POWER: f64 = 1e-3;
 
-/// What one shooter is.
+/// What one planar piece of a shooter is.
 #[derive(Debug, Clone, PartialEq)]
 pub enum ShooterShape {
     /// One chart (a triangle, or a planar cluster's triangles), shot from its patches.
@@ -37,27 +48,52 @@ pub enum ShooterShape {
     },
 }
 
-/// The shooters of a scene: each a set of elements with one normal and one material.
+/// One planar piece of a shooter: its elements share a plane, a normal and a grid of
+/// cells.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Piece {
+    /// What it is.
+    pub shape: ShooterShape,
+    /// Its unit normal.
+    pub normal: DVec3,
+    /// Its area, m².
+    pub area: f64,
+    /// The smallest cell side it shoots from, metres (the flat patch side).
+    pub finest_cell: f64,
+    /// Its elements are `elements[first..first + count]` of [`Shooters`].
+    pub first: u32,
+    /// How many elements it has.
+    pub count: u32,
+    /// Its node in the face-cluster hierarchy (`u32::MAX` for a chart of the flat solver).
+    pub node: u32,
+}
+
+/// The shooters of a scene: each a set of planar pieces of one material, chosen and shot
+/// as a whole.
 #[derive(Debug, Clone)]
 pub struct Shooters {
-    /// Per shooter, what it is.
-    pub shapes: Vec<ShooterShape>,
+    /// Every shooter's pieces, shooter after shooter.
+    pub pieces: Vec<Piece>,
+    /// Per shooter, its first piece.
+    pub first_piece: Vec<u32>,
+    /// Per shooter, how many pieces it has.
+    pub piece_count: Vec<u32>,
+    /// Per shooter, the face cluster holding its pieces (`u32::MAX` for a lone piece).
+    pub node: Vec<u32>,
     /// Per shooter, its first entry in [`Shooters::elements`].
     pub first: Vec<u32>,
     /// Per shooter, how many elements it has.
     pub count: Vec<u32>,
-    /// Every shooter's elements, shooter after shooter.
+    /// Every piece's elements, piece after piece.
     pub elements: Vec<u32>,
-    /// Per shooter, its unit normal.
-    pub normal: Vec<DVec3>,
     /// Per shooter, its material.
     pub material: Vec<usize>,
     /// Per shooter, its area, m².
     pub area: Vec<f64>,
-    /// Per shooter, the smallest cell side it shoots from, metres (the flat patch side).
-    pub finest_cell: Vec<f64>,
     /// Per element, its shooter.
     pub element_shooter: Vec<u32>,
+    /// Per element, its piece.
+    pub element_piece: Vec<u32>,
 }
 
 /// One shooting patch of a shot: a range of the shot's element order and a polygon.
@@ -71,6 +107,8 @@ pub struct PlannedPatch {
     pub polygon: Vec<DVec3>,
     /// Where it looks from: the area-weighted centre of its elements, metres.
     pub centroid: DVec3,
+    /// The direction it faces (its visibility map's axis and its polygon's normal).
+    pub normal: DVec3,
     /// The polygon's area, m².
     pub area: f64,
     /// Its elements' area, m²: it shoots their power over this, their mean radiosity.
@@ -83,19 +121,44 @@ pub struct PlannedPatch {
     /// The largest distance from `centroid` to its polygon's corners or its elements'
     /// centres, metres.
     pub radius: f64,
+    /// The pieces whose elements it shoots (first, end), indices into [`Shooters::pieces`]:
+    /// they do not receive its light.
+    pub pieces: [u32; 2],
+    /// Whether it is a merged cell: several planar pieces of a weak shooter shot as one
+    /// cell facing their summed area normal, its polygon their outline projected on that
+    /// plane.
+    pub merged: bool,
+}
+
+impl PlannedPatch {
+    /// What its polygon's radiosity is scaled by so that it shoots its elements' power:
+    /// their area over its polygon's where the polygon stands in for them (a coarse cell's
+    /// outline, a merged cell's projection), else 1 (a fine cell's polygon is the surface
+    /// it holds).
+    pub fn power_scale(&self) -> f64 {
+        if (self.level > 0 || self.merged) && self.area > 0.0 {
+            self.element_area / self.area
+        } else {
+            1.0
+        }
+    }
 }
 
 /// How one shooter shoots: its elements in patch order, and the patches.
 ///
-/// With several levels ([`Shooters::plan_levels`]) the patches are the cells of a quadtree
-/// listed depth first (a cell, then its children's subtrees): every cell's elements are
-/// one range of `order`, inside its parent's, and the top cells' ranges tile `order`.
-#[derive(Debug, Clone, PartialEq)]
+/// With several levels ([`Shooters::plan_levels`]) each piece's patches are the cells of a
+/// quadtree listed depth first (a cell, then its children's subtrees): every cell's
+/// elements are one range of `order`, inside its parent's, and the top cells' ranges
+/// tile `order[..shot]`. The elements after `shot` are not shot this time (pieces too
+/// weak to be worth a visibility map yet: [`SKIP_SHARE`]).
+#[derive(Debug, Clone, PartialEq, Default)]
 pub struct ShotPlan {
     /// The shooter's elements (the same set as in [`Shooters::elements`]), patch after patch.
     pub order: Vec<u32>,
     /// The patches.
     pub patches: Vec<PlannedPatch>,
+    /// How many entries of `order` are shot.
+    pub shot: u32,
 }
 
 impl ShotPlan {
@@ -109,7 +172,44 @@ impl ShotPlan {
         }
         children
     }
+
+    /// The planes its cells shoot from (unit normal, a point, how thick the cells'
+    /// centres are about it, metres): one per run of cells facing one way.
+    pub fn planes(&self) -> Vec<(DVec3, DVec3, f64)> {
+        let mut planes: Vec<(DVec3, DVec3, f64)> = Vec::new();
+        for p in &self.patches {
+            match planes.last_mut() {
+                Some((n, at, thickness)) if *n == p.normal => {
+                    *thickness = thickness.max(n.dot(p.centroid - *at).abs());
+                }
+                _ => planes.push((p.normal, p.centroid, 0.0)),
+            }
+        }
+        planes
+    }
+
+    /// Appends `plan` (shot in full) after the shot part of this one.
+    fn append(&mut self, plan: ShotPlan) {
+        let (order, patches) = (self.order.len() as u32, self.patches.len() as u32);
+        self.order.extend(plan.order);
+        self.patches.extend(plan.patches.into_iter().map(|mut p| {
+            p.first += order;
+            if p.parent != u32::MAX {
+                p.parent += patches;
+            }
+            p
+        }));
+        self.shot = self.order.len() as u32;
+    }
 }
+
+/// A shooter's pieces that shoot from one merged cell must agree in normal: their summed
+/// area normal is at least this share of their area (its deviation is the error bound of
+/// the merge, with the cell's power at most the oracle's budget).
+pub const MERGE_NORMALS: f64 = 0.8;
+/// In a shot, pieces (or merged cells) with less than this share of the strongest one's
+/// unshot power wait for a later shot.
+pub const SKIP_SHARE: f64 = 0.05;
 
 impl Shooters {
     /// The shooters `hierarchy` asks for.
@@ -128,49 +228,120 @@ impl Shooters {
             if chart.count == 0 {
                 continue;
             }
-            let id = s.shapes.len() as u32;
-            s.first.push(s.elements.len() as u32);
-            s.count.push(chart.count);
-            for e in chart.first..chart.first + chart.count {
-                s.elements.push(e);
-                s.element_shooter[e as usize] = id;
-            }
-            s.shapes.push(ShooterShape::Chart(c as u32));
-            s.normal.push(chart.normal);
-            s.material.push(chart.material);
-            s.area.push(chart.area);
-            s.finest_cell
-                .push(chart.texel_m * f64::from(1u32 << el.level));
+            let start = s.start();
+            s.push_piece(
+                chart.first..chart.first + chart.count,
+                Piece {
+                    shape: ShooterShape::Chart(c as u32),
+                    normal: chart.normal,
+                    area: chart.area,
+                    finest_cell: chart.texel_m * f64::from(1u32 << el.level),
+                    first: 0,
+                    count: 0,
+                    node: u32::MAX,
+                },
+            );
+            s.finish(start, u32::MAX, chart.material);
         }
         s
     }
 
-    /// The flat clusters of the face-cluster hierarchy ([`RadiosityScene::planar_clusters`]):
-    /// from each root, the largest clusters that are planar (within a hundredth of a texel)
-    /// shoot as a whole.
+    /// Each connected surface of one material (a root of the face-cluster hierarchy) is
+    /// one shooter whose pieces are its flat clusters ([`RadiosityScene::planar_clusters`]:
+    /// from each root, the largest clusters that are planar within a hundredth of a texel).
+    /// Its pieces shoot from their own cells, sized by their own unshot power, and a weak
+    /// surface's curved parts from merged cells ([`Shooters::plan_shot`]).
     pub fn clusters(scene: &RadiosityScene) -> Shooters {
+        Shooters::from_clusters(scene, true)
+    }
+
+    /// Every flat cluster its own shooter: the pieces of [`Shooters::clusters`], each
+    /// chosen on its own (a reference for the grouping).
+    pub fn planar(scene: &RadiosityScene) -> Shooters {
+        Shooters::from_clusters(scene, false)
+    }
+
+    fn from_clusters(scene: &RadiosityScene, by_surface: bool) -> Shooters {
         let el = &scene.elements;
         let planar = scene.planar_clusters();
+        let tree = &planar.tree;
         let mut s = Shooters::empty(el.len());
-        for &node in &planar.cut {
-            let texel = planar.texel[node as usize];
-            s.push_cluster(scene, &planar.tree, node, texel);
+        // The cut in depth-first order, so every cluster's pieces are consecutive.
+        let mut cut = planar.cut.clone();
+        cut.sort_unstable_by_key(|&n| tree.nodes[n as usize].first);
+        let mut roots = tree.roots.clone();
+        roots.sort_unstable_by_key(|&n| tree.nodes[n as usize].first);
+        let mut next = 0;
+        for &root in &roots {
+            let r = &tree.nodes[root as usize];
+            let from = next;
+            while next < cut.len() && tree.nodes[cut[next] as usize].first < r.first + r.count {
+                next += 1;
+            }
+            let groups: Vec<(u32, &[u32])> = if by_surface {
+                vec![(root, &cut[from..next])]
+            } else {
+                (from..next).map(|k| (cut[k], &cut[k..k + 1])).collect()
+            };
+            for (node, pieces) in groups {
+                let start = s.start();
+                for &piece in pieces {
+                    s.push_cluster(scene, tree, piece, planar.texel[piece as usize]);
+                }
+                s.finish(start, node, r.material);
+            }
         }
         s
     }
 
     fn empty(elements: usize) -> Shooters {
         Shooters {
-            shapes: Vec::new(),
+            pieces: Vec::new(),
+            first_piece: Vec::new(),
+            piece_count: Vec::new(),
+            node: Vec::new(),
             first: Vec::new(),
             count: Vec::new(),
             elements: Vec::new(),
-            normal: Vec::new(),
             material: Vec::new(),
             area: Vec::new(),
-            finest_cell: Vec::new(),
             element_shooter: vec![u32::MAX; elements],
+            element_piece: vec![u32::MAX; elements],
         }
+    }
+
+    /// Where the next shooter's pieces and elements start.
+    fn start(&self) -> (usize, usize) {
+        (self.pieces.len(), self.elements.len())
+    }
+
+    /// Adds `piece` with `elements` to the shooter being built.
+    fn push_piece(&mut self, elements: impl IntoIterator<Item = u32>, mut piece: Piece) {
+        let (id, index) = (self.first.len() as u32, self.pieces.len() as u32);
+        piece.first = self.elements.len() as u32;
+        for e in elements {
+            self.elements.push(e);
+            self.element_shooter[e as usize] = id;
+            self.element_piece[e as usize] = index;
+        }
+        piece.count = self.elements.len() as u32 - piece.first;
+        self.pieces.push(piece);
+    }
+
+    /// Closes the shooter whose pieces were pushed since `start` (dropped when it has
+    /// none: only triangles without area).
+    fn finish(&mut self, (pieces, elements): (usize, usize), node: u32, material: usize) {
+        if self.pieces.len() == pieces {
+            return;
+        }
+        self.first_piece.push(pieces as u32);
+        self.piece_count.push((self.pieces.len() - pieces) as u32);
+        self.node.push(node);
+        self.first.push(elements as u32);
+        self.count.push((self.elements.len() - elements) as u32);
+        self.material.push(material);
+        self.area
+            .push(self.pieces[pieces..].iter().map(|p| p.area).sum());
     }
 
     fn push_cluster(
@@ -181,8 +352,6 @@ impl Shooters {
         texel: f64,
     ) {
         let el = &scene.elements;
-        let id = self.shapes.len() as u32;
-        let first = self.elements.len();
         // Its triangles' charts' elements (a chart is never split between clusters when
         // the charts are the planar clusters; otherwise the first cluster claims it).
         let mut charts: Vec<u32> = clusters
@@ -193,6 +362,7 @@ impl Shooters {
             .collect();
         charts.sort_unstable();
         charts.dedup();
+        let mut elements = Vec::new();
         let mut lone_chart = None;
         for c in charts {
             let chart = &el.charts[c as usize];
@@ -200,18 +370,12 @@ impl Shooters {
                 continue;
             }
             lone_chart = Some(c);
-            for e in chart.first..chart.first + chart.count {
-                self.elements.push(e);
-                self.element_shooter[e as usize] = id;
-            }
+            elements.extend(chart.first..chart.first + chart.count);
         }
-        let count = self.elements.len() - first;
-        if count == 0 {
+        if elements.is_empty() {
             return; // only triangles without area
         }
         let c = &clusters.nodes[node as usize];
-        self.first.push(first as u32);
-        self.count.push(count as u32);
         // A lone triangle shoots from its own patches, which follow its outline. A
         // cluster's cells are laid in the tight box around its corners (the hierarchy's
         // boxes, around the children's boxes, are looser: cells must not stick out).
@@ -222,24 +386,32 @@ impl Shooters {
             .flat_map(|&t| mesh.triangles[t as usize].map(|i| mesh.positions[i as usize]))
             .collect();
         let obb = Obb::around(&corners, c.area_normal);
-        self.shapes.push(match (c.children, lone_chart) {
+        let shape = match (c.children, lone_chart) {
             (None, Some(chart)) => ShooterShape::Chart(chart),
             _ => ShooterShape::Cluster { node, obb },
-        });
-        self.normal.push(obb.axes[2]);
-        self.material.push(c.material);
-        self.area.push(c.area);
-        self.finest_cell.push(texel * f64::from(1u32 << el.level));
+        };
+        self.push_piece(
+            elements,
+            Piece {
+                shape,
+                normal: obb.axes[2],
+                area: c.area,
+                finest_cell: texel * f64::from(1u32 << el.level),
+                first: 0,
+                count: 0,
+                node,
+            },
+        );
     }
 
     /// Number of shooters.
     pub fn len(&self) -> usize {
-        self.shapes.len()
+        self.first.len()
     }
 
     /// Whether there is no shooter.
     pub fn is_empty(&self) -> bool {
-        self.shapes.is_empty()
+        self.first.is_empty()
     }
 
     /// Shooter `s`'s elements.
@@ -247,22 +419,34 @@ impl Shooters {
         &self.elements[self.first[s] as usize..][..self.count[s] as usize]
     }
 
+    /// Shooter `s`'s pieces' indices.
+    pub fn pieces_of(&self, s: usize) -> std::ops::Range<usize> {
+        let first = self.first_piece[s] as usize;
+        first..first + self.piece_count[s] as usize
+    }
+
+    /// Piece `p`'s elements.
+    pub fn piece_elements(&self, p: usize) -> &[u32] {
+        let piece = &self.pieces[p];
+        &self.elements[piece.first as usize..][..piece.count as usize]
+    }
+
     /// The most elements any shooter has.
     pub fn max_elements(&self) -> usize {
         self.count.iter().copied().max().unwrap_or(1).max(1) as usize
     }
 
-    /// The most cells any plan with up to `levels` coarser levels can have
-    /// ([`Shooters::plan_levels`] at the finest side: coarser sides have fewer cells).
+    /// The most cells any plan with up to `levels` coarser levels can have (every piece
+    /// at its finest side: coarser sides and merged cells have fewer).
     pub fn max_cells(&self, scene: &RadiosityScene, levels: u32) -> usize {
         let el = &scene.elements;
-        let cells = |s: usize| match &self.shapes[s] {
+        let cells = |p: usize| match &self.pieces[p].shape {
             ShooterShape::Chart(c) => el.charts[*c as usize].patch_count as usize,
             ShooterShape::Cluster { obb, .. } => {
-                let grid = Grid::new(obb, self.finest_cell[s]);
+                let grid = Grid::new(obb, self.pieces[p].finest_cell);
                 let top = levels.min(grid.levels_to_one_cell());
                 let mut keys: Vec<u64> = self
-                    .elements_of(s)
+                    .piece_elements(p)
                     .iter()
                     .map(|&e| z_order(grid.column_row(grid.plane(el.position[e as usize]))))
                     .collect();
@@ -276,22 +460,27 @@ impl Shooters {
                     .sum()
             }
         };
-        (0..self.len()).map(cells).max().unwrap_or(1).max(1)
+        (0..self.len())
+            .map(|s| self.pieces_of(s).map(cells).sum::<usize>())
+            .max()
+            .unwrap_or(1)
+            .max(1)
     }
 
-    /// The oracle: the cell side shooter `s` shoots from when it holds `power` lm — the
+    /// The oracle: the cell side piece `p` shoots from when it holds `power` lm — the
     /// largest of the finest cell times a power of two whose cells (area / side² of them)
-    /// carry at most `budget` lm each, stopping at one cell over the whole shooter.
-    pub fn cell_side(&self, s: usize, power: f64, budget: f64) -> f64 {
-        let finest = self.finest_cell[s];
-        let ShooterShape::Cluster { obb, .. } = &self.shapes[s] else {
+    /// carry at most `budget` lm each, stopping at one cell over the whole piece.
+    pub fn cell_side(&self, p: usize, power: f64, budget: f64) -> f64 {
+        let piece = &self.pieces[p];
+        let finest = piece.finest_cell;
+        let ShooterShape::Cluster { obb, .. } = &piece.shape else {
             return finest;
         };
         let whole = 2.0 * obb.half.x.max(obb.half.y);
         if !(power > 0.0 && budget > 0.0) {
             return finest;
         }
-        let wanted = (self.area[s] * budget / power).sqrt();
+        let wanted = (piece.area * budget / power).sqrt();
         let mut side = finest;
         while 2.0 * side <= wanted && side < whole {
             side *= 2.0;
@@ -299,15 +488,16 @@ impl Shooters {
         side
     }
 
-    /// How shooter `s` shoots from cells of `side` metres (ignored by a triangle).
+    /// How shooter `s` shoots with every piece from cells of `side` metres (or its finest
+    /// cell where that is larger; a chart from its patches), one level.
     pub fn plan(&self, scene: &RadiosityScene, s: usize, side: f64) -> ShotPlan {
         self.plan_levels(scene, s, side, 0)
     }
 
     /// [`Shooters::plan`] with up to `levels` coarser levels of cells above those of
-    /// `side` (each doubling the side, stopping at one cell over the cluster), for
-    /// [`super::links`]: far receivers take their light from a coarse cell, near ones from
-    /// its children. A chart's patches have one level.
+    /// `side` in each piece (each doubling the side, stopping at one cell over the piece),
+    /// for [`super::links`]: far receivers take their light from a coarse cell, near ones
+    /// from its children. A chart's patches have one level.
     pub fn plan_levels(
         &self,
         scene: &RadiosityScene,
@@ -315,18 +505,188 @@ impl Shooters {
         side: f64,
         levels: u32,
     ) -> ShotPlan {
-        match &self.shapes[s] {
-            ShooterShape::Chart(c) => chart_plan(scene, *c as usize),
+        let mut plan = ShotPlan::default();
+        for p in self.pieces_of(s) {
+            let side = side.max(self.pieces[p].finest_cell);
+            plan.append(self.piece_plan(scene, p, side, levels));
+        }
+        plan
+    }
+
+    /// How shooter `s` shoots when its pieces hold `power` lm each (unshot, per piece of
+    /// [`Shooters::pieces_of`]) and a cell may carry `budget` lm: each piece from cells
+    /// sized by the oracle for its own power ([`Shooters::cell_side`]) with up to `levels`
+    /// coarser levels; the largest clusters of two or more pieces that together carry at
+    /// most `budget` and agree in normal ([`MERGE_NORMALS`]) from one merged cell; and the
+    /// pieces or merged cells with less than [`SKIP_SHARE`] of the strongest one's power
+    /// not at all this time (they stay unshot, after [`ShotPlan::shot`]).
+    pub fn plan_shot(
+        &self,
+        scene: &RadiosityScene,
+        s: usize,
+        power: &[f64],
+        budget: f64,
+        levels: u32,
+    ) -> ShotPlan {
+        let pieces = self.pieces_of(s);
+        debug_assert_eq!(power.len(), pieces.len());
+        let units = self.units(scene, s, power, budget);
+        let strongest = units.iter().map(|u| u.1).fold(0.0, f64::max);
+        let mut plan = ShotPlan::default();
+        let mut waiting = Vec::new();
+        for (range, unit_power, merged) in units {
+            if unit_power < SKIP_SHARE * strongest {
+                waiting.extend(range.flat_map(|p| self.piece_elements(p).iter().copied()));
+            } else if let Some(node) = merged {
+                plan.append(self.merged_plan(scene, range, node));
+            } else {
+                let p = range.start;
+                let side = self.cell_side(p, unit_power, budget);
+                plan.append(self.piece_plan(scene, p, side, levels));
+            }
+        }
+        plan.order.extend(waiting);
+        plan
+    }
+
+    /// Shooter `s`'s shooting units in piece order: (pieces, unshot power, the face
+    /// cluster of a merged cell).
+    fn units(
+        &self,
+        scene: &RadiosityScene,
+        s: usize,
+        power: &[f64],
+        budget: f64,
+    ) -> Vec<(std::ops::Range<usize>, f64, Option<u32>)> {
+        let pieces = self.pieces_of(s);
+        let lone = |k: usize| (pieces.start + k..pieces.start + k + 1, power[k], None);
+        let root = self.node[s];
+        if pieces.len() < 2 || root == u32::MAX || budget.is_nan() || budget <= 0.0 {
+            return (0..pieces.len()).map(lone).collect();
+        }
+        let tree = &scene.planar_clusters().tree;
+        // The pieces in depth-first order: a cluster's pieces are those whose nodes start
+        // in its range of the hierarchy's order.
+        let starts: Vec<u32> = pieces
+            .clone()
+            .map(|p| tree.nodes[self.pieces[p].node as usize].first)
+            .collect();
+        let mut sum = vec![0.0];
+        for &w in power {
+            sum.push(sum.last().copied().unwrap_or(0.0) + w);
+        }
+        let mut units = Vec::new();
+        let mut stack = vec![root];
+        while let Some(node) = stack.pop() {
+            let c = &tree.nodes[node as usize];
+            let a = starts.partition_point(|&f| f < c.first);
+            let b = starts.partition_point(|&f| f < c.first + c.count);
+            if b <= a {
+                continue;
+            }
+            let held = sum[b] - sum[a];
+            let piece =
+                starts[a] == c.first && b == a + 1 && self.pieces[pieces.start + a].node == node;
+            if piece {
+                units.push(lone(a));
+            } else if b - a >= 2
+                && held <= budget
+                && c.area_normal.length() >= MERGE_NORMALS * c.area
+            {
+                units.push((pieces.start + a..pieces.start + b, held, Some(node)));
+            } else if let Some([l, r]) = c.children {
+                // Depth first, in the order's order.
+                let (l, r) = if tree.nodes[l as usize].first < tree.nodes[r as usize].first {
+                    (l, r)
+                } else {
+                    (r, l)
+                };
+                stack.push(r);
+                stack.push(l);
+            }
+        }
+        units
+    }
+
+    /// Piece `p` from cells of `side` metres with up to `levels` coarser levels.
+    fn piece_plan(&self, scene: &RadiosityScene, p: usize, side: f64, levels: u32) -> ShotPlan {
+        let piece = &self.pieces[p];
+        let range = [p as u32, p as u32 + 1];
+        match &piece.shape {
+            ShooterShape::Chart(c) => chart_plan(scene, *c as usize, range),
             ShooterShape::Cluster { obb, .. } => {
                 let grid = Grid::new(obb, side);
-                cluster_plan(scene, self.elements_of(s), &grid, self.normal[s], levels)
+                let at = PieceFrame {
+                    normal: piece.normal,
+                    pieces: range,
+                };
+                cluster_plan(scene, self.piece_elements(p), &grid, &at, levels)
             }
         }
     }
+
+    /// The pieces `range` (under face cluster `node`) as one cell facing their summed
+    /// area normal, looking from their element nearest their centre, its polygon the
+    /// outline of their corners projected on its plane.
+    fn merged_plan(
+        &self,
+        scene: &RadiosityScene,
+        range: std::ops::Range<usize>,
+        node: u32,
+    ) -> ShotPlan {
+        let tree = &scene.planar_clusters().tree;
+        let normal = tree.nodes[node as usize].area_normal.normalize();
+        let (u, v) = frame(normal);
+        let order: Vec<u32> = range
+            .clone()
+            .flat_map(|p| self.piece_elements(p).iter().copied())
+            .collect();
+        let mesh = &scene.casters;
+        let projected: Vec<DVec2> = tree
+            .triangles(node)
+            .iter()
+            .flat_map(|&t| mesh.triangles[t as usize])
+            .map(|i| {
+                let q = mesh.positions[i as usize];
+                DVec2::new(q.dot(u), q.dot(v))
+            })
+            .collect();
+        let hull = convex_hull(&projected);
+        let lo = hull.iter().copied().fold(DVec2::INFINITY, DVec2::min);
+        let hi = hull.iter().copied().fold(DVec2::NEG_INFINITY, DVec2::max);
+        let at = PieceFrame {
+            normal,
+            pieces: [range.start as u32, range.end as u32],
+        };
+        let mut patch = cell_patch(
+            scene,
+            &order,
+            &outline(&hull, lo, hi),
+            (u, v),
+            &at,
+            0,
+            0,
+            u32::MAX,
+        );
+        patch.merged = true;
+        patch.centroid = nearest_member(scene, &order, patch.centroid);
+        ShotPlan {
+            shot: order.len() as u32,
+            order,
+            patches: vec![patch],
+        }
+    }
+}
+/// The plane a piece's cells lie in and the pieces they shoot.
+struct PieceFrame {
+    /// Unit normal.
+    normal: DVec3,
+    /// The pieces (first, end).
+    pieces: [u32; 2],
 }
 
 /// A chart shoots from its patches (their elements are contiguous).
-fn chart_plan(scene: &RadiosityScene, c: usize) -> ShotPlan {
+fn chart_plan(scene: &RadiosityScene, c: usize, pieces: [u32; 2]) -> ShotPlan {
     let el = &scene.elements;
     let chart = &el.charts[c];
     let patches = el.patches[chart.first_patch as usize..][..chart.patch_count as usize]
@@ -336,23 +696,27 @@ fn chart_plan(scene: &RadiosityScene, c: usize) -> ShotPlan {
             count: p.count,
             polygon: p.polygon.clone(),
             centroid: p.centroid,
+            normal: chart.normal,
             area: p.area,
             element_area: p.area,
             level: 0,
             parent: u32::MAX,
             radius: radius(p.centroid, &p.polygon, &[]),
+            pieces,
+            merged: false,
         })
         .collect();
     ShotPlan {
         order: (chart.first..chart.first + chart.count).collect(),
         patches,
+        shot: chart.count,
     }
 }
 
-/// A cluster's elements binned by centroid into square cells of the grid's side laid from
+/// A piece's elements binned by centroid into square cells of the grid's side laid from
 /// its box's corner, plus up to `levels` coarser levels (sides doubling; the top level has
-/// at least one cell over the whole cluster or is `levels` up). Each non-empty cell is a
-/// patch whose polygon is the convex hull of the cluster's triangles clipped to the cell
+/// at least one cell over the whole piece or is `levels` up). Each non-empty cell is a
+/// patch whose polygon is the convex hull of the piece's triangles clipped to the cell
 /// (the exact surface inside the cell wherever that is convex), in the plane through its
 /// elements. A level's cells' polygons tile the surface; an element straddling two cells
 /// shoots from the one holding its centroid, so a cell shoots its elements' mean
@@ -362,7 +726,7 @@ fn cluster_plan(
     scene: &RadiosityScene,
     elements: &[u32],
     grid: &Grid,
-    normal: DVec3,
+    at: &PieceFrame,
     levels: u32,
 ) -> ShotPlan {
     let el = &scene.elements;
@@ -382,6 +746,7 @@ fn cluster_plan(
         .map(|g| g.triangle_pieces(scene, &order))
         .collect();
     let mut plan = ShotPlan {
+        shot: order.len() as u32,
         order,
         patches: Vec::new(),
     };
@@ -403,9 +768,23 @@ fn cluster_plan(
                 .map_or(&[][..], Vec::as_slice),
         );
         let here = plan.patches.len() as u32;
-        plan.patches.push(cell_patch(
-            scene, members, &outline, g, normal, start, level, parent,
-        ));
+        let mut patch = cell_patch(
+            scene,
+            members,
+            &outline,
+            (g.u, g.v),
+            at,
+            start,
+            level,
+            parent,
+        );
+        if level > 0 {
+            // A coarse cell of a piece that is not convex may have its centre off the
+            // surface (inside a column standing on the floor): it looks from its element
+            // nearest to that centre.
+            patch.centroid = nearest_member(scene, members, patch.centroid);
+        }
+        plan.patches.push(patch);
         if level > 0 {
             for (a, b) in groups(&keyed, start, end, level - 1).into_iter().rev() {
                 stack.push((level - 1, a, b, here));
@@ -435,44 +814,43 @@ fn groups(
     out
 }
 
+/// Of `members`' elements, the position nearest `centre`.
+fn nearest_member(scene: &RadiosityScene, members: &[u32], centre: DVec3) -> DVec3 {
+    let el = &scene.elements;
+    members
+        .iter()
+        .map(|&e| el.position[e as usize])
+        .min_by(|a, b| {
+            a.distance_squared(centre)
+                .total_cmp(&b.distance_squared(centre))
+        })
+        .unwrap_or(centre)
+}
+
 /// The patch of one cell: its `members` (from `order[start..]`) and its outline in the
-/// grid's plane coordinates.
+/// plane coordinates along `(u, v)`, in the plane through their centre facing `at.normal`
+/// (its radius measured from their area-weighted centre).
 #[allow(clippy::too_many_arguments)]
 fn cell_patch(
     scene: &RadiosityScene,
     members: &[u32],
     outline: &[DVec2],
-    grid: &Grid,
-    normal: DVec3,
+    (u, v): (DVec3, DVec3),
+    at: &PieceFrame,
     start: usize,
     level: u32,
     parent: u32,
 ) -> PlannedPatch {
     let el = &scene.elements;
+    let normal = at.normal;
     let element_area: f64 = members.iter().map(|&e| el.area[e as usize]).sum();
-    let mut centroid = members
+    let centroid = members
         .iter()
         .map(|&e| el.position[e as usize] * el.area[e as usize])
         .sum::<DVec3>()
         / element_area.max(1e-300);
-    if level > 0 {
-        // A coarse cell of a cluster that is not convex may have its centre off the
-        // surface (inside a column standing on the floor): it looks from its element
-        // nearest to that centre.
-        centroid = members
-            .iter()
-            .map(|&e| el.position[e as usize])
-            .min_by(|a, b| {
-                a.distance_squared(centroid)
-                    .total_cmp(&b.distance_squared(centroid))
-            })
-            .unwrap_or(centroid);
-    }
     let offset = normal * centroid.dot(normal);
-    let mut polygon: Vec<DVec3> = outline
-        .iter()
-        .map(|q| grid.u * q.x + grid.v * q.y + offset)
-        .collect();
+    let mut polygon: Vec<DVec3> = outline.iter().map(|q| u * q.x + v * q.y + offset).collect();
     if (polygon[1] - polygon[0])
         .cross(polygon[2] - polygon[0])
         .dot(normal)
@@ -487,10 +865,13 @@ fn cell_patch(
         radius: radius(centroid, &polygon, &positions),
         polygon,
         centroid,
+        normal,
         area: area_centroid(outline).0.abs(),
         element_area,
         level,
         parent,
+        pieces: at.pieces,
+        merged: false,
     }
 }
 
