@@ -133,8 +133,10 @@ fn the_cad_room_strips_are_a_few_shooters_and_every_element_shoots_once() {
     let tree = Shooters::build(&r, Hierarchy::Clusters);
     assert_eq!(flat.len(), triangles);
     // The room: 6 walls + 4 boxes × 5 visible faces (the boxes stand on the floor, their
-    // bottoms are faces too): one shooter per flat face, not one per strip.
+    // bottoms are faces too): one piece per flat face, not one per strip, and one shooter
+    // per connected surface of one material.
     assert!(tree.len() <= triangles / 10, "{} shooters", tree.len());
+    assert!(tree.len() < tree.pieces.len());
     assert!(
         tree.pieces
             .iter()

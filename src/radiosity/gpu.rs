@@ -12,7 +12,9 @@ use super::initial::InitialState;
 use super::links::{Links, ReceiverBoxes, DEFAULT_LINK_ERROR, LINK_LEVELS};
 use super::polygon::frame;
 use super::scene::RadiosityScene;
-use super::shooters::{Hierarchy, Shooters, ShotPlan, DEFAULT_CELL_POWER};
+use super::shooters::{
+    cell_planes, Hierarchy, PlannedPatch, Shooters, ShotPlan, DEFAULT_CELL_POWER,
+};
 use super::{Ambient, SolverSettings};
 use crate::gpu::{Gpu, GpuError};
 use crate::render::layouts::{buffer_binding, entry};
@@ -799,25 +801,6 @@ impl<'a> GpuSolver<'a> {
         self.gpu
             .queue
             .write_buffer(&self.patches, 0, bytemuck::cast_slice(&patches));
-        // Receiver culling: only the charts in front of some cell's plane receive.
-        let ranges = self.receivers.in_front_of_any(&plan.planes());
-        let mut threads = 0u32;
-        let records: Vec<[u32; 4]> = ranges
-            .iter()
-            .map(|&(first, count)| {
-                let r = [first, threads, 0, 0];
-                threads += count;
-                r
-            })
-            .collect();
-        if !records.is_empty() {
-            self.gpu.queue.write_buffer(
-                &self.patches,
-                16 * self.max_patches as u64,
-                bytemuck::cast_slice(&records),
-            );
-        }
-        self.culled = (records.len() as u32, threads);
         let cells = plan.patches.len() as u32;
         self.write_params(s as u32, 0, cells, 0..0);
         let mut enc = self.gpu.device.create_command_encoder(&Default::default());
@@ -899,10 +882,17 @@ impl<'a> GpuSolver<'a> {
             let started = std::time::Instant::now();
             let mut drawn = Vec::new();
             let from = t;
-            while t < tops.len() && (t == from || drawn.len() < self.batch) {
+            // A batch's cells face one way (one piece, or coplanar ones), so its receivers
+            // are culled to one plane's front.
+            let facing = plan.patches[tops[from]].normal;
+            while t < tops.len()
+                && (t == from
+                    || (drawn.len() < self.batch && plan.patches[tops[t]].normal == facing))
+            {
                 drawn.extend((tops[t]..subtree_end(t)).filter(|&k| links.drawn[k]));
                 t += 1;
             }
+            self.cull(&plan.patches[tops[from]..subtree_end(t - 1)]);
             let clear = if from == 0 { 0..plan.shot } else { 0..0 };
             self.shoot_batch(s, &plan, &links, &drawn, clear)?;
             let cells: usize = (tops[from]..subtree_end(t - 1)).count();
@@ -926,6 +916,29 @@ impl<'a> GpuSolver<'a> {
         }
         self.shots += 1;
         Ok(true)
+    }
+
+    /// Receiver culling for the cells `patches`: only the charts in front of one of their
+    /// planes receive (their element ranges follow the cells in the patch buffer).
+    fn cull(&mut self, patches: &[PlannedPatch]) {
+        let ranges = self.receivers.in_front_of_any(&cell_planes(patches));
+        let mut threads = 0u32;
+        let records: Vec<[u32; 4]> = ranges
+            .iter()
+            .map(|&(first, count)| {
+                let r = [first, threads, 0, 0];
+                threads += count;
+                r
+            })
+            .collect();
+        if !records.is_empty() {
+            self.gpu.queue.write_buffer(
+                &self.patches,
+                16 * self.max_patches as u64,
+                bytemuck::cast_slice(&records),
+            );
+        }
+        self.culled = (records.len() as u32, threads);
     }
 
     /// Gives the elements of the top cells among patches `first..end` of shooter `s`'s

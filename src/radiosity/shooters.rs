@@ -173,19 +173,9 @@ impl ShotPlan {
         children
     }
 
-    /// The planes its cells shoot from (unit normal, a point, how thick the cells'
-    /// centres are about it, metres): one per run of cells facing one way.
+    /// The planes its cells shoot from ([`cell_planes`]).
     pub fn planes(&self) -> Vec<(DVec3, DVec3, f64)> {
-        let mut planes: Vec<(DVec3, DVec3, f64)> = Vec::new();
-        for p in &self.patches {
-            match planes.last_mut() {
-                Some((n, at, thickness)) if *n == p.normal => {
-                    *thickness = thickness.max(n.dot(p.centroid - *at).abs());
-                }
-                _ => planes.push((p.normal, p.centroid, 0.0)),
-            }
-        }
-        planes
+        cell_planes(&self.patches)
     }
 
     /// Appends `plan` (shot in full) after the shot part of this one.
@@ -201,6 +191,21 @@ impl ShotPlan {
         }));
         self.shot = self.order.len() as u32;
     }
+}
+
+/// The planes `patches` shoot from (unit normal, a point, how thick the cells' centres are
+/// about it, metres): one per run of consecutive cells facing one way.
+pub fn cell_planes(patches: &[PlannedPatch]) -> Vec<(DVec3, DVec3, f64)> {
+    let mut planes: Vec<(DVec3, DVec3, f64)> = Vec::new();
+    for p in patches {
+        match planes.last_mut() {
+            Some((n, at, thickness)) if *n == p.normal => {
+                *thickness = thickness.max(n.dot(p.centroid - *at).abs());
+            }
+            _ => planes.push((p.normal, p.centroid, 0.0)),
+        }
+    }
+    planes
 }
 
 /// A shooter's pieces that shoot from one merged cell must agree in normal: their summed
