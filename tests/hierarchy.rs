@@ -7,7 +7,7 @@
 use std::path::Path;
 use std::sync::atomic::AtomicBool;
 
-use glam::{DVec3, Vec3};
+use glam::DVec3;
 use goniolight::radiosity::cpu::CpuSolver;
 use goniolight::radiosity::gpu::GpuSettings;
 use goniolight::radiosity::initial::{InitialState, LuminaireLight};
@@ -15,8 +15,10 @@ use goniolight::radiosity::scene::{luminance, RadiosityScene};
 use goniolight::radiosity::shooters::{Hierarchy, ShooterShape, Shooters};
 use goniolight::radiosity::SolverSettings;
 use goniolight::render::ShadowSettings;
-use goniolight::scene::{Material, Scene, SceneMesh};
+use goniolight::scene::Scene;
 
+#[path = "common/furnace.rs"]
+mod furnace_common;
 #[path = "common/gpu.rs"]
 mod gpu_common;
 #[path = "common/solve.rs"]
@@ -92,23 +94,7 @@ fn furnace_with_cluster_shooters_gives_e_over_one_minus_rho() {
     let Some(gpu) = gpu_common::gpu() else { return };
     // A closed box (every face two triangles, so each face is a cluster of two), ρ = 0.5,
     // E = 100 lm/m²: B = 200 lm/m² everywhere.
-    let walls = goniolight::geometry::generate::cuboid(DVec3::ZERO, DVec3::new(2.0, 1.5, 1.0));
-    let inward: Vec<[Vec3; 3]> = walls
-        .triangles
-        .iter()
-        .map(|t| [t[0], t[2], t[1]].map(|i| walls.positions[i as usize].as_vec3()))
-        .collect();
-    let scene = Scene {
-        meshes: vec![SceneMesh::from_triangles("box", &inward, 0)],
-        materials: vec![Material {
-            diffuse: Vec3::splat(0.5),
-            emission: Vec3::splat(100.0),
-            ..Material::default()
-        }],
-        luminaires: Vec::new(),
-        models: Vec::new(),
-        ..bundled("box_room.toml")
-    };
+    let scene = furnace_common::closed_box(0.5, 100.0);
     let r = RadiosityScene::new(&scene, 8.0, 1).unwrap();
     let settings = SolverSettings::default();
     let initial = CpuSolver::new(&r, settings).state();

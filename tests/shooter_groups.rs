@@ -9,14 +9,16 @@
 
 mod common;
 
-use glam::{DVec3, Vec3};
+use glam::DVec3;
 use goniolight::radiosity::cpu::CpuSolver;
 use goniolight::radiosity::gpu::{GpuSettings, GpuSolver};
 use goniolight::radiosity::scene::RadiosityScene;
 use goniolight::radiosity::shooters::{Hierarchy, Shooters, ShotPlan, MERGE_NORMALS, SKIP_SHARE};
 use goniolight::radiosity::SolverSettings;
-use goniolight::scene::{Material, Scene, SceneMesh};
+use goniolight::scene::Scene;
 
+#[path = "common/furnace.rs"]
+mod furnace_common;
 #[path = "common/gpu.rs"]
 mod gpu_common;
 
@@ -198,26 +200,7 @@ fn furnace_shots_stopped_after_a_batch_still_give_e_over_one_minus_rho() {
     let Some(gpu) = gpu_common::gpu() else { return };
     // A closed box of one material: one surface, so one shooter whose six faces (its
     // pieces) light each other during its shots. ρ = 0.5, E = 100 lm/m²: B = 200 lm/m².
-    let walls = goniolight::geometry::generate::cuboid(DVec3::ZERO, DVec3::new(2.0, 1.5, 1.0));
-    let inward: Vec<[Vec3; 3]> = walls
-        .triangles
-        .iter()
-        .map(|t| [t[0], t[2], t[1]].map(|i| walls.positions[i as usize].as_vec3()))
-        .collect();
-    let scene = Scene {
-        meshes: vec![SceneMesh::from_triangles("box", &inward, 0)],
-        materials: vec![Material {
-            diffuse: Vec3::splat(0.5),
-            emission: Vec3::splat(100.0),
-            ..Material::default()
-        }],
-        luminaires: Vec::new(),
-        models: Vec::new(),
-        ..Scene::load(
-            &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/box_room.toml"),
-        )
-        .unwrap()
-    };
+    let scene = furnace_common::closed_box(0.5, 100.0);
     let r = RadiosityScene::with_hierarchy(&scene, 8.0, 0, Hierarchy::Clusters).unwrap();
     let settings = SolverSettings::default();
     let initial = CpuSolver::new(&r, settings).state();
