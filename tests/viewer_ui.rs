@@ -402,10 +402,19 @@ fn radiosity_runs_in_the_background_pauses_and_converges() {
     if h.state().radiosity.worker.is_some() {
         h.get_by_label("Pause").click();
         h.step();
-        std::thread::sleep(std::time::Duration::from_millis(300));
-        h.step();
-        let shots = h.state().radiosity.shots;
-        std::thread::sleep(std::time::Duration::from_millis(300));
+        // A shot already under way ends first (a whole surface's shot may take a while on
+        // a loaded machine): wait until the count holds still, then it must stay still.
+        let mut shots = h.state().radiosity.shots;
+        for _ in 0..40 {
+            std::thread::sleep(std::time::Duration::from_millis(300));
+            h.step();
+            let now = h.state().radiosity.shots;
+            if now == shots {
+                break;
+            }
+            shots = now;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(600));
         h.step();
         assert_eq!(
             h.state().radiosity.shots,
