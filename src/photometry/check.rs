@@ -63,9 +63,45 @@ pub struct CheckReport {
     pub i_max: f64,
     /// Per method (`nearest`, `bilinear`, `catmull_rom`, `monotone`).
     pub methods: BTreeMap<String, MethodResult>,
+    /// Every reconstructed value, hidden point by hidden point (not in the JSON: `ldt
+    /// check --residuals` writes them as CSV).
+    #[serde(skip)]
+    pub residuals: Vec<Residual>,
+}
+
+/// One hidden measured value and each method's reconstruction of it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Residual {
+    /// C angle, degrees.
+    pub c_deg: f64,
+    /// γ angle, degrees.
+    pub gamma_deg: f64,
+    /// The measured value, cd/klm.
+    pub measured: f64,
+    /// Reconstructed minus measured, cd/klm, in the order of [`Interp::ALL`].
+    pub error: [f64; 4],
 }
 
 impl CheckReport {
+    /// The residuals as CSV: a header, then per hidden angle C, γ, the measured value and each
+    /// method's reconstructed − measured (cd/klm).
+    pub fn residuals_csv(&self) -> String {
+        let mut out = String::from("c_deg,gamma_deg,measured_cd_klm");
+        for interp in Interp::ALL {
+            out.push(',');
+            out.push_str(method_key(interp));
+        }
+        out.push('\n');
+        for r in &self.residuals {
+            out.push_str(&format!("{},{},{}", r.c_deg, r.gamma_deg, r.measured));
+            for e in r.error {
+                out.push_str(&format!(",{e}"));
+            }
+            out.push('\n');
+        }
+        out
+    }
+
     /// The method with the smallest RMS error (ties: smallest max error).
     pub fn best_by_rms(&self) -> Option<&str> {
         self.methods
@@ -236,18 +272,28 @@ fn evaluate(coarse: &Grid, reference: &Grid, hidden: &[(usize, usize)], mode: &s
     let ref_solid = solid(reference, &|ci, gi| reference.value(ci, gi) * unit);
     let ref_tree = tree_of(&ref_solid);
     let mut methods = BTreeMap::new();
-    for interp in Interp::ALL {
+    let mut residuals: Vec<Residual> = hidden
+        .iter()
+        .map(|&(ci, gi)| Residual {
+            c_deg: rc[ci],
+            gamma_deg: rg[gi],
+            measured: reference.value(ci, gi),
+            error: [0.0; 4],
+        })
+        .collect();
+    for (m, interp) in Interp::ALL.into_iter().enumerate() {
         // Kept points keep their measured values; hidden ones are overwritten below.
         let mut recon = reference.values().to_vec();
         let ng = rg.len();
         let (mut sq, mut max_abs, mut max_rel) = (0.0, 0.0f64, 0.0f64);
         let (mut over_n, mut over_max) = (0usize, 0.0f64);
-        for &(ci, gi) in hidden {
+        for (&(ci, gi), residual) in hidden.iter().zip(&mut residuals) {
             let (c, g) = (rc[ci], rg[gi]);
             let v = coarse.sample(c, g, interp);
             recon[ci * ng + gi] = v;
-            let truth = reference.value(ci, gi);
+            let truth = residual.measured;
             let err = v - truth;
+            residual.error[m] = err;
             sq += (err * unit).powi(2);
             max_abs = max_abs.max(err.abs());
             if truth > 0.01 * i_max {
@@ -288,6 +334,7 @@ fn evaluate(coarse: &Grid, reference: &Grid, hidden: &[(usize, usize)], mode: &s
         held_out: hidden.len(),
         i_max,
         methods,
+        residuals,
     }
 }
 

@@ -45,3 +45,93 @@ impl Luminaire {
         })
     }
 }
+
+/// The columns of the catalogue table (`ldt info --csv`), one row per file.
+pub const CATALOGUE_COLUMNS: [&str; 18] = [
+    "path",
+    "name",
+    "company",
+    "format",
+    "isym",
+    "flux_lm",
+    "lamp_flux_lm",
+    "lor_percent",
+    "lor_declared_percent",
+    "dff_percent",
+    "i_max_cd_klm",
+    "beam_c0_c180_deg",
+    "beam_c90_c270_deg",
+    "field_c0_c180_deg",
+    "field_c90_c270_deg",
+    "watts",
+    "efficacy_lm_w",
+    "warning_count",
+];
+
+impl Luminaire {
+    /// This file's row of the catalogue table, in the order of [`CATALOGUE_COLUMNS`]
+    /// (unquoted; an angle that does not exist and the efficacy of a file without watts
+    /// are empty). `path` is the file's name as the user gave it.
+    pub fn catalogue_row(&self, path: &str) -> Vec<String> {
+        let s = self.summary();
+        let angle = |v: Option<f64>| v.map_or(String::new(), |a| format!("{a:.1}"));
+        let watts: f64 = self.data.lamp_sets.iter().map(|l| l.watts).sum();
+        let efficacy = if watts > 0.0 {
+            format!("{:.1}", s.flux_lm / watts)
+        } else {
+            String::new()
+        };
+        vec![
+            path.to_string(),
+            self.data.luminaire_name.trim().to_string(),
+            self.data.company.trim().to_string(),
+            self.source_label().to_string(),
+            self.data.symmetry.isym().to_string(),
+            format!("{:.1}", s.flux_lm),
+            format!("{:.1}", s.lamp_flux_lm),
+            format!("{:.2}", s.lorl_computed),
+            format!("{:.2}", s.lorl_declared),
+            format!("{:.2}", s.dff_computed),
+            format!("{:.2}", s.max_intensity),
+            angle(s.beam_angle_deg.c0_c180),
+            angle(s.beam_angle_deg.c90_c270),
+            angle(s.field_angle_deg.c0_c180),
+            angle(s.field_angle_deg.c90_c270),
+            format!("{watts}"),
+            efficacy,
+            self.warnings.len().to_string(),
+        ]
+    }
+}
+
+/// One CSV line of `fields`, each quoted where it holds a comma, a quote or a line break
+/// (RFC 4180), ending in a newline.
+pub fn csv_line<S: AsRef<str>>(fields: &[S]) -> String {
+    let mut line = fields
+        .iter()
+        .map(|f| {
+            let f = f.as_ref();
+            if f.contains([',', '"', '\n', '\r']) {
+                format!("\"{}\"", f.replace('"', "\"\""))
+            } else {
+                f.to_string()
+            }
+        })
+        .collect::<Vec<_>>()
+        .join(",");
+    line.push('\n');
+    line
+}
+
+#[cfg(test)]
+mod tests {
+    use super::csv_line;
+
+    #[test]
+    fn csv_quotes_only_where_needed() {
+        assert_eq!(
+            csv_line(&["a", "b,c", "say \"x\""]),
+            "a,\"b,c\",\"say \"\"x\"\"\"\n"
+        );
+    }
+}

@@ -2,6 +2,7 @@
 //! interpolation, the GPU texture data, the photometric summary, the interpolation check
 //! and polar plots.
 
+pub mod catalogue;
 pub mod check;
 pub mod distribution;
 pub mod error;
@@ -11,6 +12,7 @@ pub mod grid;
 pub mod ies;
 pub mod info;
 pub mod plot;
+pub mod residual_plot;
 pub mod summary;
 pub mod symmetry;
 pub mod text;

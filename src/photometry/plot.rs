@@ -37,7 +37,56 @@ pub struct PolarPlot<'a> {
     pub methods: Vec<Interp>,
 }
 
-fn style(interp: Interp) -> (RGBColor, &'static str) {
+/// A drawing's result: plotters' backends have their own error types.
+pub type DrawResult = Result<(), Box<dyn std::error::Error>>;
+
+/// The drawing area of a bitmap.
+pub type BitMapArea<'a> = DrawingArea<BitMapBackend<'a>, plotters::coord::Shift>;
+
+/// Draws on a white `width` × `height` bitmap and encodes it as PNG; `what` names the
+/// picture in the error.
+pub fn png_bytes(
+    width: u32,
+    height: u32,
+    what: &str,
+    draw: impl FnOnce(&BitMapArea) -> DrawResult,
+) -> Result<Vec<u8>, String> {
+    register_font();
+    let mut buf = vec![255u8; (width * height * 3) as usize];
+    {
+        let root = BitMapBackend::with_buffer(&mut buf, (width, height)).into_drawing_area();
+        draw(&root)
+            .and_then(|()| root.present().map_err(Into::into))
+            .map_err(|e| format!("drawing {what}: {e}"))?;
+    }
+    let img = image::RgbImage::from_raw(width, height, buf).ok_or("image buffer size")?;
+    let mut png = Vec::new();
+    img.write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
+        .map_err(|e| e.to_string())?;
+    Ok(png)
+}
+
+/// Draws on a white `width` × `height` SVG canvas; `what` names the picture in the error.
+pub fn svg_string(
+    width: u32,
+    height: u32,
+    what: &str,
+    draw: impl FnOnce(&DrawingArea<SVGBackend, plotters::coord::Shift>) -> DrawResult,
+) -> Result<String, String> {
+    register_font();
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (width, height)).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| e.to_string())?;
+        draw(&root)
+            .and_then(|()| root.present().map_err(Into::into))
+            .map_err(|e| format!("drawing {what}: {e}"))?;
+    }
+    Ok(svg)
+}
+
+/// Colour and label of each interpolation in every diagram.
+pub fn style(interp: Interp) -> (RGBColor, &'static str) {
     match interp {
         Interp::Nearest => (RGBColor(150, 150, 150), "nearest"),
         Interp::Bilinear => (RGBColor(0, 0, 0), "bilinear"),
@@ -71,15 +120,7 @@ fn nice_ceiling(v: f64) -> f64 {
 impl PolarPlot<'_> {
     /// Renders the diagram to PNG bytes.
     pub fn render_png(&self) -> Result<Vec<u8>, String> {
-        register_font();
-        let mut buf = vec![255u8; (WIDTH * HEIGHT * 3) as usize];
-        self.draw(&mut buf)
-            .map_err(|e| format!("drawing the polar diagram: {e}"))?;
-        let img = image::RgbImage::from_raw(WIDTH, HEIGHT, buf).ok_or("image buffer size")?;
-        let mut png = Vec::new();
-        img.write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
-            .map_err(|e| e.to_string())?;
-        Ok(png)
+        png_bytes(WIDTH, HEIGHT, "the polar diagram", |root| self.draw(root))
     }
 
     /// Renders and writes the PNG (atomically).
@@ -88,8 +129,7 @@ impl PolarPlot<'_> {
         write_atomic(path, &png)
     }
 
-    fn draw(&self, buf: &mut [u8]) -> Result<(), Box<dyn std::error::Error>> {
-        let root = BitMapBackend::with_buffer(buf, (WIDTH, HEIGHT)).into_drawing_area();
+    fn draw(&self, root: &BitMapArea) -> DrawResult {
         root.fill(&WHITE)?;
         let (head, body) = root.split_vertically(48);
         head.draw(&Text::new(
@@ -108,7 +148,6 @@ impl PolarPlot<'_> {
         for (panel, c) in body.split_evenly((1, 2)).iter().zip([0.0, 90.0]) {
             self.draw_panel(panel, c, r_max)?;
         }
-        root.present()?;
         Ok(())
     }
 

@@ -1,0 +1,457 @@
+//! `goniolight ldt …`: luminaire file tools.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use clap::{Args, Subcommand};
+
+mod catalogue;
+mod inputs;
+
+pub(super) use catalogue::print_check;
+use inputs::{Inputs, OutputNames};
+
+use super::CliError;
+use crate::io::write_atomic;
+use crate::photometry::check::{self, LeaveOut};
+use crate::photometry::ies::write_ies;
+use crate::photometry::info::{csv_line, CATALOGUE_COLUMNS};
+use crate::photometry::plot::PolarPlot;
+use crate::photometry::{Interp, LdtTexture, Luminaire};
+
+/// Luminaire file subcommands. Each takes one or more files or directories (walked for
+/// `.ldt` and `.ies` files); with several, a file that fails is reported and the others go
+/// on, and the command exits 2 at the end.
+#[derive(Debug, Subcommand)]
+pub enum LdtCommand {
+    /// Print the data and photometric summary of .ldt or .ies files.
+    Info {
+        /// Luminaire files or directories.
+        #[arg(required = true)]
+        files: Vec<PathBuf>,
+        /// Print JSON instead of text (an array of objects, each with its "path", for
+        /// several files).
+        #[arg(long, conflicts_with = "csv")]
+        json: bool,
+        /// Print a catalogue table as CSV: a header, then one row per file.
+        #[arg(long)]
+        csv: bool,
+    },
+    /// Read lines "C GAMMA" (degrees) from stdin and print one intensity (cd/klm) per line
+    /// (several files: one column per file, after a "# columns:" line naming them).
+    Sample {
+        /// Luminaire files or directories.
+        #[arg(required = true)]
+        files: Vec<PathBuf>,
+        /// Interpolation between the measured angles.
+        #[arg(long, value_enum, default_value = "catmull-rom")]
+        interp: Interp,
+    },
+    /// Check how well each interpolation reconstructs measured values it did not see
+    /// (several files: one table and a summary over the catalogue).
+    Check(CheckArgs),
+    /// Write the polar goniometric diagram (C0–C180 and C90–C270) as PNG.
+    Plot {
+        /// Luminaire files or directories.
+        #[arg(required = true)]
+        files: Vec<PathBuf>,
+        /// Output PNG (one input file).
+        #[arg(long, required_unless_present = "out_dir", conflicts_with = "out_dir")]
+        out: Option<PathBuf>,
+        /// Write one PNG per input here, named after the input (`sample.ldt` → `sample.png`).
+        #[arg(long)]
+        out_dir: Option<PathBuf>,
+        /// Draw the curves from the file downsampled to these C,γ steps (degrees), with
+        /// every measured value marked: a picture of the interpolation check.
+        #[arg(long, value_parser = parse_pair)]
+        downsample: Option<(f64, f64)>,
+    },
+    /// Convert between EULUMDAT and IES (the output's extension, or --to, picks the format).
+    Convert {
+        /// Luminaire files or directories.
+        #[arg(required = true)]
+        files: Vec<PathBuf>,
+        /// Output .ldt or .ies (one input file).
+        #[arg(long, conflicts_with_all = ["out_dir", "to"])]
+        out: Option<PathBuf>,
+        /// The format to write for each input: next to it, or into --out-dir, named after it.
+        #[arg(long, value_enum, required_unless_present = "out")]
+        to: Option<FileType>,
+        /// Write the converted files here instead of next to their inputs.
+        #[arg(long, requires = "to")]
+        out_dir: Option<PathBuf>,
+    },
+}
+
+/// A luminaire file type, by its extension.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum FileType {
+    /// EULUMDAT.
+    Ldt,
+    /// IES LM-63.
+    Ies,
+}
+
+impl FileType {
+    fn ext(self) -> &'static str {
+        match self {
+            FileType::Ldt => "ldt",
+            FileType::Ies => "ies",
+        }
+    }
+
+    /// True when `path` has this type's extension (any letter case).
+    fn is(self, path: &Path) -> bool {
+        path.extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case(self.ext()))
+    }
+}
+
+/// Options of `ldt check`.
+#[derive(Debug, Args)]
+pub struct CheckArgs {
+    /// Luminaire files or directories (one file, the coarse one, with --reference).
+    #[arg(required = true)]
+    pub files: Vec<PathBuf>,
+    /// A finer measurement of the same luminaire to reconstruct at every angle.
+    #[arg(long, conflicts_with = "downsample")]
+    pub reference: Option<PathBuf>,
+    /// Downsample the file to these C,γ steps (degrees) and reconstruct the rest.
+    #[arg(long, value_parser = parse_pair)]
+    pub downsample: Option<(f64, f64)>,
+    /// Which angles the leave-out check hides (without --reference or --downsample).
+    #[arg(long, value_enum, default_value = "both")]
+    pub leave_out: LeaveOut,
+    /// Print JSON instead of a table.
+    #[arg(long, conflicts_with = "csv")]
+    pub json: bool,
+    /// Print the table as CSV (one row per file and method).
+    #[arg(long)]
+    pub csv: bool,
+    /// Write each file's residuals here: `STEM.csv` (every hidden angle, each method's
+    /// reconstructed − measured), `STEM-gamma.svg` (RMS error against γ) and
+    /// `STEM-heatmap.png` (C × γ map of the residuals per method).
+    #[arg(long, value_name = "DIR")]
+    pub residuals: Option<PathBuf>,
+}
+
+fn parse_pair(s: &str) -> Result<(f64, f64), String> {
+    let (a, b) = s
+        .split_once(',')
+        .ok_or_else(|| format!("expected two numbers 'DC,DG', got {s:?}"))?;
+    let num = |t: &str| {
+        t.trim()
+            .parse::<f64>()
+            .ok()
+            .filter(|v| v.is_finite() && *v > 0.0)
+            .ok_or_else(|| format!("expected a positive number, got {t:?}"))
+    };
+    Ok((num(a)?, num(b)?))
+}
+
+/// Loads a luminaire and prints its warnings to stderr.
+pub(super) fn load(path: &Path) -> Result<Luminaire, CliError> {
+    let lum = Luminaire::load(path)?;
+    for w in &lum.warnings {
+        eprintln!("warning: {}: {w}", path.display());
+    }
+    Ok(lum)
+}
+
+/// Runs an `ldt` subcommand.
+pub fn run(cmd: LdtCommand) -> Result<(), CliError> {
+    match cmd {
+        LdtCommand::Info { files, json, csv } => info(&files, json, csv),
+        LdtCommand::Sample { files, interp } => sample(&files, interp),
+        LdtCommand::Check(args) => catalogue::check(&args),
+        LdtCommand::Plot {
+            files,
+            out,
+            out_dir,
+            downsample,
+        } => plot(&files, out.as_deref(), out_dir.as_deref(), downsample),
+        LdtCommand::Convert {
+            files,
+            out,
+            to,
+            out_dir,
+        } => convert(&files, out.as_deref(), to, out_dir.as_deref()),
+    }
+}
+
+fn info(files: &[PathBuf], as_json: bool, as_csv: bool) -> Result<(), CliError> {
+    let mut inputs = Inputs::expand(files);
+    if as_csv {
+        print!("{}", csv_line(&CATALOGUE_COLUMNS));
+        inputs.each(|file| {
+            let lum = load(file)?;
+            print!(
+                "{}",
+                csv_line(&lum.catalogue_row(&file.display().to_string()))
+            );
+            Ok(())
+        })?;
+    } else if as_json && !inputs.single {
+        let all = inputs.each(|file| {
+            let mut v = load(file)?.info_json();
+            v["path"] = serde_json::Value::from(file.display().to_string());
+            Ok(v)
+        })?;
+        let all: Vec<serde_json::Value> = all.into_iter().map(|(_, v)| v).collect();
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&all).map_err(CliError::failure)?
+        );
+    } else {
+        let mut first = true;
+        inputs.each(|file| {
+            let lum = load(file)?;
+            if as_json {
+                let v = lum.info_json();
+                println!(
+                    "{}",
+                    serde_json::to_string_pretty(&v).map_err(CliError::failure)?
+                );
+                return Ok(());
+            }
+            if !std::mem::take(&mut first) {
+                println!();
+            }
+            print_info(file, &lum);
+            Ok(())
+        })?;
+    }
+    inputs.finish()
+}
+
+fn print_info(file: &Path, lum: &Luminaire) {
+    let s = lum.summary();
+    let grid = lum.distribution.grid();
+    let tex = LdtTexture::from_distribution(&lum.distribution);
+    let d = &lum.data;
+    let angle = |v: Option<f64>| v.map_or("—".to_string(), |a| format!("{a:.1}°"));
+    println!(
+        "{}  ({:?}, Isym {})",
+        file.display(),
+        lum.format,
+        d.symmetry.isym()
+    );
+    println!("  luminaire      {} — {}", d.company, d.luminaire_name);
+    println!(
+        "  grid           {} C planes × {} γ angles (expanded from {} stored planes)",
+        grid.c_angles().len(),
+        grid.gamma_angles().len(),
+        d.intensities.len()
+    );
+    for (i, l) in d.lamp_sets.iter().enumerate() {
+        println!(
+            "  lamp set {}     {} × {} — {} lm, {} W{}",
+            i + 1,
+            l.count.abs(),
+            l.lamp_type,
+            l.flux_lm,
+            l.watts,
+            if l.count < 0 {
+                " (absolute photometry)"
+            } else {
+                ""
+            }
+        );
+    }
+    println!(
+        "  flux           {:.1} lm (lamps {:.1} lm)",
+        s.flux_lm, s.lamp_flux_lm
+    );
+    println!(
+        "  LORL           {:.2} % computed, {:.2} % declared",
+        s.lorl_computed, s.lorl_declared
+    );
+    println!(
+        "  DFF            {:.2} % computed, {:.2} % declared",
+        s.dff_computed, s.dff_declared
+    );
+    println!(
+        "  I_max          {:.2} cd/klm at C{:.1} γ{:.1}",
+        s.max_intensity, s.max_direction_deg[0], s.max_direction_deg[1]
+    );
+    println!(
+        "  beam (50 %)    C0–C180 {}, C90–C270 {}",
+        angle(s.beam_angle_deg.c0_c180),
+        angle(s.beam_angle_deg.c90_c270)
+    );
+    println!(
+        "  field (10 %)   C0–C180 {}, C90–C270 {}",
+        angle(s.field_angle_deg.c0_c180),
+        angle(s.field_angle_deg.c90_c270)
+    );
+    println!("  emits          {:?} hemisphere", tex.hemisphere);
+}
+
+fn sample(files: &[PathBuf], interp: Interp) -> Result<(), CliError> {
+    let mut inputs = Inputs::expand(files);
+    let lums = inputs.each(load)?;
+    if lums.is_empty() {
+        return inputs.finish();
+    }
+    let angles = crate::lighting::read_angles(std::io::stdin().lock(), "<stdin>")?;
+    let mut out = String::new();
+    if !inputs.single {
+        let names: Vec<String> = lums.iter().map(|(p, _)| p.display().to_string()).collect();
+        out.push_str(&format!("# columns: {}\n", names.join(" ")));
+    }
+    for (c, g) in angles {
+        let row: Vec<String> = lums
+            .iter()
+            .map(|(_, lum)| lum.distribution.sample(c, g, interp).to_string())
+            .collect();
+        out.push_str(&row.join(" "));
+        out.push('\n');
+    }
+    std::io::stdout()
+        .write_all(out.as_bytes())
+        .map_err(CliError::failure)?;
+    inputs.finish()
+}
+
+/// Writes the polar diagram of `lum`, optionally from a downsampled copy.
+pub(super) fn write_plot(
+    lum: &Luminaire,
+    title: &str,
+    out: &Path,
+    downsample: Option<(f64, f64)>,
+) -> Result<(), CliError> {
+    let measured = lum.distribution.grid();
+    let coarse;
+    let (curves, title) = match downsample {
+        Some((dc, dg)) => {
+            coarse = check::downsampled_grid(&lum.distribution, dc, dg)?;
+            (
+                &coarse,
+                format!("{title} — curves from {dc}° × {dg}° samples, all measured values marked"),
+            )
+        }
+        None => (measured, title.to_string()),
+    };
+    let plot = PolarPlot {
+        title,
+        curves,
+        measured,
+        methods: vec![Interp::Bilinear, Interp::CatmullRom, Interp::Monotone],
+    };
+    plot.save(out).map_err(CliError::failure)
+}
+
+/// Refuses an output that is the input itself, or that lacks one of `exts`, before any
+/// work: a mistyped `--out` must not replace the luminaire file.
+fn check_output(input: &Path, out: &Path, exts: &[&str]) -> Result<(), CliError> {
+    let ext = out
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase())
+        .unwrap_or_default();
+    if !exts.contains(&ext.as_str()) {
+        return Err(CliError::input(anyhow::anyhow!(
+            "{}: --out must end in .{}",
+            out.display(),
+            exts.join(" or .")
+        )));
+    }
+    let same = match (input.canonicalize(), out.canonicalize()) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => false,
+    };
+    if same {
+        return Err(CliError::input(anyhow::anyhow!(
+            "{}: the output would replace the input file; choose another name with --out or --out-dir",
+            out.display()
+        )));
+    }
+    Ok(())
+}
+
+fn plot(
+    files: &[PathBuf],
+    out: Option<&Path>,
+    out_dir: Option<&Path>,
+    downsample: Option<(f64, f64)>,
+) -> Result<(), CliError> {
+    let mut inputs = Inputs::expand(files);
+    let mut names = OutputNames::default();
+    one_output_for_one_file(&inputs, out)?;
+    create_dir("--out-dir", out_dir)?;
+    inputs.each(|file| {
+        let target = match out {
+            Some(out) => out.to_path_buf(),
+            None => names.claim(file, out_dir, "png")?,
+        };
+        check_output(file, &target, &["png"])?;
+        let lum = load(file)?;
+        let name = file
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        write_plot(&lum, &name, &target, downsample)
+    })?;
+    inputs.finish()
+}
+
+fn convert(
+    files: &[PathBuf],
+    out: Option<&Path>,
+    to: Option<FileType>,
+    out_dir: Option<&Path>,
+) -> Result<(), CliError> {
+    let mut inputs = Inputs::expand(files);
+    let mut names = OutputNames::default();
+    one_output_for_one_file(&inputs, out)?;
+    create_dir("--out-dir", out_dir)?;
+    inputs.each(|file| {
+        let target = match (out, to) {
+            (Some(out), _) => out.to_path_buf(),
+            (None, Some(to)) if out_dir.is_none() && to.is(file) => {
+                eprintln!(
+                    "note: {}: already .{}; left as it is",
+                    file.display(),
+                    to.ext()
+                );
+                return Ok(());
+            }
+            (None, Some(to)) => names.claim(file, out_dir, to.ext())?,
+            (None, None) => {
+                return Err(CliError::input(anyhow::anyhow!(
+                    "say where to write: --out FILE.ldt|FILE.ies, or --to ldt|ies"
+                )))
+            }
+        };
+        check_output(file, &target, &["ldt", "ies"])?;
+        let lum = load(file)?;
+        let ies = target
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("ies"));
+        let text = if ies {
+            write_ies(&lum.data, lum.source_label())
+        } else {
+            lum.data.to_ldt_string()
+        };
+        write_atomic(&target, text.as_bytes()).map_err(CliError::failure)
+    })?;
+    inputs.finish()
+}
+
+/// `--out` names one file: refuse it for several inputs before any work.
+fn one_output_for_one_file(inputs: &Inputs, out: Option<&Path>) -> Result<(), CliError> {
+    match out {
+        Some(out) if !inputs.single => Err(CliError::input(anyhow::anyhow!(
+            "--out {} names one output, but {} luminaire files were given; use --out-dir",
+            out.display(),
+            inputs.files.len()
+        ))),
+        _ => Ok(()),
+    }
+}
+
+/// Creates the folder an option names (and its parents), if one is named.
+fn create_dir(option: &str, dir: Option<&Path>) -> Result<(), CliError> {
+    let Some(dir) = dir else { return Ok(()) };
+    std::fs::create_dir_all(dir)
+        .map_err(|e| CliError::input(anyhow::anyhow!("{option} {}: {e}", dir.display())))
+}
