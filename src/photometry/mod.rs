@@ -11,6 +11,7 @@ pub mod flux;
 pub mod grid;
 pub mod ies;
 pub mod info;
+pub mod luminance;
 pub mod plot;
 pub mod residual_plot;
 pub mod summary;

@@ -7,6 +7,7 @@ use clap::{Args, Subcommand};
 
 mod catalogue;
 mod inputs;
+mod luminance;
 
 pub(super) use catalogue::print_check;
 use inputs::{Inputs, OutputNames};
@@ -50,6 +51,27 @@ pub enum LdtCommand {
     /// Check how well each interpolation reconstructs measured values it did not see
     /// (several files: one table and a summary over the catalogue).
     Check(CheckArgs),
+    /// Print the luminance table: cd/m² of the luminous area by C plane (0–345° every 15°)
+    /// and γ (65–85° every 5°, the UGR grid; --gamma-from to start lower).
+    Luminance {
+        /// Luminaire files or directories.
+        #[arg(required = true)]
+        files: Vec<PathBuf>,
+        /// Print JSON: {"c_angles", "gamma_angles", "cd_m2": one array per C angle, "flux_lm"}
+        /// (an array of them, each with its "path", for several files).
+        #[arg(long)]
+        json: bool,
+        /// The lamp set whose flux turns cd/klm into candela (1-based; default the first,
+        /// as Relux and DIALux read EULUMDAT's sets as alternatives).
+        #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..))]
+        lamp_set: Option<u16>,
+        /// The first γ row, degrees (a multiple of 5 below 90; datasheets print 45 or 65).
+        #[arg(long, default_value_t = 65, value_parser = clap::value_parser!(u16).range(0..90))]
+        gamma_from: u16,
+        /// Interpolation between the measured angles (the grid's own angles are exact).
+        #[arg(long, value_enum, default_value = "bilinear")]
+        interp: Interp,
+    },
     /// Write the polar goniometric diagram (C0–C180 and C90–C270) as PNG.
     Plot {
         /// Luminaire files or directories.
@@ -164,6 +186,13 @@ pub fn run(cmd: LdtCommand) -> Result<(), CliError> {
         LdtCommand::Info { files, json, csv } => info(&files, json, csv),
         LdtCommand::Sample { files, interp } => sample(&files, interp),
         LdtCommand::Check(args) => catalogue::check(&args),
+        LdtCommand::Luminance {
+            files,
+            json,
+            lamp_set,
+            gamma_from,
+            interp,
+        } => luminance::run(&files, json, lamp_set.map(usize::from), gamma_from, interp),
         LdtCommand::Plot {
             files,
             out,

@@ -1,0 +1,82 @@
+//! `ldt luminance`: the luminance table of one or many luminaire files.
+
+use std::path::{Path, PathBuf};
+
+use super::inputs::Inputs;
+use super::{load, CliError};
+use crate::photometry::luminance::{luminance_table, ugr_grid, LuminanceTable};
+use crate::photometry::Interp;
+
+/// Prints the luminance table of each file, as text or JSON.
+pub(super) fn run(
+    files: &[PathBuf],
+    as_json: bool,
+    lamp_set: Option<usize>,
+    gamma_from: u16,
+    interp: Interp,
+) -> Result<(), CliError> {
+    if gamma_from % 5 != 0 {
+        return Err(CliError::input(anyhow::anyhow!(
+            "--gamma-from {gamma_from}: give a multiple of 5 (the rows are 5° apart)"
+        )));
+    }
+    let (c_angles, _) = ugr_grid();
+    let gammas: Vec<f64> = (gamma_from..90).step_by(5).map(f64::from).collect();
+    let mut inputs = Inputs::expand(files);
+    let tables = inputs.each(|file| {
+        let lum = load(file)?;
+        let table = luminance_table(&lum, &c_angles, &gammas, lamp_set, interp).map_err(|e| {
+            let bad = e.is_bad_input();
+            CliError::classified(anyhow::anyhow!(e).context(file.display().to_string()), bad)
+        })?;
+        Ok((lum.data.luminaire_name.trim().to_string(), table))
+    })?;
+    if as_json {
+        let mut values: Vec<serde_json::Value> = Vec::new();
+        for (path, (_, table)) in &tables {
+            let mut v = serde_json::to_value(table).map_err(CliError::failure)?;
+            if !inputs.single {
+                v["path"] = serde_json::Value::from(path.display().to_string());
+            }
+            values.push(v);
+        }
+        let out = if inputs.single {
+            values.remove(0)
+        } else {
+            serde_json::Value::Array(values)
+        };
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&out).map_err(CliError::failure)?
+        );
+    } else {
+        for (k, (path, (name, table))) in tables.iter().enumerate() {
+            if k > 0 {
+                println!();
+            }
+            print_table(path, name, table);
+        }
+    }
+    inputs.finish()
+}
+
+fn print_table(path: &Path, name: &str, t: &LuminanceTable) {
+    println!(
+        "{} — {name}: luminance of the luminous area, cd/m² ({:.0} lm; max {:.0})",
+        path.display(),
+        t.flux_lm,
+        t.max()
+    );
+    let mut head = format!("{:>7}", "C \\ γ");
+    for g in &t.gamma_angles {
+        head.push_str(&format!("{:>9}", format!("{g}°")));
+    }
+    println!("{head}");
+    for (c, row) in t.c_angles.iter().zip(&t.cd_m2) {
+        let mut line = format!("{:>7}", format!("{c}°"));
+        for v in row {
+            line.push_str(&format!("{v:>9.0}"));
+        }
+        println!("{line}");
+    }
+}
