@@ -15,7 +15,7 @@ pub(super) fn run(
     gamma_from: u16,
     interp: Interp,
 ) -> Result<(), CliError> {
-    if gamma_from % 5 != 0 {
+    if !gamma_from.is_multiple_of(5) {
         return Err(CliError::input(anyhow::anyhow!(
             "--gamma-from {gamma_from}: give a multiple of 5 (the rows are 5° apart)"
         )));
