@@ -3,6 +3,9 @@
 //! residuals it writes.
 
 mod common;
+#[path = "common/svg.rs"]
+#[allow(dead_code)]
+mod svg;
 
 use std::path::{Path, PathBuf};
 
@@ -294,44 +297,15 @@ fn residuals_are_written_as_csv_chart_and_heat_map() {
     }
     let png = image::open(dir.join("sample_01_isym3-heatmap.png")).unwrap();
     assert_eq!((png.width(), png.height()), (1400, 900));
-    assert_curves_drawn(&dir.join("sample_01_isym3-gamma.svg"));
-}
-
-/// Renders the SVG with resvg and finds each method's colour in it (plotters' colours of
-/// `photometry::plot::style`): the file is SVG (not PNG bytes) and shows the four curves.
-fn assert_curves_drawn(svg_path: &Path) {
-    let data = std::fs::read(svg_path).unwrap();
-    assert!(data.starts_with(b"<svg"), "not SVG: {:?}", &data[..8]);
-    let mut options = resvg::usvg::Options::default();
-    options
-        .fontdb_mut()
-        .load_font_data(std::fs::read(common::root().join("assets/fonts/DejaVuSans.ttf")).unwrap());
-    let tree = resvg::usvg::Tree::from_data(&data, &options).unwrap();
-    let size = tree.size().to_int_size();
-    let mut pixmap = resvg::tiny_skia::Pixmap::new(size.width(), size.height()).unwrap();
-    resvg::render(&tree, Default::default(), &mut pixmap.as_mut());
-    let count = |rgb: [u8; 3]| {
-        pixmap
-            .pixels()
-            .iter()
-            .filter(|p| {
-                let c = p.demultiply();
-                [c.red(), c.green(), c.blue()]
-                    .iter()
-                    .zip(rgb)
-                    .all(|(a, b)| a.abs_diff(b) <= 12)
-            })
-            .count()
-    };
+    let svg = svg::render(&dir.join("sample_01_isym3-gamma.svg"));
     for (name, rgb) in [
         ("nearest", [150, 150, 150]),
         ("Catmull-Rom", [30, 90, 230]),
         ("monotone", [20, 160, 60]),
     ] {
         assert!(
-            count(rgb) > 200,
-            "{name}'s curve not drawn in {}",
-            svg_path.display()
+            svg::pixels_of(&svg, rgb).len() > 200,
+            "{name}'s curve not drawn"
         );
     }
 }
@@ -445,4 +419,71 @@ fn sample_prints_one_column_per_file() {
         let column: Vec<String> = table.iter().map(|row| row[k].clone()).collect();
         assert_eq!(column, one.lines().collect::<Vec<_>>());
     }
+}
+
+#[test]
+fn plot_svg_is_svg_and_shows_the_png_curves() {
+    let tmp = tempfile::tempdir().unwrap();
+    let file = luminaire("eulumdat-plot/sample_01_isym3.ldt");
+    let (svg_path, png_path) = (tmp.path().join("p.svg"), tmp.path().join("p.png"));
+    for out in [&svg_path, &png_path] {
+        let (code, _, err) = run_cli(&["ldt", "plot", s(&file), "--out", s(out)], "");
+        assert_eq!(code, 0, "{err}");
+    }
+    let vector = svg::render(&svg_path);
+    let raster = svg::load_png(&png_path);
+    assert_eq!(vector.width, raster.width);
+    // The measured marks (red) and the Catmull-Rom curve (blue) in the same places: the
+    // bounding boxes of their pixels agree within a few pixels.
+    for rgb in [[220, 30, 30], [30, 90, 230]] {
+        let (a, b) = (svg::pixels_of(&vector, rgb), svg::pixels_of(&raster, rgb));
+        assert!(
+            a.len() > 100 && b.len() > 100,
+            "{rgb:?}: {} vs {}",
+            a.len(),
+            b.len()
+        );
+        let bbox = |p: &[(u32, u32)]| {
+            let xs = p.iter().map(|q| q.0);
+            let ys = p.iter().map(|q| q.1);
+            [
+                xs.clone().min().unwrap(),
+                xs.max().unwrap(),
+                ys.clone().min().unwrap(),
+                ys.max().unwrap(),
+            ]
+        };
+        let (ba, bb) = (bbox(&a), bbox(&b));
+        for k in 0..4 {
+            assert!(ba[k].abs_diff(bb[k]) <= 4, "{rgb:?}: {ba:?} vs {bb:?}");
+        }
+    }
+    // Directories into SVG by --format; an unknown extension is refused.
+    let dir = tmp.path().join("svgs");
+    let (code, _, err) = run_cli(
+        &[
+            "ldt",
+            "plot",
+            s(&file),
+            "--out-dir",
+            s(&dir),
+            "--format",
+            "svg",
+        ],
+        "",
+    );
+    assert_eq!(code, 0, "{err}");
+    svg::render(&dir.join("sample_01_isym3.svg"));
+    let (code, _, err) = run_cli(
+        &[
+            "ldt",
+            "plot",
+            s(&file),
+            "--out",
+            s(&tmp.path().join("p.pdf")),
+        ],
+        "",
+    );
+    assert_eq!(code, 2);
+    assert!(err.contains(".png or .svg"), "{err}");
 }

@@ -1,4 +1,4 @@
-//! Polar goniometric diagrams as PNG: the C0–C180 and C90–C270 planes side by side, the
+//! Polar goniometric diagrams as PNG or SVG: the C0–C180 and C90–C270 planes side by side, the
 //! measured values marked, each interpolation drawn over them (as Wallner Fig. 3.6).
 
 use std::path::Path;
@@ -123,13 +123,29 @@ impl PolarPlot<'_> {
         png_bytes(WIDTH, HEIGHT, "the polar diagram", |root| self.draw(root))
     }
 
-    /// Renders and writes the PNG (atomically).
-    pub fn save(&self, path: &Path) -> anyhow::Result<()> {
-        let png = self.render_png().map_err(anyhow::Error::msg)?;
-        write_atomic(path, &png)
+    /// Renders the diagram as SVG (the same drawing as the PNG, as vectors).
+    pub fn render_svg(&self) -> Result<String, String> {
+        svg_string(WIDTH, HEIGHT, "the polar diagram", |root| self.draw(root))
     }
 
-    fn draw(&self, root: &BitMapArea) -> DrawResult {
+    /// Renders and writes the diagram (atomically): SVG when `path` ends in `.svg` (any
+    /// case), else PNG.
+    pub fn save(&self, path: &Path) -> anyhow::Result<()> {
+        let svg = path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("svg"));
+        let bytes = if svg {
+            self.render_svg().map_err(anyhow::Error::msg)?.into_bytes()
+        } else {
+            self.render_png().map_err(anyhow::Error::msg)?
+        };
+        write_atomic(path, &bytes)
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, plotters::coord::Shift>) -> DrawResult
+    where
+        DB::ErrorType: 'static,
+    {
         root.fill(&WHITE)?;
         let (head, body) = root.split_vertically(48);
         head.draw(&Text::new(

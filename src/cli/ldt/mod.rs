@@ -72,17 +72,21 @@ pub enum LdtCommand {
         #[arg(long, value_enum, default_value = "bilinear")]
         interp: Interp,
     },
-    /// Write the polar goniometric diagram (C0–C180 and C90–C270) as PNG.
+    /// Write the polar goniometric diagram (C0–C180 and C90–C270) as PNG or SVG.
     Plot {
         /// Luminaire files or directories.
         #[arg(required = true)]
         files: Vec<PathBuf>,
-        /// Output PNG (one input file).
+        /// Output .png or .svg (one input file; the extension picks the format).
         #[arg(long, required_unless_present = "out_dir", conflicts_with = "out_dir")]
         out: Option<PathBuf>,
-        /// Write one PNG per input here, named after the input (`sample.ldt` → `sample.png`).
+        /// Write one diagram per input here, named after the input (`sample.ldt` →
+        /// `sample.png`, or `.svg` with --format svg).
         #[arg(long)]
         out_dir: Option<PathBuf>,
+        /// The format of the diagrams written into --out-dir.
+        #[arg(long, value_enum, default_value = "png", requires = "out_dir")]
+        format: PictureFormat,
         /// Draw the curves from the file downsampled to these C,γ steps (degrees), with
         /// every measured value marked: a picture of the interpolation check.
         #[arg(long, value_parser = parse_pair)]
@@ -103,6 +107,15 @@ pub enum LdtCommand {
         #[arg(long, requires = "to")]
         out_dir: Option<PathBuf>,
     },
+}
+
+/// A picture format, by its extension.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum PictureFormat {
+    /// Raster.
+    Png,
+    /// Vector.
+    Svg,
 }
 
 /// A luminaire file type, by its extension.
@@ -197,8 +210,20 @@ pub fn run(cmd: LdtCommand) -> Result<(), CliError> {
             files,
             out,
             out_dir,
+            format,
             downsample,
-        } => plot(&files, out.as_deref(), out_dir.as_deref(), downsample),
+        } => {
+            let ext = match format {
+                PictureFormat::Png => "png",
+                PictureFormat::Svg => "svg",
+            };
+            plot(
+                &files,
+                out.as_deref(),
+                (out_dir.as_deref(), ext),
+                downsample,
+            )
+        }
         LdtCommand::Convert {
             files,
             out,
@@ -397,10 +422,11 @@ fn check_output(input: &Path, out: &Path, exts: &[&str]) -> Result<(), CliError>
     Ok(())
 }
 
+/// Writes the polar diagrams: into `out`, or into the folder of `out_dir` with its extension.
 fn plot(
     files: &[PathBuf],
     out: Option<&Path>,
-    out_dir: Option<&Path>,
+    (out_dir, ext): (Option<&Path>, &str),
     downsample: Option<(f64, f64)>,
 ) -> Result<(), CliError> {
     let mut inputs = Inputs::expand(files);
@@ -410,9 +436,9 @@ fn plot(
     inputs.each(|file| {
         let target = match out {
             Some(out) => out.to_path_buf(),
-            None => names.claim(file, out_dir, "png")?,
+            None => names.claim(file, out_dir, ext)?,
         };
-        check_output(file, &target, &["png"])?;
+        check_output(file, &target, &["png", "svg"])?;
         let lum = load(file)?;
         let name = file
             .file_name()
