@@ -8,7 +8,7 @@ if [ ! -x "$venv/bin/python" ]; then
   python3 -m venv "$venv"
 fi
 "$venv/bin/python" -m pip install --quiet --upgrade pip
-"$venv/bin/python" -m pip install --quiet pytest numpy
+"$venv/bin/python" -m pip install --quiet pytest numpy "eulumdat-ugr==1.0.2"
 # A development-profile build shares the compiled dependencies of `cargo test`.
 MATURIN_PEP517_ARGS="--profile dev" "$venv/bin/python" -m pip install --quiet ./python
 cargo build --quiet --bin goniolight

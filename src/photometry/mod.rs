@@ -19,6 +19,7 @@ pub mod symmetry;
 pub mod text;
 pub mod texture;
 pub mod type_b;
+pub mod ugr;
 
 use std::path::Path;
 

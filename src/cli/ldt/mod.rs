@@ -8,6 +8,7 @@ use clap::{Args, Subcommand};
 mod catalogue;
 mod inputs;
 mod luminance;
+mod ugr;
 
 pub(super) use catalogue::print_check;
 use inputs::{Inputs, OutputNames};
@@ -71,6 +72,23 @@ pub enum LdtCommand {
         /// Interpolation between the measured angles (the grid's own angles are exact).
         #[arg(long, value_enum, default_value = "bilinear")]
         interp: Interp,
+    },
+    /// Print the UGR table (CIE 117 formula, CIE 190 tabular method): 19 room sizes × 5
+    /// reflectance combinations, viewed crosswise and endwise, at spacing SHR · H.
+    Ugr {
+        /// Luminaire files or directories.
+        #[arg(required = true)]
+        files: Vec<PathBuf>,
+        /// Print JSON: {"shr", "rooms", "reflectances", "crosswise", "endwise", "flux_lm"}
+        /// (an array of them, each with its "path", for several files).
+        #[arg(long)]
+        json: bool,
+        /// Spacing-to-height ratio of the luminaire grid (CIE 190's standard table: 0.25).
+        #[arg(long, default_value_t = 0.25)]
+        shr: f64,
+        /// The lamp set whose flux the table is for (1-based; default the first).
+        #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..))]
+        lamp_set: Option<u16>,
     },
     /// Write the polar goniometric diagram (C0–C180 and C90–C270) as PNG or SVG.
     Plot {
@@ -199,6 +217,12 @@ pub fn run(cmd: LdtCommand) -> Result<(), CliError> {
         LdtCommand::Info { files, json, csv } => info(&files, json, csv),
         LdtCommand::Sample { files, interp } => sample(&files, interp),
         LdtCommand::Check(args) => catalogue::check(&args),
+        LdtCommand::Ugr {
+            files,
+            json,
+            shr,
+            lamp_set,
+        } => ugr::run(&files, json, shr, lamp_set.map(usize::from)),
         LdtCommand::Luminance {
             files,
             json,

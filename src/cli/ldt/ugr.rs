@@ -1,0 +1,99 @@
+//! `ldt ugr`: the UGR table of one or many luminaire files.
+
+use std::path::Path;
+use std::path::PathBuf;
+
+use super::inputs::Inputs;
+use super::{load, CliError};
+use crate::photometry::ugr::{ugr_table, UgrTable};
+use crate::photometry::Interp;
+
+/// Prints the UGR table of each file, as text (a datasheet's layout) or JSON.
+pub(super) fn run(
+    files: &[PathBuf],
+    as_json: bool,
+    shr: f64,
+    lamp_set: Option<usize>,
+) -> Result<(), CliError> {
+    let mut inputs = Inputs::expand(files);
+    let tables = inputs.each(|file| {
+        let lum = load(file)?;
+        let table = ugr_table(&lum, lamp_set, shr, Interp::Bilinear).map_err(|e| {
+            let bad = e.is_bad_input();
+            CliError::classified(anyhow::anyhow!(e).context(file.display().to_string()), bad)
+        })?;
+        Ok((lum.data.luminaire_name.trim().to_string(), table))
+    })?;
+    if as_json {
+        let mut values: Vec<serde_json::Value> = Vec::new();
+        for (path, (_, table)) in &tables {
+            let mut v = serde_json::to_value(table).map_err(CliError::failure)?;
+            if !inputs.single {
+                v["path"] = serde_json::Value::from(path.display().to_string());
+            }
+            values.push(v);
+        }
+        let out = if inputs.single {
+            values.remove(0)
+        } else {
+            serde_json::Value::Array(values)
+        };
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&out).map_err(CliError::failure)?
+        );
+    } else {
+        for (k, (path, (name, table))) in tables.iter().enumerate() {
+            if k > 0 {
+                println!();
+            }
+            print_table(path, name, table);
+        }
+    }
+    inputs.finish()
+}
+
+fn print_table(path: &Path, name: &str, t: &UgrTable) {
+    println!(
+        "{} — {name}: UGR table (CIE 117/190), SHR {} H, {:.0} lm",
+        path.display(),
+        t.shr,
+        t.flux_lm
+    );
+    let refl = |k: usize| -> String {
+        let r = t.reflectances[k];
+        format!(
+            "{:.0}/{:.0}/{:.0}",
+            r[0] * 100.0,
+            r[1] * 100.0,
+            r[2] * 100.0
+        )
+    };
+    println!(
+        "{:>9}  {:<45}  {}",
+        "", "viewed crosswise", "viewed endwise"
+    );
+    let mut head = format!("{:>9}  ", "ρ c/w/p");
+    for _ in 0..2 {
+        for k in 0..5 {
+            head.push_str(&format!("{:>9}", refl(k)));
+        }
+        head.push_str("  ");
+    }
+    println!("{}", head.trim_end());
+    println!("{:>9}", "X × Y");
+    for (i, room) in t.rooms.iter().enumerate() {
+        let mut line = format!("{:>9}  ", format!("{}H×{}H", room[0], room[1]));
+        for row in [&t.crosswise[i], &t.endwise[i]] {
+            for v in row {
+                match v {
+                    Some(v) if *v < 10.0 => line.push_str(&format!("{:>9}", "<10")),
+                    Some(v) => line.push_str(&format!("{v:>9.1}")),
+                    None => line.push_str(&format!("{:>9}", "—")),
+                }
+            }
+            line.push_str("  ");
+        }
+        println!("{}", line.trim_end());
+    }
+}
