@@ -69,10 +69,7 @@ fn print_table(path: &Path, name: &str, t: &UgrTable) {
             r[2] * 100.0
         )
     };
-    println!(
-        "{:>9}  {:<45}  {}",
-        "", "viewed crosswise", "viewed endwise"
-    );
+    println!("{:>9}  {:<45}  viewed endwise", "", "viewed crosswise");
     let mut head = format!("{:>9}  ", "ρ c/w/p");
     for _ in 0..2 {
         for k in 0..5 {
