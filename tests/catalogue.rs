@@ -422,12 +422,23 @@ fn sample_prints_one_column_per_file() {
 }
 
 #[test]
-fn plot_svg_is_svg_and_shows_the_png_curves() {
+fn the_check_picture_in_svg_shows_the_png_curves() {
     let tmp = tempfile::tempdir().unwrap();
     let file = luminaire("eulumdat-plot/sample_01_isym3.ldt");
     let (svg_path, png_path) = (tmp.path().join("p.svg"), tmp.path().join("p.png"));
     for out in [&svg_path, &png_path] {
-        let (code, _, err) = run_cli(&["ldt", "plot", s(&file), "--out", s(out)], "");
+        let (code, _, err) = run_cli(
+            &[
+                "ldt",
+                "plot",
+                s(&file),
+                "--downsample",
+                "30,10",
+                "--out",
+                s(out),
+            ],
+            "",
+        );
         assert_eq!(code, 0, "{err}");
     }
     let vector = svg::render(&svg_path);

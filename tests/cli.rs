@@ -140,10 +140,10 @@ fn plot_and_convert_write_files() {
     );
     assert_eq!(code, 0, "{err}");
     let img = image::open(&png).unwrap().to_rgb8();
-    assert_eq!(img.dimensions(), (1400, 800));
-    // Red measured markers and blue Catmull-Rom pixels are present.
-    assert!(img.pixels().any(|p| p[0] > 200 && p[1] < 60 && p[2] < 60));
-    assert!(img.pixels().any(|p| p[2] > 200 && p[0] < 60));
+    assert_eq!(img.dimensions(), (1100, 860));
+    // The datasheet diagram: the red C0–C180 and blue C90–C270 curves are drawn.
+    assert!(img.pixels().any(|p| p[0] > 180 && p[1] < 60 && p[2] < 60));
+    assert!(img.pixels().any(|p| p[2] > 180 && p[0] < 60));
     for ext in ["ies", "ldt"] {
         let out = dir.path().join(format!("x.{ext}"));
         let (code, _, err) = run_cli(

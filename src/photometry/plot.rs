@@ -104,7 +104,7 @@ fn polar_point(value: f64, t_deg: f64) -> (f64, f64) {
 }
 
 /// A round radius for the outer ring.
-fn nice_ceiling(v: f64) -> f64 {
+pub fn nice_ceiling(v: f64) -> f64 {
     if v <= 0.0 {
         return 1.0;
     }

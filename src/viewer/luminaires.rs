@@ -6,6 +6,7 @@ use egui_plot::{Legend, Line, MarkerShape, Plot, PlotPoints, Points};
 
 use super::app::ViewerApp;
 use super::files::DialogPurpose;
+use crate::photometry::datasheet_plot::plane_pair_curve;
 use crate::photometry::{Interp, Luminaire};
 use crate::scene::placement::LUMINANCE_WEIGHTS;
 
@@ -167,21 +168,10 @@ fn label_of(interp: Interp) -> &'static str {
 }
 
 /// The polar curve of the plane pair (c, c + 180°) in candela: x = ±I sin γ, y = −I cos γ
-/// (down is γ = 0), the c half on the right.
+/// (down is γ = 0), the c half on the right — the geometry `ldt plot` draws too.
 pub fn polar_curve(lum: &Luminaire, c_deg: f64, interp: Interp, step_deg: f64) -> Vec<[f64; 2]> {
     let d = &lum.distribution;
-    let n = (180.0 / step_deg).round() as usize;
-    let right = (0..=n).map(|k| {
-        let g = k as f64 * step_deg;
-        let i = d.candela(c_deg, g, interp, 1.0);
-        [i * g.to_radians().sin(), -i * g.to_radians().cos()]
-    });
-    let left = (0..=n).rev().map(|k| {
-        let g = k as f64 * step_deg;
-        let i = d.candela(c_deg + 180.0, g, interp, 1.0);
-        [-i * g.to_radians().sin(), -i * g.to_radians().cos()]
-    });
-    right.chain(left).collect()
+    plane_pair_curve(|c, g| d.candela(c, g, interp, 1.0), c_deg, step_deg)
 }
 
 /// The measured values on the plane pair (c, c + 180°) where c is a measured plane.

@@ -8,6 +8,7 @@ use clap::{Args, Subcommand};
 mod catalogue;
 mod inputs;
 mod luminance;
+mod plot;
 mod ugr;
 
 pub(super) use catalogue::print_check;
@@ -90,26 +91,9 @@ pub enum LdtCommand {
         #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..))]
         lamp_set: Option<u16>,
     },
-    /// Write the polar goniometric diagram (C0–C180 and C90–C270) as PNG or SVG.
-    Plot {
-        /// Luminaire files or directories.
-        #[arg(required = true)]
-        files: Vec<PathBuf>,
-        /// Output .png or .svg (one input file; the extension picks the format).
-        #[arg(long, required_unless_present = "out_dir", conflicts_with = "out_dir")]
-        out: Option<PathBuf>,
-        /// Write one diagram per input here, named after the input (`sample.ldt` →
-        /// `sample.png`, or `.svg` with --format svg).
-        #[arg(long)]
-        out_dir: Option<PathBuf>,
-        /// The format of the diagrams written into --out-dir.
-        #[arg(long, value_enum, default_value = "png", requires = "out_dir")]
-        format: PictureFormat,
-        /// Draw the curves from the file downsampled to these C,γ steps (degrees), with
-        /// every measured value marked: a picture of the interpolation check.
-        #[arg(long, value_parser = parse_pair)]
-        downsample: Option<(f64, f64)>,
-    },
+    /// Write a datasheet diagram (polar or cartesian, C0–C180 and C90–C270 overlaid) as
+    /// PNG or SVG; with --downsample, the interpolation check's picture instead.
+    Plot(plot::PlotArgs),
     /// Convert between EULUMDAT and IES (the output's extension, or --to, picks the format).
     Convert {
         /// Luminaire files or directories.
@@ -125,15 +109,6 @@ pub enum LdtCommand {
         #[arg(long, requires = "to")]
         out_dir: Option<PathBuf>,
     },
-}
-
-/// A picture format, by its extension.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-pub enum PictureFormat {
-    /// Raster.
-    Png,
-    /// Vector.
-    Svg,
 }
 
 /// A luminaire file type, by its extension.
@@ -230,24 +205,7 @@ pub fn run(cmd: LdtCommand) -> Result<(), CliError> {
             gamma_from,
             interp,
         } => luminance::run(&files, json, lamp_set.map(usize::from), gamma_from, interp),
-        LdtCommand::Plot {
-            files,
-            out,
-            out_dir,
-            format,
-            downsample,
-        } => {
-            let ext = match format {
-                PictureFormat::Png => "png",
-                PictureFormat::Svg => "svg",
-            };
-            plot(
-                &files,
-                out.as_deref(),
-                (out_dir.as_deref(), ext),
-                downsample,
-            )
-        }
+        LdtCommand::Plot(args) => plot::run(&args),
         LdtCommand::Convert {
             files,
             out,
@@ -444,33 +402,6 @@ fn check_output(input: &Path, out: &Path, exts: &[&str]) -> Result<(), CliError>
         )));
     }
     Ok(())
-}
-
-/// Writes the polar diagrams: into `out`, or into the folder of `out_dir` with its extension.
-fn plot(
-    files: &[PathBuf],
-    out: Option<&Path>,
-    (out_dir, ext): (Option<&Path>, &str),
-    downsample: Option<(f64, f64)>,
-) -> Result<(), CliError> {
-    let mut inputs = Inputs::expand(files);
-    let mut names = OutputNames::default();
-    one_output_for_one_file(&inputs, out)?;
-    create_dir("--out-dir", out_dir)?;
-    inputs.each(|file| {
-        let target = match out {
-            Some(out) => out.to_path_buf(),
-            None => names.claim(file, out_dir, ext)?,
-        };
-        check_output(file, &target, &["png", "svg"])?;
-        let lum = load(file)?;
-        let name = file
-            .file_name()
-            .map(|n| n.to_string_lossy().into_owned())
-            .unwrap_or_default();
-        write_plot(&lum, &name, &target, downsample)
-    })?;
-    inputs.finish()
 }
 
 fn convert(

@@ -1,0 +1,154 @@
+//! `ldt plot`'s datasheet diagrams: the plane pairs overlaid in one polar (or cartesian)
+//! chart scaled to the planes drawn, titled with name, flux and LOR, the legend beside
+//! the chart; PNG and SVG the same drawing.
+
+mod common;
+#[path = "common/svg.rs"]
+#[allow(dead_code)]
+mod svg;
+
+use std::path::Path;
+
+use common::{luminaire, run_cli};
+use goniolight::photometry::datasheet_plot::{plane_pair_curve, Diagram};
+use goniolight::photometry::plot::nice_ceiling;
+use goniolight::photometry::{Interp, Luminaire};
+
+fn s(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+#[test]
+fn the_scale_follows_the_planes_drawn() {
+    // sample_01_isym3 peaks off the drawn planes (I_max 700 cd/klm at C15 γ60): the outer
+    // ring follows C0–C180 and C90–C270, not the sphere's peak.
+    let lum = Luminaire::load(&luminaire("eulumdat-plot/sample_01_isym3.ldt")).unwrap();
+    let drawn = |planes: Vec<f64>| Diagram {
+        lum: &lum,
+        file_name: "x".into(),
+        planes,
+        interp: Interp::CatmullRom,
+    };
+    let mut peak = 0.0f64;
+    for c in [0.0, 90.0, 180.0, 270.0] {
+        for k in 0..=1800 {
+            let g = k as f64 * 0.1;
+            peak = peak.max(lum.distribution.sample(c, g, Interp::CatmullRom));
+        }
+    }
+    let i_max = lum.summary().max_intensity;
+    let scale = drawn(vec![0.0, 90.0]).scale();
+    assert_eq!(scale, nice_ceiling(peak));
+    assert!(
+        scale < i_max && scale >= peak,
+        "{scale} vs peak {peak}, I_max {i_max}"
+    );
+    // Adding the plane of the peak raises the scale above I_max.
+    assert!(drawn(vec![0.0, 15.0]).scale() >= i_max);
+}
+
+#[test]
+fn the_curve_is_the_plane_pair_in_polar_coordinates() {
+    // An intensity of 2 at C0 and 1 at C180: right half radius 2, left half radius 1.
+    let curve = plane_pair_curve(|c, _| if c < 90.0 { 2.0 } else { 1.0 }, 0.0, 45.0);
+    assert_eq!(curve.len(), 10);
+    let near =
+        |a: [f64; 2], b: [f64; 2]| (a[0] - b[0]).abs() < 1e-12 && (a[1] - b[1]).abs() < 1e-12;
+    assert!(near(curve[0], [0.0, -2.0]), "γ 0 points down");
+    assert!(near(curve[2], [2.0, 0.0]), "γ 90 of plane C0 to the right");
+    assert!(
+        near(curve[7], [-1.0, 0.0]),
+        "γ 90 of plane C180 to the left"
+    );
+    assert!(near(curve[9], [0.0, -1.0]));
+}
+
+#[test]
+fn svg_and_png_diagrams_carry_title_legend_and_the_same_curves() {
+    let tmp = tempfile::tempdir().unwrap();
+    let file = luminaire("eulumdat-luminance/sample_02.ldt");
+    for kind in ["polar", "cartesian"] {
+        let (svg_path, png_path) = (
+            tmp.path().join(format!("{kind}.svg")),
+            tmp.path().join(format!("{kind}.png")),
+        );
+        for out in [&svg_path, &png_path] {
+            let (code, _, err) = run_cli(
+                &["ldt", "plot", s(&file), "--kind", kind, "--out", s(out)],
+                "",
+            );
+            assert_eq!(code, 0, "{err}");
+        }
+        let text = std::fs::read_to_string(&svg_path).unwrap();
+        // Title: name, fluxes and LOR (sample_02: 2112 lm lamps, LOR 100.2 %).
+        for needle in [
+            "sample_02",
+            "2112 lm lamps",
+            "LOR 100.2 %",
+            "C0–C180",
+            "C90–C270",
+        ] {
+            assert!(text.contains(needle), "{kind}: {needle} missing");
+        }
+        // The legend stands beside the chart, right of every curve point.
+        let legend_x = text
+            .split("<text")
+            .filter(|t| t.contains("C0–C180"))
+            .filter_map(|t| {
+                t.split("x=\"")
+                    .nth(1)?
+                    .split('"')
+                    .next()?
+                    .parse::<f64>()
+                    .ok()
+            })
+            .next()
+            .unwrap();
+        let vector = svg::render(&svg_path);
+        let raster = svg::load_png(&png_path);
+        for rgb in [[200, 30, 30], [30, 80, 200]] {
+            let (a, b) = (svg::pixels_of(&vector, rgb), svg::pixels_of(&raster, rgb));
+            assert!(
+                a.len() > 300 && b.len() > 300,
+                "{kind} {rgb:?}: {} / {}",
+                a.len(),
+                b.len()
+            );
+            let curve_right = a.iter().filter(|p| p.1 > 90).map(|p| p.0).max().unwrap() as f64;
+            assert!(
+                legend_x > curve_right,
+                "{kind}: legend at {legend_x}, curve to {curve_right}"
+            );
+            let bbox = |p: &[(u32, u32)]| {
+                let xs = || p.iter().filter(|q| q.1 > 90).map(|q| q.0);
+                [xs().min().unwrap(), xs().max().unwrap()]
+            };
+            let (ba, bb) = (bbox(&a), bbox(&b));
+            assert!(
+                ba[0].abs_diff(bb[0]) <= 4 && ba[1].abs_diff(bb[1]) <= 4,
+                "{kind}: {ba:?} vs {bb:?}"
+            );
+        }
+    }
+    // More planes, more curves; planes out of range are refused.
+    let out = tmp.path().join("three.svg");
+    let (code, _, err) = run_cli(
+        &[
+            "ldt",
+            "plot",
+            s(&file),
+            "--planes",
+            "0,45,90",
+            "--out",
+            s(&out),
+        ],
+        "",
+    );
+    assert_eq!(code, 0, "{err}");
+    assert!(std::fs::read_to_string(&out).unwrap().contains("C45–C225"));
+    let (code, _, err) = run_cli(
+        &["ldt", "plot", s(&file), "--planes", "200", "--out", s(&out)],
+        "",
+    );
+    assert_eq!(code, 2, "{err}");
+}
