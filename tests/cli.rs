@@ -231,3 +231,46 @@ fn the_opengl_backend_is_refused_with_the_fix_never_a_wrong_number() {
         "nothing is written"
     );
 }
+
+#[test]
+fn info_text_is_for_people() {
+    // The example: an IES downlight printed "(Ies, Isym 1)", "903.4996780611565 lm"
+    // and "emits Full hemisphere".
+    let f = luminaire("photometric-viewer/ies95/absolute_photometry.ies");
+    let (code, out, err) = run_cli(&["ldt", "info", f.to_str().unwrap()], "");
+    assert_eq!(code, 0, "{err}");
+    for needle in [
+        "IES, Isym 1 (rotationally symmetric)",
+        "903 lm, 15 W",
+        "flux           903 lm from 903 lm of lamps",
+        "efficacy       60.2 lm/W",
+        "DFF            100.0 % (declared 100.0 %): downward only",
+        "dimensions     luminaire Ø 120 mm",
+        "CIE flux code  94 99 100 100 100",
+    ] {
+        assert!(out.contains(needle), "{needle:?} missing in\n{out}");
+    }
+    assert!(
+        !out.contains("903.49") && !out.contains("Ies") && !out.contains("hemisphere"),
+        "{out}"
+    );
+    // The lamp set's flux for the text's figures; the JSON carries the same flux code.
+    let f = luminaire("eulumdat-luminance/sample_06.ldt");
+    let (code, out, _) = run_cli(&["ldt", "info", f.to_str().unwrap(), "--lamp-set", "2"], "");
+    assert_eq!(code, 0);
+    assert!(
+        out.contains("flux           2643 lm from 2643 lm of lamps"),
+        "{out}"
+    );
+    assert!(out.contains("efficacy       106.1 lm/W"), "{out}");
+    let (_, json, _) = run_cli(&["ldt", "info", f.to_str().unwrap(), "--json"], "");
+    let v: serde_json::Value = serde_json::from_str(&json).unwrap();
+    assert_eq!(v["cie_flux_code"], serde_json::json!([51, 80, 94, 87, 100]));
+    assert!(out.contains("CIE flux code  51 80 94 87 100"), "{out}");
+    let (code, _, err) = run_cli(&["ldt", "info", f.to_str().unwrap(), "--lamp-set", "3"], "");
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("sample_06.ldt") && err.contains("2 lamp set"),
+        "{err}"
+    );
+}

@@ -94,3 +94,27 @@ fn ies_editions_and_tilt_include() {
     assert_eq!(l.distribution, base.distribution);
     assert!(l.warnings.iter().any(|w| w.contains("TILT=INCLUDE")));
 }
+
+#[test]
+fn cie_flux_codes_of_lambertian_and_uniform_downlights() {
+    use goniolight::photometry::summary::cie_flux_code;
+    // Lambertian: the cone of half-angle θ holds sin²θ of the downward flux; LOR π × 100 %
+    // of a 1000 lm lamp for I = 1000 cd/klm · cos γ.
+    assert_eq!(cie_flux_code(&lambertian()), Some([44, 75, 94, 100, 314]));
+    // Uniform below the horizon (cut off within 0.01° above it): 1 − cos θ.
+    let mut g: Vec<f64> = (0..=90).map(f64::from).collect();
+    g.extend([90.01, 180.0]);
+    let row: Vec<f64> = g
+        .iter()
+        .map(|a| if *a <= 90.0 { 100.0 } else { 0.0 })
+        .collect();
+    let uniform = Distribution::from_grid(
+        Grid::new(vec![0.0], g, &[row]),
+        1000.0,
+        Symmetry::Rotational,
+    );
+    let code = cie_flux_code(&uniform).unwrap();
+    assert_eq!(code[..4], [25, 50, 75, 100]);
+    // 100 cd/klm over 2π sr: 62.8 %.
+    assert_eq!(code[4], 63);
+}

@@ -38,6 +38,7 @@ impl Luminaire {
             "lorl_computed": s.lorl_computed,
             "dff_declared": s.dff_declared,
             "dff_computed": s.dff_computed,
+            "cie_flux_code": super::summary::cie_flux_code(&lum.distribution),
             "beam_angle_deg": s.beam_angle_deg,
             "field_angle_deg": s.field_angle_deg,
             "hemisphere": tex.hemisphere,

@@ -113,3 +113,42 @@ fn spread_angle(dist: &Distribution, c: f64, fraction: f64) -> Option<f64> {
     let left = crossing(-1)?;
     Some(right - left)
 }
+
+/// The CIE flux code (CIE 52): N1–N3 the flux within the cones of 41.4°, 60° and 75.5°
+/// (π/2, π and 3π/2 sr) as percent of the downward flux, N4 the downward flux as percent of
+/// the luminaire's (DFF), N5 the luminaire's flux as percent of the lamps' (LOR); each
+/// rounded to a whole percent as datasheets print it. `None` for a luminaire without
+/// downward light (N1–N3 undefined).
+pub fn cie_flux_code(dist: &Distribution) -> Option<[u32; 5]> {
+    const C_STEPS: usize = 360;
+    const G_STEP: f64 = 0.05;
+    // Cumulative flux from γ = 0, cd/klm·sr, at each γ step.
+    let n = (180.0 / G_STEP).round() as usize;
+    let mut cumulative = Vec::with_capacity(n + 1);
+    let mut total = 0.0;
+    cumulative.push(0.0);
+    for k in 0..n {
+        let (lo, hi) = (k as f64 * G_STEP, (k + 1) as f64 * G_STEP);
+        let g = 0.5 * (lo + hi);
+        let mean = (0..C_STEPS)
+            .map(|j| dist.sample(360.0 * j as f64 / C_STEPS as f64, g, Interp::Bilinear))
+            .sum::<f64>()
+            / C_STEPS as f64;
+        total +=
+            mean * 2.0 * std::f64::consts::PI * (lo.to_radians().cos() - hi.to_radians().cos());
+        cumulative.push(total);
+    }
+    let at = |g: f64| cumulative[(g / G_STEP).round() as usize];
+    let (down, all) = (at(90.0), at(180.0));
+    if down <= 0.0 {
+        return None;
+    }
+    let pct = |v: f64| (v * 100.0).round().max(0.0) as u32;
+    Some([
+        pct(at(41.4) / down),
+        pct(at(60.0) / down),
+        pct(at(75.5) / down),
+        pct(down / all),
+        pct(all / 1000.0),
+    ])
+}

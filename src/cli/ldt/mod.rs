@@ -20,7 +20,7 @@ use crate::photometry::check::{self, LeaveOut};
 use crate::photometry::ies::write_ies;
 use crate::photometry::info::{csv_line, CATALOGUE_COLUMNS};
 use crate::photometry::plot::PolarPlot;
-use crate::photometry::{Interp, LdtTexture, Luminaire};
+use crate::photometry::{Interp, Luminaire};
 
 /// Luminaire file subcommands. Each takes one or more files or directories (walked for
 /// `.ldt` and `.ies` files); with several, a file that fails is reported and the others go
@@ -39,6 +39,10 @@ pub enum LdtCommand {
         /// Print a catalogue table as CSV: a header, then one row per file.
         #[arg(long)]
         csv: bool,
+        /// Give the text's flux, efficacy and candela for this lamp set (1-based; default
+        /// all sets summed, as the JSON's figures).
+        #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..), conflicts_with_all = ["json", "csv"])]
+        lamp_set: Option<u16>,
     },
     /// Read lines "C GAMMA" (degrees) from stdin and print one intensity (cd/klm) per line
     /// (several files: one column per file, after a "# columns:" line naming them).
@@ -189,7 +193,12 @@ pub(super) fn load(path: &Path) -> Result<Luminaire, CliError> {
 /// Runs an `ldt` subcommand.
 pub fn run(cmd: LdtCommand) -> Result<(), CliError> {
     match cmd {
-        LdtCommand::Info { files, json, csv } => info(&files, json, csv),
+        LdtCommand::Info {
+            files,
+            json,
+            csv,
+            lamp_set,
+        } => info(&files, json, csv, lamp_set.map(usize::from)),
         LdtCommand::Sample { files, interp } => sample(&files, interp),
         LdtCommand::Check(args) => catalogue::check(&args),
         LdtCommand::Ugr {
@@ -215,7 +224,12 @@ pub fn run(cmd: LdtCommand) -> Result<(), CliError> {
     }
 }
 
-fn info(files: &[PathBuf], as_json: bool, as_csv: bool) -> Result<(), CliError> {
+fn info(
+    files: &[PathBuf],
+    as_json: bool,
+    as_csv: bool,
+    lamp_set: Option<usize>,
+) -> Result<(), CliError> {
     let mut inputs = Inputs::expand(files);
     if as_csv {
         print!("{}", csv_line(&CATALOGUE_COLUMNS));
@@ -253,74 +267,184 @@ fn info(files: &[PathBuf], as_json: bool, as_csv: bool) -> Result<(), CliError> 
             if !std::mem::take(&mut first) {
                 println!();
             }
-            print_info(file, &lum);
-            Ok(())
+            print_info(file, &lum, lamp_set).map_err(|e| {
+                let bad = e.bad_input;
+                CliError::classified(e.error.context(file.display().to_string()), bad)
+            })
         })?;
     }
     inputs.finish()
 }
 
-fn print_info(file: &Path, lum: &Luminaire) {
-    let s = lum.summary();
-    let grid = lum.distribution.grid();
-    let tex = LdtTexture::from_distribution(&lum.distribution);
+fn print_info(file: &Path, lum: &Luminaire, lamp_set: Option<usize>) -> Result<(), CliError> {
     let d = &lum.data;
+    let s = lum.summary();
+    // Flux figures for the chosen lamp set (all sets summed without --lamp-set).
+    let lamp_flux = match lamp_set {
+        Some(_) => crate::photometry::luminance::lamp_set_flux(lum, lamp_set)?,
+        None => s.lamp_flux_lm,
+    };
+    let flux = s.lorl_computed / 100.0 * lamp_flux;
+    let grid = lum.distribution.grid();
     let angle = |v: Option<f64>| v.map_or("—".to_string(), |a| format!("{a:.1}°"));
+    let name = d.luminaire_name.trim();
+    println!("{}", file.display());
     println!(
-        "{}  ({:?}, Isym {})",
-        file.display(),
-        lum.format,
-        d.symmetry.isym()
+        "  luminaire      {}{}",
+        if name.is_empty() { "(no name)" } else { name },
+        match d.company.trim() {
+            "" => String::new(),
+            c => format!(" — {c}"),
+        }
     );
-    println!("  luminaire      {} — {}", d.company, d.luminaire_name);
     println!(
-        "  grid           {} C planes × {} γ angles (expanded from {} stored planes)",
+        "  data           {}, Isym {} ({}), {} C planes × {} γ angles{}",
+        lum.source_label(),
+        d.symmetry.isym(),
+        symmetry_words(d.symmetry),
         grid.c_angles().len(),
         grid.gamma_angles().len(),
-        d.intensities.len()
+        if d.is_absolute() {
+            ", absolute photometry"
+        } else {
+            ""
+        }
+    );
+    let dims = &d.dimensions;
+    println!(
+        "  dimensions     luminaire {}; luminous area {}",
+        outline(dims.length, dims.width, Some(dims.height)),
+        luminous_area(dims)
     );
     for (i, l) in d.lamp_sets.iter().enumerate() {
+        let chosen = lamp_set.map_or(String::new(), |k| {
+            if k == i + 1 {
+                "  ← used".into()
+            } else {
+                String::new()
+            }
+        });
         println!(
-            "  lamp set {}     {} × {} — {} lm, {} W{}",
+            "  lamp set {:<5} {} × {} — {}, {} W{chosen}",
             i + 1,
             l.count.abs(),
-            l.lamp_type,
-            l.flux_lm,
-            l.watts,
-            if l.count < 0 {
-                " (absolute photometry)"
-            } else {
-                ""
-            }
+            l.lamp_type.trim(),
+            lumens(l.flux_lm),
+            round_to(l.watts, 1)
         );
     }
     println!(
-        "  flux           {:.1} lm (lamps {:.1} lm)",
-        s.flux_lm, s.lamp_flux_lm
+        "  flux           {} from {} of lamps",
+        lumens(flux),
+        lumens(lamp_flux)
     );
+    let watts: f64 = match lamp_set {
+        Some(k) => d.lamp_sets.get(k - 1).map_or(0.0, |l| l.watts),
+        None => d.lamp_sets.iter().map(|l| l.watts).sum(),
+    };
+    if watts > 0.0 {
+        println!("  efficacy       {:.1} lm/W", flux / watts);
+    }
     println!(
-        "  LORL           {:.2} % computed, {:.2} % declared",
+        "  LOR            {:.1} % (declared {:.1} %)",
         s.lorl_computed, s.lorl_declared
     );
+    let direction = match s.dff_computed {
+        v if v >= 99.95 => "downward only",
+        v if v <= 0.05 => "upward only",
+        v if v >= 60.0 => "mostly downward",
+        v if v <= 40.0 => "mostly upward",
+        _ => "up and down",
+    };
     println!(
-        "  DFF            {:.2} % computed, {:.2} % declared",
+        "  DFF            {:.1} % (declared {:.1} %): {direction}",
         s.dff_computed, s.dff_declared
     );
+    if let Some(code) = crate::photometry::summary::cie_flux_code(&lum.distribution) {
+        println!(
+            "  CIE flux code  {} {} {} {} {}",
+            code[0], code[1], code[2], code[3], code[4]
+        );
+    }
     println!(
-        "  I_max          {:.2} cd/klm at C{:.1} γ{:.1}",
-        s.max_intensity, s.max_direction_deg[0], s.max_direction_deg[1]
+        "  I_max          {} cd/klm ({} cd) at C {:.1}°, γ {:.1}°",
+        round_to(s.max_intensity, 1),
+        round_to(s.max_intensity * lamp_flux / 1000.0, 0),
+        s.max_direction_deg[0],
+        s.max_direction_deg[1]
     );
     println!(
-        "  beam (50 %)    C0–C180 {}, C90–C270 {}",
+        "  beam (50 %)    {} in C0–C180, {} in C90–C270",
         angle(s.beam_angle_deg.c0_c180),
         angle(s.beam_angle_deg.c90_c270)
     );
     println!(
-        "  field (10 %)   C0–C180 {}, C90–C270 {}",
+        "  field (10 %)   {} in C0–C180, {} in C90–C270",
         angle(s.field_angle_deg.c0_c180),
         angle(s.field_angle_deg.c90_c270)
     );
-    println!("  emits          {:?} hemisphere", tex.hemisphere);
+    if !lum.warnings.is_empty() {
+        println!(
+            "  warnings       {} (on standard error)",
+            lum.warnings.len()
+        );
+    }
+    Ok(())
+}
+
+/// What each symmetry means, in words.
+fn symmetry_words(s: crate::photometry::Symmetry) -> &'static str {
+    use crate::photometry::Symmetry::*;
+    match s {
+        None => "no symmetry",
+        Rotational => "rotationally symmetric",
+        C0C180 => "symmetric about the C0–C180 plane",
+        C90C270 => "symmetric about the C90–C270 plane",
+        Quadrant => "symmetric about both planes",
+    }
+}
+
+/// `v` rounded to `digits` decimals, without trailing zeros.
+fn round_to(v: f64, digits: usize) -> String {
+    let text = format!("{v:.digits$}");
+    if text.contains('.') {
+        text.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        text
+    }
+}
+
+/// A flux as people read it: whole lumens from 100 lm up, one decimal below.
+fn lumens(v: f64) -> String {
+    if v.abs() >= 100.0 {
+        format!("{v:.0} lm")
+    } else {
+        format!("{} lm", round_to(v, 1))
+    }
+}
+
+/// A rectangle L × W (× H) mm, or a disc Ø L mm when the width is 0; "none" for zeros.
+fn outline(length: f64, width: f64, height: Option<f64>) -> String {
+    if length <= 0.0 && width <= 0.0 {
+        return "not given".into();
+    }
+    let h = height
+        .filter(|h| *h > 0.0)
+        .map_or(String::new(), |h| format!(", height {} mm", round_to(h, 1)));
+    if width <= 0.0 {
+        format!("Ø {} mm{h}", round_to(length, 1))
+    } else {
+        format!("{} × {} mm{h}", round_to(length, 1), round_to(width, 1))
+    }
+}
+
+fn luminous_area(d: &crate::photometry::eulumdat::Dimensions) -> String {
+    let base = outline(d.area_length, d.area_width, None);
+    if d.area_heights.iter().all(|h| *h <= 0.0) {
+        return base;
+    }
+    let [a, b, c, e] = d.area_heights.map(|h| round_to(h, 1));
+    format!("{base}, side heights C0/C90/C180/C270 {a}/{b}/{c}/{e} mm")
 }
 
 fn sample(files: &[PathBuf], interp: Interp) -> Result<(), CliError> {
