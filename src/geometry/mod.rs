@@ -2,6 +2,7 @@
 
 pub mod adjacency;
 pub mod generate;
+pub mod howell;
 pub mod obj;
 pub mod simplify;
 pub mod weld;

@@ -57,6 +57,18 @@ impl LuminousArea {
         }
     }
 
+    /// The luminous area of `lum`, refused when the file gives none (`why` says what
+    /// needs it).
+    pub fn required(lum: &Luminaire, why: &str) -> Result<LuminousArea, PhotometryError> {
+        let area = LuminousArea::of(lum);
+        if area.bottom_m2 <= 0.0 && area.sides_m2.iter().all(|s| *s <= 0.0) {
+            return Err(PhotometryError::Invalid(format!(
+                "the file gives no luminous area (EULUMDAT lines 16–21, IES width/length/height): {why}"
+            )));
+        }
+        Ok(area)
+    }
+
     /// The area projected across the direction (C, γ), m², for γ below 90°.
     pub fn projected(&self, c_deg: f64, gamma_deg: f64) -> f64 {
         let (sc, cc) = c_deg.to_radians().sin_cos();
@@ -142,12 +154,7 @@ pub fn luminance_table(
             "γ = {g}°: a luminance table covers 0° ≤ γ < 90°"
         )));
     }
-    let area = LuminousArea::of(lum);
-    if area.bottom_m2 <= 0.0 && area.sides_m2.iter().all(|s| *s <= 0.0) {
-        return Err(PhotometryError::Invalid(
-            "the file gives no luminous area (EULUMDAT lines 16–21, IES width/length/height): no luminance without one".into(),
-        ));
-    }
+    let area = LuminousArea::required(lum, "no luminance without one")?;
     let flux = lamp_set_flux(lum, set)?;
     let cd_m2 = c_angles
         .iter()

@@ -233,24 +233,12 @@ fn direct_split(zonal: &[f64], x_m: f64, y_m: f64, s: f64) -> [f64; 3] {
     [up * n, down * n - floor, floor]
 }
 
-/// Form factor between two parallel, directly opposed rectangles a × b at distance c.
-pub fn parallel_rectangles(a: f64, b: f64, c: f64) -> f64 {
-    let (x, y) = (a / c, b / c);
-    let (x2, y2) = (x * x, y * y);
-    2.0 / (PI * x * y)
-        * (0.5 * ((1.0 + x2) * (1.0 + y2) / (1.0 + x2 + y2)).ln()
-            + x * (1.0 + y2).sqrt() * (x / (1.0 + y2).sqrt()).atan()
-            + y * (1.0 + x2).sqrt() * (y / (1.0 + x2).sqrt()).atan()
-            - x * x.atan()
-            - y * y.atan())
-}
-
 /// L_b for a room X × Y (metres) with the direct split `direct` (ceiling, walls, floor, lm)
 /// and reflectances (ceiling, walls, floor): the walls' indirect illuminance over π.
 fn background_luminance(direct: [f64; 3], x_m: f64, y_m: f64, rho: [f64; 3]) -> f64 {
     let a_f = x_m * y_m;
     let a_w = 2.0 * (x_m + y_m) * H;
-    let f_fc = parallel_rectangles(x_m, y_m, H);
+    let f_fc = crate::geometry::howell::parallel_rectangles(x_m, y_m, H);
     let f_fw = 1.0 - f_fc;
     let f_wf = a_f * f_fw / a_w;
     let f_ww = 1.0 - 2.0 * f_wf;
@@ -303,12 +291,7 @@ pub fn ugr_table(
             "--shr {shr}: give a spacing-to-height ratio between 0.05 and 4"
         )));
     }
-    let area = LuminousArea::of(lum);
-    if area.bottom_m2 <= 0.0 && area.sides_m2.iter().all(|s| *s <= 0.0) {
-        return Err(PhotometryError::Invalid(
-            "the file gives no luminous area (EULUMDAT lines 16–21, IES width/length/height): UGR needs the luminance".into(),
-        ));
-    }
+    LuminousArea::required(lum, "UGR needs the luminance")?;
     let flux = lamp_set_flux(lum, set)?;
     let zonal = zonal_flux(lum, flux, interp);
     type Row = [Option<f64>; 5];
@@ -362,12 +345,6 @@ mod tests {
         // α = 0, β = 45°: ln p = (35.2 − 1.22)·10⁻³·45 + 21·10⁻⁵·45², by hand.
         let by_hand = (33.98e-3 * 45.0 + 21e-5 * 2025.0f64).exp();
         assert!((straight_up - by_hand).abs() < 1e-12, "{straight_up}");
-    }
-
-    #[test]
-    fn parallel_square_form_factor_matches_the_tabulated_value() {
-        // Unit squares one unit apart: 0.1998 (Howell's catalogue, C-11).
-        assert!((parallel_rectangles(1.0, 1.0, 1.0) - 0.19982).abs() < 1e-4);
     }
 
     #[test]

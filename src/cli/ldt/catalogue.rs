@@ -9,7 +9,7 @@ use anyhow::anyhow;
 use serde_json::json;
 
 use super::inputs::{Inputs, OutputNames};
-use super::{create_dir, load, CheckArgs, CliError};
+use super::{about, create_dir, load, CheckArgs, CliError};
 use crate::io::write_atomic;
 use crate::photometry::catalogue::{summarise, CatalogueSummary, Metric};
 use crate::photometry::check::{self, method_key, CheckReport};
@@ -57,11 +57,7 @@ fn check_one(file: &Path, args: &CheckArgs) -> Result<CheckReport, CliError> {
     } else {
         check::leave_out(&lum.distribution, args.leave_out)
     };
-    // The check's own errors do not name the file; in a catalogue they must.
-    report.map_err(|e| {
-        let bad_input = e.is_bad_input();
-        CliError::classified(anyhow!(e).context(file.display().to_string()), bad_input)
-    })
+    report.map_err(|e| about(file, e))
 }
 
 /// Writes `STEM.csv`, `STEM-gamma.svg` and `STEM-heatmap.png` of `report` into `dir`.

@@ -2,8 +2,7 @@
 
 use std::path::{Path, PathBuf};
 
-use super::inputs::Inputs;
-use super::{load, CliError};
+use super::{tables_per_file, CliError};
 use crate::photometry::luminance::{luminance_table, ugr_grid, LuminanceTable};
 use crate::photometry::Interp;
 
@@ -22,42 +21,12 @@ pub(super) fn run(
     }
     let (c_angles, _) = ugr_grid();
     let gammas: Vec<f64> = (gamma_from..90).step_by(5).map(f64::from).collect();
-    let mut inputs = Inputs::expand(files);
-    let tables = inputs.each(|file| {
-        let lum = load(file)?;
-        let table = luminance_table(&lum, &c_angles, &gammas, lamp_set, interp).map_err(|e| {
-            let bad = e.is_bad_input();
-            CliError::classified(anyhow::anyhow!(e).context(file.display().to_string()), bad)
-        })?;
-        Ok((lum.data.luminaire_name.trim().to_string(), table))
-    })?;
-    if as_json {
-        let mut values: Vec<serde_json::Value> = Vec::new();
-        for (path, (_, table)) in &tables {
-            let mut v = serde_json::to_value(table).map_err(CliError::failure)?;
-            if !inputs.single {
-                v["path"] = serde_json::Value::from(path.display().to_string());
-            }
-            values.push(v);
-        }
-        let out = if inputs.single {
-            values.remove(0)
-        } else {
-            serde_json::Value::Array(values)
-        };
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&out).map_err(CliError::failure)?
-        );
-    } else {
-        for (k, (path, (name, table))) in tables.iter().enumerate() {
-            if k > 0 {
-                println!();
-            }
-            print_table(path, name, table);
-        }
-    }
-    inputs.finish()
+    tables_per_file(
+        files,
+        as_json,
+        |lum| luminance_table(lum, &c_angles, &gammas, lamp_set, interp),
+        print_table,
+    )
 }
 
 fn print_table(path: &Path, name: &str, t: &LuminanceTable) {

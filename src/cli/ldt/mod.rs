@@ -589,3 +589,56 @@ fn create_dir(option: &str, dir: Option<&Path>) -> Result<(), CliError> {
     std::fs::create_dir_all(dir)
         .map_err(|e| CliError::input(anyhow::anyhow!("{option} {}: {e}", dir.display())))
 }
+
+/// A library error about one file, named by the file (in a catalogue it must say which).
+fn about(file: &Path, e: crate::photometry::PhotometryError) -> CliError {
+    let bad_input = e.is_bad_input();
+    CliError::classified(
+        anyhow::anyhow!(e).context(file.display().to_string()),
+        bad_input,
+    )
+}
+
+/// Makes a table of each file with `make` and prints them: as JSON (a single file's
+/// object, else an array of them, each with its "path"), or as text by `print` (path,
+/// luminaire name, table), a blank line between files.
+fn tables_per_file<T: serde::Serialize>(
+    files: &[PathBuf],
+    as_json: bool,
+    make: impl Fn(&Luminaire) -> Result<T, crate::photometry::PhotometryError>,
+    print: impl Fn(&Path, &str, &T),
+) -> Result<(), CliError> {
+    let mut inputs = Inputs::expand(files);
+    let tables = inputs.each(|file| {
+        let lum = load(file)?;
+        let table = make(&lum).map_err(|e| about(file, e))?;
+        Ok((lum.data.luminaire_name.trim().to_string(), table))
+    })?;
+    if as_json {
+        let mut values = Vec::new();
+        for (path, (_, table)) in &tables {
+            let mut v = serde_json::to_value(table).map_err(CliError::failure)?;
+            if !inputs.single {
+                v["path"] = serde_json::Value::from(path.display().to_string());
+            }
+            values.push(v);
+        }
+        let out = if inputs.single {
+            values.remove(0)
+        } else {
+            serde_json::Value::Array(values)
+        };
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&out).map_err(CliError::failure)?
+        );
+    } else {
+        for (k, (path, (name, table))) in tables.iter().enumerate() {
+            if k > 0 {
+                println!();
+            }
+            print(path, name, table);
+        }
+    }
+    inputs.finish()
+}

@@ -1,10 +1,8 @@
 //! `ldt ugr`: the UGR table of one or many luminaire files.
 
-use std::path::Path;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
-use super::inputs::Inputs;
-use super::{load, CliError};
+use super::{tables_per_file, CliError};
 use crate::photometry::ugr::{ugr_table, UgrTable};
 use crate::photometry::Interp;
 
@@ -15,42 +13,12 @@ pub(super) fn run(
     shr: f64,
     lamp_set: Option<usize>,
 ) -> Result<(), CliError> {
-    let mut inputs = Inputs::expand(files);
-    let tables = inputs.each(|file| {
-        let lum = load(file)?;
-        let table = ugr_table(&lum, lamp_set, shr, Interp::Bilinear).map_err(|e| {
-            let bad = e.is_bad_input();
-            CliError::classified(anyhow::anyhow!(e).context(file.display().to_string()), bad)
-        })?;
-        Ok((lum.data.luminaire_name.trim().to_string(), table))
-    })?;
-    if as_json {
-        let mut values: Vec<serde_json::Value> = Vec::new();
-        for (path, (_, table)) in &tables {
-            let mut v = serde_json::to_value(table).map_err(CliError::failure)?;
-            if !inputs.single {
-                v["path"] = serde_json::Value::from(path.display().to_string());
-            }
-            values.push(v);
-        }
-        let out = if inputs.single {
-            values.remove(0)
-        } else {
-            serde_json::Value::Array(values)
-        };
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&out).map_err(CliError::failure)?
-        );
-    } else {
-        for (k, (path, (name, table))) in tables.iter().enumerate() {
-            if k > 0 {
-                println!();
-            }
-            print_table(path, name, table);
-        }
-    }
-    inputs.finish()
+    tables_per_file(
+        files,
+        as_json,
+        |lum| ugr_table(lum, lamp_set, shr, Interp::Bilinear),
+        print_table,
+    )
 }
 
 fn print_table(path: &Path, name: &str, t: &UgrTable) {
