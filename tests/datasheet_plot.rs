@@ -152,3 +152,79 @@ fn svg_and_png_diagrams_carry_title_legend_and_the_same_curves() {
     );
     assert_eq!(code, 2, "{err}");
 }
+
+#[test]
+fn the_report_is_one_self_contained_page_with_the_same_numbers() {
+    let tmp = tempfile::tempdir().unwrap();
+    let file = luminaire("eulumdat-luminance/sample_06.ldt");
+    let out = tmp.path().join("sheet.html");
+    let (code, _, err) = run_cli(&["ldt", "report", s(&file), "--out", s(&out)], "");
+    assert_eq!(code, 0, "{err}");
+    let html = std::fs::read_to_string(&out).unwrap();
+    assert!(html.starts_with("<!doctype html>") && html.ends_with("</html>"));
+    // Nothing fetched from elsewhere.
+    assert!(
+        !html.contains("src=") && !html.contains("href="),
+        "external resources"
+    );
+    // Both diagrams inline, each a valid SVG.
+    let svgs: Vec<&str> = html
+        .split("<svg")
+        .skip(1)
+        .map(|t| &t[..t.find("</svg>").unwrap()])
+        .collect();
+    assert_eq!(svgs.len(), 2);
+    for (k, body) in svgs.iter().enumerate() {
+        let path = tmp.path().join(format!("d{k}.svg"));
+        std::fs::write(&path, format!("<svg{body}</svg>")).unwrap();
+        let picture = svg::render(&path);
+        assert!(
+            svg::pixels_of(&picture, [200, 30, 30]).len() > 300,
+            "diagram {k} has its curve"
+        );
+    }
+    // The summary, UGR and luminance figures are the commands' own, for lamp set 1.
+    assert!(
+        html.contains("1983 lm from 1983 lm of lamps"),
+        "lamp set 1 throughout"
+    );
+    let (_, ugr, _) = run_cli(&["ldt", "ugr", s(&file), "--json"], "");
+    let ugr: serde_json::Value = serde_json::from_str(&ugr).unwrap();
+    let row: Vec<String> = ugr["crosswise"][8]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| format!("<td>{:.1}</td>", v.as_f64().unwrap()))
+        .collect();
+    assert!(
+        html.contains(&format!("<td>4H × 4H</td>{}", row.concat())),
+        "4H×4H row"
+    );
+    let (_, lum, _) = run_cli(
+        &["ldt", "luminance", s(&file), "--json", "--gamma-from", "45"],
+        "",
+    );
+    let lum: serde_json::Value = serde_json::from_str(&lum).unwrap();
+    let c90_g85 = lum["cd_m2"][6][8].as_f64().unwrap();
+    assert!(
+        html.contains(&format!("<td>{c90_g85:.0}</td>")),
+        "{c90_g85}"
+    );
+    // An uplight's sheet says why it has no UGR table; other formats are refused.
+    let up = luminaire("eulumdat-plot/sample_13_isym1.ldt");
+    let (code, _, err) = run_cli(&["ldt", "report", s(&up), "--out", s(&out)], "");
+    assert_eq!(code, 0, "{err}");
+    let html = std::fs::read_to_string(&out).unwrap();
+    assert!(html.contains("No UGR table:") && html.contains("indirect luminaire"));
+    let (code, _, _) = run_cli(
+        &[
+            "ldt",
+            "report",
+            s(&file),
+            "--out",
+            s(&tmp.path().join("x.pdf")),
+        ],
+        "",
+    );
+    assert_eq!(code, 2);
+}

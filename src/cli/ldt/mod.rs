@@ -6,9 +6,11 @@ use std::path::{Path, PathBuf};
 use clap::{Args, Subcommand};
 
 mod catalogue;
+mod info;
 mod inputs;
 mod luminance;
 mod plot;
+mod report;
 mod ugr;
 
 pub(super) use catalogue::print_check;
@@ -98,6 +100,9 @@ pub enum LdtCommand {
     /// Write a datasheet diagram (polar or cartesian, C0–C180 and C90–C270 overlaid) as
     /// PNG or SVG; with --downsample, the interpolation check's picture instead.
     Plot(plot::PlotArgs),
+    /// Write a one-page datasheet as one self-contained HTML file: summary, polar and
+    /// cartesian diagrams, UGR table, luminance table, warnings.
+    Report(report::ReportArgs),
     /// Convert between EULUMDAT and IES (the output's extension, or --to, picks the format).
     Convert {
         /// Luminaire files or directories.
@@ -215,6 +220,7 @@ pub fn run(cmd: LdtCommand) -> Result<(), CliError> {
             interp,
         } => luminance::run(&files, json, lamp_set.map(usize::from), gamma_from, interp),
         LdtCommand::Plot(args) => plot::run(&args),
+        LdtCommand::Report(args) => report::run(&args),
         LdtCommand::Convert {
             files,
             out,
@@ -267,184 +273,10 @@ fn info(
             if !std::mem::take(&mut first) {
                 println!();
             }
-            print_info(file, &lum, lamp_set).map_err(|e| {
-                let bad = e.bad_input;
-                CliError::classified(e.error.context(file.display().to_string()), bad)
-            })
+            info::print_info(file, &lum, lamp_set).map_err(|e| about(file, e))
         })?;
     }
     inputs.finish()
-}
-
-fn print_info(file: &Path, lum: &Luminaire, lamp_set: Option<usize>) -> Result<(), CliError> {
-    let d = &lum.data;
-    let s = lum.summary();
-    // Flux figures for the chosen lamp set (all sets summed without --lamp-set).
-    let lamp_flux = match lamp_set {
-        Some(_) => crate::photometry::luminance::lamp_set_flux(lum, lamp_set)?,
-        None => s.lamp_flux_lm,
-    };
-    let flux = s.lorl_computed / 100.0 * lamp_flux;
-    let grid = lum.distribution.grid();
-    let angle = |v: Option<f64>| v.map_or("—".to_string(), |a| format!("{a:.1}°"));
-    let name = d.luminaire_name.trim();
-    println!("{}", file.display());
-    println!(
-        "  luminaire      {}{}",
-        if name.is_empty() { "(no name)" } else { name },
-        match d.company.trim() {
-            "" => String::new(),
-            c => format!(" — {c}"),
-        }
-    );
-    println!(
-        "  data           {}, Isym {} ({}), {} C planes × {} γ angles{}",
-        lum.source_label(),
-        d.symmetry.isym(),
-        symmetry_words(d.symmetry),
-        grid.c_angles().len(),
-        grid.gamma_angles().len(),
-        if d.is_absolute() {
-            ", absolute photometry"
-        } else {
-            ""
-        }
-    );
-    let dims = &d.dimensions;
-    println!(
-        "  dimensions     luminaire {}; luminous area {}",
-        outline(dims.length, dims.width, Some(dims.height)),
-        luminous_area(dims)
-    );
-    for (i, l) in d.lamp_sets.iter().enumerate() {
-        let chosen = lamp_set.map_or(String::new(), |k| {
-            if k == i + 1 {
-                "  ← used".into()
-            } else {
-                String::new()
-            }
-        });
-        println!(
-            "  lamp set {:<5} {} × {} — {}, {} W{chosen}",
-            i + 1,
-            l.count.abs(),
-            l.lamp_type.trim(),
-            lumens(l.flux_lm),
-            round_to(l.watts, 1)
-        );
-    }
-    println!(
-        "  flux           {} from {} of lamps",
-        lumens(flux),
-        lumens(lamp_flux)
-    );
-    let watts: f64 = match lamp_set {
-        Some(k) => d.lamp_sets.get(k - 1).map_or(0.0, |l| l.watts),
-        None => d.lamp_sets.iter().map(|l| l.watts).sum(),
-    };
-    if watts > 0.0 {
-        println!("  efficacy       {:.1} lm/W", flux / watts);
-    }
-    println!(
-        "  LOR            {:.1} % (declared {:.1} %)",
-        s.lorl_computed, s.lorl_declared
-    );
-    let direction = match s.dff_computed {
-        v if v >= 99.95 => "downward only",
-        v if v <= 0.05 => "upward only",
-        v if v >= 60.0 => "mostly downward",
-        v if v <= 40.0 => "mostly upward",
-        _ => "up and down",
-    };
-    println!(
-        "  DFF            {:.1} % (declared {:.1} %): {direction}",
-        s.dff_computed, s.dff_declared
-    );
-    if let Some(code) = crate::photometry::summary::cie_flux_code(&lum.distribution) {
-        println!(
-            "  CIE flux code  {} {} {} {} {}",
-            code[0], code[1], code[2], code[3], code[4]
-        );
-    }
-    println!(
-        "  I_max          {} cd/klm ({} cd) at C {:.1}°, γ {:.1}°",
-        round_to(s.max_intensity, 1),
-        round_to(s.max_intensity * lamp_flux / 1000.0, 0),
-        s.max_direction_deg[0],
-        s.max_direction_deg[1]
-    );
-    println!(
-        "  beam (50 %)    {} in C0–C180, {} in C90–C270",
-        angle(s.beam_angle_deg.c0_c180),
-        angle(s.beam_angle_deg.c90_c270)
-    );
-    println!(
-        "  field (10 %)   {} in C0–C180, {} in C90–C270",
-        angle(s.field_angle_deg.c0_c180),
-        angle(s.field_angle_deg.c90_c270)
-    );
-    if !lum.warnings.is_empty() {
-        println!(
-            "  warnings       {} (on standard error)",
-            lum.warnings.len()
-        );
-    }
-    Ok(())
-}
-
-/// What each symmetry means, in words.
-fn symmetry_words(s: crate::photometry::Symmetry) -> &'static str {
-    use crate::photometry::Symmetry::*;
-    match s {
-        None => "no symmetry",
-        Rotational => "rotationally symmetric",
-        C0C180 => "symmetric about the C0–C180 plane",
-        C90C270 => "symmetric about the C90–C270 plane",
-        Quadrant => "symmetric about both planes",
-    }
-}
-
-/// `v` rounded to `digits` decimals, without trailing zeros.
-fn round_to(v: f64, digits: usize) -> String {
-    let text = format!("{v:.digits$}");
-    if text.contains('.') {
-        text.trim_end_matches('0').trim_end_matches('.').to_string()
-    } else {
-        text
-    }
-}
-
-/// A flux as people read it: whole lumens from 100 lm up, one decimal below.
-fn lumens(v: f64) -> String {
-    if v.abs() >= 100.0 {
-        format!("{v:.0} lm")
-    } else {
-        format!("{} lm", round_to(v, 1))
-    }
-}
-
-/// A rectangle L × W (× H) mm, or a disc Ø L mm when the width is 0; "none" for zeros.
-fn outline(length: f64, width: f64, height: Option<f64>) -> String {
-    if length <= 0.0 && width <= 0.0 {
-        return "not given".into();
-    }
-    let h = height
-        .filter(|h| *h > 0.0)
-        .map_or(String::new(), |h| format!(", height {} mm", round_to(h, 1)));
-    if width <= 0.0 {
-        format!("Ø {} mm{h}", round_to(length, 1))
-    } else {
-        format!("{} × {} mm{h}", round_to(length, 1), round_to(width, 1))
-    }
-}
-
-fn luminous_area(d: &crate::photometry::eulumdat::Dimensions) -> String {
-    let base = outline(d.area_length, d.area_width, None);
-    if d.area_heights.iter().all(|h| *h <= 0.0) {
-        return base;
-    }
-    let [a, b, c, e] = d.area_heights.map(|h| round_to(h, 1));
-    format!("{base}, side heights C0/C90/C180/C270 {a}/{b}/{c}/{e} mm")
 }
 
 fn sample(files: &[PathBuf], interp: Interp) -> Result<(), CliError> {
