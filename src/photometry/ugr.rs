@@ -337,11 +337,12 @@ mod tests {
     use super::*;
 
     #[test]
-    fn guth_index_is_one_on_the_line_of_sight_and_grows_off_it() {
+    fn guth_index_is_one_on_the_line_of_sight_and_grows_away_from_it() {
         assert!((guth_position_index(0.0, 0.0, 1.0) - 1.0).abs() < 1e-12);
         let straight_up = guth_position_index(0.0, 1.0, 1.0);
-        let aside = guth_position_index(1.0, 1.0, 1.0);
-        assert!(straight_up > 1.0 && aside > straight_up);
+        // Higher above the line of sight, or further aside, weighs less (larger p).
+        assert!(guth_position_index(0.0, 0.5, 1.0) < straight_up);
+        assert!(guth_position_index(1.0, 0.1, 1.0) > guth_position_index(0.0, 0.1, 1.0));
         // α = 0, β = 45°: ln p = (35.2 − 1.22)·10⁻³·45 + 21·10⁻⁵·45², by hand.
         let by_hand = (33.98e-3 * 45.0 + 21e-5 * 2025.0f64).exp();
         assert!((straight_up - by_hand).abs() < 1e-12, "{straight_up}");
