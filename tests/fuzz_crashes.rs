@@ -60,15 +60,16 @@ fn run_in(dir: &Path, args: &[&str], stdin: &str, names: &str) -> (i32, String, 
     (code, out, err)
 }
 
-/// A null anywhere but in the beam and field angles (null there means the 50 % or 10 %
-/// level is never crossed, as the README documents).
+/// A null anywhere but in the beam and field angles and the CIE flux code (null there
+/// means the 50 % or 10 % level is never crossed, or no light goes downward, as the README
+/// documents).
 fn has_null(v: &Value) -> bool {
     match v {
         Value::Null => true,
         Value::Array(a) => a.iter().any(has_null),
         Value::Object(o) => o
             .iter()
-            .filter(|(k, _)| !k.ends_with("_angle_deg"))
+            .filter(|(k, _)| !k.ends_with("_angle_deg") && *k != "cie_flux_code")
             .any(|(_, v)| has_null(v)),
         _ => false,
     }
