@@ -403,17 +403,23 @@ fn radiosity_runs_in_the_background_pauses_and_converges() {
         h.get_by_label("Pause").click();
         h.step();
         // A shot already under way ends first (a whole surface's shot may take a while on
-        // a loaded machine): wait until the count holds still, then it must stay still.
-        let mut shots = h.state().radiosity.shots;
-        for _ in 0..40 {
-            std::thread::sleep(std::time::Duration::from_millis(300));
-            h.step();
-            let now = h.state().radiosity.shots;
-            if now == shots {
+        // a loaded machine): wait until the worker holds, then the count must stay still.
+        let holding = |h: &Harness<'static, ViewerApp>| {
+            h.state()
+                .radiosity
+                .worker
+                .as_ref()
+                .is_some_and(|w| w.control.holding.load(std::sync::atomic::Ordering::SeqCst))
+        };
+        for _ in 0..600 {
+            if holding(&h) {
                 break;
             }
-            shots = now;
+            std::thread::sleep(std::time::Duration::from_millis(50));
         }
+        assert!(holding(&h), "the paused worker never held");
+        h.step();
+        let shots = h.state().radiosity.shots;
         std::thread::sleep(std::time::Duration::from_millis(600));
         h.step();
         assert_eq!(

@@ -519,10 +519,14 @@ impl ViewerApp {
             if let Some(w) = &self.radiosity.worker {
                 ui.separator();
                 let c = self.radiosity.log.last().map_or(0.0, |p| p[1]);
-                let state = if w.control.pause.load(std::sync::atomic::Ordering::Relaxed) {
-                    "paused"
-                } else {
-                    "solving"
+                use std::sync::atomic::Ordering::Relaxed;
+                let state = match (
+                    w.control.pause.load(Relaxed),
+                    w.control.holding.load(Relaxed),
+                ) {
+                    (true, true) => "paused",
+                    (true, false) => "pausing (the shot under way ends first)",
+                    _ => "solving",
                 };
                 ui.label(format!("radiosity {state} {:.1} %", 100.0 * c));
             }

@@ -28,6 +28,9 @@ pub struct JobControl {
     pub cancel: AtomicBool,
     /// Hold between units of work until cleared.
     pub pause: AtomicBool,
+    /// Set by the worker while it holds for `pause` (the unit under way has ended), so a
+    /// pause can show "pausing…" until then.
+    pub holding: AtomicBool,
 }
 
 /// A worker thread sending updates of type `U`.
@@ -212,9 +215,11 @@ fn solve_radiosity(
             return Ok("stopped".into());
         }
         if control.pause.load(Ordering::SeqCst) {
+            control.holding.store(true, Ordering::SeqCst);
             std::thread::sleep(Duration::from_millis(30));
             continue;
         }
+        control.holding.store(false, Ordering::SeqCst);
         let started = Instant::now();
         let s = solver.select().map_err(|e| err(&e))?;
         let initial = *initial_unshot.get_or_insert(s.unshot_power);
