@@ -126,22 +126,19 @@ pub(super) fn summary_rows(
             s.max_direction_deg[1]
         ),
     );
-    row(
-        "beam (50 %)",
-        format!(
-            "{} in C0–C180, {} in C90–C270",
-            angle(s.beam_angle_deg.c0_c180),
-            angle(s.beam_angle_deg.c90_c270)
-        ),
-    );
-    row(
-        "field (10 %)",
-        format!(
-            "{} in C0–C180, {} in C90–C270",
-            angle(s.field_angle_deg.c0_c180),
-            angle(s.field_angle_deg.c90_c270)
-        ),
-    );
+    for (label, pair) in [
+        ("beam (50 %)", &s.beam_angle_deg),
+        ("field (10 %)", &s.field_angle_deg),
+    ] {
+        row(
+            label,
+            format!(
+                "{} in C0–C180, {} in C90–C270",
+                angle(pair.c0_c180),
+                angle(pair.c90_c270)
+            ),
+        );
+    }
     Ok(rows)
 }
 

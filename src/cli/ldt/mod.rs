@@ -474,3 +474,37 @@ fn tables_per_file<T: serde::Serialize>(
     }
     inputs.finish()
 }
+
+/// Where each input's output goes: `--out` (one input file) or a file named after the input
+/// in `--out-dir` with `ext`.
+struct Outputs<'a> {
+    out: Option<&'a Path>,
+    out_dir: Option<&'a Path>,
+    ext: &'a str,
+    /// The extensions `--out` may have.
+    allowed: &'a [&'a str],
+}
+
+/// Loads each input and runs `write(file, luminaire, output path)`, with the per-file
+/// bookkeeping of a catalogue run (refusals before any work, outputs never replacing
+/// inputs or each other).
+fn write_each(
+    files: &[PathBuf],
+    outputs: Outputs,
+    mut write: impl FnMut(&Path, &Luminaire, &Path) -> Result<(), CliError>,
+) -> Result<(), CliError> {
+    let mut inputs = Inputs::expand(files);
+    let mut names = OutputNames::default();
+    one_output_for_one_file(&inputs, outputs.out)?;
+    create_dir("--out-dir", outputs.out_dir)?;
+    inputs.each(|file| {
+        let target = match outputs.out {
+            Some(out) => out.to_path_buf(),
+            None => names.claim(file, outputs.out_dir, outputs.ext)?,
+        };
+        check_output(file, &target, outputs.allowed)?;
+        let lum = load(file)?;
+        write(file, &lum, &target)
+    })?;
+    inputs.finish()
+}

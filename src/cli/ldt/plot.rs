@@ -5,10 +5,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 
-use super::inputs::{Inputs, OutputNames};
-use super::{
-    check_output, create_dir, load, one_output_for_one_file, parse_pair, write_plot, CliError,
-};
+use super::{parse_pair, write_each, write_plot, CliError, Outputs};
 use crate::io::write_atomic;
 use crate::photometry::datasheet_plot::{Diagram, DiagramKind};
 use crate::photometry::Interp;
@@ -79,26 +76,22 @@ pub(super) fn run(args: &PlotArgs) -> Result<(), CliError> {
         PictureFormat::Png => "png",
         PictureFormat::Svg => "svg",
     };
-    let mut inputs = Inputs::expand(&args.files);
-    let mut names = OutputNames::default();
-    one_output_for_one_file(&inputs, args.out.as_deref())?;
-    create_dir("--out-dir", args.out_dir.as_deref())?;
-    inputs.each(|file| {
-        let target = match &args.out {
-            Some(out) => out.clone(),
-            None => names.claim(file, args.out_dir.as_deref(), ext)?,
-        };
-        check_output(file, &target, &["png", "svg"])?;
-        let lum = load(file)?;
+    let outputs = Outputs {
+        out: args.out.as_deref(),
+        out_dir: args.out_dir.as_deref(),
+        ext,
+        allowed: &["png", "svg"],
+    };
+    write_each(&args.files, outputs, |file, lum, target| {
         let name = file
             .file_name()
             .map(|n| n.to_string_lossy().into_owned())
             .unwrap_or_default();
         if args.downsample.is_some() {
-            return write_plot(&lum, &name, &target, args.downsample);
+            return write_plot(lum, &name, target, args.downsample);
         }
         let diagram = Diagram {
-            lum: &lum,
+            lum,
             file_name: name,
             planes: args.planes.clone(),
             interp: args.interp,
@@ -112,7 +105,6 @@ pub(super) fn run(args: &PlotArgs) -> Result<(), CliError> {
             diagram.png(args.kind)
         }
         .map_err(|e| CliError::failure(anyhow::anyhow!(e)))?;
-        write_atomic(&target, &bytes).map_err(CliError::failure)
-    })?;
-    inputs.finish()
+        write_atomic(target, &bytes).map_err(CliError::failure)
+    })
 }

@@ -7,8 +7,7 @@ use std::path::{Path, PathBuf};
 
 use clap::Args;
 
-use super::inputs::{Inputs, OutputNames};
-use super::{check_output, create_dir, info, load, one_output_for_one_file, CliError};
+use super::{info, write_each, CliError, Outputs};
 use crate::io::write_atomic;
 use crate::photometry::datasheet_plot::{Diagram, DiagramKind};
 use crate::photometry::luminance::{luminance_table, ugr_grid};
@@ -36,21 +35,16 @@ pub struct ReportArgs {
 /// Writes the report of each file.
 pub(super) fn run(args: &ReportArgs) -> Result<(), CliError> {
     let lamp_set = Some(usize::from(args.lamp_set));
-    let mut inputs = Inputs::expand(&args.files);
-    let mut names = OutputNames::default();
-    one_output_for_one_file(&inputs, args.out.as_deref())?;
-    create_dir("--out-dir", args.out_dir.as_deref())?;
-    inputs.each(|file| {
-        let target = match &args.out {
-            Some(out) => out.clone(),
-            None => names.claim(file, args.out_dir.as_deref(), "html")?,
-        };
-        check_output(file, &target, &["html", "htm"])?;
-        let lum = load(file)?;
-        let html = report_html(file, &lum, lamp_set).map_err(|e| super::about(file, e))?;
-        write_atomic(&target, html.as_bytes()).map_err(CliError::failure)
-    })?;
-    inputs.finish()
+    let outputs = Outputs {
+        out: args.out.as_deref(),
+        out_dir: args.out_dir.as_deref(),
+        ext: "html",
+        allowed: &["html", "htm"],
+    };
+    write_each(&args.files, outputs, |file, lum, target| {
+        let html = report_html(file, lum, lamp_set).map_err(|e| super::about(file, e))?;
+        write_atomic(target, html.as_bytes()).map_err(CliError::failure)
+    })
 }
 
 /// Text made safe for HTML.
