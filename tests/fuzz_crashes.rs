@@ -162,10 +162,12 @@ fn converted_files_read_back_with_the_same_table() {
             continue;
         }
         let source = checked_info(f, &out, &err);
+        // `--exact`: the table itself, every digit. (Without it, numbers are rounded to
+        // EULUMDAT's widths: see below.)
         for ext in ["ldt", "ies"] {
             let target = tmp.path().join(format!("out.{ext}"));
             let t = target.to_str().unwrap();
-            let (code, _, err) = run(&["ldt", "convert", f, "--out", t], "", f);
+            let (code, _, err) = run(&["ldt", "convert", f, "--out", t, "--exact"], "", f);
             assert_eq!(code, 0, "{f} → {ext}: {err}");
             let (code, out, err) = run(&["ldt", "info", t, "--json"], "", t);
             assert_eq!(code, 0, "{f} → {ext} is unreadable: {err}");
@@ -193,6 +195,19 @@ fn converted_files_read_back_with_the_same_table() {
             }
             converted += 1;
         }
+        // To EULUMDAT's widths: a file that reads back, or a refusal and no file.
+        let target = tmp.path().join("standard.ldt");
+        let t = target.to_str().unwrap();
+        let (code, _, err) = run(&["ldt", "convert", f, "--out", t], "", f);
+        if code == 0 {
+            let (code, _, err) = run(&["ldt", "info", t, "--json"], "", t);
+            assert_eq!(code, 0, "{f} → standard ldt is unreadable: {err}");
+        } else {
+            assert_eq!(code, 2, "{f}: {err}");
+            assert!(err.contains("--exact"), "{f}: {err}");
+            assert!(!target.exists(), "{f}: a refused conversion wrote {t}");
+        }
+        let _ = std::fs::remove_file(&target);
     }
     assert!(converted >= 16, "{converted} conversions");
 }

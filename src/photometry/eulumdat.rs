@@ -9,7 +9,7 @@ use super::flux::integrate_flux;
 use super::grid::angle_eq;
 use super::symmetry::Symmetry;
 use super::text::{
-    check_increasing, decode_text, exact, parse_number, show, NumberStream, SourceText, Trailing,
+    check_increasing, decode_text, parse_number, show, NumberStream, SourceText, Trailing,
 };
 
 /// Largest number of C planes or γ angles accepted: a 0.1° grid, far beyond any goniometer.
@@ -177,63 +177,6 @@ impl Eulumdat {
         let mut warnings = src.warnings.clone();
         warnings.extend(reader.warnings);
         Ok(Parsed { data, warnings })
-    }
-
-    /// Writes the file in EULUMDAT format (CRLF line ends, numbers printed exactly).
-    pub fn to_ldt_string(&self) -> String {
-        let mut out = String::new();
-        let mut line = |s: &str| {
-            out.push_str(s);
-            out.push_str("\r\n");
-        };
-        let d = &self.dimensions;
-        line(&self.company);
-        line(&self.ityp.to_string());
-        line(&self.symmetry.isym().to_string());
-        line(&self.mc().to_string());
-        line(&exact(self.dc));
-        line(&self.ng().to_string());
-        line(&exact(self.dg));
-        for s in [
-            &self.report_number,
-            &self.luminaire_name,
-            &self.luminaire_number,
-            &self.file_name,
-            &self.date_user,
-        ] {
-            line(s);
-        }
-        for v in [d.length, d.width, d.height, d.area_length, d.area_width]
-            .into_iter()
-            .chain(d.area_heights)
-            .chain([
-                self.dff_percent,
-                self.lorl_percent,
-                self.conversion_factor,
-                self.tilt_deg,
-            ])
-        {
-            line(&exact(v));
-        }
-        line(&self.lamp_sets.len().to_string());
-        for s in &self.lamp_sets {
-            line(&s.count.to_string());
-            line(&s.lamp_type);
-            line(&exact(s.flux_lm));
-            line(&s.color);
-            line(&s.cri);
-            line(&exact(s.watts));
-        }
-        let values = self
-            .direct_ratios
-            .iter()
-            .chain(&self.c_angles)
-            .chain(&self.gamma_angles)
-            .chain(self.intensities.iter().flatten());
-        for v in values {
-            line(&exact(*v));
-        }
-        out
     }
 }
 

@@ -117,6 +117,10 @@ pub enum LdtCommand {
         /// Write the converted files here instead of next to their inputs.
         #[arg(long, requires = "to")]
         out_dir: Option<PathBuf>,
+        /// EULUMDAT output: print every number exactly and every text in full (reads back
+        /// as the same data) instead of fitting the format's fixed field widths.
+        #[arg(long)]
+        exact: bool,
     },
 }
 
@@ -226,7 +230,8 @@ pub fn run(cmd: LdtCommand) -> Result<(), CliError> {
             out,
             to,
             out_dir,
-        } => convert(&files, out.as_deref(), to, out_dir.as_deref()),
+            exact,
+        } => convert(&files, out.as_deref(), to, out_dir.as_deref(), exact),
     }
 }
 
@@ -365,6 +370,7 @@ fn convert(
     out: Option<&Path>,
     to: Option<FileType>,
     out_dir: Option<&Path>,
+    exact: bool,
 ) -> Result<(), CliError> {
     let mut inputs = Inputs::expand(files);
     let mut names = OutputNames::default();
@@ -395,8 +401,17 @@ fn convert(
             .is_some_and(|e| e.eq_ignore_ascii_case("ies"));
         let text = if ies {
             write_ies(&lum.data, lum.source_label())
-        } else {
+        } else if exact {
             lum.data.to_ldt_string()
+        } else {
+            let ldt = lum
+                .data
+                .to_ldt_standard()
+                .map_err(|e| CliError::input(anyhow::anyhow!("{}: {e}", file.display())))?;
+            for note in &ldt.notes {
+                eprintln!("note: {}: {note}", target.display());
+            }
+            ldt.text
         };
         write_atomic(&target, text.as_bytes()).map_err(CliError::failure)
     })?;
