@@ -28,6 +28,7 @@ fn the_scale_follows_the_planes_drawn() {
         file_name: "x".into(),
         planes,
         interp: Interp::CatmullRom,
+        lamp_flux_lm: None,
     };
     let mut peak = 0.0f64;
     for c in [0.0, 90.0, 180.0, 270.0] {
@@ -173,13 +174,15 @@ fn the_report_is_one_self_contained_page_with_the_same_numbers() {
         .skip(1)
         .map(|t| &t[..t.find("</svg>").unwrap()])
         .collect();
-    assert_eq!(svgs.len(), 2);
+    assert_eq!(svgs.len(), 3);
     for (k, body) in svgs.iter().enumerate() {
         let path = tmp.path().join(format!("d{k}.svg"));
         std::fs::write(&path, format!("<svg{body}</svg>")).unwrap();
         let picture = svg::render(&path);
+        // Polar and cartesian: the red C0–C180 curve; isocandela: its lowest (amber) line.
+        let colour = if k < 2 { [200, 30, 30] } else { [240, 170, 40] };
         assert!(
-            svg::pixels_of(&picture, [200, 30, 30]).len() > 300,
+            svg::pixels_of(&picture, colour).len() > 300,
             "diagram {k} has its curve"
         );
     }
@@ -227,4 +230,160 @@ fn the_report_is_one_self_contained_page_with_the_same_numbers() {
         "",
     );
     assert_eq!(code, 2);
+}
+
+#[test]
+fn isocandela_lines_lie_where_the_distribution_has_their_level() {
+    let lum = Luminaire::load(&luminaire("eulumdat-plot/sample_01_isym3.ldt")).unwrap();
+    let diagram = Diagram {
+        lum: &lum,
+        file_name: "x".into(),
+        planes: vec![0.0, 90.0],
+        interp: Interp::CatmullRom,
+        lamp_flux_lm: None,
+    };
+    let map = diagram.isocandela().unwrap();
+    let peak = lum.summary().max_intensity;
+    assert!(
+        (5..=10).contains(&map.lines.len()),
+        "{} levels",
+        map.lines.len()
+    );
+    assert!(map.lines.iter().all(|l| l.level < peak));
+    let mut points = 0;
+    for line in &map.lines {
+        for p in line.pieces.iter().flatten() {
+            // Plan seen from above: x = γ cos C, y = γ sin C.
+            let g = p[0].hypot(p[1]);
+            let c = p[1].atan2(p[0]).to_degrees().rem_euclid(360.0);
+            let i = lum.distribution.sample(c, g, Interp::CatmullRom);
+            assert!(
+                (i - line.level).abs() < 0.02 * peak,
+                "level {} at C{c:.1} γ{g:.1}: {i}",
+                line.level
+            );
+            points += 1;
+        }
+    }
+    assert!(points > 1000, "{points} points");
+    // The peak at C15 γ60 is inside the highest level's line: that line stays near it.
+    let top = map.lines.last().unwrap();
+    let (x, y) = (
+        60f64 * 15f64.to_radians().cos(),
+        60f64 * 15f64.to_radians().sin(),
+    );
+    let nearest = top
+        .pieces
+        .iter()
+        .flatten()
+        .map(|p| (p[0] - x).hypot(p[1] - y))
+        .fold(f64::MAX, f64::min);
+    assert!(nearest < 10.0, "highest line {nearest}° from the peak");
+}
+
+#[test]
+fn the_isocandela_diagram_is_the_same_in_svg_and_png() {
+    let tmp = tempfile::tempdir().unwrap();
+    let file = luminaire("eulumdat-plot/sample_01_isym3.ldt");
+    let (svg_path, png_path) = (tmp.path().join("iso.svg"), tmp.path().join("iso.png"));
+    for out in [&svg_path, &png_path] {
+        let (code, _, err) = run_cli(
+            &[
+                "ldt",
+                "plot",
+                s(&file),
+                "--kind",
+                "isocandela",
+                "--out",
+                s(out),
+            ],
+            "",
+        );
+        assert_eq!(code, 0, "{err}");
+    }
+    let text = std::fs::read_to_string(&svg_path).unwrap();
+    for needle in ["isocandela (cd/klm)", "C0 right, C90 up,", "C270", "700"] {
+        assert!(text.contains(needle), "{needle} missing");
+    }
+    let (vector, raster) = (svg::render(&svg_path), svg::load_png(&png_path));
+    // The lowest level's colour (light amber): the outer line, the same in both.
+    let rgb = [240, 170, 40];
+    let (a, b) = (svg::pixels_of(&vector, rgb), svg::pixels_of(&raster, rgb));
+    assert!(a.len() > 300 && b.len() > 300, "{} / {}", a.len(), b.len());
+    let chart = |p: &[(u32, u32)]| {
+        let xs = || p.iter().filter(|q| q.0 < 820 && q.1 > 90).map(|q| q.0);
+        [xs().min().unwrap(), xs().max().unwrap()]
+    };
+    let (ba, bb) = (chart(&a), chart(&b));
+    assert!(
+        ba[0].abs_diff(bb[0]) <= 4 && ba[1].abs_diff(bb[1]) <= 4,
+        "{ba:?} vs {bb:?}"
+    );
+}
+
+#[test]
+fn the_svg_report_is_one_page_with_the_html_reports_content() {
+    let tmp = tempfile::tempdir().unwrap();
+    let file = luminaire("eulumdat-luminance/sample_06.ldt");
+    let (svg_path, html_path) = (tmp.path().join("sheet.svg"), tmp.path().join("sheet.html"));
+    for out in [&svg_path, &html_path] {
+        let (code, _, err) = run_cli(&["ldt", "report", s(&file), "--out", s(out)], "");
+        assert_eq!(code, 0, "{err}");
+    }
+    let text = std::fs::read_to_string(&svg_path).unwrap();
+    let html = std::fs::read_to_string(&html_path).unwrap();
+    // The same cells as the HTML sheet, each as an SVG text (a long summary value over
+    // several lines, word by word).
+    let cells: Vec<&str> = html
+        .split("<td>")
+        .skip(1)
+        .map(|c| &c[..c.find("</td>").unwrap()])
+        .collect();
+    assert!(cells.len() > 19 * 11 + 9 * 25, "{} cells", cells.len());
+    for cell in &cells {
+        let whole = text.contains(&format!(">{cell}</text>"));
+        let words = cell.split(' ').all(|w| text.contains(w));
+        assert!(whole || (cell.contains(' ') && words), "{cell} missing");
+    }
+    for needle in [
+        "UGR table (CIE 117/190)",
+        "viewed endwise",
+        "Luminance (cd/m²)",
+    ] {
+        assert!(text.contains(needle), "{needle} missing");
+    }
+    // It renders, with every diagram's curves: red (polar, cartesian) and amber (isocandela).
+    let picture = svg::render(&svg_path);
+    if let Some(dir) = std::env::var_os("GONIOLIGHT_KEEP_PICTURES") {
+        svg::save_png(&picture, &std::path::Path::new(&dir).join("sheet.png"));
+    }
+    // At half size the lines are one pixel wide and blend with white: found by hue.
+    let hue = |keep: fn([i32; 3]) -> bool| -> Vec<(u32, u32)> {
+        let w = picture.width;
+        (0..picture.rgb.len() as u32)
+            .filter(|&i| keep(picture.rgb[i as usize].map(i32::from)))
+            .map(|i| (i % w, i / w))
+            .collect()
+    };
+    let red = hue(|[r, g, b]| r - g > 70 && (g - b).abs() < 25);
+    let amber = hue(|[r, g, b]| r - b > 90 && g - b > 45 && r > g);
+    assert!(
+        red.len() > 300 && amber.len() > 300,
+        "{} / {}",
+        red.len(),
+        amber.len()
+    );
+    // Polar at the right of the summary, cartesian below it at the left.
+    assert!(red.iter().any(|p| p.0 > 600) && red.iter().any(|p| p.0 < 500));
+    // The tables sit below the diagrams: the UGR heading's y is below every curve pixel.
+    let heading_y: f64 = text
+        .split("<text")
+        .find(|t| t.contains("UGR table (CIE"))
+        .and_then(|t| t.split("y=\"").nth(1)?.split('"').next()?.parse().ok())
+        .unwrap();
+    let lowest = red.iter().chain(&amber).map(|p| p.1).max().unwrap() as f64;
+    assert!(
+        heading_y > lowest,
+        "UGR heading at {heading_y}, curves to {lowest}"
+    );
 }

@@ -1,13 +1,15 @@
 //! Datasheet diagrams of a luminaire (PNG or SVG, `ldt plot`): the polar diagram with the
 //! chosen plane pairs overlaid (C0–C180 and C90–C270 by default) and the cartesian
 //! diagram of the same curves, scaled to the planes drawn, titled with the luminaire's
-//! name, flux and LOR, the legend beside the chart. The curve geometry
+//! name, flux and LOR, the legend beside the chart; and the isocandela plan
+//! ([`super::isocandela`]). The curve geometry
 //! ([`plane_pair_curve`]) is the viewer's too.
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::grid::Interp;
+use super::isocandela::{gamma_reach, isocandela_map, round_levels, IsocandelaMap};
 use super::plot::{png_bytes, svg_string, DrawResult};
 use super::Luminaire;
 
@@ -46,6 +48,9 @@ pub enum DiagramKind {
     /// Cartesian: intensity against the signed angle (plane c to the right of 0°, c + 180°
     /// to the left).
     Cartesian,
+    /// Isocandela: lines of equal intensity over all directions, as a plan seen from above
+    /// (C0 right, C90 up, radius γ).
+    Isocandela,
 }
 
 /// A datasheet diagram of `lum`.
@@ -58,6 +63,9 @@ pub struct Diagram<'a> {
     pub planes: Vec<f64>,
     /// Interpolation between the measured angles.
     pub interp: Interp,
+    /// The lamp flux the title states, lm: a chosen lamp set's (`None`: all sets summed).
+    /// The curves are in cd/klm either way.
+    pub lamp_flux_lm: Option<f64>,
 }
 
 /// Colours and dash of the curves, by the order of the planes (the first two as
@@ -94,6 +102,12 @@ impl Diagram<'_> {
 
     fn title(&self) -> (String, String) {
         let s = self.lum.summary();
+        let lamps = self.lamp_flux_lm.unwrap_or(s.lamp_flux_lm);
+        let flux = if s.lamp_flux_lm > 0.0 {
+            s.flux_lm * lamps / s.lamp_flux_lm
+        } else {
+            s.flux_lm
+        };
         let name = self.lum.data.luminaire_name.trim();
         (
             if name.is_empty() {
@@ -103,7 +117,7 @@ impl Diagram<'_> {
             },
             format!(
                 "{:.0} lm luminaire flux from {:.0} lm lamps, LOR {:.1} %, DFF {:.1} % — cd/klm",
-                s.flux_lm, s.lamp_flux_lm, s.lorl_computed, s.dff_computed
+                flux, lamps, s.lorl_computed, s.dff_computed
             ),
         )
     }
@@ -139,8 +153,33 @@ impl Diagram<'_> {
         match kind {
             DiagramKind::Polar => self.draw_polar(&chart)?,
             DiagramKind::Cartesian => self.draw_cartesian(&chart)?,
+            DiagramKind::Isocandela => {
+                let map = self.isocandela()?;
+                map.draw(&chart)?;
+                let s = self.lum.summary();
+                let [c, g] = s.max_direction_deg;
+                let notes = [
+                    "plan seen from above:".to_string(),
+                    "C0 right, C90 up,".to_string(),
+                    "radius γ (0° = nadir)".to_string(),
+                    format!("peak {:.0} cd/klm", s.max_intensity),
+                    format!("at C{c:.0} γ{g:.0}"),
+                    format!("{} interpolation", self.interp.name()),
+                ];
+                return map.draw_legend(&side, &notes);
+            }
         }
         self.draw_legend(&side)
+    }
+
+    /// The isocandela lines at round levels below the peak, over the directions where the
+    /// luminaire gives more than 0.5 % of it.
+    pub fn isocandela(&self) -> Result<IsocandelaMap, String> {
+        let d = &self.lum.distribution;
+        let sample = |c: f64, g: f64| d.sample(c, g, self.interp);
+        let peak = self.lum.summary().max_intensity;
+        let reach = gamma_reach(sample, 0.005 * peak);
+        isocandela_map(sample, &round_levels(peak), reach, reach / 200.0)
     }
 
     fn draw_legend<DB: DrawingBackend>(&self, side: &DrawingArea<DB, Shift>) -> DrawResult

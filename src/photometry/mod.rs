@@ -12,6 +12,7 @@ pub mod flux;
 pub mod grid;
 pub mod ies;
 pub mod info;
+pub mod isocandela;
 pub mod ldt_writer;
 pub mod luminance;
 pub mod plot;

@@ -25,6 +25,8 @@ pub fn render(path: &Path) -> Picture {
         std::fs::read(Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/fonts/DejaVuSans.ttf"))
             .unwrap(),
     );
+    // The diagrams ask for "sans-serif": that is the bundled DejaVu Sans here.
+    options.fontdb_mut().set_sans_serif_family("DejaVu Sans");
     let tree = resvg::usvg::Tree::from_data(&data, &options)
         .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     let size = tree.size().to_int_size();
@@ -61,4 +63,14 @@ pub fn pixels_of(p: &Picture, rgb: [u8; 3]) -> Vec<(u32, u32)> {
         .filter(|(_, c)| c.iter().zip(rgb).all(|(a, b)| a.abs_diff(b) <= 12))
         .map(|(i, _)| (i as u32 % p.width, i as u32 / p.width))
         .collect()
+}
+
+/// Writes the picture as PNG (to look at a rendered SVG while developing a test).
+pub fn save_png(p: &Picture, path: &Path) {
+    let height = p.rgb.len() as u32 / p.width;
+    let bytes: Vec<u8> = p.rgb.iter().flatten().copied().collect();
+    image::RgbImage::from_raw(p.width, height, bytes)
+        .unwrap()
+        .save(path)
+        .unwrap();
 }

@@ -11,6 +11,7 @@ mod inputs;
 mod luminance;
 mod plot;
 mod report;
+mod report_svg;
 mod ugr;
 
 pub(super) use catalogue::print_check;

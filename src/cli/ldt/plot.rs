@@ -8,6 +8,7 @@ use clap::Args;
 use super::{parse_pair, write_each, write_plot, CliError, Outputs};
 use crate::io::write_atomic;
 use crate::photometry::datasheet_plot::{Diagram, DiagramKind};
+use crate::photometry::luminance::lamp_set_flux;
 use crate::photometry::Interp;
 
 /// A picture format, by its extension.
@@ -54,6 +55,10 @@ pub struct PlotArgs {
         conflicts_with = "downsample"
     )]
     pub interp: Interp,
+    /// The lamp set whose flux the title states (1-based; default all sets summed). The
+    /// curves are in cd/klm either way.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..), conflicts_with = "downsample")]
+    pub lamp_set: Option<u16>,
     /// Draw the interpolation check instead: the curves of each method from the file
     /// downsampled to these C,γ steps (degrees), every measured value marked.
     #[arg(long, value_parser = parse_pair)]
@@ -90,11 +95,18 @@ pub(super) fn run(args: &PlotArgs) -> Result<(), CliError> {
         if args.downsample.is_some() {
             return write_plot(lum, &name, target, args.downsample);
         }
+        let lamp_flux_lm = match args.lamp_set {
+            Some(k) => {
+                Some(lamp_set_flux(lum, Some(usize::from(k))).map_err(|e| super::about(file, e))?)
+            }
+            None => None,
+        };
         let diagram = Diagram {
             lum,
             file_name: name,
             planes: args.planes.clone(),
             interp: args.interp,
+            lamp_flux_lm,
         };
         let svg = target
             .extension()

@@ -1,6 +1,7 @@
-//! `ldt report`: a one-page datasheet of a luminaire as one self-contained HTML file —
-//! the summary, the polar and cartesian diagrams (inline SVG), the UGR table, the
-//! luminance table and the file's warnings.
+//! `ldt report`: a one-page datasheet of a luminaire as one self-contained HTML or SVG
+//! file — the summary, the polar, cartesian and isocandela diagrams, the UGR table, the
+//! luminance table and the file's warnings. [`sheet`] gathers them once; [`html`] and
+//! [`super::report_svg::svg`] lay them out.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -10,7 +11,7 @@ use clap::Args;
 use super::{info, write_each, CliError, Outputs};
 use crate::io::write_atomic;
 use crate::photometry::datasheet_plot::{Diagram, DiagramKind};
-use crate::photometry::luminance::{luminance_table, ugr_grid};
+use crate::photometry::luminance::{lamp_set_flux, luminance_table, ugr_grid};
 use crate::photometry::ugr::{ugr_table, STANDARD_SHR};
 use crate::photometry::{Interp, Luminaire};
 
@@ -20,7 +21,7 @@ pub struct ReportArgs {
     /// Luminaire files or directories.
     #[arg(required = true)]
     pub files: Vec<PathBuf>,
-    /// Output .html (one input file).
+    /// Output .html or .svg (one input file; the extension picks the format).
     #[arg(long, required_unless_present = "out_dir", conflicts_with = "out_dir")]
     pub out: Option<PathBuf>,
     /// Write one `NAME.html` per input here.
@@ -39,16 +40,24 @@ pub(super) fn run(args: &ReportArgs) -> Result<(), CliError> {
         out: args.out.as_deref(),
         out_dir: args.out_dir.as_deref(),
         ext: "html",
-        allowed: &["html", "htm"],
+        allowed: &["html", "htm", "svg"],
     };
     write_each(&args.files, outputs, |file, lum, target| {
-        let html = report_html(file, lum, lamp_set).map_err(|e| super::about(file, e))?;
-        write_atomic(target, html.as_bytes()).map_err(CliError::failure)
+        let sheet = sheet(file, lum, lamp_set).map_err(|e| super::about(file, e))?;
+        let svg = target
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("svg"));
+        let text = if svg {
+            super::report_svg::svg(&sheet)
+        } else {
+            html(&sheet)
+        };
+        write_atomic(target, text.as_bytes()).map_err(CliError::failure)
     })
 }
 
-/// Text made safe for HTML.
-fn escape(s: &str) -> String {
+/// Text made safe for HTML and SVG.
+pub(super) fn escape(s: &str) -> String {
     s.replace('&', "&amp;")
         .replace('<', "&lt;")
         .replace('>', "&gt;")
@@ -62,12 +71,50 @@ th{background:#f3f3f3}.num td{text-align:right;font-variant-numeric:tabular-nums
 .small{font-size:80%}svg{max-width:100%;height:auto}.diagrams{display:flex;flex-wrap:wrap}\
 .diagrams>div{flex:1 1 480px}footer{color:#777;font-size:80%;margin-top:2em}";
 
-/// The report of `lum` (read from `file`) as HTML.
-pub(super) fn report_html(
+/// One table of the sheet, as text (each renderer escapes it).
+pub(super) struct Table {
+    /// An optional first header row of (label, columns spanned), after the row labels.
+    pub groups: Vec<(String, usize)>,
+    /// The header row (the first cell heads the row labels).
+    pub header: Vec<String>,
+    /// The rows: a label, then the values.
+    pub rows: Vec<Vec<String>>,
+}
+
+/// A titled part of the sheet: a note and a table, or why there is none.
+pub(super) struct Section {
+    /// The heading.
+    pub heading: String,
+    /// A line under the heading.
+    pub note: Option<String>,
+    /// The table, or the reason it is missing.
+    pub table: Result<Table, String>,
+}
+
+/// Everything a datasheet shows, as text and SVG diagrams, ready for HTML or SVG.
+pub(super) struct Sheet {
+    /// The luminaire's name (the file's when it has none).
+    pub name: String,
+    /// Company and file name.
+    pub subtitle: String,
+    /// The summary rows (label, value).
+    pub summary: Vec<(String, String)>,
+    /// The polar, cartesian and isocandela diagrams, as SVG documents.
+    pub diagrams: Vec<String>,
+    /// The UGR and luminance tables.
+    pub sections: Vec<Section>,
+    /// The file's warnings.
+    pub warnings: Vec<String>,
+    /// The last line: tool, version, units, conditions.
+    pub footer: String,
+}
+
+/// The sheet of `lum` (read from `file`).
+pub(super) fn sheet(
     file: &Path,
     lum: &Luminaire,
     lamp_set: Option<usize>,
-) -> Result<String, crate::photometry::PhotometryError> {
+) -> Result<Sheet, crate::photometry::PhotometryError> {
     let file_name = file
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
@@ -76,125 +123,204 @@ pub(super) fn report_html(
         "" => file_name.clone(),
         n => n.to_string(),
     };
-    let mut h = String::new();
-    let _ = write!(
-        h,
-        "<!doctype html><html lang=\"en\"><head><meta charset=\"utf-8\"><title>{} — datasheet</title><style>{STYLE}</style></head><body>",
-        escape(&name)
-    );
-    let _ = write!(
-        h,
-        "<h1>{}</h1><p class=\"sub\">{} · {}</p>",
-        escape(&name),
-        escape(lum.data.company.trim()),
-        escape(&file_name)
-    );
-    h.push_str("<table>");
-    for (label, value) in info::summary_rows(lum, lamp_set)? {
-        let _ = write!(
-            h,
-            "<tr><th>{}</th><td>{}</td></tr>",
-            escape(&label),
-            escape(&value)
-        );
-    }
-    h.push_str("</table>");
+    let subtitle = format!("{} · {}", lum.data.company.trim(), file_name);
+    let summary = info::summary_rows(lum, lamp_set)?;
     let diagram = Diagram {
         lum,
         file_name,
         planes: vec![0.0, 90.0],
         interp: Interp::CatmullRom,
+        lamp_flux_lm: Some(lamp_set_flux(lum, lamp_set)?),
     };
-    h.push_str("<div class=\"diagrams\">");
-    for kind in [DiagramKind::Polar, DiagramKind::Cartesian] {
-        let svg = diagram
-            .svg(kind)
-            .map_err(crate::photometry::PhotometryError::Invalid)?;
+    let diagrams = [
+        DiagramKind::Polar,
+        DiagramKind::Cartesian,
+        DiagramKind::Isocandela,
+    ]
+    .into_iter()
+    .map(|kind| diagram.svg(kind))
+    .collect::<Result<Vec<_>, _>>()
+    .map_err(crate::photometry::PhotometryError::Invalid)?;
+    Ok(Sheet {
+        name,
+        subtitle,
+        summary,
+        diagrams,
+        sections: vec![ugr_section(lum, lamp_set), luminance_section(lum, lamp_set)],
+        warnings: lum.warnings.clone(),
+        footer: format!(
+            "goniolight {} · ldt report · intensities in cd/klm; UGR by CIE 117/190 at SHR {STANDARD_SHR}; luminance and UGR for lamp set {}",
+            env!("CARGO_PKG_VERSION"),
+            lamp_set.unwrap_or(1)
+        ),
+    })
+}
+
+/// The sheet as one self-contained HTML page.
+pub(super) fn html(sheet: &Sheet) -> String {
+    let mut h = String::new();
+    let _ = write!(
+        h,
+        "<!doctype html><html lang=\"en\"><head><meta charset=\"utf-8\"><title>{} — datasheet</title><style>{STYLE}</style></head><body>",
+        escape(&sheet.name)
+    );
+    let _ = write!(
+        h,
+        "<h1>{}</h1><p class=\"sub\">{}</p>",
+        escape(&sheet.name),
+        escape(&sheet.subtitle)
+    );
+    h.push_str("<table>");
+    for (label, value) in &sheet.summary {
+        let _ = write!(
+            h,
+            "<tr><th>{}</th><td>{}</td></tr>",
+            escape(label),
+            escape(value)
+        );
+    }
+    h.push_str("</table><div class=\"diagrams\">");
+    for svg in &sheet.diagrams {
         let _ = write!(h, "<div>{svg}</div>");
     }
     h.push_str("</div>");
-    ugr_section(&mut h, lum, lamp_set);
-    luminance_section(&mut h, lum, lamp_set);
-    if !lum.warnings.is_empty() {
+    for section in &sheet.sections {
+        let _ = write!(h, "<h2>{}</h2>", escape(&section.heading));
+        if let Some(note) = &section.note {
+            let _ = write!(h, "<p class=\"small\">{}</p>", escape(note));
+        }
+        match &section.table {
+            Ok(t) => html_table(&mut h, t),
+            Err(why) => {
+                let _ = write!(h, "<p>{}</p>", escape(why));
+            }
+        }
+    }
+    if !sheet.warnings.is_empty() {
         h.push_str("<h2>Warnings</h2><ul>");
-        for w in &lum.warnings {
+        for w in &sheet.warnings {
             let _ = write!(h, "<li>{}</li>", escape(w));
         }
         h.push_str("</ul>");
     }
     let _ = write!(
         h,
-        "<footer>goniolight {} · <code>ldt report</code> · intensities in cd/klm; UGR by CIE 117/190 at SHR {STANDARD_SHR}; luminance and UGR for lamp set {}</footer></body></html>",
-        env!("CARGO_PKG_VERSION"),
-        lamp_set.unwrap_or(1)
+        "<footer>{}</footer></body></html>",
+        escape(&sheet.footer)
     );
-    Ok(h)
+    h
 }
 
-fn ugr_section(h: &mut String, lum: &Luminaire, lamp_set: Option<usize>) {
-    h.push_str("<h2>UGR table (CIE 117/190)</h2>");
+fn html_table(h: &mut String, t: &Table) {
+    h.push_str("<table class=\"num small\">");
+    let grouped = !t.groups.is_empty();
+    if grouped {
+        let _ = write!(h, "<tr><th rowspan=\"2\">{}</th>", escape(&t.header[0]));
+        for (label, span) in &t.groups {
+            let _ = write!(h, "<th colspan=\"{span}\">{}</th>", escape(label));
+        }
+        h.push_str("</tr>");
+    }
+    h.push_str("<tr>");
+    for cell in &t.header[usize::from(grouped)..] {
+        let _ = write!(h, "<th>{}</th>", escape(cell));
+    }
+    h.push_str("</tr>");
+    for row in &t.rows {
+        h.push_str("<tr>");
+        for cell in row {
+            let _ = write!(h, "<td>{}</td>", escape(cell));
+        }
+        h.push_str("</tr>");
+    }
+    h.push_str("</table>");
+}
+
+fn ugr_section(lum: &Luminaire, lamp_set: Option<usize>) -> Section {
+    let heading = "UGR table (CIE 117/190)".to_string();
     let t = match ugr_table(lum, lamp_set, STANDARD_SHR, Interp::Bilinear) {
         Ok(t) => t,
         Err(e) => {
-            let _ = write!(h, "<p>No UGR table: {}.</p>", escape(&e.to_string()));
-            return;
+            return Section {
+                heading,
+                note: None,
+                table: Err(format!("No UGR table: {e}.")),
+            }
         }
     };
-    let _ = write!(
-        h,
-        "<p class=\"small\">Spacing {} H, {:.0} lm; reflectances ceiling/walls/reference plane.</p>",
-        t.shr, t.flux_lm
-    );
-    h.push_str("<table class=\"num small\"><tr><th rowspan=\"2\">X × Y</th><th colspan=\"5\">viewed crosswise</th><th colspan=\"5\">viewed endwise</th></tr><tr>");
-    for _ in 0..2 {
-        for r in &t.reflectances {
-            let _ = write!(
-                h,
-                "<th>{:.0}/{:.0}/{:.0}</th>",
+    let rho: Vec<String> = t
+        .reflectances
+        .iter()
+        .map(|r| {
+            format!(
+                "{:.0}/{:.0}/{:.0}",
                 r[0] * 100.0,
                 r[1] * 100.0,
                 r[2] * 100.0
-            );
-        }
-    }
-    h.push_str("</tr>");
-    for (i, room) in t.rooms.iter().enumerate() {
-        let _ = write!(h, "<tr><td>{}H × {}H</td>", room[0], room[1]);
-        for v in t.crosswise[i].iter().chain(&t.endwise[i]) {
-            let cell = match v {
-                Some(v) if *v < 10.0 => "&lt;10".to_string(),
+            )
+        })
+        .collect();
+    let header = std::iter::once("X × Y".to_string())
+        .chain(rho.iter().cloned())
+        .chain(rho.iter().cloned())
+        .collect();
+    let rows = t
+        .rooms
+        .iter()
+        .enumerate()
+        .map(|(i, room)| {
+            let cells = t.crosswise[i].iter().chain(&t.endwise[i]).map(|v| match v {
+                Some(v) if *v < 10.0 => "<10".to_string(),
                 Some(v) => format!("{v:.1}"),
                 None => "—".to_string(),
-            };
-            let _ = write!(h, "<td>{cell}</td>");
-        }
-        h.push_str("</tr>");
+            });
+            std::iter::once(format!("{}H × {}H", room[0], room[1]))
+                .chain(cells)
+                .collect()
+        })
+        .collect();
+    Section {
+        heading,
+        note: Some(format!(
+            "Spacing {} H, {:.0} lm; reflectances ceiling/walls/reference plane.",
+            t.shr, t.flux_lm
+        )),
+        table: Ok(Table {
+            groups: vec![
+                ("viewed crosswise".to_string(), rho.len()),
+                ("viewed endwise".to_string(), rho.len()),
+            ],
+            header,
+            rows,
+        }),
     }
-    h.push_str("</table>");
 }
 
-fn luminance_section(h: &mut String, lum: &Luminaire, lamp_set: Option<usize>) {
-    h.push_str("<h2>Luminance (cd/m²)</h2>");
+fn luminance_section(lum: &Luminaire, lamp_set: Option<usize>) -> Section {
+    let heading = "Luminance (cd/m²)".to_string();
     let (cs, _) = ugr_grid();
     let gammas: Vec<f64> = (9..18).map(|k| 5.0 * k as f64).collect();
-    let t = match luminance_table(lum, &cs, &gammas, lamp_set, Interp::Bilinear) {
-        Ok(t) => t,
-        Err(e) => {
-            let _ = write!(h, "<p>No luminance table: {}.</p>", escape(&e.to_string()));
-            return;
-        }
-    };
-    h.push_str("<table class=\"num small\"><tr><th>γ \\ C</th>");
-    for c in &t.c_angles {
-        let _ = write!(h, "<th>{c}°</th>");
+    let table = luminance_table(lum, &cs, &gammas, lamp_set, Interp::Bilinear)
+        .map(|t| Table {
+            groups: Vec::new(),
+            header: std::iter::once("γ \\ C".to_string())
+                .chain(t.c_angles.iter().map(|c| format!("{c}°")))
+                .collect(),
+            rows: t
+                .gamma_angles
+                .iter()
+                .enumerate()
+                .map(|(gi, g)| {
+                    std::iter::once(format!("{g}°"))
+                        .chain(t.cd_m2.iter().map(|row| format!("{:.0}", row[gi])))
+                        .collect()
+                })
+                .collect(),
+        })
+        .map_err(|e| format!("No luminance table: {e}."));
+    Section {
+        heading,
+        note: None,
+        table,
     }
-    h.push_str("</tr>");
-    for (gi, g) in t.gamma_angles.iter().enumerate() {
-        let _ = write!(h, "<tr><td>{g}°</td>");
-        for row in &t.cd_m2 {
-            let _ = write!(h, "<td>{:.0}</td>", row[gi]);
-        }
-        h.push_str("</tr>");
-    }
-    h.push_str("</table>");
 }
