@@ -62,16 +62,22 @@ fn grid(x_m: f64, y_m: f64, s: f64) -> Vec<(f64, f64)> {
         .collect()
 }
 
-/// UGR of one room for both views and all five reflectance combinations.
-fn independent_room(lum: &Luminaire, flux: f64, x: f64, y: f64) -> [[f64; 5]; 2] {
-    let (x_m, y_m) = (x * H, y * H);
-    let lamps = grid(x_m, y_m, 0.25 * H);
+/// Σ L² ω / p² for both views (crosswise, endwise) of a room x_m × y_m (metres) lit at
+/// spacing `s`, the eye moved `eye` metres (across, ahead) from the middle of the wall,
+/// H below the luminaires.
+fn independent_sums(
+    lum: &Luminaire,
+    flux: f64,
+    x_m: f64,
+    y_m: f64,
+    s: f64,
+    eye: [f64; 2],
+) -> [f64; 2] {
     let cd = |c: f64, g: f64| lum.distribution.sample(c, g, Interp::Bilinear) * flux / 1000.0;
-    // Σ L² ω / p², the eye at (x_m / 2, 0), H below the luminaires.
     let mut sums = [0.0; 2];
-    for &(lx, ly) in &lamps {
-        let (t, r) = ((lx - x_m / 2.0).abs(), ly);
-        if H / r > 1.9 || t / r > 3.0 {
+    for (lx, ly) in grid(x_m, y_m, s) {
+        let (t, r) = ((lx - x_m / 2.0 - eye[0]).abs(), ly - eye[1]);
+        if r <= 0.0 || H / r > 1.9 || t / r > 3.0 {
             continue;
         }
         let horizontal = (t * t + r * r).sqrt();
@@ -84,6 +90,15 @@ fn independent_room(lum: &Luminaire, flux: f64, x: f64, y: f64) -> [[f64; 5]; 2]
             sums[k] += l * l * (a / d2) / guth(t, H, r).powi(2);
         }
     }
+    sums
+}
+
+/// UGR of one room for both views and all five reflectance combinations.
+fn independent_room(lum: &Luminaire, flux: f64, x: f64, y: f64) -> [[f64; 5]; 2] {
+    let (x_m, y_m) = (x * H, y * H);
+    let lamps = grid(x_m, y_m, 0.25 * H);
+    let cd = |c: f64, g: f64| lum.distribution.sample(c, g, Interp::Bilinear) * flux / 1000.0;
+    let sums = independent_sums(lum, flux, x_m, y_m, 0.25 * H, [0.0, 0.0]);
     // Direct flux by tracing the whole distribution (2° × 1° directions) from every
     // luminaire, C0 along the room's y axis.
     let (mut ceiling, mut walls, mut floor) = (0.0, 0.0, 0.0);
@@ -270,4 +285,47 @@ fn bad_requests_are_refused_by_name() {
         err.contains("sample_13_isym1.ldt") && err.contains("indirect luminaire"),
         "{err}"
     );
+}
+
+#[test]
+fn the_observer_variation_agrees_with_the_independent_glare_sums() {
+    // The eye moved over one spacing (4 × 4 positions) in the 4H × 8H room: the UGR change
+    // is 8 log10 of the glare sums' ratio (the background luminance does not move).
+    for file in [
+        common::luminaire("eulumdat-luminance/sample_06.ldt"),
+        common::luminaire("eulumdat-plot/sample_01_isym3.ldt"),
+    ] {
+        let lum = Luminaire::load(&file).unwrap();
+        let v = ugr_json(&file, &[]);
+        let rows = v["observer_variation"].as_array().unwrap();
+        assert_eq!(rows.len(), 3);
+        for (row, spacing) in rows.iter().zip([1.0, 1.5, 2.0]) {
+            assert_eq!(row["spacing"], spacing);
+            let s = spacing * H;
+            let standard = independent_sums(&lum, 1000.0, 4.0 * H, 8.0 * H, s, [0.0, 0.0]);
+            let (mut up, mut down) = ([0.0f64; 2], [0.0f64; 2]);
+            for i in 0..4 {
+                for j in 0..4 {
+                    let eye = [i as f64 * s / 4.0, j as f64 * s / 4.0];
+                    let sums = independent_sums(&lum, 1000.0, 4.0 * H, 8.0 * H, s, eye);
+                    for k in 0..2 {
+                        let change = 8.0 * (sums[k] / standard[k]).log10();
+                        up[k] = up[k].max(change);
+                        down[k] = down[k].max(-change);
+                    }
+                }
+            }
+            for (k, view) in ["crosswise", "endwise"].into_iter().enumerate() {
+                let got = row[view].as_array().unwrap();
+                let (u, d) = (got[0].as_f64().unwrap(), got[1].as_f64().unwrap());
+                assert!(
+                    (u - up[k]).abs() < 0.05 && (d - down[k]).abs() < 0.05,
+                    "{} S={spacing}H {view}: +{u:.2}/−{d:.2} vs +{:.2}/−{:.2}",
+                    file.display(),
+                    up[k],
+                    down[k]
+                );
+            }
+        }
+    }
 }

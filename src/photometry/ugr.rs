@@ -95,6 +95,69 @@ pub struct UgrTable {
     pub endwise: Vec<[Option<f64>; 5]>,
     /// The lamp flux the table is for, lm.
     pub flux_lm: f64,
+    /// How UGR changes with the observer's position at the spacings of
+    /// [`VARIATION_SPACINGS`] (the datasheets' "variation of the observer position").
+    pub observer_variation: Vec<ObserverVariation>,
+}
+
+/// The spacings of the observer-position variation, in units of H (as datasheets give it).
+pub const VARIATION_SPACINGS: [f64; 3] = [1.0, 1.5, 2.0];
+
+/// The room the variation is computed in, X × Y in units of H: the reference room of
+/// UGR labelling.
+pub const VARIATION_ROOM: [f64; 2] = [4.0, 8.0];
+
+/// Eye positions per spacing and direction: the eye moves over one spacing in these steps.
+const VARIATION_STEPS: usize = 4;
+
+/// How much UGR changes as the observer moves relative to the luminaire grid, for one
+/// spacing: `[up, down]`, the largest rise above and fall below the value from the
+/// standard position (both ≥ 0); `None` where no luminaire glares from that position.
+#[derive(Debug, Clone, Copy, Serialize, PartialEq)]
+pub struct ObserverVariation {
+    /// The spacing of the luminaires, in units of H.
+    pub spacing: f64,
+    /// Viewed crosswise.
+    pub crosswise: Option<[f64; 2]>,
+    /// Viewed endwise.
+    pub endwise: Option<[f64; 2]>,
+}
+
+/// The observer-position variation of `lum` at `spacing` (units of H), in
+/// [`VARIATION_ROOM`]: the eye moves from the middle of the wall across and ahead over one
+/// spacing in [`VARIATION_STEPS`] steps each way. The background luminance does not depend
+/// on where the eye is (it is the walls' mean), so the change is 8 · log10 of the ratio of
+/// the glare sums, the same for every reflectance combination and every flux. Positions
+/// from which no luminaire glares are left out (there is no rating to compare).
+pub fn observer_variation(lum: &Luminaire, spacing: f64, interp: Interp) -> ObserverVariation {
+    let range = |view: View| -> Option<[f64; 2]> {
+        let sum =
+            |eye: [f64; 2]| glare_sum_from(lum, 1000.0, VARIATION_ROOM, spacing, view, interp, eye);
+        let standard = sum([0.0, 0.0]);
+        if standard <= 0.0 {
+            return None;
+        }
+        let mut up: f64 = 0.0;
+        let mut down: f64 = 0.0;
+        for i in 0..VARIATION_STEPS {
+            for j in 0..VARIATION_STEPS {
+                let step = spacing / VARIATION_STEPS as f64;
+                let s = sum([i as f64 * step, j as f64 * step]);
+                // (A position from which no luminaire glares has no rating to compare.)
+                if s > 0.0 {
+                    let change = 8.0 * (s / standard).log10();
+                    up = up.max(change);
+                    down = down.max(-change);
+                }
+            }
+        }
+        Some([up, down])
+    };
+    ObserverVariation {
+        spacing,
+        crosswise: range(View::Crosswise),
+        endwise: range(View::Endwise),
+    }
 }
 
 /// How the observer looks at the luminaires.
@@ -129,7 +192,7 @@ fn positions(x_m: f64, y_m: f64, s: f64) -> Vec<(f64, f64)> {
     out
 }
 
-/// Σ L² ω / p² over the luminaires of a room seen in `view`.
+/// Σ L² ω / p² over the luminaires of a room seen in `view` from the standard position.
 pub fn glare_sum(
     lum: &Luminaire,
     flux: f64,
@@ -138,11 +201,25 @@ pub fn glare_sum(
     view: View,
     interp: Interp,
 ) -> f64 {
+    glare_sum_from(lum, flux, room, shr, view, interp, [0.0, 0.0])
+}
+
+/// Σ L² ω / p² with the eye moved `eye` = [across, ahead] (units of H) from the middle
+/// of the wall; luminaires behind the eye do not count.
+fn glare_sum_from(
+    lum: &Luminaire,
+    flux: f64,
+    room: [f64; 2],
+    shr: f64,
+    view: View,
+    interp: Interp,
+    eye: [f64; 2],
+) -> f64 {
     let area = LuminousArea::of(lum);
     let mut sum = 0.0;
-    for (x, r) in positions(room[0] * H, room[1] * H, shr * H) {
-        let t = x.abs();
-        if H / r > 1.9 || t / r > 3.0 {
+    for (x, y) in positions(room[0] * H, room[1] * H, shr * H) {
+        let (t, r) = ((x - eye[0] * H).abs(), y - eye[1] * H);
+        if r <= 0.0 || H / r > 1.9 || t / r > 3.0 {
             continue;
         }
         let d2 = t * t + r * r + H * H;
@@ -329,6 +406,10 @@ pub fn ugr_table(
         crosswise: rows.iter().map(|r| r.0).collect(),
         endwise: rows.iter().map(|r| r.1).collect(),
         flux_lm: flux,
+        observer_variation: VARIATION_SPACINGS
+            .par_iter()
+            .map(|&s| observer_variation(lum, s, interp))
+            .collect(),
     })
 }
 

@@ -12,7 +12,7 @@ use super::{info, write_each, CliError, Outputs};
 use crate::io::write_atomic;
 use crate::photometry::datasheet_plot::{Diagram, DiagramKind};
 use crate::photometry::luminance::{lamp_set_flux, luminance_table, ugr_grid};
-use crate::photometry::ugr::{ugr_table, STANDARD_SHR};
+use crate::photometry::ugr::{ugr_table, STANDARD_SHR, VARIATION_ROOM};
 use crate::photometry::{Interp, Luminaire};
 
 /// Options of `ldt report`.
@@ -146,7 +146,10 @@ pub(super) fn sheet(
         subtitle,
         summary,
         diagrams,
-        sections: vec![ugr_section(lum, lamp_set), luminance_section(lum, lamp_set)],
+        sections: ugr_sections(lum, lamp_set)
+            .into_iter()
+            .chain([luminance_section(lum, lamp_set)])
+            .collect(),
         warnings: lum.warnings.clone(),
         footer: format!(
             "goniolight {} · ldt report · intensities in cd/klm; UGR by CIE 117/190 at SHR {STANDARD_SHR}; luminance and UGR for lamp set {}",
@@ -236,16 +239,17 @@ fn html_table(h: &mut String, t: &Table) {
     h.push_str("</table>");
 }
 
-fn ugr_section(lum: &Luminaire, lamp_set: Option<usize>) -> Section {
+/// The UGR table and the variation of the observer position (or why there is none).
+fn ugr_sections(lum: &Luminaire, lamp_set: Option<usize>) -> Vec<Section> {
     let heading = "UGR table (CIE 117/190)".to_string();
     let t = match ugr_table(lum, lamp_set, STANDARD_SHR, Interp::Bilinear) {
         Ok(t) => t,
         Err(e) => {
-            return Section {
+            return vec![Section {
                 heading,
                 note: None,
                 table: Err(format!("No UGR table: {e}.")),
-            }
+            }]
         }
     };
     let rho: Vec<String> = t
@@ -279,21 +283,52 @@ fn ugr_section(lum: &Luminaire, lamp_set: Option<usize>) -> Section {
                 .collect()
         })
         .collect();
-    Section {
-        heading,
-        note: Some(format!(
-            "Spacing {} H, {:.0} lm; reflectances ceiling/walls/reference plane.",
-            t.shr, t.flux_lm
-        )),
-        table: Ok(Table {
-            groups: vec![
-                ("viewed crosswise".to_string(), rho.len()),
-                ("viewed endwise".to_string(), rho.len()),
-            ],
-            header,
-            rows,
-        }),
-    }
+    let range = |v: Option<[f64; 2]>| match v {
+        Some([up, down]) => format!("+{up:.1} / −{down:.1}"),
+        None => "—".to_string(),
+    };
+    let variation = Table {
+        groups: Vec::new(),
+        header: ["spacing", "viewed crosswise", "viewed endwise"]
+            .map(String::from)
+            .to_vec(),
+        rows: t
+            .observer_variation
+            .iter()
+            .map(|v| {
+                vec![
+                    format!("S = {:.1}H", v.spacing),
+                    range(v.crosswise),
+                    range(v.endwise),
+                ]
+            })
+            .collect(),
+    };
+    vec![
+        Section {
+            heading,
+            note: Some(format!(
+                "Spacing {} H, {:.0} lm; reflectances ceiling/walls/reference plane.",
+                t.shr, t.flux_lm
+            )),
+            table: Ok(Table {
+                groups: vec![
+                    ("viewed crosswise".to_string(), rho.len()),
+                    ("viewed endwise".to_string(), rho.len()),
+                ],
+                header,
+                rows,
+            }),
+        },
+        Section {
+            heading: "Variation of the observer position".to_string(),
+            note: Some(format!(
+                "Room {}H × {}H; the eye moved over one spacing S across and ahead; change of UGR from the standard position.",
+                VARIATION_ROOM[0], VARIATION_ROOM[1]
+            )),
+            table: Ok(variation),
+        },
+    ]
 }
 
 fn luminance_section(lum: &Luminaire, lamp_set: Option<usize>) -> Section {

@@ -60,7 +60,17 @@ impl Page {
         const ROW: f64 = 17.0;
         const LABEL: f64 = 90.0;
         let columns = t.header.len().saturating_sub(1).max(1);
-        let cell = ((PAGE - 2.0 * MARGIN - LABEL) / columns as f64).min(80.0);
+        // Columns as wide as their longest text (7 units a character at 11), at least 80.
+        let longest = t
+            .header
+            .iter()
+            .chain(t.rows.iter().flatten())
+            .skip(1)
+            .map(|c| c.chars().count())
+            .max()
+            .unwrap_or(0);
+        let cell = ((PAGE - 2.0 * MARGIN - LABEL) / columns as f64)
+            .min((7.0 * longest as f64 + 14.0).max(80.0));
         let right = |k: usize| MARGIN + LABEL + cell * (k + 1) as f64 - 4.0;
         let bold = "font-weight=\"bold\"";
         self.y += 6.0;

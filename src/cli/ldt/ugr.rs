@@ -3,7 +3,7 @@
 use std::path::{Path, PathBuf};
 
 use super::{tables_per_file, CliError};
-use crate::photometry::ugr::{ugr_table, UgrTable};
+use crate::photometry::ugr::{ugr_table, UgrTable, VARIATION_ROOM};
 use crate::photometry::Interp;
 
 /// Prints the UGR table of each file, as text (a datasheet's layout) or JSON.
@@ -60,5 +60,21 @@ fn print_table(path: &Path, name: &str, t: &UgrTable) {
             line.push_str("  ");
         }
         println!("{}", line.trim_end());
+    }
+    println!(
+        "variation of the observer position (room {}H×{}H, the eye moved over one spacing across and ahead):",
+        VARIATION_ROOM[0], VARIATION_ROOM[1]
+    );
+    let range = |v: Option<[f64; 2]>| match v {
+        Some([up, down]) => format!("+{up:.1} / −{down:.1}"),
+        None => "—".to_string(),
+    };
+    for v in &t.observer_variation {
+        println!(
+            "{:>9}  crosswise {:<14} endwise {}",
+            format!("S = {:.1}H", v.spacing),
+            range(v.crosswise),
+            range(v.endwise)
+        );
     }
 }
