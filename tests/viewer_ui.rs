@@ -577,3 +577,61 @@ fn viewport_reads_the_lux_under_the_cursor_and_saves_png_and_exr() {
     let other = app.status.cursor_lux.unwrap_or(-1.0);
     assert!((other - exr.get_pixel(20, 10)[0] as f64).abs() <= 1e-5 * other.abs().max(1.0));
 }
+
+#[test]
+fn photometry_window_shows_the_datasheet_diagrams_ldt_plot_draws() {
+    let mut h = harness(app("box_room.toml"));
+    h.get_by_label_contains("1: ").click();
+    h.run();
+    h.get_by_label("Photometry…").click();
+    h.run();
+    assert_eq!(h.state().photometry_view.sheet_size(), None);
+    h.get_by_label("Isocandela").click();
+    h.run();
+    assert_eq!(h.state().photometry_view.sheet_size(), Some([1100, 860]));
+    // The picture is `ldt plot`'s, pixel for pixel.
+    let interp = h.state().display.interp;
+    let l = &h.state().scene.luminaires[0];
+    let shown = goniolight::viewer::photometry_sheet::datasheet_image(
+        l,
+        goniolight::photometry::datasheet_plot::DiagramKind::Isocandela,
+        interp,
+    )
+    .unwrap();
+    let tmp = tempfile::tempdir().unwrap();
+    let png = tmp.path().join("iso.png");
+    let name = match interp {
+        Interp::Nearest => "nearest",
+        Interp::Bilinear => "bilinear",
+        Interp::CatmullRom => "catmull-rom",
+        Interp::Monotone => "monotone",
+    };
+    let (code, _, err) = common::run_cli(
+        &[
+            "ldt",
+            "plot",
+            l.file.to_str().unwrap(),
+            "--kind",
+            "isocandela",
+            "--interp",
+            name,
+            "--out",
+            png.to_str().unwrap(),
+        ],
+        "",
+    );
+    assert_eq!(code, 0, "{err}");
+    let plotted = image::open(&png).unwrap().to_rgba8();
+    assert_eq!(
+        shown.size,
+        [plotted.width() as usize, plotted.height() as usize]
+    );
+    assert!(
+        shown.as_raw() == plotted.as_raw(),
+        "the viewer's diagram differs from ldt plot's"
+    );
+    // Back to the interpolation comparison.
+    h.get_by_label("Interpolations").click();
+    h.run();
+    h.get_by_label("Beam angle (50 %)");
+}

@@ -10,7 +10,7 @@ use plotters::prelude::*;
 
 use super::grid::Interp;
 use super::isocandela::{gamma_reach, isocandela_map, round_levels, IsocandelaMap};
-use super::plot::{png_bytes, svg_string, DrawResult};
+use super::plot::{png_bytes, rgb_image, svg_string, DrawResult};
 use super::Luminaire;
 
 const WIDTH: u32 = 1100;
@@ -120,6 +120,11 @@ impl Diagram<'_> {
                 flux, lamps, s.lorl_computed, s.dff_computed
             ),
         )
+    }
+
+    /// Renders as pixels (what the viewer shows; the PNG holds the same).
+    pub fn rgb(&self, kind: DiagramKind) -> Result<image::RgbImage, String> {
+        rgb_image(WIDTH, HEIGHT, "the diagram", |root| self.draw(root, kind))
     }
 
     /// Renders as PNG bytes.

@@ -43,14 +43,13 @@ pub type DrawResult = Result<(), Box<dyn std::error::Error>>;
 /// The drawing area of a bitmap.
 pub type BitMapArea<'a> = DrawingArea<BitMapBackend<'a>, plotters::coord::Shift>;
 
-/// Draws on a white `width` × `height` bitmap and encodes it as PNG; `what` names the
-/// picture in the error.
-pub fn png_bytes(
+/// Draws on a white `width` × `height` bitmap; `what` names the picture in the error.
+pub fn rgb_image(
     width: u32,
     height: u32,
     what: &str,
     draw: impl FnOnce(&BitMapArea) -> DrawResult,
-) -> Result<Vec<u8>, String> {
+) -> Result<image::RgbImage, String> {
     register_font();
     let mut buf = vec![255u8; (width * height * 3) as usize];
     {
@@ -59,7 +58,18 @@ pub fn png_bytes(
             .and_then(|()| root.present().map_err(Into::into))
             .map_err(|e| format!("drawing {what}: {e}"))?;
     }
-    let img = image::RgbImage::from_raw(width, height, buf).ok_or("image buffer size")?;
+    Ok(image::RgbImage::from_raw(width, height, buf).ok_or("image buffer size")?)
+}
+
+/// Draws on a white `width` × `height` bitmap and encodes it as PNG; `what` names the
+/// picture in the error.
+pub fn png_bytes(
+    width: u32,
+    height: u32,
+    what: &str,
+    draw: impl FnOnce(&BitMapArea) -> DrawResult,
+) -> Result<Vec<u8>, String> {
+    let img = rgb_image(width, height, what, draw)?;
     let mut png = Vec::new();
     img.write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
         .map_err(|e| e.to_string())?;

@@ -170,8 +170,8 @@ pub struct ViewerApp {
     pub selected: Option<usize>,
     /// The luminaire whose photometry window is open.
     pub photometry: Option<usize>,
-    /// The C plane of the photometry window's diagram, degrees.
-    pub photometry_c_deg: f64,
+    /// What the photometry window shows (C plane, datasheet diagram).
+    pub photometry_view: super::photometry_sheet::PhotometryView,
     /// The sun.
     pub sun: SunControls,
     /// Radiosity.
@@ -217,7 +217,7 @@ impl ViewerApp {
             scene_path: path,
             selected: None,
             photometry: None,
-            photometry_c_deg: 0.0,
+            photometry_view: Default::default(),
             sun: SunControls::default(),
             radiosity: RadiosityState::default(),
             profile: ProfileState::default(),

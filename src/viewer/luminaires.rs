@@ -1,6 +1,6 @@
 //! The luminaires panel (add, place, aim, dim, colour, remove, interpolation) and the
 //! photometry window (polar diagram with the measured points and every interpolation,
-//! and the photometric summary).
+//! and the photometric summary; or a datasheet diagram, [`super::photometry_sheet`]).
 
 use egui_plot::{Legend, Line, MarkerShape, Plot, PlotPoints, Points};
 
@@ -149,11 +149,18 @@ impl ViewerApp {
         let mut open = true;
         let l = &self.scene.luminaires[i];
         let title = format!("Photometry: {}", l.name);
-        let c_deg = &mut self.photometry_c_deg;
+        let view = &mut self.photometry_view;
+        let interp = self.display.interp;
         egui::Window::new(title)
             .open(&mut open)
             .default_size([460.0, 560.0])
-            .show(ctx, |ui| photometry_contents(ui, &l.luminaire, c_deg));
+            .show(ctx, |ui| {
+                if view.selector(ui) {
+                    view.sheet_ui(ui, l, interp);
+                } else {
+                    photometry_contents(ui, &l.luminaire, &mut view.c_deg);
+                }
+            });
         if !open {
             self.photometry = None;
         }

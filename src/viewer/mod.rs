@@ -9,6 +9,7 @@ pub mod camera;
 pub mod files;
 pub mod jobs;
 pub mod luminaires;
+pub mod photometry_sheet;
 pub mod sun;
 pub mod view;
 pub mod viewport;
