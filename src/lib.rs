@@ -33,6 +33,7 @@
 
 #[cfg(feature = "gpu")]
 pub mod bench;
+pub mod calc;
 #[cfg(feature = "cli")]
 pub mod cli;
 pub mod geometry;

@@ -350,6 +350,8 @@ fn floor_and_sheet() -> RadiosityScene {
         camera: Camera::perspective(DVec3::ONE, DVec3::ZERO, 60.0),
         display: DisplayEntry::default(),
         models: Vec::new(),
+        grids: Vec::new(),
+        calc: Default::default(),
     };
     RadiosityScene::with_hierarchy(&scene, 10.0, 2, Hierarchy::Clusters).unwrap()
 }

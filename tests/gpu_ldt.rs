@@ -144,6 +144,8 @@ fn the_catmull_rom_table_stays_within_1e_3_of_i_max() {
             camera: Camera::perspective(DVec3::ONE, DVec3::ZERO, 60.0),
             display: DisplayEntry::default(),
             models: Vec::new(),
+            grids: Vec::new(),
+            calc: Default::default(),
         };
         let uploaded = renderer.upload(&gpu, &scene);
         let got = IlluminanceProbe::new(&gpu, LightModel::CatmullRomTable)

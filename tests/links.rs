@@ -69,6 +69,8 @@ fn hall(furnace: bool) -> Scene {
         }],
         luminaires: if furnace { Vec::new() } else { luminaires },
         models: Vec::new(),
+        grids: Vec::new(),
+        calc: Default::default(),
         ..room
     }
 }

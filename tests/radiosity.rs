@@ -50,6 +50,8 @@ fn scene_of(meshes: Vec<SceneMesh>, materials: Vec<Material>) -> Scene {
         camera: Camera::perspective(DVec3::new(0.5, 0.5, 0.5), DVec3::ZERO, 60.0),
         display: DisplayEntry::default(),
         models: Vec::new(),
+        grids: Vec::new(),
+        calc: Default::default(),
     }
 }
 

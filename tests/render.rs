@@ -82,6 +82,8 @@ fn floor_scene(luminaires: Vec<PlacedLuminaire>, size: f32) -> Scene {
         camera: Camera::top_down(DVec3::ZERO, size as f64, 10.0),
         display: DisplayEntry::default(),
         models: Vec::new(),
+        grids: Vec::new(),
+        calc: Default::default(),
     }
 }
 

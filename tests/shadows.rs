@@ -97,6 +97,8 @@ fn scene(meshes: &[Mesh], luminaires: Vec<PlacedLuminaire>, camera: Camera) -> S
         camera,
         display: DisplayEntry::default(),
         models: Vec::new(),
+        grids: Vec::new(),
+        calc: Default::default(),
     }
 }
 

@@ -147,6 +147,8 @@ pub fn bench_scene(major: u32, minor: u32, luminaires: &[PlacedLuminaire]) -> Sc
         camera: Camera::perspective(DVec3::new(0.3, 0.3, 1.7), DVec3::new(3.0, 2.0, 1.0), 70.0),
         display: DisplayEntry::default(),
         models: Vec::new(),
+        grids: Vec::new(),
+        calc: Default::default(),
     }
 }
 

@@ -3,6 +3,7 @@
 
 mod batch;
 mod bench;
+mod calc;
 mod demo;
 mod error;
 mod ldt;
@@ -39,6 +40,9 @@ pub enum Command {
     Render(render::RenderArgs),
     /// Read "x y z nx ny nz" lines from stdin and print the direct illuminance (lux) at each.
     Illuminance(render::IlluminanceArgs),
+    /// Lighting calculations on the scene's `[[grid]]` surfaces: maintained illuminance at
+    /// every point, Em/Emin/Emax/U0/g2 per grid, `calc.json` and one CSV per grid.
+    Calc(calc::CalcArgs),
     /// The sun's position (NREL SPA) for a site and an instant.
     Sun(sun::SunArgs),
     /// Solve the scene's interreflected light (GPU progressive radiosity): rendering,
@@ -91,6 +95,7 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         Command::Demo(args) => demo::run(args),
         Command::Render(args) => render::run(args),
         Command::Illuminance(args) => render::run_illuminance(args),
+        Command::Calc(args) => calc::run(args),
         Command::Sun(args) => sun::run(args),
         Command::Silhouette(args) => silhouette::run(args),
         Command::Profile(args) => profile::run(args),

@@ -309,6 +309,21 @@ pub struct IlluminanceArgs {
     /// Seconds since the start of the animation (effect lights turned this far).
     #[arg(long)]
     pub time: Option<f64>,
+    /// Output: one lux value per line (`plain`), or each point with its value as CSV
+    /// (`x,y,z,nx,ny,nz,lux` with a header) or JSON (`[{"position", "normal", "lux"}]`).
+    #[arg(long, value_enum, default_value = "plain")]
+    pub format: PointsFormat,
+}
+
+/// How `illuminance` prints its values.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum PointsFormat {
+    /// One value per line.
+    Plain,
+    /// The points with their values, CSV.
+    Csv,
+    /// The points with their values, JSON.
+    Json,
 }
 
 /// Runs `illuminance`.
@@ -319,7 +334,11 @@ pub fn run_illuminance(args: IlluminanceArgs) -> Result<(), CliError> {
     let gpu = if args.cpu { None } else { Some(Gpu::shared()?) };
     let lux = scene_illuminance(gpu.as_ref(), &scene, &points, args.interp, technique)?;
     let mut out = String::with_capacity(lux.len() * 12);
-    for (i, v) in lux.into_iter().enumerate() {
+    let mut json = Vec::new();
+    if args.format == PointsFormat::Csv {
+        out.push_str("x,y,z,nx,ny,nz,lux\n");
+    }
+    for (i, (v, p)) in lux.into_iter().zip(&points).enumerate() {
         // A wrong number is refused, never printed (−0 and rounding below 0 print as 0).
         if !v.is_finite() || v < -1e-6 {
             return Err(CliError::failure(anyhow::anyhow!(
@@ -327,7 +346,23 @@ pub fn run_illuminance(args: IlluminanceArgs) -> Result<(), CliError> {
                 i + 1
             )));
         }
-        out.push_str(&format!("{:.6}\n", if v > 0.0 { v } else { 0.0 }));
+        let v = if v > 0.0 { v } else { 0.0 };
+        let (x, n) = (p.position, p.normal);
+        match args.format {
+            PointsFormat::Plain => out.push_str(&format!("{v:.6}\n")),
+            PointsFormat::Csv => out.push_str(&format!(
+                "{},{},{},{},{},{},{v:.6}\n",
+                x.x, x.y, x.z, n.x, n.y, n.z
+            )),
+            PointsFormat::Json => json.push(serde_json::json!({
+                "position": x.to_array(),
+                "normal": n.to_array(),
+                "lux": v,
+            })),
+        }
+    }
+    if args.format == PointsFormat::Json {
+        out = serde_json::to_string_pretty(&json).map_err(CliError::failure)? + "\n";
     }
     print!("{out}");
     Ok(())

@@ -26,6 +26,12 @@
 //! look_at = [3.0, 2.0, 1.0]
 //! fov_deg = 60.0                # or orthographic_height = 6.0
 //!
+//! [[grid]]                      # a calculation surface: see [`crate::calc::grid`]
+//! name = "work plane"
+//! corner = [0.0, 0.0]
+//! size = [6.0, 4.0]
+//! height = 0.8
+//!
 //! [display]
 //! mode = "shaded"               # or "illuminance"
 //! tonemap = "reinhard"          # or "exposure"
@@ -57,6 +63,12 @@ pub struct SceneFile {
     /// Display settings.
     #[serde(default)]
     pub display: DisplayEntry,
+    /// Calculation surfaces (virtual: they neither block nor reflect light).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub grid: Vec<crate::calc::GridEntry>,
+    /// Settings of `goniolight calc`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub calc: Option<crate::calc::CalcSettings>,
 }
 
 /// The up axis of an OBJ file.

@@ -63,6 +63,36 @@ pub struct Scene {
     /// The `[[model]]` entries, their paths resolved against the scene file's folder
     /// (what [`Scene::save`] writes back).
     pub models: Vec<file::ModelEntry>,
+    /// Calculation surfaces, with their points (virtual: no geometry).
+    pub grids: Vec<crate::calc::CalcGrid>,
+    /// `[calc]` settings.
+    pub calc: crate::calc::CalcSettings,
+}
+
+/// The `[[grid]]` entries with their points; names must differ (each names a CSV file).
+fn resolve_grids(
+    path: &Path,
+    entries: &[crate::calc::GridEntry],
+) -> Result<Vec<crate::calc::CalcGrid>, SceneError> {
+    let mut seen = std::collections::HashSet::new();
+    entries
+        .iter()
+        .enumerate()
+        .map(|(i, e)| {
+            if !seen.insert(e.name.trim().to_lowercase()) {
+                return Err(SceneError::new(
+                    path,
+                    format!("grid[{i}].name"),
+                    format!(
+                        "{:?} names an earlier grid too; give each grid its own name",
+                        e.name
+                    ),
+                ));
+            }
+            e.resolve()
+                .map_err(|(key, msg)| SceneError::new(path, format!("grid[{i}].{key}"), msg))
+        })
+        .collect()
 }
 
 /// Most luminaires one scene may hold (a stadium has a few hundred; the limit keeps a
@@ -132,6 +162,10 @@ impl Scene {
             None => Camera::framing(bounds, &luminaires),
         };
         check_display(path, &parsed.display)?;
+        let grids = resolve_grids(path, &parsed.grid)?;
+        let calc = parsed.calc.unwrap_or_default();
+        crate::calc::CalcSettings::check(calc.maintenance_factor)
+            .map_err(|m| SceneError::new(path, "calc.maintenance_factor", m))?;
         Ok(Scene {
             path: path.to_path_buf(),
             meshes,
@@ -147,6 +181,8 @@ impl Scene {
                     ..m.clone()
                 })
                 .collect(),
+            grids,
+            calc,
         })
     }
 

@@ -30,6 +30,8 @@ impl Scene {
                 .collect(),
             camera: Some(camera_entry(&self.camera)),
             display: self.display.clone(),
+            grid: self.grids.iter().map(|g| g.entry.clone()).collect(),
+            calc: (self.calc != Default::default()).then_some(self.calc),
         }
     }
 

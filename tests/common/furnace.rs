@@ -24,6 +24,8 @@ pub fn closed_box(rho: f32, e: f32) -> Scene {
         }],
         luminaires: Vec::new(),
         models: Vec::new(),
+        grids: Vec::new(),
+        calc: Default::default(),
         ..Scene::load(&path).unwrap()
     }
 }

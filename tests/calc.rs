@@ -1,0 +1,265 @@
+//! `calc`: calculation surfaces, their statistics and CSVs against `illuminance` at the
+//! same points, vertical and cylindrical illuminance against the point-source formula,
+//! grids that are virtual, and bad grids refused by key.
+
+mod common;
+#[path = "common/gpu.rs"]
+mod gpu_common;
+
+use std::path::Path;
+
+use common::{luminaire, root, run_cli};
+use glam::DVec3;
+use goniolight::photometry::{Interp, Luminaire};
+use serde_json::Value;
+
+fn s(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+/// A scene file in `dir` with the box room, its luminaire and `extra` TOML.
+fn room_scene(dir: &Path, extra: &str) -> std::path::PathBuf {
+    let path = dir.join("room.toml");
+    let model = root().join("assets/scenes/box_room.obj");
+    let lum = luminaire("eulumdat-plot/sample_06_isym1.ldt");
+    std::fs::write(
+        &path,
+        format!(
+            "[[model]]\npath = {:?}\nup = \"z\"\n\n[[luminaire]]\nfile = {:?}\nposition = [3.0, 2.0, 2.95]\n\n{extra}",
+            s(&model),
+            s(&lum)
+        ),
+    )
+    .unwrap();
+    path
+}
+
+fn csv_rows(path: &Path) -> Vec<[f64; 4]> {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(lines.next(), Some("x,y,z,lux"));
+    lines
+        .map(|l| {
+            let v: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();
+            [v[0], v[1], v[2], v[3]]
+        })
+        .collect()
+}
+
+fn stats_of(values: &[f64]) -> [f64; 5] {
+    let em = values.iter().sum::<f64>() / values.len() as f64;
+    let emin = values.iter().copied().fold(f64::MAX, f64::min);
+    let emax = values.iter().copied().fold(0.0, f64::max);
+    [em, emin, emax, emin / em, emin / emax]
+}
+
+fn check_against_illuminance(cpu: bool) {
+    let tmp = tempfile::tempdir().unwrap();
+    let scene = room_scene(
+        tmp.path(),
+        "[calc]\nmaintenance_factor = 0.8\n\n[[grid]]\nname = \"work plane\"\ncorner = [0.0, 0.0]\nsize = [6.0, 4.0]\nborder = 0.5\n",
+    );
+    let out = tmp.path().join("out");
+    let mut args = vec!["calc", s(&scene), "--out", s(&out)];
+    if cpu {
+        args.push("--cpu");
+    }
+    let (code, stdout, err) = run_cli(&args, "");
+    assert_eq!(code, 0, "{err}");
+    assert!(stdout.contains("work plane"), "{stdout}");
+    let doc: Value =
+        serde_json::from_slice(&std::fs::read(out.join("calc.json")).unwrap()).unwrap();
+    let grid = &doc["grids"][0];
+    assert_eq!(grid["name"], "work plane");
+    assert_eq!(grid["maintenance_factor"], 0.8);
+    let rows = csv_rows(&out.join("work-plane.csv"));
+    // EN 12464-1 on 6 m: p = 0.2 · 5^log10 6 → 9 × 6 cells of 0.667 m; the 0.5 m border
+    // leaves 7 × 4.
+    assert_eq!(rows.len(), 28);
+    assert_eq!(grid["points"], 28);
+    // The same points through `illuminance` (exact shadows), times the maintenance factor.
+    let stdin: String = rows
+        .iter()
+        .map(|r| format!("{} {} {} 0 0 1\n", r[0], r[1], r[2]))
+        .collect();
+    let mut args = vec!["illuminance", s(&scene), "--shadows", "volumes"];
+    if cpu {
+        args.push("--cpu");
+    }
+    let (code, lux, err) = run_cli(&args, &stdin);
+    assert_eq!(code, 0, "{err}");
+    let lux: Vec<f64> = lux
+        .lines()
+        .map(|l| l.parse::<f64>().unwrap() * 0.8)
+        .collect();
+    for (row, v) in rows.iter().zip(&lux) {
+        assert!((row[3] - v).abs() < 1e-5, "{row:?} vs {v}");
+    }
+    let want = stats_of(&lux);
+    for (key, w) in ["em", "emin", "emax", "u0", "g2"].iter().zip(want) {
+        let got = grid[key].as_f64().unwrap();
+        assert!((got - w).abs() <= 1e-5 * w.max(1.0), "{key}: {got} vs {w}");
+    }
+}
+
+#[test]
+fn grid_statistics_equal_illuminance_at_the_same_points_on_the_cpu() {
+    check_against_illuminance(true);
+}
+
+#[test]
+fn grid_statistics_equal_illuminance_at_the_same_points_on_the_gpu() {
+    if gpu_common::gpu().is_none() {
+        return;
+    }
+    check_against_illuminance(false);
+}
+
+#[test]
+fn vertical_and_cylindrical_illuminance_follow_the_point_source_formula() {
+    // One luminaire 3 m up at the origin, no geometry: E_v = I cos(angle to the normal) / d²,
+    // E_z = I sin θ / (π d²) (θ from the vertical), E_sc = I sin θ (1 + cos α) / (π d²).
+    let tmp = tempfile::tempdir().unwrap();
+    let file = luminaire("eulumdat-plot/sample_01_isym3.ldt");
+    let scene = tmp.path().join("point.toml");
+    let grid = |name: &str, kind: &str, normal: &str| {
+        format!("[[grid]]\nname = \"{name}\"\ncorner = [0.5, -1.5]\nsize = [2.0, 3.0]\nspacing = 0.5\nheight = 1.2\nkind = \"{kind}\"\n{normal}\n")
+    };
+    std::fs::write(
+        &scene,
+        format!(
+            "[[luminaire]]\nfile = {:?}\nposition = [0.0, 0.0, 3.0]\n\n{}{}{}",
+            s(&file),
+            grid("cyl", "cylindrical", ""),
+            grid("semi", "semicylindrical", "normal = [-1.0, 0.0, 0.0]"),
+            "[[grid]]\nname = \"wall\"\ncorner = [2.0, -1.0]\nsize = [2.0, 2.0]\nspacing = 0.5\nheight = 0.5\nkind = \"vertical\"\nnormal = [-1.0, 0.0, 0.0]\n",
+        ),
+    )
+    .unwrap();
+    let out = tmp.path().join("out");
+    let (code, _, err) = run_cli(&["calc", s(&scene), "--out", s(&out), "--cpu"], "");
+    assert_eq!(code, 0, "{err}");
+    let lum = Luminaire::load(&file).unwrap();
+    let source = DVec3::new(0.0, 0.0, 3.0);
+    // Intensity toward `p` (luminaire unrotated: C0 along +x, γ from straight down).
+    let toward = |p: DVec3| -> (f64, DVec3, f64) {
+        let d = p - source;
+        let gamma = (-d.z / d.length()).acos().to_degrees();
+        let c = d.y.atan2(d.x).to_degrees().rem_euclid(360.0);
+        let i = lum.distribution.candela(c, gamma, Interp::CatmullRom, 1.0);
+        (i, -d.normalize(), d.length_squared())
+    };
+    let pi = std::f64::consts::PI;
+    for (name, formula) in [
+        (
+            "cyl",
+            &(|i: f64, l: DVec3, d2: f64| i * l.truncate().length() / (pi * d2))
+                as &dyn Fn(f64, DVec3, f64) -> f64,
+        ),
+        ("semi", &|i: f64, l: DVec3, d2: f64| {
+            let h = l.truncate();
+            let cos_a = if h.length() > 0.0 {
+                -h.x / h.length()
+            } else {
+                0.0
+            };
+            i * h.length() * (1.0 + cos_a) / (pi * d2)
+        }),
+        ("wall", &|i: f64, l: DVec3, d2: f64| {
+            i * l.dot(DVec3::NEG_X).max(0.0) / d2
+        }),
+    ] {
+        let rows = csv_rows(&out.join(format!("{name}.csv")));
+        assert!(rows.len() >= 16, "{name}: {} points", rows.len());
+        for r in rows {
+            let (i, l, d2) = toward(DVec3::new(r[0], r[1], r[2]));
+            let want = formula(i, l, d2);
+            assert!(
+                (r[3] - want).abs() <= 1e-3 * want + 1e-6,
+                "{name} at {r:?}: {} vs {want}",
+                r[3]
+            );
+        }
+    }
+}
+
+#[test]
+fn grids_are_virtual_and_bad_grids_are_refused_by_key() {
+    let tmp = tempfile::tempdir().unwrap();
+    let points = "1 1 0.8 0 0 1\n3 2 0.0 0 0 1\n5 3 1.5 -1 0 0\n";
+    let plain = room_scene(tmp.path(), "");
+    let (_, without, _) = run_cli(
+        &["illuminance", s(&plain), "--cpu", "--shadows", "volumes"],
+        points,
+    );
+    // A grid right through the points and across the room changes nothing.
+    let with_grid = room_scene(
+        tmp.path(),
+        "[[grid]]\nname = \"g\"\ncorner = [0.0, 0.0]\nsize = [6.0, 4.0]\nheight = 0.8\nspacing = 0.25\n",
+    );
+    let (code, with, err) = run_cli(
+        &[
+            "illuminance",
+            s(&with_grid),
+            "--cpu",
+            "--shadows",
+            "volumes",
+        ],
+        points,
+    );
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(with, without);
+    for (extra, key) in [
+        ("[[grid]]\nname = \"w\"\ncorner = [0.0, 0.0]\nsize = [2.0, 2.0]\nkind = \"vertical\"\n", "grid[0].normal"),
+        ("[[grid]]\nname = \"w\"\ncorner = [0.0, 0.0]\nsize = [-2.0, 2.0]\n", "grid[0].size"),
+        ("[[grid]]\nname = \"w\"\ncorner = [0.0, 0.0]\nsize = [2.0, 2.0]\nspacing = \"dense\"\n", "grid[0].spacing"),
+        ("[[grid]]\nname = \"w\"\ncorner = [0.0, 0.0]\nsize = [2.0, 2.0]\n\n[[grid]]\nname = \"W\"\ncorner = [0.0, 0.0]\nsize = [2.0, 2.0]\n", "grid[1].name"),
+        ("[calc]\nmaintenance_factor = 1.5\n", "calc.maintenance_factor"),
+    ] {
+        let scene = room_scene(tmp.path(), extra);
+        let out = tmp.path().join("refused");
+        let (code, _, err) = run_cli(&["calc", s(&scene), "--out", s(&out), "--cpu"], "");
+        assert_eq!(code, 2, "{extra}: {err}");
+        assert!(err.contains("room.toml") && err.contains(key), "{key}: {err}");
+        assert!(!out.join("calc.json").exists());
+    }
+    let plain = room_scene(tmp.path(), "");
+    let (code, _, err) = run_cli(
+        &[
+            "calc",
+            s(&plain),
+            "--out",
+            s(&tmp.path().join("o")),
+            "--cpu",
+        ],
+        "",
+    );
+    assert_eq!(code, 2);
+    assert!(err.contains("no [[grid]]"), "{err}");
+}
+
+#[test]
+fn illuminance_echoes_the_points_as_csv_and_json() {
+    let scene = root().join("assets/scenes/box_room.toml");
+    let points = "1 1 0.8 0 0 1\n2 2 0.8 0 0 1\n";
+    let (_, plain, _) = run_cli(&["illuminance", s(&scene), "--cpu"], points);
+    let (code, csv, err) = run_cli(
+        &["illuminance", s(&scene), "--cpu", "--format", "csv"],
+        points,
+    );
+    assert_eq!(code, 0, "{err}");
+    let mut lines = csv.lines();
+    assert_eq!(lines.next(), Some("x,y,z,nx,ny,nz,lux"));
+    let rows: Vec<&str> = lines.collect();
+    assert!(rows[0].starts_with("1,1,0.8,0,0,1,"), "{}", rows[0]);
+    let values: Vec<&str> = rows.iter().map(|r| r.rsplit(',').next().unwrap()).collect();
+    assert_eq!(values, plain.lines().collect::<Vec<_>>());
+    let (_, json, _) = run_cli(
+        &["illuminance", s(&scene), "--cpu", "--format", "json"],
+        points,
+    );
+    let v: Value = serde_json::from_str(&json).unwrap();
+    assert_eq!(v[1]["position"], serde_json::json!([2.0, 2.0, 0.8]));
+    let lux: f64 = plain.lines().nth(1).unwrap().parse().unwrap();
+    assert!((v[1]["lux"].as_f64().unwrap() - lux).abs() < 1e-6);
+}
