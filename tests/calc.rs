@@ -5,6 +5,9 @@
 mod common;
 #[path = "common/gpu.rs"]
 mod gpu_common;
+#[path = "common/svg.rs"]
+#[allow(dead_code)]
+mod svg;
 
 use std::path::Path;
 
@@ -73,6 +76,21 @@ fn check_against_illuminance(cpu: bool) {
     assert_eq!(grid["name"], "work plane");
     assert_eq!(grid["maintenance_factor"], 0.8);
     let rows = csv_rows(&out.join("work-plane.csv"));
+    // The plan as PNG and SVG: both show the false colours (the SVG is a picture).
+    assert_eq!(
+        grid["plans"],
+        serde_json::json!(["work-plane.png", "work-plane.svg"])
+    );
+    let picture = svg::render(&out.join("work-plane.svg"));
+    let raster = svg::load_png(&out.join("work-plane.png"));
+    assert_eq!(picture.width, raster.width);
+    let coloured = |p: &svg::Picture| {
+        p.rgb
+            .iter()
+            .filter(|c| c.iter().max().unwrap() - c.iter().min().unwrap() > 80)
+            .count()
+    };
+    assert!(coloured(&picture) > 50_000 && coloured(&raster) > 50_000);
     // EN 12464-1 on 6 m: p = 0.2 · 5^log10 6 → 9 × 6 cells of 0.667 m; the 0.5 m border
     // leaves 7 × 4.
     assert_eq!(rows.len(), 28);
@@ -262,4 +280,79 @@ fn illuminance_echoes_the_points_as_csv_and_json() {
     assert_eq!(v[1]["position"], serde_json::json!([2.0, 2.0, 0.8]));
     let lux: f64 = plain.lines().nth(1).unwrap().parse().unwrap();
     assert!((v[1]["lux"].as_f64().unwrap() - lux).abs() < 1e-6);
+}
+
+#[test]
+fn isolux_lines_lie_within_one_spacing_of_the_analytic_radius() {
+    use goniolight::calc::grid::{GridEntry, GridKind, Spacing};
+    use goniolight::calc::grid_stats;
+    use goniolight::calc::plan::Plan;
+    // A rotationally symmetric downlight 2 m above a 6 × 6 m plane: E(r) = I(γ) cos γ / d²
+    // falls with r, so each level L is a circle of the radius where E(r) = L.
+    let lum = Luminaire::load(&luminaire("eulumdat-plot/sample_06_isym1.ldt")).unwrap();
+    let e = |r: f64| {
+        let g = r.atan2(2.0);
+        lum.distribution
+            .candela(0.0, g.to_degrees(), Interp::CatmullRom, 1.0)
+            * g.cos()
+            / (r * r + 4.0)
+    };
+    let entry = GridEntry {
+        name: "plane".into(),
+        corner: Some([-3.0, -3.0]),
+        size: Some([6.0, 6.0]),
+        outline: None,
+        height: 0.0,
+        spacing: Spacing::Metres(0.25),
+        border: 0.0,
+        kind: GridKind::Horizontal,
+        normal: None,
+    };
+    let grid = entry.resolve().unwrap();
+    let values: Vec<f64> = grid
+        .points
+        .iter()
+        .map(|p| e(p.truncate().length()))
+        .collect();
+    let plan = Plan {
+        grid: &grid,
+        values: &values,
+        stats: grid_stats(&values),
+        maintenance_factor: 1.0,
+        luminaires: Vec::new(),
+        palette: (Default::default(), 0),
+        values_at_points: false,
+    };
+    let lines = plan.isolux().unwrap();
+    assert!(lines.len() >= 4, "{} levels", lines.len());
+    let mut checked = 0;
+    for (level, pieces) in &lines {
+        // The analytic radius by bisection (E falls monotonically over the plane).
+        let (mut lo, mut hi) = (0.0, 5.0);
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            if e(mid) > *level {
+                lo = mid
+            } else {
+                hi = mid
+            }
+        }
+        for p in pieces.iter().flatten() {
+            let r = p[0].hypot(p[1]);
+            if r > 2.9 {
+                continue; // the lattice ends at the plane's edge
+            }
+            assert!((r - lo).abs() <= 0.25, "level {level}: r {r:.3} vs {lo:.3}");
+            checked += 1;
+        }
+    }
+    assert!(checked > 100, "{checked} points checked");
+    // PNG and SVG render; the SVG's statistics are the grid's.
+    let svg = plan.svg().unwrap();
+    assert!(
+        svg.contains(&format!("Em    {:.1} lx", plan.stats.em)),
+        "statistics box"
+    );
+    let png = plan.png().unwrap();
+    assert_eq!(&png[1..4], b"PNG");
 }

@@ -311,6 +311,14 @@ fn fuzz_scene_files() {
                 return Err("accepted a non-finite luminaire position".into());
             }
         }
+        for g in &scene.grids {
+            if g.points.is_empty() || g.points.iter().any(|p| !p.is_finite()) {
+                return Err(format!(
+                    "accepted grid {:?} without usable points",
+                    g.entry.name
+                ));
+            }
+        }
         Ok(())
     });
 }

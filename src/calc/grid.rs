@@ -281,7 +281,13 @@ impl GridEntry {
                 }
                 _ => DVec3::new(u, v, self.height),
             })
-            .collect();
+            .collect::<Vec<DVec3>>();
+        if points.iter().any(|p| !p.is_finite()) {
+            return bad(
+                "size",
+                "the grid reaches beyond any usable coordinate".into(),
+            );
+        }
         Ok(CalcGrid {
             entry: self.clone(),
             points,

@@ -3,6 +3,7 @@
 
 pub mod directions;
 pub mod grid;
+pub mod plan;
 pub mod stats;
 
 pub use grid::{CalcGrid, GridEntry, GridKind};

@@ -1,6 +1,6 @@
 //! `calc`: the scene's calculation surfaces — per grid the illuminance at every point,
-//! maintained (times the maintenance factor), its statistics in `calc.json` and the points
-//! in one CSV per grid.
+//! maintained (times the maintenance factor), its statistics in `calc.json`, the points
+//! in one CSV per grid and its plan (PNG and SVG).
 
 use std::path::PathBuf;
 
@@ -11,6 +11,7 @@ use serde_json::json;
 use super::render::scene_at;
 use super::CliError;
 use crate::calc::directions::{combine, surface_points};
+use crate::calc::plan::Plan;
 use crate::calc::{grid_stats, CalcGrid, CalcSettings};
 use crate::gpu::Gpu;
 use crate::io::write_atomic;
@@ -44,6 +45,15 @@ pub struct CalcArgs {
     /// Seconds since the start of the animation (effect lights turned this far).
     #[arg(long)]
     pub time: Option<f64>,
+    /// Palette of the plans (default: the scene's `display.palette`, else rainbow).
+    #[arg(long, value_enum)]
+    pub palette: Option<crate::scene::Palette>,
+    /// Hard colour steps of the plans (0: smooth; default the scene's `display.steps`).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(0..=crate::scene::palette::MAX_STEPS as i64))]
+    pub steps: Option<u32>,
+    /// Print the value at every point on the plans.
+    #[arg(long)]
+    pub values: bool,
 }
 
 /// The file name of a grid's CSV: its name with anything but letters, digits, `-` and `_`
@@ -122,6 +132,29 @@ pub fn run(args: CalcArgs) -> Result<(), CliError> {
         let csv = csv_name(&g.entry.name);
         write_atomic(&args.out.join(&csv), grid_csv(g, values).as_bytes())
             .map_err(CliError::failure)?;
+        let plan = Plan {
+            grid: g,
+            values,
+            stats: s,
+            maintenance_factor: mf,
+            luminaires: scene
+                .luminaires
+                .iter()
+                .enumerate()
+                .map(|(i, l)| (l.position, format!("L{}", i + 1)))
+                .collect(),
+            palette: (
+                args.palette.or(scene.display.palette).unwrap_or_default(),
+                args.steps.or(scene.display.steps).unwrap_or(0),
+            ),
+            values_at_points: args.values,
+        };
+        let stem = csv.trim_end_matches(".csv");
+        let png = plan.png().map_err(|e| CliError::failure(anyhow!(e)))?;
+        write_atomic(&args.out.join(format!("{stem}.png")), &png).map_err(CliError::failure)?;
+        let svg = plan.svg().map_err(|e| CliError::failure(anyhow!(e)))?;
+        write_atomic(&args.out.join(format!("{stem}.svg")), svg.as_bytes())
+            .map_err(CliError::failure)?;
         println!(
             "{:<24} {:>15} {:>7} {:>9.1} {:>9.1} {:>9.1} {:>6.2} {:>6.2}",
             g.entry.name,
@@ -145,6 +178,7 @@ pub fn run(args: CalcArgs) -> Result<(), CliError> {
             "maintenance_factor": mf,
             "indirect": false,
             "spacing_m": g.spacing,
+            "plans": [csv.replace(".csv", ".png"), csv.replace(".csv", ".svg")],
             "csv": csv,
         }));
     }
@@ -158,7 +192,7 @@ pub fn run(args: CalcArgs) -> Result<(), CliError> {
     let text = serde_json::to_string_pretty(&doc).map_err(CliError::failure)?;
     write_atomic(&args.out.join("calc.json"), text.as_bytes()).map_err(CliError::failure)?;
     println!(
-        "maintenance factor {mf}; direct light only; wrote {} and {} CSV file(s)",
+        "maintenance factor {mf}; direct light only; wrote {} and, per grid, a CSV and a plan (PNG, SVG); {} grid(s)",
         args.out.join("calc.json").display(),
         computed.len()
     );

@@ -18,16 +18,7 @@ use crate::scene::{Mode, Palette, Tonemap};
 /// goniolight's default false-colour scale (see [`Palette`]).
 pub use crate::scene::palette::RAINBOW_STOPS as FALSE_COLOUR_STOPS;
 
-/// Linear → 8-bit sRGB.
-pub fn linear_to_srgb(v: f32) -> u8 {
-    let v = v.clamp(0.0, 1.0);
-    let s = if v <= 0.003_130_8 {
-        v * 12.92
-    } else {
-        1.055 * v.powf(1.0 / 2.4) - 0.055
-    };
-    (s * 255.0 + 0.5) as u8
-}
+pub use crate::scene::palette::linear_to_srgb;
 
 /// The colour (linear RGB) of `t` in 0..1 on the default palette (the legend of
 /// images that carry no palette, e.g. the profile's hours).

@@ -53,6 +53,17 @@ pub fn srgb_to_linear(c: u8) -> f32 {
     }
 }
 
+/// Linear → 8-bit sRGB.
+pub fn linear_to_srgb(v: f32) -> u8 {
+    let v = v.clamp(0.0, 1.0);
+    let s = if v <= 0.003_130_8 {
+        v * 12.92
+    } else {
+        1.055 * v.powf(1.0 / 2.4) - 0.055
+    };
+    (s * 255.0 + 0.5) as u8
+}
+
 fn linear(c: [u8; 3]) -> Vec3 {
     Vec3::new(
         srgb_to_linear(c[0]),
@@ -119,6 +130,16 @@ impl Palette {
     /// the colour of its middle; values at or above the top take the top band.
     pub fn stepped_colour(self, t: f32, steps: u32) -> Vec3 {
         self.colour(step_position(t, steps))
+    }
+
+    /// [`Palette::stepped_colour`] as 8-bit sRGB, for pictures.
+    pub fn srgb8(self, t: f32, steps: u32) -> [u8; 3] {
+        let c = self.stepped_colour(t, steps);
+        [
+            linear_to_srgb(c.x),
+            linear_to_srgb(c.y),
+            linear_to_srgb(c.z),
+        ]
     }
 }
 
