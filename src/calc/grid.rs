@@ -320,8 +320,8 @@ mod tests {
         // p = 0.2 · 5^log10(d); points per side = round(side / p), at cell centres.
         for (size, p, n) in [
             ([1.0, 1.0], 0.2, [5, 5]),
-            ([6.0, 4.0], 0.2 * 5f64.powf(6f64.log10()), [7, 5]),
-            ([40.0, 20.0], 0.2 * 5f64.powf(40f64.log10()), [13, 7]),
+            ([6.0, 4.0], 0.2 * 5f64.powf(6f64.log10()), [9, 6]),
+            ([40.0, 20.0], 0.2 * 5f64.powf(40f64.log10()), [15, 8]),
         ] {
             assert!((en12464_spacing(size[0]) - p).abs() < 1e-12);
             let g = rect(size).resolve().unwrap();

@@ -125,7 +125,7 @@ pub struct ObserverVariation {
 
 /// The observer-position variation of `lum` at `spacing` (units of H), in
 /// [`VARIATION_ROOM`]: the eye moves from the middle of the wall across and ahead over one
-/// spacing in [`VARIATION_STEPS`] steps each way. The background luminance does not depend
+/// spacing in 4 steps each way. The background luminance does not depend
 /// on where the eye is (it is the walls' mean), so the change is 8 · log10 of the ratio of
 /// the glare sums, the same for every reflectance combination and every flux. Positions
 /// from which no luminaire glares are left out (there is no rating to compare).
