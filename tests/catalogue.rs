@@ -425,22 +425,8 @@ fn sample_prints_one_column_per_file() {
 fn the_check_picture_in_svg_shows_the_png_curves() {
     let tmp = tempfile::tempdir().unwrap();
     let file = luminaire("eulumdat-plot/sample_01_isym3.ldt");
-    let (svg_path, png_path) = (tmp.path().join("p.svg"), tmp.path().join("p.png"));
-    for out in [&svg_path, &png_path] {
-        let (code, _, err) = run_cli(
-            &[
-                "ldt",
-                "plot",
-                s(&file),
-                "--downsample",
-                "30,10",
-                "--out",
-                s(out),
-            ],
-            "",
-        );
-        assert_eq!(code, 0, "{err}");
-    }
+    let (svg_path, png_path) =
+        common::plot_svg_and_png(&file, &["--downsample", "30,10"], tmp.path(), "p");
     let vector = svg::render(&svg_path);
     let raster = svg::load_png(&png_path);
     assert_eq!(vector.width, raster.width);

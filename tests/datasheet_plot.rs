@@ -69,17 +69,8 @@ fn svg_and_png_diagrams_carry_title_legend_and_the_same_curves() {
     let tmp = tempfile::tempdir().unwrap();
     let file = luminaire("eulumdat-luminance/sample_02.ldt");
     for kind in ["polar", "cartesian"] {
-        let (svg_path, png_path) = (
-            tmp.path().join(format!("{kind}.svg")),
-            tmp.path().join(format!("{kind}.png")),
-        );
-        for out in [&svg_path, &png_path] {
-            let (code, _, err) = run_cli(
-                &["ldt", "plot", s(&file), "--kind", kind, "--out", s(out)],
-                "",
-            );
-            assert_eq!(code, 0, "{err}");
-        }
+        let (svg_path, png_path) =
+            common::plot_svg_and_png(&file, &["--kind", kind], tmp.path(), kind);
         let text = std::fs::read_to_string(&svg_path).unwrap();
         // Title: name, fluxes and LOR (sample_02: 2112 lm lamps, LOR 100.2 %).
         for needle in [
@@ -285,22 +276,8 @@ fn isocandela_lines_lie_where_the_distribution_has_their_level() {
 fn the_isocandela_diagram_is_the_same_in_svg_and_png() {
     let tmp = tempfile::tempdir().unwrap();
     let file = luminaire("eulumdat-plot/sample_01_isym3.ldt");
-    let (svg_path, png_path) = (tmp.path().join("iso.svg"), tmp.path().join("iso.png"));
-    for out in [&svg_path, &png_path] {
-        let (code, _, err) = run_cli(
-            &[
-                "ldt",
-                "plot",
-                s(&file),
-                "--kind",
-                "isocandela",
-                "--out",
-                s(out),
-            ],
-            "",
-        );
-        assert_eq!(code, 0, "{err}");
-    }
+    let (svg_path, png_path) =
+        common::plot_svg_and_png(&file, &["--kind", "isocandela"], tmp.path(), "iso");
     let text = std::fs::read_to_string(&svg_path).unwrap();
     for needle in ["isocandela (cd/klm)", "C0 right, C90 up,", "C270", "700"] {
         assert!(text.contains(needle), "{needle} missing");

@@ -132,8 +132,8 @@ pub struct ObserverVariation {
 pub fn observer_variation(lum: &Luminaire, spacing: f64, interp: Interp) -> ObserverVariation {
     let range = |view: View| -> Option<[f64; 2]> {
         let sum =
-            |eye: [f64; 2]| glare_sum_from(lum, 1000.0, VARIATION_ROOM, spacing, view, interp, eye);
-        let standard = sum([0.0, 0.0]);
+            |eye: [f64; 2]| glare_sum(lum, 1000.0, VARIATION_ROOM, spacing, view, interp, eye);
+        let standard = sum(STANDARD_EYE);
         if standard <= 0.0 {
             return None;
         }
@@ -192,21 +192,13 @@ fn positions(x_m: f64, y_m: f64, s: f64) -> Vec<(f64, f64)> {
     out
 }
 
-/// Σ L² ω / p² over the luminaires of a room seen in `view` from the standard position.
-pub fn glare_sum(
-    lum: &Luminaire,
-    flux: f64,
-    room: [f64; 2],
-    shr: f64,
-    view: View,
-    interp: Interp,
-) -> f64 {
-    glare_sum_from(lum, flux, room, shr, view, interp, [0.0, 0.0])
-}
+/// The standard observer position: the middle of the wall.
+pub const STANDARD_EYE: [f64; 2] = [0.0, 0.0];
 
-/// Σ L² ω / p² with the eye moved `eye` = [across, ahead] (units of H) from the middle
-/// of the wall; luminaires behind the eye do not count.
-fn glare_sum_from(
+/// Σ L² ω / p² over the luminaires of a room seen in `view`, the eye moved `eye` =
+/// [across, ahead] (units of H) from the middle of the wall ([`STANDARD_EYE`] for the
+/// table); luminaires behind the eye do not count.
+pub fn glare_sum(
     lum: &Luminaire,
     flux: f64,
     room: [f64; 2],
@@ -378,7 +370,7 @@ pub fn ugr_table(
             let (x_m, y_m) = (room[0] * H, room[1] * H);
             let direct = direct_split(&zonal, x_m, y_m, shr * H);
             let sums = [View::Crosswise, View::Endwise]
-                .map(|v| glare_sum(lum, flux, room, shr, v, interp));
+                .map(|v| glare_sum(lum, flux, room, shr, v, interp, STANDARD_EYE));
             let mut cross = [None; 5];
             let mut end = [None; 5];
             for (k, rho) in REFLECTANCES.iter().enumerate() {

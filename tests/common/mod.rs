@@ -231,3 +231,20 @@ pub fn box_room_scene(dir: &Path, name: &str, file: &str, rest: &str) -> PathBuf
     .unwrap();
     scene
 }
+
+/// `ldt plot FILE ARGS… --out` into `dir` twice, as `NAME.svg` and `NAME.png`; both must
+/// succeed. Returns (svg, png).
+pub fn plot_svg_and_png(file: &Path, args: &[&str], dir: &Path, name: &str) -> (PathBuf, PathBuf) {
+    let (svg, png) = (
+        dir.join(format!("{name}.svg")),
+        dir.join(format!("{name}.png")),
+    );
+    for out in [&svg, &png] {
+        let mut all = vec!["ldt", "plot", file.to_str().unwrap()];
+        all.extend(args);
+        all.extend(["--out", out.to_str().unwrap()]);
+        let (code, _, err) = run_cli(&all, "");
+        assert_eq!(code, 0, "{err}");
+    }
+    (svg, png)
+}
