@@ -284,9 +284,9 @@ fn illuminance_echoes_the_points_as_csv_and_json() {
 
 #[test]
 fn isolux_lines_lie_within_one_spacing_of_the_analytic_radius() {
-    use goniolight::calc::grid::{GridEntry, GridKind, Spacing};
     use goniolight::calc::grid_stats;
     use goniolight::calc::plan::Plan;
+    use goniolight::scene::grid::{GridEntry, GridKind, Spacing};
     // A rotationally symmetric downlight 2 m above a 6 × 6 m plane: E(r) = I(γ) cos γ / d²
     // falls with r, so each level L is a circle of the radius where E(r) = L.
     let lum = Luminaire::load(&luminaire("eulumdat-plot/sample_06_isym1.ldt")).unwrap();

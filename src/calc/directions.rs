@@ -7,8 +7,8 @@
 
 use glam::DVec3;
 
-use super::grid::{CalcGrid, GridKind};
 use crate::lighting::SurfacePoint;
+use crate::scene::grid::{CalcGrid, GridKind};
 
 /// Directions sampled around the full circle (cylindrical).
 pub const CYLINDER_DIRECTIONS: usize = 72;

@@ -9,10 +9,10 @@ use glam::{DVec2, DVec3};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::grid::{CalcGrid, GridKind};
 use super::stats::GridStats;
 use crate::photometry::isocandela::round_levels;
 use crate::photometry::plot::{nice_ceiling, png_bytes, svg_string, DrawResult};
+use crate::scene::grid::{CalcGrid, GridKind};
 use crate::scene::Palette;
 
 const WIDTH: u32 = 1200;

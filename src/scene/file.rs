@@ -26,7 +26,7 @@
 //! look_at = [3.0, 2.0, 1.0]
 //! fov_deg = 60.0                # or orthographic_height = 6.0
 //!
-//! [[grid]]                      # a calculation surface: see [`crate::calc::grid`]
+//! [[grid]]                      # a calculation surface: see [`super::grid`]
 //! name = "work plane"
 //! corner = [0.0, 0.0]
 //! size = [6.0, 4.0]
@@ -65,10 +65,10 @@ pub struct SceneFile {
     pub display: DisplayEntry,
     /// Calculation surfaces (virtual: they neither block nor reflect light).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub grid: Vec<crate::calc::GridEntry>,
+    pub grid: Vec<super::grid::GridEntry>,
     /// Settings of `goniolight calc`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub calc: Option<crate::calc::CalcSettings>,
+    pub calc: Option<super::grid::CalcSettings>,
 }
 
 /// The up axis of an OBJ file.

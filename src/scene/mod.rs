@@ -6,6 +6,7 @@
 
 pub mod camera;
 pub mod file;
+pub mod grid;
 pub mod model;
 pub mod palette;
 pub mod placement;
@@ -64,16 +65,16 @@ pub struct Scene {
     /// (what [`Scene::save`] writes back).
     pub models: Vec<file::ModelEntry>,
     /// Calculation surfaces, with their points (virtual: no geometry).
-    pub grids: Vec<crate::calc::CalcGrid>,
+    pub grids: Vec<grid::CalcGrid>,
     /// `[calc]` settings.
-    pub calc: crate::calc::CalcSettings,
+    pub calc: grid::CalcSettings,
 }
 
 /// The `[[grid]]` entries with their points; names must differ (each names a CSV file).
 fn resolve_grids(
     path: &Path,
-    entries: &[crate::calc::GridEntry],
-) -> Result<Vec<crate::calc::CalcGrid>, SceneError> {
+    entries: &[grid::GridEntry],
+) -> Result<Vec<grid::CalcGrid>, SceneError> {
     let mut seen = std::collections::HashSet::new();
     entries
         .iter()
@@ -164,7 +165,7 @@ impl Scene {
         check_display(path, &parsed.display)?;
         let grids = resolve_grids(path, &parsed.grid)?;
         let calc = parsed.calc.unwrap_or_default();
-        crate::calc::CalcSettings::check(calc.maintenance_factor)
+        grid::CalcSettings::check(calc.maintenance_factor)
             .map_err(|m| SceneError::new(path, "calc.maintenance_factor", m))?;
         Ok(Scene {
             path: path.to_path_buf(),

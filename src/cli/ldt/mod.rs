@@ -12,6 +12,7 @@ mod luminance;
 mod plot;
 mod report;
 mod report_svg;
+mod sheet;
 mod ugr;
 
 pub(super) use catalogue::print_check;

@@ -1,13 +1,14 @@
 //! `ldt report`: a one-page datasheet of a luminaire as one self-contained HTML or SVG
 //! file — the summary, the polar, cartesian and isocandela diagrams, the UGR table, the
 //! luminance table and the file's warnings. [`sheet`] gathers them once; [`html`] and
-//! [`super::report_svg::svg`] lay them out.
+//! [`super::report_svg::svg`] lay them out ([`super::sheet`] is what they share).
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use clap::Args;
 
+use super::sheet::{escape, Section, Sheet, Table};
 use super::{info, write_each, CliError, Outputs};
 use crate::io::write_atomic;
 use crate::photometry::datasheet_plot::{Diagram, DiagramKind};
@@ -56,58 +57,12 @@ pub(super) fn run(args: &ReportArgs) -> Result<(), CliError> {
     })
 }
 
-/// Text made safe for HTML and SVG.
-pub(super) fn escape(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
-}
-
 const STYLE: &str = "body{font-family:sans-serif;max-width:1100px;margin:2em auto;color:#222}\
 h1{margin-bottom:0}.sub{color:#666;margin-top:.2em}\
 table{border-collapse:collapse;margin:.5em 0 1.5em}td,th{padding:2px 8px;border-bottom:1px solid #ddd}\
 th{background:#f3f3f3}.num td{text-align:right;font-variant-numeric:tabular-nums}\
 .small{font-size:80%}svg{max-width:100%;height:auto}.diagrams{display:flex;flex-wrap:wrap}\
 .diagrams>div{flex:1 1 480px}footer{color:#777;font-size:80%;margin-top:2em}";
-
-/// One table of the sheet, as text (each renderer escapes it).
-pub(super) struct Table {
-    /// An optional first header row of (label, columns spanned), after the row labels.
-    pub groups: Vec<(String, usize)>,
-    /// The header row (the first cell heads the row labels).
-    pub header: Vec<String>,
-    /// The rows: a label, then the values.
-    pub rows: Vec<Vec<String>>,
-}
-
-/// A titled part of the sheet: a note and a table, or why there is none.
-pub(super) struct Section {
-    /// The heading.
-    pub heading: String,
-    /// A line under the heading.
-    pub note: Option<String>,
-    /// The table, or the reason it is missing.
-    pub table: Result<Table, String>,
-}
-
-/// Everything a datasheet shows, as text and SVG diagrams, ready for HTML or SVG.
-pub(super) struct Sheet {
-    /// The luminaire's name (the file's when it has none).
-    pub name: String,
-    /// Company and file name.
-    pub subtitle: String,
-    /// The summary rows (label, value).
-    pub summary: Vec<(String, String)>,
-    /// The polar, cartesian and isocandela diagrams, as SVG documents.
-    pub diagrams: Vec<String>,
-    /// The UGR and luminance tables.
-    pub sections: Vec<Section>,
-    /// The file's warnings.
-    pub warnings: Vec<String>,
-    /// The last line: tool, version, units, conditions.
-    pub footer: String,
-}
 
 /// The sheet of `lum` (read from `file`).
 pub(super) fn sheet(

@@ -4,7 +4,7 @@
 
 use std::fmt::Write as _;
 
-use super::report::{escape, Sheet, Table};
+use super::sheet::{escape, Sheet, Table};
 
 /// Page width and margin, SVG units (pixels at 96 dpi).
 const PAGE: f64 = 1100.0;
