@@ -63,7 +63,8 @@ fn check_against_illuminance(cpu: bool) {
         "[calc]\nmaintenance_factor = 0.8\n\n[[grid]]\nname = \"work plane\"\ncorner = [0.0, 0.0]\nsize = [6.0, 4.0]\nborder = 0.5\n",
     );
     let out = tmp.path().join("out");
-    let mut args = vec!["calc", s(&scene), "--out", s(&out)];
+    let report = tmp.path().join("report.html");
+    let mut args = vec!["calc", s(&scene), "--out", s(&out), "--report", s(&report)];
     if cpu {
         args.push("--cpu");
     }
@@ -118,6 +119,25 @@ fn check_against_illuminance(cpu: bool) {
         let got = grid[key].as_f64().unwrap();
         assert!((got - w).abs() <= 1e-5 * w.max(1.0), "{key}: {got} vs {w}");
     }
+    // The report: self-contained, the same statistics, the plan inline and drawable.
+    let html = std::fs::read_to_string(&report).unwrap();
+    assert!(
+        html.starts_with("<!doctype html>") && !html.contains("src=") && !html.contains("href=")
+    );
+    let em = format!(
+        "<td class=\"n\">{:.1}</td><td class=\"n\">{:.1}</td>",
+        want[0], want[1]
+    );
+    assert!(html.contains(&em), "Em, Emin in the report");
+    assert!(html.contains("sample_06_isym1.ldt") && html.contains("<td>0.8</td>"));
+    let body = html.split("<svg").nth(1).unwrap();
+    let plan = tmp.path().join("plan.svg");
+    std::fs::write(
+        &plan,
+        format!("<svg{}</svg>", &body[..body.find("</svg>").unwrap()]),
+    )
+    .unwrap();
+    assert!(svg::render(&plan).width > 1000);
 }
 
 #[test]

@@ -8,6 +8,7 @@ use anyhow::anyhow;
 use clap::Args;
 use serde_json::json;
 
+use super::calc_report::{report_html, ReportGrid};
 use super::render::scene_at;
 use super::CliError;
 use crate::calc::directions::{combine, surface_points};
@@ -54,6 +55,10 @@ pub struct CalcArgs {
     /// Print the value at every point on the plans.
     #[arg(long)]
     pub values: bool,
+    /// Also write one self-contained HTML page: settings, luminaires, each grid's
+    /// statistics and plan.
+    #[arg(long, value_name = "FILE.html")]
+    pub report: Option<PathBuf>,
 }
 
 /// The file name of a grid's CSV: its name with anything but letters, digits, `-` and `_`
@@ -123,6 +128,7 @@ pub fn run(args: CalcArgs) -> Result<(), CliError> {
     std::fs::create_dir_all(&args.out)
         .map_err(|e| CliError::failure(anyhow!("{}: {e}", args.out.display())))?;
     let mut grids_json = Vec::new();
+    let mut report_grids = Vec::new();
     println!(
         "{:<24} {:>15} {:>7} {:>9} {:>9} {:>9} {:>6} {:>6}",
         "grid", "kind", "points", "Em lx", "Emin lx", "Emax lx", "U0", "g2"
@@ -155,6 +161,12 @@ pub fn run(args: CalcArgs) -> Result<(), CliError> {
         let svg = plan.svg().map_err(|e| CliError::failure(anyhow!(e)))?;
         write_atomic(&args.out.join(format!("{stem}.svg")), svg.as_bytes())
             .map_err(CliError::failure)?;
+        report_grids.push(ReportGrid {
+            name: &g.entry.name,
+            kind: format!("{:?}", g.entry.kind).to_lowercase(),
+            stats: s,
+            plan_svg: svg,
+        });
         println!(
             "{:<24} {:>15} {:>7} {:>9.1} {:>9.1} {:>9.1} {:>6.2} {:>6.2}",
             g.entry.name,
@@ -191,6 +203,29 @@ pub fn run(args: CalcArgs) -> Result<(), CliError> {
     });
     let text = serde_json::to_string_pretty(&doc).map_err(CliError::failure)?;
     write_atomic(&args.out.join("calc.json"), text.as_bytes()).map_err(CliError::failure)?;
+    if let Some(path) = &args.report {
+        let settings = [
+            ("scene", args.scene.display().to_string()),
+            ("maintenance factor", mf.to_string()),
+            (
+                "light",
+                match (args.shadows, args.cpu) {
+                    (ShadowTechnique::None, _) => "direct, no shadows",
+                    (ShadowTechnique::Paraboloid, false) => "direct, paraboloid shadow maps",
+                    _ => "direct, exact shadows (a ray from each point to each luminaire)",
+                }
+                .to_string(),
+            ),
+            ("interpolation", format!("{:?}", args.interp).to_lowercase()),
+            (
+                "computed on",
+                if args.cpu { "CPU" } else { "GPU" }.to_string(),
+            ),
+        ];
+        let html = report_html(&scene, &settings, &report_grids);
+        write_atomic(path, html.as_bytes())
+            .map_err(|e| CliError::input(anyhow!("--report {}: {e:#}", path.display())))?;
+    }
     println!(
         "maintenance factor {mf}; direct light only; wrote {} and, per grid, a CSV and a plan (PNG, SVG); {} grid(s)",
         args.out.join("calc.json").display(),

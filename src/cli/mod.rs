@@ -4,6 +4,7 @@
 mod batch;
 mod bench;
 mod calc;
+mod calc_report;
 mod demo;
 mod error;
 mod ldt;

@@ -1,13 +1,7 @@
 //! A datasheet as text and SVG diagrams ([`Sheet`]), gathered once by `ldt report` and
 //! laid out as HTML or SVG.
 
-/// Text made safe for HTML and SVG.
-pub(super) fn escape(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
-}
+pub(super) use crate::io::xml_escape as escape;
 
 /// One table of the sheet, as text (each renderer escapes it).
 pub(super) struct Table {

@@ -1,0 +1,92 @@
+//! `calc --report report.html`: one self-contained HTML page a designer hands over — the
+//! settings used, the luminaires, and per grid its statistics and plan (inline SVG).
+
+use std::fmt::Write as _;
+
+use crate::calc::GridStats;
+use crate::io::xml_escape as escape;
+use crate::scene::Scene;
+
+/// One grid's part of the report.
+pub struct ReportGrid<'a> {
+    /// The grid's name.
+    pub name: &'a str,
+    /// Its kind, as the scene file names it.
+    pub kind: String,
+    /// Its statistics (maintained).
+    pub stats: GridStats,
+    /// Its plan, as an SVG document.
+    pub plan_svg: String,
+}
+
+const STYLE: &str = "body{font-family:sans-serif;max-width:1200px;margin:2em auto;color:#222}\
+table{border-collapse:collapse;margin:.5em 0 1.5em}td,th{padding:2px 10px;border-bottom:1px solid #ddd;text-align:left}\
+th{background:#f3f3f3}td.n{text-align:right;font-variant-numeric:tabular-nums}\
+svg{max-width:100%;height:auto}footer{color:#777;font-size:80%;margin-top:2em}";
+
+/// The report page.
+pub fn report_html(scene: &Scene, settings: &[(&str, String)], grids: &[ReportGrid]) -> String {
+    let title = scene
+        .path
+        .file_name()
+        .map_or("scene".into(), |n| n.to_string_lossy().into_owned());
+    let mut h = String::new();
+    let _ = write!(
+        h,
+        "<!doctype html><html lang=\"en\"><head><meta charset=\"utf-8\"><title>{} — lighting calculation</title><style>{STYLE}</style></head><body><h1>Lighting calculation: {}</h1>",
+        escape(&title),
+        escape(&title)
+    );
+    h.push_str("<h2>Settings</h2><table>");
+    for (k, v) in settings {
+        let _ = write!(h, "<tr><th>{}</th><td>{}</td></tr>", escape(k), escape(v));
+    }
+    h.push_str("</table><h2>Luminaires</h2><table><tr><th></th><th>file</th><th>name</th><th>lamp flux (lm)</th><th>luminaire flux (lm)</th><th>dimming</th><th>position (m)</th></tr>");
+    for (i, l) in scene.luminaires.iter().enumerate() {
+        let s = l.luminaire.summary();
+        let file = l
+            .file
+            .file_name()
+            .map_or(String::new(), |n| n.to_string_lossy().into_owned());
+        let p = l.position;
+        let _ = write!(
+            h,
+            "<tr><td>L{}</td><td>{}</td><td>{}</td><td class=\"n\">{:.0}</td><td class=\"n\">{:.0}</td><td class=\"n\">{}</td><td class=\"n\">{:.2}, {:.2}, {:.2}</td></tr>",
+            i + 1,
+            escape(&file),
+            escape(l.luminaire.data.luminaire_name.trim()),
+            s.lamp_flux_lm,
+            s.flux_lm * l.multiplier,
+            l.multiplier,
+            p.x,
+            p.y,
+            p.z
+        );
+    }
+    h.push_str("</table><h2>Calculation surfaces</h2><table><tr><th>grid</th><th>kind</th><th>points</th><th>Em (lx)</th><th>Emin (lx)</th><th>Emax (lx)</th><th>U0</th><th>g2</th></tr>");
+    for g in grids {
+        let s = &g.stats;
+        let _ = write!(
+            h,
+            "<tr><td>{}</td><td>{}</td><td class=\"n\">{}</td><td class=\"n\">{:.1}</td><td class=\"n\">{:.1}</td><td class=\"n\">{:.1}</td><td class=\"n\">{:.2}</td><td class=\"n\">{:.2}</td></tr>",
+            escape(g.name),
+            escape(&g.kind),
+            s.points,
+            s.em,
+            s.emin,
+            s.emax,
+            s.u0,
+            s.g2
+        );
+    }
+    h.push_str("</table>");
+    for g in grids {
+        let _ = write!(h, "<h2>{}</h2><div>{}</div>", escape(g.name), g.plan_svg);
+    }
+    let _ = write!(
+        h,
+        "<footer>goniolight {} · calc · maintained illuminance (computed × maintenance factor)</footer></body></html>",
+        env!("CARGO_PKG_VERSION")
+    );
+    h
+}
