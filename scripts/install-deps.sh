@@ -15,6 +15,8 @@ command -v python3 >/dev/null 2>&1 || need_apt+=(python3)
 python3 -c "import venv, ensurepip" >/dev/null 2>&1 || need_apt+=(python3-venv python3-pip)
 # The viewer's window tests run under a virtual X server; winit loads these X libraries.
 command -v xvfb-run >/dev/null 2>&1 || need_apt+=(xvfb xauth)
+# The calc report is checked in a real browser (headless Chromium renders it to a PNG).
+command -v chromium >/dev/null 2>&1 || need_apt+=(chromium)
 for lib in libxkbcommon-x11.so.0 libXcursor.so.1 libXi.so.6 libXrandr.so.2 libX11-xcb.so.1; do
   if ! ldconfig -p 2>/dev/null | grep -q "$lib"; then
     need_apt+=(libxkbcommon-x11-0 libxcursor1 libxi6 libxrandr2 libx11-xcb1)

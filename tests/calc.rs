@@ -340,6 +340,8 @@ fn isolux_lines_lie_within_one_spacing_of_the_analytic_radius() {
         stats: grid_stats(&values),
         maintenance_factor: 1.0,
         luminaires: Vec::new(),
+        observers: Vec::new(),
+        light: vec!["direct light only".into()],
         palette: (Default::default(), 0),
         values_at_points: false,
     };
@@ -375,4 +377,184 @@ fn isolux_lines_lie_within_one_spacing_of_the_analytic_radius() {
     );
     let png = plan.png().unwrap();
     assert_eq!(&png[1..4], b"PNG");
+}
+
+/// `calc` with the interreflected light (the scene's `calc.indirect = "radiosity"`): every
+/// grid value is `radiosity --points` at that point (same shadows and interpolation), the
+/// observers' background luminance is the interreflected light at the eye over π, and
+/// their UGR is the CIE 117 formula evaluated here from the luminaire file and the
+/// geometry.
+#[test]
+fn total_light_and_glare_at_observers() {
+    if gpu_common::gpu().is_none() {
+        return;
+    }
+    let tmp = tempfile::tempdir().unwrap();
+    let observers = "[[observer]]\nname = \"door\"\nposition = [0.5, 2.0, 1.2]\ndirection = [1.0, 0.0, 0.0]\n\n[[observer]]\nname = \"window\"\nposition = [5.5, 2.0, 1.2]\ndirection = [1.0, 0.0, 0.0]\n";
+    let grid =
+        "[[grid]]\nname = \"work plane\"\ncorner = [0.0, 0.0]\nsize = [6.0, 4.0]\nspacing = 1.0\n";
+    // Observers need the background luminance: refused without the interreflected light.
+    let direct_only = room_scene(tmp.path(), &format!("{grid}\n{observers}"));
+    let out = tmp.path().join("refused");
+    let (code, _, err) = run_cli(&["calc", s(&direct_only), "--out", s(&out)], "");
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("--indirect radiosity"), "{err}");
+    assert!(!out.exists(), "nothing written");
+
+    let scene = room_scene(
+        tmp.path(),
+        &format!("[calc]\nindirect = \"radiosity\"\n\n{grid}\n{observers}"),
+    );
+    let out = tmp.path().join("out");
+    let (code, stdout, err) = run_cli(&["calc", s(&scene), "--out", s(&out)], "");
+    assert_eq!(code, 0, "{err}");
+    assert!(stdout.contains("observer door"), "{stdout}");
+    let doc: Value =
+        serde_json::from_slice(&std::fs::read(out.join("calc.json")).unwrap()).unwrap();
+    assert_eq!(doc["indirect"], "radiosity");
+    assert_eq!(doc["grids"][0]["indirect"], true);
+
+    // The grid against `radiosity --points` at the same points; the eye of "door"
+    // (facing its line of sight) last.
+    let rows = csv_rows(&out.join("work-plane.csv"));
+    assert_eq!(rows.len(), 24);
+    let mut stdin: String = rows
+        .iter()
+        .map(|r| format!("{} {} {} 0 0 1\n", r[0], r[1], r[2]))
+        .collect();
+    stdin.push_str("0.5 2.0 1.2 1 0 0\n");
+    let (code, total, err) = run_cli(
+        &["radiosity", s(&scene), "--points", "--shadows", "volumes"],
+        &stdin,
+    );
+    assert_eq!(code, 0, "{err}");
+    let total: Vec<f64> = total.lines().map(|l| l.parse().unwrap()).collect();
+    // The solver adds on the GPU with atomics, so the order of additions (and the last
+    // bits) may differ between two solves.
+    for (row, t) in rows.iter().zip(&total) {
+        assert!((row[3] - t).abs() <= 1e-4 * t.max(1.0), "{row:?} vs {t}");
+    }
+    let (code, direct, err) = run_cli(&["illuminance", s(&scene), "--shadows", "volumes"], &stdin);
+    assert_eq!(code, 0, "{err}");
+    let direct: Vec<f64> = direct.lines().map(|l| l.parse().unwrap()).collect();
+    for (d, t) in direct.iter().zip(&total) {
+        assert!(t > d, "interreflected light adds to the direct: {t} vs {d}");
+    }
+    let pi = std::f64::consts::PI;
+    let lb_want = (total[24] - direct[24]) / pi;
+    let door = &doc["observers"][0];
+    let lb = door["background_cd_m2"].as_f64().unwrap();
+    assert!(
+        (lb - lb_want).abs() <= 1e-3 * lb_want,
+        "L_b {lb} vs {lb_want}"
+    );
+
+    // CIE 117 by hand: the downlight (Ø 450 mm, luminous sides 95 mm) 2.5 m ahead of and
+    // 1.75 m above the eye, straight on (T = 0).
+    let lum = Luminaire::load(&luminaire("eulumdat-plot/sample_06_isym1.ldt")).unwrap();
+    let (t, h, r): (f64, f64, f64) = (0.0, 2.95 - 1.2, 2.5);
+    let gamma = r.atan2(h).to_degrees();
+    let cd = lum
+        .distribution
+        .candela(180.0, gamma, Interp::CatmullRom, 1.0);
+    let (radius, side) = (0.225, 0.095);
+    let a_p = pi * radius * radius * gamma.to_radians().cos()
+        + 2.0 * radius * side * gamma.to_radians().sin();
+    let l = cd / a_p;
+    let omega = a_p / (t * t + h * h + r * r);
+    let beta = h.atan2(r).to_degrees();
+    let p = ((35.2 - 1.22) * 1e-3 * beta + 21e-5 * beta * beta).exp();
+    let ugr = 8.0 * (0.25 / lb * l * l * omega / (p * p)).log10();
+    let got = door["ugr"].as_f64().unwrap();
+    assert!((got - ugr).abs() < 0.05, "UGR {got} vs {ugr} by hand");
+    assert_eq!(door["luminaires"].as_array().unwrap().len(), 1);
+    // The other observer has the luminaire behind the eye: nothing glares.
+    let window = &doc["observers"][1];
+    assert!(window["ugr"].is_null(), "{window}");
+    assert_eq!(window["luminaires"].as_array().unwrap().len(), 0);
+}
+
+/// The report in a real browser: headless Chromium (installed by the test command)
+/// renders it to a PNG with the statistics table and the plan in false colour on it.
+/// The picture is kept as `target/tmp/calc-report-chromium.png` to look at.
+#[test]
+fn report_opens_in_a_real_browser() {
+    if std::env::var("GONIOLIGHT_SKIP_BROWSER_TESTS").as_deref() == Ok("1") {
+        eprintln!("browser test skipped: GONIOLIGHT_SKIP_BROWSER_TESTS=1");
+        return;
+    }
+    let chromium = ["chromium", "chromium-browser"]
+        .into_iter()
+        .find(|c| {
+            std::process::Command::new(c)
+                .arg("--version")
+                .output()
+                .is_ok_and(|o| o.status.success())
+        })
+        .expect("the report test needs Chromium: scripts/install-deps.sh installs it (apt-get install chromium), or set GONIOLIGHT_SKIP_BROWSER_TESTS=1 to skip");
+    let tmp = tempfile::tempdir().unwrap();
+    let scene = room_scene(
+        tmp.path(),
+        "[[grid]]\nname = \"work plane\"\ncorner = [0.0, 0.0]\nsize = [6.0, 4.0]\nspacing = 0.25\n",
+    );
+    let out = tmp.path().join("out");
+    let report = tmp.path().join("report.html");
+    let (code, _, err) = run_cli(
+        &[
+            "calc",
+            s(&scene),
+            "--out",
+            s(&out),
+            "--cpu",
+            "--report",
+            s(&report),
+        ],
+        "",
+    );
+    assert_eq!(code, 0, "{err}");
+    let shot = tmp.path().join("shot.png");
+    let run = std::process::Command::new(chromium)
+        .args([
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--hide-scrollbars",
+            "--window-size=1280,1600",
+        ])
+        .arg(format!("--screenshot={}", shot.display()))
+        .arg(format!("file://{}", report.display()))
+        .output()
+        .unwrap();
+    assert!(
+        shot.exists(),
+        "Chromium wrote no screenshot: {}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let keep = Path::new(env!("CARGO_TARGET_TMPDIR")).join("calc-report-chromium.png");
+    std::fs::copy(&shot, &keep).unwrap();
+    let page = svg::load_png(&shot);
+    assert_eq!(page.width, 1280);
+    let rows = page.rgb.len() / page.width as usize;
+    let at = |x: usize, y: usize| page.rgb[y * page.width as usize + x];
+    // Text of the title and the tables: dark pixels in the top third.
+    let dark = (0..rows / 3)
+        .flat_map(|y| (0..page.width as usize).map(move |x| (x, y)))
+        .filter(|&(x, y)| at(x, y).iter().all(|&c| c < 90))
+        .count();
+    // The plan: saturated false colour below the tables.
+    let coloured = page
+        .rgb
+        .iter()
+        .filter(|c| c.iter().max().unwrap() - c.iter().min().unwrap() > 80)
+        .count();
+    assert!(
+        dark > 3_000,
+        "{dark} dark pixels of text (see {})",
+        keep.display()
+    );
+    assert!(
+        coloured > 100_000,
+        "{coloured} false-colour pixels of the plan (see {})",
+        keep.display()
+    );
 }

@@ -352,6 +352,7 @@ fn floor_and_sheet() -> RadiosityScene {
         models: Vec::new(),
         grids: Vec::new(),
         calc: Default::default(),
+        observers: Vec::new(),
     };
     RadiosityScene::with_hierarchy(&scene, 10.0, 2, Hierarchy::Clusters).unwrap()
 }

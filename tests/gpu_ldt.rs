@@ -146,6 +146,7 @@ fn the_catmull_rom_table_stays_within_1e_3_of_i_max() {
             models: Vec::new(),
             grids: Vec::new(),
             calc: Default::default(),
+            observers: Vec::new(),
         };
         let uploaded = renderer.upload(&gpu, &scene);
         let got = IlluminanceProbe::new(&gpu, LightModel::CatmullRomTable)

@@ -52,6 +52,7 @@ fn scene_of(meshes: Vec<SceneMesh>, materials: Vec<Material>) -> Scene {
         models: Vec::new(),
         grids: Vec::new(),
         calc: Default::default(),
+        observers: Vec::new(),
     }
 }
 

@@ -84,6 +84,7 @@ fn floor_scene(luminaires: Vec<PlacedLuminaire>, size: f32) -> Scene {
         models: Vec::new(),
         grids: Vec::new(),
         calc: Default::default(),
+        observers: Vec::new(),
     }
 }
 

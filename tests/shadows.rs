@@ -99,6 +99,7 @@ fn scene(meshes: &[Mesh], luminaires: Vec<PlacedLuminaire>, camera: Camera) -> S
         models: Vec::new(),
         grids: Vec::new(),
         calc: Default::default(),
+        observers: Vec::new(),
     }
 }
 

@@ -149,6 +149,7 @@ pub fn bench_scene(major: u32, minor: u32, luminaires: &[PlacedLuminaire]) -> Sc
         models: Vec::new(),
         grids: Vec::new(),
         calc: Default::default(),
+        observers: Vec::new(),
     }
 }
 

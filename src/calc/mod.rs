@@ -2,6 +2,7 @@
 //! directions each point measures, and the statistics of the values (Em, Emin, U0, g2).
 
 pub mod directions;
+pub mod glare;
 pub mod plan;
 pub mod stats;
 

@@ -32,6 +32,11 @@ pub struct Plan<'a> {
     pub maintenance_factor: f64,
     /// The luminaires' positions and labels (drawn on horizontal grids).
     pub luminaires: Vec<(DVec3, String)>,
+    /// The observers: eye, line of sight and label (drawn on horizontal grids).
+    pub observers: Vec<(DVec3, DVec3, String)>,
+    /// What light the values hold, for the statistics box: one or two short lines
+    /// ("direct light only"; "direct + interreflected", "radiosity 99.0 % converged").
+    pub light: Vec<String>,
     /// The palette, and its number of hard steps (0: smooth).
     pub palette: (Palette, u32),
     /// Print the value at every point.
@@ -46,6 +51,21 @@ fn lux_label(v: f64) -> String {
         let s = format!("{v:.2}");
         s.trim_end_matches('0').trim_end_matches('.').to_string()
     }
+}
+
+/// Ticks of a colour scale from 0 to `top` at a round step (1, 2, 2.5 or 5 × 10^k) giving
+/// two to five intervals.
+fn scale_ticks(top: f64) -> Vec<f64> {
+    let magnitude = 10f64.powf((top / 4.0).log10().floor());
+    let step = [1.0, 2.0, 2.5, 5.0, 10.0]
+        .iter()
+        .map(|m| m * magnitude)
+        .find(|s| top / s <= 5.0 + 1e-9)
+        .unwrap_or(10.0 * magnitude);
+    (0..)
+        .map(|k| k as f64 * step)
+        .take_while(|v| *v <= top * (1.0 + 1e-9))
+        .collect()
 }
 
 /// The isolux lines of a plan: (level, pieces of [u, v] points).
@@ -321,6 +341,30 @@ impl Plan<'_> {
                     ("sans-serif", 13).into_font().color(&BLACK),
                 )))?;
             }
+            let blue = RGBColor(20, 60, 200);
+            for (eye, forward, name) in &self.observers {
+                let (x, y) = (eye.x, eye.y);
+                if !(lo[0]..hi[0]).contains(&x) || !(lo[1]..hi[1]).contains(&y) {
+                    continue;
+                }
+                // The eye as a filled triangle pointing along the line of sight, 24 px long.
+                let f = DVec2::new(forward.x, forward.y).normalize_or_zero() / scale;
+                let side = f.perp();
+                let tip = (x + 16.0 * f.x, y + 16.0 * f.y);
+                chart.draw_series(std::iter::once(Polygon::new(
+                    vec![
+                        tip,
+                        (x - 8.0 * f.x + 7.0 * side.x, y - 8.0 * f.y + 7.0 * side.y),
+                        (x - 8.0 * f.x - 7.0 * side.x, y - 8.0 * f.y - 7.0 * side.y),
+                    ],
+                    blue.filled(),
+                )))?;
+                chart.draw_series(std::iter::once(Text::new(
+                    name.clone(),
+                    (x + 10.0 / scale, y - 12.0 / scale),
+                    ("sans-serif", 13).into_font().color(&blue),
+                )))?;
+            }
         }
         Ok(scale)
     }
@@ -336,7 +380,7 @@ impl Plan<'_> {
     {
         let s = &self.stats;
         let font = ("sans-serif", 15).into_font();
-        let rows = [
+        let mut rows = vec![
             format!("Em    {:.1} lx", s.em),
             format!("Emin  {:.1} lx", s.emin),
             format!("Emax  {:.1} lx", s.emax),
@@ -349,6 +393,7 @@ impl Plan<'_> {
             ),
             format!("height {} m", self.grid.entry.height),
         ];
+        rows.extend(self.light.iter().cloned());
         for (k, row) in rows.iter().enumerate() {
             side.draw(&Text::new(
                 row.as_str(),
@@ -357,7 +402,7 @@ impl Plan<'_> {
             ))?;
         }
         // The colour scale: a vertical bar with lux ticks.
-        let (x0, y0, bar_h) = (14, 220, 360);
+        let (x0, y0, bar_h) = (14, 270, 320);
         side.draw(&Text::new("lx", (x0, y0 - 22), font.clone()))?;
         for k in 0..bar_h {
             let t = 1.0 - k as f64 / bar_h as f64;
@@ -367,9 +412,8 @@ impl Plan<'_> {
             ))?;
         }
         side.draw(&Rectangle::new([(x0, y0), (x0 + 26, y0 + bar_h)], BLACK))?;
-        for k in 0..=4 {
-            let v = top * k as f64 / 4.0;
-            let y = y0 + bar_h - (bar_h * k) / 4;
+        for v in scale_ticks(top) {
+            let y = y0 + bar_h - (bar_h as f64 * v / top).round() as i32;
             side.draw(&PathElement::new([(x0 + 26, y), (x0 + 32, y)], BLACK))?;
             side.draw(&Text::new(lux_label(v), (x0 + 36, y - 7), font.clone()))?;
         }
@@ -395,7 +439,14 @@ impl Plan<'_> {
         let note = ("sans-serif", 12).into_font().color(&RGBColor(90, 90, 90));
         let lines = match self.grid.entry.kind {
             GridKind::Vertical => vec!["seen from the front of the wall"],
-            _ => vec!["plan: x to the right, y up", "○ luminaires (plan position)"],
+            _ if self.observers.is_empty() => {
+                vec!["plan: x to the right, y up", "○ luminaires (plan position)"]
+            }
+            _ => vec![
+                "plan: x to the right, y up",
+                "○ luminaires (plan position)",
+                "▶ observers (eye, line of sight), UGR",
+            ],
         };
         for (k, line) in lines
             .into_iter()
@@ -405,5 +456,21 @@ impl Plan<'_> {
             side.draw(&Text::new(line, (x0, y + 40 + 16 * k as i32), note.clone()))?;
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::scale_ticks;
+
+    #[test]
+    fn colour_scale_ticks_are_round() {
+        assert_eq!(scale_ticks(150.0), vec![0.0, 50.0, 100.0, 150.0]);
+        assert_eq!(scale_ticks(200.0), vec![0.0, 50.0, 100.0, 150.0, 200.0]);
+        assert_eq!(
+            scale_ticks(1000.0),
+            vec![0.0, 200.0, 400.0, 600.0, 800.0, 1000.0]
+        );
+        assert_eq!(scale_ticks(25.0), vec![0.0, 5.0, 10.0, 15.0, 20.0, 25.0]);
     }
 }

@@ -8,17 +8,21 @@ use anyhow::anyhow;
 use clap::Args;
 use serde_json::json;
 
-use super::calc_report::{report_html, ReportGrid};
+use super::calc_report::{report_html, ReportGrid, ReportObserver};
+use super::radiosity::SolverArgs;
 use super::render::scene_at;
 use super::CliError;
 use crate::calc::directions::{combine, surface_points};
+use crate::calc::glare::{background_point, observer_glare, ObserverGlare};
 use crate::calc::plan::Plan;
 use crate::calc::{grid_stats, CalcGrid, CalcSettings};
 use crate::gpu::Gpu;
 use crate::io::write_atomic;
+use crate::lighting::SurfacePoint;
 use crate::photometry::Interp;
 use crate::render::illuminance::scene_illuminance;
-use crate::render::ShadowTechnique;
+use crate::render::{ShadowSettings, ShadowTechnique};
+use crate::scene::grid::Indirect;
 use crate::scene::Scene;
 
 /// Options of `calc`.
@@ -59,6 +63,14 @@ pub struct CalcArgs {
     /// statistics and plan.
     #[arg(long, value_name = "FILE.html")]
     pub report: Option<PathBuf>,
+    /// Direct light only, or total light (direct + interreflected, through the radiosity
+    /// solver). UGR at `[[observer]]`s needs the interreflected light (the background
+    /// luminance): `radiosity`. Default: the scene's `calc.indirect`, else none.
+    #[arg(long, value_enum)]
+    pub indirect: Option<Indirect>,
+    /// The radiosity solver's options (with `--indirect radiosity`).
+    #[command(flatten, next_help_heading = "Radiosity (with --indirect radiosity)")]
+    pub solver: SolverArgs,
 }
 
 /// The file name of a grid's CSV: its name with anything but letters, digits, `-` and `_`
@@ -78,12 +90,19 @@ pub fn csv_name(grid_name: &str) -> String {
     format!("{stem}.csv")
 }
 
+/// One grid's computed values (maintained) and how they were lit.
+struct Computed<'g> {
+    grid: &'g CalcGrid,
+    values: Vec<f64>,
+}
+
 /// Runs `calc`.
 pub fn run(args: CalcArgs) -> Result<(), CliError> {
+    let started = std::time::Instant::now();
     let scene = scene_at(Scene::load(&args.scene)?, args.time)?;
-    if scene.grids.is_empty() {
+    if scene.grids.is_empty() && scene.observers.is_empty() {
         return Err(CliError::input(anyhow!(
-            "{}: no [[grid]] to compute; add a calculation surface (README: \"Lighting calculations\")",
+            "{}: no [[grid]] or [[observer]] to compute; add a calculation surface (README: \"Lighting calculations\")",
             args.scene.display()
         )));
     }
@@ -92,6 +111,22 @@ pub fn run(args: CalcArgs) -> Result<(), CliError> {
             .unwrap_or(scene.calc.maintenance_factor),
     )
     .map_err(|e| CliError::input(anyhow!("--maintenance-factor {e}")))?;
+    let indirect = args
+        .indirect
+        .or(scene.calc.indirect)
+        .unwrap_or(Indirect::None);
+    if !scene.observers.is_empty() && indirect == Indirect::None {
+        return Err(CliError::input(anyhow!(
+            "{}: UGR at the [[observer]]s needs the background luminance, which is the interreflected light at the eye: run with --indirect radiosity (or set calc.indirect = \"radiosity\")",
+            args.scene.display()
+        )));
+    }
+    if indirect == Indirect::Radiosity && args.cpu {
+        return Err(CliError::input(anyhow!(
+            "--cpu computes the direct light only: the radiosity solver runs on the GPU (leave out --cpu, or use --indirect none)"
+        )));
+    }
+    args.solver.check()?;
     let mut names = std::collections::HashSet::new();
     for g in &scene.grids {
         if !names.insert(csv_name(&g.entry.name)) {
@@ -103,37 +138,223 @@ pub fn run(args: CalcArgs) -> Result<(), CliError> {
             )));
         }
     }
-    let gpu = if args.cpu { None } else { Some(Gpu::shared()?) };
-    let mut computed = Vec::new();
-    for g in &scene.grids {
-        let points = surface_points(g);
-        let lux = scene_illuminance(gpu.as_ref(), &scene, &points, args.interp, args.shadows)?;
-        if let Some((i, v)) = lux
-            .iter()
-            .enumerate()
-            .find(|(_, v)| !v.is_finite() || **v < -1e-6)
-        {
-            return Err(CliError::failure(anyhow!(
-                "grid {:?}, point {}: the computed illuminance {v} lx is not a usable number",
-                g.entry.name,
-                i + 1
-            )));
-        }
-        let values: Vec<f64> = combine(g, &lux)
-            .into_iter()
-            .map(|v| v.max(0.0) * mf)
-            .collect();
-        computed.push((g, values));
+    if args.out.is_file() {
+        return Err(CliError::input(anyhow!(
+            "--out {}: is a file, not a folder",
+            args.out.display()
+        )));
     }
+    let gpu = if args.cpu { None } else { Some(Gpu::shared()?) };
+    // Every (point, normal) of every grid, then the observers' eyes: one list, so the
+    // radiosity gather runs once.
+    let grid_points: Vec<Vec<SurfacePoint>> = scene.grids.iter().map(surface_points).collect();
+    let eyes: Vec<SurfacePoint> = scene.observers.iter().map(background_point).collect();
+    let mut lux: Vec<Vec<f64>> = Vec::with_capacity(grid_points.len());
+    for (g, points) in scene.grids.iter().zip(&grid_points) {
+        let direct = scene_illuminance(gpu.as_ref(), &scene, points, args.interp, args.shadows)?;
+        check_usable(&g.entry.name, &direct)?;
+        lux.push(direct);
+    }
+    let mut background = vec![0.0; eyes.len()];
+    let mut convergence = None;
+    if indirect == Indirect::Radiosity {
+        let all: Vec<SurfacePoint> = grid_points.iter().flatten().chain(&eyes).copied().collect();
+        let (interreflected, converged) = interreflected_lux(&args, &scene, &all, started)?;
+        convergence = Some(converged);
+        let mut at = 0;
+        for (g, direct) in scene.grids.iter().zip(lux.iter_mut()) {
+            for v in direct.iter_mut() {
+                *v += interreflected[at];
+                at += 1;
+            }
+            check_usable(&g.entry.name, direct)?;
+        }
+        for b in &mut background {
+            *b = interreflected[at].max(0.0) * mf / std::f64::consts::PI;
+            at += 1;
+        }
+    }
+    let computed: Vec<Computed> = scene
+        .grids
+        .iter()
+        .zip(&lux)
+        .map(|(g, lux)| Computed {
+            grid: g,
+            values: combine(g, lux)
+                .into_iter()
+                .map(|v| v.max(0.0) * mf)
+                .collect(),
+        })
+        .collect();
+    let glare: Vec<ObserverGlare> = scene
+        .observers
+        .iter()
+        .zip(&background)
+        .map(|(o, &lb)| {
+            observer_glare(&scene, o, lb, args.interp)
+                .map_err(|e| CliError::input(anyhow!("observer {:?}: {e}", o.entry.name)))
+        })
+        .collect::<Result<_, _>>()?;
+    let light = match (indirect, convergence) {
+        (Indirect::Radiosity, Some(c)) => vec![
+            "direct + interreflected".to_string(),
+            format!("(radiosity, {:.1} % converged)", 100.0 * c),
+        ],
+        _ => vec!["direct light only".to_string()],
+    };
     std::fs::create_dir_all(&args.out)
         .map_err(|e| CliError::failure(anyhow!("{}: {e}", args.out.display())))?;
+    let (grids_json, report_grids) = write_grids(
+        &args,
+        &scene,
+        &computed,
+        mf,
+        &glare,
+        &light,
+        indirect == Indirect::Radiosity,
+    )?;
+    let observers_json: Vec<_> = scene
+        .observers
+        .iter()
+        .zip(&glare)
+        .map(|(o, g)| {
+            json!({
+                "name": o.entry.name,
+                "position": o.entry.position,
+                "direction": o.entry.direction,
+                "ugr": g.ugr,
+                "background_cd_m2": g.background_cd_m2,
+                "glare_sum": g.glare_sum,
+                "luminaires": g.luminaires,
+            })
+        })
+        .collect();
+    for (o, g) in scene.observers.iter().zip(&glare) {
+        println!(
+            "observer {:<15} UGR {:>5}  (L_b {:.1} cd/m², {} luminaire(s) in the field)",
+            o.entry.name,
+            g.ugr.map_or("—".into(), |u| format!("{u:.1}")),
+            g.background_cd_m2,
+            g.luminaires.len()
+        );
+    }
+    let doc = json!({
+        "scene": args.scene.display().to_string(),
+        "interp": args.interp.name().to_string(),
+        "shadows": format!("{:?}", args.shadows).to_lowercase(),
+        "device": if args.cpu { "cpu" } else { "gpu" },
+        "indirect": indirect,
+        "convergence": convergence,
+        "grids": grids_json,
+        "observers": observers_json,
+    });
+    let text = serde_json::to_string_pretty(&doc).map_err(CliError::failure)?;
+    write_atomic(&args.out.join("calc.json"), text.as_bytes()).map_err(CliError::failure)?;
+    if let Some(path) = &args.report {
+        let settings = [
+            ("scene", args.scene.display().to_string()),
+            ("maintenance factor", mf.to_string()),
+            (
+                "light",
+                format!(
+                    "{}; {}",
+                    light.join(" "),
+                    match (args.shadows, args.cpu) {
+                        (ShadowTechnique::None, _) => "no shadows",
+                        (ShadowTechnique::Paraboloid, false) => "paraboloid shadow maps",
+                        _ => "exact shadows (a ray from each point to each luminaire)",
+                    }
+                ),
+            ),
+            ("interpolation", args.interp.name().to_string()),
+            (
+                "computed on",
+                if args.cpu { "CPU" } else { "GPU" }.to_string(),
+            ),
+        ];
+        let observers: Vec<ReportObserver> = scene
+            .observers
+            .iter()
+            .zip(&glare)
+            .map(|(o, g)| ReportObserver {
+                name: &o.entry.name,
+                eye: o.eye,
+                forward: o.forward,
+                glare: g,
+            })
+            .collect();
+        let html = report_html(&scene, &settings, &report_grids, &observers);
+        write_atomic(path, html.as_bytes())
+            .map_err(|e| CliError::input(anyhow!("--report {}: {e:#}", path.display())))?;
+    }
+    println!(
+        "maintenance factor {mf}; {}; wrote {} and, per grid, a CSV and a plan (PNG, SVG); {} grid(s), {} observer(s)",
+        light.join(" "),
+        args.out.join("calc.json").display(),
+        computed.len(),
+        glare.len()
+    );
+    Ok(())
+}
+
+/// An error naming the grid and point when a computed illuminance is not a usable number.
+fn check_usable(grid: &str, lux: &[f64]) -> Result<(), CliError> {
+    if let Some((i, v)) = lux
+        .iter()
+        .enumerate()
+        .find(|(_, v)| !v.is_finite() || **v < -1e-6)
+    {
+        return Err(CliError::failure(anyhow!(
+            "grid {grid:?}, point {}: the computed illuminance {v} lx is not a usable number",
+            i + 1
+        )));
+    }
+    Ok(())
+}
+
+/// The interreflected illuminance at `points` from a radiosity solution of `scene` with
+/// the command's solver options (the luminaires' light on the elements with its shadows and
+/// interpolation), and the solution's convergence.
+fn interreflected_lux(
+    args: &CalcArgs,
+    scene: &Scene,
+    points: &[SurfacePoint],
+    started: std::time::Instant,
+) -> Result<(Vec<f64>, f64), CliError> {
+    let mut settings = crate::render::RenderSettings::from_display(&scene.display);
+    settings.light_model = crate::render::LightModel::Ldt(args.interp);
+    settings.shadows = ShadowSettings::with(args.shadows);
+    let prepared =
+        super::radiosity::prepare(&args.scene, scene, &args.solver, &mut settings, started)?;
+    let solved = prepared.solve()?;
+    if solved.stop == crate::radiosity::solve::StopReason::Cancelled {
+        return Err(CliError::failure(anyhow!(
+            "interrupted while solving the interreflected light: nothing written"
+        )));
+    }
+    let (lux, _) = solved.interreflected_lux(points)?;
+    Ok((lux, solved.convergence()))
+}
+
+/// Writes each grid's CSV and plans; returns their `calc.json` entries and report parts.
+fn write_grids<'a>(
+    args: &CalcArgs,
+    scene: &'a Scene,
+    computed: &[Computed<'a>],
+    mf: f64,
+    glare: &[ObserverGlare],
+    light: &[String],
+    total: bool,
+) -> Result<(Vec<serde_json::Value>, Vec<ReportGrid<'a>>), CliError> {
     let mut grids_json = Vec::new();
     let mut report_grids = Vec::new();
-    println!(
-        "{:<24} {:>15} {:>7} {:>9} {:>9} {:>9} {:>6} {:>6}",
-        "grid", "kind", "points", "Em lx", "Emin lx", "Emax lx", "U0", "g2"
-    );
-    for (g, values) in &computed {
+    if !computed.is_empty() {
+        println!(
+            "{:<24} {:>15} {:>7} {:>9} {:>9} {:>9} {:>6} {:>6}",
+            "grid", "kind", "points", "Em lx", "Emin lx", "Emax lx", "U0", "g2"
+        );
+    }
+    for Computed { grid: g, values } in computed {
         let s = grid_stats(values);
         let csv = csv_name(&g.entry.name);
         write_atomic(&args.out.join(&csv), grid_csv(g, values).as_bytes())
@@ -149,6 +370,16 @@ pub fn run(args: CalcArgs) -> Result<(), CliError> {
                 .enumerate()
                 .map(|(i, l)| (l.position, format!("L{}", i + 1)))
                 .collect(),
+            observers: scene
+                .observers
+                .iter()
+                .zip(glare)
+                .map(|(o, gl)| {
+                    let ugr = gl.ugr.map_or("—".into(), |u| format!("{u:.1}"));
+                    (o.eye, o.forward, format!("{} UGR {ugr}", o.entry.name))
+                })
+                .collect(),
+            light: light.to_vec(),
             palette: (
                 args.palette.or(scene.display.palette).unwrap_or_default(),
                 args.steps.or(scene.display.steps).unwrap_or(0),
@@ -188,50 +419,13 @@ pub fn run(args: CalcArgs) -> Result<(), CliError> {
             "u0": s.u0,
             "g2": s.g2,
             "maintenance_factor": mf,
-            "indirect": false,
+            "indirect": total,
             "spacing_m": g.spacing,
             "plans": [csv.replace(".csv", ".png"), csv.replace(".csv", ".svg")],
             "csv": csv,
         }));
     }
-    let doc = json!({
-        "scene": args.scene.display().to_string(),
-        "interp": format!("{:?}", args.interp).to_lowercase(),
-        "shadows": format!("{:?}", args.shadows).to_lowercase(),
-        "device": if args.cpu { "cpu" } else { "gpu" },
-        "grids": grids_json,
-    });
-    let text = serde_json::to_string_pretty(&doc).map_err(CliError::failure)?;
-    write_atomic(&args.out.join("calc.json"), text.as_bytes()).map_err(CliError::failure)?;
-    if let Some(path) = &args.report {
-        let settings = [
-            ("scene", args.scene.display().to_string()),
-            ("maintenance factor", mf.to_string()),
-            (
-                "light",
-                match (args.shadows, args.cpu) {
-                    (ShadowTechnique::None, _) => "direct, no shadows",
-                    (ShadowTechnique::Paraboloid, false) => "direct, paraboloid shadow maps",
-                    _ => "direct, exact shadows (a ray from each point to each luminaire)",
-                }
-                .to_string(),
-            ),
-            ("interpolation", format!("{:?}", args.interp).to_lowercase()),
-            (
-                "computed on",
-                if args.cpu { "CPU" } else { "GPU" }.to_string(),
-            ),
-        ];
-        let html = report_html(&scene, &settings, &report_grids);
-        write_atomic(path, html.as_bytes())
-            .map_err(|e| CliError::input(anyhow!("--report {}: {e:#}", path.display())))?;
-    }
-    println!(
-        "maintenance factor {mf}; direct light only; wrote {} and, per grid, a CSV and a plan (PNG, SVG); {} grid(s)",
-        args.out.join("calc.json").display(),
-        computed.len()
-    );
-    Ok(())
+    Ok((grids_json, report_grids))
 }
 
 /// `x,y,z,lux` with a header, one row per point (coordinates exact, so the points can be

@@ -19,13 +19,30 @@ pub struct ReportGrid<'a> {
     pub plan_svg: String,
 }
 
+/// One observer's part of the report.
+pub struct ReportObserver<'a> {
+    /// The observer's name.
+    pub name: &'a str,
+    /// The eye, metres.
+    pub eye: glam::DVec3,
+    /// The line of sight.
+    pub forward: glam::DVec3,
+    /// The glare there.
+    pub glare: &'a crate::calc::glare::ObserverGlare,
+}
+
 const STYLE: &str = "body{font-family:sans-serif;max-width:1200px;margin:2em auto;color:#222}\
 table{border-collapse:collapse;margin:.5em 0 1.5em}td,th{padding:2px 10px;border-bottom:1px solid #ddd;text-align:left}\
 th{background:#f3f3f3}td.n{text-align:right;font-variant-numeric:tabular-nums}\
 svg{max-width:100%;height:auto}footer{color:#777;font-size:80%;margin-top:2em}";
 
 /// The report page.
-pub fn report_html(scene: &Scene, settings: &[(&str, String)], grids: &[ReportGrid]) -> String {
+pub fn report_html(
+    scene: &Scene,
+    settings: &[(&str, String)],
+    grids: &[ReportGrid],
+    observers: &[ReportObserver],
+) -> String {
     let title = scene
         .path
         .file_name()
@@ -80,6 +97,29 @@ pub fn report_html(scene: &Scene, settings: &[(&str, String)], grids: &[ReportGr
         );
     }
     h.push_str("</table>");
+    if !observers.is_empty() {
+        h.push_str("<h2>Glare at observers (UGR, CIE 117)</h2><table><tr><th>observer</th><th>eye (m)</th><th>line of sight</th><th>background L<sub>b</sub> (cd/m²)</th><th>luminaires counted</th><th>UGR</th></tr>");
+        for o in observers {
+            let (e, f) = (o.eye, o.forward);
+            let _ = write!(
+                h,
+                "<tr><td>{}</td><td class=\"n\">{:.2}, {:.2}, {:.2}</td><td class=\"n\">{:.2}, {:.2}, {:.2}</td><td class=\"n\">{:.1}</td><td class=\"n\">{}</td><td class=\"n\">{}</td></tr>",
+                escape(o.name),
+                e.x,
+                e.y,
+                e.z,
+                f.x,
+                f.y,
+                f.z,
+                o.glare.background_cd_m2,
+                o.glare.luminaires.len(),
+                o.glare
+                    .ugr
+                    .map_or("— (no luminaire in the field)".into(), |u| format!("{u:.1}"))
+            );
+        }
+        h.push_str("</table>");
+    }
     for g in grids {
         let _ = write!(h, "<h2>{}</h2><div>{}</div>", escape(g.name), g.plan_svg);
     }

@@ -29,11 +29,9 @@ use crate::render::output::write_image;
 use crate::render::Renderer;
 use crate::scene::Scene;
 
-/// Options of `radiosity`.
-#[derive(Debug, Args)]
-pub struct RadiosityArgs {
-    /// The scene file (TOML).
-    pub scene: PathBuf,
+/// The solver's options, shared by `radiosity` and `calc --indirect radiosity`.
+#[derive(Debug, Clone, Args)]
+pub struct SolverArgs {
     /// Stop when this fraction of the initial unshot power has been shot (0..1).
     #[arg(long, default_value_t = 0.99)]
     pub converge: f64,
@@ -77,6 +75,60 @@ pub struct RadiosityArgs {
     /// Ambient term: for display only, also for overshooting, or none.
     #[arg(long, value_enum, default_value = "display")]
     pub ambient: Ambient,
+}
+
+impl SolverArgs {
+    /// An error naming the flag whose value is out of range.
+    pub fn check(&self) -> Result<(), CliError> {
+        let bad = |what: String| Err(CliError::input(anyhow!(what)));
+        if !(self.converge.is_finite() && (0.0..=1.0).contains(&self.converge)) {
+            return bad(format!("--converge {} is not in 0..=1", self.converge));
+        }
+        if !(self.texel_density.is_finite() && self.texel_density > 0.0) {
+            return bad(format!(
+                "--texel-density {} must be a positive number of texels per metre",
+                self.texel_density
+            ));
+        }
+        if self.level > 6 {
+            return bad(format!("--level {} is not in 0..=6", self.level));
+        }
+        if !(self.cell_power.is_finite() && self.cell_power > 0.0 && self.cell_power <= 1.0) {
+            return bad(format!("--cell-power {} is not in (0, 1]", self.cell_power));
+        }
+        if !(self.link_error.is_finite() && (0.0..=1.0).contains(&self.link_error)) {
+            return bad(format!("--link-error {} is not in [0, 1]", self.link_error));
+        }
+        if !(16..=4096).contains(&self.map_size) {
+            return bad(format!("--map-size {} is not in 16..=4096", self.map_size));
+        }
+        if let Some(t) = self.time_limit {
+            if !(t.is_finite() && t > 0.0) {
+                return bad(format!(
+                    "--time-limit {t} must be a positive number of seconds"
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    fn stop(&self) -> StopAt {
+        StopAt {
+            converge: self.converge,
+            max_shots: self.max_shots,
+            time_budget: self.time_limit.map(Duration::from_secs_f64),
+        }
+    }
+}
+
+/// Options of `radiosity`.
+#[derive(Debug, Args)]
+pub struct RadiosityArgs {
+    /// The scene file (TOML).
+    pub scene: PathBuf,
+    /// The solver's options.
+    #[command(flatten)]
+    pub solver: SolverArgs,
     /// Output folder: render.png, render.exr, lightmap.exr, lightmap_lux.exr,
     /// convergence.csv (default `radiosity-out`; with --points nothing is written unless
     /// it is given).
@@ -118,34 +170,7 @@ impl RadiosityArgs {
         if self.bake != BakeChoice::Auto && self.bake_budget.is_some() {
             return bad("--bake-budget applies to --bake auto only".into());
         }
-        if !(self.converge.is_finite() && (0.0..=1.0).contains(&self.converge)) {
-            return bad(format!("--converge {} is not in 0..=1", self.converge));
-        }
-        if !(self.texel_density.is_finite() && self.texel_density > 0.0) {
-            return bad(format!(
-                "--texel-density {} must be a positive number of texels per metre",
-                self.texel_density
-            ));
-        }
-        if self.level > 6 {
-            return bad(format!("--level {} is not in 0..=6", self.level));
-        }
-        if !(self.cell_power.is_finite() && self.cell_power > 0.0 && self.cell_power <= 1.0) {
-            return bad(format!("--cell-power {} is not in (0, 1]", self.cell_power));
-        }
-        if !(self.link_error.is_finite() && (0.0..=1.0).contains(&self.link_error)) {
-            return bad(format!("--link-error {} is not in [0, 1]", self.link_error));
-        }
-        if !(16..=4096).contains(&self.map_size) {
-            return bad(format!("--map-size {} is not in 16..=4096", self.map_size));
-        }
-        if let Some(t) = self.time_limit {
-            if !(t.is_finite() && t > 0.0) {
-                return bad(format!(
-                    "--time-limit {t} must be a positive number of seconds"
-                ));
-            }
-        }
+        self.solver.check()?;
         if let Some(path) = &self.export {
             if path.is_dir() {
                 return bad(format!("--export {}: is a folder", path.display()));
@@ -165,14 +190,6 @@ impl RadiosityArgs {
             }
         }
         Ok(())
-    }
-
-    fn stop(&self) -> StopAt {
-        StopAt {
-            converge: self.converge,
-            max_shots: self.max_shots,
-            time_budget: self.time_limit.map(Duration::from_secs_f64),
-        }
     }
 }
 
@@ -246,6 +263,220 @@ struct Outputs {
     csv: String,
 }
 
+/// A scene made ready to solve: its elements and the luminaires' direct light on them.
+pub struct Prepared<'s> {
+    /// The scene file (for messages).
+    label: &'s Path,
+    gpu: Gpu,
+    rscene: RadiosityScene,
+    light: LuminaireLight,
+    initial: InitialState,
+    solver: SolverArgs,
+    interp: crate::photometry::Interp,
+    /// Seconds from the start of the command to here.
+    pub prepared_s: f64,
+}
+
+/// A solution, with what it was solved from.
+pub struct Solved<'p> {
+    prepared: &'p Prepared<'p>,
+    solver: GpuSolver<'p>,
+    /// Why the solver stopped.
+    pub stop: StopReason,
+    log: Vec<ConvergencePoint>,
+    /// The radiosity shown (with the ambient term where the solver's `ambient` says so),
+    /// per element.
+    shown: Vec<DVec3>,
+    shown_lux: Vec<f64>,
+}
+
+/// Builds the elements of `scene` (loaded by now, the command having started at
+/// `started`) and the luminaires' direct light on them, with a spinner naming each
+/// stage; Ctrl-C stops it between stages.
+pub fn prepare<'s>(
+    label: &'s Path,
+    scene: &Scene,
+    solver: &SolverArgs,
+    settings: &mut crate::render::RenderSettings,
+    started: Instant,
+) -> Result<Prepared<'s>, CliError> {
+    let load_s = started.elapsed().as_secs_f64();
+    let stage = StageSpinner::new(match solver.hierarchy {
+        Hierarchy::None => "elements and atlas",
+        Hierarchy::Clusters => "face clusters, charts, elements and atlas",
+    })?;
+    let rscene =
+        RadiosityScene::with_hierarchy(scene, solver.texel_density, solver.level, solver.hierarchy)
+            .map_err(|e| CliError::input(anyhow!("{}: {e}", label.display())))?;
+    let elements_s = started.elapsed().as_secs_f64() - load_s;
+    let interp = settings.light_model.interp();
+    let gpu = Gpu::shared()?;
+    crate::render::limits::check_scene(&gpu, scene, &mut settings.shadows)?;
+    crate::render::limits::check_radiosity(&gpu, rscene.elements.len())?;
+    stage.set("the luminaires' direct light")?;
+    let light = LuminaireLight::new(&gpu, scene, interp);
+    let initial = InitialState::from_luminaires_gpu(&gpu, &light, &rscene, &settings.shadows)?;
+    stage.check()?;
+    drop(stage);
+    let prepared_s = started.elapsed().as_secs_f64();
+    eprintln!(
+        "{}: prepared in {prepared_s:.2} s — load {load_s:.2} s, {}elements and atlas {:.2} s, luminaires' direct light {:.2} s; {} triangles{}",
+        label.display(),
+        match solver.hierarchy {
+            Hierarchy::None => String::new(),
+            Hierarchy::Clusters => format!("face clusters {:.2} s, ", rscene.clustering_seconds),
+        },
+        elements_s - rscene.clustering_seconds,
+        prepared_s - load_s - elements_s,
+        scene.triangle_count(),
+        crate::io::peak_memory_mb().map_or(String::new(), |mb| format!(", peak memory {mb} MB")),
+    );
+    Ok(Prepared {
+        label,
+        gpu,
+        rscene,
+        light,
+        initial,
+        solver: solver.clone(),
+        interp,
+        prepared_s,
+    })
+}
+
+impl Prepared<'_> {
+    /// Shoots until the solver's stop (Ctrl-C stops early), with a progress bar, and
+    /// reads the solution back.
+    pub fn solve(&self) -> Result<Solved<'_>, CliError> {
+        let args = &self.solver;
+        let rscene = &self.rscene;
+        let gpu_settings = GpuSettings {
+            visibility: args.visibility,
+            map_size: args.map_size,
+            hierarchy: args.hierarchy,
+            cell_power: args.cell_power,
+            link_error: args.link_error,
+            ..GpuSettings::default()
+        };
+        let shooters = Shooters::build(rscene, args.hierarchy);
+        let shooter_count = shooters.len();
+        let mut solver = GpuSolver::with_shooters(
+            &self.gpu,
+            rscene,
+            &self.initial,
+            SolverSettings {
+                form_factor: args.form_factor,
+                ambient: args.ambient,
+                interp: self.interp,
+            },
+            gpu_settings,
+            shooters,
+        );
+        let cancel = super::interrupt_flag();
+        eprintln!(
+            "{}: {} elements in {} charts, {} patches, atlas {}×{}; {shooter_count} shooters{}; visibility maps draw {} triangles; shooting (Ctrl-C stops and writes the solution so far)",
+            self.label.display(),
+            rscene.elements.len(),
+            rscene.elements.charts.len(),
+            rscene.elements.patches.len(),
+            rscene.elements.atlas_width,
+            rscene.elements.atlas_height,
+            match args.hierarchy {
+                Hierarchy::None => " (one per triangle: --hierarchy none)".to_string(),
+                Hierarchy::Clusters => {
+                    let tree = &rscene.planar_clusters().tree;
+                    format!(" of {} face clusters", tree.nodes.len() - tree.order.len())
+                }
+            },
+            solver.visibility_triangles(),
+        );
+        let bar = progress_bar()?;
+        let (stop, log) = solver.solve(&args.stop(), &cancel, |p: &ConvergencePoint| {
+            bar.set_position((p.convergence.clamp(0.0, 1.0) * 10_000.0) as u64);
+            bar.set_message(format!(
+                "{:.2} % converged, {} shots",
+                100.0 * p.convergence,
+                p.shot
+            ));
+        })?;
+        bar.finish_and_clear();
+        let solve_s = log.last().map_or(0.0, |p| p.seconds);
+        let (radiosity, illuminance) = solver.radiosity_and_illuminance()?;
+        let unshot = solver.unshot()?;
+        let (shown, shown_lux) =
+            solve::displayed(rscene, &radiosity, &illuminance, &unshot, args.ambient);
+        let last = log.last().copied();
+        eprintln!(
+            "{}: {} shots, {:.2} % converged ({stop}) in {solve_s:.2} s (+{:.2} s to prepare); {} visibility maps drawn, {} cells skipped (no receiver takes light from them); receivers culled to {:.0} % of the elements per map{}",
+            self.label.display(),
+            solver.shots,
+            100.0 * last.map_or(1.0, |p| p.convergence),
+            self.prepared_s,
+            solver.drawn,
+            solver.skipped,
+            100.0 * solver.receiver_threads as f64
+                / (solver.drawn.max(1) as f64 * rscene.elements.len().max(1) as f64),
+            crate::io::peak_memory_mb().map_or(String::new(), |mb| format!("; peak memory {mb} MB")),
+        );
+        Ok(Solved {
+            prepared: self,
+            solver,
+            stop,
+            log,
+            shown,
+            shown_lux,
+        })
+    }
+}
+
+impl Solved<'_> {
+    /// The interreflected illuminance (lux, the light the solution's surfaces send; not
+    /// the luminaires' direct light) at `points`, gathered from the shooters' finest
+    /// cells, with a progress bar; Ctrl-C stops it with an error. Also the number of
+    /// patches gathered from.
+    pub fn interreflected_lux(
+        &self,
+        points: &[SurfacePoint],
+    ) -> Result<(Vec<f64>, usize), CliError> {
+        let rscene = &self.prepared.rscene;
+        let patches = gather::patches(rscene, self.solver.shooters(), &self.shown);
+        eprintln!(
+            "gathering at {} points from {} patches (Ctrl-C stops)",
+            points.len(),
+            patches.len()
+        );
+        let bar = indicatif::ProgressBar::new(points.len() as u64);
+        bar.set_style(
+            indicatif::ProgressStyle::with_template(
+                "gather [{bar:40}] {pos}/{len} points ({elapsed_precise}, Ctrl-C stops)",
+            )
+            .map_err(|e| CliError::failure(anyhow!(e)))?,
+        );
+        // A Ctrl-C that stopped the shooting has been answered: the next one stops this.
+        let cancel = super::interrupt_flag();
+        cancel.store(false, std::sync::atomic::Ordering::SeqCst);
+        let gathered = gather::at_points(
+            rscene,
+            &patches,
+            points,
+            self.prepared.solver.form_factor,
+            &cancel,
+            &|done| bar.set_position(done as u64),
+        );
+        bar.finish_and_clear();
+        let Some(gathered) = gathered else {
+            return Err(CliError::failure(anyhow!(
+                "interrupted while gathering at the points: no illuminance given"
+            )));
+        };
+        Ok((gathered.into_iter().map(luminance).collect(), patches.len()))
+    }
+
+    /// The fraction of the initial unshot power shot when the solver stopped.
+    pub fn convergence(&self) -> f64 {
+        self.log.last().map_or(1.0, |p| p.convergence)
+    }
+}
+
 /// Runs `radiosity`.
 pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
     args.check()?;
@@ -256,7 +487,8 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
         args.scene.display()
     );
     let scene = super::render::scene_at(Scene::load(&args.scene)?, args.image.time)?;
-    let load_s = started.elapsed().as_secs_f64();
+    stage.check()?;
+    drop(stage);
     let mut settings = args.image.settings(&scene)?;
     let points = if args.points {
         read_points(std::io::stdin().lock(), "stdin")?
@@ -268,115 +500,19 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
         (None, false) => Some(PathBuf::from("radiosity-out")),
         (None, true) => None,
     };
-    stage.set(match args.hierarchy {
-        Hierarchy::None => "elements and atlas",
-        Hierarchy::Clusters => "face clusters, charts, elements and atlas",
-    })?;
-    let rscene =
-        RadiosityScene::with_hierarchy(&scene, args.texel_density, args.level, args.hierarchy)
-            .map_err(|e| CliError::input(anyhow!("{}: {e}", args.scene.display())))?;
-    let elements_s = started.elapsed().as_secs_f64() - load_s;
-    let interp = settings.light_model.interp();
-    let solver_settings = SolverSettings {
-        form_factor: args.form_factor,
-        ambient: args.ambient,
-        interp,
-    };
-    let gpu = Gpu::shared()?;
-    crate::render::limits::check_scene(&gpu, &scene, &mut settings.shadows)?;
-    crate::render::limits::check_radiosity(&gpu, rscene.elements.len())?;
-    stage.set("the luminaires' direct light")?;
-    let light = LuminaireLight::new(&gpu, &scene, interp);
-    let initial = InitialState::from_luminaires_gpu(&gpu, &light, &rscene, &settings.shadows)?;
-    stage.check()?;
-    drop(stage);
-    let gpu_settings = GpuSettings {
-        visibility: args.visibility,
-        map_size: args.map_size,
-        hierarchy: args.hierarchy,
-        cell_power: args.cell_power,
-        link_error: args.link_error,
-        ..GpuSettings::default()
-    };
-    let prepared_s = started.elapsed().as_secs_f64();
-    eprintln!(
-        "{}: prepared in {prepared_s:.2} s — load {load_s:.2} s, {}elements and atlas {:.2} s, luminaires' direct light {:.2} s; {} triangles{}",
-        args.scene.display(),
-        match args.hierarchy {
-            Hierarchy::None => String::new(),
-            Hierarchy::Clusters => format!("face clusters {:.2} s, ", rscene.clustering_seconds),
-        },
-        elements_s - rscene.clustering_seconds,
-        prepared_s - load_s - elements_s,
-        scene.triangle_count(),
-        crate::io::peak_memory_mb().map_or(String::new(), |mb| format!(", peak memory {mb} MB")),
-    );
-    let shooters = Shooters::build(&rscene, args.hierarchy);
-    let shooter_count = shooters.len();
-    let mut solver = GpuSolver::with_shooters(
-        &gpu,
-        &rscene,
-        &initial,
-        solver_settings,
-        gpu_settings,
-        shooters,
-    );
-    let cancel = super::interrupt_flag();
-    eprintln!(
-        "{}: {} elements in {} charts, {} patches, atlas {}×{}; {shooter_count} shooters{}; visibility maps draw {} triangles; shooting (Ctrl-C stops and writes the solution so far)",
-        args.scene.display(),
-        rscene.elements.len(),
-        rscene.elements.charts.len(),
-        rscene.elements.patches.len(),
-        rscene.elements.atlas_width,
-        rscene.elements.atlas_height,
-        match args.hierarchy {
-            Hierarchy::None => " (one per triangle: --hierarchy none)".to_string(),
-            Hierarchy::Clusters => {
-                let tree = &rscene.planar_clusters().tree;
-                format!(" of {} face clusters", tree.nodes.len() - tree.order.len())
-            }
-        },
-        solver.visibility_triangles(),
-    );
-    let bar = progress_bar()?;
-    let (stop, log) = solver.solve(&args.stop(), &cancel, |p: &ConvergencePoint| {
-        bar.set_position((p.convergence.clamp(0.0, 1.0) * 10_000.0) as u64);
-        bar.set_message(format!(
-            "{:.2} % converged, {} shots",
-            100.0 * p.convergence,
-            p.shot
-        ));
-    })?;
-    bar.finish_and_clear();
-    let solve_s = log.last().map_or(0.0, |p| p.seconds);
-    let (radiosity, illuminance) = solver.radiosity_and_illuminance()?;
-    let unshot = solver.unshot()?;
-    let (shown, shown_lux) =
-        solve::displayed(&rscene, &radiosity, &illuminance, &unshot, args.ambient);
-    let last = log.last().copied();
-    eprintln!(
-        "{}: {} shots, {:.2} % converged ({stop}) in {solve_s:.2} s (+{prepared_s:.2} s to prepare); {} visibility maps drawn, {} cells skipped (no receiver takes light from them); receivers culled to {:.0} % of the elements per map{}",
-        args.scene.display(),
-        solver.shots,
-        100.0 * last.map_or(1.0, |p| p.convergence),
-        solver.drawn,
-        solver.skipped,
-        100.0 * solver.receiver_threads as f64
-            / (solver.drawn.max(1) as f64 * rscene.elements.len().max(1) as f64),
-        crate::io::peak_memory_mb().map_or(String::new(), |mb| format!("; peak memory {mb} MB")),
-    );
+    let prepared = prepare(&args.scene, &scene, &args.solver, &mut settings, started)?;
+    let solved = prepared.solve()?;
     if !points.is_empty() {
         let gathered = Instant::now();
-        let direct = light.lux(&gpu, &points, &settings.shadows)?;
-        let patches = print_total_lux(
-            &rscene,
-            solver.shooters(),
-            &shown,
-            &points,
-            &direct,
-            args.form_factor,
-        )?;
+        let direct = prepared
+            .light
+            .lux(&prepared.gpu, &points, &settings.shadows)?;
+        let (indirect, patches) = solved.interreflected_lux(&points)?;
+        let mut out = String::with_capacity(points.len() * 12);
+        for (d, i) in direct.iter().zip(&indirect) {
+            out.push_str(&format!("{:.6}\n", d + i));
+        }
+        print!("{out}");
         eprintln!(
             "{}: {} points gathered from {patches} patches in {:.2} s",
             args.scene.display(),
@@ -384,18 +520,19 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
             gathered.elapsed().as_secs_f64()
         );
     }
-    let light_map = solve::light_map(&rscene, &shown, &shown_lux);
+    let rscene = &prepared.rscene;
+    let light_map = solve::light_map(rscene, &solved.shown, &solved.shown_lux);
     if let Some(path) = &args.export {
         let names: Vec<String> = scene.materials.iter().map(|m| m.name.clone()).collect();
         let material_bake: Vec<_> = scene.materials.iter().map(|m| m.bake).collect();
         let planning = Instant::now();
-        let plan = bake::plan(&rscene, &material_bake, args.bake, args.bake_budget);
+        let plan = bake::plan(rscene, &material_bake, args.bake, args.bake_budget);
         eprintln!(
             "{}; chosen and refined in {:.2} s",
             bake_summary(&plan, &light_map),
             planning.elapsed().as_secs_f64()
         );
-        let bytes = crate::radiosity::export::glb(&rscene, &light_map, &plan, &names)
+        let bytes = crate::radiosity::export::glb(rscene, &light_map, &plan, &names)
             .map_err(CliError::failure)?;
         let folder = path.parent().filter(|p| !p.as_os_str().is_empty());
         folder
@@ -408,12 +545,12 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
     if let Some(dir) = out_dir {
         let outputs = Outputs {
             light_map,
-            csv: solve::convergence_csv(&log),
+            csv: solve::convergence_csv(&solved.log),
         };
         settings.read_hdr = true;
-        write_outputs(&gpu, &scene, &settings, &outputs, &dir)?;
+        write_outputs(&prepared.gpu, &scene, &settings, &outputs, &dir)?;
     }
-    if stop == StopReason::Cancelled {
+    if solved.stop == StopReason::Cancelled {
         eprintln!("stopped early: the solution so far was written");
     }
     Ok(())
@@ -433,49 +570,6 @@ fn bake_summary(plan: &BakePlan, map: &LightMap) -> String {
         map.width,
         map.height,
     )
-}
-
-/// Prints direct + gathered interreflected illuminance (lux) per point, with a progress
-/// bar; Ctrl-C stops it (nothing is printed then).
-fn print_total_lux(
-    rscene: &RadiosityScene,
-    shooters: &Shooters,
-    radiosity: &[DVec3],
-    points: &[SurfacePoint],
-    direct: &[f64],
-    kind: FormFactorKind,
-) -> Result<usize, CliError> {
-    let patches = gather::patches(rscene, shooters, radiosity);
-    eprintln!(
-        "gathering at {} points from {} patches (Ctrl-C stops)",
-        points.len(),
-        patches.len()
-    );
-    let bar = indicatif::ProgressBar::new(points.len() as u64);
-    bar.set_style(
-        indicatif::ProgressStyle::with_template(
-            "gather [{bar:40}] {pos}/{len} points ({elapsed_precise}, Ctrl-C stops)",
-        )
-        .map_err(|e| CliError::failure(anyhow!(e)))?,
-    );
-    // A Ctrl-C that stopped the shooting has been answered: the next one stops this.
-    let cancel = super::interrupt_flag();
-    cancel.store(false, std::sync::atomic::Ordering::SeqCst);
-    let gathered = gather::at_points(rscene, &patches, points, kind, &cancel, &|done| {
-        bar.set_position(done as u64)
-    });
-    bar.finish_and_clear();
-    let Some(gathered) = gathered else {
-        return Err(CliError::failure(anyhow!(
-            "interrupted while gathering at the points: no illuminance printed"
-        )));
-    };
-    let mut out = String::with_capacity(points.len() * 12);
-    for (d, g) in direct.iter().zip(&gathered) {
-        out.push_str(&format!("{:.6}\n", d + luminance(*g)));
-    }
-    print!("{out}");
-    Ok(patches.len())
 }
 
 /// Writes the rendering, the atlas and the log into `dir`.

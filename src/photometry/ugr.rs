@@ -211,10 +211,9 @@ pub fn glare_sum(
     let mut sum = 0.0;
     for (x, y) in positions(room[0] * H, room[1] * H, shr * H) {
         let (t, r) = ((x - eye[0] * H).abs(), y - eye[1] * H);
-        if r <= 0.0 || H / r > 1.9 || t / r > 3.0 {
+        if !in_glare_field(t, H, r) {
             continue;
         }
-        let d2 = t * t + r * r + H * H;
         let gamma = t.hypot(r).atan2(H).to_degrees();
         let c_cross = t.atan2(r).to_degrees();
         let c = match view {
@@ -222,16 +221,37 @@ pub fn glare_sum(
             View::Endwise => 90.0 - c_cross,
         };
         let a_p = area.projected(c, gamma);
-        if a_p <= 0.0 {
-            continue;
-        }
         let cd = lum.distribution.sample(c, gamma, interp) * flux / 1000.0;
-        let l = cd / a_p;
-        let omega = a_p / d2;
-        let p = guth_position_index(t, H, r);
-        sum += l * l * omega / (p * p);
+        sum += glare_term(cd, a_p, t, H, r).unwrap_or(0.0);
     }
     sum
+}
+
+/// Whether a source `t` across, `h` above and `r` ahead of the eye counts in the CIE 117
+/// sum: ahead of the eye, above the line of sight, and within the position index's table
+/// (H/R ≤ 1.9, T/R ≤ 3), as the UGR tables count them.
+pub fn in_glare_field(t: f64, h: f64, r: f64) -> bool {
+    r > 0.0 && h > 0.0 && h / r <= 1.9 && t.abs() / r <= 3.0
+}
+
+/// One source's term L² ω / p² of the CIE 117 sum: `cd` candela toward the eye from a
+/// projected luminous area `a_p` (m²), `t` across, `h` above and `r` ahead of the eye
+/// (metres); `None` outside [`in_glare_field`] or where nothing luminous is seen.
+pub fn glare_term(cd: f64, a_p: f64, t: f64, h: f64, r: f64) -> Option<f64> {
+    if !in_glare_field(t, h, r) || a_p <= 0.0 || cd <= 0.0 {
+        return None;
+    }
+    let d2 = t * t + r * r + h * h;
+    let l = cd / a_p;
+    let omega = a_p / d2;
+    let p = guth_position_index(t.abs(), h, r);
+    Some(l * l * omega / (p * p))
+}
+
+/// UGR = 8 · log10(0.25 / L_b · Σ L² ω / p²) for the glare sum `sum` and the background
+/// luminance `lb` (cd/m²); `None` where nothing glares (Σ = 0) or `lb` is not positive.
+pub fn ugr_of(sum: f64, lb: f64) -> Option<f64> {
+    (sum > 0.0 && lb > 0.0).then(|| 8.0 * (0.25 / lb * sum).log10())
 }
 
 /// The luminaire's flux per 1° γ band (averaged over C, lm per lamp-set flux `flux`).
@@ -375,9 +395,8 @@ pub fn ugr_table(
             let mut end = [None; 5];
             for (k, rho) in REFLECTANCES.iter().enumerate() {
                 let lb = background_luminance(direct, x_m, y_m, *rho);
-                let ugr = |s: f64| (s > 0.0 && lb > 0.0).then(|| 8.0 * (0.25 / lb * s).log10());
-                cross[k] = ugr(sums[0]);
-                end[k] = ugr(sums[1]);
+                cross[k] = ugr_of(sums[0], lb);
+                end[k] = ugr_of(sums[1], lb);
             }
             (cross, end)
         })

@@ -32,6 +32,11 @@
 //! size = [6.0, 4.0]
 //! height = 0.8
 //!
+//! [[observer]]                  # glare (UGR) at an eye: see [`super::observer`]
+//! name = "desk"
+//! position = [1.5, 2.0, 1.2]
+//! direction = [1.0, 0.0, 0.0]
+//!
 //! [display]
 //! mode = "shaded"               # or "illuminance"
 //! tonemap = "reinhard"          # or "exposure"
@@ -69,6 +74,9 @@ pub struct SceneFile {
     /// Settings of `goniolight calc`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub calc: Option<super::grid::CalcSettings>,
+    /// Observers rated for glare (UGR) by `goniolight calc`.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub observer: Vec<super::observer::ObserverEntry>,
 }
 
 /// The up axis of an OBJ file.

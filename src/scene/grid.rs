@@ -305,6 +305,20 @@ pub struct CalcSettings {
     /// maintained illuminance). 1 (new installation) when not given.
     #[serde(default = "one")]
     pub maintenance_factor: f64,
+    /// Direct light only or total light (`calc --indirect`); none when not given.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub indirect: Option<Indirect>,
+}
+
+/// What light `calc` computes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+#[serde(rename_all = "lowercase")]
+pub enum Indirect {
+    /// The luminaires' direct light only.
+    None,
+    /// Direct plus the interreflected light of a radiosity solution.
+    Radiosity,
 }
 
 fn one() -> f64 {
@@ -315,6 +329,7 @@ impl Default for CalcSettings {
     fn default() -> Self {
         CalcSettings {
             maintenance_factor: 1.0,
+            indirect: None,
         }
     }
 }

@@ -8,6 +8,7 @@ pub mod camera;
 pub mod file;
 pub mod grid;
 pub mod model;
+pub mod observer;
 pub mod palette;
 pub mod placement;
 pub mod save;
@@ -19,6 +20,7 @@ use glam::DVec3;
 pub use camera::{Camera, Projection};
 pub use file::{DisplayEntry, Mode, SceneFile, Tonemap, UpAxis, MAX_IMAGE_SIZE};
 pub use model::{Material, SceneMesh};
+pub use observer::Observer;
 pub use palette::Palette;
 pub use placement::{Housing, PlacedLuminaire};
 
@@ -68,6 +70,8 @@ pub struct Scene {
     pub grids: Vec<grid::CalcGrid>,
     /// `[calc]` settings.
     pub calc: grid::CalcSettings,
+    /// Observers rated for glare (`[[observer]]`).
+    pub observers: Vec<Observer>,
 }
 
 /// The `[[grid]]` entries with their points; names must differ (each names a CSV file).
@@ -92,6 +96,32 @@ fn resolve_grids(
             }
             e.resolve()
                 .map_err(|(key, msg)| SceneError::new(path, format!("grid[{i}].{key}"), msg))
+        })
+        .collect()
+}
+
+/// The `[[observer]]` entries, resolved; names must differ (each names a row of the
+/// report).
+fn resolve_observers(
+    path: &Path,
+    entries: &[observer::ObserverEntry],
+) -> Result<Vec<Observer>, SceneError> {
+    let mut seen = std::collections::HashSet::new();
+    entries
+        .iter()
+        .enumerate()
+        .map(|(i, e)| {
+            if !seen.insert(e.name.trim().to_lowercase()) {
+                return Err(SceneError::new(
+                    path,
+                    format!("observer[{i}].name"),
+                    format!(
+                        "{:?} names an earlier observer too; give each observer its own name",
+                        e.name
+                    ),
+                ));
+            }
+            e.resolve(path, i)
         })
         .collect()
 }
@@ -167,6 +197,7 @@ impl Scene {
         let calc = parsed.calc.unwrap_or_default();
         grid::CalcSettings::check(calc.maintenance_factor)
             .map_err(|m| SceneError::new(path, "calc.maintenance_factor", m))?;
+        let observers = resolve_observers(path, &parsed.observer)?;
         Ok(Scene {
             path: path.to_path_buf(),
             meshes,
@@ -184,6 +215,7 @@ impl Scene {
                 .collect(),
             grids,
             calc,
+            observers,
         })
     }
 

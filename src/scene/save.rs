@@ -32,6 +32,7 @@ impl Scene {
             display: self.display.clone(),
             grid: self.grids.iter().map(|g| g.entry.clone()).collect(),
             calc: (self.calc != Default::default()).then_some(self.calc),
+            observer: self.observers.iter().map(|o| o.entry.clone()).collect(),
         }
     }
 
