@@ -21,6 +21,9 @@ struct Light {
 override LIGHT_MODEL: u32 = 2u;
 const LIGHT_MODEL_POINT: u32 = 4u;
 const LIGHT_MODEL_TABLE: u32 = 5u;
+// 6 = Catmull-Rom resampled into a cube map per distribution (one filtered fetch by the
+// direction in the luminaire's frame, no angles; see src/gpu/ldt_cube.rs).
+const LIGHT_MODEL_CUBE: u32 = 6u;
 // The table's columns: C from 0° in 0.125° steps.
 const TABLE_COLUMNS: f32 = 2880.0;
 
@@ -29,6 +32,7 @@ const TABLE_COLUMNS: f32 = 2880.0;
 @group(0) @binding(3) var<storage, read> ldt_info: array<LdtInfo>;
 @group(0) @binding(7) var ldt_table: texture_2d_array<f32>;
 @group(0) @binding(14) var ldt_table_sampler: sampler;
+@group(0) @binding(15) var ldt_cube: texture_cube_array<f32>;
 // The table's value at (C, γ) degrees: Catmull-Rom across the four γ knots of its cell
 // (exactly the per-pixel spline's γ part) and linear across the two table columns of C
 // around it (wrapping), from two gathers of 2 × 2 texels. The CPU twin is
@@ -82,8 +86,11 @@ fn light_intensity(l: Light, dir: vec3<f32>) -> f32 {
         return l.color.w;
     }
     let local = vec3<f32>(dot(dir, l.axis_x.xyz), dot(dir, l.axis_y.xyz), dot(dir, l.axis_z.xyz));
-    let a = ldt_angles(local);
     let layer = u32(l.position.w);
+    if (LIGHT_MODEL == LIGHT_MODEL_CUBE) {
+        return textureSampleLevel(ldt_cube, ldt_table_sampler, local, i32(layer), 0.0).x * l.color.w;
+    }
+    let a = ldt_angles(local);
     if (LIGHT_MODEL == LIGHT_MODEL_TABLE) {
         return ldt_table_lookup(layer, a.x, a.y) * l.color.w;
     }

@@ -99,9 +99,7 @@ fn near_a_tie(tex: &LdtTexture, c: f64, gamma: f64) -> bool {
 #[test]
 fn the_catmull_rom_table_stays_within_1e_3_of_i_max() {
     use goniolight::gpu::ldt_table::table_value;
-    use goniolight::render::illuminance::{IlluminanceProbe, SurfacePoint};
-    use goniolight::render::{LightModel, Renderer, ShadowSettings};
-    use goniolight::scene::{Camera, DisplayEntry, Material, PlacedLuminaire, Scene};
+    use goniolight::render::LightModel;
     let dirs = random_directions(3000, 11);
     let mut worst: f64 = 0.0;
     for path in common::all_luminaire_files() {
@@ -122,12 +120,29 @@ fn the_catmull_rom_table_stays_within_1e_3_of_i_max() {
         }
     }
     eprintln!("table lookup vs Catmull-Rom, worst over every bundled file: {worst:.2e} · I_max");
-    let Some(gpu) = gpu_common::gpu() else { return };
+    let Some(worst_gpu) = worst_gpu_lookup(LightModel::CatmullRomTable, &dirs, &|_| 1e-3) else {
+        return;
+    };
+    eprintln!("GPU table vs CPU Catmull-Rom, worst: {worst_gpu:.2e} · I_max");
+}
+
+/// The largest difference (fraction of I_max) between the GPU's `model` and the CPU's
+/// Catmull-Rom toward `dirs` over [`FILES`], each file's worst asserted within
+/// `limit(file)` and printed; `None` when the GPU tests are skipped.
+fn worst_gpu_lookup(
+    model: goniolight::render::LightModel,
+    dirs: &[DVec3],
+    limit: &dyn Fn(&str) -> f64,
+) -> Option<f64> {
+    use goniolight::render::illuminance::{IlluminanceProbe, SurfacePoint};
+    use goniolight::render::{Renderer, ShadowSettings};
+    use goniolight::scene::{Camera, DisplayEntry, Material, PlacedLuminaire, Scene};
+    let gpu = gpu_common::gpu()?;
     let renderer = Renderer::new(&gpu);
     let mut worst_gpu: f64 = 0.0;
     for file in FILES {
         let l = Luminaire::load(&common::luminaire(file)).unwrap();
-        let placed = PlacedLuminaire::new("table", l, DVec3::ZERO);
+        let placed = PlacedLuminaire::new("lookup", l, DVec3::ZERO);
         // Points 1 m away facing the light: lux = candela.
         let points: Vec<SurfacePoint> = dirs
             .iter()
@@ -137,7 +152,7 @@ fn the_catmull_rom_table_stays_within_1e_3_of_i_max() {
             })
             .collect();
         let scene = Scene {
-            path: "table test".into(),
+            path: "lookup test".into(),
             meshes: Vec::new(),
             materials: vec![Material::default()],
             luminaires: vec![placed.clone()],
@@ -149,17 +164,49 @@ fn the_catmull_rom_table_stays_within_1e_3_of_i_max() {
             observers: Vec::new(),
         };
         let uploaded = renderer.upload(&gpu, &scene);
-        let got = IlluminanceProbe::new(&gpu, LightModel::CatmullRomTable)
+        let got = IlluminanceProbe::new(&gpu, model)
             .run_in_scene(&gpu, &uploaded, &points, &ShadowSettings::none())
             .unwrap();
         let i_max = placed.candela_scale();
+        let mut worst_file = (0.0, 0.0, 0.0);
         for (k, d) in dirs.iter().enumerate() {
             let (c, g) = direction_to_angles(*d);
             let want = placed.texture.sample(c, g, Interp::CatmullRom) * i_max;
             let err = (got[k] - want).abs() / i_max;
-            worst_gpu = worst_gpu.max(err);
-            assert!(err <= 1e-3, "{file}: C {c:.2} γ {g:.2}: {err:.2e}");
+            if err > worst_file.0 {
+                worst_file = (err, c, g);
+            }
         }
+        let (err, c, g) = worst_file;
+        eprintln!("{model:?}, {file}: worst {err:.2e} · I_max at C {c:.2} γ {g:.2}");
+        assert!(
+            err <= limit(file),
+            "{model:?}, {file}: C {c:.2} γ {g:.2}: {err:.2e}"
+        );
+        worst_gpu = worst_gpu.max(err);
     }
-    eprintln!("GPU table vs CPU Catmull-Rom, worst: {worst_gpu:.2e} · I_max");
+    Some(worst_gpu)
+}
+
+/// The cube maps (the renderer's `CatmullRomCube` light model: one filtered fetch by
+/// direction, no angles) light a point like the CPU's Catmull-Rom within 1e-3 · I_max
+/// (measured 3.6e-4 on lavapipe), bilinear between texel centres 0.18° apart — except
+/// where a distribution falls off within a fraction of a degree: the half-sphere test file
+/// drops from 680 cd/klm at γ 90° to 0 by γ 91°, and a texel there blends across the cut
+/// (measured 1.7e-2 · I_max within 0.2° of it).
+#[test]
+fn the_catmull_rom_cube_maps_stay_close_to_the_spline() {
+    use goniolight::render::LightModel;
+    let dirs = random_directions(3000, 12);
+    // The steep cut is the last file of FILES: every other one within 1e-3.
+    let limits = |file: &str| {
+        if file.ends_with("symmetry_to_c90c270.ldt") {
+            2e-2
+        } else {
+            1e-3
+        }
+    };
+    if let Some(worst) = worst_gpu_lookup(LightModel::CatmullRomCube, &dirs, &limits) {
+        eprintln!("GPU cube maps vs CPU Catmull-Rom, worst: {worst:.2e} · I_max");
+    }
 }

@@ -740,3 +740,35 @@ fn effect_lights_turn_and_colour_their_c_sectors_on_the_gpu_like_the_cpu() {
     let share = changed as f64 / checked as f64;
     assert!((share - 52.0 / 90.0).abs() < 0.05, "{share}");
 }
+
+/// Shaded images draw Catmull-Rom from the cube maps (the cost of a point light); the lux
+/// they carry agree with the exact spline of illuminance mode within 1e-3 of the image's
+/// largest lux at every pixel, and the model is chosen by the mode.
+#[test]
+fn shaded_images_sample_the_cube_maps_and_agree_with_the_exact_spline() {
+    let Some(gpu) = gpu_common::gpu() else { return };
+    let scene = floor_scene(test_luminaires(), 8.0);
+    let mut s = RenderSettings::from_display(&scene.display);
+    assert_eq!(s.drawn_light_model(), LightModel::CatmullRomCube);
+    s.mode = Mode::Illuminance;
+    assert_eq!(s.drawn_light_model(), LightModel::Ldt(Interp::CatmullRom));
+    let exact = floor_hdr(&gpu, &scene, 256);
+    (s.width, s.height, s.mode, s.read_hdr) = (256, 256, Mode::Shaded, true);
+    let cube = render(&gpu, &scene, &s).hdr.unwrap();
+    let top = exact.iter().map(|p| p[3]).fold(0.0f32, f32::max);
+    assert!(top > 10.0, "the floor is lit: {top} lx");
+    let worst = exact
+        .iter()
+        .zip(&cube)
+        .filter(|(e, _)| e[3] >= 0.0)
+        .map(|(e, c)| (e[3] - c[3]).abs())
+        .fold(0.0f32, f32::max);
+    eprintln!(
+        "cube vs exact spline: worst {:.2e} of the largest lux",
+        worst / top
+    );
+    assert!(worst <= 1e-3 * top, "{worst} lx of {top}");
+    let mut bilinear = s.clone();
+    bilinear.light_model = LightModel::Ldt(Interp::Bilinear);
+    assert_eq!(bilinear.drawn_light_model(), bilinear.light_model);
+}

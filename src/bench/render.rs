@@ -1,6 +1,7 @@
 //! The renderer benchmark, after Wallner's Table 3.1: scenes of about 100, 2 000, 15 000
 //! and 115 000 triangles lit by 1, 4 and 7 luminaires, frame time with plain point lights
-//! vs bilinear vs Catmull-Rom LDT sampling. The three light models are timed round-robin,
+//! vs bilinear vs Catmull-Rom LDT sampling (per pixel, from the table, from the cube maps).
+//! The light models are timed round-robin,
 //! round by round, so drift of the machine affects them alike. A round submits `frames`
 //! frames at once and waits for the GPU to finish them (throughput, GPU work included, as
 //! frames per second are measured); the frame time is the median over rounds of the
@@ -42,6 +43,9 @@ pub struct RenderBenchRow {
     pub catmull_rom_ms: f64,
     /// Median frame time with Catmull-Rom from the dense table (one filtered fetch), ms.
     pub catmull_rom_table_ms: f64,
+    /// Median frame time with Catmull-Rom from the cube maps (one filtered fetch by
+    /// direction, no angles), ms.
+    pub catmull_rom_cube_ms: f64,
 }
 
 impl RenderBenchRow {
@@ -53,6 +57,11 @@ impl RenderBenchRow {
     /// Catmull-Rom from the table over point lights.
     pub fn table_ratio(&self) -> f64 {
         self.catmull_rom_table_ms / self.point_ms
+    }
+
+    /// Catmull-Rom from the cube maps over point lights.
+    pub fn cube_ratio(&self) -> f64 {
+        self.catmull_rom_cube_ms / self.point_ms
     }
 
     /// Bilinear over point lights.
@@ -182,6 +191,7 @@ pub fn run(
         LightModel::Ldt(Interp::Bilinear),
         LightModel::Ldt(Interp::CatmullRom),
         LightModel::CatmullRomTable,
+        LightModel::CatmullRomCube,
     ];
     let mut rows = Vec::new();
     for &(major, minor) in tessellations {
@@ -189,7 +199,7 @@ pub fn run(
             let scene = bench_scene(major, minor, &all[..lights]);
             progress(scene.triangle_count(), lights);
             let uploaded = renderer.upload(gpu, &scene);
-            let mut times = [Vec::new(), Vec::new(), Vec::new(), Vec::new()];
+            let mut times = [(); 5].map(|()| Vec::new());
             for round in 0..=plan.rounds {
                 for (k, model) in models.iter().enumerate() {
                     let t = Instant::now();
@@ -207,7 +217,7 @@ pub fn run(
                     }
                 }
             }
-            let [p, b, c, t] = times.map(median);
+            let [p, b, c, t, cube] = times.map(median);
             rows.push(RenderBenchRow {
                 triangles: scene.triangle_count(),
                 lights,
@@ -215,6 +225,7 @@ pub fn run(
                 bilinear_ms: b,
                 catmull_rom_ms: c,
                 catmull_rom_table_ms: t,
+                catmull_rom_cube_ms: cube,
             });
         }
     }

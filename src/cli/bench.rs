@@ -409,29 +409,33 @@ fn run_render(as_json: bool, plan: render_bench::BenchPlan, quick: bool) -> Resu
         gpu.describe()
     );
     println!(
-        "{:>9} {:>6} {:>10} {:>12} {:>15} {:>10} {:>9} {:>9} {:>9}",
+        "{:>9} {:>6} {:>10} {:>12} {:>15} {:>10} {:>10} {:>9} {:>9} {:>9} {:>9}",
         "triangles",
         "lights",
         "point ms",
         "bilinear ms",
         "catmull-rom ms",
         "cr-table ms",
+        "cr-cube ms",
         "bil/pt",
         "cr/pt",
-        "table/pt"
+        "table/pt",
+        "cube/pt"
     );
     for r in &rows {
         println!(
-            "{:>9} {:>6} {:>10.2} {:>12.2} {:>15.2} {:>10.2} {:>8.3}× {:>8.3}× {:>8.3}×",
+            "{:>9} {:>6} {:>10.2} {:>12.2} {:>15.2} {:>10.2} {:>10.2} {:>8.3}× {:>8.3}× {:>8.3}× {:>8.3}×",
             r.triangles,
             r.lights,
             r.point_ms,
             r.bilinear_ms,
             r.catmull_rom_ms,
             r.catmull_rom_table_ms,
+            r.catmull_rom_cube_ms,
             r.bilinear_ratio(),
             r.catmull_rom_ratio(),
-            r.table_ratio()
+            r.table_ratio(),
+            r.cube_ratio()
         );
     }
     Ok(())

@@ -19,10 +19,14 @@ pub const TABLE_PADDING_ROWS: u32 = 4;
 /// Texel format (filterable on every backend).
 pub const TABLE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R16Float;
 
-/// The tables of every layer of an atlas, with their filtering sampler.
+/// The tables of every layer of an atlas, with their filtering sampler; or, for the
+/// `CatmullRomCube` light model, the cube maps of [`super::ldt_cube`] (the other half
+/// is then a one-texel stand-in: WGSL needs every binding filled).
 pub struct LdtTables {
     /// A `D2Array` view, one layer per atlas layer.
     pub view: wgpu::TextureView,
+    /// A `CubeArray` view, one cube per atlas layer.
+    pub cube: wgpu::TextureView,
     /// Bilinear, C repeating, γ clamped.
     pub sampler: wgpu::Sampler,
 }
@@ -39,7 +43,17 @@ impl LdtTables {
     /// A one-texel table bound where no light uses the tables (WGSL needs every
     /// binding filled); nothing is drawn.
     pub fn empty(gpu: &Gpu) -> LdtTables {
-        let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
+        LdtTables::with_texture(gpu, &LdtTables::one_texel(gpu), None)
+    }
+
+    /// The cube maps of `textures` (one per atlas layer, in order), with a one-texel table.
+    pub fn cubes(gpu: &Gpu, textures: &[LdtTexture]) -> LdtTables {
+        let cube = super::ldt_cube::cube_array(gpu, textures, super::ldt_cube::CUBE_SIZE);
+        LdtTables::with_texture(gpu, &LdtTables::one_texel(gpu), Some(cube))
+    }
+
+    fn one_texel(gpu: &Gpu) -> wgpu::Texture {
+        gpu.device.create_texture(&wgpu::TextureDescriptor {
             label: Some("no catmull-rom tables"),
             size: wgpu::Extent3d {
                 width: 1,
@@ -52,11 +66,16 @@ impl LdtTables {
             format: TABLE_FORMAT,
             usage: wgpu::TextureUsages::TEXTURE_BINDING,
             view_formats: &[],
-        });
-        LdtTables::with_texture(gpu, &texture)
+        })
     }
 
-    fn with_texture(gpu: &Gpu, texture: &wgpu::Texture) -> LdtTables {
+    /// The table `texture` and the cube maps `cube` (a one-texel stand-in when `None`).
+    fn with_texture(
+        gpu: &Gpu,
+        texture: &wgpu::Texture,
+        cube: Option<wgpu::TextureView>,
+    ) -> LdtTables {
+        let cube = cube.unwrap_or_else(|| super::ldt_cube::cube_array(gpu, &[], 1));
         let sampler = gpu.device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("catmull-rom tables"),
             address_mode_u: wgpu::AddressMode::Repeat,
@@ -70,6 +89,7 @@ impl LdtTables {
                 dimension: Some(wgpu::TextureViewDimension::D2Array),
                 ..Default::default()
             }),
+            cube,
             sampler,
         }
     }
@@ -136,7 +156,7 @@ impl LdtTables {
             }
         }
         gpu.queue.submit([enc.finish()]);
-        LdtTables::with_texture(gpu, &texture)
+        LdtTables::with_texture(gpu, &texture, None)
     }
 }
 

@@ -3,6 +3,7 @@
 //! compiled in; read-back helpers.
 
 pub mod ldt;
+pub mod ldt_cube;
 pub mod ldt_table;
 pub mod shaders;
 

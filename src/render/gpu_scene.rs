@@ -89,6 +89,11 @@ pub struct GpuLights {
     /// Their Catmull-Rom tables (the `CatmullRomTable` light model), drawn on first use:
     /// uploads (every animation frame of the viewer) pay nothing for them otherwise.
     tables: std::sync::OnceLock<LdtTables>,
+    /// Their Catmull-Rom cube maps (the `CatmullRomCube` light model), made on first use
+    /// from `textures`.
+    cubes: std::sync::OnceLock<LdtTables>,
+    /// The distributions of the atlas's layers, in order (for the cube maps).
+    textures: Vec<LdtTexture>,
     /// The one-texel stand-in bound for every other light model.
     no_tables: LdtTables,
 }
@@ -151,6 +156,8 @@ impl GpuLights {
             sectors,
             count,
             tables: std::sync::OnceLock::new(),
+            cubes: std::sync::OnceLock::new(),
+            textures: textures.into_iter().cloned().collect(),
             no_tables: LdtTables::empty(gpu),
             atlas,
         }
@@ -158,13 +165,17 @@ impl GpuLights {
 }
 
 impl GpuLights {
-    /// The Catmull-Rom tables `model` reads: drawn (once) for `CatmullRomTable`, the
-    /// empty stand-in otherwise.
+    /// The Catmull-Rom tables or cube maps `model` reads: made (once) for
+    /// `CatmullRomTable` and `CatmullRomCube`, the empty stand-in otherwise.
     pub fn tables(&self, gpu: &Gpu, model: super::LightModel) -> &LdtTables {
-        if model == super::LightModel::CatmullRomTable {
-            self.tables.get_or_init(|| LdtTables::new(gpu, &self.atlas))
-        } else {
-            &self.no_tables
+        match model {
+            super::LightModel::CatmullRomTable => {
+                self.tables.get_or_init(|| LdtTables::new(gpu, &self.atlas))
+            }
+            super::LightModel::CatmullRomCube => self
+                .cubes
+                .get_or_init(|| LdtTables::cubes(gpu, &self.textures)),
+            _ => &self.no_tables,
         }
     }
 }

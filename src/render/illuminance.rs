@@ -178,6 +178,7 @@ impl IlluminanceProbe {
                 (6, lights.sectors.as_entire_binding()),
                 (7, wgpu::BindingResource::TextureView(&tables.view)),
                 (14, wgpu::BindingResource::Sampler(&tables.sampler)),
+                (15, wgpu::BindingResource::TextureView(&tables.cube)),
                 (4, points_buf.as_entire_binding()),
                 (5, out.as_entire_binding()),
                 s8,

@@ -99,6 +99,14 @@ impl Layouts {
                         S::FRAGMENT,
                         wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
                     ),
+                    entry(
+                        15,
+                        S::FRAGMENT,
+                        texture(
+                            wgpu::TextureSampleType::Float { filterable: true },
+                            wgpu::TextureViewDimension::CubeArray,
+                        ),
+                    ),
                     entry(8, S::FRAGMENT, buffer(wgpu::BufferBindingType::Uniform)),
                     entry(
                         9,

@@ -69,6 +69,18 @@ pub struct RenderSettings {
 }
 
 impl RenderSettings {
+    /// The light model the image is drawn with: in shaded mode Catmull-Rom comes from the
+    /// cube maps ([`crate::gpu::ldt_cube`]: one filtered fetch per light, the cost of a
+    /// point light), in illuminance mode — where the pixels are lux — from the exact spline;
+    /// every other model as chosen. `illuminance`, `calc` and radiosity always sample the
+    /// exact spline.
+    pub fn drawn_light_model(&self) -> LightModel {
+        match (self.mode, self.light_model) {
+            (Mode::Shaded, LightModel::Ldt(Interp::CatmullRom)) => LightModel::CatmullRomCube,
+            (_, model) => model,
+        }
+    }
+
     /// The settings of a scene's `[display]` table, with defaults for what it leaves out.
     pub fn from_display(d: &DisplayEntry) -> RenderSettings {
         RenderSettings {
@@ -249,7 +261,7 @@ impl Renderer {
             scene,
             camera,
             targets,
-            settings.light_model,
+            settings.drawn_light_model(),
             &settings.shadows,
             1,
         )?;

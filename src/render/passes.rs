@@ -24,6 +24,9 @@ pub enum LightModel {
     Ldt(Interp),
     /// Catmull-Rom from the dense table: one filtered fetch (see [`crate::gpu::ldt_table`]).
     CatmullRomTable,
+    /// Catmull-Rom resampled into a cube map: one filtered fetch by direction, no angles
+    /// (see [`crate::gpu::ldt_cube`]).
+    CatmullRomCube,
 }
 
 impl LightModel {
@@ -33,6 +36,7 @@ impl LightModel {
             LightModel::Point => 4,
             LightModel::Ldt(i) => interp_code(i),
             LightModel::CatmullRomTable => 5,
+            LightModel::CatmullRomCube => 6,
         }
     }
 
@@ -40,7 +44,9 @@ impl LightModel {
     pub fn interp(self) -> Interp {
         match self {
             LightModel::Ldt(i) => i,
-            LightModel::Point | LightModel::CatmullRomTable => Interp::CatmullRom,
+            LightModel::Point | LightModel::CatmullRomTable | LightModel::CatmullRomCube => {
+                Interp::CatmullRom
+            }
         }
     }
 }
@@ -191,6 +197,7 @@ impl ScenePasses {
             (6, scene.lights.sectors.as_entire_binding()),
             (7, wgpu::BindingResource::TextureView(&tables.view)),
             (14, wgpu::BindingResource::Sampler(&tables.sampler)),
+            (15, wgpu::BindingResource::TextureView(&tables.cube)),
             (12, wgpu::BindingResource::TextureView(&scene.light_map)),
             (
                 13,
