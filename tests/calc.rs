@@ -253,6 +253,10 @@ fn grids_are_virtual_and_bad_grids_are_refused_by_key() {
         ("[[grid]]\nname = \"w\"\ncorner = [0.0, 0.0]\nsize = [2.0, 2.0]\nspacing = \"dense\"\n", "grid[0].spacing"),
         ("[[grid]]\nname = \"w\"\ncorner = [0.0, 0.0]\nsize = [2.0, 2.0]\n\n[[grid]]\nname = \"W\"\ncorner = [0.0, 0.0]\nsize = [2.0, 2.0]\n", "grid[1].name"),
         ("[calc]\nmaintenance_factor = 1.5\n", "calc.maintenance_factor"),
+        ("[calc]\nindirect = \"some\"\n", "indirect"),
+        ("[[observer]]\nname = \"o\"\nposition = [1.0, 1.0, 1.2]\ndirection = [0.0, 0.0, 1.0]\n", "observer[0].direction"),
+        ("[[observer]]\nname = \"o\"\nposition = [1.0, 1.0, 1.2]\ndirection = [1.0, 0.0, 0.0]\n\n[[observer]]\nname = \" O\"\nposition = [2.0, 1.0, 1.2]\ndirection = [1.0, 0.0, 0.0]\n", "observer[1].name"),
+        ("[[observer]]\nname = \"o\"\nposition = [1.0, 1.0]\ndirection = [1.0, 0.0, 0.0]\n", "position"),
     ] {
         let scene = room_scene(tmp.path(), extra);
         let out = tmp.path().join("refused");

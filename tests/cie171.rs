@@ -260,6 +260,18 @@ fn csv_rows(path: &Path) -> Vec<[f64; 4]> {
         .collect()
 }
 
+/// Runs `calc SCENE --out DIR EXTRA…` and returns the rows of each grid CSV in `grids`.
+fn calc_rows(scene: &Path, out: &Path, extra: &[&str], grids: &[&str]) -> Vec<Vec<[f64; 4]>> {
+    let mut args = vec!["calc", s(scene), "--out", s(out)];
+    args.extend(extra);
+    let (code, _, err) = run_cli(&args, "");
+    assert_eq!(code, 0, "{err}");
+    grids
+        .iter()
+        .map(|g| csv_rows(&out.join(format!("{g}.csv"))))
+        .collect()
+}
+
 /// E = I cos θ / d² of the isotropic source at `source` on a surface at `p` facing `n`.
 fn point_source_lux(source: DVec3, p: DVec3, n: DVec3) -> f64 {
     let to = source - p;
@@ -327,14 +339,13 @@ fn point_source_direct_illuminance() {
             luminaire_toml(&ies, source)
         ),
     );
-    for (device, extra) in [("GPU", None), ("CPU", Some("--cpu"))] {
+    for (device, extra) in [("GPU", &[][..]), ("CPU", &["--cpu"][..])] {
         let out = tmp.path().join(format!("out-{device}"));
-        let mut args = vec!["calc", s(&scene), "--out", s(&out)];
-        args.extend(extra);
-        let (code, _, err) = run_cli(&args, "");
-        assert_eq!(code, 0, "{err}");
-        for (grid, normal) in [("work-plane", DVec3::Z), ("wall", DVec3::X)] {
-            let rows = csv_rows(&out.join(format!("{grid}.csv")));
+        let grids = calc_rows(&scene, &out, extra, &["work-plane", "wall"]);
+        for ((grid, normal), rows) in [("work-plane", DVec3::Z), ("wall", DVec3::X)]
+            .into_iter()
+            .zip(grids)
+        {
             assert!(rows.len() > 100, "{grid}: {} points", rows.len());
             let got: Vec<f64> = rows.iter().map(|r| r[3]).collect();
             let want: Vec<f64> = rows
@@ -377,19 +388,7 @@ fn area_source_direct_illuminance() {
         "[[grid]]\nname = \"work plane\"\ncorner = [0.0, 0.0]\nsize = [4.0, 4.0]\nheight = 0.8\nspacing = 0.25\n",
     );
     let out = tmp.path().join("out");
-    let (code, _, err) = run_cli(
-        &[
-            "calc",
-            s(&scene),
-            "--out",
-            s(&out),
-            "--indirect",
-            "radiosity",
-        ],
-        "",
-    );
-    assert_eq!(code, 0, "{err}");
-    let rows = csv_rows(&out.join("work-plane.csv"));
+    let rows = calc_rows(&scene, &out, &["--indirect", "radiosity"], &["work-plane"]).remove(0);
     let got: Vec<f64> = rows.iter().map(|r| r[3]).collect();
     let want: Vec<f64> = rows
         .iter()
@@ -439,14 +438,10 @@ fn point_source_with_obstruction() {
     );
     // The shadow of the plate's edge (0.5 m from the axis at 1 m) on the plane 1.7 m down.
     let edge = 0.5 * 1.7;
-    for (device, extra) in [("GPU", None), ("CPU", Some("--cpu"))] {
+    for (device, extra) in [("GPU", &[][..]), ("CPU", &["--cpu"][..])] {
         let out = tmp.path().join(format!("out-{device}"));
-        let mut args = vec!["calc", s(&scene), "--out", s(&out)];
-        args.extend(extra);
-        let (code, _, err) = run_cli(&args, "");
-        assert_eq!(code, 0, "{err}");
         let (mut lit, mut want, mut dark) = (Vec::new(), Vec::new(), 0);
-        for r in csv_rows(&out.join("work-plane.csv")) {
+        for r in calc_rows(&scene, &out, extra, &["work-plane"]).remove(0) {
             let p = DVec3::new(r[0], r[1], r[2]);
             let off = (p.x - source.x).abs().max((p.y - source.y).abs());
             if (off - edge).abs() < 0.05 {

@@ -74,30 +74,51 @@ pub struct Scene {
     pub observers: Vec<Observer>,
 }
 
-/// The `[[grid]]` entries with their points; names must differ (each names a CSV file).
-fn resolve_grids(
+/// Resolves the `[[table]]` entries (`what`: the table's name in keys and messages) one by
+/// one with `resolve(entry, index)`; their names (`name_of`) must differ, ignoring case and
+/// surrounding blanks, since each names an output.
+fn resolve_named<E, T>(
     path: &Path,
-    entries: &[grid::GridEntry],
-) -> Result<Vec<grid::CalcGrid>, SceneError> {
+    entries: &[E],
+    what: &str,
+    name_of: impl Fn(&E) -> &str,
+    resolve: impl Fn(&E, usize) -> Result<T, SceneError>,
+) -> Result<Vec<T>, SceneError> {
     let mut seen = std::collections::HashSet::new();
     entries
         .iter()
         .enumerate()
         .map(|(i, e)| {
-            if !seen.insert(e.name.trim().to_lowercase()) {
+            if !seen.insert(name_of(e).trim().to_lowercase()) {
                 return Err(SceneError::new(
                     path,
-                    format!("grid[{i}].name"),
+                    format!("{what}[{i}].name"),
                     format!(
-                        "{:?} names an earlier grid too; give each grid its own name",
-                        e.name
+                        "{:?} names an earlier {what} too; give each {what} its own name",
+                        name_of(e)
                     ),
                 ));
             }
-            e.resolve()
-                .map_err(|(key, msg)| SceneError::new(path, format!("grid[{i}].{key}"), msg))
+            resolve(e, i)
         })
         .collect()
+}
+
+/// The `[[grid]]` entries with their points; names must differ (each names a CSV file).
+fn resolve_grids(
+    path: &Path,
+    entries: &[grid::GridEntry],
+) -> Result<Vec<grid::CalcGrid>, SceneError> {
+    resolve_named(
+        path,
+        entries,
+        "grid",
+        |e| &e.name,
+        |e, i| {
+            e.resolve()
+                .map_err(|(key, msg)| SceneError::new(path, format!("grid[{i}].{key}"), msg))
+        },
+    )
 }
 
 /// The `[[observer]]` entries, resolved; names must differ (each names a row of the
@@ -106,24 +127,13 @@ fn resolve_observers(
     path: &Path,
     entries: &[observer::ObserverEntry],
 ) -> Result<Vec<Observer>, SceneError> {
-    let mut seen = std::collections::HashSet::new();
-    entries
-        .iter()
-        .enumerate()
-        .map(|(i, e)| {
-            if !seen.insert(e.name.trim().to_lowercase()) {
-                return Err(SceneError::new(
-                    path,
-                    format!("observer[{i}].name"),
-                    format!(
-                        "{:?} names an earlier observer too; give each observer its own name",
-                        e.name
-                    ),
-                ));
-            }
-            e.resolve(path, i)
-        })
-        .collect()
+    resolve_named(
+        path,
+        entries,
+        "observer",
+        |e| &e.name,
+        |e, i| e.resolve(path, i),
+    )
 }
 
 /// Most luminaires one scene may hold (a stadium has a few hundred; the limit keeps a
