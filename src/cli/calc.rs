@@ -28,7 +28,7 @@ use crate::scene::Scene;
 /// Options of `calc`.
 #[derive(Debug, Args)]
 pub struct CalcArgs {
-    /// The scene file (TOML) with its `[[grid]]` calculation surfaces.
+    /// The scene file (TOML) with its `[[grid]]` calculation surfaces and `[[observer]]`s.
     pub scene: PathBuf,
     /// Folder for `calc.json` and one `<grid name>.csv` per grid (created if missing).
     #[arg(long)]

@@ -41,8 +41,10 @@ pub enum Command {
     Render(render::RenderArgs),
     /// Read "x y z nx ny nz" lines from stdin and print the direct illuminance (lux) at each.
     Illuminance(render::IlluminanceArgs),
-    /// Lighting calculations on the scene's `[[grid]]` surfaces: maintained illuminance at
-    /// every point, Em/Emin/Emax/U0/g2 per grid, `calc.json` and one CSV per grid.
+    /// Lighting calculations on the scene's `[[grid]]` surfaces and `[[observer]]`s:
+    /// maintained illuminance at every point (direct, or total with `--indirect
+    /// radiosity`), Em/Emin/Emax/U0/g2 per grid, UGR per observer, `calc.json`, one CSV
+    /// and plan per grid.
     Calc(calc::CalcArgs),
     /// The sun's position (NREL SPA) for a site and an instant.
     Sun(sun::SunArgs),
