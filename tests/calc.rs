@@ -472,6 +472,29 @@ fn total_light_and_glare_at_observers() {
     let got = door["ugr"].as_f64().unwrap();
     assert!((got - ugr).abs() < 0.05, "UGR {got} vs {ugr} by hand");
     assert_eq!(door["luminaires"].as_array().unwrap().len(), 1);
+    // UGR is rated on the initial light: a maintenance factor changes the lux, not UGR.
+    let maintained = tmp.path().join("maintained");
+    let (code, _, err) = run_cli(
+        &[
+            "calc",
+            s(&scene),
+            "--out",
+            s(&maintained),
+            "--maintenance-factor",
+            "0.5",
+        ],
+        "",
+    );
+    assert_eq!(code, 0, "{err}");
+    let again: Value =
+        serde_json::from_slice(&std::fs::read(maintained.join("calc.json")).unwrap()).unwrap();
+    let ugr_again = again["observers"][0]["ugr"].as_f64().unwrap();
+    assert!(
+        (ugr_again - got).abs() < 0.01,
+        "UGR {ugr_again} with MF 0.5 vs {got}"
+    );
+    let em = |d: &Value| d["grids"][0]["em"].as_f64().unwrap();
+    assert!((em(&again) / em(&doc) - 0.5).abs() < 1e-3);
     // The other observer has the luminaire behind the eye: nothing glares.
     let window = &doc["observers"][1];
     assert!(window["ugr"].is_null(), "{window}");

@@ -169,8 +169,10 @@ pub fn run(args: CalcArgs) -> Result<(), CliError> {
             }
             check_usable(&g.entry.name, direct)?;
         }
+        // UGR from the installation's initial light, as UGR tables are: the maintenance
+        // factor scales neither the luminaires' luminance nor the background.
         for b in &mut background {
-            *b = interreflected[at].max(0.0) * mf / std::f64::consts::PI;
+            *b = interreflected[at].max(0.0) / std::f64::consts::PI;
             at += 1;
         }
     }
