@@ -11,7 +11,7 @@ mod svg;
 
 use std::path::Path;
 
-use common::{luminaire, root, run_cli};
+use common::{calc_csv_rows, luminaire, root, run_cli};
 use glam::DVec3;
 use goniolight::photometry::{Interp, Luminaire};
 use serde_json::Value;
@@ -35,18 +35,6 @@ fn room_scene(dir: &Path, extra: &str) -> std::path::PathBuf {
     )
     .unwrap();
     path
-}
-
-fn csv_rows(path: &Path) -> Vec<[f64; 4]> {
-    let text = std::fs::read_to_string(path).unwrap();
-    let mut lines = text.lines();
-    assert_eq!(lines.next(), Some("x,y,z,lux"));
-    lines
-        .map(|l| {
-            let v: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();
-            [v[0], v[1], v[2], v[3]]
-        })
-        .collect()
 }
 
 fn stats_of(values: &[f64]) -> [f64; 5] {
@@ -76,7 +64,7 @@ fn check_against_illuminance(cpu: bool) {
     let grid = &doc["grids"][0];
     assert_eq!(grid["name"], "work plane");
     assert_eq!(grid["maintenance_factor"], 0.8);
-    let rows = csv_rows(&out.join("work-plane.csv"));
+    let rows = calc_csv_rows(&out.join("work-plane.csv"));
     // The plan as PNG and SVG: both show the false colours (the SVG is a picture).
     assert_eq!(
         grid["plans"],
@@ -207,7 +195,7 @@ fn vertical_and_cylindrical_illuminance_follow_the_point_source_formula() {
             i * l.dot(DVec3::NEG_X).max(0.0) / d2
         }),
     ] {
-        let rows = csv_rows(&out.join(format!("{name}.csv")));
+        let rows = calc_csv_rows(&out.join(format!("{name}.csv")));
         assert!(rows.len() >= 16, "{name}: {} points", rows.len());
         for r in rows {
             let (i, l, d2) = toward(DVec3::new(r[0], r[1], r[2]));
@@ -420,7 +408,7 @@ fn total_light_and_glare_at_observers() {
 
     // The grid against `radiosity --points` at the same points; the eye of "door"
     // (facing its line of sight) last.
-    let rows = csv_rows(&out.join("work-plane.csv"));
+    let rows = calc_csv_rows(&out.join("work-plane.csv"));
     assert_eq!(rows.len(), 24);
     let mut stdin: String = rows
         .iter()

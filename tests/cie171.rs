@@ -27,7 +27,7 @@ use std::f64::consts::PI;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use common::run_cli;
+use common::{calc_csv_rows, run_cli};
 use glam::DVec3;
 
 /// The isotropic source's intensity, cd (in every direction).
@@ -248,18 +248,6 @@ fn lux_at(cmd: &[&str], points: &[(DVec3, DVec3)]) -> Vec<f64> {
     lux
 }
 
-/// The rows of a grid's CSV: (x, y, z, lux).
-fn csv_rows(path: &Path) -> Vec<[f64; 4]> {
-    let text = std::fs::read_to_string(path).unwrap();
-    text.lines()
-        .skip(1)
-        .map(|l| {
-            let v: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();
-            [v[0], v[1], v[2], v[3]]
-        })
-        .collect()
-}
-
 /// Runs `calc SCENE --out DIR EXTRA…` and returns the rows of each grid CSV in `grids`.
 fn calc_rows(scene: &Path, out: &Path, extra: &[&str], grids: &[&str]) -> Vec<Vec<[f64; 4]>> {
     let mut args = vec!["calc", s(scene), "--out", s(out)];
@@ -268,7 +256,7 @@ fn calc_rows(scene: &Path, out: &Path, extra: &[&str], grids: &[&str]) -> Vec<Ve
     assert_eq!(code, 0, "{err}");
     grids
         .iter()
-        .map(|g| csv_rows(&out.join(format!("{g}.csv"))))
+        .map(|g| calc_csv_rows(&out.join(format!("{g}.csv"))))
         .collect()
 }
 

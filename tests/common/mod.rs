@@ -248,3 +248,16 @@ pub fn plot_svg_and_png(file: &Path, args: &[&str], dir: &Path, name: &str) -> (
     }
     (svg, png)
 }
+
+/// The rows of a grid CSV written by `calc` (`x,y,z,lux`, header checked).
+pub fn calc_csv_rows(path: &Path) -> Vec<[f64; 4]> {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(lines.next(), Some("x,y,z,lux"), "{}", path.display());
+    lines
+        .map(|l| {
+            let v: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();
+            [v[0], v[1], v[2], v[3]]
+        })
+        .collect()
+}
