@@ -16,7 +16,7 @@ use goniolight::geometry::generate::cuboid;
 use goniolight::shadow::raycast::in_shadow;
 use goniolight::shadow::{Light, SilhouetteMethod};
 use goniolight::study::output::{hours_colour, hours_image, hours_scale};
-use goniolight::study::profile::{compute, Profile, ProfileSpec, SURFACE_GROUND};
+use goniolight::study::profile::{compute, HoursMetric, Profile, ProfileSpec, SURFACE_GROUND};
 use goniolight::sun::{direction_from_angles, Site, SunOptions, Zone};
 
 /// A 20 × 10 × 12 m box on the ground, turned 30° about the vertical so no edge runs
@@ -101,13 +101,12 @@ fn hours_in_shadow_match_a_cpu_ray_cast() {
     };
     let mesh = box_model();
     let hours = p.hours_in_shadow();
-    let step_h = p.step_minutes as f64 / 60.0;
-    let lights: Vec<Light> = p
+    let lights: Vec<(Light, f64)> = p
         .steps
         .iter()
         .map(|s| {
             let d = direction_from_angles(s.azimuth_deg, s.elevation_deg, 0.0);
-            Light::new([d.x, d.y, d.z, 0.0]).unwrap()
+            (Light::new([d.x, d.y, d.z, 0.0]).unwrap(), s.weight_h)
         })
         .collect();
     let n = p.resolution;
@@ -120,11 +119,11 @@ fn hours_in_shadow_match_a_cpu_ray_cast() {
             }
             let c = p.pixel_center(px, py);
             let point = DVec3::new(c.x, c.y, 0.0);
-            let cpu = lights
+            let cpu: f64 = lights
                 .iter()
-                .filter(|l| in_shadow(&mesh, l, point, 1e-9))
-                .count() as f64
-                * step_h;
+                .filter(|(l, _)| in_shadow(&mesh, l, point, 1e-9))
+                .map(|(_, w)| w)
+                .sum();
             compared += 1;
             shaded += (cpu > 0.0) as usize;
             equal += ((hours[k] as f64 - cpu).abs() < 1e-4) as usize;
@@ -136,7 +135,7 @@ fn hours_in_shadow_match_a_cpu_ray_cast() {
     // Cells cut by a shadow edge may differ by one step.
     assert!(fraction >= 0.99, "{fraction}");
     // The image shows those hours on its colour scale.
-    let image = hours_image(&p);
+    let image = hours_image(&p, HoursMetric::Shadow);
     let scale = hours_scale(&p);
     for k in (0..(n * n) as usize).step_by(97) {
         if p.surface[k] == SURFACE_GROUND {
@@ -197,7 +196,7 @@ fn profile_command_writes_the_plan_hours_and_csv() {
     let mut lines = csv.lines();
     assert_eq!(
         lines.next().unwrap(),
-        "time,azimuth_deg,elevation_deg,shadow_area_m2,shadow_area_with_footprint_m2,reaches_edge"
+        "time,azimuth_deg,elevation_deg,shadow_area_m2,shadow_area_with_footprint_m2,reaches_edge,weight_h"
     );
     let rows: Vec<&str> = lines.collect();
     assert_eq!(rows.len(), 9, "08:00 … 16:00");

@@ -10,10 +10,15 @@ use super::CliError;
 use crate::geometry::obj::read_obj;
 use crate::geometry::Mesh;
 use crate::gpu::Gpu;
+use crate::io::write_atomic;
 use crate::scene::UpAxis;
 use crate::shadow::SilhouetteMethod;
-use crate::study::output::write_profile;
-use crate::study::profile::{compute, Profile, ProfileSpec};
+use crate::study::annotate::PlanLabels;
+use crate::study::model::{recentre, up_axis_warning};
+use crate::study::output::{write_study, StudyOutput};
+use crate::study::profile::{compute, shared_extent, HoursMetric, Profile, ProfileSpec};
+use crate::study::rasters::read_areas;
+use crate::study::sunpath::SunPathDiagram;
 use crate::sun::{Site, SunOptions, Zone};
 
 /// Options of `profile`.
@@ -27,9 +32,24 @@ pub struct ProfileArgs {
     /// Longitude, degrees east.
     #[arg(long, allow_hyphen_values = true)]
     pub lon: f64,
-    /// The day, YYYY-MM-DD.
+    /// The day, YYYY-MM-DD (or give --dates, --preset or --date-range).
     #[arg(long)]
-    pub date: NaiveDate,
+    pub date: Option<NaiveDate>,
+    /// Several days, comma-separated: one plan per date on one shared extent, and a table.
+    #[arg(long, value_delimiter = ',', conflicts_with = "date")]
+    pub dates: Vec<NaiveDate>,
+    /// A named set of dates in --year.
+    #[arg(long, value_enum, conflicts_with_all = ["date", "dates"])]
+    pub preset: Option<DatePreset>,
+    /// The year of --preset (default: this year).
+    #[arg(long, requires = "preset")]
+    pub year: Option<i32>,
+    /// Dates from FIRST to LAST (inclusive) every --day-step days: FIRST..LAST.
+    #[arg(long, value_parser = parse_range, conflicts_with_all = ["date", "dates", "preset"])]
+    pub date_range: Option<(NaiveDate, NaiveDate)>,
+    /// Days between the dates of --date-range.
+    #[arg(long, default_value_t = 7, requires = "date_range")]
+    pub day_step: u32,
     /// First step, local time HH:MM.
     #[arg(long, value_parser = parse_hhmm)]
     pub from: NaiveTime,
@@ -39,14 +59,15 @@ pub struct ProfileArgs {
     /// Minutes between steps (at least 1).
     #[arg(long)]
     pub step: u32,
-    /// Time zone: an IANA name (Europe/Vienna) or an offset (+02:00); default UTC.
-    #[arg(long, default_value = "UTC")]
-    pub tz: String,
+    /// Time zone: an IANA name (Europe/Vienna) or an offset (+02:00); without it the
+    /// times are UTC (a warning says so).
+    #[arg(long)]
+    pub tz: Option<String>,
     /// Angle from the model's +Y axis clockwise (seen from above) to true north, degrees.
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub north_offset: f64,
-    /// Side of the square plan, metres (default: enough for the lowest sun, at most
-    /// twenty times the model's height on each side).
+    /// Side of the square plan, metres (default: enough for the lowest sun of every date,
+    /// at most twenty times the model's height on each side).
     #[arg(long)]
     pub extent: Option<f64>,
     /// Pixels per side of the plan.
@@ -58,16 +79,113 @@ pub struct ProfileArgs {
     /// Silhouette search.
     #[arg(long, value_enum, default_value = "hextree")]
     pub silhouettes: SilhouetteMethod,
-    /// Also write one plan per step into DIR/steps/HHMM.png.
+    /// What hours.png and the rasters count: hours of direct sun or hours in shadow.
+    #[arg(long, value_enum, default_value = "shadow")]
+    pub metric: HoursMetric,
+    /// Hours a ground cell needs to pass (e.g. 2 for BRE 209 on 21 March): pass.png and
+    /// the passing fractions in study.json.
+    #[arg(long, allow_hyphen_values = true)]
+    pub threshold: Option<f64>,
+    /// Analysis areas (GeoJSON Polygons/MultiPolygons in the model's plan coordinates,
+    /// metres; `properties.name` names them): their passing fractions in study.json.
+    #[arg(long, requires = "threshold")]
+    pub areas: Option<PathBuf>,
+    /// Also write one framed plan per step into DIR/steps/HHMM.png.
     #[arg(long)]
     pub step_images: bool,
-    /// The output folder (profile.png, hours.png, profile.csv).
+    /// Also write the day's animation (one framed plan per step) as a GIF.
+    #[arg(long)]
+    pub gif: Option<PathBuf>,
+    /// The output folder (one sub-folder per date when there are several).
     #[arg(long)]
     pub out: PathBuf,
 }
 
+/// Named sets of dates.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum DatePreset {
+    /// 21 March, 21 June, 21 December (the dates BRE 209 and most sun studies use; on the
+    /// southern hemisphere the same dates, whose meaning swaps).
+    EquinoxSolstices,
+    /// The 21st of every month.
+    Monthly,
+}
+
+impl DatePreset {
+    /// Its dates in `year`.
+    pub fn dates(self, year: i32) -> Vec<NaiveDate> {
+        let months: Vec<u32> = match self {
+            DatePreset::EquinoxSolstices => vec![3, 6, 12],
+            DatePreset::Monthly => (1..=12).collect(),
+        };
+        months
+            .into_iter()
+            .filter_map(|m| NaiveDate::from_ymd_opt(year, m, 21))
+            .collect()
+    }
+}
+
 fn parse_hhmm(s: &str) -> Result<NaiveTime, String> {
     NaiveTime::parse_from_str(s, "%H:%M").map_err(|_| format!("{s:?} is not a time HH:MM"))
+}
+
+fn parse_range(s: &str) -> Result<(NaiveDate, NaiveDate), String> {
+    let (a, b) = s
+        .split_once("..")
+        .ok_or_else(|| format!("{s:?} is not FIRST..LAST (e.g. 2026-03-01..2026-03-31)"))?;
+    let date = |t: &str| {
+        NaiveDate::parse_from_str(t.trim(), "%Y-%m-%d")
+            .map_err(|_| format!("{t:?} is not a date YYYY-MM-DD"))
+    };
+    let (a, b) = (date(a)?, date(b)?);
+    if a > b {
+        return Err(format!("{a} is after {b}"));
+    }
+    Ok((a, b))
+}
+
+/// The most dates one run takes (each date's profile stays in memory until all are done,
+/// so an interrupted study writes nothing).
+pub const MAX_DATES: usize = 60;
+
+impl ProfileArgs {
+    /// The study's dates, in order, without repeats.
+    fn study_dates(&self) -> Result<Vec<NaiveDate>, CliError> {
+        let mut dates = if let Some(d) = self.date {
+            vec![d]
+        } else if !self.dates.is_empty() {
+            self.dates.clone()
+        } else if let Some(p) = self.preset {
+            let year = self
+                .year
+                .unwrap_or_else(|| chrono::Datelike::year(&chrono::Utc::now()));
+            p.dates(year)
+        } else if let Some((first, last)) = self.date_range {
+            if self.day_step == 0 {
+                return Err(CliError::input(anyhow!("--day-step must be at least 1")));
+            }
+            let mut v = Vec::new();
+            let mut d = first;
+            while d <= last {
+                v.push(d);
+                d += chrono::Duration::days(self.day_step as i64);
+            }
+            v
+        } else {
+            return Err(CliError::input(anyhow!(
+                "give the day: --date, --dates, --preset or --date-range"
+            )));
+        };
+        dates.sort();
+        dates.dedup();
+        if dates.len() > MAX_DATES {
+            return Err(CliError::input(anyhow!(
+                "{} dates; at most {MAX_DATES} per run (use a larger --day-step)",
+                dates.len()
+            )));
+        }
+        Ok(dates)
+    }
 }
 
 /// Reads an OBJ model and turns it to the world's +Z up.
@@ -90,28 +208,75 @@ pub fn load_model(path: &Path, up: UpAxis) -> Result<Mesh, CliError> {
     Ok(mesh)
 }
 
+/// A model's plan coordinates named for titles: "48.21° N, 16.37° E".
+fn site_label(lat: f64, lon: f64) -> String {
+    format!(
+        "{:.4}° {}, {:.4}° {}",
+        lat.abs(),
+        if lat >= 0.0 { "N" } else { "S" },
+        lon.abs(),
+        if lon >= 0.0 { "E" } else { "W" }
+    )
+}
+
 /// Runs `profile`.
 pub fn run(a: ProfileArgs) -> Result<(), CliError> {
     let site = Site::new(a.lat, a.lon, 0.0)?;
-    let zone = Zone::parse(&a.tz)?;
-    let model = load_model(&a.model, a.up)?;
-    let spec = ProfileSpec {
-        site,
-        zone,
-        date: a.date,
-        from: a.from,
-        to: a.to,
-        step_minutes: a.step,
-        sun: SunOptions {
-            north_offset_deg: a.north_offset,
-            ..Default::default()
-        },
-        extent_m: a.extent,
-        resolution: a.resolution,
-        silhouette: a.silhouettes,
+    let zone = match &a.tz {
+        Some(tz) => Zone::parse(tz)?,
+        None => {
+            eprintln!(
+                "warning: no --tz: --from/--to and every time written are UTC (give --tz Europe/Vienna or +01:00 for local time)"
+            );
+            Zone::parse("UTC")?
+        }
     };
-    // Check the period before starting the GPU.
-    let steps = spec.local_times()?.len();
+    let tz_name = a.tz.clone().unwrap_or_else(|| "UTC".into());
+    let dates = a.study_dates()?;
+    let areas = match &a.areas {
+        Some(p) => read_areas(p).map_err(CliError::input)?,
+        None => Vec::new(),
+    };
+    if let Some(t) = a.threshold {
+        if !(t.is_finite() && t >= 0.0) {
+            return Err(CliError::input(anyhow!(
+                "--threshold {t} must be a number of hours ≥ 0"
+            )));
+        }
+    }
+    let mut model = load_model(&a.model, a.up)?;
+    if let Some(w) = up_axis_warning(&model, a.up) {
+        eprintln!("warning: {}: {w}", a.model.display());
+    }
+    let origin = recentre(&mut model);
+    let specs: Vec<ProfileSpec> = dates
+        .iter()
+        .map(|&date| ProfileSpec {
+            site,
+            zone,
+            date,
+            from: a.from,
+            to: a.to,
+            step_minutes: a.step,
+            sun: SunOptions {
+                north_offset_deg: a.north_offset,
+                ..Default::default()
+            },
+            extent_m: a.extent,
+            resolution: a.resolution,
+            silhouette: a.silhouettes,
+        })
+        .collect();
+    // Check every period before starting the GPU; several dates share one extent.
+    let mut steps = 0;
+    for s in &specs {
+        steps += s.local_times()?.len();
+        s.suns()?;
+    }
+    let shared = match (a.extent, specs.len()) {
+        (None, 2..) => Some(shared_extent(&model, &specs)?),
+        (e, _) => e,
+    };
     let gpu = Gpu::shared().map_err(CliError::failure)?;
     let bar = indicatif::ProgressBar::new(steps as u64);
     bar.set_style(
@@ -119,28 +284,163 @@ pub fn run(a: ProfileArgs) -> Result<(), CliError> {
             .map_err(|e| CliError::failure(anyhow!(e)))?,
     );
     bar.set_message("shadow profile");
-    // Ctrl-C stops between steps; nothing is written for an unfinished profile.
+    // Ctrl-C stops between steps; nothing is written for an unfinished study.
     let cancel = super::interrupt_flag();
     eprintln!(
-        "{}: {steps} steps (Ctrl-C stops and writes nothing)",
-        a.model.display()
+        "{}: {steps} steps on {} date(s) (Ctrl-C stops and writes nothing)",
+        a.model.display(),
+        dates.len()
     );
-    let t = std::time::Instant::now();
-    let profile = compute(
-        &gpu,
-        &model,
-        &spec,
-        |done, _| bar.set_position(done as u64),
-        &cancel,
-    );
+    let mut profiles = Vec::with_capacity(specs.len());
+    let mut done_before = 0;
+    for spec in &specs {
+        let spec = ProfileSpec {
+            extent_m: shared,
+            ..spec.clone()
+        };
+        let t = std::time::Instant::now();
+        let result = compute(
+            &gpu,
+            &model,
+            &spec,
+            |done, _| bar.set_position((done_before + done) as u64),
+            &cancel,
+        );
+        let mut profile = match result {
+            Ok(p) => p,
+            Err(e) => {
+                bar.finish_and_clear();
+                return Err(e.into());
+            }
+        };
+        done_before += spec.local_times()?.len();
+        profile.origin = origin;
+        profiles.push((spec, profile, t.elapsed().as_secs_f64()));
+    }
     bar.finish_and_clear();
-    let profile = profile?;
-    report(&a, &profile, t.elapsed().as_secs_f64());
-    write_profile(&profile, &a.out, a.step_images).map_err(CliError::failure)?;
+    let several = profiles.len() > 1;
+    let mut summaries = Vec::new();
+    for (spec, profile, seconds) in &profiles {
+        report(&a, profile, *seconds);
+        let dir = if several {
+            a.out.join(spec.date.to_string())
+        } else {
+            a.out.clone()
+        };
+        let output = StudyOutput {
+            metric: a.metric,
+            threshold_h: a.threshold,
+            areas: areas.clone(),
+            labels: PlanLabels {
+                title: site_label(a.lat, a.lon),
+                subtitle: format!(
+                    "{}, {}–{} {tz_name}, every {} min",
+                    spec.date,
+                    a.from.format("%H:%M"),
+                    a.to.format("%H:%M"),
+                    a.step
+                ),
+                north_offset_deg: a.north_offset,
+            },
+            step_images: a.step_images,
+            gif: a.gif.as_ref().map(|g| {
+                if several {
+                    dir.join(g.file_name().unwrap_or(g.as_os_str()))
+                } else {
+                    g.clone()
+                }
+            }),
+        };
+        let summary = write_study(profile, &dir, &output).map_err(CliError::failure)?;
+        write_sun_path(spec, profile, &dir, &output.labels)?;
+        summaries.push((spec.date, summary));
+    }
+    if several {
+        write_dates_table(&a.out, &summaries).map_err(CliError::failure)?;
+    }
+    for (date, s) in &summaries {
+        if let Some(f) = s.pass_fraction {
+            println!(
+                "{date}: {:.1} % of the plan reaches {} h of {} ({} area(s){})",
+                100.0 * f,
+                s.threshold_h.unwrap_or(0.0),
+                s.metric,
+                s.areas.len(),
+                s.areas
+                    .iter()
+                    .map(|r| format!(
+                        ", {}: {}",
+                        r.name,
+                        r.pass_fraction
+                            .map_or("outside the plan".into(), |f| format!("{:.1} %", 100.0 * f))
+                    ))
+                    .collect::<String>()
+            );
+        }
+    }
     Ok(())
 }
 
+/// The sun-path diagram of the study's site with this date's steps marked.
+fn write_sun_path(
+    spec: &ProfileSpec,
+    profile: &Profile,
+    dir: &Path,
+    labels: &PlanLabels,
+) -> Result<(), CliError> {
+    let suns: Vec<_> = profile
+        .steps
+        .iter()
+        .map(|s| (s.time, s.azimuth_deg, s.elevation_deg))
+        .collect();
+    let diagram = SunPathDiagram {
+        site: spec.site,
+        zone: spec.zone,
+        year: chrono::Datelike::year(&spec.date),
+        sun: spec.sun,
+        title: format!("Sun path — {}", labels.title),
+        marked: suns,
+    };
+    let svg = diagram.svg().map_err(|e| CliError::failure(anyhow!(e)))?;
+    write_atomic(&dir.join("sunpath.svg"), svg.as_bytes()).map_err(CliError::failure)
+}
+
+/// `dates.csv` and `dates.json` beside the per-date folders: one row per date.
+fn write_dates_table(
+    dir: &Path,
+    summaries: &[(NaiveDate, crate::study::output::StudySummary)],
+) -> anyhow::Result<()> {
+    use std::fmt::Write as _;
+    let mut csv = String::from("date,metric,period_h,sun_up_h,mean_h,threshold_h,pass_fraction\n");
+    for (date, s) in summaries {
+        let _ = writeln!(
+            csv,
+            "{date},{},{:.4},{:.4},{:.4},{},{}",
+            s.metric,
+            s.period_h,
+            s.sun_up_h,
+            s.mean_h,
+            s.threshold_h.map_or(String::new(), |t| t.to_string()),
+            s.pass_fraction.map_or(String::new(), |f| format!("{f:.6}"))
+        );
+    }
+    write_atomic(&dir.join("dates.csv"), csv.as_bytes())?;
+    let json: Vec<_> = summaries
+        .iter()
+        .map(|(d, s)| serde_json::json!({ "date": d.to_string(), "study": s }))
+        .collect();
+    write_atomic(
+        &dir.join("dates.json"),
+        serde_json::to_string_pretty(&json)?.as_bytes(),
+    )
+}
+
 fn report(a: &ProfileArgs, profile: &Profile, seconds: f64) {
+    let date = profile
+        .steps
+        .first()
+        .map(|s| s.time.format("%Y-%m-%d: ").to_string())
+        .unwrap_or_default();
     if !profile.skipped.is_empty() {
         let times: Vec<String> = profile
             .skipped
@@ -148,7 +448,7 @@ fn report(a: &ProfileArgs, profile: &Profile, seconds: f64) {
             .map(|t| t.format("%H:%M").to_string())
             .collect();
         eprintln!(
-            "warning: the sun is below the horizon at {} step(s), skipped: {}",
+            "warning: {date}the sun is below the horizon at {} step(s), skipped: {}",
             times.len(),
             times.join(" ")
         );
@@ -161,7 +461,7 @@ fn report(a: &ProfileArgs, profile: &Profile, seconds: f64) {
         .collect();
     if !cut.is_empty() {
         eprintln!(
-            "warning: the shadow reaches the edge of the {:.0} m plan at {} (its area is cut; use a larger --extent): {}",
+            "warning: {date}the shadow reaches the edge of the {:.0} m plan at {} (its area is cut; use a larger --extent): {}",
             profile.extent_m,
             cut.len(),
             cut.join(" ")
@@ -169,7 +469,7 @@ fn report(a: &ProfileArgs, profile: &Profile, seconds: f64) {
     }
     let n = profile.steps.len().max(1) as f64;
     println!(
-        "{}: {} steps, plan {:.1} m at {} px ({:.3} m/px), footprint {:.1} m²; {:.2} s ({:.1} ms/step: silhouettes {:.1} ms, shadow volumes {:.1} ms) → {}",
+        "{}: {date}{} steps, plan {:.1} m at {} px ({:.3} m/px), footprint {:.1} m²; {:.2} s ({:.1} ms/step: silhouettes {:.1} ms, shadow volumes {:.1} ms) → {}",
         a.model.display(),
         profile.steps.len(),
         profile.extent_m,

@@ -83,9 +83,10 @@ pub fn run(a: SunArgs) -> Result<(), CliError> {
         if let Some(z) = &zone {
             let local = p.utc.date_naive();
             if let Ok(ev) = sun::day_events(&site, local, z, &opts) {
+                // Local time in the zone, to the second, with its offset.
                 let fmt = |v: &[chrono::DateTime<chrono::Utc>]| {
                     v.iter()
-                        .map(|t| t.to_rfc3339())
+                        .map(|t| local_time(z, *t))
                         .collect::<Vec<_>>()
                         .join(", ")
                 };
@@ -96,4 +97,15 @@ pub fn run(a: SunArgs) -> Result<(), CliError> {
         }
     }
     Ok(())
+}
+
+/// `t` in `zone`'s local time to the second, with the offset in force
+/// (`2026-03-21T06:02:41+01:00`).
+pub fn local_time(zone: &Zone, t: chrono::DateTime<chrono::Utc>) -> String {
+    match chrono::FixedOffset::east_opt(zone.offset_seconds(t)) {
+        Some(off) => t
+            .with_timezone(&off)
+            .to_rfc3339_opts(chrono::SecondsFormat::Secs, false),
+        None => t.to_rfc3339_opts(chrono::SecondsFormat::Secs, true),
+    }
 }

@@ -1,8 +1,13 @@
 //! Sun and shadow studies of a building on top of the renderer's shadow volumes: sun-path
-//! shadow profiles over a period, hours in shadow per plan cell, and their images and
-//! tables.
+//! shadow profiles over a period, hours of sun or shadow per plan cell with thresholds and
+//! analysis areas, their framed plans, rasters, outlines and tables, and sun-path diagrams.
 
+pub mod annotate;
+pub mod model;
+pub mod outlines;
 pub mod output;
 pub mod profile;
+pub mod rasters;
+pub mod sunpath;
 
-pub use profile::{compute, Profile, ProfileError, ProfileSpec};
+pub use profile::{compute, HoursMetric, Profile, ProfileError, ProfileSpec};

@@ -102,6 +102,122 @@ impl ProfileSpec {
         }
         Ok(out)
     }
+
+    /// The period's length, hours (`to` − `from`).
+    pub fn period_h(&self) -> f64 {
+        (self.to - self.from).num_seconds() as f64 / 3600.0
+    }
+
+    /// The hours each step of [`ProfileSpec::local_times`] stands for: the part of the
+    /// period nearer to it than to any other step (the midpoint rule, which for evenly
+    /// spaced steps is the trapezoid rule: the first and last steps stand for half a step
+    /// each when the period ends on them). The weights add up to [`Self::period_h`], so
+    /// 08:00–17:00 hourly gives 9 h of sun on open ground, not 10.
+    pub fn sample_weights_h(&self) -> Result<Vec<f64>, ProfileError> {
+        let times = self.local_times()?;
+        let start = self.date.and_time(self.from);
+        let end = self.date.and_time(self.to);
+        let hours = |a: chrono::NaiveDateTime, b: chrono::NaiveDateTime| {
+            (b - a).num_milliseconds() as f64 / 3.6e6
+        };
+        Ok((0..times.len())
+            .map(|k| {
+                let lo = if k == 0 {
+                    start
+                } else {
+                    times[k - 1] + (times[k] - times[k - 1]) / 2
+                };
+                let hi = if k + 1 == times.len() {
+                    end
+                } else {
+                    times[k] + (times[k + 1] - times[k]) / 2
+                };
+                hours(lo, hi)
+            })
+            .collect())
+    }
+}
+
+/// One step with the sun up: its local time, the sun, and the hours it stands for.
+pub type SunStep = (DateTime<FixedOffset>, sun::SunPosition, f64);
+
+impl ProfileSpec {
+    /// The steps with the sun above the horizon and the local times of those without;
+    /// refused when the sun is down at every step.
+    pub fn suns(&self) -> Result<(Vec<SunStep>, Vec<DateTime<FixedOffset>>), ProfileError> {
+        let mut suns = Vec::new();
+        let mut skipped = Vec::new();
+        let weights = self.sample_weights_h()?;
+        for (local, weight_h) in self.local_times()?.into_iter().zip(weights) {
+            let (utc, _) = self
+                .zone
+                .resolve(local)
+                .map_err(|e| ProfileError::Input(e.to_string()))?;
+            let offset = FixedOffset::east_opt(self.zone.offset_seconds(utc))
+                .ok_or_else(|| ProfileError::Input("bad time-zone offset".into()))?;
+            let time = utc.with_timezone(&offset);
+            let p = sun::position(&self.site, utc, &self.sun)
+                .map_err(|e| ProfileError::Input(e.to_string()))?;
+            if p.elevation_deg <= 0.0 {
+                skipped.push(time);
+            } else {
+                suns.push((time, p, weight_h));
+            }
+        }
+        if suns.is_empty() {
+            return Err(ProfileError::Input(format!(
+                "the sun is below the horizon at every step ({} steps on {} from {} to {})",
+                skipped.len(),
+                self.date,
+                self.from.format("%H:%M"),
+                self.to.format("%H:%M")
+            )));
+        }
+        Ok((suns, skipped))
+    }
+
+    /// The lowest sun of the period, degrees.
+    pub fn lowest_sun_deg(&self) -> Result<f64, ProfileError> {
+        Ok(self
+            .suns()?
+            .0
+            .iter()
+            .map(|(_, p, _)| p.elevation_deg)
+            .fold(90.0, f64::min))
+    }
+}
+
+/// One plan side for several periods (the dates of a study): the default extent of the
+/// lowest sun among them, so their plans can be compared cell by cell.
+pub fn shared_extent(model: &Mesh, specs: &[ProfileSpec]) -> Result<f64, ProfileError> {
+    let mut lowest = 90f64;
+    for spec in specs {
+        lowest = lowest.min(spec.lowest_sun_deg()?);
+    }
+    default_extent(model, lowest)
+        .map(|(_, side)| side)
+        .ok_or_else(|| ProfileError::Input("the model has no triangles".into()))
+}
+
+/// What an hours map counts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+pub enum HoursMetric {
+    /// Hours of direct sun (the sun above the horizon and not hidden by the model).
+    Sun,
+    /// Hours in the model's shadow while the sun is up (the first release's map).
+    #[default]
+    Shadow,
+}
+
+impl HoursMetric {
+    /// `"sun"` or `"shadow"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            HoursMetric::Sun => "sun",
+            HoursMetric::Shadow => "shadow",
+        }
+    }
 }
 
 /// One step of a profile.
@@ -119,6 +235,8 @@ pub struct ProfileStep {
     pub shadow_area_with_footprint_m2: f64,
     /// Whether the shadow reaches the edge of the plan (its area is then cut).
     pub reaches_edge: bool,
+    /// Hours of the period this step stands for (see [`ProfileSpec::sample_weights_h`]).
+    pub weight_h: f64,
     /// One bit per pixel (row-major): in shadow.
     pub shadow: Vec<u64>,
 }
@@ -155,6 +273,10 @@ pub struct Profile {
     pub extent_m: f64,
     /// World x, y of the plan's centre.
     pub center: DVec2,
+    /// What is added to world x, y to give the model file's own plan coordinates (the
+    /// loader moves far-off models near the origin before the GPU sees them; outputs give
+    /// the file's coordinates).
+    pub origin: DVec2,
     /// Height of the ground plane (the model's lowest point), metres.
     pub ground_z: f64,
     /// Per pixel: [`SURFACE_GROUND`], [`SURFACE_MODEL`] or [`SURFACE_NONE`].
@@ -165,6 +287,10 @@ pub struct Profile {
     pub skipped: Vec<DateTime<FixedOffset>>,
     /// Minutes between steps.
     pub step_minutes: u32,
+    /// The period's length (`to` − `from`), hours.
+    pub period_h: f64,
+    /// The part of the period with the sun up (the weights of the steps kept), hours.
+    pub sun_up_h: f64,
     /// Where the time went.
     pub timing: ProfileTiming,
 }
@@ -189,20 +315,28 @@ impl Profile {
         self.surface.iter().filter(|&&s| s == SURFACE_MODEL).count() as f64 * self.pixel_area_m2()
     }
 
-    /// Hours in shadow per pixel: steps in shadow × the step length (every pixel; the
-    /// model's own pixels count the shadow on its roof).
+    /// Hours in shadow per pixel: the weights of the steps that shadow it (every pixel;
+    /// the model's own pixels count the shadow on its roof).
     pub fn hours_in_shadow(&self) -> Vec<f32> {
+        self.hours(HoursMetric::Shadow)
+    }
+
+    /// Hours per pixel of `metric`: the sum of the weights ([`ProfileStep::weight_h`]) of
+    /// the steps with the sun up that shadow the pixel ([`HoursMetric::Shadow`]) or do not
+    /// ([`HoursMetric::Sun`]). Pixels that see neither ground nor model get 0.
+    pub fn hours(&self, metric: HoursMetric) -> Vec<f32> {
         let n = (self.resolution * self.resolution) as usize;
-        let mut hours = vec![0f32; n];
-        let h = self.step_minutes as f32 / 60.0;
+        let mut hours = vec![0f64; n];
         for s in &self.steps {
             for (k, v) in hours.iter_mut().enumerate() {
-                if s.in_shadow(k) {
-                    *v += h;
+                if s.in_shadow(k) == (metric == HoursMetric::Shadow)
+                    && self.surface[k] != SURFACE_NONE
+                {
+                    *v += s.weight_h;
                 }
             }
         }
-        hours
+        hours.into_iter().map(|h| h as f32).collect()
     }
 }
 
@@ -241,33 +375,7 @@ pub fn compute(
         }
     }
     // Sun positions first: they decide the extent and which steps are skipped.
-    let mut suns = Vec::new();
-    let mut skipped = Vec::new();
-    for local in spec.local_times()? {
-        let (utc, _) = spec
-            .zone
-            .resolve(local)
-            .map_err(|e| ProfileError::Input(e.to_string()))?;
-        let offset = FixedOffset::east_opt(spec.zone.offset_seconds(utc))
-            .ok_or_else(|| ProfileError::Input("bad time-zone offset".into()))?;
-        let time = utc.with_timezone(&offset);
-        let p = sun::position(&spec.site, utc, &spec.sun)
-            .map_err(|e| ProfileError::Input(e.to_string()))?;
-        if p.elevation_deg <= 0.0 {
-            skipped.push(time);
-        } else {
-            suns.push((time, p));
-        }
-    }
-    if suns.is_empty() {
-        return Err(ProfileError::Input(format!(
-            "the sun is below the horizon at every step ({} steps on {} from {} to {})",
-            skipped.len(),
-            spec.date,
-            spec.from.format("%H:%M"),
-            spec.to.format("%H:%M")
-        )));
-    }
+    let (suns, skipped) = spec.suns()?;
     let geometry =
         VolumeGeometry::new(gpu, model, "model").map_err(|e| ProfileError::Input(e.to_string()))?;
     let (lo, hi) = geometry
@@ -277,7 +385,7 @@ pub fn compute(
         .ok_or_else(|| ProfileError::Input("the model has no triangles".into()))?;
     let min_elevation = suns
         .iter()
-        .map(|(_, p)| p.elevation_deg)
+        .map(|(_, p, _)| p.elevation_deg)
         .fold(90.0, f64::min);
     let (center, auto_side) = default_extent(geometry.mesh.mesh(), min_elevation)
         .ok_or_else(|| ProfileError::Input("the model has no triangles".into()))?;
@@ -303,7 +411,8 @@ pub fn compute(
     let mut steps = Vec::with_capacity(suns.len());
     let mut timing = ProfileTiming::default();
     let total = suns.len();
-    for (k, (time, p)) in suns.into_iter().enumerate() {
+    let sun_up_h = suns.iter().map(|(_, _, w)| w).sum();
+    for (k, (time, p, weight_h)) in suns.into_iter().enumerate() {
         if cancel.load(Ordering::Relaxed) {
             return Err(ProfileError::Cancelled);
         }
@@ -330,7 +439,7 @@ pub fn compute(
         gpu.queue.submit([enc.finish()]);
         let mask = gpu.read_texture(&plan.mask)?;
         timing.render_s += t1.elapsed().as_secs_f64();
-        steps.push(step_from_mask(
+        let mut step = step_from_mask(
             time,
             p.azimuth_deg,
             p.elevation_deg,
@@ -339,18 +448,23 @@ pub fn compute(
             n,
             pixel_area,
             footprint,
-        ));
+        );
+        step.weight_h = weight_h;
+        steps.push(step);
         progress(k + 1, total);
     }
     Ok(Profile {
         resolution: n,
         extent_m: extent,
         center,
+        origin: DVec2::ZERO,
         ground_z: lo.z,
         surface,
         steps,
         skipped,
         step_minutes: spec.step_minutes,
+        period_h: spec.period_h(),
+        sun_up_h,
         timing,
     })
 }
@@ -388,6 +502,7 @@ fn step_from_mask(
         shadow_area_m2: area,
         shadow_area_with_footprint_m2: area + footprint,
         reaches_edge,
+        weight_h: 0.0,
         shadow,
     }
 }

@@ -336,7 +336,7 @@ impl ViewerApp {
         if self.profile.texture.is_none() {
             if let Some(p) = &self.profile.result {
                 let img = if self.profile.show_hours {
-                    hours_image(p)
+                    hours_image(p, crate::study::HoursMetric::Shadow)
                 } else {
                     profile_image(p)
                 };

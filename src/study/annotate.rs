@@ -1,0 +1,183 @@
+//! The frame around every raster plan of a study: a title and subtitle (site, date, time
+//! range with its zone), metre axes in the model file's plan coordinates, a north arrow and
+//! a scale bar — all outside the plan, so nothing covers it.
+
+use plotters::prelude::*;
+
+use super::profile::Profile;
+use crate::photometry::plot::register_font;
+
+/// Pixels left of the plan (the y axis and its labels).
+pub const LEFT: u32 = 96;
+/// Pixels above the plan (title, subtitle, north arrow).
+pub const TOP: u32 = 84;
+/// Pixels below the plan (the x axis, its labels and the scale bar).
+pub const BOTTOM: u32 = 78;
+
+/// What the frame says.
+#[derive(Debug, Clone, Default)]
+pub struct PlanLabels {
+    /// First line: what the plan shows and where.
+    pub title: String,
+    /// Second line: date, time and zone (a step's time and sun for a step frame).
+    pub subtitle: String,
+    /// Angle from the model's +Y clockwise to true north, degrees (the arrow's direction).
+    pub north_offset_deg: f64,
+}
+
+/// A round step (1, 2 or 5 × 10^k) giving about `count` intervals over `span`.
+pub fn round_step(span: f64, count: f64) -> f64 {
+    let raw = (span / count).max(1e-9);
+    let magnitude = 10f64.powf(raw.log10().floor());
+    [1.0, 2.0, 5.0, 10.0]
+        .into_iter()
+        .map(|m| m * magnitude)
+        .find(|&s| s >= raw)
+        .unwrap_or(10.0 * magnitude)
+}
+
+/// `body` (the n × n plan at its top-left, a legend panel beside it) inside the frame: the
+/// plan lands at ([`LEFT`], [`TOP`]).
+pub fn annotate(
+    profile: &Profile,
+    body: &image::RgbaImage,
+    labels: &PlanLabels,
+) -> image::RgbaImage {
+    register_font();
+    let n = profile.resolution;
+    let (bw, bh) = body.dimensions();
+    let (w, h) = (LEFT + bw + 12, TOP + bh + BOTTOM);
+    let mut rgb = vec![255u8; (w * h * 3) as usize];
+    {
+        let root = BitMapBackend::with_buffer(&mut rgb, (w, h)).into_drawing_area();
+        let _ = draw_frame(&root, profile, labels, n);
+        let _ = root.present();
+    }
+    let mut out = image::RgbaImage::from_fn(w, h, |x, y| {
+        let k = ((y * w + x) * 3) as usize;
+        image::Rgba([rgb[k], rgb[k + 1], rgb[k + 2], 255])
+    });
+    image::imageops::replace(&mut out, body, LEFT as i64, TOP as i64);
+    out
+}
+
+fn draw_frame<DB: DrawingBackend>(
+    root: &DrawingArea<DB, plotters::coord::Shift>,
+    profile: &Profile,
+    labels: &PlanLabels,
+    n: u32,
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    let black = ("sans-serif", 15).into_font().color(&BLACK);
+    root.draw(&Text::new(
+        labels.title.as_str(),
+        (12, 10),
+        ("sans-serif", 21).into_font().color(&BLACK),
+    ))?;
+    root.draw(&Text::new(
+        labels.subtitle.as_str(),
+        (12, 42),
+        black.clone(),
+    ))?;
+    let (left, top, n_i) = (LEFT as i32, TOP as i32, n as i32);
+    root.draw(&Rectangle::new(
+        [(left - 1, top - 1), (left + n_i, top + n_i)],
+        BLACK,
+    ))?;
+    // Metre axes: ticks at round values of the file's coordinates.
+    let e = profile.extent_m;
+    let px_per_m = n as f64 / e;
+    let west = profile.center.x - e / 2.0 + profile.origin.x;
+    let south = profile.center.y - e / 2.0 + profile.origin.y;
+    let step = round_step(e, (n as f64 / 110.0).clamp(2.0, 8.0));
+    let label = |v: f64| {
+        if step >= 1.0 {
+            format!("{v:.0}")
+        } else {
+            format!("{v:.1}")
+        }
+    };
+    let mut v = (west / step).ceil() * step;
+    while v <= west + e + 1e-9 {
+        let x = left + ((v - west) * px_per_m).round() as i32;
+        root.draw(&PathElement::new(
+            [(x, top + n_i), (x, top + n_i + 6)],
+            BLACK,
+        ))?;
+        root.draw(&Text::new(label(v), (x - 14, top + n_i + 9), black.clone()))?;
+        v += step;
+    }
+    let mut v = (south / step).ceil() * step;
+    while v <= south + e + 1e-9 {
+        let y = top + n_i - ((v - south) * px_per_m).round() as i32;
+        root.draw(&PathElement::new([(left - 6, y), (left, y)], BLACK))?;
+        let text = label(v);
+        let x = left - 10 - 8 * text.chars().count() as i32;
+        root.draw(&Text::new(text, (x, y - 8), black.clone()))?;
+        v += step;
+    }
+    root.draw(&Text::new(
+        "x (m), plan north up",
+        (left, top + n_i + 30),
+        black.clone(),
+    ))?;
+    root.draw(&Text::new("y (m)", (8, top + n_i / 2), black.clone()))?;
+    // The scale bar under the plan's right corner.
+    let metres = round_step(150.0 / px_per_m, 1.0);
+    let length = (metres * px_per_m).round() as i32;
+    let (x1, y) = (left + n_i, top + n_i + 56);
+    root.draw(&PathElement::new(
+        [(x1 - length, y), (x1, y)],
+        BLACK.stroke_width(3),
+    ))?;
+    for x in [x1 - length, x1] {
+        root.draw(&PathElement::new(
+            [(x, y - 6), (x, y + 6)],
+            BLACK.stroke_width(2),
+        ))?;
+    }
+    let bar = if metres >= 1.0 {
+        format!("{metres:.0} m")
+    } else {
+        format!("{metres} m")
+    };
+    root.draw(&Text::new(bar, (x1 - length - 70, y - 9), black.clone()))?;
+    // The north arrow above the plan's right corner.
+    let (cx, cy) = (left + n_i - 40, TOP as i32 / 2);
+    let a = labels.north_offset_deg.to_radians();
+    let (dx, dy) = (a.sin(), -a.cos());
+    let r = 30.0;
+    let tip = (cx + (r * dx) as i32, cy + (r * dy) as i32);
+    let tail = (cx - (r * dx) as i32, cy - (r * dy) as i32);
+    root.draw(&Circle::new((cx, cy), r as i32 + 4, BLACK))?;
+    root.draw(&PathElement::new([tail, tip], BLACK.stroke_width(3)))?;
+    let side = (-dy, dx);
+    root.draw(&Polygon::new(
+        vec![
+            tip,
+            (
+                tip.0 - (12.0 * dx + 7.0 * side.0) as i32,
+                tip.1 - (12.0 * dy + 7.0 * side.1) as i32,
+            ),
+            (
+                tip.0 - (12.0 * dx - 7.0 * side.0) as i32,
+                tip.1 - (12.0 * dy - 7.0 * side.1) as i32,
+            ),
+        ],
+        BLACK.filled(),
+    ))?;
+    root.draw(&Text::new("N", (cx - r as i32 - 26, cy - 9), black))?;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::round_step;
+
+    #[test]
+    fn steps_are_round() {
+        assert_eq!(round_step(100.0, 5.0), 20.0);
+        assert_eq!(round_step(220.0, 8.0), 50.0);
+        assert_eq!(round_step(7.0, 5.0), 2.0);
+        assert_eq!(round_step(0.9, 4.0), 0.5);
+    }
+}

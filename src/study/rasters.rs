@@ -1,0 +1,209 @@
+//! The numeric outputs of an hours map: `hours.asc` (ESRI ASCII grid), `hours.csv` (cell
+//! centres) and `hours.exr` (32-bit float), all in the model file's plan coordinates
+//! (metres); the pass/fail test against a threshold and the passing fraction of analysis
+//! areas given as polygons (GeoJSON).
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use anyhow::{bail, Context};
+use glam::DVec2;
+
+use super::profile::{Profile, SURFACE_NONE};
+
+/// The value written for cells that see neither ground nor model.
+pub const NODATA: f64 = -9999.0;
+
+/// `hours.asc`: the ESRI ASCII grid (row 1 is the north edge, as the format wants), hours
+/// per cell; cells outside the ground and model get `NODATA_value`.
+pub fn ascii_grid(profile: &Profile, hours: &[f32]) -> String {
+    let n = profile.resolution;
+    let cell = profile.extent_m / n as f64;
+    let sw = profile.pixel_center(0, n - 1) - DVec2::splat(cell / 2.0) + profile.origin;
+    let mut out = format!(
+        "ncols {n}\nnrows {n}\nxllcorner {:.6}\nyllcorner {:.6}\ncellsize {}\nNODATA_value {NODATA}\n",
+        sw.x, sw.y, cell
+    );
+    for py in 0..n {
+        let row: Vec<String> = (0..n)
+            .map(|px| {
+                let k = (py * n + px) as usize;
+                if profile.surface[k] == SURFACE_NONE {
+                    format!("{NODATA}")
+                } else {
+                    format!("{:.4}", hours[k])
+                }
+            })
+            .collect();
+        out.push_str(&row.join(" "));
+        out.push('\n');
+    }
+    out
+}
+
+/// `hours.csv`: `x,y,hours` at every cell centre that sees ground or model.
+pub fn hours_csv(profile: &Profile, hours: &[f32]) -> String {
+    let n = profile.resolution;
+    let mut out = String::from("x,y,hours\n");
+    for py in 0..n {
+        for px in 0..n {
+            let k = (py * n + px) as usize;
+            if profile.surface[k] == SURFACE_NONE {
+                continue;
+            }
+            let c = profile.pixel_center(px, py) + profile.origin;
+            let _ = writeln!(out, "{:.4},{:.4},{:.4}", c.x, c.y, hours[k]);
+        }
+    }
+    out
+}
+
+/// `hours.exr`: hours in every channel (0 outside the ground and model).
+pub fn hours_exr(profile: &Profile, hours: &[f32]) -> image::Rgb32FImage {
+    let n = profile.resolution;
+    image::Rgb32FImage::from_fn(n, n, |x, y| image::Rgb([hours[(y * n + x) as usize]; 3]))
+}
+
+/// A named analysis area: one or more polygons (outer ring, then holes) in the model
+/// file's plan coordinates.
+#[derive(Debug, Clone)]
+pub struct AnalysisArea {
+    /// Its name (the feature's `name` property, or `area N`).
+    pub name: String,
+    /// Polygons, each a list of rings (the first the outline, the rest holes).
+    pub polygons: Vec<Vec<Vec<DVec2>>>,
+}
+
+impl AnalysisArea {
+    /// Whether `p` lies inside (even-odd over every ring of every polygon).
+    pub fn contains(&self, p: DVec2) -> bool {
+        self.polygons
+            .iter()
+            .any(|rings| rings.iter().filter(|ring| ring_contains(ring, p)).count() % 2 == 1)
+    }
+}
+
+fn ring_contains(ring: &[DVec2], p: DVec2) -> bool {
+    let mut inside = false;
+    let mut j = ring.len().wrapping_sub(1);
+    for i in 0..ring.len() {
+        let (a, b) = (ring[i], ring[j]);
+        if (a.y > p.y) != (b.y > p.y) && p.x < (b.x - a.x) * (p.y - a.y) / (b.y - a.y) + a.x {
+            inside = !inside;
+        }
+        j = i;
+    }
+    inside
+}
+
+/// Reads analysis areas from a GeoJSON FeatureCollection (or one Feature) of Polygon and
+/// MultiPolygon geometries in the model file's plan coordinates, metres.
+pub fn read_areas(path: &Path) -> anyhow::Result<Vec<AnalysisArea>> {
+    let text =
+        std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
+    parse_areas(&text).with_context(|| format!("{}", path.display()))
+}
+
+/// Parses analysis areas from GeoJSON text (see [`read_areas`]).
+pub fn parse_areas(text: &str) -> anyhow::Result<Vec<AnalysisArea>> {
+    let v: serde_json::Value = serde_json::from_str(text).context("not JSON")?;
+    let features: Vec<&serde_json::Value> = match v["type"].as_str() {
+        Some("FeatureCollection") => v["features"]
+            .as_array()
+            .context("`features` is not a list")?
+            .iter()
+            .collect(),
+        Some("Feature") => vec![&v],
+        other => bail!("`type` is {other:?}, not \"FeatureCollection\" or \"Feature\""),
+    };
+    let mut areas = Vec::new();
+    for (k, f) in features.iter().enumerate() {
+        let at = format!("features[{k}]");
+        let name = f["properties"]["name"]
+            .as_str()
+            .map_or_else(|| format!("area {}", k + 1), str::to_string);
+        let g = &f["geometry"];
+        let polygons = match g["type"].as_str() {
+            Some("Polygon") => vec![rings(&g["coordinates"], &at)?],
+            Some("MultiPolygon") => g["coordinates"]
+                .as_array()
+                .with_context(|| format!("{at}.geometry.coordinates is not a list"))?
+                .iter()
+                .map(|p| rings(p, &at))
+                .collect::<anyhow::Result<_>>()?,
+            other => bail!("{at}.geometry.type is {other:?}, not Polygon or MultiPolygon"),
+        };
+        areas.push(AnalysisArea { name, polygons });
+    }
+    if areas.is_empty() {
+        bail!("no features");
+    }
+    Ok(areas)
+}
+
+fn rings(v: &serde_json::Value, at: &str) -> anyhow::Result<Vec<Vec<DVec2>>> {
+    let bad = || format!("{at}.geometry.coordinates: a polygon is a list of rings of [x, y]");
+    let rings = v.as_array().with_context(bad)?;
+    let mut out = Vec::new();
+    for ring in rings {
+        let points = ring
+            .as_array()
+            .with_context(bad)?
+            .iter()
+            .map(|p| match (p[0].as_f64(), p[1].as_f64()) {
+                (Some(x), Some(y)) if x.is_finite() && y.is_finite() => Ok(DVec2::new(x, y)),
+                _ => Err(anyhow::anyhow!(bad())),
+            })
+            .collect::<anyhow::Result<Vec<_>>>()?;
+        if points.len() < 3 {
+            bail!("{at}: a ring has fewer than 3 points");
+        }
+        out.push(points);
+    }
+    if out.is_empty() {
+        bail!("{at}: a polygon without rings");
+    }
+    Ok(out)
+}
+
+/// The fraction of the plan's cells (inside `area`, when given) whose hours reach
+/// `threshold_h`, over every cell that sees a surface from above: the ground, and the
+/// model's roofs and terrain (an area drawn round a garden leaves the building out);
+/// `None` when no such cell is inside.
+pub fn pass_fraction(
+    profile: &Profile,
+    hours: &[f32],
+    threshold_h: f64,
+    area: Option<&AnalysisArea>,
+) -> Option<f64> {
+    let n = profile.resolution;
+    let (mut inside, mut pass) = (0usize, 0usize);
+    for py in 0..n {
+        for px in 0..n {
+            let k = (py * n + px) as usize;
+            if profile.surface[k] == SURFACE_NONE {
+                continue;
+            }
+            if let Some(a) = area {
+                if !a.contains(profile.pixel_center(px, py) + profile.origin) {
+                    continue;
+                }
+            }
+            inside += 1;
+            // Hours are sums of f32 step weights: a hair's tolerance keeps 2.0 h ≥ 2 h.
+            pass += (hours[k] as f64 >= threshold_h - 1e-4) as usize;
+        }
+    }
+    (inside > 0).then(|| pass as f64 / inside as f64)
+}
+
+/// The mean hours over the cells that see a surface from above (ground, roofs, terrain).
+pub fn surface_mean(profile: &Profile, hours: &[f32]) -> f64 {
+    let (sum, count) = profile
+        .surface
+        .iter()
+        .zip(hours)
+        .filter(|(&s, _)| s != SURFACE_NONE)
+        .fold((0.0, 0usize), |(s, c), (_, &h)| (s + h as f64, c + 1));
+    sum / count.max(1) as f64
+}

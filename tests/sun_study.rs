@@ -1,0 +1,761 @@
+//! Sun studies (lavapipe in CI): hours of sun integrated over the period (open ground gets
+//! the period's length), every cell against a CPU ray cast with the same step weights, a
+//! BRE 209-style garden behind a wall against the analytic passing fraction, several dates
+//! on one shared extent equal to single-date runs, the numeric rasters and outlines
+//! against each other, the sun-path diagram against `sun --json`, the real models (a Delft
+//! city block in national-grid coordinates, high-rises without a ground plane) against a
+//! CPU ray cast, and the warnings for missing `--tz` and a wrong up axis.
+
+mod common;
+
+#[path = "common/gpu.rs"]
+mod gpu_common;
+
+use std::path::Path;
+use std::sync::atomic::AtomicBool;
+
+use chrono::{NaiveDate, NaiveTime};
+use common::{root, run_cli};
+use glam::{DVec2, DVec3};
+use goniolight::geometry::generate::cuboid;
+use goniolight::geometry::Mesh;
+use goniolight::shadow::bvh::TriangleBvh;
+use goniolight::shadow::{IgnoredTriangles, Light, SilhouetteMethod};
+use goniolight::study::profile::{compute, HoursMetric, Profile, ProfileSpec, SURFACE_NONE};
+use goniolight::study::rasters::{pass_fraction, AnalysisArea};
+use goniolight::sun::{direction_from_angles, Site, SunOptions, Zone};
+
+fn hm(s: &str) -> NaiveTime {
+    NaiveTime::parse_from_str(s, "%H:%M").unwrap()
+}
+
+#[allow(clippy::too_many_arguments)]
+fn spec(
+    site: (f64, f64),
+    zone: &str,
+    date: &str,
+    from: &str,
+    to: &str,
+    step: u32,
+    extent: f64,
+    resolution: u32,
+) -> ProfileSpec {
+    ProfileSpec {
+        site: Site::new(site.0, site.1, 0.0).unwrap(),
+        zone: Zone::parse(zone).unwrap(),
+        date: NaiveDate::parse_from_str(date, "%Y-%m-%d").unwrap(),
+        from: hm(from),
+        to: hm(to),
+        step_minutes: step,
+        sun: SunOptions::default(),
+        extent_m: Some(extent),
+        resolution,
+        silhouette: SilhouetteMethod::Hextree,
+    }
+}
+
+fn solve(model: &Mesh, spec: &ProfileSpec) -> Option<Profile> {
+    let gpu = gpu_common::gpu()?;
+    Some(compute(&gpu, model, spec, |_, _| {}, &AtomicBool::new(false)).unwrap())
+}
+
+/// The steps' sun directions (toward the sun, world frame) and weights.
+fn suns(p: &Profile) -> Vec<(DVec3, f64)> {
+    p.steps
+        .iter()
+        .map(|s| {
+            (
+                direction_from_angles(s.azimuth_deg, s.elevation_deg, 0.0),
+                s.weight_h,
+            )
+        })
+        .collect()
+}
+
+/// Hours of sun at `point` by a CPU ray cast toward every step's sun.
+fn cpu_sun_hours(bvh: &TriangleBvh, suns: &[(DVec3, f64)], point: DVec3) -> f64 {
+    let none = IgnoredTriangles::default();
+    suns.iter()
+        .filter(|(d, _)| {
+            let light = Light::new([d.x, d.y, d.z, 0.0]).unwrap();
+            !bvh.in_shadow(&light, point, 1e-6, &none)
+        })
+        .map(|(_, w)| w)
+        .sum()
+}
+
+/// A 20 × 10 × 12 m box turned 30° about the vertical.
+fn box_model() -> Mesh {
+    let mut m = cuboid(DVec3::new(-10.0, -5.0, 0.0), DVec3::new(10.0, 5.0, 12.0));
+    let turn = glam::DMat3::from_rotation_z(30f64.to_radians());
+    for p in &mut m.positions {
+        *p = turn * *p;
+    }
+    m
+}
+
+#[test]
+fn sun_hours_integrate_the_period_and_match_a_cpu_ray_cast() {
+    // Vienna in June: the sun is up from 08:00 to 17:00, so open ground gets exactly 9 h
+    // (ten hourly samples, the first and last standing for half an hour each).
+    let s = spec(
+        (48.21, 16.37),
+        "Europe/Vienna",
+        "2026-06-21",
+        "08:00",
+        "17:00",
+        60,
+        120.0,
+        192,
+    );
+    let weights = s.sample_weights_h().unwrap();
+    assert_eq!(weights.len(), 10);
+    assert_eq!(weights.iter().sum::<f64>(), 9.0);
+    assert_eq!((weights[0], weights[1], weights[9]), (0.5, 1.0, 0.5));
+    let Some(p) = solve(&box_model(), &s) else {
+        return;
+    };
+    assert_eq!((p.period_h, p.sun_up_h), (9.0, 9.0));
+    let sun = p.hours(HoursMetric::Sun);
+    let shadow = p.hours(HoursMetric::Shadow);
+    let bvh = TriangleBvh::new(&box_model());
+    let suns = suns(&p);
+    let n = p.resolution;
+    let (mut compared, mut equal, mut open) = (0, 0, 0);
+    for py in 0..n {
+        for px in 0..n {
+            let k = (py * n + px) as usize;
+            if p.surface[k] == SURFACE_NONE {
+                continue;
+            }
+            // Sun and shadow share the sun-up time.
+            assert!((sun[k] + shadow[k] - 9.0).abs() < 1e-5, "cell {k}");
+            if p.surface[k] != goniolight::study::profile::SURFACE_GROUND {
+                continue;
+            }
+            let c = p.pixel_center(px, py);
+            let cpu = cpu_sun_hours(&bvh, &suns, DVec3::new(c.x, c.y, 0.0));
+            compared += 1;
+            equal += ((sun[k] as f64 - cpu).abs() < 1e-4) as usize;
+            if cpu == 9.0 {
+                open += 1;
+                // Open ground: the period's length within one part in 1 000.
+                assert!((sun[k] as f64 - 9.0).abs() <= 9e-3, "cell {k}: {}", sun[k]);
+            }
+        }
+    }
+    let fraction = equal as f64 / compared as f64;
+    eprintln!("sun hours: {equal} of {compared} ground cells equal the ray cast ({open} open)");
+    assert!(
+        open > 10_000 && open < compared - 1_000,
+        "{open} of {compared}"
+    );
+    assert!(fraction >= 0.999, "{fraction}");
+}
+
+#[test]
+fn bre_209_garden_behind_a_wall_passes_as_the_analytic_fraction() {
+    // London, 21 March: a 10 m wall, 200 m long, along the south edge of a 20 × 20 m
+    // garden (x in −10..10, y in 0..20 north of the wall's face at y = 0). BRE 209: at
+    // least 2 hours of sun on 21 March.
+    const H: f64 = 10.0;
+    let wall = cuboid(DVec3::new(-100.0, -0.3, 0.0), DVec3::new(100.0, 0.0, H));
+    let s = spec(
+        (51.5, -0.12),
+        "Europe/London",
+        "2026-03-21",
+        "06:00",
+        "18:00",
+        10,
+        44.0,
+        440,
+    );
+    let Some(p) = solve(&wall, &s) else {
+        return;
+    };
+    let garden = AnalysisArea {
+        name: "garden".into(),
+        polygons: vec![vec![vec![
+            DVec2::new(-10.0, 0.0),
+            DVec2::new(10.0, 0.0),
+            DVec2::new(10.0, 20.0),
+            DVec2::new(-10.0, 20.0),
+        ]]],
+    };
+    let sun = p.hours(HoursMetric::Sun);
+    let gpu = pass_fraction(&p, &sun, 2.0, Some(&garden)).unwrap();
+    // Analytic: a point (x, y) is shaded when the ray toward the sun meets the wall's
+    // face y = 0 below its top and within its length; sampled every 2 cm.
+    let suns = suns(&p);
+    let hours = |x: f64, y: f64| -> f64 {
+        suns.iter()
+            .filter(|(d, _)| {
+                if d.y >= 0.0 {
+                    return true; // the sun is north of the wall's line: lit
+                }
+                let t = -y / d.y;
+                let (hit_x, hit_z) = (x + t * d.x, t * d.z);
+                !(hit_z <= H && hit_x.abs() <= 100.0)
+            })
+            .map(|(_, w)| w)
+            .sum()
+    };
+    let (mut inside, mut pass) = (0usize, 0usize);
+    for i in 0..200 {
+        let x = -10.0 + (i as f64 + 0.5) * 0.1;
+        for j in 0..1000 {
+            let y = (j as f64 + 0.5) * 0.02;
+            inside += 1;
+            pass += (hours(x, y) >= 2.0 - 1e-9) as usize;
+        }
+    }
+    let analytic = pass as f64 / inside as f64;
+    eprintln!(
+        "garden passing 2 h on 21 March: GPU {:.4}, analytic {:.4}",
+        gpu, analytic
+    );
+    assert!(analytic > 0.2 && analytic < 0.8, "{analytic}");
+    assert!(
+        (gpu - analytic).abs() <= 0.01 * analytic,
+        "{gpu} vs {analytic}"
+    );
+}
+
+fn read(dir: &Path, f: &str) -> String {
+    std::fs::read_to_string(dir.join(f))
+        .unwrap_or_else(|e| panic!("{}: {e}", dir.join(f).display()))
+}
+
+fn asc_header(text: &str) -> Vec<(String, f64)> {
+    text.lines()
+        .take(6)
+        .map(|l| {
+            let (k, v) = l.split_once(' ').unwrap();
+            (k.to_string(), v.trim().parse().unwrap())
+        })
+        .collect()
+}
+
+fn box_args(out: &Path, extra: &[&str]) -> Vec<String> {
+    let model = root().join("assets/models/box.obj");
+    let mut v: Vec<String> = [
+        "profile",
+        model.to_str().unwrap(),
+        "--up",
+        "z",
+        "--lat",
+        "48.21",
+        "--lon",
+        "16.37",
+        "--tz",
+        "Europe/Vienna",
+        "--from",
+        "08:00",
+        "--to",
+        "16:00",
+        "--step",
+        "60",
+        "--metric",
+        "sun",
+        "--out",
+        out.to_str().unwrap(),
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect();
+    v.extend(extra.iter().map(|s| s.to_string()));
+    v
+}
+
+fn cli(args: &[String]) -> (String, String) {
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let (code, out, err) = run_cli(&args, "");
+    assert_eq!(code, 0, "{args:?}\n{out}{err}");
+    (out, err)
+}
+
+#[test]
+fn several_dates_share_one_extent_and_equal_single_date_runs() {
+    if gpu_common::gpu().is_none() {
+        return;
+    }
+    let tmp = tempfile::tempdir().unwrap();
+    let multi = tmp.path().join("multi");
+    cli(&box_args(
+        &multi,
+        &[
+            "--dates",
+            "2026-06-21,2026-12-21",
+            "--threshold",
+            "4",
+            "--resolution",
+            "96",
+        ],
+    ));
+    let side = |dir: &Path| {
+        let h = asc_header(&read(dir, "hours.asc"));
+        h[0].1 * h[4].1
+    };
+    let (june, december) = (multi.join("2026-06-21"), multi.join("2026-12-21"));
+    assert_eq!(side(&june), side(&december));
+    let shared = side(&june);
+    // Alone, June's default plan is smaller (its lowest sun is higher).
+    let alone = tmp.path().join("alone");
+    cli(&box_args(
+        &alone,
+        &["--date", "2026-06-21", "--resolution", "96"],
+    ));
+    assert!(side(&alone) < shared * 0.9, "{} vs {shared}", side(&alone));
+    // With the shared extent given, a single-date run writes the same hours.
+    let single = tmp.path().join("single");
+    let extent = format!("{shared}");
+    cli(&box_args(
+        &single,
+        &[
+            "--date",
+            "2026-12-21",
+            "--extent",
+            &extent,
+            "--threshold",
+            "4",
+            "--resolution",
+            "96",
+        ],
+    ));
+    assert_eq!(read(&single, "hours.csv"), read(&december, "hours.csv"));
+    assert_eq!(read(&single, "study.json"), read(&december, "study.json"));
+    // The combined table: one row per date, with the same numbers as each study.json.
+    let table = read(&multi, "dates.csv");
+    let rows: Vec<&str> = table.lines().collect();
+    assert_eq!(
+        rows[0],
+        "date,metric,period_h,sun_up_h,mean_h,threshold_h,pass_fraction"
+    );
+    assert_eq!(rows.len(), 3);
+    for (row, dir) in rows[1..].iter().zip([&june, &december]) {
+        let study: serde_json::Value = serde_json::from_str(&read(dir, "study.json")).unwrap();
+        let cells: Vec<&str> = row.split(',').collect();
+        assert_eq!(cells[0], study["date"].as_str().unwrap());
+        let fraction: f64 = cells[6].parse().unwrap();
+        assert!((fraction - study["pass_fraction"].as_f64().unwrap()).abs() < 1e-6);
+    }
+    // Presets name their dates.
+    let preset = tmp.path().join("preset");
+    cli(&box_args(
+        &preset,
+        &[
+            "--preset",
+            "equinox-solstices",
+            "--year",
+            "2026",
+            "--resolution",
+            "32",
+        ],
+    ));
+    for d in ["2026-03-21", "2026-06-21", "2026-12-21"] {
+        assert!(preset.join(d).join("study.json").is_file(), "{d}");
+    }
+}
+
+#[test]
+fn rasters_outlines_and_study_json_agree() {
+    if gpu_common::gpu().is_none() {
+        return;
+    }
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("s");
+    // The 2 × 1 × 3 m box on a 30 m plan. Two analysis areas: one south-west of the box
+    // (always in the sun), one the whole plan (its fraction is the plan's).
+    let areas = tmp.path().join("areas.geojson");
+    std::fs::write(
+        &areas,
+        r#"{"type": "FeatureCollection", "features": [
+  {"type": "Feature", "properties": {"name": "far corner"}, "geometry": {"type": "Polygon",
+   "coordinates": [[[-14, -14], [-12, -14], [-12, -12], [-14, -12], [-14, -14]]]}},
+  {"type": "Feature", "properties": {"name": "everything"}, "geometry": {"type": "MultiPolygon",
+   "coordinates": [[[[-500, -500], [500, -500], [500, 500], [-500, 500]]]]}}]}"#,
+    )
+    .unwrap();
+    let areas = areas.to_str().unwrap().to_string();
+    cli(&box_args(
+        &out,
+        &[
+            "--date",
+            "2026-03-21",
+            "--extent",
+            "30",
+            "--resolution",
+            "240",
+            "--threshold",
+            "6",
+            "--areas",
+            &areas,
+        ],
+    ));
+    // study.json: the contract's keys.
+    let study: serde_json::Value = serde_json::from_str(&read(&out, "study.json")).unwrap();
+    assert_eq!(study["metric"], "sun");
+    assert_eq!(study["threshold_h"], 6.0);
+    assert_eq!(study["period_h"], 8.0);
+    let fraction = study["pass_fraction"].as_f64().unwrap();
+    assert!(fraction > 0.5 && fraction < 1.0, "{fraction}");
+    let areas = study["areas"].as_array().unwrap();
+    assert_eq!(areas[0]["name"], "far corner");
+    assert_eq!(areas[0]["pass_fraction"], 1.0);
+    assert_eq!(areas[1]["pass_fraction"].as_f64().unwrap(), fraction);
+    // hours.asc and hours.csv hold the same cells; the header places them.
+    let asc = read(&out, "hours.asc");
+    let h = asc_header(&asc);
+    let keys: Vec<&str> = h.iter().map(|(k, _)| k.as_str()).collect();
+    assert_eq!(
+        keys,
+        [
+            "ncols",
+            "nrows",
+            "xllcorner",
+            "yllcorner",
+            "cellsize",
+            "NODATA_value"
+        ]
+    );
+    let (n, x0, y0, cell) = (h[0].1 as usize, h[2].1, h[3].1, h[4].1);
+    assert_eq!((n, cell), (240, 0.125));
+    let grid: Vec<Vec<f64>> = asc
+        .lines()
+        .skip(6)
+        .map(|l| l.split(' ').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(grid.len(), n);
+    let csv = read(&out, "hours.csv");
+    let mut passing = (0, 0);
+    for line in csv.lines().skip(1) {
+        let v: Vec<f64> = line.split(',').map(|x| x.parse().unwrap()).collect();
+        let col = ((v[0] - x0) / cell).floor() as usize;
+        let row = n - 1 - ((v[1] - y0) / cell).floor() as usize;
+        assert!((grid[row][col] - v[2]).abs() < 1e-3, "{line}");
+        passing.0 += 1;
+        passing.1 += (v[2] >= 6.0 - 1e-4) as usize;
+    }
+    assert_eq!(passing.0, n * n, "every cell sees the ground or the box");
+    assert!((passing.1 as f64 / passing.0 as f64 - fraction).abs() < 1e-9);
+    let exr = image::open(out.join("hours.exr")).unwrap().to_rgb32f();
+    assert_eq!(exr.dimensions(), (n as u32, n as u32));
+    for (row, col) in [(0, 0), (90, 90), (120, 40)] {
+        let v = exr.get_pixel(col as u32, row as u32)[0] as f64;
+        assert!((v - grid[row][col]).abs() < 1e-3, "{row} {col}");
+    }
+    // The traced shadow outlines have the area profile.csv gives each step (within the
+    // corners marching squares cuts off a pixel staircase).
+    let outlines: serde_json::Value =
+        serde_json::from_str(&read(&out, "outlines.geojson")).unwrap();
+    let features = outlines["features"].as_array().unwrap();
+    assert_eq!(features[0]["properties"]["kind"], "footprint");
+    let footprint = features[0]["properties"]["area_m2"].as_f64().unwrap();
+    assert!(
+        (footprint - 2.0).abs() < 0.05,
+        "the box is 2 × 1 m: {footprint}"
+    );
+    let profile = read(&out, "profile.csv");
+    let rows: Vec<&str> = profile.lines().skip(1).collect();
+    assert_eq!(rows.len(), features.len() - 1);
+    for (row, f) in rows.iter().zip(&features[1..]) {
+        let cells: Vec<&str> = row.split(',').collect();
+        let area: f64 = cells[3].parse().unwrap();
+        let traced = polygon_area(&f["geometry"]["coordinates"]);
+        assert!(
+            (traced - area).abs() <= 0.03 * area,
+            "{}: traced {traced} vs {area}",
+            cells[0]
+        );
+        assert_eq!(f["properties"]["time"], cells[0]);
+    }
+    let svg = read(&out, "outlines.svg");
+    assert_eq!(
+        svg.matches("<path").count(),
+        rows.len() + 1 + 1,
+        "steps, footprint, scale bar"
+    );
+    for f in ["pass.png", "hours.png", "profile.png", "sunpath.svg"] {
+        assert!(out.join(f).is_file(), "{f}");
+    }
+}
+
+/// Shoelace area of GeoJSON MultiPolygon coordinates (outer rings minus holes).
+fn polygon_area(coords: &serde_json::Value) -> f64 {
+    let ring = |r: &serde_json::Value| {
+        let p: Vec<(f64, f64)> = r
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|c| (c[0].as_f64().unwrap(), c[1].as_f64().unwrap()))
+            .collect();
+        (0..p.len() - 1)
+            .map(|i| p[i].0 * p[i + 1].1 - p[i + 1].0 * p[i].1)
+            .sum::<f64>()
+            .abs()
+            / 2.0
+    };
+    coords
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|poly| {
+            let rings = poly.as_array().unwrap();
+            ring(&rings[0]) - rings[1..].iter().map(ring).sum::<f64>()
+        })
+        .sum()
+}
+
+#[test]
+fn sun_path_diagram_plots_the_suns_that_sun_json_gives() {
+    if gpu_common::gpu().is_none() {
+        return;
+    }
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("s");
+    cli(&box_args(
+        &out,
+        &["--date", "2026-03-21", "--resolution", "64"],
+    ));
+    let svg = read(&out, "sunpath.svg");
+    let attr = |tag: &str, name: &str| -> String {
+        let start = tag.find(&format!(" {name}=\"")).unwrap() + name.len() + 3;
+        tag[start..].split('"').next().unwrap().to_string()
+    };
+    let horizon = svg
+        .split("<circle")
+        .find(|t| t.contains("id=\"horizon\""))
+        .unwrap();
+    let (cx, cy, r): (f64, f64, f64) = (
+        attr(horizon, "cx").parse().unwrap(),
+        attr(horizon, "cy").parse().unwrap(),
+        attr(horizon, "r").parse().unwrap(),
+    );
+    let suns: Vec<&str> = svg
+        .split("<circle")
+        .filter(|t| t.contains("class=\"sun\""))
+        .collect();
+    assert_eq!(suns.len(), 9, "08:00 … 16:00");
+    for tag in suns {
+        let (x, y): (f64, f64) = (
+            attr(tag, "cx").parse().unwrap(),
+            attr(tag, "cy").parse().unwrap(),
+        );
+        // Invert the stereographic projection: r = R tan(zenith / 2), north up, east right.
+        let (dx, dy) = (x - cx, cy - y);
+        let azimuth = dx.atan2(dy).to_degrees().rem_euclid(360.0);
+        let elevation = 90.0 - 2.0 * (dx.hypot(dy) / r).atan().to_degrees();
+        let time = attr(tag, "data-time");
+        let (code, json, err) = run_cli(
+            &[
+                "sun", "--lat", "48.21", "--lon", "16.37", "--time", &time, "--json",
+            ],
+            "",
+        );
+        assert_eq!(code, 0, "{err}");
+        let v: serde_json::Value = serde_json::from_str(&json).unwrap();
+        let (az, el) = (
+            v["azimuth_deg"].as_f64().unwrap(),
+            v["elevation_deg"].as_f64().unwrap(),
+        );
+        assert!(
+            (azimuth - az).abs() < 0.01 && (elevation - el).abs() < 0.01,
+            "{time}: plotted {azimuth} {elevation}, sun {az} {el}"
+        );
+    }
+    // The diagram has the date arcs and hour lines.
+    assert_eq!(
+        svg.matches("class=\"date\" data-date=\"2026-06-21\"")
+            .count(),
+        1
+    );
+    assert!(svg.matches("class=\"hour\"").count() >= 12);
+}
+
+#[test]
+fn missing_tz_and_a_wrong_up_axis_are_warned_about() {
+    if gpu_common::gpu().is_none() {
+        return;
+    }
+    let tmp = tempfile::tempdir().unwrap();
+    let model = root().join("assets/models/industrial_area.obj");
+    let m = model.to_str().unwrap();
+    let base = |out: &str, extra: &[&str]| -> Vec<String> {
+        let mut v =
+            common::profile_args(m, "10:00", "14:00", "120", &["--resolution", "32", "--out"]);
+        v.push(tmp.path().join(out).to_str().unwrap().to_string());
+        v.extend(extra.iter().map(|s| s.to_string()));
+        v
+    };
+    // The industrial area is Z-up: read as Y-up (the default) it stands on its side.
+    let (_, err) = cli(&base("a", &[]));
+    assert!(err.contains("no --tz") && err.contains("UTC"), "{err}");
+    assert!(err.contains("pass --up z"), "{err}");
+    let (_, err) = cli(&base("b", &["--up", "z", "--tz", "Europe/Vienna"]));
+    assert!(!err.contains("warning: "), "{err}");
+    // `sun` gives the day's events in local time to the second.
+    let (code, out, _) = run_cli(
+        &[
+            "sun",
+            "--lat",
+            "48.21",
+            "--lon",
+            "16.37",
+            "--time",
+            "2026-03-21T12:00",
+            "--tz",
+            "Europe/Vienna",
+        ],
+        "",
+    );
+    assert_eq!(code, 0);
+    let sunrise = out.lines().find(|l| l.starts_with("sunrise")).unwrap();
+    let value = sunrise.split_whitespace().nth(1).unwrap();
+    assert!(
+        value.starts_with("2026-03-21T05:5") && value.ends_with("+01:00") && value.len() == 25,
+        "{sunrise}"
+    );
+}
+
+#[test]
+fn bad_study_options_are_refused_with_exit_2() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("s");
+    let bad_areas = tmp.path().join("bad.geojson");
+    std::fs::write(&bad_areas, r#"{"type": "FeatureCollection", "features": [{"type": "Feature", "geometry": {"type": "Point", "coordinates": [0, 0]}}]}"#).unwrap();
+    let b = bad_areas.to_str().unwrap();
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        (vec![], "--date, --dates, --preset or --date-range"),
+        (
+            vec!["--date", "2026-03-21", "--threshold", "-1"],
+            "--threshold",
+        ),
+        (
+            vec!["--date", "2026-03-21", "--threshold", "2", "--areas", b],
+            "bad.geojson",
+        ),
+        (vec!["--date-range", "2026-03-21..2026-03-01"], "is after"),
+        (
+            vec!["--date-range", "2026-01-01..2026-12-31", "--day-step", "1"],
+            "at most 60",
+        ),
+        (
+            vec!["--date", "2026-03-21", "--dates", "2026-06-21"],
+            "cannot be used with",
+        ),
+    ];
+    for (extra, expect) in cases {
+        let args = box_args(&out, &extra);
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let (code, stdout, stderr) = run_cli(&args, "");
+        assert_eq!(code, 2, "{extra:?}: {stdout}{stderr}");
+        assert!(stderr.contains(expect), "{extra:?}: {stderr}");
+        assert!(!out.exists(), "{extra:?} wrote files");
+    }
+}
+
+/// A real model: its hours of sun at sampled cells against a CPU ray cast from the surface
+/// seen from above (the Delft block is in the Dutch national grid: the study recentres it
+/// and writes national-grid coordinates back).
+fn real_model_matches_the_ray_cast(obj: &str, lat: &str, lon: &str, tz: &str, min_x: f64) {
+    if gpu_common::gpu().is_none() {
+        return;
+    }
+    let path = common::shared_dir().join("models").join(obj);
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("s");
+    let args: Vec<String> = [
+        "profile",
+        path.to_str().unwrap(),
+        "--up",
+        "z",
+        "--lat",
+        lat,
+        "--lon",
+        lon,
+        "--tz",
+        tz,
+        "--date",
+        "2026-03-21",
+        "--from",
+        "09:00",
+        "--to",
+        "16:00",
+        "--step",
+        "60",
+        "--resolution",
+        "384",
+        "--metric",
+        "sun",
+        "--out",
+        out.to_str().unwrap(),
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect();
+    cli(&args);
+    let asc = read(&out, "hours.asc");
+    let h = asc_header(&asc);
+    assert!(
+        h[2].1 > min_x,
+        "xllcorner {} in the file's coordinates",
+        h[2].1
+    );
+    let mut mesh = goniolight::geometry::obj::read_obj(&path).unwrap();
+    let origin = goniolight::study::model::recentre(&mut mesh);
+    let bvh = TriangleBvh::new(&mesh);
+    let ground = mesh.bounds().unwrap().0.z;
+    let profile = read(&out, "profile.csv");
+    let suns: Vec<(DVec3, f64)> = profile
+        .lines()
+        .skip(1)
+        .map(|l| {
+            let c: Vec<f64> = l
+                .split(',')
+                .skip(1)
+                .map(|v| v.parse().unwrap_or(0.0))
+                .collect();
+            (direction_from_angles(c[0], c[1], 0.0), c[5])
+        })
+        .collect();
+    let csv = read(&out, "hours.csv");
+    let (mut compared, mut equal) = (0, 0);
+    for line in csv.lines().skip(1).step_by(37) {
+        let v: Vec<f64> = line.split(',').map(|x| x.parse().unwrap()).collect();
+        let p = DVec2::new(v[0], v[1]) - origin;
+        // The surface seen from above: the first hit of a ray down, else the ground.
+        let top = DVec3::new(p.x, p.y, 1e4);
+        let z = bvh
+            .first_hit(top, DVec3::NEG_Z, 0.0)
+            .map_or(ground, |(t, _)| top.z - t);
+        let cpu = cpu_sun_hours(&bvh, &suns, DVec3::new(p.x, p.y, z + 1e-3));
+        compared += 1;
+        equal += ((cpu - v[2]).abs() < 1e-3) as usize;
+    }
+    let fraction = equal as f64 / compared as f64;
+    eprintln!("{obj}: {equal} of {compared} sampled cells equal the ray cast");
+    assert!(compared > 3000);
+    assert!(fraction >= 0.98, "{fraction}");
+}
+
+#[test]
+fn delft_city_block_in_national_grid_coordinates() {
+    real_model_matches_the_ray_cast(
+        "delft_3dfier/testarea.obj",
+        "52.01",
+        "4.36",
+        "Europe/Amsterdam",
+        84_000.0,
+    );
+}
+
+#[test]
+fn high_rises_without_a_ground_plane() {
+    real_model_matches_the_ray_cast(
+        "openfoam_buildings/buildings.obj",
+        "48.21",
+        "16.37",
+        "Europe/Vienna",
+        -1e9,
+    );
+}
