@@ -759,3 +759,165 @@ fn high_rises_without_a_ground_plane() {
         -1e9,
     );
 }
+
+/// A 20 m south facade under a 3 m deep overhang at 6 m (60 m long, so only its depth
+/// matters): each facade cell's hours against the analytic shading of its centre.
+#[test]
+fn south_facade_under_an_overhang_matches_the_analytic_shading() {
+    use goniolight::study::surfaces::{facade_hours, find_facades, sun_hours_at, Sun};
+    const DEPTH: f64 = 3.0;
+    const UNDER: f64 = 6.0;
+    let mut m = cuboid(DVec3::new(-10.0, 0.0, 0.0), DVec3::new(10.0, 10.0, 9.0));
+    let slab = cuboid(
+        DVec3::new(-30.0, -DEPTH, UNDER),
+        DVec3::new(30.0, 0.0, UNDER + 0.2),
+    );
+    let base = m.positions.len() as u32;
+    m.positions.extend(&slab.positions);
+    m.triangles
+        .extend(slab.triangles.iter().map(|t| t.map(|i| i + base)));
+    // Vienna, 1 March (EN 17037's period), every 15 minutes of the day.
+    let s = spec(
+        (48.21, 16.37),
+        "Europe/Vienna",
+        "2026-03-01",
+        "06:00",
+        "18:00",
+        15,
+        1.0,
+        16,
+    );
+    let (steps, _) = s.suns().unwrap();
+    let suns: Vec<Sun> = steps
+        .iter()
+        .map(|(_, p, w)| Sun {
+            direction: DVec3::from_array(p.direction),
+            elevation_deg: p.elevation_deg,
+            weight_h: *w,
+        })
+        .collect();
+    let analytic = |x: f64, z: f64| -> f64 {
+        suns.iter()
+            .filter(|s| {
+                let d = s.direction;
+                if d.y >= 0.0 {
+                    return false; // behind the facade
+                }
+                if z >= UNDER {
+                    return true;
+                }
+                // The ray meets the overhang's underside before leaving its depth.
+                let t = (UNDER - z) / d.z;
+                let blocked = t * -d.y <= DEPTH && (x + t * d.x).abs() <= 30.0;
+                !blocked
+            })
+            .map(|s| s.weight_h)
+            .sum::<f64>()
+    };
+    let bvh = TriangleBvh::new(&m);
+    let mut facades = find_facades(&m, 0.25, 1.0);
+    let south = facades
+        .iter()
+        .position(|f| f.normal.y < -0.99 && (f.area_m2 - 180.0).abs() < 1e-6)
+        .expect("the building's south facade");
+    facade_hours(&bvh, &mut facades, &suns, 0.0, 1e-4);
+    let f = &facades[south];
+    assert_eq!(f.cells, (80, 36));
+    let (mut compared, mut equal, mut shaded) = (0, 0, 0);
+    for (k, h) in f.hours.iter().enumerate() {
+        let p = f.cell_center(k % f.cells.0, k / f.cells.0);
+        if (p.z - UNDER).abs() < 0.3 {
+            continue; // where the overhang meets the wall
+        }
+        let want = analytic(p.x, p.z);
+        compared += 1;
+        shaded += (want < analytic(p.x, 8.9) - 1e-9) as usize;
+        equal += ((h.unwrap() as f64 - want).abs() < 1e-4) as usize;
+    }
+    eprintln!("south facade: {equal} of {compared} cells equal the analytic hours ({shaded} shaded by the overhang)");
+    assert!(shaded > 500, "{shaded}");
+    assert!(
+        equal as f64 >= 0.995 * compared as f64,
+        "{equal} of {compared}"
+    );
+    // A window point under the overhang: the same hours, and its EN 17037 level.
+    let window = DVec3::new(0.0, 0.0, 3.0);
+    let hours = sun_hours_at(&bvh, window, DVec3::NEG_Y, &suns, 0.0, 1e-4);
+    assert!((hours - analytic(0.0, 3.0)).abs() < 1e-9, "{hours}");
+    // The facade seen from the south faces 180°.
+    assert!((f.azimuth_deg(0.0) - 180.0).abs() < 1e-9);
+}
+
+#[test]
+fn facades_and_window_points_are_written() {
+    if gpu_common::gpu().is_none() {
+        return;
+    }
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("s");
+    let points = tmp.path().join("points.toml");
+    // box.obj is 2 × 1 × 3 m from the origin: one window on its south face, one on its
+    // north face.
+    std::fs::write(
+        &points,
+        "[[point]]\nname = \"south\"\nposition = [1.0, 0.0, 1.5]\nnormal = [0, -1, 0]\n\
+         [[point]]\nname = \"north\"\nposition = [1.0, 1.0, 1.5]\nnormal = [0, 1, 0]\n",
+    )
+    .unwrap();
+    let p = points.to_str().unwrap().to_string();
+    cli(&box_args(
+        &out,
+        &[
+            "--date",
+            "2026-03-01",
+            "--resolution",
+            "64",
+            "--facades",
+            "--facade-cell",
+            "0.25",
+            "--points",
+            &p,
+        ],
+    ));
+    let study: serde_json::Value = serde_json::from_str(&read(&out, "study.json")).unwrap();
+    let facades = study["facades"].as_array().unwrap();
+    assert_eq!(facades.len(), 4);
+    let mut faces: Vec<f64> = facades
+        .iter()
+        .map(|f| f["faces_deg"].as_f64().unwrap().round())
+        .collect();
+    faces.sort_by(f64::total_cmp);
+    assert_eq!(faces, [0.0, 90.0, 180.0, 270.0]);
+    for f in facades {
+        assert!(out.join(f["image"].as_str().unwrap()).is_file());
+    }
+    // 08:00–16:00 on 1 March: the south face sees the sun all the time, the north face never.
+    let south = facades
+        .iter()
+        .find(|f| f["faces_deg"].as_f64().unwrap().round() == 180.0)
+        .unwrap();
+    assert_eq!(south["min_h"], 8.0);
+    let north = facades
+        .iter()
+        .find(|f| f["faces_deg"].as_f64().unwrap().round() == 0.0)
+        .unwrap();
+    assert_eq!(north["max_h"], 0.0);
+    let csv = read(&out, "facades.csv");
+    assert_eq!(csv.lines().next().unwrap(), "facade,faces_deg,x,y,z,hours");
+    assert_eq!(
+        csv.lines().count() - 1,
+        2 * (8 * 12) + 2 * (4 * 12),
+        "cells of 0.25 m"
+    );
+    let pts = study["points"].as_array().unwrap();
+    assert_eq!(
+        (pts[0]["name"].as_str(), pts[0]["hours"].as_f64()),
+        (Some("south"), Some(8.0))
+    );
+    assert_eq!(pts[0]["en17037"], "high");
+    assert_eq!(
+        (pts[1]["hours"].as_f64(), pts[1]["en17037"].as_str()),
+        (Some(0.0), Some("none"))
+    );
+    assert!(read(&out, "points.csv").starts_with("name,x,y,z,nx,ny,nz,hours,en17037\nsouth,"));
+}

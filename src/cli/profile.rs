@@ -12,6 +12,7 @@ use crate::geometry::Mesh;
 use crate::gpu::Gpu;
 use crate::io::write_atomic;
 use crate::scene::UpAxis;
+use crate::shadow::bvh::TriangleBvh;
 use crate::shadow::SilhouetteMethod;
 use crate::study::annotate::PlanLabels;
 use crate::study::model::{recentre, up_axis_warning};
@@ -19,6 +20,12 @@ use crate::study::output::{write_study, StudyOutput};
 use crate::study::profile::{compute, shared_extent, HoursMetric, Profile, ProfileSpec};
 use crate::study::rasters::read_areas;
 use crate::study::sunpath::SunPathDiagram;
+use crate::study::surface_output::SurfaceResults;
+use crate::study::surfaces::{
+    facade_hours, find_facades, parse_points, sun_hours_at, surface_offset, Facade, Sun,
+    WindowPoint,
+};
+use crate::sun::direction_from_angles;
 use crate::sun::{Site, SunOptions, Zone};
 
 /// Options of `profile`.
@@ -90,6 +97,24 @@ pub struct ProfileArgs {
     /// metres; `properties.name` names them): their passing fractions in study.json.
     #[arg(long, requires = "threshold")]
     pub areas: Option<PathBuf>,
+    /// Also compute hours of sun on the model's facades (every vertical face, on cells of
+    /// --facade-cell): facades.csv and one elevation image per facade.
+    #[arg(long)]
+    pub facades: bool,
+    /// Side of a facade cell, metres.
+    #[arg(long, default_value_t = 0.5, requires = "facades")]
+    pub facade_cell: f64,
+    /// Facades smaller than this are left out, m².
+    #[arg(long, default_value_t = 1.0, requires = "facades")]
+    pub min_facade_area: f64,
+    /// Window points (TOML `[[point]]` tables: name, position [x, y, z] in the model's
+    /// plan coordinates, normal): hours of direct sun and EN 17037's level in points.csv.
+    #[arg(long)]
+    pub points: Option<PathBuf>,
+    /// The lowest sun counted on facades and at points, degrees (EN 17037 sets one for the
+    /// site; default 0).
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub min_elevation: f64,
     /// Also write one framed plan per step into DIR/steps/HHMM.png.
     #[arg(long)]
     pub step_images: bool,
@@ -244,6 +269,20 @@ pub fn run(a: ProfileArgs) -> Result<(), CliError> {
             )));
         }
     }
+    let points = match &a.points {
+        Some(p) => {
+            let text = std::fs::read_to_string(p)
+                .map_err(|e| CliError::input(anyhow!("{}: {e}", p.display())))?;
+            parse_points(&text).map_err(|e| CliError::input(anyhow!("{}: {e}", p.display())))?
+        }
+        None => Vec::new(),
+    };
+    if a.facades && !(a.facade_cell.is_finite() && a.facade_cell >= 0.01) {
+        return Err(CliError::input(anyhow!(
+            "--facade-cell {} must be at least 0.01 m",
+            a.facade_cell
+        )));
+    }
     let mut model = load_model(&a.model, a.up)?;
     if let Some(w) = up_axis_warning(&model, a.up) {
         eprintln!("warning: {}: {w}", a.model.display());
@@ -318,6 +357,7 @@ pub fn run(a: ProfileArgs) -> Result<(), CliError> {
         profiles.push((spec, profile, t.elapsed().as_secs_f64()));
     }
     bar.finish_and_clear();
+    let surfaces = Surfaces::new(&a, &model, origin, points);
     let several = profiles.len() > 1;
     let mut summaries = Vec::new();
     for (spec, profile, seconds) in &profiles {
@@ -343,6 +383,7 @@ pub fn run(a: ProfileArgs) -> Result<(), CliError> {
                 north_offset_deg: a.north_offset,
             },
             step_images: a.step_images,
+            surfaces: surfaces.for_profile(profile, a.north_offset),
             gif: a.gif.as_ref().map(|g| {
                 if several {
                     dir.join(g.file_name().unwrap_or(g.as_os_str()))
@@ -379,6 +420,80 @@ pub fn run(a: ProfileArgs) -> Result<(), CliError> {
         }
     }
     Ok(())
+}
+
+/// The model's facades and the window points, set up once for every date.
+struct Surfaces {
+    bvh: Option<TriangleBvh>,
+    facades: Vec<Facade>,
+    points: Vec<WindowPoint>,
+    origin: glam::DVec2,
+    min_elevation_deg: f64,
+    eps: f64,
+}
+
+impl Surfaces {
+    fn new(a: &ProfileArgs, model: &Mesh, origin: glam::DVec2, points: Vec<WindowPoint>) -> Self {
+        let wanted = a.facades || !points.is_empty();
+        let facades = if a.facades {
+            find_facades(model, a.facade_cell, a.min_facade_area)
+        } else {
+            Vec::new()
+        };
+        if a.facades {
+            eprintln!(
+                "{}: {} facade(s) of at least {} m², {} cells",
+                a.model.display(),
+                facades.len(),
+                a.min_facade_area,
+                facades
+                    .iter()
+                    .map(|f| f.hours.iter().flatten().count())
+                    .sum::<usize>()
+            );
+        }
+        Surfaces {
+            bvh: wanted.then(|| TriangleBvh::new(model)),
+            facades,
+            points,
+            origin,
+            min_elevation_deg: a.min_elevation,
+            eps: surface_offset(model),
+        }
+    }
+
+    /// The hours on the facades and at the points under `profile`'s suns.
+    fn for_profile(&self, profile: &Profile, north_offset_deg: f64) -> Option<SurfaceResults> {
+        let bvh = self.bvh.as_ref()?;
+        let suns: Vec<Sun> = profile
+            .steps
+            .iter()
+            .map(|s| Sun {
+                direction: direction_from_angles(s.azimuth_deg, s.elevation_deg, north_offset_deg),
+                elevation_deg: s.elevation_deg,
+                weight_h: s.weight_h,
+            })
+            .collect();
+        let mut facades = self.facades.clone();
+        facade_hours(bvh, &mut facades, &suns, self.min_elevation_deg, self.eps);
+        let points = self
+            .points
+            .iter()
+            .map(|p| {
+                let [x, y, z] = p.position;
+                let world = glam::DVec3::new(x - self.origin.x, y - self.origin.y, z);
+                let normal = glam::DVec3::from_array(p.normal).normalize();
+                let hours =
+                    sun_hours_at(bvh, world, normal, &suns, self.min_elevation_deg, self.eps);
+                (p.clone(), hours)
+            })
+            .collect();
+        Some(SurfaceResults {
+            facades,
+            points,
+            min_elevation_deg: self.min_elevation_deg,
+        })
+    }
 }
 
 /// The sun-path diagram of the study's site with this date's steps marked.

@@ -36,21 +36,59 @@ pub fn round_step(span: f64, count: f64) -> f64 {
         .unwrap_or(10.0 * magnitude)
 }
 
-/// `body` (the n × n plan at its top-left, a legend panel beside it) inside the frame: the
-/// plan lands at ([`LEFT`], [`TOP`]).
+/// Where a drawing lies in metres: its size in pixels, its scale and the metres at its
+/// left and bottom edges, the axes' names, and the north arrow's angle (plans only).
+#[derive(Debug, Clone)]
+pub struct Frame {
+    /// The drawing's width and height, pixels.
+    pub size_px: (u32, u32),
+    /// Pixels per metre.
+    pub px_per_m: f64,
+    /// Metres at the left edge (x axis) and the bottom edge (y axis).
+    pub left_bottom_m: (f64, f64),
+    /// The axes' names.
+    pub axes: (String, String),
+    /// Angle from the drawing's up to true north, clockwise, degrees (`None`: no arrow).
+    pub north_offset_deg: Option<f64>,
+}
+
+impl Frame {
+    /// The frame of a profile's plan (the model file's coordinates, north arrow).
+    pub fn plan(profile: &Profile, north_offset_deg: f64) -> Frame {
+        let e = profile.extent_m;
+        Frame {
+            size_px: (profile.resolution, profile.resolution),
+            px_per_m: profile.resolution as f64 / e,
+            left_bottom_m: (
+                profile.center.x - e / 2.0 + profile.origin.x,
+                profile.center.y - e / 2.0 + profile.origin.y,
+            ),
+            axes: ("x (m), plan north up".into(), "y (m)".into()),
+            north_offset_deg: Some(north_offset_deg),
+        }
+    }
+}
+
+/// `body` (the n × n plan at its top-left, a legend panel beside it) inside the plan's
+/// frame: the plan lands at ([`LEFT`], [`TOP`]).
 pub fn annotate(
     profile: &Profile,
     body: &image::RgbaImage,
     labels: &PlanLabels,
 ) -> image::RgbaImage {
+    framed(&Frame::plan(profile, labels.north_offset_deg), body, labels)
+}
+
+/// `body` (the drawing of `frame` at its top-left, anything beside it) inside `frame`: the
+/// drawing lands at ([`LEFT`], [`TOP`]).
+pub fn framed(frame: &Frame, body: &image::RgbaImage, labels: &PlanLabels) -> image::RgbaImage {
     register_font();
-    let n = profile.resolution;
     let (bw, bh) = body.dimensions();
     let (w, h) = (LEFT + bw + 12, TOP + bh + BOTTOM);
     let mut rgb = vec![255u8; (w * h * 3) as usize];
     {
         let root = BitMapBackend::with_buffer(&mut rgb, (w, h)).into_drawing_area();
-        let _ = draw_frame(&root, profile, labels, n);
+        let _ = draw_frame(&root, frame, labels);
         let _ = root.present();
     }
     let mut out = image::RgbaImage::from_fn(w, h, |x, y| {
@@ -63,9 +101,8 @@ pub fn annotate(
 
 fn draw_frame<DB: DrawingBackend>(
     root: &DrawingArea<DB, plotters::coord::Shift>,
-    profile: &Profile,
+    frame: &Frame,
     labels: &PlanLabels,
-    n: u32,
 ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
     let black = ("sans-serif", 15).into_font().color(&BLACK);
     root.draw(&Text::new(
@@ -78,17 +115,20 @@ fn draw_frame<DB: DrawingBackend>(
         (12, 42),
         black.clone(),
     ))?;
-    let (left, top, n_i) = (LEFT as i32, TOP as i32, n as i32);
+    let (left, top) = (LEFT as i32, TOP as i32);
+    let (w_i, h_i) = (frame.size_px.0 as i32, frame.size_px.1 as i32);
     root.draw(&Rectangle::new(
-        [(left - 1, top - 1), (left + n_i, top + n_i)],
+        [(left - 1, top - 1), (left + w_i, top + h_i)],
         BLACK,
     ))?;
     // Metre axes: ticks at round values of the file's coordinates.
-    let e = profile.extent_m;
-    let px_per_m = n as f64 / e;
-    let west = profile.center.x - e / 2.0 + profile.origin.x;
-    let south = profile.center.y - e / 2.0 + profile.origin.y;
-    let step = round_step(e, (n as f64 / 110.0).clamp(2.0, 8.0));
+    let px_per_m = frame.px_per_m;
+    let (west, south) = frame.left_bottom_m;
+    let (width_m, height_m) = (w_i as f64 / px_per_m, h_i as f64 / px_per_m);
+    let step = round_step(
+        width_m.max(height_m),
+        (w_i.max(h_i) as f64 / 110.0).clamp(2.0, 8.0),
+    );
     let label = |v: f64| {
         if step >= 1.0 {
             format!("{v:.0}")
@@ -97,18 +137,18 @@ fn draw_frame<DB: DrawingBackend>(
         }
     };
     let mut v = (west / step).ceil() * step;
-    while v <= west + e + 1e-9 {
+    while v <= west + width_m + 1e-9 {
         let x = left + ((v - west) * px_per_m).round() as i32;
         root.draw(&PathElement::new(
-            [(x, top + n_i), (x, top + n_i + 6)],
+            [(x, top + h_i), (x, top + h_i + 6)],
             BLACK,
         ))?;
-        root.draw(&Text::new(label(v), (x - 14, top + n_i + 9), black.clone()))?;
+        root.draw(&Text::new(label(v), (x - 14, top + h_i + 9), black.clone()))?;
         v += step;
     }
     let mut v = (south / step).ceil() * step;
-    while v <= south + e + 1e-9 {
-        let y = top + n_i - ((v - south) * px_per_m).round() as i32;
+    while v <= south + height_m + 1e-9 {
+        let y = top + h_i - ((v - south) * px_per_m).round() as i32;
         root.draw(&PathElement::new([(left - 6, y), (left, y)], BLACK))?;
         let text = label(v);
         let x = left - 10 - 8 * text.chars().count() as i32;
@@ -116,15 +156,19 @@ fn draw_frame<DB: DrawingBackend>(
         v += step;
     }
     root.draw(&Text::new(
-        "x (m), plan north up",
-        (left, top + n_i + 30),
+        frame.axes.0.as_str(),
+        (left, top + h_i + 30),
         black.clone(),
     ))?;
-    root.draw(&Text::new("y (m)", (8, top + n_i / 2), black.clone()))?;
-    // The scale bar under the plan's right corner.
+    root.draw(&Text::new(
+        frame.axes.1.as_str(),
+        (8, top + h_i / 2),
+        black.clone(),
+    ))?;
+    // The scale bar under the drawing's right corner.
     let metres = round_step(150.0 / px_per_m, 1.0);
     let length = (metres * px_per_m).round() as i32;
-    let (x1, y) = (left + n_i, top + n_i + 56);
+    let (x1, y) = (left + w_i, top + h_i + 56);
     root.draw(&PathElement::new(
         [(x1 - length, y), (x1, y)],
         BLACK.stroke_width(3),
@@ -142,8 +186,11 @@ fn draw_frame<DB: DrawingBackend>(
     };
     root.draw(&Text::new(bar, (x1 - length - 70, y - 9), black.clone()))?;
     // The north arrow above the plan's right corner.
-    let (cx, cy) = (left + n_i - 40, TOP as i32 / 2);
-    let a = labels.north_offset_deg.to_radians();
+    let Some(north) = frame.north_offset_deg else {
+        return Ok(());
+    };
+    let (cx, cy) = (left + w_i - 40, TOP as i32 / 2);
+    let a = north.to_radians();
     let (dx, dy) = (a.sin(), -a.cos());
     let r = 30.0;
     let tip = (cx + (r * dx) as i32, cy + (r * dy) as i32);

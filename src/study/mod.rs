@@ -9,5 +9,7 @@ pub mod output;
 pub mod profile;
 pub mod rasters;
 pub mod sunpath;
+pub mod surface_output;
+pub mod surfaces;
 
 pub use profile::{compute, HoursMetric, Profile, ProfileError, ProfileSpec};

@@ -17,6 +17,7 @@ use super::profile::{
     HoursMetric, Profile, ProfileStep, SURFACE_GROUND, SURFACE_MODEL, SURFACE_NONE,
 };
 use super::rasters::{ascii_grid, hours_csv, hours_exr, pass_fraction, surface_mean, AnalysisArea};
+use super::surface_output::{write_surfaces, FacadeSummary, PointResult, SurfaceResults};
 use crate::io::write_atomic;
 use crate::render::legend::with_legend_panel;
 use crate::render::output::write_image;
@@ -281,6 +282,8 @@ pub struct StudyOutput {
     pub step_images: bool,
     /// Also write the day's animation (one frame per step) to this GIF.
     pub gif: Option<PathBuf>,
+    /// Sun hours on the model's facades and at window points, when asked for.
+    pub surfaces: Option<SurfaceResults>,
 }
 
 /// The numbers of one study (one date), as `study.json` holds them.
@@ -307,6 +310,10 @@ pub struct StudySummary {
     pub extent_m: f64,
     /// The side of a cell, metres.
     pub cell_m: f64,
+    /// The facades' hours (with `--facades`).
+    pub facades: Vec<FacadeSummary>,
+    /// The window points' hours and EN 17037 levels (with `--points`).
+    pub points: Vec<PointResult>,
 }
 
 /// One analysis area's result.
@@ -347,6 +354,8 @@ pub fn summary(profile: &Profile, out: &StudyOutput) -> StudySummary {
         mean_h: surface_mean(profile, &hours),
         extent_m: profile.extent_m,
         cell_m: profile.extent_m / profile.resolution as f64,
+        facades: Vec::new(),
+        points: Vec::new(),
     }
 }
 
@@ -433,7 +442,17 @@ pub fn write_study(
             ),
         )?;
     }
-    let summary = summary(profile, out);
+    let mut summary = summary(profile, out);
+    if let Some(results) = &out.surfaces {
+        (summary.facades, summary.points) = write_surfaces(
+            dir,
+            results,
+            labels,
+            profile.origin,
+            profile.ground_z,
+            hours_scale(profile),
+        )?;
+    }
     write_atomic(
         &dir.join("study.json"),
         serde_json::to_string_pretty(&json!(summary))?.as_bytes(),
