@@ -47,6 +47,13 @@ fn check_methods_agree(name: &str, mesh: &Mesh, light: [f64; 4], depth: u32) {
     let brute = sm.brute(&light);
     let hex = tree.query(&sm, &light);
     assert_eq!(brute.sorted(), hex.sorted(), "{name} {light:?}");
+    // The traversal itself, whether or not the query chose it.
+    let walked = tree.traverse(&sm, &light);
+    assert_eq!(
+        brute.sorted(),
+        walked.sorted(),
+        "{name} {light:?}: traversal"
+    );
     let volume = ShadowVolume::build(&sm, &light, &hex);
     assert!(volume.is_closed(), "{name} {light:?}: volume not closed");
 }

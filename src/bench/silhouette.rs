@@ -10,6 +10,7 @@ use serde::Serialize;
 use super::median;
 use crate::geometry::generate::{building, bumpy_surface, torus};
 use crate::geometry::Mesh;
+use crate::shadow::hextree::{ESTIMATE_DEPTH, FALLBACK_FRACTION};
 use crate::shadow::{Hextree, Light, SilhouetteMesh};
 
 /// One benchmarked mesh.
@@ -29,6 +30,9 @@ pub struct SilhouetteBenchRow {
     pub silhouette_edges: f64,
     /// Seconds to build the hextree (once per mesh).
     pub hextree_build_s: f64,
+    /// The fraction of the queries the hextree answered by the linear scan (its
+    /// hyperplane met most of the tree).
+    pub scanned_fraction: f64,
 }
 
 /// The benchmark meshes, smallest first; `scale` < 1 shrinks them (for tests).
@@ -79,27 +83,37 @@ pub fn run(
         let lights = lights(mesh, queries);
         // Both methods must agree on every light.
         let mut edges = 0usize;
+        let mut scanned = 0usize;
         for light in &lights {
+            scanned += (tree.estimate(&sm, light, ESTIMATE_DEPTH, FALLBACK_FRACTION)
+                > FALLBACK_FRACTION) as usize;
             let (a, b) = (sm.brute(light), tree.query(&sm, light));
-            if a.sorted() != b.sorted() {
+            if a.sorted() != b.sorted() || a.sorted() != tree.traverse(&sm, light).sorted() {
                 return Err(format!("{name}: brute force and hextree disagree"));
             }
             edges += a.edges.len();
         }
-        // Then each method on its own over the moving light, three passes, per-query times.
-        let time = |f: &dyn Fn(&Light) -> usize| {
-            let mut ms = Vec::with_capacity(3 * lights.len());
-            for _ in 0..3 {
-                for light in &lights {
-                    let t = Instant::now();
-                    std::hint::black_box(f(light));
-                    ms.push(t.elapsed().as_secs_f64() * 1e3);
+        // Then both methods over the moving light, three passes, per-query times; the two
+        // alternate query by query so a change in the machine's speed hits both alike.
+        let time = |f: &dyn Fn(&Light) -> usize, light: &Light| {
+            let t = Instant::now();
+            std::hint::black_box(f(light));
+            t.elapsed().as_secs_f64() * 1e3
+        };
+        let (mut brute, mut hex) = (Vec::new(), Vec::new());
+        for pass in 0..3 {
+            for light in &lights {
+                let b = |l: &Light| sm.brute(l).edges.len();
+                let h = |l: &Light| tree.query(&sm, l).edges.len();
+                if pass % 2 == 0 {
+                    brute.push(time(&b, light));
+                    hex.push(time(&h, light));
+                } else {
+                    hex.push(time(&h, light));
+                    brute.push(time(&b, light));
                 }
             }
-            ms
-        };
-        let brute = time(&|l| sm.brute(l).edges.len());
-        let hex = time(&|l| tree.query(&sm, l).edges.len());
+        }
         let (b, h) = (median(brute), median(hex));
         rows.push(SilhouetteBenchRow {
             mesh: name.clone(),
@@ -109,6 +123,7 @@ pub fn run(
             speedup: b / h,
             silhouette_edges: edges as f64 / queries as f64,
             hextree_build_s: build_s,
+            scanned_fraction: scanned as f64 / queries as f64,
         });
     }
     Ok(rows)

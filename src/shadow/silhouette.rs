@@ -158,16 +158,17 @@ impl SilhouetteMesh {
         self.planes.iter().map(|p| p.dot(l) > 0.0).collect()
     }
 
-    /// Appends the silhouette contribution of a manifold edge.
+    /// Appends the silhouette contribution of a manifold edge a–b (`lit_fw`: the face
+    /// traversing a→b is lit).
     #[inline]
     pub(crate) fn push_manifold(
         out: &mut Vec<[u32; 2]>,
-        e: &ManifoldEdge,
+        [a, b]: [u32; 2],
         lit_fw: bool,
         lit_bw: bool,
     ) {
         if lit_fw != lit_bw {
-            out.push(if lit_fw { [e.a, e.b] } else { [e.b, e.a] });
+            out.push(if lit_fw { [a, b] } else { [b, a] });
         }
     }
 
@@ -195,7 +196,7 @@ impl SilhouetteMesh {
         for e in &self.manifold {
             Self::push_manifold(
                 &mut edges,
-                e,
+                [e.a, e.b],
                 lit[e.forward as usize],
                 lit[e.backward as usize],
             );
