@@ -49,6 +49,7 @@ fn spec(from: &str, to: &str, step: u32, extent: f64, resolution: u32) -> Profil
         extent_m: Some(extent),
         resolution,
         silhouette: SilhouetteMethod::Hextree,
+        non_casters: Default::default(),
     }
 }
 

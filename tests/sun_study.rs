@@ -51,6 +51,7 @@ fn spec(
         extent_m: Some(extent),
         resolution,
         silhouette: SilhouetteMethod::Hextree,
+        non_casters: Default::default(),
     }
 }
 
@@ -764,7 +765,7 @@ fn high_rises_without_a_ground_plane() {
 /// matters): each facade cell's hours against the analytic shading of its centre.
 #[test]
 fn south_facade_under_an_overhang_matches_the_analytic_shading() {
-    use goniolight::study::surfaces::{facade_hours, find_facades, sun_hours_at, Sun};
+    use goniolight::study::surfaces::{facade_hours, find_facades, Sun, SunRays};
     const DEPTH: f64 = 3.0;
     const UNDER: f64 = 6.0;
     let mut m = cuboid(DVec3::new(-10.0, 0.0, 0.0), DVec3::new(10.0, 10.0, 9.0));
@@ -820,7 +821,15 @@ fn south_facade_under_an_overhang_matches_the_analytic_shading() {
         .iter()
         .position(|f| f.normal.y < -0.99 && (f.area_m2 - 180.0).abs() < 1e-6)
         .expect("the building's south facade");
-    facade_hours(&bvh, &mut facades, &suns, 0.0, 1e-4);
+    let none = IgnoredTriangles::default();
+    let rays = SunRays {
+        bvh: &bvh,
+        suns: &suns,
+        min_elevation_deg: 0.0,
+        eps: 1e-4,
+        non_casters: &none,
+    };
+    facade_hours(&rays, &mut facades);
     let f = &facades[south];
     assert_eq!(f.cells, (80, 36));
     let (mut compared, mut equal, mut shaded) = (0, 0, 0);
@@ -842,7 +851,7 @@ fn south_facade_under_an_overhang_matches_the_analytic_shading() {
     );
     // A window point under the overhang: the same hours, and its EN 17037 level.
     let window = DVec3::new(0.0, 0.0, 3.0);
-    let hours = sun_hours_at(&bvh, window, DVec3::NEG_Y, &suns, 0.0, 1e-4);
+    let hours = rays.hours_at(window, DVec3::NEG_Y);
     assert!((hours - analytic(0.0, 3.0)).abs() < 1e-9, "{hours}");
     // The facade seen from the south faces 180°.
     assert!((f.azimuth_deg(0.0) - 180.0).abs() < 1e-9);
@@ -920,4 +929,151 @@ fn facades_and_window_points_are_written() {
         (Some(0.0), Some("none"))
     );
     assert!(read(&out, "points.csv").starts_with("name,x,y,z,nx,ny,nz,hours,en17037\nsouth,"));
+}
+
+/// Two buildings in one OBJ, far enough apart that their shadows never meet: with
+/// `--casters new` only the new one casts, and every cell outside the old one's footprint
+/// has the hours of a study of the new building alone.
+#[test]
+fn only_the_chosen_components_cast_shadows() {
+    if gpu_common::gpu().is_none() {
+        return;
+    }
+    let tmp = tempfile::tempdir().unwrap();
+    let cube = |name: &str, x0: f64, first: usize| -> String {
+        let m = cuboid(DVec3::new(x0, 0.0, 0.0), DVec3::new(x0 + 6.0, 6.0, 8.0));
+        let mut s = format!("o {name}\n");
+        for p in &m.positions {
+            s += &format!("v {} {} {}\n", p.x, p.y, p.z);
+        }
+        for t in &m.triangles {
+            s += &format!(
+                "f {} {} {}\n",
+                t[0] as usize + first,
+                t[1] as usize + first,
+                t[2] as usize + first
+            );
+        }
+        s
+    };
+    let both = tmp.path().join("both.obj");
+    std::fs::write(
+        &both,
+        cube("new_tower", -30.0, 1) + &cube("old_hall", 24.0, 9),
+    )
+    .unwrap();
+    let alone = tmp.path().join("alone.obj");
+    // The new building alone, plus a speck at the old one's far corner so both models
+    // span the same plan.
+    std::fs::write(
+        &alone,
+        cube("new_tower", -30.0, 1) + "o speck\nv 30 6 0\nv 29.99 6 0\nv 30 5.99 0\nf 9 10 11\n",
+    )
+    .unwrap();
+    let run = |model: &Path, out: &str, extra: &[&str]| -> std::path::PathBuf {
+        let dir = tmp.path().join(out);
+        let mut args: Vec<String> = [
+            "profile",
+            model.to_str().unwrap(),
+            "--up",
+            "z",
+            "--lat",
+            "48.21",
+            "--lon",
+            "16.37",
+            "--tz",
+            "Europe/Vienna",
+            "--date",
+            "2026-03-21",
+            "--from",
+            "08:00",
+            "--to",
+            "16:00",
+            "--step",
+            "60",
+            "--extent",
+            "90",
+            "--resolution",
+            "180",
+            "--metric",
+            "sun",
+            "--out",
+            dir.to_str().unwrap(),
+        ]
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+        args.extend(extra.iter().map(|s| s.to_string()));
+        let (_, err) = cli(&args);
+        assert!(!err.contains("panicked"), "{err}");
+        dir
+    };
+    let chosen = run(&both, "chosen", &["--casters", "new*"]);
+    let all = run(&both, "all", &[]);
+    let single = run(&alone, "single", &[]);
+    let cells = |dir: &Path| -> Vec<[f64; 3]> {
+        read(dir, "hours.csv")
+            .lines()
+            .skip(1)
+            .map(|l| {
+                let v: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();
+                [v[0], v[1], v[2]]
+            })
+            .collect()
+    };
+    let (chosen, all, single) = (cells(&chosen), cells(&all), cells(&single));
+    let in_old = |c: &[f64; 3]| c[0] > 23.5 && c[0] < 30.5 && c[1] > -0.5 && c[1] < 6.5;
+    let (mut compared, mut differs_from_all) = (0, 0);
+    for ((a, b), c) in chosen.iter().zip(&single).zip(&all) {
+        assert_eq!((a[0], a[1]), (b[0], b[1]));
+        if in_old(a) {
+            continue;
+        }
+        compared += 1;
+        assert!(
+            (a[2] - b[2]).abs() < 1e-3,
+            "{a:?} vs the new building alone {b:?}"
+        );
+        differs_from_all += ((a[2] - c[2]).abs() > 1e-3) as usize;
+    }
+    eprintln!(
+        "{compared} cells compared; the old hall's shadow covered {differs_from_all} of them"
+    );
+    assert!(
+        differs_from_all > 100,
+        "the old hall's own shadow must be gone: {differs_from_all}"
+    );
+    // A pattern that matches nothing is refused, naming the objects.
+    let args: Vec<String> = [
+        "profile",
+        both.to_str().unwrap(),
+        "--up",
+        "z",
+        "--lat",
+        "48",
+        "--lon",
+        "16",
+        "--date",
+        "2026-03-21",
+        "--from",
+        "10:00",
+        "--to",
+        "12:00",
+        "--step",
+        "60",
+        "--casters",
+        "nothing",
+        "--out",
+        tmp.path().join("x").to_str().unwrap(),
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect();
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let (code, _, err) = run_cli(&args, "");
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("\"nothing\" matches no object") && err.contains("new_tower, old_hall"),
+        "{err}"
+    );
 }

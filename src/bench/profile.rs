@@ -54,6 +54,7 @@ pub fn run(
         extent_m: None,
         resolution,
         silhouette: SilhouetteMethod::Brute,
+        non_casters: Default::default(),
     };
     let cancel = AtomicBool::new(false);
     let mut rows = Vec::new();

@@ -7,12 +7,13 @@ use chrono::{NaiveDate, NaiveTime};
 use clap::Args;
 
 use super::CliError;
-use crate::geometry::obj::read_obj;
+use crate::geometry::obj::read_obj_objects;
 use crate::geometry::Mesh;
 use crate::gpu::Gpu;
 use crate::io::write_atomic;
 use crate::scene::UpAxis;
 use crate::shadow::bvh::TriangleBvh;
+use crate::shadow::IgnoredTriangles;
 use crate::shadow::SilhouetteMethod;
 use crate::study::annotate::PlanLabels;
 use crate::study::model::{recentre, up_axis_warning};
@@ -22,8 +23,7 @@ use crate::study::rasters::read_areas;
 use crate::study::sunpath::SunPathDiagram;
 use crate::study::surface_output::SurfaceResults;
 use crate::study::surfaces::{
-    facade_hours, find_facades, parse_points, sun_hours_at, surface_offset, Facade, Sun,
-    WindowPoint,
+    facade_hours, find_facades, parse_points, surface_offset, Facade, Sun, SunRays, WindowPoint,
 };
 use crate::sun::direction_from_angles;
 use crate::sun::{Site, SunOptions, Zone};
@@ -97,6 +97,11 @@ pub struct ProfileArgs {
     /// metres; `properties.name` names them): their passing fractions in study.json.
     #[arg(long, requires = "threshold")]
     pub areas: Option<PathBuf>,
+    /// Only these objects cast shadows (OBJ `o`/`g` names, comma-separated, `*` matches
+    /// any run of characters); the others still receive them (a new building's shadow on
+    /// the existing ones).
+    #[arg(long, value_delimiter = ',')]
+    pub casters: Vec<String>,
     /// Also compute hours of sun on the model's facades (every vertical face, on cells of
     /// --facade-cell): facades.csv and one elevation image per facade.
     #[arg(long)]
@@ -213,24 +218,111 @@ impl ProfileArgs {
     }
 }
 
-/// Reads an OBJ model and turns it to the world's +Z up.
-pub fn load_model(path: &Path, up: UpAxis) -> Result<Mesh, CliError> {
-    let mut mesh = read_obj(path)?;
+/// Reads an OBJ model, turns it to the world's +Z up and, when `casters` names objects
+/// (`o`/`g` names, `*` matches any run of characters), puts their triangles first: the
+/// rest receive shadows but cast none (returned as the triangles to leave out). Refused
+/// when a pattern matches no object (the message lists the names).
+pub fn load_components(
+    path: &Path,
+    up: UpAxis,
+    casters: &[String],
+) -> Result<(Mesh, IgnoredTriangles), CliError> {
+    let (mut mesh, objects) = read_obj_objects(path)?;
     if up == UpAxis::Y {
         for p in &mut mesh.positions {
             *p = glam::DVec3::new(p.x, -p.z, p.y);
         }
     }
+    let casts: Vec<bool> = if casters.is_empty() {
+        vec![true; objects.names.len()]
+    } else {
+        for pattern in casters {
+            if !objects.names.iter().any(|n| wildcard_match(pattern, n)) {
+                let mut names = objects.names.clone();
+                names.truncate(30);
+                return Err(CliError::input(anyhow!(
+                    "--casters: {pattern:?} matches no object of {} (its objects: {}{})",
+                    path.display(),
+                    names.join(", "),
+                    if objects.names.len() > 30 {
+                        ", …"
+                    } else {
+                        ""
+                    }
+                )));
+            }
+        }
+        objects
+            .names
+            .iter()
+            .map(|n| casters.iter().any(|p| wildcard_match(p, n)))
+            .collect()
+    };
     let total = mesh.triangles.len();
-    let dropped = mesh.remove_degenerate();
+    // Casters first, then the rest; each part loses its degenerate triangles.
+    let part = |cast: bool| {
+        let mut m = Mesh {
+            positions: mesh.positions.clone(),
+            triangles: mesh
+                .triangles
+                .iter()
+                .zip(&objects.of_triangle)
+                .filter(|(_, &o)| casts[o as usize] == cast)
+                .map(|(t, _)| *t)
+                .collect(),
+        };
+        let dropped = m.remove_degenerate();
+        (m, dropped)
+    };
+    let ((mut model, dropped_casting), (rest, dropped_rest)) = (part(true), part(false));
+    let dropped = dropped_casting + dropped_rest;
     if dropped > 0 {
         eprintln!(
             "warning: {}: {dropped} of its {total} triangles have no area and were dropped",
             path.display()
         );
     }
-    mesh.validate(&path.display().to_string())?;
-    Ok(mesh)
+    let casting = model.triangles.len();
+    model.triangles.extend(rest.triangles);
+    model.validate(&path.display().to_string())?;
+    if !casters.is_empty() {
+        if casting == 0 {
+            return Err(CliError::input(anyhow!(
+                "--casters: the objects named have no triangles with area"
+            )));
+        }
+        eprintln!(
+            "{}: {casting} of {} triangles cast shadows (--casters)",
+            path.display(),
+            model.triangles.len()
+        );
+    }
+    let non_casters = if casting < model.triangles.len() {
+        IgnoredTriangles(std::iter::once(casting..model.triangles.len()).collect())
+    } else {
+        IgnoredTriangles::default()
+    };
+    Ok((model, non_casters))
+}
+
+/// Whether `name` matches `pattern`, where `*` stands for any run of characters.
+pub fn wildcard_match(pattern: &str, name: &str) -> bool {
+    let parts: Vec<&str> = pattern.split('*').collect();
+    if parts.len() == 1 {
+        return pattern == name;
+    }
+    let (first, last) = (parts[0], parts[parts.len() - 1]);
+    if !name.starts_with(first) || name.len() < first.len() + last.len() || !name.ends_with(last) {
+        return false;
+    }
+    let mut rest = &name[first.len()..name.len() - last.len()];
+    for middle in &parts[1..parts.len() - 1] {
+        match rest.find(middle) {
+            Some(k) => rest = &rest[k + middle.len()..],
+            None => return false,
+        }
+    }
+    true
 }
 
 /// A model's plan coordinates named for titles: "48.21° N, 16.37° E".
@@ -283,7 +375,7 @@ pub fn run(a: ProfileArgs) -> Result<(), CliError> {
             a.facade_cell
         )));
     }
-    let mut model = load_model(&a.model, a.up)?;
+    let (mut model, non_casters) = load_components(&a.model, a.up, &a.casters)?;
     if let Some(w) = up_axis_warning(&model, a.up) {
         eprintln!("warning: {}: {w}", a.model.display());
     }
@@ -304,6 +396,7 @@ pub fn run(a: ProfileArgs) -> Result<(), CliError> {
             extent_m: a.extent,
             resolution: a.resolution,
             silhouette: a.silhouettes,
+            non_casters: non_casters.clone(),
         })
         .collect();
     // Check every period before starting the GPU; several dates share one extent.
@@ -357,7 +450,7 @@ pub fn run(a: ProfileArgs) -> Result<(), CliError> {
         profiles.push((spec, profile, t.elapsed().as_secs_f64()));
     }
     bar.finish_and_clear();
-    let surfaces = Surfaces::new(&a, &model, origin, points);
+    let surfaces = Surfaces::new(&a, &model, origin, points, non_casters);
     let several = profiles.len() > 1;
     let mut summaries = Vec::new();
     for (spec, profile, seconds) in &profiles {
@@ -430,10 +523,17 @@ struct Surfaces {
     origin: glam::DVec2,
     min_elevation_deg: f64,
     eps: f64,
+    non_casters: IgnoredTriangles,
 }
 
 impl Surfaces {
-    fn new(a: &ProfileArgs, model: &Mesh, origin: glam::DVec2, points: Vec<WindowPoint>) -> Self {
+    fn new(
+        a: &ProfileArgs,
+        model: &Mesh,
+        origin: glam::DVec2,
+        points: Vec<WindowPoint>,
+        non_casters: IgnoredTriangles,
+    ) -> Self {
         let wanted = a.facades || !points.is_empty();
         let facades = if a.facades {
             find_facades(model, a.facade_cell, a.min_facade_area)
@@ -459,6 +559,7 @@ impl Surfaces {
             origin,
             min_elevation_deg: a.min_elevation,
             eps: surface_offset(model),
+            non_casters,
         }
     }
 
@@ -475,7 +576,14 @@ impl Surfaces {
             })
             .collect();
         let mut facades = self.facades.clone();
-        facade_hours(bvh, &mut facades, &suns, self.min_elevation_deg, self.eps);
+        let rays = SunRays {
+            bvh,
+            suns: &suns,
+            min_elevation_deg: self.min_elevation_deg,
+            eps: self.eps,
+            non_casters: &self.non_casters,
+        };
+        facade_hours(&rays, &mut facades);
         let points = self
             .points
             .iter()
@@ -483,8 +591,7 @@ impl Surfaces {
                 let [x, y, z] = p.position;
                 let world = glam::DVec3::new(x - self.origin.x, y - self.origin.y, z);
                 let normal = glam::DVec3::from_array(p.normal).normalize();
-                let hours =
-                    sun_hours_at(bvh, world, normal, &suns, self.min_elevation_deg, self.eps);
+                let hours = rays.hours_at(world, normal);
                 (p.clone(), hours)
             })
             .collect();

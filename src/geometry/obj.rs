@@ -322,6 +322,27 @@ pub fn read_obj(path: &Path) -> Result<Mesh, GeometryError> {
 /// Parses OBJ bytes into a [`Mesh`] with the file's vertex numbering; `name` is used in
 /// messages.
 pub fn parse_obj(name: &str, bytes: &[u8]) -> Result<Mesh, GeometryError> {
+    parse_obj_objects(name, bytes).map(|(mesh, _)| mesh)
+}
+
+/// The objects of an OBJ (`o` and `g` names as tobj splits them): each triangle's object.
+#[derive(Debug, Clone, Default)]
+pub struct ObjObjects {
+    /// The objects' names, in file order (unnamed ones as `unnamed N`).
+    pub names: Vec<String>,
+    /// Per triangle of the mesh, its index into `names`.
+    pub of_triangle: Vec<u32>,
+}
+
+/// [`read_obj`] with each triangle's object.
+pub fn read_obj_objects(path: &Path) -> Result<(Mesh, ObjObjects), GeometryError> {
+    let name = path.display().to_string();
+    let bytes = read_file(path)?;
+    parse_obj_objects(&name, &bytes)
+}
+
+/// [`parse_obj`] with each triangle's object.
+pub fn parse_obj_objects(name: &str, bytes: &[u8]) -> Result<(Mesh, ObjObjects), GeometryError> {
     let options = ReadOptions {
         single_index: false,
         all_vertices: true,
@@ -331,13 +352,21 @@ pub fn parse_obj(name: &str, bytes: &[u8]) -> Result<Mesh, GeometryError> {
         positions: file.positions,
         triangles: Vec::new(),
     };
+    let mut objects = ObjObjects::default();
     for m in &file.models {
+        let id = objects.names.len() as u32;
+        objects.names.push(if m.name.is_empty() {
+            format!("unnamed {}", id + 1)
+        } else {
+            m.name.clone()
+        });
         for t in m.mesh.indices.chunks_exact(3) {
             mesh.triangles
                 .push([0, 1, 2].map(|k| ObjFile::file_index(m, t[k])));
+            objects.of_triangle.push(id);
         }
     }
-    Ok(mesh)
+    Ok((mesh, objects))
 }
 
 /// OBJ text of a mesh (`v` and `f` lines, 1-based as OBJ wants).

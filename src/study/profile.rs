@@ -16,7 +16,7 @@ use crate::gpu::{Gpu, GpuError};
 use crate::render::shadows::mask_texture;
 use crate::render::volumes::{VolumeGeometry, VolumePasses};
 use crate::scene::{Camera, MAX_IMAGE_SIZE};
-use crate::shadow::{Light, SilhouetteMethod};
+use crate::shadow::{IgnoredTriangles, Light, SilhouetteMethod};
 use crate::sun::{self, Site, SunOptions, Zone};
 
 /// What went wrong computing a profile.
@@ -70,6 +70,9 @@ pub struct ProfileSpec {
     pub resolution: u32,
     /// Silhouette search.
     pub silhouette: SilhouetteMethod,
+    /// Triangles that receive shadows but cast none (components left out of the casters,
+    /// e.g. the existing buildings when the new one's shadow is studied).
+    pub non_casters: IgnoredTriangles,
 }
 
 impl ProfileSpec {
@@ -419,7 +422,7 @@ pub fn compute(
         let d = p.direction;
         let light = Light::new([d[0], d[1], d[2], 0.0]).map_err(ProfileError::Input)?;
         let t0 = Instant::now();
-        let volume = geometry.volume(gpu, light, spec.silhouette, false, &Default::default());
+        let volume = geometry.volume(gpu, light, spec.silhouette, false, &spec.non_casters);
         timing.silhouette_s += t0.elapsed().as_secs_f64();
         let t1 = Instant::now();
         let volumes = [volume];

@@ -24,26 +24,39 @@ pub struct Sun {
     pub weight_h: f64,
 }
 
-/// Hours of direct sun at `point` on a surface facing `normal` (unit).
-pub fn sun_hours_at(
-    bvh: &TriangleBvh,
-    point: DVec3,
-    normal: DVec3,
-    suns: &[Sun],
-    min_elevation_deg: f64,
-    eps: f64,
-) -> f64 {
-    let none = IgnoredTriangles::default();
-    let origin = point + normal * eps;
-    suns.iter()
-        .filter(|s| {
-            s.elevation_deg >= min_elevation_deg
-                && s.direction.dot(normal) > 0.0
-                && !bvh.blocked(origin, s.direction, 0.0, f64::INFINITY, &none)
-        })
-        .map(|s| s.weight_h)
-        .sum::<f64>()
-        + 0.0 // an empty sum is −0.0
+/// What a surface point's hours are cast against: the model's BVH, the steps' suns, the
+/// lowest sun counted, the offset off the surface, and the triangles that cast no shadow.
+#[derive(Clone, Copy)]
+pub struct SunRays<'a> {
+    /// The model.
+    pub bvh: &'a TriangleBvh,
+    /// The steps' suns.
+    pub suns: &'a [Sun],
+    /// Suns lower than this are not counted, degrees.
+    pub min_elevation_deg: f64,
+    /// How far a point is moved off its surface along its normal, metres.
+    pub eps: f64,
+    /// Triangles that cast no shadow.
+    pub non_casters: &'a IgnoredTriangles,
+}
+
+impl SunRays<'_> {
+    /// Hours of direct sun at `point` on a surface facing `normal` (unit).
+    pub fn hours_at(&self, point: DVec3, normal: DVec3) -> f64 {
+        let origin = point + normal * self.eps;
+        self.suns
+            .iter()
+            .filter(|s| {
+                s.elevation_deg >= self.min_elevation_deg
+                    && s.direction.dot(normal) > 0.0
+                    && !self
+                        .bvh
+                        .blocked(origin, s.direction, 0.0, f64::INFINITY, self.non_casters)
+            })
+            .map(|s| s.weight_h)
+            .sum::<f64>()
+            + 0.0 // an empty sum is −0.0
+    }
 }
 
 /// The distance a surface point is moved off its surface before its rays leave: a
@@ -266,20 +279,14 @@ fn in_triangle(p: DVec2, t: &[DVec2; 3]) -> bool {
 }
 
 /// Fills every facade cell's hours of direct sun (in parallel).
-pub fn facade_hours(
-    bvh: &TriangleBvh,
-    facades: &mut [Facade],
-    suns: &[Sun],
-    min_elevation_deg: f64,
-    eps: f64,
-) {
+pub fn facade_hours(rays: &SunRays, facades: &mut [Facade]) {
     for f in facades.iter_mut() {
         let nu = f.cells.0;
         let g = f.clone();
         f.hours.par_iter_mut().enumerate().for_each(|(k, h)| {
             if h.is_some() {
                 let p = g.cell_center(k % nu, k / nu);
-                *h = Some(sun_hours_at(bvh, p, g.normal, suns, min_elevation_deg, eps) as f32);
+                *h = Some(rays.hours_at(p, g.normal) as f32);
             }
         });
     }

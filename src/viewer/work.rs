@@ -150,6 +150,7 @@ impl ViewerApp {
                 extent_m: None,
                 resolution: s.profile_resolution,
                 silhouette: self.display.shadows.silhouette,
+                non_casters: Default::default(),
             })
         })();
         let spec = match spec.and_then(|sp| sp.local_times().map(|_| sp).map_err(|e| e.to_string()))
