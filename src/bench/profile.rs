@@ -1,19 +1,22 @@
-//! `bench profile`: one sun-path shadow profile of a generated building, with brute-force
-//! and hextree silhouettes, side by side.
+//! `bench profile`: one sun-path shadow profile of a generated building (and, when asked,
+//! of the real models), with brute-force and hextree silhouettes, side by side.
 
 use std::sync::atomic::AtomicBool;
 
 use chrono::{NaiveDate, NaiveTime};
 use serde::Serialize;
 
+use crate::geometry::Mesh;
 use crate::gpu::Gpu;
 use crate::shadow::SilhouetteMethod;
 use crate::study::profile::{compute, ProfileError, ProfileSpec};
 use crate::sun::{Site, SunOptions, Zone};
 
-/// One silhouette method's timing.
+/// One silhouette method's timing on one model.
 #[derive(Debug, Clone, Serialize)]
 pub struct ProfileBenchRow {
+    /// The model.
+    pub model: String,
     /// "brute force" or "hextree".
     pub method: &'static str,
     /// Triangles of the building.
@@ -32,15 +35,37 @@ pub struct ProfileBenchRow {
     pub render_ms_per_step: f64,
 }
 
-/// Profiles a `floors`-storey building in Vienna on the 2026 equinox, 08:00–16:00 every
-/// `step` minutes: a warm-up run (pipelines, hextree build), then each method.
+/// The generated benchmark building: 25 × 25 bays, `floors` storeys.
+pub fn generated_building(floors: u32) -> (String, Mesh) {
+    (
+        format!("generated building, {floors} storeys"),
+        crate::geometry::generate::building(25, 25, floors),
+    )
+}
+
+/// Profiles each of `models` (world frame, metres, +Z up, near the origin) in Vienna on
+/// the 2026 equinox, 08:00–16:00 every `step` minutes: a warm-up run (pipelines, hextree
+/// build), then each method.
 pub fn run(
     gpu: &Gpu,
+    models: &[(String, Mesh)],
     resolution: u32,
     step: u32,
-    floors: u32,
 ) -> Result<Vec<ProfileBenchRow>, ProfileError> {
-    let model = crate::geometry::generate::building(25, 25, floors);
+    let mut rows = Vec::new();
+    for (name, model) in models {
+        rows.extend(run_model(gpu, name, model, resolution, step)?);
+    }
+    Ok(rows)
+}
+
+fn run_model(
+    gpu: &Gpu,
+    name: &str,
+    model: &Mesh,
+    resolution: u32,
+    step: u32,
+) -> Result<Vec<ProfileBenchRow>, ProfileError> {
     let hm = |h| NaiveTime::from_hms_opt(h, 0, 0).unwrap_or_default();
     let input = |e: crate::sun::SunError| ProfileError::Input(e.to_string());
     let mut spec = ProfileSpec {
@@ -65,11 +90,12 @@ pub fn run(
     ] {
         spec.silhouette = method;
         let t = std::time::Instant::now();
-        let p = compute(gpu, &model, &spec, |_, _| {}, &cancel)?;
+        let p = compute(gpu, model, &spec, |_, _| {}, &cancel)?;
         let total_s = t.elapsed().as_secs_f64();
         let n = p.steps.len().max(1) as f64;
         if label != "warm-up" {
             rows.push(ProfileBenchRow {
+                model: name.to_string(),
                 method: label,
                 triangles: model.triangles.len(),
                 steps: p.steps.len(),

@@ -65,6 +65,11 @@ pub enum BenchCommand {
         /// Storeys of the building (6: 180 000 triangles).
         #[arg(long, default_value_t = 6)]
         floors: u32,
+        /// Also the real models of the shared test data (the Delft city block, in the
+        /// Dutch national grid, and the high-rise block), read from this folder (usually
+        /// `../shared`).
+        #[arg(long)]
+        shared: Option<std::path::PathBuf>,
     },
     /// CPU ray casts (exact shadows at points, the radiosity gather, the CPU references):
     /// rays per second through the BVH and by brute force, one thread, on terrain meshes
@@ -169,7 +174,8 @@ pub fn run(cmd: BenchCommand) -> Result<(), CliError> {
             resolution,
             step,
             floors,
-        } => super::profile::run_bench(json, resolution, step, floors),
+            shared,
+        } => super::profile::run_bench(json, resolution, step, floors, shared),
         BenchCommand::Raycast {
             json,
             rays,
