@@ -222,6 +222,14 @@ fn bre_209_garden_behind_a_wall_passes_as_the_analytic_fraction() {
     );
 }
 
+/// With the GPU: a temporary folder and the study's output folder in it.
+fn study_dir() -> Option<(tempfile::TempDir, std::path::PathBuf)> {
+    gpu_common::gpu()?;
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("s");
+    Some((tmp, out))
+}
+
 fn read(dir: &Path, f: &str) -> String {
     std::fs::read_to_string(dir.join(f))
         .unwrap_or_else(|e| panic!("{}: {e}", dir.join(f).display()))
@@ -360,11 +368,9 @@ fn several_dates_share_one_extent_and_equal_single_date_runs() {
 
 #[test]
 fn rasters_outlines_and_study_json_agree() {
-    if gpu_common::gpu().is_none() {
+    let Some((tmp, out)) = study_dir() else {
         return;
-    }
-    let tmp = tempfile::tempdir().unwrap();
-    let out = tmp.path().join("s");
+    };
     // The 2 × 1 × 3 m box on a 30 m plan. Two analysis areas: one south-west of the box
     // (always in the sun), one the whole plan (its fraction is the plan's).
     let areas = tmp.path().join("areas.geojson");
@@ -509,11 +515,9 @@ fn polygon_area(coords: &serde_json::Value) -> f64 {
 
 #[test]
 fn sun_path_diagram_plots_the_suns_that_sun_json_gives() {
-    if gpu_common::gpu().is_none() {
+    let Some((tmp, out)) = study_dir() else {
         return;
-    }
-    let tmp = tempfile::tempdir().unwrap();
-    let out = tmp.path().join("s");
+    };
     cli(&box_args(
         &out,
         &["--date", "2026-03-21", "--resolution", "64"],
@@ -859,11 +863,9 @@ fn south_facade_under_an_overhang_matches_the_analytic_shading() {
 
 #[test]
 fn facades_and_window_points_are_written() {
-    if gpu_common::gpu().is_none() {
+    let Some((tmp, out)) = study_dir() else {
         return;
-    }
-    let tmp = tempfile::tempdir().unwrap();
-    let out = tmp.path().join("s");
+    };
     let points = tmp.path().join("points.toml");
     // box.obj is 2 × 1 × 3 m from the origin: one window on its south face, one on its
     // north face.

@@ -3,6 +3,7 @@
 //! analysis areas, their framed plans, rasters, outlines and tables, and sun-path diagrams.
 
 pub mod annotate;
+pub mod colours;
 pub mod model;
 pub mod outlines;
 pub mod output;

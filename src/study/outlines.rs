@@ -8,7 +8,7 @@ use std::fmt::Write as _;
 use glam::DVec2;
 use serde_json::json;
 
-use super::output::time_colour;
+use super::colours::time_colour;
 use super::profile::{Profile, ProfileStep, SURFACE_GROUND, SURFACE_MODEL};
 use crate::io::xml_escape;
 use crate::photometry::plot::nice_ceiling;

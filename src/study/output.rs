@@ -11,6 +11,8 @@ use std::path::{Path, PathBuf};
 use anyhow::Context;
 use serde_json::json;
 
+pub use super::colours::{hours_colour, time_colour};
+
 use super::annotate::{annotate, PlanLabels};
 use super::outlines::{outlines_geojson, outlines_svg};
 use super::profile::{
@@ -21,38 +23,12 @@ use super::surface_output::{write_surfaces, FacadeSummary, PointResult, SurfaceR
 use crate::io::write_atomic;
 use crate::render::legend::with_legend_panel;
 use crate::render::output::write_image;
-use crate::render::tonemap::{false_colour, linear_to_srgb};
 
 const BACKGROUND: [u8; 3] = [255, 255, 255];
 const GROUND: [u8; 3] = [246, 246, 243];
 const BUILDING: [u8; 3] = [128, 128, 132];
 const BUILDING_SHADED: [u8; 3] = [88, 88, 94];
 const OUTLINE: [u8; 3] = [20, 20, 20];
-
-/// The colour of time `t` in 0..1 (early = blue, noon = green, late = red).
-pub fn time_colour(t: f32) -> [u8; 3] {
-    let hue = 240.0 * (1.0 - t.clamp(0.0, 1.0));
-    let c = hue / 60.0;
-    let x = 1.0 - (c % 2.0 - 1.0).abs();
-    let (r, g, b) = match c as u32 {
-        0 => (1.0, x, 0.0),
-        1 => (x, 1.0, 0.0),
-        2 => (0.0, 1.0, x),
-        3 => (0.0, x, 1.0),
-        _ => (x, 0.0, 1.0),
-    };
-    [r, g, b].map(|v: f32| (v * 220.0) as u8)
-}
-
-/// The colour of `hours` in shadow on a scale whose top is `scale_hours`.
-pub fn hours_colour(hours: f32, scale_hours: f32) -> [u8; 3] {
-    let c = false_colour(hours / scale_hours.max(1e-6));
-    [
-        linear_to_srgb(c.x),
-        linear_to_srgb(c.y),
-        linear_to_srgb(c.z),
-    ]
-}
 
 /// The top of the hours scale: the whole period's length.
 pub fn hours_scale(profile: &Profile) -> f32 {

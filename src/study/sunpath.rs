@@ -266,7 +266,7 @@ impl SunPathDiagram {
                 r#"<rect x="{x0}" y="{}" width="26" height="8" fill="{colour}"/>"#,
                 y - 8.0
             );
-            for (j, line) in wrap(text, 24).iter().enumerate() {
+            for (j, line) in crate::io::wrap_words(text, 24).iter().enumerate() {
                 let _ = writeln!(
                     s,
                     r#"<text x="{}" y="{}" font-size="13">{}</text>"#,
@@ -293,22 +293,6 @@ fn points(p: &[(f64, f64)]) -> String {
         .map(|(x, y)| format!("{x:.2},{y:.2}"))
         .collect::<Vec<_>>()
         .join(" ")
-}
-
-fn wrap(text: &str, width: usize) -> Vec<String> {
-    let mut lines = vec![String::new()];
-    for word in text.split(' ') {
-        let last = lines.last_mut().expect("one line");
-        if !last.is_empty() && last.chars().count() + word.chars().count() >= width {
-            lines.push(word.to_string());
-        } else {
-            if !last.is_empty() {
-                last.push(' ');
-            }
-            last.push_str(word);
-        }
-    }
-    lines
 }
 
 #[cfg(test)]

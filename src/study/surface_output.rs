@@ -10,7 +10,7 @@ use anyhow::Context;
 use glam::DVec3;
 
 use super::annotate::{framed, Frame, PlanLabels};
-use super::output::hours_colour;
+use super::colours::hours_colour;
 use super::surfaces::{en17037_level, Facade, WindowPoint};
 use crate::io::write_atomic;
 use crate::render::legend::with_legend_panel;

@@ -126,23 +126,6 @@ fn svg_size(svg: &str) -> Option<(f64, f64)> {
     Some((attr("width")?, attr("height")?))
 }
 
-/// Words of `s` in lines of at most `width` characters.
-fn wrap(s: &str, width: usize) -> Vec<String> {
-    let mut lines = vec![String::new()];
-    for word in s.split_whitespace() {
-        let last = lines.last_mut().expect("one line at least");
-        if !last.is_empty() && last.chars().count() + 1 + word.chars().count() > width {
-            lines.push(word.to_string());
-        } else {
-            if !last.is_empty() {
-                last.push(' ');
-            }
-            last.push_str(word);
-        }
-    }
-    lines
-}
-
 /// The sheet as one SVG document.
 pub(super) fn svg(sheet: &Sheet) -> String {
     let mut page = Page {
@@ -157,7 +140,7 @@ pub(super) fn svg(sheet: &Sheet) -> String {
     for (label, value) in &sheet.summary {
         y += 19.0;
         page.text(MARGIN, y, 13.0, "font-weight=\"bold\"", label);
-        let lines = wrap(value, 46);
+        let lines = crate::io::wrap_words(value, 46);
         for (k, line) in lines.iter().enumerate() {
             page.text(MARGIN + 190.0, y + 16.0 * k as f64, 13.0, "", line);
         }
@@ -190,7 +173,7 @@ pub(super) fn svg(sheet: &Sheet) -> String {
     if !sheet.warnings.is_empty() {
         page.heading("Warnings");
         for w in &sheet.warnings {
-            for line in wrap(w, 150) {
+            for line in crate::io::wrap_words(w, 150) {
                 page.note(&line);
             }
         }
@@ -206,13 +189,13 @@ pub(super) fn svg(sheet: &Sheet) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::{svg_size, wrap};
+    use super::svg_size;
 
     #[test]
     fn reads_the_root_size_and_wraps_words() {
         let doc =
             "<svg width=\"1100\" height=\"860\" viewBox=\"0 0 1100 860\" xmlns=\"x\"><g/></svg>";
         assert_eq!(svg_size(doc), Some((1100.0, 860.0)));
-        assert_eq!(wrap("aa bb cc", 5), vec!["aa bb", "cc"]);
+        assert_eq!(crate::io::wrap_words("aa bb cc", 5), vec!["aa bb", "cc"]);
     }
 }

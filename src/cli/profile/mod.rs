@@ -1,31 +1,32 @@
-//! `goniolight profile`: sun-path shadow profiles of a model over a period.
+//! `goniolight profile`: sun studies of a model over a period — shadow profiles, hours of sun
+//! or shadow, thresholds, several dates, facades and windows.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use anyhow::anyhow;
 use chrono::{NaiveDate, NaiveTime};
 use clap::Args;
 
+mod bench;
+mod model;
+mod outputs;
+mod surfaces;
+
+pub use bench::run_bench;
+pub use model::load_components;
+use outputs::{write_dates_table, write_sun_path};
+use surfaces::Surfaces;
+
 use super::CliError;
-use crate::geometry::obj::read_obj_objects;
-use crate::geometry::Mesh;
 use crate::gpu::Gpu;
-use crate::io::write_atomic;
 use crate::scene::UpAxis;
-use crate::shadow::bvh::TriangleBvh;
-use crate::shadow::IgnoredTriangles;
 use crate::shadow::SilhouetteMethod;
 use crate::study::annotate::PlanLabels;
 use crate::study::model::{recentre, up_axis_warning};
 use crate::study::output::{write_study, StudyOutput};
 use crate::study::profile::{compute, shared_extent, HoursMetric, Profile, ProfileSpec};
 use crate::study::rasters::read_areas;
-use crate::study::sunpath::SunPathDiagram;
-use crate::study::surface_output::SurfaceResults;
-use crate::study::surfaces::{
-    facade_hours, find_facades, parse_points, surface_offset, Facade, Sun, SunRays, WindowPoint,
-};
-use crate::sun::direction_from_angles;
+use crate::study::surfaces::parse_points;
 use crate::sun::{Site, SunOptions, Zone};
 
 /// Options of `profile`.
@@ -218,113 +219,6 @@ impl ProfileArgs {
     }
 }
 
-/// Reads an OBJ model, turns it to the world's +Z up and, when `casters` names objects
-/// (`o`/`g` names, `*` matches any run of characters), puts their triangles first: the
-/// rest receive shadows but cast none (returned as the triangles to leave out). Refused
-/// when a pattern matches no object (the message lists the names).
-pub fn load_components(
-    path: &Path,
-    up: UpAxis,
-    casters: &[String],
-) -> Result<(Mesh, IgnoredTriangles), CliError> {
-    let (mut mesh, objects) = read_obj_objects(path)?;
-    if up == UpAxis::Y {
-        for p in &mut mesh.positions {
-            *p = glam::DVec3::new(p.x, -p.z, p.y);
-        }
-    }
-    let casts: Vec<bool> = if casters.is_empty() {
-        vec![true; objects.names.len()]
-    } else {
-        for pattern in casters {
-            if !objects.names.iter().any(|n| wildcard_match(pattern, n)) {
-                let mut names = objects.names.clone();
-                names.truncate(30);
-                return Err(CliError::input(anyhow!(
-                    "--casters: {pattern:?} matches no object of {} (its objects: {}{})",
-                    path.display(),
-                    names.join(", "),
-                    if objects.names.len() > 30 {
-                        ", …"
-                    } else {
-                        ""
-                    }
-                )));
-            }
-        }
-        objects
-            .names
-            .iter()
-            .map(|n| casters.iter().any(|p| wildcard_match(p, n)))
-            .collect()
-    };
-    let total = mesh.triangles.len();
-    // Casters first, then the rest; each part loses its degenerate triangles.
-    let part = |cast: bool| {
-        let mut m = Mesh {
-            positions: mesh.positions.clone(),
-            triangles: mesh
-                .triangles
-                .iter()
-                .zip(&objects.of_triangle)
-                .filter(|(_, &o)| casts[o as usize] == cast)
-                .map(|(t, _)| *t)
-                .collect(),
-        };
-        let dropped = m.remove_degenerate();
-        (m, dropped)
-    };
-    let ((mut model, dropped_casting), (rest, dropped_rest)) = (part(true), part(false));
-    let dropped = dropped_casting + dropped_rest;
-    if dropped > 0 {
-        eprintln!(
-            "warning: {}: {dropped} of its {total} triangles have no area and were dropped",
-            path.display()
-        );
-    }
-    let casting = model.triangles.len();
-    model.triangles.extend(rest.triangles);
-    model.validate(&path.display().to_string())?;
-    if !casters.is_empty() {
-        if casting == 0 {
-            return Err(CliError::input(anyhow!(
-                "--casters: the objects named have no triangles with area"
-            )));
-        }
-        eprintln!(
-            "{}: {casting} of {} triangles cast shadows (--casters)",
-            path.display(),
-            model.triangles.len()
-        );
-    }
-    let non_casters = if casting < model.triangles.len() {
-        IgnoredTriangles(std::iter::once(casting..model.triangles.len()).collect())
-    } else {
-        IgnoredTriangles::default()
-    };
-    Ok((model, non_casters))
-}
-
-/// Whether `name` matches `pattern`, where `*` stands for any run of characters.
-pub fn wildcard_match(pattern: &str, name: &str) -> bool {
-    let parts: Vec<&str> = pattern.split('*').collect();
-    if parts.len() == 1 {
-        return pattern == name;
-    }
-    let (first, last) = (parts[0], parts[parts.len() - 1]);
-    if !name.starts_with(first) || name.len() < first.len() + last.len() || !name.ends_with(last) {
-        return false;
-    }
-    let mut rest = &name[first.len()..name.len() - last.len()];
-    for middle in &parts[1..parts.len() - 1] {
-        match rest.find(middle) {
-            Some(k) => rest = &rest[k + middle.len()..],
-            None => return false,
-        }
-    }
-    true
-}
-
 /// A model's plan coordinates named for titles: "48.21° N, 16.37° E".
 fn site_label(lat: f64, lon: f64) -> String {
     format!(
@@ -515,148 +409,6 @@ pub fn run(a: ProfileArgs) -> Result<(), CliError> {
     Ok(())
 }
 
-/// The model's facades and the window points, set up once for every date.
-struct Surfaces {
-    bvh: Option<TriangleBvh>,
-    facades: Vec<Facade>,
-    points: Vec<WindowPoint>,
-    origin: glam::DVec2,
-    min_elevation_deg: f64,
-    eps: f64,
-    non_casters: IgnoredTriangles,
-}
-
-impl Surfaces {
-    fn new(
-        a: &ProfileArgs,
-        model: &Mesh,
-        origin: glam::DVec2,
-        points: Vec<WindowPoint>,
-        non_casters: IgnoredTriangles,
-    ) -> Self {
-        let wanted = a.facades || !points.is_empty();
-        let facades = if a.facades {
-            find_facades(model, a.facade_cell, a.min_facade_area)
-        } else {
-            Vec::new()
-        };
-        if a.facades {
-            eprintln!(
-                "{}: {} facade(s) of at least {} m², {} cells",
-                a.model.display(),
-                facades.len(),
-                a.min_facade_area,
-                facades
-                    .iter()
-                    .map(|f| f.hours.iter().flatten().count())
-                    .sum::<usize>()
-            );
-        }
-        Surfaces {
-            bvh: wanted.then(|| TriangleBvh::new(model)),
-            facades,
-            points,
-            origin,
-            min_elevation_deg: a.min_elevation,
-            eps: surface_offset(model),
-            non_casters,
-        }
-    }
-
-    /// The hours on the facades and at the points under `profile`'s suns.
-    fn for_profile(&self, profile: &Profile, north_offset_deg: f64) -> Option<SurfaceResults> {
-        let bvh = self.bvh.as_ref()?;
-        let suns: Vec<Sun> = profile
-            .steps
-            .iter()
-            .map(|s| Sun {
-                direction: direction_from_angles(s.azimuth_deg, s.elevation_deg, north_offset_deg),
-                elevation_deg: s.elevation_deg,
-                weight_h: s.weight_h,
-            })
-            .collect();
-        let mut facades = self.facades.clone();
-        let rays = SunRays {
-            bvh,
-            suns: &suns,
-            min_elevation_deg: self.min_elevation_deg,
-            eps: self.eps,
-            non_casters: &self.non_casters,
-        };
-        facade_hours(&rays, &mut facades);
-        let points = self
-            .points
-            .iter()
-            .map(|p| {
-                let [x, y, z] = p.position;
-                let world = glam::DVec3::new(x - self.origin.x, y - self.origin.y, z);
-                let normal = glam::DVec3::from_array(p.normal).normalize();
-                let hours = rays.hours_at(world, normal);
-                (p.clone(), hours)
-            })
-            .collect();
-        Some(SurfaceResults {
-            facades,
-            points,
-            min_elevation_deg: self.min_elevation_deg,
-        })
-    }
-}
-
-/// The sun-path diagram of the study's site with this date's steps marked.
-fn write_sun_path(
-    spec: &ProfileSpec,
-    profile: &Profile,
-    dir: &Path,
-    labels: &PlanLabels,
-) -> Result<(), CliError> {
-    let suns: Vec<_> = profile
-        .steps
-        .iter()
-        .map(|s| (s.time, s.azimuth_deg, s.elevation_deg))
-        .collect();
-    let diagram = SunPathDiagram {
-        site: spec.site,
-        zone: spec.zone,
-        year: chrono::Datelike::year(&spec.date),
-        sun: spec.sun,
-        title: format!("Sun path — {}", labels.title),
-        marked: suns,
-    };
-    let svg = diagram.svg().map_err(|e| CliError::failure(anyhow!(e)))?;
-    write_atomic(&dir.join("sunpath.svg"), svg.as_bytes()).map_err(CliError::failure)
-}
-
-/// `dates.csv` and `dates.json` beside the per-date folders: one row per date.
-fn write_dates_table(
-    dir: &Path,
-    summaries: &[(NaiveDate, crate::study::output::StudySummary)],
-) -> anyhow::Result<()> {
-    use std::fmt::Write as _;
-    let mut csv = String::from("date,metric,period_h,sun_up_h,mean_h,threshold_h,pass_fraction\n");
-    for (date, s) in summaries {
-        let _ = writeln!(
-            csv,
-            "{date},{},{:.4},{:.4},{:.4},{},{}",
-            s.metric,
-            s.period_h,
-            s.sun_up_h,
-            s.mean_h,
-            s.threshold_h.map_or(String::new(), |t| t.to_string()),
-            s.pass_fraction.map_or(String::new(), |f| format!("{f:.6}"))
-        );
-    }
-    write_atomic(&dir.join("dates.csv"), csv.as_bytes())?;
-    let json: Vec<_> = summaries
-        .iter()
-        .map(|(d, s)| serde_json::json!({ "date": d.to_string(), "study": s }))
-        .collect();
-    write_atomic(
-        &dir.join("dates.json"),
-        serde_json::to_string_pretty(&json)?.as_bytes(),
-    )
-}
-
 fn report(a: &ProfileArgs, profile: &Profile, seconds: f64) {
     let date = profile
         .steps
@@ -704,69 +456,4 @@ fn report(a: &ProfileArgs, profile: &Profile, seconds: f64) {
         1000.0 * profile.timing.render_s / n,
         a.out.display()
     );
-}
-
-/// Runs `bench profile`: the same profile with brute-force and hextree silhouettes, on
-/// the generated building and, with `shared`, on the real models.
-pub fn run_bench(
-    as_json: bool,
-    resolution: u32,
-    step: u32,
-    floors: u32,
-    shared: Option<PathBuf>,
-) -> Result<(), CliError> {
-    if !(1..=40).contains(&floors) {
-        return Err(CliError::input(anyhow!(
-            "--floors {floors} is not in 1..=40"
-        )));
-    }
-    let mut models = vec![crate::bench::profile::generated_building(floors)];
-    if let Some(dir) = shared {
-        for (name, rel) in [
-            ("Delft city block", "models/delft_3dfier/testarea.obj"),
-            ("high-rise block", "models/openfoam_buildings/buildings.obj"),
-        ] {
-            let (mut mesh, _) = load_components(&dir.join(rel), UpAxis::Z, &[])?;
-            recentre(&mut mesh);
-            models.push((name.to_string(), mesh));
-        }
-    }
-    let gpu = Gpu::shared().map_err(CliError::failure)?;
-    eprintln!("GPU: {}", gpu.describe());
-    let rows = crate::bench::profile::run(&gpu, &models, resolution, step)?;
-    if as_json {
-        println!("{}", serde_json::json!({ "rows": rows }));
-        return Ok(());
-    }
-    println!(
-        "shadow profile: {} steps, {resolution}² plan",
-        rows.first().map_or(0, |r| r.steps)
-    );
-    println!(
-        "| model | triangles | silhouettes | total s | ms/step | silhouette ms/step | volumes + read-back ms/step |"
-    );
-    println!("|---|---:|---|---:|---:|---:|---:|");
-    for r in &rows {
-        println!(
-            "| {} | {} | {} | {:.2} | {:.1} | {:.2} | {:.1} |",
-            r.model,
-            r.triangles,
-            r.method,
-            r.total_s,
-            r.per_step_ms,
-            r.silhouette_ms_per_step,
-            r.render_ms_per_step
-        );
-    }
-    for pair in rows.chunks(2) {
-        if let [brute, hex] = pair {
-            println!(
-                "{}: hextree / brute force: total {:.2}×, silhouettes {:.2}× faster",
-                brute.model,
-                brute.total_s / hex.total_s,
-                brute.silhouette_ms_per_step / hex.silhouette_ms_per_step.max(1e-12)
-            );
-        }
-    }
-    Ok(())
 }

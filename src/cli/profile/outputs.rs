@@ -1,0 +1,67 @@
+//! A study's files beside the per-date ones: the sun-path diagram and the dates' table.
+
+use std::path::Path;
+
+use anyhow::anyhow;
+use chrono::NaiveDate;
+
+use super::super::CliError;
+use crate::io::write_atomic;
+use crate::study::annotate::PlanLabels;
+use crate::study::output::StudySummary;
+use crate::study::profile::{Profile, ProfileSpec};
+use crate::study::sunpath::SunPathDiagram;
+
+/// The sun-path diagram of the study's site with this date's steps marked.
+pub(super) fn write_sun_path(
+    spec: &ProfileSpec,
+    profile: &Profile,
+    dir: &Path,
+    labels: &PlanLabels,
+) -> Result<(), CliError> {
+    let suns: Vec<_> = profile
+        .steps
+        .iter()
+        .map(|s| (s.time, s.azimuth_deg, s.elevation_deg))
+        .collect();
+    let diagram = SunPathDiagram {
+        site: spec.site,
+        zone: spec.zone,
+        year: chrono::Datelike::year(&spec.date),
+        sun: spec.sun,
+        title: format!("Sun path — {}", labels.title),
+        marked: suns,
+    };
+    let svg = diagram.svg().map_err(|e| CliError::failure(anyhow!(e)))?;
+    write_atomic(&dir.join("sunpath.svg"), svg.as_bytes()).map_err(CliError::failure)
+}
+
+/// `dates.csv` and `dates.json` beside the per-date folders: one row per date.
+pub(super) fn write_dates_table(
+    dir: &Path,
+    summaries: &[(NaiveDate, StudySummary)],
+) -> anyhow::Result<()> {
+    use std::fmt::Write as _;
+    let mut csv = String::from("date,metric,period_h,sun_up_h,mean_h,threshold_h,pass_fraction\n");
+    for (date, s) in summaries {
+        let _ = writeln!(
+            csv,
+            "{date},{},{:.4},{:.4},{:.4},{},{}",
+            s.metric,
+            s.period_h,
+            s.sun_up_h,
+            s.mean_h,
+            s.threshold_h.map_or(String::new(), |t| t.to_string()),
+            s.pass_fraction.map_or(String::new(), |f| format!("{f:.6}"))
+        );
+    }
+    write_atomic(&dir.join("dates.csv"), csv.as_bytes())?;
+    let json: Vec<_> = summaries
+        .iter()
+        .map(|(d, s)| serde_json::json!({ "date": d.to_string(), "study": s }))
+        .collect();
+    write_atomic(
+        &dir.join("dates.json"),
+        serde_json::to_string_pretty(&json)?.as_bytes(),
+    )
+}
