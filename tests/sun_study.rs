@@ -515,7 +515,7 @@ fn polygon_area(coords: &serde_json::Value) -> f64 {
 
 #[test]
 fn sun_path_diagram_plots_the_suns_that_sun_json_gives() {
-    let Some((tmp, out)) = study_dir() else {
+    let Some((_tmp, out)) = study_dir() else {
         return;
     };
     cli(&box_args(
