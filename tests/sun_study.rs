@@ -246,7 +246,11 @@ fn asc_header(text: &str) -> Vec<(String, f64)> {
 }
 
 fn box_args(out: &Path, extra: &[&str]) -> Vec<String> {
-    let model = root().join("assets/models/box.obj");
+    study_args(&root().join("assets/models/box.obj"), out, extra)
+}
+
+/// `profile MODEL` (Z-up) in Vienna, 08:00–16:00 hourly, hours of sun, then `extra`.
+fn study_args(model: &Path, out: &Path, extra: &[&str]) -> Vec<String> {
     let mut v: Vec<String> = [
         "profile",
         model.to_str().unwrap(),
@@ -974,39 +978,16 @@ fn only_the_chosen_components_cast_shadows() {
     .unwrap();
     let run = |model: &Path, out: &str, extra: &[&str]| -> std::path::PathBuf {
         let dir = tmp.path().join(out);
-        let mut args: Vec<String> = [
-            "profile",
-            model.to_str().unwrap(),
-            "--up",
-            "z",
-            "--lat",
-            "48.21",
-            "--lon",
-            "16.37",
-            "--tz",
-            "Europe/Vienna",
+        let plan = [
             "--date",
             "2026-03-21",
-            "--from",
-            "08:00",
-            "--to",
-            "16:00",
-            "--step",
-            "60",
             "--extent",
             "90",
             "--resolution",
             "180",
-            "--metric",
-            "sun",
-            "--out",
-            dir.to_str().unwrap(),
-        ]
-        .iter()
-        .map(|s| s.to_string())
-        .collect();
-        args.extend(extra.iter().map(|s| s.to_string()));
-        let (_, err) = cli(&args);
+        ];
+        let extra: Vec<&str> = plan.iter().chain(extra).copied().collect();
+        let (_, err) = cli(&study_args(model, &dir, &extra));
         assert!(!err.contains("panicked"), "{err}");
         dir
     };

@@ -303,10 +303,14 @@ pub struct AreaResult {
 
 /// The summary of `profile` under `out`'s metric, threshold and areas.
 pub fn summary(profile: &Profile, out: &StudyOutput) -> StudySummary {
-    let hours = profile.hours(out.metric);
+    summary_of(profile, out, &profile.hours(out.metric))
+}
+
+/// [`summary`] from the hours already counted under `out`'s metric.
+fn summary_of(profile: &Profile, out: &StudyOutput, hours: &[f32]) -> StudySummary {
     let fraction = |area| {
         out.threshold_h
-            .and_then(|t| pass_fraction(profile, &hours, t, area))
+            .and_then(|t| pass_fraction(profile, hours, t, area))
     };
     StudySummary {
         date: profile
@@ -327,7 +331,7 @@ pub fn summary(profile: &Profile, out: &StudyOutput) -> StudySummary {
                 pass_fraction: fraction(Some(a)),
             })
             .collect(),
-        mean_h: surface_mean(profile, &hours),
+        mean_h: surface_mean(profile, hours),
         extent_m: profile.extent_m,
         cell_m: profile.extent_m / profile.resolution as f64,
         facades: Vec::new(),
@@ -418,7 +422,7 @@ pub fn write_study(
             ),
         )?;
     }
-    let mut summary = summary(profile, out);
+    let mut summary = summary_of(profile, out, &hours);
     if let Some(results) = &out.surfaces {
         (summary.facades, summary.points) = write_surfaces(
             dir,
