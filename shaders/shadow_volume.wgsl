@@ -11,6 +11,12 @@ struct VolumeLight {
     // x > 0: extrude lights at infinity by this length (metres) instead of to infinity,
     // for orthographic views, whose far plane would otherwise cut the volumes (and the
     // clipped edges of neighbouring sides need not meet).
+    // y: the depth bias of the volume's finite vertices (added to the depth, z/w), so a lit
+    // face's own cap counts as behind it. Added here rather than by the rasterizer's depth
+    // bias: that one is scaled by the largest exponent of the primitive's depth, which is
+    // unbounded for a side that passes the camera's eye plane without depth clipping
+    // (camera inside a volume, z-fail): some drivers then push the whole side to the far
+    // plane.
     extrude: vec4<f32>,
 };
 
@@ -20,18 +26,27 @@ struct VolumeLight {
 @vertex
 fn vs_volume(@location(0) p: vec4<f32>) -> @builtin(position) @invariant vec4<f32> {
     var v = vec4<f32>(p.xyz, 1.0);
+    var biased = true;
     if (p.w == 0.0) {
         if (volume.light.w == 0.0) {
             if (volume.extrude.x > 0.0) {
                 v = vec4<f32>(p.xyz - volume.light.xyz * volume.extrude.x, 1.0);
             } else {
                 v = vec4<f32>(-volume.light.xyz, 0.0);
+                biased = false;
             }
         } else {
             v = vec4<f32>(p.xyz - volume.light.xyz, 0.0);
+            biased = false;
         }
     }
-    return volume.view_proj * v;
+    var clip = volume.view_proj * v;
+    if (biased) {
+        // z/w grows by the bias wherever only finite vertices span the primitive (z is
+        // linear in clip space), and less toward a vertex at infinity.
+        clip.z = clip.z + volume.extrude.y * clip.w;
+    }
+    return clip;
 }
 
 @vertex

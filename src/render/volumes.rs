@@ -195,6 +195,24 @@ struct VolumeLightGpu {
 /// Format of the shadow mask: one layer per light, 1 = in its shadow volume.
 pub const MASK_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R8Uint;
 
+/// How far the finite vertices of a volume are pushed away from the camera, in depth
+/// (z/w): 16 steps of a depth value in [0.5, 1) (2^-24 each in 32-bit float and in 24-bit
+/// depth alike), so a lit face's own cap counts as behind it in both methods (z-pass
+/// ignores it, z-fail sees it enter and its extrusion leave).
+pub const VOLUME_DEPTH_BIAS: f32 = 16.0 / 16_777_216.0;
+
+/// `GONIOLIGHT_VOLUME_RASTER_BIAS=1` (a diagnostic): the rasterizer's constant depth bias
+/// instead of the vertex shader's, as before 2026-11-26.
+fn diagnostic_raster_bias() -> bool {
+    std::env::var("GONIOLIGHT_VOLUME_RASTER_BIAS").is_ok_and(|v| v == "1")
+}
+
+/// `GONIOLIGHT_VOLUME_DEPTH_CLAMP=0` (a diagnostic): z-fail volumes clipped at the near
+/// and far planes instead of depth-clamped.
+fn diagnostic_no_depth_clamp() -> bool {
+    std::env::var("GONIOLIGHT_VOLUME_DEPTH_CLAMP").is_ok_and(|v| v == "0")
+}
+
 /// Bytes between the per-light uniform records (the dynamic-offset alignment).
 const UNIFORM_STRIDE: u64 = 256;
 
@@ -368,10 +386,9 @@ impl VolumePasses {
             blend: None,
             write_mask: wgpu::ColorWrites::empty(),
         };
-        // The volumes are pushed a little away from the camera, so a lit face's own cap
-        // counts as behind it in both methods (z-pass ignores it, z-fail sees it enter and
-        // its extrusion leave).
-        const VOLUME_BIAS: i32 = 16;
+        // The volumes are pushed a little away from the camera in the vertex shader
+        // (`VOLUME_DEPTH_BIAS`), not by the rasterizer's depth bias (see the shader).
+        let raster_bias = if diagnostic_raster_bias() { 16 } else { 0 };
         let zpass = make(
             "shadow volumes z-pass",
             "vs_volume",
@@ -383,7 +400,7 @@ impl VolumePasses {
                 stencil_face(C::Always, Op::Keep, Op::IncrementWrap),
                 stencil_face(C::Always, Op::Keep, Op::DecrementWrap),
             ),
-            VOLUME_BIAS,
+            raster_bias,
             no_colour.clone(),
         );
         let zfail = make(
@@ -391,13 +408,13 @@ impl VolumePasses {
             "vs_volume",
             "fs_count",
             tri,
-            gpu.has_depth_clamp(),
+            gpu.has_depth_clamp() && !diagnostic_no_depth_clamp(),
             C::Less,
             counting(
                 stencil_face(C::Always, Op::DecrementWrap, Op::Keep),
                 stencil_face(C::Always, Op::IncrementWrap, Op::Keep),
             ),
-            VOLUME_BIAS,
+            raster_bias,
             no_colour.clone(),
         );
         let not_zero = stencil_face(C::NotEqual, Op::Keep, Op::Keep);
@@ -500,7 +517,16 @@ impl VolumePasses {
             let record = VolumeLightGpu {
                 view_proj: view_proj.to_cols_array(),
                 light: l.to_array(),
-                extrude: [finite_extrusion.unwrap_or(0.0), 0.0, 0.0, 0.0],
+                extrude: [
+                    finite_extrusion.unwrap_or(0.0),
+                    if diagnostic_raster_bias() {
+                        0.0
+                    } else {
+                        VOLUME_DEPTH_BIAS
+                    },
+                    0.0,
+                    0.0,
+                ],
             };
             let at = i * UNIFORM_STRIDE as usize;
             bytes[at..at + std::mem::size_of::<VolumeLightGpu>()]
