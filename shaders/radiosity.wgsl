@@ -293,12 +293,14 @@ struct Shot {
     // Its reach (m), the plane tolerance (m), the form factor's scale (a coarse cell's
     // elements' area over its polygon's), 1 for a top cell.
     link: vec4<f32>,
-    // The pieces it shoots (first, end): their elements do not receive from it.
+    // The pieces it shoots (first, end): their elements do not receive from it; its
+    // first tile in the atlas of visibility maps, and the atlas's tiles per row.
     pieces: vec4<u32>,
 };
 
 @group(1) @binding(0) var<uniform> shot: Shot;
-@group(1) @binding(1) var visibility: texture_2d_array<f32>;
+// The batch's visibility maps, square tiles of info.w texels (radiosity/atlas.rs).
+@group(1) @binding(1) var visibility: texture_2d<f32>;
 
 const PI = 3.14159265358979;
 
@@ -354,7 +356,7 @@ fn polygon_form_factor(p: vec3<f32>, n: vec3<f32>) -> f32 {
     return abs(sum) / (2.0 * PI);
 }
 
-// Map texel and layer of direction `v` (world, from the patch centroid to `p`).
+// Map texel and face of direction `v` (world, from the patch centroid to `p`).
 fn visibility_lookup(p: vec3<f32>, v: vec3<f32>) -> vec3<i32> {
     let size = i32(shot.info.w);
     let x = dot(v, shot.tangent.xyz);
@@ -389,10 +391,12 @@ fn visible_from_patch(p: vec3<f32>) -> bool {
     let at = visibility_lookup(p, v);
     let size = i32(shot.info.w);
     let limit = dist * (1.0 - shot.extra.y) - shot.extra.z;
+    let tile = shot.pieces.z + u32(at.z);
+    let origin = vec2<i32>(vec2<u32>(tile % shot.pieces.w, tile / shot.pieces.w)) * size;
     for (var dy = -1; dy <= 1; dy++) {
         for (var dx = -1; dx <= 1; dx++) {
             let q = clamp(at.xy + vec2<i32>(dx, dy), vec2<i32>(0), vec2<i32>(size - 1));
-            if (textureLoad(visibility, q, at.z, 0).r >= limit) {
+            if (textureLoad(visibility, origin + q, 0).r >= limit) {
                 return true;
             }
         }

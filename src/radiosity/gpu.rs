@@ -7,6 +7,7 @@
 use glam::{DVec3, Mat4, Vec3};
 use wgpu::util::DeviceExt;
 
+use super::atlas::VisibilityAtlas;
 use super::form_factor::FormFactorKind;
 use super::initial::InitialState;
 use super::links::{Links, ReceiverBoxes, DEFAULT_LINK_ERROR, LINK_LEVELS};
@@ -129,7 +130,6 @@ struct FaceGpu {
 
 const SHOT_STRIDE: u64 = 768;
 const FACE_STRIDE: u64 = 256;
-const MAP_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
 
 /// The shooter the GPU chose.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -177,9 +177,8 @@ pub struct GpuSolver<'a> {
     last_power: f64,
     vertices: wgpu::Buffer,
     vertex_count: u32,
-    face_views: Vec<wgpu::TextureView>,
-    maps_view: wgpu::TextureView,
-    depth_view: wgpu::TextureView,
+    /// The visibility maps of a batch.
+    atlas: VisibilityAtlas,
     size: f64,
     /// Shots so far.
     pub shots: usize,
@@ -256,7 +255,7 @@ impl Pipelines {
                     compute,
                     wgpu::BindingType::Texture {
                         sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                        view_dimension: wgpu::TextureViewDimension::D2Array,
+                        view_dimension: wgpu::TextureViewDimension::D2,
                         multisampled: false,
                     },
                 ),
@@ -308,8 +307,8 @@ impl Pipelines {
             &vis_layout,
             &vis_module,
             ("vs_visibility", "fs_visibility"),
-            wgpu::TextureFormat::Depth32Float,
-            &[Some(MAP_FORMAT.into())],
+            super::atlas::DEPTH_FORMAT,
+            &[Some(super::atlas::MAP_FORMAT.into())],
         );
         Pipelines {
             shooter_sums: compute_pipeline("shooter_sums", &shared_only),
@@ -323,6 +322,14 @@ impl Pipelines {
             shot_layout,
             face_layout,
         }
+    }
+}
+
+/// Visibility maps (tiles of the atlas) per shooting cell.
+fn faces_per_cell(visibility: Visibility) -> u32 {
+    match visibility {
+        Visibility::Hemicube => 5,
+        Visibility::Stereographic => 1,
     }
 }
 
@@ -505,29 +512,11 @@ impl<'a> GpuSolver<'a> {
                 contents: bytemuck::cast_slice(&verts),
                 usage: wgpu::BufferUsages::VERTEX,
             });
-        let size = gpu_settings.map_size;
-        let texture = |label: &str, format, layers| {
-            gpu.device.create_texture(&wgpu::TextureDescriptor {
-                label: Some(label),
-                size: wgpu::Extent3d {
-                    width: size,
-                    height: size,
-                    depth_or_array_layers: layers,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format,
-                usage: wgpu::TextureUsages::RENDER_ATTACHMENT
-                    | wgpu::TextureUsages::TEXTURE_BINDING,
-                view_formats: &[],
-            })
-        };
-        let maps = texture("visibility maps", MAP_FORMAT, 5);
-        let depth = texture("visibility depth", wgpu::TextureFormat::Depth32Float, 1);
-        let face_views = (0..5)
-            .map(|layer| crate::gpu::layer_view(&maps, layer))
-            .collect();
+        let atlas = VisibilityAtlas::new(
+            gpu,
+            gpu_settings.map_size,
+            FIRST_BATCH as u32 * faces_per_cell(gpu_settings.visibility),
+        );
         let solver = GpuSolver {
             gpu,
             scene,
@@ -547,12 +536,7 @@ impl<'a> GpuSolver<'a> {
             last_power: 0.0,
             vertices,
             vertex_count: verts.len() as u32,
-            face_views,
-            maps_view: maps.create_view(&wgpu::TextureViewDescriptor {
-                dimension: Some(wgpu::TextureViewDimension::D2Array),
-                ..Default::default()
-            }),
-            depth_view: depth.create_view(&Default::default()),
+            atlas,
             size: scene_size,
             shots: 0,
             batch: FIRST_BATCH,
@@ -666,17 +650,15 @@ impl<'a> GpuSolver<'a> {
     }
 
     /// The shooting records of `plan`'s patches `drawn` (indices), each facing its own
-    /// normal, with their links, and their visibility faces.
+    /// normal, with their links, and their visibility faces: those of the `k`-th are the
+    /// atlas's tiles from `k` × faces per cell.
     fn shot_records(
         &self,
         plan: &ShotPlan,
         links: &Links,
         drawn: &[usize],
     ) -> (Vec<u8>, Vec<u8>, u32) {
-        let faces_per_patch = match self.gpu_settings.visibility {
-            Visibility::Hemicube => 5,
-            Visibility::Stereographic => 1,
-        };
+        let faces_per_patch = faces_per_cell(self.gpu_settings.visibility) as usize;
         let (projection, far) = self.projection();
         let tolerance = self.receivers.plane_tolerance() as f32;
         let finite = |r: f64| r.min(f64::from(f32::MAX)) as f32;
@@ -736,7 +718,12 @@ impl<'a> GpuSolver<'a> {
                     scale as f32,
                     if p.parent == u32::MAX { 1.0 } else { 0.0 },
                 ],
-                pieces: [p.pieces[0], p.pieces[1], 0, 0],
+                pieces: [
+                    p.pieces[0],
+                    p.pieces[1],
+                    (k * faces_per_patch) as u32,
+                    self.atlas.columns,
+                ],
             };
             let at = k * SHOT_STRIDE as usize;
             shots[at..at + std::mem::size_of::<ShotGpu>()]
@@ -950,7 +937,9 @@ impl<'a> GpuSolver<'a> {
     }
 
     /// Shoots the cells `drawn` of shooter `s`'s `plan`, first clearing the unshot
-    /// radiosity of the elements `clear` (a range of the plan's order).
+    /// radiosity of the elements `clear` (a range of the plan's order): their maps in
+    /// one render pass (as many cells at a time as the atlas holds), then their receive
+    /// dispatches in one compute pass.
     fn shoot_batch(
         &mut self,
         s: usize,
@@ -962,16 +951,31 @@ impl<'a> GpuSolver<'a> {
         let first = self.shooters.first[s];
         let cells = plan.patches.len() as u32;
         self.write_params(s as u32, 0, cells, first + clear.start..first + clear.end);
-        let (shots, faces, faces_per_patch) = self.shot_records(plan, links, drawn);
-        let dev = &self.gpu.device;
-        let mut enc = dev.create_command_encoder(&Default::default());
+        let mut enc = self.gpu.device.create_command_encoder(&Default::default());
         if !clear.is_empty() {
             self.dispatch(&mut enc, &self.pipelines.clear, clear.len() as u32, 64);
         }
-        if drawn.is_empty() {
-            self.gpu.queue.submit([enc.finish()]);
-            return Ok(());
+        let faces = faces_per_cell(self.gpu_settings.visibility);
+        let most = (VisibilityAtlas::max_tiles(self.gpu, self.atlas.size) / faces).max(1);
+        for part in drawn.chunks(most as usize) {
+            self.atlas.reserve(self.gpu, part.len() as u32 * faces);
+            self.record_part(&mut enc, plan, links, part);
         }
+        self.gpu.queue.submit([enc.finish()]);
+        Ok(())
+    }
+
+    /// Records the maps of the cells `drawn` into the atlas (which holds them) and their
+    /// receive dispatches.
+    fn record_part(
+        &mut self,
+        enc: &mut wgpu::CommandEncoder,
+        plan: &ShotPlan,
+        links: &Links,
+        drawn: &[usize],
+    ) {
+        let (shots, faces, faces_per_patch) = self.shot_records(plan, links, drawn);
+        let dev = &self.gpu.device;
         let uniform = |label: &str, data: &[u8]| {
             dev.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some(label),
@@ -993,7 +997,7 @@ impl<'a> GpuSolver<'a> {
             &self.pipelines.shot_layout,
             &[
                 (0, binding(&shot_buf, std::mem::size_of::<ShotGpu>())),
-                (1, wgpu::BindingResource::TextureView(&self.maps_view)),
+                (1, wgpu::BindingResource::TextureView(&self.atlas.view)),
             ],
         );
         let face_bind = self.gpu.bind_group(
@@ -1001,47 +1005,50 @@ impl<'a> GpuSolver<'a> {
             &self.pipelines.face_layout,
             &[(0, binding(&face_buf, std::mem::size_of::<FaceGpu>()))],
         );
-        let receivers = self.culled.1;
-        self.receiver_threads += u64::from(receivers) * drawn.len() as u64;
-        for k in 0..drawn.len() as u32 {
-            for f in 0..faces_per_patch {
-                let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
-                    label: Some("visibility"),
-                    color_attachments: &[Some(crate::gpu::cleared_attachment(
-                        &self.face_views[f as usize],
-                        wgpu::Color {
-                            r: 1e30,
-                            g: 0.0,
-                            b: 0.0,
-                            a: 0.0,
-                        },
-                    ))],
-                    depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                        view: &self.depth_view,
-                        depth_ops: Some(wgpu::Operations {
-                            load: wgpu::LoadOp::Clear(1.0),
-                            store: wgpu::StoreOp::Discard,
-                        }),
-                        stencil_ops: None,
+        {
+            let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("visibility"),
+                color_attachments: &[Some(crate::gpu::cleared_attachment(
+                    &self.atlas.view,
+                    wgpu::Color {
+                        r: 1e30,
+                        g: 0.0,
+                        b: 0.0,
+                        a: 0.0,
+                    },
+                ))],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: &self.atlas.depth_view,
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(1.0),
+                        store: wgpu::StoreOp::Discard,
                     }),
-                    timestamp_writes: None,
-                    occlusion_query_set: None,
-                    multiview_mask: None,
-                });
-                pass.set_pipeline(&self.pipelines.visibility);
-                let offset = ((k * faces_per_patch + f) as u64 * FACE_STRIDE) as u32;
-                pass.set_bind_group(0, &face_bind, &[offset]);
-                pass.set_vertex_buffer(0, self.vertices.slice(..));
+                    stencil_ops: None,
+                }),
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_pipeline(&self.pipelines.visibility);
+            pass.set_vertex_buffer(0, self.vertices.slice(..));
+            let size = self.atlas.size;
+            for tile in 0..drawn.len() as u32 * faces_per_patch {
+                let (x, y) = self.atlas.origin(tile);
+                pass.set_viewport(x as f32, y as f32, size as f32, size as f32, 0.0, 1.0);
+                pass.set_scissor_rect(x, y, size, size);
+                pass.set_bind_group(0, &face_bind, &[(u64::from(tile) * FACE_STRIDE) as u32]);
                 pass.draw(0..self.vertex_count, 0..1);
             }
-            let mut pass = enc.begin_compute_pass(&Default::default());
-            pass.set_pipeline(&self.pipelines.receive);
-            pass.set_bind_group(0, &self.shared, &[]);
-            pass.set_bind_group(1, &shot_bind, &[(k as u64 * SHOT_STRIDE) as u32]);
+        }
+        let receivers = self.culled.1;
+        self.receiver_threads += u64::from(receivers) * drawn.len() as u64;
+        let mut pass = enc.begin_compute_pass(&Default::default());
+        pass.set_pipeline(&self.pipelines.receive);
+        pass.set_bind_group(0, &self.shared, &[]);
+        for k in 0..drawn.len() as u64 {
+            pass.set_bind_group(1, &shot_bind, &[(k * SHOT_STRIDE) as u32]);
             dispatch_groups(&mut pass, receivers.div_ceil(64));
         }
-        self.gpu.queue.submit([enc.finish()]);
-        Ok(())
     }
 
     /// One shot: select, then shoot. False when nothing is left.

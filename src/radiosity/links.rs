@@ -85,6 +85,12 @@ impl ReceiverBoxes {
                 )
             })
             .collect();
+        ReceiverBoxes::from_boxes(boxes, ranges)
+    }
+
+    /// The hierarchy over chart boxes (lowest, highest corner) holding the elements
+    /// `ranges` (first, count).
+    fn from_boxes(boxes: Vec<(DVec3, DVec3)>, ranges: Vec<(u32, u32)>) -> ReceiverBoxes {
         let lo = boxes.iter().map(|b| b.0).fold(DVec3::INFINITY, DVec3::min);
         let hi = boxes
             .iter()
@@ -127,7 +133,7 @@ impl ReceiverBoxes {
     /// Whether some chart's box satisfies `wanted`, which must hold for every box around
     /// one it holds for (so whole subtrees are skipped where a node's box fails it).
     pub fn any(&self, wanted: impl Fn(DVec3, DVec3) -> bool) -> bool {
-        self.visit(wanted, true, &mut |_| {})
+        self.visit(wanted, &|_, _| false, true, &mut |_| {})
     }
 
     /// The element ranges (first, count) of the charts that may lie in front of the plane
@@ -150,8 +156,11 @@ impl ReceiverBoxes {
             .collect();
         let slack = self.pad + SLACK * self.size;
         let mut charts = Vec::new();
+        // A node wholly in front of one run's planes takes its whole subtree untested
+        // (on a shot of many facings most of a model is).
         self.visit(
             |lo, hi| runs.iter().any(|run| run.highest(lo, hi) > -slack),
+            &|lo, hi| runs.iter().any(|run| run.lowest(lo, hi) > -slack),
             false,
             &mut |k| charts.push(k),
         );
@@ -162,9 +171,12 @@ impl ReceiverBoxes {
 
     /// Walks the hierarchy where `wanted` holds, calling `found` with each chart whose
     /// box satisfies it; with `first` stops at the first (and says whether there was one).
+    /// Where `whole` holds for a node's box, `wanted` holds for every box in it: its
+    /// charts are found without testing them.
     fn visit(
         &self,
         wanted: impl Fn(DVec3, DVec3) -> bool,
+        whole: &dyn Fn(DVec3, DVec3) -> bool,
         first: bool,
         found: &mut dyn FnMut(usize),
     ) -> bool {
@@ -179,7 +191,28 @@ impl ReceiverBoxes {
             let aabb = node.aabb();
             let lo = DVec3::new(aabb.min.x as f64, aabb.min.y as f64, aabb.min.z as f64);
             let hi = DVec3::new(aabb.max.x as f64, aabb.max.y as f64, aabb.max.z as f64);
-            if !wanted(lo + self.centre - self.pad, hi + self.centre + self.pad) {
+            let (lo, hi) = (lo + self.centre - self.pad, hi + self.centre + self.pad);
+            if !wanted(lo, hi) {
+                continue;
+            }
+            if whole(lo, hi) {
+                let mut below = vec![k];
+                while let Some(j) = below.pop() {
+                    let node = &bvh.nodes[j];
+                    if node.is_leaf() {
+                        let first_index = node.first_index as usize;
+                        for &p in &bvh.primitive_indices[first_index..][..node.prim_count as usize]
+                        {
+                            found(p as usize);
+                            if first {
+                                return true;
+                            }
+                        }
+                    } else {
+                        below.push(node.first_index as usize);
+                        below.push(node.first_index as usize + 1);
+                    }
+                }
                 continue;
             }
             let child = node.first_index as usize;
@@ -290,30 +323,54 @@ impl PlaneRun {
 
     /// An upper bound of the highest point of the box [lo, hi] above the run's planes.
     fn highest(&self, lo: DVec3, hi: DVec3) -> f64 {
-        let mut best = f64::NEG_INFINITY;
-        for x in [lo.x, hi.x] {
-            for y in [lo.y, hi.y] {
-                for z in [lo.z, hi.z] {
-                    let d = DVec3::new(x, y, z) - self.centre;
-                    best = best.max(self.normal.dot(d) + self.spread * d.length());
-                }
-            }
-        }
+        let best = corners(lo, hi)
+            .map(|x| {
+                let d = x - self.centre;
+                self.normal.dot(d) + self.spread_term(d)
+            })
+            .fold(f64::NEG_INFINITY, f64::max);
         best + self.radius * (1.0 + self.spread) + self.thickness
     }
+
+    /// A lower bound of the lowest point of the box [lo, hi] above every one of the run's
+    /// planes: n_i · (x − a_i) + t_i ≥ m · (x − c) − δ |x − c| − ρ, least at a corner
+    /// (a linear term less a convex one).
+    fn lowest(&self, lo: DVec3, hi: DVec3) -> f64 {
+        let worst = corners(lo, hi)
+            .map(|x| {
+                let d = x - self.centre;
+                self.normal.dot(d) - self.spread_term(d)
+            })
+            .fold(f64::INFINITY, f64::min);
+        worst - self.radius
+    }
+
+    /// δ |d| (nothing to compute for one plane).
+    fn spread_term(&self, d: DVec3) -> f64 {
+        if self.spread > 0.0 {
+            self.spread * d.length()
+        } else {
+            0.0
+        }
+    }
+}
+
+/// The eight corners of the box [lo, hi].
+fn corners(lo: DVec3, hi: DVec3) -> impl Iterator<Item = DVec3> {
+    (0..8).map(move |i| {
+        DVec3::new(
+            if i & 1 == 0 { lo.x } else { hi.x },
+            if i & 2 == 0 { lo.y } else { hi.y },
+            if i & 4 == 0 { lo.z } else { hi.z },
+        )
+    })
 }
 
 /// The highest corner of the box [lo, hi] above the plane through `at` facing `normal`.
 fn highest(lo: DVec3, hi: DVec3, normal: DVec3, at: DVec3) -> f64 {
-    let mut best = f64::NEG_INFINITY;
-    for x in [lo.x, hi.x] {
-        for y in [lo.y, hi.y] {
-            for z in [lo.z, hi.z] {
-                best = best.max(normal.dot(DVec3::new(x, y, z) - at));
-            }
-        }
-    }
-    best
+    corners(lo, hi)
+        .map(|x| normal.dot(x - at))
+        .fold(f64::NEG_INFINITY, f64::max)
 }
 
 /// Nearest distance from `p` to the box [lo, hi].
@@ -489,4 +546,93 @@ pub fn takes_light_from(
         a = up.parent;
     }
     true
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Pseudo-random numbers in [0, 1) (a fixed LCG: the test is reproducible).
+    fn numbers(seed: u64) -> impl FnMut() -> f64 {
+        let mut state = seed;
+        move || {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
+    #[test]
+    fn culling_takes_exactly_the_charts_whose_own_box_passes() {
+        let mut r = numbers(7);
+        let boxes: Vec<(DVec3, DVec3)> = (0..3000)
+            .map(|_| {
+                let lo = DVec3::new(r(), r(), r()) * 20.0;
+                (lo, lo + DVec3::new(r(), r(), r()) * 0.5)
+            })
+            .collect();
+        let ranges: Vec<(u32, u32)> = (0..boxes.len() as u32).map(|i| (2 * i, 2)).collect();
+        let receivers = ReceiverBoxes::from_boxes(boxes.clone(), ranges.clone());
+        let slack = receivers.pad + SLACK * receivers.size;
+        // One plane, a few (one run each) and many (runs of several, a cone each).
+        for count in [1, 3, 70, 200] {
+            let planes: Vec<(DVec3, DVec3, f64)> = (0..count)
+                .map(|_| {
+                    let n = DVec3::new(r() - 0.5, r() - 0.5, r() - 0.5).normalize();
+                    (n, DVec3::new(r(), r(), r()) * 20.0, 0.1 * r())
+                })
+                .collect();
+            let runs: Vec<PlaneRun> = planes
+                .chunks(planes.len().div_ceil(MAX_CULLING_PLANES).max(1))
+                .map(PlaneRun::new)
+                .collect();
+            let mut want: Vec<(u32, u32)> = boxes
+                .iter()
+                .zip(&ranges)
+                .filter(|((lo, hi), _)| runs.iter().any(|run| run.highest(*lo, *hi) > -slack))
+                .map(|(_, &range)| range)
+                .collect();
+            want.sort_unstable();
+            let got = receivers.in_front_of_any(&planes);
+            assert_eq!(got, want, "{count} planes");
+            assert!(!got.is_empty(), "{count} planes");
+            if count <= 3 {
+                assert!(got.len() < boxes.len(), "{count}: {}", got.len());
+            }
+            // And every box corner in front of a plane is in a taken chart.
+            for ((lo, hi), range) in boxes.iter().zip(&ranges) {
+                let in_front = corners(*lo, *hi)
+                    .any(|x| planes.iter().any(|(n, a, t)| n.dot(x - *a) + t > 0.0));
+                assert!(!in_front || got.binary_search(range).is_ok());
+            }
+        }
+    }
+
+    #[test]
+    fn a_runs_lowest_point_bounds_every_plane_from_below() {
+        let mut r = numbers(11);
+        for _ in 0..200 {
+            let planes: Vec<(DVec3, DVec3, f64)> = (0..5)
+                .map(|_| {
+                    let n = (DVec3::Z + DVec3::new(r() - 0.5, r() - 0.5, 0.0)).normalize();
+                    (n, DVec3::new(r(), r(), r()), 0.05 * r())
+                })
+                .collect();
+            let run = PlaneRun::new(&planes);
+            let lo = DVec3::new(r(), r(), r()) * 4.0 - 2.0;
+            let hi = lo + DVec3::new(r(), r(), r());
+            let bound = run.lowest(lo, hi);
+            let upper = run.highest(lo, hi);
+            for x in corners(lo, hi) {
+                for (n, a, t) in &planes {
+                    let h = n.dot(x - *a) + t;
+                    assert!(
+                        h >= bound - 1e-12 && h <= upper + 1e-12,
+                        "{h} not in [{bound}, {upper}]"
+                    );
+                }
+            }
+        }
+    }
 }
