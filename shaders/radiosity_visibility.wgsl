@@ -47,3 +47,15 @@ fn fs_visibility(in: VertexOut) -> @location(0) vec4<f32> {
     }
     return vec4<f32>(length(v), 0.0, 0.0, 0.0);
 }
+
+// A tile's clear: one triangle over its viewport at the far plane, nothing seen.
+@vertex
+fn vs_clear(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
+    let uv = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
+    return vec4<f32>(uv * 2.0 - 1.0, 1.0, 1.0);
+}
+
+@fragment
+fn fs_clear() -> @location(0) vec4<f32> {
+    return vec4<f32>(1e30, 0.0, 0.0, 0.0);
+}

@@ -2,7 +2,10 @@
 //! face of every cell is a square tile, drawn with its own viewport in one render pass,
 //! and the receive pass reads each cell's tiles from the same texture. One pass per
 //! batch instead of one per face lets the GPU overlap the faces' draws (a pass per face,
-//! each followed by its receive dispatch, left an H200 mostly idle between them).
+//! each followed by its receive dispatch, left an H200 mostly idle between them). Each
+//! tile is cleared by a draw of its own, so a small batch in a large atlas costs no more
+//! than in a small one; the atlas is bounded by [`MAX_ATLAS_BYTES`] (an unbounded one,
+//! grown to a first shot's thousands of cells, made every later batch clear gigabytes).
 
 use crate::gpu::Gpu;
 
@@ -10,6 +13,9 @@ use crate::gpu::Gpu;
 pub const MAP_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
 /// Format of the maps' depth.
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+
+/// Most bytes of the maps' texture (as many again for their depth).
+pub const MAX_ATLAS_BYTES: u64 = 64 << 20;
 
 /// Square tiles of `size` texels in rows of `columns`; grown as batches grow.
 pub struct VisibilityAtlas {
@@ -66,10 +72,12 @@ impl VisibilityAtlas {
         self.columns * self.rows
     }
 
-    /// The most tiles any atlas of this tile size can hold on `gpu`.
+    /// The most tiles an atlas of this tile size holds on `gpu`: within
+    /// [`MAX_ATLAS_BYTES`] and the largest texture, but always one hemicube's five.
     pub fn max_tiles(gpu: &Gpu, size: u32) -> u32 {
         let side = (gpu.device.limits().max_texture_dimension_2d / size.max(1)).max(1);
-        side * side
+        let by_bytes = MAX_ATLAS_BYTES / (u64::from(size) * u64::from(size) * 4).max(1);
+        (by_bytes.min(u64::from(side * side)) as u32).max(5.min(side * side))
     }
 
     /// Makes room for `tiles` (a new, larger texture when needed; the old maps are lost).

@@ -151,6 +151,8 @@ struct Pipelines {
     restore: wgpu::ComputePipeline,
     receive: wgpu::ComputePipeline,
     visibility: wgpu::RenderPipeline,
+    /// Clears one tile of the atlas (depth and distance), drawn in its viewport.
+    clear_tile: wgpu::RenderPipeline,
     shot_layout: wgpu::BindGroupLayout,
     face_layout: wgpu::BindGroupLayout,
 }
@@ -176,7 +178,9 @@ pub struct GpuSolver<'a> {
     /// The last selection's shooter power, lm.
     last_power: f64,
     vertices: wgpu::Buffer,
-    vertex_count: u32,
+    /// The visibility mesh's triangles (three vertex indices each).
+    vertex_indices: wgpu::Buffer,
+    index_count: u32,
     /// The visibility maps of a batch.
     atlas: VisibilityAtlas,
     size: f64,
@@ -310,7 +314,35 @@ impl Pipelines {
             super::atlas::DEPTH_FORMAT,
             &[Some(super::atlas::MAP_FORMAT.into())],
         );
+        let clear_tile = dev.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("visibility tile clear"),
+            layout: Some(&vis_layout),
+            vertex: wgpu::VertexState {
+                module: &vis_module,
+                entry_point: Some("vs_clear"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
+            primitive: wgpu::PrimitiveState::default(),
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: super::atlas::DEPTH_FORMAT,
+                depth_write_enabled: Some(true),
+                depth_compare: Some(wgpu::CompareFunction::Always),
+                stencil: Default::default(),
+                bias: Default::default(),
+            }),
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &vis_module,
+                entry_point: Some("fs_clear"),
+                compilation_options: Default::default(),
+                targets: &[Some(super::atlas::MAP_FORMAT.into())],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
         Pipelines {
+            clear_tile,
             shooter_sums: compute_pipeline("shooter_sums", &shared_only),
             large_shooter_sums: compute_pipeline("large_shooter_sums", &shared_only),
             select: compute_pipeline("select_shooter", &shared_only),
@@ -500,18 +532,32 @@ impl<'a> GpuSolver<'a> {
             .casters
             .bounds()
             .map_or(1.0, |(lo, hi)| (hi - lo).length());
-        let verts: Vec<[f32; 3]> = mesh
-            .triangles
+        // Indexed: a vertex shared by six triangles is transformed about once per face
+        // drawn, not six times.
+        let positions: Vec<[f32; 3]> = mesh
+            .positions
             .iter()
-            .flat_map(|t| t.map(|i| mesh.positions[i as usize].as_vec3().to_array()))
+            .map(|p| p.as_vec3().to_array())
             .collect();
-        let vertices = gpu
-            .device
-            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("radiosity vertices"),
-                contents: bytemuck::cast_slice(&verts),
-                usage: wgpu::BufferUsages::VERTEX,
-            });
+        let indices: Vec<u32> = mesh.triangles.iter().flatten().copied().collect();
+        let buffer = |label: &str, contents: &[u8], usage| {
+            gpu.device
+                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some(label),
+                    contents,
+                    usage,
+                })
+        };
+        let vertices = buffer(
+            "radiosity vertices",
+            bytemuck::cast_slice(&positions),
+            wgpu::BufferUsages::VERTEX,
+        );
+        let vertex_indices = buffer(
+            "radiosity vertex indices",
+            bytemuck::cast_slice(&indices),
+            wgpu::BufferUsages::INDEX,
+        );
         let atlas = VisibilityAtlas::new(
             gpu,
             gpu_settings.map_size,
@@ -535,7 +581,8 @@ impl<'a> GpuSolver<'a> {
             initial_power: None,
             last_power: 0.0,
             vertices,
-            vertex_count: verts.len() as u32,
+            vertex_indices,
+            index_count: indices.len() as u32,
             atlas,
             size: scene_size,
             shots: 0,
@@ -634,7 +681,7 @@ impl<'a> GpuSolver<'a> {
 
     /// Triangles each visibility map draws (the casters with CAD fans merged).
     pub fn visibility_triangles(&self) -> usize {
-        self.vertex_count as usize / 3
+        self.index_count as usize / 3
     }
 
     /// The shooters: triangles, or flat face clusters ([`GpuSettings::hierarchy`]).
@@ -1006,22 +1053,25 @@ impl<'a> GpuSolver<'a> {
             &[(0, binding(&face_buf, std::mem::size_of::<FaceGpu>()))],
         );
         {
+            // Kept, not cleared: each tile is cleared by its own draw (and a discarded
+            // depth would be cleared whole by wgpu before the next load).
+            let kept = wgpu::Operations {
+                load: wgpu::LoadOp::Load,
+                store: wgpu::StoreOp::Store,
+            };
             let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("visibility"),
-                color_attachments: &[Some(crate::gpu::cleared_attachment(
-                    &self.atlas.view,
-                    wgpu::Color {
-                        r: 1e30,
-                        g: 0.0,
-                        b: 0.0,
-                        a: 0.0,
-                    },
-                ))],
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: &self.atlas.view,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: kept,
+                })],
                 depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                     view: &self.atlas.depth_view,
                     depth_ops: Some(wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(1.0),
-                        store: wgpu::StoreOp::Discard,
+                        load: wgpu::LoadOp::Load,
+                        store: wgpu::StoreOp::Store,
                     }),
                     stencil_ops: None,
                 }),
@@ -1029,15 +1079,18 @@ impl<'a> GpuSolver<'a> {
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
-            pass.set_pipeline(&self.pipelines.visibility);
             pass.set_vertex_buffer(0, self.vertices.slice(..));
+            pass.set_index_buffer(self.vertex_indices.slice(..), wgpu::IndexFormat::Uint32);
             let size = self.atlas.size;
             for tile in 0..drawn.len() as u32 * faces_per_patch {
                 let (x, y) = self.atlas.origin(tile);
                 pass.set_viewport(x as f32, y as f32, size as f32, size as f32, 0.0, 1.0);
                 pass.set_scissor_rect(x, y, size, size);
                 pass.set_bind_group(0, &face_bind, &[(u64::from(tile) * FACE_STRIDE) as u32]);
-                pass.draw(0..self.vertex_count, 0..1);
+                pass.set_pipeline(&self.pipelines.clear_tile);
+                pass.draw(0..3, 0..1);
+                pass.set_pipeline(&self.pipelines.visibility);
+                pass.draw_indexed(0..self.index_count, 0, 0..1);
             }
         }
         let receivers = self.culled.1;
