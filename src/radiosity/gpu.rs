@@ -1,8 +1,9 @@
 //! The GPU solver: element arrays in storage buffers; per shot the shooter (a triangle or
 //! a flat face cluster, [`super::shooters`]) is chosen on the GPU by reduction (only a
 //! 48-byte selection record is read back), its patches' unshot radiosity gathered
-//! (substructuring), and per patch a visibility map rendered (hemicube or stereographic)
-//! and every element updated in one compute pass.
+//! (substructuring), and per batch of patches their visibility maps rendered (hemicube or
+//! stereographic) side by side in one atlas ([`super::atlas`]) and every element in front
+//! of them updated, one compute dispatch per patch.
 
 use glam::{DVec3, Mat4, Vec3};
 use wgpu::util::DeviceExt;
