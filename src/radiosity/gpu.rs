@@ -9,7 +9,6 @@ use glam::{DVec3, Mat4, Vec3};
 use wgpu::util::DeviceExt;
 
 use super::atlas::VisibilityAtlas;
-use super::chunks::ChunkedMesh;
 use super::form_factor::FormFactorKind;
 use super::initial::InitialState;
 use super::links::{Links, ReceiverBoxes, DEFAULT_LINK_ERROR, LINK_LEVELS};
@@ -133,15 +132,6 @@ struct FaceGpu {
 const SHOT_STRIDE: u64 = 768;
 const FACE_STRIDE: u64 = 256;
 
-/// What [`GpuSolver::shot_records`] gives: the cells' and faces' uniform records, faces
-/// per cell, and per face the index ranges of the chunks it may see.
-struct ShotRecords {
-    shots: Vec<u8>,
-    faces: Vec<u8>,
-    faces_per_patch: u32,
-    draws: Vec<Vec<std::ops::Range<u32>>>,
-}
-
 /// The shooter the GPU chose.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Selection {
@@ -192,8 +182,6 @@ pub struct GpuSolver<'a> {
     /// The visibility mesh's triangles (three vertex indices each).
     vertex_indices: wgpu::Buffer,
     index_count: u32,
-    /// Its chunks' boxes (which index ranges a face draws).
-    chunks: ChunkedMesh,
     /// The visibility maps of a batch.
     atlas: VisibilityAtlas,
     size: f64,
@@ -546,8 +534,13 @@ impl<'a> GpuSolver<'a> {
             .bounds()
             .map_or(1.0, |(lo, hi)| (hi - lo).length());
         // Indexed: a vertex shared by six triangles is transformed about once per face
-        // drawn, not six times; in spatial chunks, so a face draws only what it can see.
-        let chunks = ChunkedMesh::new(mesh);
+        // drawn, not six times.
+        let positions: Vec<[f32; 3]> = mesh
+            .positions
+            .iter()
+            .map(|p| p.as_vec3().to_array())
+            .collect();
+        let indices: Vec<u32> = mesh.triangles.iter().flatten().copied().collect();
         let buffer = |label: &str, contents: &[u8], usage| {
             gpu.device
                 .create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -558,12 +551,12 @@ impl<'a> GpuSolver<'a> {
         };
         let vertices = buffer(
             "radiosity vertices",
-            bytemuck::cast_slice(&chunks.positions),
+            bytemuck::cast_slice(&positions),
             wgpu::BufferUsages::VERTEX,
         );
         let vertex_indices = buffer(
             "radiosity vertex indices",
-            bytemuck::cast_slice(&chunks.indices),
+            bytemuck::cast_slice(&indices),
             wgpu::BufferUsages::INDEX,
         );
         let atlas = VisibilityAtlas::new(
@@ -590,8 +583,7 @@ impl<'a> GpuSolver<'a> {
             last_power: 0.0,
             vertices,
             vertex_indices,
-            index_count: chunks.indices.len() as u32,
-            chunks,
+            index_count: indices.len() as u32,
             atlas,
             size: scene_size,
             shots: 0,
@@ -708,9 +700,13 @@ impl<'a> GpuSolver<'a> {
     /// The shooting records of `plan`'s patches `drawn` (indices), each facing its own
     /// normal, with their links, and their visibility faces: those of the `k`-th are the
     /// atlas's tiles from `k` × faces per cell.
-    fn shot_records(&self, plan: &ShotPlan, links: &Links, drawn: &[usize]) -> ShotRecords {
+    fn shot_records(
+        &self,
+        plan: &ShotPlan,
+        links: &Links,
+        drawn: &[usize],
+    ) -> (Vec<u8>, Vec<u8>, u32) {
         let faces_per_patch = faces_per_cell(self.gpu_settings.visibility) as usize;
-        let mut draws = Vec::with_capacity(drawn.len() * faces_per_patch);
         let (projection, far) = self.projection();
         let tolerance = self.receivers.plane_tolerance() as f32;
         let finite = |r: f64| r.min(f64::from(f32::MAX)) as f32;
@@ -791,21 +787,9 @@ impl<'a> GpuSolver<'a> {
                 let at = (k * faces_per_patch + f) * FACE_STRIDE as usize;
                 faces[at..at + std::mem::size_of::<FaceGpu>()]
                     .copy_from_slice(bytemuck::bytes_of(&face));
-                // Nothing behind the patch hides what lies in front of it (the near
-                // plane's distance of slack).
-                let view = (!stereographic).then(|| m.as_dmat4());
-                draws.push(
-                    self.chunks
-                        .visible(view.as_ref(), p.centroid, n, 1e-4 * self.size),
-                );
             }
         }
-        ShotRecords {
-            shots,
-            faces,
-            faces_per_patch: faces_per_patch as u32,
-            draws,
-        }
+        (shots, faces, faces_per_patch as u32)
     }
 
     /// Shoots shooter `s` (plus the overshoot the last [`GpuSolver::select`] chose).
@@ -1038,12 +1022,7 @@ impl<'a> GpuSolver<'a> {
         links: &Links,
         drawn: &[usize],
     ) {
-        let ShotRecords {
-            shots,
-            faces,
-            faces_per_patch,
-            draws,
-        } = self.shot_records(plan, links, drawn);
+        let (shots, faces, faces_per_patch) = self.shot_records(plan, links, drawn);
         let dev = &self.gpu.device;
         let uniform = |label: &str, data: &[u8]| {
             dev.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -1112,9 +1091,7 @@ impl<'a> GpuSolver<'a> {
                 pass.set_pipeline(&self.pipelines.clear_tile);
                 pass.draw(0..3, 0..1);
                 pass.set_pipeline(&self.pipelines.visibility);
-                for range in &draws[tile as usize] {
-                    pass.draw_indexed(range.clone(), 0, 0..1);
-                }
+                pass.draw_indexed(0..self.index_count, 0, 0..1);
             }
         }
         let receivers = self.culled.1;

@@ -3,7 +3,6 @@
 
 pub mod atlas;
 pub mod bake;
-pub mod chunks;
 pub mod clusters;
 pub mod cpu;
 pub mod elements;
