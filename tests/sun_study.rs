@@ -935,6 +935,28 @@ fn facades_and_window_points_are_written() {
         (Some(0.0), Some("none"))
     );
     assert!(read(&out, "points.csv").starts_with("name,x,y,z,nx,ny,nz,hours,en17037\nsouth,"));
+    // Each window's sun-path diagram with the sky the model hides from it: the south
+    // window sees every step's sun (none drawn hollow), the north one none of them.
+    assert!(!read(&out, "sunpath.svg").contains(r#"id="mask""#));
+    for (name, hidden) in [("south", "false"), ("north", "true")] {
+        let svg = read(&out, &format!("sunpath-{name}.svg"));
+        assert!(
+            svg.contains(r#"<g id="mask""#) && svg.contains("<polygon"),
+            "{name}"
+        );
+        assert!(svg.contains(&format!("seen from {name}")), "{name}");
+        let suns: Vec<&str> = svg
+            .lines()
+            .filter(|l| l.contains(r#"class="sun""#))
+            .collect();
+        assert_eq!(suns.len(), 9, "{name}: 08:00–16:00 hourly");
+        for sun in suns {
+            assert!(
+                sun.contains(&format!(r#"data-hidden="{hidden}""#)),
+                "{name}: {sun}"
+            );
+        }
+    }
 }
 
 /// Two buildings in one OBJ, far enough apart that their shadows never meet: with

@@ -4,6 +4,7 @@
 
 pub mod annotate;
 pub mod colours;
+pub mod mask;
 pub mod model;
 pub mod outlines;
 pub mod output;

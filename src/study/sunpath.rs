@@ -9,6 +9,7 @@ use std::fmt::Write as _;
 
 use chrono::{DateTime, FixedOffset, NaiveDate, NaiveTime, TimeZone, Utc};
 
+use super::mask::ObstructionMask;
 use crate::io::xml_escape;
 use crate::sun::{self, Site, SunOptions, Zone};
 
@@ -51,6 +52,9 @@ pub struct SunPathDiagram {
     pub title: String,
     /// The study's suns: local time, azimuth and elevation (degrees, true north).
     pub marked: Vec<(DateTime<FixedOffset>, f64, f64)>,
+    /// The sky a point does not see, drawn grey under the paths; its suns hidden from the
+    /// point are drawn hollow.
+    pub mask: Option<ObstructionMask>,
 }
 
 impl SunPathDiagram {
@@ -105,6 +109,9 @@ impl SunPathDiagram {
             self.site.longitude.abs(),
             if self.site.longitude >= 0.0 { "E" } else { "W" },
         );
+        if let Some(mask) = &self.mask {
+            s.push_str(&mask.svg(project));
+        }
         // Altitude circles and azimuth spokes.
         for el in (0..90).step_by(10) {
             let (_, y) = project(0.0, el as f64);
@@ -230,12 +237,16 @@ impl SunPathDiagram {
                 );
             }
         }
-        // The study's suns.
+        // The study's suns (hollow where the mask hides them).
         for (t, az, el) in &self.marked {
             let (x, y) = project(*az, *el);
+            let hidden = self.mask.as_ref().is_some_and(|m| m.hides(*az, *el));
             let _ = writeln!(
                 s,
-                r#"<circle class="sun" cx="{x:.3}" cy="{y:.3}" r="5" fill="rgb(230,40,30)" stroke="black" data-time="{}" data-azimuth="{az:.4}" data-elevation="{el:.4}"><title>{} az {az:.1}° el {el:.1}°</title></circle>"#,
+                r#"<circle class="sun" cx="{x:.3}" cy="{y:.3}" r="5" fill="{}" stroke="{}" stroke-width="{}" data-time="{}" data-azimuth="{az:.4}" data-elevation="{el:.4}" data-hidden="{hidden}"><title>{} az {az:.1}° el {el:.1}°</title></circle>"#,
+                if hidden { "white" } else { "rgb(230,40,30)" },
+                if hidden { "rgb(230,40,30)" } else { "black" },
+                if hidden { 2 } else { 1 },
                 t.to_rfc3339_opts(chrono::SecondsFormat::Secs, true),
                 t.format("%Y-%m-%d %H:%M")
             );
@@ -259,6 +270,18 @@ impl SunPathDiagram {
             ),
             ("rgb(230,40,30)", "the study's suns".to_string()),
         ];
+        let mask_legend = self.mask.as_ref().map(|m| {
+            (
+                "rgb(170,170,170)",
+                format!(
+                    "sky hidden from point \"{}\" by the model ({:.0} % of the sky); its suns drawn hollow are in shade",
+                    m.name,
+                    100.0 * m.hidden_sky_fraction()
+                ),
+            )
+        });
+        let legend: Vec<_> = legend.into_iter().chain(mask_legend).collect();
+        let mut bottom = 0.0f64;
         for (k, (colour, text)) in legend.iter().enumerate() {
             let y = 110.0 + 70.0 * k as f64;
             let _ = writeln!(
@@ -267,21 +290,26 @@ impl SunPathDiagram {
                 y - 8.0
             );
             for (j, line) in crate::io::wrap_words(text, 24).iter().enumerate() {
+                let ty = y + 16.0 + 16.0 * j as f64;
+                bottom = bottom.max(ty);
                 let _ = writeln!(
                     s,
                     r#"<text x="{}" y="{}" font-size="13">{}</text>"#,
                     x0,
-                    y + 16.0 + 16.0 * j as f64,
+                    ty,
                     xml_escape(line)
                 );
             }
         }
+        let notes = (bottom + 32.0).max(360.0);
         let _ = writeln!(
             s,
-            r#"<text x="{x0}" y="360" font-size="12" fill="rgb(90,90,90)">circles: altitude every 10°</text>
-<text x="{x0}" y="376" font-size="12" fill="rgb(90,90,90)">spokes: azimuth every 30°</text>
-<text x="{x0}" y="392" font-size="12" fill="rgb(90,90,90)">year {}</text>
+            r#"<text x="{x0}" y="{notes}" font-size="12" fill="rgb(90,90,90)">circles: altitude every 10°</text>
+<text x="{x0}" y="{}" font-size="12" fill="rgb(90,90,90)">spokes: azimuth every 30°</text>
+<text x="{x0}" y="{}" font-size="12" fill="rgb(90,90,90)">year {}</text>
 </svg>"#,
+            notes + 16.0,
+            notes + 32.0,
             self.year
         );
         Ok(s)

@@ -380,7 +380,7 @@ pub fn run(a: ProfileArgs) -> Result<(), CliError> {
             }),
         };
         let summary = write_study(profile, &dir, &output).map_err(CliError::failure)?;
-        write_sun_path(spec, profile, &dir, &output.labels)?;
+        write_sun_path(spec, profile, &dir, &output.labels, surfaces.masks())?;
         summaries.push((spec.date, summary));
     }
     if several {

@@ -8,32 +8,61 @@ use chrono::NaiveDate;
 use super::super::CliError;
 use crate::io::write_atomic;
 use crate::study::annotate::PlanLabels;
+use crate::study::mask::ObstructionMask;
 use crate::study::output::StudySummary;
 use crate::study::profile::{Profile, ProfileSpec};
 use crate::study::sunpath::SunPathDiagram;
 
-/// The sun-path diagram of the study's site with this date's steps marked.
+/// The sun-path diagram of the study's site with this date's steps marked
+/// (`sunpath.svg`), and one per window point with the sky the model hides from it
+/// (`sunpath-NAME.svg`, the name's other characters than letters, digits, `-` and `_` as
+/// `_`).
 pub(super) fn write_sun_path(
     spec: &ProfileSpec,
     profile: &Profile,
     dir: &Path,
     labels: &PlanLabels,
+    masks: &[ObstructionMask],
 ) -> Result<(), CliError> {
     let suns: Vec<_> = profile
         .steps
         .iter()
         .map(|s| (s.time, s.azimuth_deg, s.elevation_deg))
         .collect();
-    let diagram = SunPathDiagram {
+    let mut diagram = SunPathDiagram {
         site: spec.site,
         zone: spec.zone,
         year: chrono::Datelike::year(&spec.date),
         sun: spec.sun,
         title: format!("Sun path — {}", labels.title),
         marked: suns,
+        mask: None,
     };
-    let svg = diagram.svg().map_err(|e| CliError::failure(anyhow!(e)))?;
-    write_atomic(&dir.join("sunpath.svg"), svg.as_bytes()).map_err(CliError::failure)
+    let write = |diagram: &SunPathDiagram, name: &str| {
+        let svg = diagram.svg().map_err(|e| CliError::failure(anyhow!(e)))?;
+        write_atomic(&dir.join(name), svg.as_bytes()).map_err(CliError::failure)
+    };
+    write(&diagram, "sunpath.svg")?;
+    let title = diagram.title.clone();
+    for mask in masks {
+        diagram.title = format!("{title} — seen from {}", mask.name);
+        diagram.mask = Some(mask.clone());
+        write(&diagram, &format!("sunpath-{}.svg", file_safe(&mask.name)))?;
+    }
+    Ok(())
+}
+
+/// `name` with every character but ASCII letters, digits, `-` and `_` as `_`.
+fn file_safe(name: &str) -> String {
+    name.chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect()
 }
 
 /// `dates.csv` and `dates.json` beside the per-date folders: one row per date.

@@ -6,6 +6,7 @@ use super::ProfileArgs;
 use crate::geometry::Mesh;
 use crate::shadow::bvh::TriangleBvh;
 use crate::shadow::IgnoredTriangles;
+use crate::study::mask::{MaskRays, ObstructionMask};
 use crate::study::profile::Profile;
 use crate::study::surface_output::SurfaceResults;
 use crate::study::surfaces::{
@@ -22,6 +23,8 @@ pub(super) struct Surfaces {
     min_elevation_deg: f64,
     eps: f64,
     non_casters: IgnoredTriangles,
+    /// Per window point, the sky the model hides from it (the same on every date).
+    masks: Vec<ObstructionMask>,
 }
 
 impl Surfaces {
@@ -50,15 +53,41 @@ impl Surfaces {
                     .sum::<usize>()
             );
         }
+        let bvh = wanted.then(|| TriangleBvh::new(model));
+        let eps = surface_offset(model);
+        let masks = match &bvh {
+            Some(bvh) => {
+                let rays = MaskRays {
+                    bvh,
+                    eps,
+                    non_casters: &non_casters,
+                    north_offset_deg: a.north_offset,
+                };
+                points
+                    .iter()
+                    .map(|p| {
+                        let (world, normal) = point_frame(p, origin);
+                        ObstructionMask::cast(&rays, &p.name, world, normal)
+                    })
+                    .collect()
+            }
+            None => Vec::new(),
+        };
         Surfaces {
-            bvh: wanted.then(|| TriangleBvh::new(model)),
+            bvh,
             facades,
             points,
             origin,
             min_elevation_deg: a.min_elevation,
-            eps: surface_offset(model),
+            eps,
             non_casters,
+            masks,
         }
+    }
+
+    /// Per window point, the sky the model hides from it.
+    pub(super) fn masks(&self) -> &[ObstructionMask] {
+        &self.masks
     }
 
     /// The hours on the facades and at the points under `profile`'s suns.
@@ -90,9 +119,7 @@ impl Surfaces {
             .points
             .iter()
             .map(|p| {
-                let [x, y, z] = p.position;
-                let world = glam::DVec3::new(x - self.origin.x, y - self.origin.y, z);
-                let normal = glam::DVec3::from_array(p.normal).normalize();
+                let (world, normal) = point_frame(p, self.origin);
                 let hours = rays.hours_at(world, normal);
                 (p.clone(), hours)
             })
@@ -103,4 +130,13 @@ impl Surfaces {
             min_elevation_deg: self.min_elevation_deg,
         })
     }
+}
+
+/// A window point's position in the recentred model and its unit normal.
+fn point_frame(p: &WindowPoint, origin: DVec2) -> (glam::DVec3, glam::DVec3) {
+    let [x, y, z] = p.position;
+    (
+        glam::DVec3::new(x - origin.x, y - origin.y, z),
+        glam::DVec3::from_array(p.normal).normalize(),
+    )
 }
