@@ -114,7 +114,8 @@ pub struct ProfileArgs {
     #[arg(long, default_value_t = 1.0, requires = "facades")]
     pub min_facade_area: f64,
     /// Window points (TOML `[[point]]` tables: name, position [x, y, z] in the model's
-    /// plan coordinates, normal): hours of direct sun and EN 17037's level in points.csv.
+    /// plan coordinates, normal): hours of direct sun and EN 17037's level in points.csv,
+    /// and each point's sun-path diagram with its obstruction mask (sunpath-NAME.svg).
     #[arg(long)]
     pub points: Option<PathBuf>,
     /// The lowest sun counted on facades and at points, degrees (EN 17037 sets one for the

@@ -16,7 +16,7 @@ use crate::study::sunpath::SunPathDiagram;
 /// The sun-path diagram of the study's site with this date's steps marked
 /// (`sunpath.svg`), and one per window point with the sky the model hides from it
 /// (`sunpath-NAME.svg`, the name's other characters than letters, digits, `-` and `_` as
-/// `_`).
+/// `_`; a name taken already gets `-2`, `-3` …).
 pub(super) fn write_sun_path(
     spec: &ProfileSpec,
     profile: &Profile,
@@ -44,12 +44,31 @@ pub(super) fn write_sun_path(
     };
     write(&diagram, "sunpath.svg")?;
     let title = diagram.title.clone();
-    for mask in masks {
+    let names = diagram_names(masks.iter().map(|m| m.name.as_str()));
+    for (mask, name) in masks.iter().zip(names) {
         diagram.title = format!("{title} — seen from {}", mask.name);
         diagram.mask = Some(mask.clone());
-        write(&diagram, &format!("sunpath-{}.svg", file_safe(&mask.name)))?;
+        write(&diagram, &name)?;
     }
     Ok(())
+}
+
+/// The files of the points' diagrams: `sunpath-NAME.svg` with [`file_safe`] names; two
+/// names alike but for their odd characters get `-2`, `-3` … after the first.
+fn diagram_names<'a>(points: impl Iterator<Item = &'a str>) -> Vec<String> {
+    let mut used = std::collections::HashSet::new();
+    points
+        .map(|point| {
+            let stem = file_safe(point);
+            (1..)
+                .map(|k| match k {
+                    1 => format!("sunpath-{stem}.svg"),
+                    k => format!("sunpath-{stem}-{k}.svg"),
+                })
+                .find(|n| used.insert(n.clone()))
+                .expect("an unused name")
+        })
+        .collect()
 }
 
 /// `name` with every character but ASCII letters, digits, `-` and `_` as `_`.
@@ -93,4 +112,23 @@ pub(super) fn write_dates_table(
         &dir.join("dates.json"),
         serde_json::to_string_pretty(&json)?.as_bytes(),
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::diagram_names;
+
+    #[test]
+    fn point_diagrams_get_safe_distinct_file_names() {
+        let names = diagram_names(["a b", "a_b", "a/b", "Süd-1"].into_iter());
+        assert_eq!(
+            names,
+            [
+                "sunpath-a_b.svg",
+                "sunpath-a_b-2.svg",
+                "sunpath-a_b-3.svg",
+                "sunpath-S_d-1.svg"
+            ]
+        );
+    }
 }
