@@ -25,8 +25,6 @@ pub struct VisibilityAtlas {
     pub columns: u32,
     /// Rows.
     pub rows: u32,
-    /// Most tiles per row the GPU allows (its largest 2D texture over `size`).
-    max_columns: u32,
     /// The maps (sampled by the receive pass).
     pub view: wgpu::TextureView,
     /// Their depth.
@@ -36,8 +34,7 @@ pub struct VisibilityAtlas {
 impl VisibilityAtlas {
     /// An atlas of tiles of `size` holding at least `tiles` (within the GPU's limits).
     pub fn new(gpu: &Gpu, size: u32, tiles: u32) -> VisibilityAtlas {
-        let max_columns = (gpu.device.limits().max_texture_dimension_2d / size.max(1)).max(1);
-        let (columns, rows) = layout(tiles, max_columns);
+        let (columns, rows) = layout(tiles, max_columns(gpu, size));
         let texture = |label: &str, format| {
             gpu.device
                 .create_texture(&wgpu::TextureDescriptor {
@@ -61,7 +58,6 @@ impl VisibilityAtlas {
             size,
             columns,
             rows,
-            max_columns,
             view: texture("visibility maps", MAP_FORMAT),
             depth_view: texture("visibility depth", DEPTH_FORMAT),
         }
@@ -75,26 +71,27 @@ impl VisibilityAtlas {
     /// The most tiles an atlas of this tile size holds on `gpu`: within
     /// [`MAX_ATLAS_BYTES`] and the largest texture, but always one hemicube's five.
     pub fn max_tiles(gpu: &Gpu, size: u32) -> u32 {
-        let side = (gpu.device.limits().max_texture_dimension_2d / size.max(1)).max(1);
+        let side = max_columns(gpu, size);
         let by_bytes = MAX_ATLAS_BYTES / (u64::from(size) * u64::from(size) * 4).max(1);
         (by_bytes.min(u64::from(side * side)) as u32).max(5.min(side * side))
     }
 
     /// Makes room for `tiles` (a new, larger texture when needed; the old maps are lost).
-    /// True when the textures changed.
-    pub fn reserve(&mut self, gpu: &Gpu, tiles: u32) -> bool {
-        if tiles <= self.capacity() {
-            return false;
+    pub fn reserve(&mut self, gpu: &Gpu, tiles: u32) {
+        if tiles > self.capacity() {
+            *self = VisibilityAtlas::new(gpu, self.size, tiles);
         }
-        *self = VisibilityAtlas::new(gpu, self.size, tiles);
-        debug_assert!(self.max_columns >= self.columns);
-        true
     }
 
     /// Texel of the top-left corner of tile `tile`.
     pub fn origin(&self, tile: u32) -> (u32, u32) {
         tile_origin(tile, self.columns, self.size)
     }
+}
+
+/// Most tiles of `size` per row (and rows) the GPU's largest 2D texture holds.
+fn max_columns(gpu: &Gpu, size: u32) -> u32 {
+    (gpu.device.limits().max_texture_dimension_2d / size.max(1)).max(1)
 }
 
 /// Columns and rows for `tiles` tiles in rows of at most `max_columns`: as square as the

@@ -183,45 +183,28 @@ impl ReceiverBoxes {
         let Some(bvh) = &self.bvh else {
             return false;
         };
-        let mut stack = vec![0usize];
-        while let Some(k) = stack.pop() {
+        // Each entry: a node, and whether everything in it is wanted already.
+        let mut stack = vec![(0usize, false)];
+        while let Some((k, taken)) = stack.pop() {
             let Some(node) = bvh.nodes.get(k) else {
                 continue;
             };
-            let aabb = node.aabb();
-            let lo = DVec3::new(aabb.min.x as f64, aabb.min.y as f64, aabb.min.z as f64);
-            let hi = DVec3::new(aabb.max.x as f64, aabb.max.y as f64, aabb.max.z as f64);
-            let (lo, hi) = (lo + self.centre - self.pad, hi + self.centre + self.pad);
-            if !wanted(lo, hi) {
-                continue;
-            }
-            if whole(lo, hi) {
-                let mut below = vec![k];
-                while let Some(j) = below.pop() {
-                    let node = &bvh.nodes[j];
-                    if node.is_leaf() {
-                        let first_index = node.first_index as usize;
-                        for &p in &bvh.primitive_indices[first_index..][..node.prim_count as usize]
-                        {
-                            found(p as usize);
-                            if first {
-                                return true;
-                            }
-                        }
-                    } else {
-                        below.push(node.first_index as usize);
-                        below.push(node.first_index as usize + 1);
-                    }
+            let mut all = taken;
+            if !taken {
+                let aabb = node.aabb();
+                let lo = DVec3::new(aabb.min.x as f64, aabb.min.y as f64, aabb.min.z as f64);
+                let hi = DVec3::new(aabb.max.x as f64, aabb.max.y as f64, aabb.max.z as f64);
+                let (lo, hi) = (lo + self.centre - self.pad, hi + self.centre + self.pad);
+                if !wanted(lo, hi) {
+                    continue;
                 }
-                continue;
+                all = whole(lo, hi);
             }
             let child = node.first_index as usize;
             if node.is_leaf() {
-                for &p in
-                    &bvh.primitive_indices[node.first_index as usize..][..node.prim_count as usize]
-                {
+                for &p in &bvh.primitive_indices[child..][..node.prim_count as usize] {
                     let (a, b) = self.boxes[p as usize];
-                    if wanted(a, b) {
+                    if all || wanted(a, b) {
                         found(p as usize);
                         if first {
                             return true;
@@ -229,8 +212,8 @@ impl ReceiverBoxes {
                     }
                 }
             } else {
-                stack.push(child);
-                stack.push(child + 1);
+                stack.push((child, all));
+                stack.push((child + 1, all));
             }
         }
         false

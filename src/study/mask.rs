@@ -126,7 +126,6 @@ impl ObstructionMask {
                     r#"<polygon points="{}" data-azimuth="{a0}-{a1}" data-elevation="{lo}-{hi}"/>"#,
                     outline.join(" ")
                 );
-                debug_assert!(a1 > a0);
             }
         }
         s.push_str("</g>\n");
