@@ -480,14 +480,15 @@ impl VolumePasses {
     }
 
     /// A bind group of per-light uniforms (one record per volume, in order; with no
-    /// volumes, one record holding only the camera). `finite_extrusion` (metres) replaces
-    /// the extrusion to infinity of lights at infinity (orthographic views).
+    /// volumes, one record holding only the camera). `extrude_to_z` (metres) replaces
+    /// the extrusion to infinity of lights at infinity above the horizon: each vertex goes
+    /// along the light down to that plane (plan views; below every receiver).
     pub fn bind_group(
         &self,
         gpu: &Gpu,
         view_proj: Mat4,
         volumes: &[LightVolume],
-        finite_extrusion: Option<f32>,
+        extrude_to_z: Option<f32>,
     ) -> wgpu::BindGroup {
         let mut bytes = vec![0u8; (UNIFORM_STRIDE as usize) * volumes.len().max(1)];
         for i in 0..volumes.len().max(1) {
@@ -497,7 +498,12 @@ impl VolumePasses {
             let record = VolumeLightGpu {
                 view_proj: view_proj.to_cols_array(),
                 light: l.to_array(),
-                extrude: [finite_extrusion.unwrap_or(0.0), VOLUME_DEPTH_BIAS, 0.0, 0.0],
+                extrude: [
+                    extrude_to_z.unwrap_or(0.0),
+                    VOLUME_DEPTH_BIAS,
+                    0.0,
+                    extrude_to_z.map_or(0.0, |_| 1.0),
+                ],
             };
             let at = i * UNIFORM_STRIDE as usize;
             bytes[at..at + std::mem::size_of::<VolumeLightGpu>()]

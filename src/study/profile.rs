@@ -426,10 +426,9 @@ pub fn compute(
         timing.silhouette_s += t0.elapsed().as_secs_f64();
         let t1 = Instant::now();
         let volumes = [volume];
-        // Down to half a metre below the ground, inside the camera's far plane.
-        let sin_e = p.elevation_deg.to_radians().sin().max(1e-3);
-        let extrusion = ((hi.z - lo.z + 0.5) / sin_e) as f32;
-        let bind = passes.bind_group(gpu, plan.view_proj, &volumes, Some(extrusion));
+        // Each vertex down to half a metre below the ground, inside the camera's far plane.
+        let floor = (lo.z - 0.5) as f32;
+        let bind = passes.bind_group(gpu, plan.view_proj, &volumes, Some(floor));
         let mut enc = gpu.device.create_command_encoder(&Default::default());
         passes.record_mask(
             &mut enc,
