@@ -1082,3 +1082,145 @@ fn only_the_chosen_components_cast_shadows() {
         "{err}"
     );
 }
+
+#[test]
+fn model_coloured_by_hours_matches_a_cpu_ray_cast_per_pixel() {
+    use goniolight::study::profile::{SURFACE_GROUND, SURFACE_MODEL};
+    use goniolight::study::view_hours::{compute as view_hours, default_camera, pixel_ray};
+    // The box and two one-sided walls (open meshes: the camera sees the front of one and
+    // the back of the other), from the south-west above, Vienna at the equinox, hourly:
+    // every pixel's hours of sun against a ray cast from the eye through its centre, then
+    // toward each sun (the side seen gets the sun only when it faces it).
+    let mut model = box_model();
+    for (centre, normal_azimuth) in [
+        (DVec3::new(-22.0, -6.0, 0.0), 150.0),
+        (DVec3::new(4.0, -24.0, 0.0), 330.0),
+    ] {
+        let n = direction_from_angles(normal_azimuth, 0.0, 0.0);
+        let t = DVec3::Z.cross(n) * 4.0;
+        let first = model.positions.len() as u32;
+        let up = DVec3::new(0.0, 0.0, 6.0);
+        model
+            .positions
+            .extend([centre - t, centre + t, centre + t + up, centre - t + up]);
+        let [a, b, c, d] = [0, 1, 2, 3].map(|i| first + i);
+        let quad = if (t * 2.0).cross(up).dot(n) > 0.0 {
+            [[a, b, c], [a, c, d]]
+        } else {
+            [[a, c, b], [a, d, c]]
+        };
+        model.triangles.extend(quad);
+    }
+    let s = spec(
+        (48.21, 16.37),
+        "Europe/Vienna",
+        "2026-03-21",
+        "08:00",
+        "16:00",
+        60,
+        120.0,
+        64,
+    );
+    let Some(gpu) = gpu_common::gpu() else {
+        return;
+    };
+    let camera = default_camera(&model, 0.0).unwrap();
+    let size = (240, 180);
+    let v = view_hours(
+        &gpu,
+        &model,
+        &s,
+        &camera,
+        size,
+        |_, _| {},
+        &AtomicBool::new(false),
+    )
+    .unwrap();
+    assert_eq!((v.width, v.height, v.period_h), (240, 180, 8.0));
+    let (sun_positions, _) = s.suns().unwrap();
+    let suns: Vec<(DVec3, f64)> = sun_positions
+        .iter()
+        .map(|(_, p, w)| (DVec3::from(p.direction), *w))
+        .collect();
+    let bvh = TriangleBvh::new(&model);
+    let normal = |t: usize| {
+        let [a, b, c] = model.triangles[t].map(|i| model.positions[i as usize]);
+        (b - a).cross(c - a).normalize()
+    };
+    // The shadow volumes' rule for open meshes (README, "Adjacency"): a face with a border
+    // edge casts a shadow only when its front faces the light. The reference casts with
+    // the same occluders: per sun, the box and the walls' faces that face it.
+    let casters: Vec<TriangleBvh> = suns
+        .iter()
+        .map(|(d, _)| {
+            let mut m = model.clone();
+            let keep: Vec<[u32; 3]> = (0..model.triangles.len())
+                .filter(|&t| t < 12 || normal(t).dot(*d) > 0.0)
+                .map(|t| model.triangles[t])
+                .collect();
+            m.triangles = keep;
+            TriangleBvh::new(&m)
+        })
+        .collect();
+    let (mut compared, mut equal, mut partial, mut turned_from_some) = (0, 0, 0, 0);
+    for py in 0..size.1 {
+        for px in 0..size.0 {
+            let k = (py * size.0 + px) as usize;
+            let (eye, dir) = pixel_ray(&camera, size, px, py);
+            let model_hit = bvh.first_hit(eye, dir, 0.0);
+            let ground_t = (dir.z < 0.0).then(|| -eye.z / dir.z).filter(|&t| {
+                let p = eye + dir * t;
+                p.x.abs() <= 60.0 && p.y.abs() <= 60.0
+            });
+            let (surface, point, n) = match (model_hit, ground_t) {
+                (Some((t, tri)), g) if g.is_none_or(|g| t < g) => {
+                    let n = normal(tri);
+                    let seen_side = if n.dot(dir) < 0.0 { n } else { -n };
+                    (SURFACE_MODEL, eye + dir * t, seen_side)
+                }
+                (_, Some(g)) => (SURFACE_GROUND, eye + dir * g, DVec3::Z),
+                _ => (SURFACE_NONE, eye, DVec3::Z),
+            };
+            if surface != v.surface[k] || surface == SURFACE_NONE {
+                continue;
+            }
+            let lit: Vec<(DVec3, f64)> = suns
+                .iter()
+                .filter(|(d, _)| n.dot(*d) > 0.0)
+                .copied()
+                .collect();
+            let cpu: f64 = suns
+                .iter()
+                .zip(&casters)
+                .filter(|((d, _), c)| {
+                    n.dot(*d) > 0.0 && cpu_sun_hours(c, &[(*d, 1.0)], point + n * 1e-4) > 0.0
+                })
+                .map(|((_, w), _)| w)
+                .sum();
+            compared += 1;
+            equal += ((v.sun_h[k] as f64 - cpu).abs() < 1e-4) as usize;
+            if surface == SURFACE_MODEL {
+                partial += (cpu > 0.0 && cpu < 8.0) as usize;
+                turned_from_some += (lit.len() < suns.len()) as usize;
+            }
+        }
+    }
+    let fraction = equal as f64 / compared as f64;
+    eprintln!(
+        "view hours: {equal} of {compared} pixels equal the ray cast \
+         ({partial} model pixels partly sunlit, {turned_from_some} on faces turned from a sun)"
+    );
+    assert!(compared > 20_000, "{compared}");
+    assert!(
+        partial > 1_000 && turned_from_some > 1_000,
+        "{partial} {turned_from_some}"
+    );
+    assert!(fraction >= 0.998, "{fraction}");
+    // Sun and shadow share the sun-up time on every surface seen.
+    let shadow = v.hours(HoursMetric::Shadow);
+    for ((&sun, &shade), &seen) in v.sun_h.iter().zip(&shadow).zip(&v.surface) {
+        if seen != SURFACE_NONE {
+            assert!((sun + shade - v.sun_up_h as f32).abs() < 1e-4);
+        }
+    }
+}

@@ -469,9 +469,38 @@ fn shadow_profile_runs_in_the_background_and_is_shown() {
     let p = app.profile.result.as_ref().expect("a profile");
     // 08:00 to 16:00 every hour: 9 steps, all with the sun up in June in Vienna.
     assert_eq!(p.steps.len() + p.skipped.len(), 9);
-    assert_eq!(app.profile.progress, (p.steps.len(), p.steps.len()));
+    // The profile's steps, then as many for the hours of sun on the model from the view.
+    let steps = p.steps.len();
+    assert_eq!(app.profile.progress, (2 * steps, 2 * steps));
     assert!(app.profile.texture.is_some());
+    let v = app
+        .profile
+        .view
+        .as_ref()
+        .expect("the model's hours from the view");
+    assert_eq!((v.width, v.height, v.sun_up_h), (800, 600, p.sun_up_h));
+    let seen: Vec<f32> = (0..v.sun_h.len())
+        .filter(|&k| v.surface[k] != goniolight::study::profile::SURFACE_NONE)
+        .map(|k| v.sun_h[k])
+        .collect();
+    let full = seen
+        .iter()
+        .filter(|&&h| (h as f64 - v.sun_up_h).abs() < 1e-4)
+        .count();
+    let shaded = seen
+        .iter()
+        .filter(|&&h| (h as f64) < v.sun_up_h - 0.5)
+        .count();
+    assert!(
+        full > seen.len() / 4 && shaded > 1_000,
+        "{full} {shaded} of {}",
+        seen.len()
+    );
     h.get_by_label_contains("steps, ");
+    h.get_by_label("Sun on the model").click();
+    h.run();
+    assert!(h.state().profile.texture.is_some());
+    h.get_by_label_contains("hours of sun on what the view showed");
 }
 
 #[test]

@@ -36,6 +36,15 @@ pub struct VolumeGeometry {
     surface_index_count: u32,
 }
 
+/// A geometry's triangles split by a light, ready to draw: first those whose front
+/// (winding) side is turned away from it or edge-on (the plane's value at the light ≤ 0,
+/// what [`SilhouetteMesh`] calls unlit), then those facing it.
+pub struct FacesByLight {
+    indices: wgpu::Buffer,
+    turned_from: u32,
+    facing: u32,
+}
+
 /// One light's volume, ready to draw.
 pub struct LightVolume {
     /// The light.
@@ -107,6 +116,35 @@ impl VolumeGeometry {
             VolumeTest::Zpass => false,
             VolumeTest::Zfail => true,
             VolumeTest::Auto => needs_zfail(self.mesh.mesh(), light, near),
+        }
+    }
+
+    /// The surfaces split by which side `light` reaches: for [`VolumePasses::record_faces_mark`].
+    pub fn faces_by_light(&self, gpu: &Gpu, light: &Light) -> FacesByLight {
+        let l = self.mesh.light_in_frame(light);
+        let triangles = &self.mesh.mesh().triangles;
+        let turned = |t: &usize| self.mesh.planes[*t].dot(l) <= 0.0;
+        let (from, toward): (Vec<usize>, Vec<usize>) = (0..triangles.len()).partition(turned);
+        let indices: Vec<u32> = from
+            .iter()
+            .chain(&toward)
+            .flat_map(|&t| triangles[t].iter().copied())
+            .collect();
+        let buffer = gpu
+            .device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("faces by light"),
+                contents: bytemuck::cast_slice(if indices.is_empty() {
+                    &[0u32; 3]
+                } else {
+                    &indices
+                }),
+                usage: wgpu::BufferUsages::INDEX,
+            });
+        FacesByLight {
+            indices: buffer,
+            turned_from: 3 * from.len() as u32,
+            facing: 3 * toward.len() as u32,
         }
     }
 
@@ -209,6 +247,8 @@ pub struct VolumePasses {
     layout: wgpu::BindGroupLayout,
     zpass: wgpu::RenderPipeline,
     zfail: wgpu::RenderPipeline,
+    mark_fronts: wgpu::RenderPipeline,
+    mark_backs: wgpu::RenderPipeline,
     mark: wgpu::RenderPipeline,
     debug_volume: wgpu::RenderPipeline,
     debug_edge: wgpu::RenderPipeline,
@@ -318,6 +358,7 @@ impl VolumePasses {
                     fs: &str,
                     topology: wgpu::PrimitiveTopology,
                     unclipped: bool,
+                    cull_mode: Option<wgpu::Face>,
                     depth_compare: C,
                     stencil: wgpu::StencilState,
                     color: wgpu::ColorTargetState| {
@@ -334,7 +375,7 @@ impl VolumePasses {
                 },
                 primitive: wgpu::PrimitiveState {
                     topology,
-                    cull_mode: None,
+                    cull_mode,
                     unclipped_depth: unclipped,
                     ..Default::default()
                 },
@@ -380,6 +421,7 @@ impl VolumePasses {
             "fs_count",
             tri,
             false,
+            None,
             C::Less,
             counting(
                 stencil_face(C::Always, Op::Keep, Op::IncrementWrap),
@@ -393,6 +435,7 @@ impl VolumePasses {
             "fs_count",
             tri,
             gpu.has_depth_clamp(),
+            None,
             C::Less,
             counting(
                 stencil_face(C::Always, Op::DecrementWrap, Op::Keep),
@@ -407,6 +450,7 @@ impl VolumePasses {
             "fs_mark",
             tri,
             false,
+            None,
             C::Always,
             wgpu::StencilState {
                 front: not_zero,
@@ -416,6 +460,23 @@ impl VolumePasses {
             },
             MASK_FORMAT.into(),
         );
+        // The surfaces drawn again where they are the surface seen (the same vertex shader
+        // gives the same depth), marking them: only their front sides, or only their backs.
+        let mark_side = |label: &str, cull: wgpu::Face| {
+            make(
+                label,
+                "vs_surface",
+                "fs_mark",
+                tri,
+                false,
+                Some(cull),
+                C::Equal,
+                Default::default(),
+                MASK_FORMAT.into(),
+            )
+        };
+        let mark_fronts = mark_side("shadow mask: front sides", wgpu::Face::Back);
+        let mark_backs = mark_side("shadow mask: back sides", wgpu::Face::Front);
         let blend = wgpu::ColorTargetState {
             format: debug_format,
             blend: Some(wgpu::BlendState::ALPHA_BLENDING),
@@ -427,6 +488,7 @@ impl VolumePasses {
             "fs_debug_volume",
             tri,
             gpu.has_depth_clamp(),
+            None,
             C::LessEqual,
             Default::default(),
             blend.clone(),
@@ -437,6 +499,7 @@ impl VolumePasses {
             "fs_debug_edge",
             wgpu::PrimitiveTopology::LineList,
             false,
+            None,
             C::Always,
             Default::default(),
             blend,
@@ -474,6 +537,8 @@ impl VolumePasses {
             zpass,
             zfail,
             mark,
+            mark_fronts,
+            mark_backs,
             debug_volume,
             debug_edge,
         }
@@ -555,6 +620,34 @@ impl VolumePasses {
             pass.draw_indexed(0..v.index_count, 0, 0..1);
             pass.set_pipeline(&self.mark);
             pass.draw(0..3, 0..1);
+        }
+    }
+
+    /// Records 1 into `mask` (not cleared) wherever the side of a surface seen in
+    /// `depth_view` is turned away from the light `faces` was split by (a light reaches
+    /// only the side it faces: the front of a face turned toward it, the back of one
+    /// turned away, as an open mesh shows), with the camera of `bind`'s first record,
+    /// after [`Self::record_surfaces`]. Closed meshes need it only where a volume misses.
+    pub fn record_faces_mark(
+        &self,
+        enc: &mut wgpu::CommandEncoder,
+        geometry: &VolumeGeometry,
+        faces: &FacesByLight,
+        bind: &wgpu::BindGroup,
+        mask: &wgpu::TextureView,
+        depth_view: &wgpu::TextureView,
+    ) {
+        let mut pass = begin_pass(enc, "faces marked", mask, false, depth_view, false, false);
+        pass.set_bind_group(0, bind, &[0]);
+        pass.set_vertex_buffer(0, geometry.vertices.slice(..));
+        pass.set_index_buffer(faces.indices.slice(..), wgpu::IndexFormat::Uint32);
+        let turned_from = 0..faces.turned_from;
+        let facing = faces.turned_from..faces.turned_from + faces.facing;
+        for (pipeline, range) in [(&self.mark_fronts, turned_from), (&self.mark_backs, facing)] {
+            if !range.is_empty() {
+                pass.set_pipeline(pipeline);
+                pass.draw_indexed(range, 0, 2..3);
+            }
         }
     }
 

@@ -82,29 +82,52 @@ pub fn annotate(
 /// `body` (the drawing of `frame` at its top-left, anything beside it) inside `frame`: the
 /// drawing lands at ([`LEFT`], [`TOP`]).
 pub fn framed(frame: &Frame, body: &image::RgbaImage, labels: &PlanLabels) -> image::RgbaImage {
-    register_font();
     let (bw, bh) = body.dimensions();
-    let (w, h) = (LEFT + bw + 12, TOP + bh + BOTTOM);
+    compose((LEFT + bw + 12, TOP + bh + BOTTOM), body, LEFT, |root| {
+        draw_frame(root, frame, labels)
+    })
+}
+
+/// A white `size` image drawn on by `draw`, with `body` pasted at (`left`, [`TOP`]).
+fn compose(
+    (w, h): (u32, u32),
+    body: &image::RgbaImage,
+    left: u32,
+    draw: impl FnOnce(
+        &DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>,
+    ) -> Result<
+        (),
+        DrawingAreaErrorKind<<BitMapBackend<'static> as DrawingBackend>::ErrorType>,
+    >,
+) -> image::RgbaImage {
+    register_font();
     let mut rgb = vec![255u8; (w * h * 3) as usize];
     {
         let root = BitMapBackend::with_buffer(&mut rgb, (w, h)).into_drawing_area();
-        let _ = draw_frame(&root, frame, labels);
+        let _ = draw(&root);
         let _ = root.present();
     }
     let mut out = image::RgbaImage::from_fn(w, h, |x, y| {
         let k = ((y * w + x) * 3) as usize;
         image::Rgba([rgb[k], rgb[k + 1], rgb[k + 2], 255])
     });
-    image::imageops::replace(&mut out, body, LEFT as i64, TOP as i64);
+    image::imageops::replace(&mut out, body, left as i64, TOP as i64);
     out
 }
 
-fn draw_frame<DB: DrawingBackend>(
+/// `body` (a view that has no plan axes: a perspective drawing, a legend beside it) under
+/// the labels' title and subtitle.
+pub fn titled(body: &image::RgbaImage, labels: &PlanLabels) -> image::RgbaImage {
+    let (bw, bh) = body.dimensions();
+    compose((bw.max(480), TOP + bh), body, 0, |root| {
+        draw_titles(root, labels)
+    })
+}
+
+fn draw_titles<DB: DrawingBackend>(
     root: &DrawingArea<DB, plotters::coord::Shift>,
-    frame: &Frame,
     labels: &PlanLabels,
 ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
-    let black = ("sans-serif", 15).into_font().color(&BLACK);
     root.draw(&Text::new(
         labels.title.as_str(),
         (12, 10),
@@ -113,8 +136,18 @@ fn draw_frame<DB: DrawingBackend>(
     root.draw(&Text::new(
         labels.subtitle.as_str(),
         (12, 42),
-        black.clone(),
+        ("sans-serif", 15).into_font().color(&BLACK),
     ))?;
+    Ok(())
+}
+
+fn draw_frame<DB: DrawingBackend>(
+    root: &DrawingArea<DB, plotters::coord::Shift>,
+    frame: &Frame,
+    labels: &PlanLabels,
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    let black = ("sans-serif", 15).into_font().color(&BLACK);
+    draw_titles(root, labels)?;
     let (left, top) = (LEFT as i32, TOP as i32);
     let (w_i, h_i) = (frame.size_px.0 as i32, frame.size_px.1 as i32);
     root.draw(&Rectangle::new(

@@ -13,5 +13,6 @@ pub mod rasters;
 pub mod sunpath;
 pub mod surface_output;
 pub mod surfaces;
+pub mod view_hours;
 
 pub use profile::{compute, HoursMetric, Profile, ProfileError, ProfileSpec};

@@ -46,22 +46,23 @@ fn to_image(n: u32, rgb: &[[u8; 3]]) -> image::RgbaImage {
     })
 }
 
-/// Pixels of `inside` with a 4-neighbour outside it (or on the image border).
-fn boundary(n: u32, inside: impl Fn(usize) -> bool) -> Vec<bool> {
-    let n = n as usize;
-    (0..n * n)
+/// Pixels of `inside` with a 4-neighbour outside it (or on the image border) in a
+/// `w` × `h` image.
+fn boundary((w, h): (u32, u32), inside: impl Fn(usize) -> bool) -> Vec<bool> {
+    let (w, h) = (w as usize, h as usize);
+    (0..w * h)
         .map(|k| {
             if !inside(k) {
                 return false;
             }
-            let (x, y) = (k % n, k / n);
+            let (x, y) = (k % w, k / w);
             let out = |dx: i64, dy: i64| {
                 let (xx, yy) = (x as i64 + dx, y as i64 + dy);
                 xx < 0
                     || yy < 0
-                    || xx >= n as i64
-                    || yy >= n as i64
-                    || !inside(yy as usize * n + xx as usize)
+                    || xx >= w as i64
+                    || yy >= h as i64
+                    || !inside(yy as usize * w + xx as usize)
             };
             out(-1, 0) || out(1, 0) || out(0, -1) || out(0, 1)
         })
@@ -71,7 +72,9 @@ fn boundary(n: u32, inside: impl Fn(usize) -> bool) -> Vec<bool> {
 /// The base plan: ground, background and the building (its roof darker where a step
 /// shadows it, when `step` is given) with its outline.
 fn base_plan(profile: &Profile, step: Option<&ProfileStep>) -> Vec<[u8; 3]> {
-    let footprint = boundary(profile.resolution, |k| profile.surface[k] == SURFACE_MODEL);
+    let footprint = boundary((profile.resolution, profile.resolution), |k| {
+        profile.surface[k] == SURFACE_MODEL
+    });
     profile
         .surface
         .iter()
@@ -115,7 +118,9 @@ pub fn profile_image(profile: &Profile) -> image::RgbaImage {
     }
     for (i, s) in profile.steps.iter().enumerate() {
         let c = time_colour(t_of(i));
-        let edge = boundary(n, |k| s.in_shadow(k) || profile.surface[k] == SURFACE_MODEL);
+        let edge = boundary((n, n), |k| {
+            s.in_shadow(k) || profile.surface[k] == SURFACE_MODEL
+        });
         for (k, px) in rgb.iter_mut().enumerate() {
             if edge[k] && profile.surface[k] == SURFACE_GROUND {
                 *px = c;
@@ -146,7 +151,7 @@ pub fn hours_image(profile: &Profile, metric: HoursMetric) -> image::RgbaImage {
     let n = profile.resolution;
     let hours = profile.hours(metric);
     let scale = hours_scale(profile);
-    let footprint = boundary(n, |k| profile.surface[k] == SURFACE_MODEL);
+    let footprint = boundary((n, n), |k| profile.surface[k] == SURFACE_MODEL);
     let rgb: Vec<[u8; 3]> = (0..(n * n) as usize)
         .map(|k| match profile.surface[k] {
             SURFACE_NONE => BACKGROUND,
@@ -154,6 +159,15 @@ pub fn hours_image(profile: &Profile, metric: HoursMetric) -> image::RgbaImage {
             _ => hours_colour(hours[k], scale),
         })
         .collect();
+    with_hours_legend(&to_image(n, &rgb), metric, scale)
+}
+
+/// `image` with the legend of hours of `metric` from 0 to `scale` beside it.
+pub(super) fn with_hours_legend(
+    image: &image::RgbaImage,
+    metric: HoursMetric,
+    scale: f32,
+) -> image::RgbaImage {
     let labels: Vec<String> = (0..=4)
         .map(|q| format!("{:.1} h", scale * q as f32 / 4.0))
         .collect();
@@ -161,7 +175,7 @@ pub fn hours_image(profile: &Profile, metric: HoursMetric) -> image::RgbaImage {
         HoursMetric::Sun => "sun",
         HoursMetric::Shadow => "in shadow",
     };
-    with_legend_panel(&to_image(n, &rgb), title, &labels, |t| hours_colour(t, 1.0))
+    with_legend_panel(image, title, &labels, |t| hours_colour(t, 1.0))
 }
 
 const PASS: [u8; 3] = [90, 180, 90];
@@ -195,7 +209,7 @@ pub fn pass_image(
                 area.contains(profile.pixel_center(px, py) + profile.origin)
             })
             .collect();
-        for (k, edge) in boundary(n, |k| inside[k]).into_iter().enumerate() {
+        for (k, edge) in boundary((n, n), |k| inside[k]).into_iter().enumerate() {
             if edge {
                 rgb[k] = [20, 60, 200];
             }

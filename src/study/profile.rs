@@ -530,44 +530,9 @@ impl PlanView {
         );
         let view_proj = camera.view_projection(1.0);
         // The ground: the plan square, a little larger so its edge never shows.
-        let h = extent * 0.6;
-        let corners: Vec<[f32; 4]> = [(-h, -h), (h, -h), (h, h), (-h, h)]
-            .iter()
-            .map(|&(dx, dy)| {
-                [
-                    (center.x + dx) as f32,
-                    (center.y + dy) as f32,
-                    ground_z as f32,
-                    1.0,
-                ]
-            })
-            .collect();
-        let dev = &gpu.device;
-        let ground_vertices = dev.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("ground"),
-            contents: bytemuck::cast_slice(&corners),
-            usage: wgpu::BufferUsages::VERTEX,
-        });
-        let ground_indices = dev.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("ground"),
-            contents: bytemuck::cast_slice(&[0u32, 1, 2, 0, 2, 3]),
-            usage: wgpu::BufferUsages::INDEX,
-        });
+        let (ground_vertices, ground_indices) = ground_square(gpu, center, extent * 0.6, ground_z);
         let ids = mask_texture(gpu, n, n, 1);
-        let depth = dev.create_texture(&wgpu::TextureDescriptor {
-            label: Some("plan depth"),
-            size: wgpu::Extent3d {
-                width: n,
-                height: n,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: gpu.depth_stencil_format(),
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
-            view_formats: &[],
-        });
+        let depth = depth_target(gpu, n, n);
         PlanView {
             view_proj,
             ground_vertices,
@@ -578,4 +543,55 @@ impl PlanView {
             depth_view: depth.create_view(&Default::default()),
         }
     }
+}
+
+/// The ground as a square of half-side `half` metres about `center` at height `z`: its
+/// vertex buffer (vec4 positions) and index buffer (6 indices).
+pub(super) fn ground_square(
+    gpu: &Gpu,
+    center: DVec2,
+    half: f64,
+    z: f64,
+) -> (wgpu::Buffer, wgpu::Buffer) {
+    let corners: Vec<[f32; 4]> = [(-half, -half), (half, -half), (half, half), (-half, half)]
+        .iter()
+        .map(|&(dx, dy)| {
+            [
+                (center.x + dx) as f32,
+                (center.y + dy) as f32,
+                z as f32,
+                1.0,
+            ]
+        })
+        .collect();
+    let dev = &gpu.device;
+    let vertices = dev.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("ground"),
+        contents: bytemuck::cast_slice(&corners),
+        usage: wgpu::BufferUsages::VERTEX,
+    });
+    let indices = dev.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("ground"),
+        contents: bytemuck::cast_slice(&[0u32, 1, 2, 0, 2, 3]),
+        usage: wgpu::BufferUsages::INDEX,
+    });
+    (vertices, indices)
+}
+
+/// A depth-stencil target of `width` × `height` for the surface and volume passes.
+pub(super) fn depth_target(gpu: &Gpu, width: u32, height: u32) -> wgpu::Texture {
+    gpu.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("study depth"),
+        size: wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: gpu.depth_stencil_format(),
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+        view_formats: &[],
+    })
 }

@@ -18,6 +18,7 @@ use crate::render::lightmap::LightMap;
 use crate::render::{LightModel, RenderSettings, ShadowSettings};
 use crate::scene::{Mode, Palette, PlacedLuminaire, Scene, Tonemap};
 use crate::study::profile::Profile;
+use crate::study::view_hours::ViewHours;
 
 /// How serious a message is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -109,6 +110,18 @@ pub struct RadiosityState {
     pub status: String,
 }
 
+/// What the shadow-profile window shows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum ProfileShown {
+    /// Every step's shadow on the plan.
+    #[default]
+    Profile,
+    /// Hours in shadow per plan cell.
+    HoursInShadow,
+    /// Hours of sun on the model, seen from the camera the profile was started with.
+    SunOnModel,
+}
+
 /// The shadow-profile panel.
 #[derive(Default)]
 pub struct ProfileState {
@@ -118,8 +131,10 @@ pub struct ProfileState {
     pub progress: (usize, usize),
     /// The last profile.
     pub result: Option<Arc<Profile>>,
-    /// Show hours in shadow instead of the profile.
-    pub show_hours: bool,
+    /// The hours of sun on the model seen from the camera when the profile was started.
+    pub view: Option<Arc<ViewHours>>,
+    /// What the window shows.
+    pub shown: ProfileShown,
     /// The image shown (rebuilt when the result or the choice changes).
     pub texture: Option<egui::TextureHandle>,
     /// Whether its window is open.

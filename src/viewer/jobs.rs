@@ -18,8 +18,10 @@ use crate::radiosity::solve;
 use crate::radiosity::SolverSettings;
 use crate::render::lightmap::LightMap;
 use crate::render::ShadowSettings;
+use crate::scene::Camera;
 use crate::scene::Scene;
 use crate::study::profile::{Profile, ProfileError, ProfileSpec};
+use crate::study::view_hours::{compute as view_hours, ViewHours};
 
 /// Flags a worker reads between units of work.
 #[derive(Debug, Default)]
@@ -262,25 +264,52 @@ pub enum ProfileUpdate {
     Progress(usize, usize),
     /// The profile.
     Done(Box<Profile>),
+    /// The hours of sun on the model from the camera the job was started with.
+    View(Box<ViewHours>),
     /// Cancelled or failed.
     Failed(String),
 }
 
-/// Starts a shadow profile of `mesh` on `gpu`.
+/// Starts a shadow profile of `mesh` on `gpu`, then, with `view` (a perspective camera
+/// and an image size), the hours of sun on the model seen from it.
 pub fn start_profile(
     gpu: Arc<Gpu>,
     mesh: Mesh,
     spec: ProfileSpec,
+    view: Option<(Camera, (u32, u32))>,
 ) -> std::io::Result<Worker<ProfileUpdate>> {
     Worker::spawn("shadow profile", move |tx, control| {
-        let progress = |done, total| {
-            let _ = tx.send(ProfileUpdate::Progress(done, total));
+        let parts = 1 + view.is_some() as usize;
+        let progress = |part: usize| {
+            let tx = tx.clone();
+            move |done, total| {
+                let _ = tx.send(ProfileUpdate::Progress(part * total + done, parts * total));
+            }
         };
-        let result = crate::study::profile::compute(&gpu, &mesh, &spec, progress, &control.cancel);
-        let _ = tx.send(match result {
+        let failed = |e: ProfileError| match e {
+            ProfileError::Cancelled => ProfileUpdate::Failed("cancelled".into()),
+            e => ProfileUpdate::Failed(e.to_string()),
+        };
+        let profile =
+            crate::study::profile::compute(&gpu, &mesh, &spec, progress(0), &control.cancel);
+        let _ = tx.send(match profile {
             Ok(p) => ProfileUpdate::Done(Box::new(p)),
-            Err(ProfileError::Cancelled) => ProfileUpdate::Failed("cancelled".into()),
-            Err(e) => ProfileUpdate::Failed(e.to_string()),
+            Err(e) => return drop(tx.send(failed(e))),
         });
+        if let Some((camera, size)) = view {
+            let v = view_hours(
+                &gpu,
+                &mesh,
+                &spec,
+                &camera,
+                size,
+                progress(1),
+                &control.cancel,
+            );
+            let _ = tx.send(match v {
+                Ok(v) => ProfileUpdate::View(Box::new(v)),
+                Err(e) => failed(e),
+            });
+        }
     })
 }

@@ -7,6 +7,7 @@ use std::sync::Arc;
 
 use egui_plot::{Line, Plot, PlotPoints};
 
+use super::app::ProfileShown;
 use super::app::ViewerApp;
 use super::jobs::{self, ProfileUpdate, RadiosityUpdate};
 use super::view::parsed_field;
@@ -14,9 +15,15 @@ use crate::radiosity::gpu::Visibility;
 use crate::radiosity::shooters::Hierarchy;
 use crate::radiosity::{Ambient, FormFactorKind};
 use crate::render::ShadowTechnique;
+use crate::scene::Projection;
 use crate::study::output::{hours_image, profile_image};
 use crate::study::profile::ProfileSpec;
+use crate::study::view_hours::view_image;
+use crate::study::HoursMetric;
 use crate::sun::{Site, Zone};
+
+/// The size of the hours-of-sun view computed with a profile, pixels.
+const MODEL_VIEW_SIZE: (u32, u32) = (800, 600);
 
 impl ViewerApp {
     /// Site, date, time (slider, animation), the sun light and the shadow profile.
@@ -158,10 +165,16 @@ impl ViewerApp {
             Ok(sp) => sp,
             Err(e) => return self.error(format!("shadow profile: {e}")),
         };
-        match jobs::start_profile(gpu, self.scene.caster_mesh(), spec) {
+        // The hours of sun on the model from this view too (perspective views only: the
+        // volumes go to infinity).
+        let camera = self.camera.camera(self.extent());
+        let view = matches!(camera.projection, Projection::Perspective { .. })
+            .then_some((camera, MODEL_VIEW_SIZE));
+        match jobs::start_profile(gpu, self.scene.caster_mesh(), spec, view) {
             Ok(w) => {
                 self.profile.worker = Some(w);
                 self.profile.progress = (0, 0);
+                self.profile.view = None;
                 self.profile.open = true;
             }
             Err(e) => self.error(format!("shadow profile: {e}")),
@@ -327,6 +340,10 @@ impl ViewerApp {
                         self.profile.texture = None;
                         self.info("shadow profile done");
                     }
+                    ProfileUpdate::View(v) => {
+                        self.profile.view = Some(Arc::from(v));
+                        self.profile.texture = None;
+                    }
                     ProfileUpdate::Failed(e) => self.error(format!("shadow profile: {e}")),
                 }
             }
@@ -335,12 +352,15 @@ impl ViewerApp {
             }
         }
         if self.profile.texture.is_none() {
-            if let Some(p) = &self.profile.result {
-                let img = if self.profile.show_hours {
-                    hours_image(p, crate::study::HoursMetric::Shadow)
-                } else {
-                    profile_image(p)
-                };
+            let img = match (self.profile.shown, &self.profile.result, &self.profile.view) {
+                (ProfileShown::Profile, Some(p), _) => Some(profile_image(p)),
+                (ProfileShown::HoursInShadow, Some(p), _) => {
+                    Some(hours_image(p, HoursMetric::Shadow))
+                }
+                (ProfileShown::SunOnModel, _, Some(v)) => Some(view_image(v, HoursMetric::Sun)),
+                _ => None,
+            };
+            if let Some(img) = img {
                 let size = [img.width() as usize, img.height() as usize];
                 let colour = egui::ColorImage::from_rgba_unmultiplied(size, img.as_raw());
                 self.profile.texture =
@@ -389,21 +409,29 @@ impl ViewerApp {
             .default_size([520.0, 560.0])
             .show(ctx, |ui| {
                 ui.horizontal(|ui| {
-                    if ui.selectable_label(!p.show_hours, "Profile").clicked() && p.show_hours {
-                        p.show_hours = false;
-                        p.texture = None;
-                    }
-                    if ui
-                        .selectable_label(p.show_hours, "Hours in shadow")
-                        .clicked()
-                        && !p.show_hours
-                    {
-                        p.show_hours = true;
-                        p.texture = None;
+                    for (shown, label) in [
+                        (ProfileShown::Profile, "Profile"),
+                        (ProfileShown::HoursInShadow, "Hours in shadow"),
+                        (ProfileShown::SunOnModel, "Sun on the model"),
+                    ] {
+                        if ui.selectable_label(p.shown == shown, label).clicked() && p.shown != shown
+                        {
+                            p.shown = shown;
+                            p.texture = None;
+                        }
                     }
                 });
-                match (&p.texture, &p.result) {
-                    (Some(t), Some(r)) => {
+                match (&p.texture, &p.result, &p.view) {
+                    (Some(t), _, Some(v)) if p.shown == ProfileShown::SunOnModel => {
+                        ui.label(format!(
+                            "hours of sun on what the view showed when started ({:.1} h with the sun up)",
+                            v.sun_up_h
+                        ));
+                        let [w, h] = t.size().map(|s| s as f32);
+                        let width = ui.available_width().max(64.0);
+                        ui.image((t.id(), egui::vec2(width, width * h / w)));
+                    }
+                    (Some(t), Some(r), _) if p.shown != ProfileShown::SunOnModel => {
                         ui.label(format!(
                             "{} steps, {} skipped (sun down), {:.0} m square",
                             r.steps.len(),

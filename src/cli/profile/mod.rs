@@ -19,6 +19,7 @@ use surfaces::Surfaces;
 
 use super::CliError;
 use crate::gpu::Gpu;
+use crate::scene::Camera;
 use crate::scene::UpAxis;
 use crate::shadow::SilhouetteMethod;
 use crate::study::annotate::PlanLabels;
@@ -27,7 +28,9 @@ use crate::study::output::{write_study, StudyOutput};
 use crate::study::profile::{compute, shared_extent, HoursMetric, Profile, ProfileSpec};
 use crate::study::rasters::read_areas;
 use crate::study::surfaces::parse_points;
+use crate::study::view_hours::{compute as view_hours, default_camera, write_model_view};
 use crate::sun::{Site, SunOptions, Zone};
+use glam::DVec3;
 
 /// Options of `profile`.
 #[derive(Debug, Args)]
@@ -128,9 +131,77 @@ pub struct ProfileArgs {
     /// Also write the day's animation (one framed plan per step) as a GIF.
     #[arg(long)]
     pub gif: Option<PathBuf>,
+    /// Also the model seen in 3D with every surface it shows (roofs, facades, ground)
+    /// coloured by hours of the metric: model.png (framed, with a legend) and model.exr
+    /// (hours per pixel), from the south-west 35° up unless --view-from is given.
+    #[arg(long)]
+    pub model_view: bool,
+    /// --model-view's eye: X,Y,Z in the model file's plan coordinates and height, metres.
+    #[arg(long, value_parser = parse_xyz, requires = "model_view", allow_hyphen_values = true)]
+    pub view_from: Option<DVec3>,
+    /// --model-view's target: X,Y,Z as --view-from (default: the model's centre).
+    #[arg(long, value_parser = parse_xyz, requires = "view_from", allow_hyphen_values = true)]
+    pub view_at: Option<DVec3>,
+    /// --model-view's image size, pixels.
+    #[arg(long, value_parser = parse_size, default_value = "1200x900", requires = "model_view")]
+    pub view_size: (u32, u32),
     /// The output folder (one sub-folder per date when there are several).
     #[arg(long)]
     pub out: PathBuf,
+}
+
+/// The camera of `--model-view`: the user's eye and target (the model file's plan
+/// coordinates, moved as the model was by `origin`), else the default view.
+fn model_camera(
+    a: &ProfileArgs,
+    model: &crate::geometry::Mesh,
+    origin: glam::DVec2,
+) -> Result<Option<Camera>, CliError> {
+    if !a.model_view {
+        return Ok(None);
+    }
+    let shift = DVec3::new(origin.x, origin.y, 0.0);
+    let camera = match a.view_from {
+        Some(from) => {
+            let (lo, hi) = model
+                .bounds()
+                .ok_or_else(|| CliError::input(anyhow!("the model has no triangles")))?;
+            let at = a.view_at.map_or((lo + hi) * 0.5, |at| at - shift);
+            if (from - shift).distance(at) < 1e-3 {
+                return Err(CliError::input(anyhow!(
+                    "--view-from and --view-at must be different points"
+                )));
+            }
+            Camera::perspective(from - shift, at, 40.0)
+        }
+        None => default_camera(model, a.north_offset)
+            .ok_or_else(|| CliError::input(anyhow!("the model has no triangles")))?,
+    };
+    Ok(Some(camera))
+}
+
+fn parse_xyz(s: &str) -> Result<DVec3, String> {
+    let v: Vec<f64> = s
+        .split(',')
+        .map(|c| c.trim().parse::<f64>())
+        .collect::<Result<_, _>>()
+        .map_err(|e| format!("{s:?}: {e} (expected X,Y,Z in metres)"))?;
+    match v[..] {
+        [x, y, z] if v.iter().all(|c| c.is_finite()) => Ok(DVec3::new(x, y, z)),
+        _ => Err(format!("{s:?}: expected three finite numbers X,Y,Z")),
+    }
+}
+
+fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = s
+        .split_once('x')
+        .ok_or_else(|| format!("{s:?}: expected WIDTHxHEIGHT, e.g. 1200x900"))?;
+    let px = |t: &str| {
+        t.trim()
+            .parse::<u32>()
+            .map_err(|e| format!("{s:?}: {e} (expected WIDTHxHEIGHT)"))
+    };
+    Ok((px(w)?, px(h)?))
 }
 
 /// Named sets of dates.
@@ -300,6 +371,10 @@ pub fn run(a: ProfileArgs) -> Result<(), CliError> {
         steps += s.local_times()?.len();
         s.suns()?;
     }
+    let camera = model_camera(&a, &model, origin)?;
+    if camera.is_some() {
+        steps *= 2;
+    }
     let shared = match (a.extent, specs.len()) {
         (None, 2..) => Some(shared_extent(&model, &specs)?),
         (e, _) => e,
@@ -342,13 +417,36 @@ pub fn run(a: ProfileArgs) -> Result<(), CliError> {
         };
         done_before += spec.local_times()?.len();
         profile.origin = origin;
-        profiles.push((spec, profile, t.elapsed().as_secs_f64()));
+        let seconds = t.elapsed().as_secs_f64();
+        let view = match &camera {
+            Some(camera) => {
+                let result = view_hours(
+                    &gpu,
+                    &model,
+                    &spec,
+                    camera,
+                    a.view_size,
+                    |done, _| bar.set_position((done_before + done) as u64),
+                    &cancel,
+                );
+                done_before += spec.local_times()?.len();
+                match result {
+                    Ok(v) => Some(v),
+                    Err(e) => {
+                        bar.finish_and_clear();
+                        return Err(e.into());
+                    }
+                }
+            }
+            None => None,
+        };
+        profiles.push((spec, profile, seconds, view));
     }
     bar.finish_and_clear();
     let surfaces = Surfaces::new(&a, &model, origin, points, non_casters);
     let several = profiles.len() > 1;
     let mut summaries = Vec::new();
-    for (spec, profile, seconds) in &profiles {
+    for (spec, profile, seconds, view) in &profiles {
         report(&a, profile, *seconds);
         let dir = if several {
             a.out.join(spec.date.to_string())
@@ -382,6 +480,25 @@ pub fn run(a: ProfileArgs) -> Result<(), CliError> {
         };
         let summary = write_study(profile, &dir, &output).map_err(CliError::failure)?;
         write_sun_path(spec, profile, &dir, &output.labels, surfaces.masks())?;
+        if let Some(v) = view {
+            let view_labels = PlanLabels {
+                title: format!(
+                    "{} — hours of {} on the model",
+                    site_label(a.lat, a.lon),
+                    a.metric.name()
+                ),
+                subtitle: format!(
+                    "{}; seen from {}",
+                    output.labels.subtitle,
+                    match a.view_from {
+                        Some(f) => format!("({:.1}, {:.1}, {:.1}) m", f.x, f.y, f.z),
+                        None => "the south-west, 35° above the horizon".into(),
+                    }
+                ),
+                ..output.labels.clone()
+            };
+            write_model_view(v, a.metric, &view_labels, &dir).map_err(CliError::failure)?;
+        }
         summaries.push((spec.date, summary));
     }
     if several {
