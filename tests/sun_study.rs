@@ -288,6 +288,36 @@ fn cli(args: &[String]) -> (String, String) {
 }
 
 #[test]
+fn model_view_writes_the_framed_image_and_the_hours_per_pixel() {
+    if gpu_common::gpu().is_none() {
+        return;
+    }
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("view");
+    let (stdout, stderr) = cli(&box_args(
+        &out,
+        &[
+            "--date",
+            "2026-03-21",
+            "--model-view",
+            "--view-size",
+            "320x240",
+        ],
+    ));
+    let exr = image::open(out.join("model.exr")).unwrap().into_rgb32f();
+    assert_eq!(exr.dimensions(), (320, 240), "{stdout}{stderr}");
+    // 08:00–16:00 with the sun up throughout: open ground gets the whole 8 h, the box's
+    // walls turned from the morning or afternoon sun less, the sky 0.
+    let hours: Vec<f32> = exr.pixels().map(|p| p.0[0]).collect();
+    let max = hours.iter().copied().fold(0.0, f32::max);
+    assert!((max - 8.0).abs() < 1e-4, "{max}");
+    assert!(hours.iter().any(|&h| h > 0.5 && h < 7.5));
+    assert!(hours.iter().any(|&h| h == 0.0));
+    let png = image::open(out.join("model.png")).unwrap();
+    assert!(png.width() > 320 && png.height() > 240);
+}
+
+#[test]
 fn several_dates_share_one_extent_and_equal_single_date_runs() {
     if gpu_common::gpu().is_none() {
         return;
@@ -651,6 +681,36 @@ fn bad_study_options_are_refused_with_exit_2() {
         (
             vec!["--date", "2026-03-21", "--dates", "2026-06-21"],
             "cannot be used with",
+        ),
+        (
+            vec!["--date", "2026-03-21", "--model-view", "--view-from", "1,2"],
+            "expected three finite numbers",
+        ),
+        (
+            vec![
+                "--date",
+                "2026-03-21",
+                "--model-view",
+                "--view-size",
+                "10x900",
+            ],
+            "16 to",
+        ),
+        (
+            vec!["--date", "2026-03-21", "--view-from", "1,2,3"],
+            "--model-view",
+        ),
+        (
+            vec![
+                "--date",
+                "2026-03-21",
+                "--model-view",
+                "--view-from",
+                "0,0,6",
+                "--view-at",
+                "0,0,6",
+            ],
+            "different points",
         ),
     ];
     for (extra, expect) in cases {

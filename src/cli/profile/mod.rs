@@ -201,7 +201,12 @@ fn parse_size(s: &str) -> Result<(u32, u32), String> {
             .parse::<u32>()
             .map_err(|e| format!("{s:?}: {e} (expected WIDTHxHEIGHT)"))
     };
-    Ok((px(w)?, px(h)?))
+    let (w, h) = (px(w)?, px(h)?);
+    let max = crate::scene::MAX_IMAGE_SIZE;
+    if !(16..=max).contains(&w) || !(16..=max).contains(&h) {
+        return Err(format!("{s:?}: each side must be 16 to {max} pixels"));
+    }
+    Ok((w, h))
 }
 
 /// Named sets of dates.
