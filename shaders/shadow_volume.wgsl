@@ -8,12 +8,13 @@ struct VolumeLight {
     view_proj: mat4x4<f32>,
     // xyz: the light's position (w = 1) or the direction toward it (w = 0).
     light: vec4<f32>,
-    // w > 0: extrude each vertex along a light at infinity down to the plane z = x
-    // (metres) instead of to infinity, for plan views: their far plane would otherwise cut
-    // the volumes (and the clipped edges of neighbouring sides need not meet), and a side
-    // reaches no further than the lowest receiver, so a low edge's side covers only the
-    // plan area its own shadow can fall on (the stencil fill follows the edges' heights;
-    // Wallner §1.9's depth bounds, which WebGPU lacks, bound it the same way).
+    // Lights at infinity in orthographic (plan) views, whose far plane would otherwise
+    // cut volumes extruded to infinity (and the cut edges of neighbouring sides need not
+    // meet): w > 0: each vertex along the light down to the plane z = x (metres), so a
+    // side reaches no further than the lowest receiver and a low edge's side covers only
+    // the plan its own shadow can fall on (the stencil fill follows the edges' heights;
+    // Wallner §1.9's depth bounds, which WebGPU lacks, bound it the same way); else
+    // x > 0: every vertex by the length x.
     // y: the depth bias of the volume's finite vertices (added to the depth, z/w), so a lit
     // face's own cap counts as behind it. Added here rather than by the rasterizer's depth
     // bias: that one is scaled by the largest exponent of the primitive's depth, which is
@@ -35,6 +36,8 @@ fn vs_volume(@location(0) p: vec4<f32>) -> @builtin(position) @invariant vec4<f3
             if (volume.extrude.w > 0.0) {
                 let t = (p.z - volume.extrude.x) / max(volume.light.z, 1e-3);
                 v = vec4<f32>(p.xyz - volume.light.xyz * t, 1.0);
+            } else if (volume.extrude.x > 0.0) {
+                v = vec4<f32>(p.xyz - volume.light.xyz * volume.extrude.x, 1.0);
             } else {
                 v = vec4<f32>(-volume.light.xyz, 0.0);
                 biased = false;

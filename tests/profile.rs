@@ -16,7 +16,9 @@ use goniolight::geometry::generate::cuboid;
 use goniolight::shadow::raycast::in_shadow;
 use goniolight::shadow::{Light, SilhouetteMethod};
 use goniolight::study::output::{hours_colour, hours_image, hours_scale};
-use goniolight::study::profile::{compute, HoursMetric, Profile, ProfileSpec, SURFACE_GROUND};
+use goniolight::study::profile::{
+    compute, HoursMetric, Profile, ProfileSpec, VolumeEnds, SURFACE_GROUND,
+};
 use goniolight::sun::{direction_from_angles, Site, SunOptions, Zone};
 
 /// A 20 × 10 × 12 m box on the ground, turned 30° about the vertical so no edge runs
@@ -50,6 +52,7 @@ fn spec(from: &str, to: &str, step: u32, extent: f64, resolution: u32) -> Profil
         resolution,
         silhouette: SilhouetteMethod::Hextree,
         non_casters: Default::default(),
+        volume_ends: Default::default(),
     }
 }
 
@@ -92,6 +95,26 @@ fn box_shadow_area_matches_the_analytic_sweep_at_every_step() {
         assert!(rel <= 0.005, "{}: {rel}", s.time);
         let with = s.shadow_area_with_footprint_m2 - s.shadow_area_m2;
         assert!((with - footprint).abs() < 1e-9);
+    }
+}
+
+#[test]
+fn volumes_ending_at_the_ground_shadow_what_volumes_of_one_length_do() {
+    // The benchmark's two ways to end the plan's volumes must give the same shadows: the
+    // same pixels at every step (ending at the ground only draws less).
+    let mut s = spec("07:30", "17:30", 60, 120.0, 512);
+    let Some(ground) = profile(&s) else {
+        return;
+    };
+    s.volume_ends = VolumeEnds::OneLength;
+    let one_length = profile(&s).unwrap();
+    assert_eq!(ground.steps.len(), one_length.steps.len());
+    let n = (ground.resolution * ground.resolution) as usize;
+    for (a, b) in ground.steps.iter().zip(&one_length.steps) {
+        let differ = (0..n).filter(|&k| a.in_shadow(k) != b.in_shadow(k)).count();
+        let shadowed = (0..n).filter(|&k| a.in_shadow(k)).count();
+        assert!(shadowed > 1_000, "{}", a.time);
+        assert!(differ <= 2, "{}: {differ} pixels differ", a.time);
     }
 }
 
@@ -305,9 +328,17 @@ fn bench_profile_reports_both_methods_as_json() {
     assert_eq!(code, 0, "{stderr}");
     let v: serde_json::Value = serde_json::from_str(&stdout).unwrap();
     let rows = v["rows"].as_array().unwrap();
-    assert_eq!(rows.len(), 2);
-    for (row, method) in rows.iter().zip(["brute force", "hextree"]) {
-        assert_eq!(row["method"], method);
+    assert_eq!(rows.len(), 3);
+    let kinds = [
+        ("brute force", "ground"),
+        ("hextree", "ground"),
+        ("hextree", "one length"),
+    ];
+    for (row, (method, ends)) in rows.iter().zip(kinds) {
+        assert_eq!(
+            (&row["method"], &row["volume_ends"]),
+            (&method.into(), &ends.into())
+        );
         assert_eq!(row["triangles"], 30000);
         assert_eq!(row["steps"], 5, "08:00 … 16:00 every 2 h");
         for key in [

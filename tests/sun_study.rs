@@ -52,6 +52,7 @@ fn spec(
         resolution,
         silhouette: SilhouetteMethod::Hextree,
         non_casters: Default::default(),
+        volume_ends: Default::default(),
     }
 }
 

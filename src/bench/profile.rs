@@ -1,5 +1,6 @@
 //! `bench profile`: one sun-path shadow profile of a generated building (and, when asked,
-//! of the real models), with brute-force and hextree silhouettes, side by side.
+//! of the real models), with brute-force and hextree silhouettes, and with the volumes
+//! ending at the ground or all of one length, side by side.
 
 use std::sync::atomic::AtomicBool;
 
@@ -9,7 +10,7 @@ use serde::Serialize;
 use crate::geometry::Mesh;
 use crate::gpu::Gpu;
 use crate::shadow::SilhouetteMethod;
-use crate::study::profile::{compute, ProfileError, ProfileSpec};
+use crate::study::profile::{compute, ProfileError, ProfileSpec, VolumeEnds};
 use crate::sun::{Site, SunOptions, Zone};
 
 /// One silhouette method's timing on one model.
@@ -19,6 +20,8 @@ pub struct ProfileBenchRow {
     pub model: String,
     /// "brute force" or "hextree".
     pub method: &'static str,
+    /// Where the volumes end: "ground" (the default) or "one length" (the first release).
+    pub volume_ends: &'static str,
     /// Triangles of the building.
     pub triangles: usize,
     /// Profile steps (sun positions).
@@ -80,15 +83,18 @@ fn run_model(
         resolution,
         silhouette: SilhouetteMethod::Brute,
         non_casters: Default::default(),
+        volume_ends: Default::default(),
     };
     let cancel = AtomicBool::new(false);
     let mut rows = Vec::new();
-    for (label, method) in [
-        ("warm-up", SilhouetteMethod::Hextree),
-        ("brute force", SilhouetteMethod::Brute),
-        ("hextree", SilhouetteMethod::Hextree),
+    for (label, method, ends) in [
+        ("warm-up", SilhouetteMethod::Hextree, VolumeEnds::Ground),
+        ("brute force", SilhouetteMethod::Brute, VolumeEnds::Ground),
+        ("hextree", SilhouetteMethod::Hextree, VolumeEnds::Ground),
+        ("hextree", SilhouetteMethod::Hextree, VolumeEnds::OneLength),
     ] {
         spec.silhouette = method;
+        spec.volume_ends = ends;
         let t = std::time::Instant::now();
         let p = compute(gpu, model, &spec, |_, _| {}, &cancel)?;
         let total_s = t.elapsed().as_secs_f64();
@@ -97,6 +103,10 @@ fn run_model(
             rows.push(ProfileBenchRow {
                 model: name.to_string(),
                 method: label,
+                volume_ends: match ends {
+                    VolumeEnds::Ground => "ground",
+                    VolumeEnds::OneLength => "one length",
+                },
                 triangles: model.triangles.len(),
                 steps: p.steps.len(),
                 resolution,

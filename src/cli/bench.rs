@@ -51,7 +51,7 @@ pub enum BenchCommand {
     },
     /// A shadow profile of a ~180 000-triangle building, 08:00–16:00 every 5 minutes
     /// (97 steps): seconds in total and per step, silhouettes vs shadow volumes, brute
-    /// force vs hextree.
+    /// force vs hextree, volumes ending at the ground vs all of one length.
     Profile {
         /// Print JSON {"rows": [...]}.
         #[arg(long)]

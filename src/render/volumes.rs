@@ -221,6 +221,17 @@ impl VolumeGeometry {
     }
 }
 
+/// How far the volumes of lights at infinity reach, instead of to infinity: for
+/// orthographic views, whose far plane would cut them.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Extrusion {
+    /// Every vertex by this length, metres.
+    Length(f32),
+    /// Every vertex along the light down to the plane z = this (metres; the light above
+    /// the horizon, every vertex above the plane).
+    DownToZ(f32),
+}
+
 /// `VolumeLight` in `shaders/shadow_volume.wgsl`.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
@@ -545,15 +556,14 @@ impl VolumePasses {
     }
 
     /// A bind group of per-light uniforms (one record per volume, in order; with no
-    /// volumes, one record holding only the camera). `extrude_to_z` (metres) replaces
-    /// the extrusion to infinity of lights at infinity above the horizon: each vertex goes
-    /// along the light down to that plane (plan views; below every receiver).
+    /// volumes, one record holding only the camera). `extrusion` replaces the extrusion to
+    /// infinity of lights at infinity (orthographic plan views).
     pub fn bind_group(
         &self,
         gpu: &Gpu,
         view_proj: Mat4,
         volumes: &[LightVolume],
-        extrude_to_z: Option<f32>,
+        extrusion: Option<Extrusion>,
     ) -> wgpu::BindGroup {
         let mut bytes = vec![0u8; (UNIFORM_STRIDE as usize) * volumes.len().max(1)];
         for i in 0..volumes.len().max(1) {
@@ -563,12 +573,11 @@ impl VolumePasses {
             let record = VolumeLightGpu {
                 view_proj: view_proj.to_cols_array(),
                 light: l.to_array(),
-                extrude: [
-                    extrude_to_z.unwrap_or(0.0),
-                    VOLUME_DEPTH_BIAS,
-                    0.0,
-                    extrude_to_z.map_or(0.0, |_| 1.0),
-                ],
+                extrude: match extrusion {
+                    None => [0.0, VOLUME_DEPTH_BIAS, 0.0, 0.0],
+                    Some(Extrusion::Length(m)) => [m, VOLUME_DEPTH_BIAS, 0.0, 0.0],
+                    Some(Extrusion::DownToZ(z)) => [z, VOLUME_DEPTH_BIAS, 0.0, 1.0],
+                },
             };
             let at = i * UNIFORM_STRIDE as usize;
             bytes[at..at + std::mem::size_of::<VolumeLightGpu>()]

@@ -14,7 +14,7 @@ use wgpu::util::DeviceExt;
 use crate::geometry::Mesh;
 use crate::gpu::{Gpu, GpuError};
 use crate::render::shadows::mask_texture;
-use crate::render::volumes::{VolumeGeometry, VolumePasses};
+use crate::render::volumes::{Extrusion, VolumeGeometry, VolumePasses};
 use crate::scene::{Camera, MAX_IMAGE_SIZE};
 use crate::shadow::{IgnoredTriangles, Light, SilhouetteMethod};
 use crate::sun::{self, Site, SunOptions, Zone};
@@ -73,6 +73,20 @@ pub struct ProfileSpec {
     /// Triangles that receive shadows but cast none (components left out of the casters,
     /// e.g. the existing buildings when the new one's shadow is studied).
     pub non_casters: IgnoredTriangles,
+    /// Where the shadow volumes end (the default, [`VolumeEnds::Ground`], fills least).
+    pub volume_ends: VolumeEnds,
+}
+
+/// Where a plan's shadow volumes end below the model.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum VolumeEnds {
+    /// Every vertex along the sun down to the plane half a metre under the ground: a low
+    /// edge's side covers only the plan its own shadow can reach.
+    #[default]
+    Ground,
+    /// Every vertex by the same length, enough for the highest one (the first release;
+    /// kept to measure the difference, `bench profile`).
+    OneLength,
 }
 
 impl ProfileSpec {
@@ -426,9 +440,15 @@ pub fn compute(
         timing.silhouette_s += t0.elapsed().as_secs_f64();
         let t1 = Instant::now();
         let volumes = [volume];
-        // Each vertex down to half a metre below the ground, inside the camera's far plane.
-        let floor = (lo.z - 0.5) as f32;
-        let bind = passes.bind_group(gpu, plan.view_proj, &volumes, Some(floor));
+        // Down to half a metre below the ground, inside the camera's far plane.
+        let ends = match spec.volume_ends {
+            VolumeEnds::Ground => Extrusion::DownToZ((lo.z - 0.5) as f32),
+            VolumeEnds::OneLength => {
+                let sin_e = p.elevation_deg.to_radians().sin().max(1e-3);
+                Extrusion::Length(((hi.z - lo.z + 0.5) / sin_e) as f32)
+            }
+        };
+        let bind = passes.bind_group(gpu, plan.view_proj, &volumes, Some(ends));
         let mut enc = gpu.device.create_command_encoder(&Default::default());
         passes.record_mask(
             &mut enc,

@@ -158,6 +158,7 @@ impl ViewerApp {
                 resolution: s.profile_resolution,
                 silhouette: self.display.shadows.silhouette,
                 non_casters: Default::default(),
+                volume_ends: Default::default(),
             })
         })();
         let spec = match spec.and_then(|sp| sp.local_times().map(|_| sp).map_err(|e| e.to_string()))

@@ -10,8 +10,9 @@ use crate::gpu::Gpu;
 use crate::scene::UpAxis;
 use crate::study::model::recentre;
 
-/// Runs `bench profile`: the same profile with brute-force and hextree silhouettes, on
-/// the generated building and, with `shared`, on the real models.
+/// Runs `bench profile`: the same profile with brute-force and hextree silhouettes, and
+/// with the volumes ending at the ground or of one length, on the generated building and,
+/// with `shared`, on the real models.
 pub fn run_bench(
     as_json: bool,
     resolution: u32,
@@ -47,28 +48,30 @@ pub fn run_bench(
         rows.first().map_or(0, |r| r.steps)
     );
     println!(
-        "| model | triangles | silhouettes | total s | ms/step | silhouette ms/step | volumes + read-back ms/step |"
+        "| model | triangles | silhouettes | volumes end | total s | ms/step | silhouette ms/step | volumes + read-back ms/step |"
     );
-    println!("|---|---:|---|---:|---:|---:|---:|");
+    println!("|---|---:|---|---|---:|---:|---:|---:|");
     for r in &rows {
         println!(
-            "| {} | {} | {} | {:.2} | {:.1} | {:.2} | {:.1} |",
+            "| {} | {} | {} | {} | {:.2} | {:.1} | {:.2} | {:.1} |",
             r.model,
             r.triangles,
             r.method,
+            r.volume_ends,
             r.total_s,
             r.per_step_ms,
             r.silhouette_ms_per_step,
             r.render_ms_per_step
         );
     }
-    for pair in rows.chunks(2) {
-        if let [brute, hex] = pair {
+    for model in rows.chunks(3) {
+        if let [brute, hex, one_length] = model {
             println!(
-                "{}: hextree / brute force: total {:.2}×, silhouettes {:.2}× faster",
+                "{}: hextree / brute force: total {:.2}×, silhouettes {:.2}× faster; volumes to the ground / of one length: volumes {:.2}× faster",
                 brute.model,
                 brute.total_s / hex.total_s,
-                brute.silhouette_ms_per_step / hex.silhouette_ms_per_step.max(1e-12)
+                brute.silhouette_ms_per_step / hex.silhouette_ms_per_step.max(1e-12),
+                one_length.render_ms_per_step / hex.render_ms_per_step.max(1e-12)
             );
         }
     }

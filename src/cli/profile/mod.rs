@@ -368,6 +368,7 @@ pub fn run(a: ProfileArgs) -> Result<(), CliError> {
             resolution: a.resolution,
             silhouette: a.silhouettes,
             non_casters: non_casters.clone(),
+            volume_ends: Default::default(),
         })
         .collect();
     // Check every period before starting the GPU; several dates share one extent.
