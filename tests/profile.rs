@@ -351,3 +351,53 @@ fn bench_profile_reports_both_methods_as_json() {
         }
     }
 }
+
+#[test]
+fn a_one_sided_wall_casts_its_shadow_from_either_side() {
+    // A free-standing wall modelled as one quad (an open surface, common in architects'
+    // files), 20 m long and 8 m high, facing north and then south: the June sun from the
+    // south lights its back in the first case. Both cast the same shadow, and it is the
+    // analytic one: length × height × |cos Δ| / tan e (Δ the sun's azimuth from the
+    // wall's normal).
+    let wall = |normal_y: f64| {
+        let (l, h) = (10.0, 8.0);
+        let mut m = goniolight::geometry::Mesh {
+            positions: vec![
+                DVec3::new(-l, 0.0, 0.0),
+                DVec3::new(l, 0.0, 0.0),
+                DVec3::new(l, 0.0, h),
+                DVec3::new(-l, 0.0, h),
+            ],
+            triangles: vec![[0, 2, 1], [0, 3, 2]],
+        };
+        if normal_y < 0.0 {
+            m.triangles = vec![[0, 1, 2], [0, 2, 3]];
+        }
+        // Winding (b − a) × (c − a) along normal_y.
+        let [a, b, c] = m.triangles[0].map(|i| m.positions[i as usize]);
+        assert!((b - a).cross(c - a).y * normal_y > 0.0);
+        m
+    };
+    let s = spec("10:00", "14:00", 60, 60.0, 2048);
+    let Some(gpu) = gpu_common::gpu() else {
+        return;
+    };
+    let run = |m: &goniolight::geometry::Mesh| {
+        compute(&gpu, m, &s, |_, _| {}, &AtomicBool::new(false)).unwrap()
+    };
+    let (north, south) = (run(&wall(1.0)), run(&wall(-1.0)));
+    let n = (north.resolution * north.resolution) as usize;
+    for (a, b) in north.steps.iter().zip(&south.steps) {
+        let differ = (0..n).filter(|&k| a.in_shadow(k) != b.in_shadow(k)).count();
+        assert!(differ <= 4, "{}: {differ} pixels differ", a.time);
+        let e = a.elevation_deg.to_radians();
+        let delta = (a.azimuth_deg - 180.0).to_radians();
+        let analytic = 20.0 * 8.0 * delta.cos().abs() / e.tan();
+        let got = a.shadow_area_m2;
+        assert!(
+            (got - analytic).abs() <= 0.02 * analytic,
+            "{}: {got:.2} m² vs {analytic:.2} m²",
+            a.time
+        );
+    }
+}

@@ -1,6 +1,7 @@
 //! Silhouettes: brute force and hextree agree (property test and bundled models, open and
 //! non-manifold meshes included); shadow volumes are closed and consistently wound; the
-//! z-pass/z-fail decision matches a brute-force check; volumes agree with ray casting.
+//! z-pass/z-fail decision matches a brute-force check; volumes agree with ray casting, an
+//! open surface's from either side.
 
 mod common;
 
@@ -191,6 +192,48 @@ fn shadow_volume_contains_exactly_the_ray_cast_shadow() {
             }
         }
         assert_eq!(agree, total, "{light:?}");
+    }
+}
+
+#[test]
+fn an_open_surface_casts_its_shadow_from_its_back_too() {
+    // A plate of one quad facing down, lit from above (its back): an open surface shadows
+    // from whichever side the light reaches, as the ray cast does. Its volume starts from
+    // the plate reversed and its border, reversed.
+    let plate = Mesh {
+        positions: vec![
+            DVec3::new(-0.5, -0.5, 1.0),
+            DVec3::new(0.5, -0.5, 1.0),
+            DVec3::new(0.5, 0.5, 1.0),
+            DVec3::new(-0.5, 0.5, 1.0),
+        ],
+        triangles: vec![[0, 2, 1], [0, 3, 2]],
+    };
+    let sm = SilhouetteMesh::new(&plate, "plate", 1e-9).unwrap();
+    assert_eq!(sm.two_sided, vec![true, true]);
+    let closed = SilhouetteMesh::new(&cuboid(DVec3::ZERO, DVec3::ONE), "box", 1e-9).unwrap();
+    assert!(closed.two_sided.iter().all(|&t| !t));
+    for light in [[0.7, 0.3, 4.0, 1.0], [0.3, -0.2, 1.0, 0.0]] {
+        let light = Light::new(light).unwrap();
+        let silhouette = sm.brute(&light);
+        assert_eq!(silhouette.undirected().len(), 4, "{light:?}");
+        assert_eq!(sm.cap_faces(&light), vec![[0, 1, 2], [0, 2, 3]]);
+        let vol = ShadowVolume::build(&sm, &light, &silhouette);
+        assert!(vol.is_closed());
+        let mut shadowed = 0;
+        for i in 0..40 {
+            for j in 0..40 {
+                let p = DVec3::new(
+                    -2.0 + i as f64 * 0.1 + 0.013,
+                    -2.0 + j as f64 * 0.1 + 0.007,
+                    0.0,
+                );
+                let cast = in_shadow(&plate, &light, p, 1e-9);
+                assert_eq!(inside_volume(&vol, p), cast, "{light:?} {p}");
+                shadowed += cast as usize;
+            }
+        }
+        assert!(shadowed > 50, "{shadowed}");
     }
 }
 

@@ -69,6 +69,11 @@ pub struct SilhouetteMesh {
     /// Indices into `adjacency.edges` of every other edge (border, inconsistent,
     /// non-manifold), tested directly by every method.
     pub others: Vec<u32>,
+    /// Per face: whether it belongs to an open surface (a connected part with a border
+    /// edge), which casts a shadow from whichever side the light reaches: its faces turned
+    /// from the light count as lit with their winding reversed. A closed part's unlit
+    /// faces need not (the lit ones' volume already holds their shadow).
+    pub two_sided: Vec<bool>,
     /// Degenerate triangles dropped.
     pub degenerate: usize,
     center: DVec3,
@@ -100,6 +105,7 @@ impl SilhouetteMesh {
             })
             .collect();
         let adjacency = Adjacency::build(m);
+        let two_sided = open_surfaces(&adjacency, m.triangles.len());
         let mut manifold = Vec::new();
         let mut others = Vec::new();
         for (i, e) in adjacency.edges.iter().enumerate() {
@@ -110,12 +116,19 @@ impl SilhouetteMesh {
                 } else {
                     (f[1].face, f[0].face)
                 };
-                manifold.push(ManifoldEdge {
+                let edge = ManifoldEdge {
                     a: e.a,
                     b: e.b,
                     forward: fw,
                     backward: bw,
-                });
+                };
+                manifold.push(edge);
+                if two_sided[fw as usize] {
+                    // Where an open surface turns from facing the light to facing away, both
+                    // faces count as lit (one reversed) and their two volumes each have a
+                    // side here: the edge is listed twice, so every method gives it twice.
+                    manifold.push(edge);
+                }
             } else {
                 others.push(i as u32);
             }
@@ -126,6 +139,7 @@ impl SilhouetteMesh {
             planes,
             manifold,
             others,
+            two_sided,
             degenerate,
             center,
             scale,
@@ -176,12 +190,20 @@ impl SilhouetteMesh {
     pub(crate) fn other_edges(&self, l: Vec4, out: &mut Vec<[u32; 2]>) {
         for &i in &self.others {
             let e = &self.adjacency.edges[i as usize];
+            // A face counts +1 lit running a→b, −1 lit running b→a; an open surface's face
+            // turned from the light counts as lit with its winding reversed.
             let count: i64 = self
                 .adjacency
                 .faces(e)
                 .iter()
-                .filter(|inc| self.lit(inc.face, l))
-                .map(|inc| if inc.forward { 1 } else { -1 })
+                .map(|inc| {
+                    let sign = if inc.forward { 1 } else { -1 };
+                    match (self.lit(inc.face, l), self.two_sided[inc.face as usize]) {
+                        (true, _) => sign,
+                        (false, true) => -sign,
+                        (false, false) => 0,
+                    }
+                })
                 .sum();
             let dir = if count > 0 { [e.a, e.b] } else { [e.b, e.a] };
             out.extend(std::iter::repeat_n(dir, count.unsigned_abs() as usize));
@@ -205,6 +227,26 @@ impl SilhouetteMesh {
         Silhouette { edges }
     }
 
+    /// The faces a light's volume starts from: the lit ones as wound, and an open
+    /// surface's faces turned from the light reversed (its lit side is the back).
+    pub fn cap_faces(&self, light: &Light) -> Vec<[u32; 3]> {
+        let l = self.light_in_frame(light);
+        self.mesh()
+            .triangles
+            .iter()
+            .enumerate()
+            .filter_map(|(f, &[a, b, c])| {
+                if self.lit(f as u32, l) {
+                    Some([a, b, c])
+                } else if self.two_sided[f] {
+                    Some([a, c, b])
+                } else {
+                    None
+                }
+            })
+            .collect()
+    }
+
     /// Undirected silhouette edges in the input's vertex numbering (the smallest input
     /// index of each welded vertex), i < j, sorted and unique.
     pub fn to_input_indices(&self, s: &Silhouette) -> Vec<[u32; 2]> {
@@ -221,4 +263,37 @@ impl SilhouetteMesh {
         v.dedup();
         v
     }
+}
+
+/// Per face of `face_count`: whether its connected part (faces joined by edges that two or
+/// more faces share) has a border edge.
+fn open_surfaces(adjacency: &Adjacency, face_count: usize) -> Vec<bool> {
+    let mut parent: Vec<u32> = (0..face_count as u32).collect();
+    fn root(parent: &mut [u32], mut f: u32) -> u32 {
+        while parent[f as usize] != f {
+            let up = parent[parent[f as usize] as usize];
+            parent[f as usize] = up;
+            f = up;
+        }
+        f
+    }
+    let mut border_faces = Vec::new();
+    for e in &adjacency.edges {
+        let faces = adjacency.faces(e);
+        if faces.len() == 1 {
+            border_faces.push(faces[0].face);
+        }
+        for w in faces.windows(2) {
+            let (a, b) = (root(&mut parent, w[0].face), root(&mut parent, w[1].face));
+            parent[a.max(b) as usize] = a.min(b);
+        }
+    }
+    let mut open_root = vec![false; face_count];
+    for f in border_faces {
+        let r = root(&mut parent, f);
+        open_root[r as usize] = true;
+    }
+    (0..face_count as u32)
+        .map(|f| open_root[root(&mut parent, f) as usize])
+        .collect()
 }

@@ -52,8 +52,9 @@ impl ShadowVolume {
 }
 
 /// The triangles of the shadow volume of `mesh`'s lit faces for `light`: the lit faces
-/// (front cap), their extrusions (back cap, point lights only) and a side for every
-/// silhouette edge. Vertex `v < n` is mesh vertex `v`; its extrusion to infinity is
+/// (front cap; an open surface's faces turned from the light reversed,
+/// [`SilhouetteMesh::cap_faces`]), their extrusions (back cap, point lights only) and a
+/// side for every silhouette edge. Vertex `v < n` is mesh vertex `v`; its extrusion to infinity is
 /// `n + v`, or `n` for every vertex when `shared_apex` (a light at infinity, whose
 /// extrusions are one point). The GPU keeps `n + v` for both and extrudes in the vertex
 /// shader, where the extrusions of a light at infinity coincide by themselves.
@@ -67,15 +68,12 @@ pub fn volume_triangles(
     let n = m.positions.len() as u32;
     let directional = light.is_directional();
     let far = |v: u32| if shared_apex { n } else { n + v };
-    let lit = mesh.lit_faces(light);
     let mut triangles = Vec::new();
-    for (t, &is_lit) in m.triangles.iter().zip(&lit) {
-        if is_lit {
-            triangles.push(*t);
-            if !directional {
-                let [a, b, c] = *t;
-                triangles.push([far(a), far(c), far(b)]);
-            }
+    for t in mesh.cap_faces(light) {
+        triangles.push(t);
+        if !directional {
+            let [a, b, c] = t;
+            triangles.push([far(a), far(c), far(b)]);
         }
     }
     for &[u, v] in &silhouette.edges {
