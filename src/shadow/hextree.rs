@@ -81,6 +81,8 @@ pub struct Hextree {
     nodes: Vec<Node>,
     children: Vec<u32>,
     edges: Vec<TreeEdge>,
+    /// Per stored edge: whether it lies on an open surface (read for silhouette edges only).
+    two_sided: Vec<bool>,
     faces: Vec<Vec4>,
     /// The most faces one node holds (the query's scratch size).
     max_faces: usize,
@@ -93,6 +95,7 @@ struct Builder<'a> {
     nodes: Vec<Node>,
     child_lists: Vec<Vec<u32>>,
     edges: Vec<TreeEdge>,
+    two_sided: Vec<bool>,
     faces: Vec<Vec4>,
 }
 
@@ -157,6 +160,8 @@ impl Builder<'_> {
                 forward,
                 backward,
             });
+            self.two_sided
+                .push(self.mesh.two_sided[edge.forward as usize]);
         }
         let node = &mut self.nodes[id as usize];
         node.first_edge = first_edge;
@@ -212,6 +217,7 @@ impl Hextree {
             nodes: Vec::new(),
             child_lists: Vec::new(),
             edges: Vec::with_capacity(mesh.manifold.len()),
+            two_sided: Vec::with_capacity(mesh.manifold.len()),
             faces: Vec::new(),
         };
         b.build(
@@ -235,6 +241,7 @@ impl Hextree {
         Hextree {
             nodes: b.nodes,
             children,
+            two_sided: b.two_sided,
             edges: b.edges,
             max_faces,
             faces: b.faces,
@@ -372,12 +379,14 @@ impl Hextree {
                     *flag = p.dot(l) > 0.0;
                 }
                 let first = n.first_edge as usize;
-                for e in &self.edges[first..first + n.edge_count as usize] {
+                let range = first..first + n.edge_count as usize;
+                for (e, two_sided) in self.edges[range.clone()].iter().zip(&self.two_sided[range]) {
                     SilhouetteMesh::push_manifold(
                         &mut out,
                         [e.a, e.b],
                         lit[e.forward as usize],
                         lit[e.backward as usize],
+                        || *two_sided,
                     );
                 }
             }

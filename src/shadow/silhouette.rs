@@ -123,12 +123,6 @@ impl SilhouetteMesh {
                     backward: bw,
                 };
                 manifold.push(edge);
-                if two_sided[fw as usize] {
-                    // Where an open surface turns from facing the light to facing away, both
-                    // faces count as lit (one reversed) and their two volumes each have a
-                    // side here: the edge is listed twice, so every method gives it twice.
-                    manifold.push(edge);
-                }
             } else {
                 others.push(i as u32);
             }
@@ -173,16 +167,23 @@ impl SilhouetteMesh {
     }
 
     /// Appends the silhouette contribution of a manifold edge a–b (`lit_fw`: the face
-    /// traversing a→b is lit).
+    /// traversing a→b is lit). Where an open surface (`two_sided`, asked only for a
+    /// silhouette edge) turns from facing the light to facing away, both faces count as lit
+    /// (one reversed) and each of their volumes has a side here: the edge is given twice.
     #[inline]
     pub(crate) fn push_manifold(
         out: &mut Vec<[u32; 2]>,
         [a, b]: [u32; 2],
         lit_fw: bool,
         lit_bw: bool,
+        two_sided: impl FnOnce() -> bool,
     ) {
         if lit_fw != lit_bw {
-            out.push(if lit_fw { [a, b] } else { [b, a] });
+            let edge = if lit_fw { [a, b] } else { [b, a] };
+            out.push(edge);
+            if two_sided() {
+                out.push(edge);
+            }
         }
     }
 
@@ -221,6 +222,7 @@ impl SilhouetteMesh {
                 [e.a, e.b],
                 lit[e.forward as usize],
                 lit[e.backward as usize],
+                || self.two_sided[e.forward as usize],
             );
         }
         self.other_edges(l, &mut edges);
