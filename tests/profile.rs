@@ -114,6 +114,7 @@ fn volumes_ending_at_the_ground_shadow_what_volumes_of_one_length_do() {
         let differ = (0..n).filter(|&k| a.in_shadow(k) != b.in_shadow(k)).count();
         let shadowed = (0..n).filter(|&k| a.in_shadow(k)).count();
         assert!(shadowed > 1_000, "{}", a.time);
+        eprintln!("{}: {differ} of {shadowed} shadowed pixels differ", a.time);
         assert!(differ <= 2, "{}: {differ} pixels differ", a.time);
     }
 }

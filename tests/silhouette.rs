@@ -167,6 +167,19 @@ fn inside_volume(v: &ShadowVolume, p: DVec3) -> bool {
     crossings % 2 == 1
 }
 
+/// 40 × 40 points on the ground, 10 cm apart, off the axes.
+fn ground_grid() -> impl Iterator<Item = DVec3> {
+    (0..40).flat_map(|i| {
+        (0..40).map(move |j| {
+            DVec3::new(
+                -2.0 + i as f64 * 0.1 + 0.013,
+                -2.0 + j as f64 * 0.1 + 0.007,
+                0.0,
+            )
+        })
+    })
+}
+
 #[test]
 fn shadow_volume_contains_exactly_the_ray_cast_shadow() {
     // A box floating over the ground, lit by a point light above and to the side.
@@ -176,21 +189,10 @@ fn shadow_volume_contains_exactly_the_ray_cast_shadow() {
         let light = Light::new(light).unwrap();
         let vol = ShadowVolume::build(&sm, &light, &sm.brute(&light));
         assert!(vol.is_closed());
-        let mut agree = 0;
-        let mut total = 0;
-        for i in 0..40 {
-            for j in 0..40 {
-                let p = DVec3::new(
-                    -2.0 + i as f64 * 0.1 + 0.013,
-                    -2.0 + j as f64 * 0.1 + 0.007,
-                    0.0,
-                );
-                total += 1;
-                if inside_volume(&vol, p) == in_shadow(&mesh, &light, p, 1e-9) {
-                    agree += 1;
-                }
-            }
-        }
+        let total = ground_grid().count();
+        let agree = ground_grid()
+            .filter(|&p| inside_volume(&vol, p) == in_shadow(&mesh, &light, p, 1e-9))
+            .count();
         assert_eq!(agree, total, "{light:?}");
     }
 }
@@ -221,17 +223,10 @@ fn an_open_surface_casts_its_shadow_from_its_back_too() {
         let vol = ShadowVolume::build(&sm, &light, &silhouette);
         assert!(vol.is_closed());
         let mut shadowed = 0;
-        for i in 0..40 {
-            for j in 0..40 {
-                let p = DVec3::new(
-                    -2.0 + i as f64 * 0.1 + 0.013,
-                    -2.0 + j as f64 * 0.1 + 0.007,
-                    0.0,
-                );
-                let cast = in_shadow(&plate, &light, p, 1e-9);
-                assert_eq!(inside_volume(&vol, p), cast, "{light:?} {p}");
-                shadowed += cast as usize;
-            }
+        for p in ground_grid() {
+            let cast = in_shadow(&plate, &light, p, 1e-9);
+            assert_eq!(inside_volume(&vol, p), cast, "{light:?} {p}");
+            shadowed += cast as usize;
         }
         assert!(shadowed > 50, "{shadowed}");
     }
