@@ -5,6 +5,7 @@ pub mod generate;
 pub mod howell;
 pub mod obj;
 pub mod simplify;
+pub mod split;
 pub mod weld;
 
 use glam::DVec3;
