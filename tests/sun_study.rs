@@ -1188,9 +1188,10 @@ fn model_coloured_by_hours_matches_a_cpu_ray_cast_per_pixel() {
     };
     let camera = default_camera(&model, 0.0).unwrap();
     let size = (240, 180);
+    let geometry = goniolight::study::profile::prepare(&gpu, &model).unwrap();
     let v = view_hours(
         &gpu,
-        &model,
+        &geometry,
         &s,
         &camera,
         size,

@@ -374,6 +374,23 @@ pub fn compute(
     gpu: &Gpu,
     model: &Mesh,
     spec: &ProfileSpec,
+    progress: impl FnMut(usize, usize),
+    cancel: &AtomicBool,
+) -> Result<Profile, ProfileError> {
+    compute_on(gpu, &prepare(gpu, model)?, spec, progress, cancel)
+}
+
+/// `model` (world frame: metres, +Z up) prepared for studies: welded, with its edges, on
+/// the GPU. Prepare once for several profiles or views of one model.
+pub fn prepare(gpu: &Gpu, model: &Mesh) -> Result<VolumeGeometry, ProfileError> {
+    VolumeGeometry::new(gpu, model, "model").map_err(|e| ProfileError::Input(e.to_string()))
+}
+
+/// [`compute`] on a model already [`prepare`]d.
+pub fn compute_on(
+    gpu: &Gpu,
+    geometry: &VolumeGeometry,
+    spec: &ProfileSpec,
     mut progress: impl FnMut(usize, usize),
     cancel: &AtomicBool,
 ) -> Result<Profile, ProfileError> {
@@ -393,35 +410,23 @@ pub fn compute(
     }
     // Sun positions first: they decide the extent and which steps are skipped.
     let (suns, skipped) = spec.suns()?;
-    let geometry =
-        VolumeGeometry::new(gpu, model, "model").map_err(|e| ProfileError::Input(e.to_string()))?;
-    let (lo, hi) = geometry
-        .mesh
-        .mesh()
-        .bounds()
-        .ok_or_else(|| ProfileError::Input("the model has no triangles".into()))?;
-    let min_elevation = suns
-        .iter()
-        .map(|(_, p, _)| p.elevation_deg)
-        .fold(90.0, f64::min);
-    let (center, auto_side) = default_extent(geometry.mesh.mesh(), min_elevation)
-        .ok_or_else(|| ProfileError::Input("the model has no triangles".into()))?;
-    let extent = spec.extent_m.unwrap_or(auto_side);
+    let PlanSquare {
+        center,
+        side: extent,
+        lo,
+        hi,
+    } = plan_square(geometry, &suns, spec)?;
     let n = spec.resolution;
     let plan = PlanView::new(gpu, center, extent, lo.z, hi.z, n);
     let passes = VolumePasses::new(gpu, crate::render::targets::LDR_FORMAT);
-    let camera_bind = passes.bind_group(gpu, plan.view_proj, &[], None);
-    let mut enc = gpu.device.create_command_encoder(&Default::default());
-    passes.record_surfaces(
-        &mut enc,
-        &geometry,
-        (&plan.ground_vertices, &plan.ground_indices, 6),
-        &camera_bind,
-        &plan.ids_view,
-        &plan.depth_view,
-    );
-    gpu.queue.submit([enc.finish()]);
-    let surface = gpu.read_texture(&plan.ids)?;
+    let (_, surface) = surfaces_seen(
+        gpu,
+        &passes,
+        geometry,
+        (&plan.ground_vertices, &plan.ground_indices),
+        plan.view_proj,
+        (&plan.ids, &plan.depth_view),
+    )?;
 
     let pixel_area = (extent / n as f64).powi(2);
     let footprint = surface.iter().filter(|&&s| s == SURFACE_MODEL).count() as f64 * pixel_area;
@@ -452,7 +457,7 @@ pub fn compute(
         let mut enc = gpu.device.create_command_encoder(&Default::default());
         passes.record_mask(
             &mut enc,
-            &geometry,
+            geometry,
             &volumes,
             &bind,
             &plan.mask,
@@ -535,7 +540,6 @@ struct PlanView {
     ground_vertices: wgpu::Buffer,
     ground_indices: wgpu::Buffer,
     ids: wgpu::Texture,
-    ids_view: wgpu::TextureView,
     mask: wgpu::Texture,
     depth_view: wgpu::TextureView,
 }
@@ -557,12 +561,69 @@ impl PlanView {
             view_proj,
             ground_vertices,
             ground_indices,
-            ids_view: ids.create_view(&Default::default()),
             ids,
             mask: mask_texture(gpu, n, n, 1),
             depth_view: depth.create_view(&Default::default()),
         }
     }
+}
+
+/// Where a study's plan lies: the square centred at `center` of `side` metres (enough for
+/// the shadow of the lowest sun unless the spec gives it), and the model's bounds.
+pub(super) struct PlanSquare {
+    pub center: DVec2,
+    pub side: f64,
+    pub lo: DVec3,
+    pub hi: DVec3,
+}
+
+/// The plan square of `geometry` for `spec`, whose `suns` are given.
+pub(super) fn plan_square(
+    geometry: &VolumeGeometry,
+    suns: &[SunStep],
+    spec: &ProfileSpec,
+) -> Result<PlanSquare, ProfileError> {
+    let no_triangles = || ProfileError::Input("the model has no triangles".into());
+    let (lo, hi) = geometry.mesh.mesh().bounds().ok_or_else(no_triangles)?;
+    let min_elevation = suns
+        .iter()
+        .map(|(_, p, _)| p.elevation_deg)
+        .fold(90.0, f64::min);
+    let (center, auto_side) =
+        default_extent(geometry.mesh.mesh(), min_elevation).ok_or_else(no_triangles)?;
+    Ok(PlanSquare {
+        center,
+        side: spec.extent_m.unwrap_or(auto_side),
+        lo,
+        hi,
+    })
+}
+
+/// Draws the surfaces of `geometry` and the `ground` square (vertex and index buffers)
+/// seen through `view_proj` into `ids` and the depth target, and reads back which one
+/// each pixel sees; returns the camera's bind group with it.
+pub(super) fn surfaces_seen(
+    gpu: &Gpu,
+    passes: &VolumePasses,
+    geometry: &VolumeGeometry,
+    (ground_vertices, ground_indices): (&wgpu::Buffer, &wgpu::Buffer),
+    view_proj: glam::Mat4,
+    (ids, depth_view): (&wgpu::Texture, &wgpu::TextureView),
+) -> Result<(wgpu::BindGroup, Vec<u8>), ProfileError> {
+    let camera_bind = passes.bind_group(gpu, view_proj, &[], None);
+    let ids_view = ids.create_view(&Default::default());
+    let mut enc = gpu.device.create_command_encoder(&Default::default());
+    passes.record_surfaces(
+        &mut enc,
+        geometry,
+        (ground_vertices, ground_indices, 6),
+        &camera_bind,
+        &ids_view,
+        depth_view,
+    );
+    gpu.queue.submit([enc.finish()]);
+    let surface = gpu.read_texture(ids)?;
+    Ok((camera_bind, surface))
 }
 
 /// The ground as a square of half-side `half` metres about `center` at height `z`: its

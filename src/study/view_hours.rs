@@ -12,14 +12,14 @@
 use std::path::Path;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use glam::{DVec2, DVec3};
+use glam::DVec3;
 
 use super::annotate::{titled, PlanLabels};
 use super::colours::hours_colour;
 use super::output::with_hours_legend;
 use super::profile::{
-    default_extent, depth_target, ground_square, HoursMetric, ProfileError, ProfileSpec,
-    SURFACE_NONE,
+    depth_target, ground_square, plan_square, surfaces_seen, HoursMetric, ProfileError,
+    ProfileSpec, SURFACE_NONE,
 };
 use crate::geometry::Mesh;
 use crate::gpu::Gpu;
@@ -84,12 +84,13 @@ pub fn default_camera(model: &Mesh, north_offset_deg: f64) -> Option<Camera> {
     Some(camera)
 }
 
-/// Hours of sun per pixel of `camera`'s `width` × `height` view of `model` (and of the
-/// ground square a plan of `spec` would show, at the model's lowest point) over `spec`'s
-/// period. `progress(done, total)` after each step; `cancel` stops between steps.
+/// Hours of sun per pixel of `camera`'s `width` × `height` view of a model
+/// ([`super::profile::prepare`]d: prepare once for a profile and a view) and of the ground
+/// square a plan of `spec` would show, at the model's lowest point, over `spec`'s period.
+/// `progress(done, total)` after each step; `cancel` stops between steps.
 pub fn compute(
     gpu: &Gpu,
-    model: &Mesh,
+    geometry: &VolumeGeometry,
     spec: &ProfileSpec,
     camera: &Camera,
     (width, height): (u32, u32),
@@ -104,41 +105,25 @@ pub fn compute(
         }
     }
     let (suns, _) = spec.suns()?;
-    let geometry =
-        VolumeGeometry::new(gpu, model, "model").map_err(|e| ProfileError::Input(e.to_string()))?;
-    let no_triangles = || ProfileError::Input("the model has no triangles".into());
-    let (lo, _) = geometry.mesh.mesh().bounds().ok_or_else(no_triangles)?;
-    let min_elevation = suns
-        .iter()
-        .map(|(_, p, _)| p.elevation_deg)
-        .fold(90.0, f64::min);
-    let (center, auto_side) =
-        default_extent(geometry.mesh.mesh(), min_elevation).ok_or_else(no_triangles)?;
-    let side = spec.extent_m.unwrap_or(auto_side);
+    let plan = plan_square(geometry, &suns, spec)?;
     let aspect = width as f64 / height as f64;
     let view_proj = camera.view_projection(aspect);
     let near = camera.near_rectangle(aspect);
-    let ground = ground_square(gpu, DVec2::new(center.x, center.y), side * 0.5, lo.z);
+    let ground = ground_square(gpu, plan.center, plan.side * 0.5, plan.lo.z);
     let ids = mask_texture(gpu, width, height, 1);
-    let ids_view = ids.create_view(&Default::default());
     let mask = mask_texture(gpu, width, height, 1);
     let mask_view = mask.create_view(&Default::default());
     let depth = depth_target(gpu, width, height);
     let depth_view = depth.create_view(&Default::default());
-
     let passes = VolumePasses::new(gpu, crate::render::targets::LDR_FORMAT);
-    let camera_bind = passes.bind_group(gpu, view_proj, &[], None);
-    let mut enc = gpu.device.create_command_encoder(&Default::default());
-    passes.record_surfaces(
-        &mut enc,
-        &geometry,
-        (&ground.0, &ground.1, 6),
-        &camera_bind,
-        &ids_view,
-        &depth_view,
-    );
-    gpu.queue.submit([enc.finish()]);
-    let surface = gpu.read_texture(&ids)?;
+    let (camera_bind, surface) = surfaces_seen(
+        gpu,
+        &passes,
+        geometry,
+        (&ground.0, &ground.1),
+        view_proj,
+        (&ids, &depth_view),
+    )?;
 
     let mut sun_h = vec![0f32; surface.len()];
     let total = suns.len();
@@ -154,10 +139,10 @@ pub fn compute(
         let faces = geometry.faces_by_light(gpu, &light);
         let bind = passes.bind_group(gpu, view_proj, &volumes, None);
         let mut enc = gpu.device.create_command_encoder(&Default::default());
-        passes.record_mask(&mut enc, &geometry, &volumes, &bind, &mask, &depth_view);
+        passes.record_mask(&mut enc, geometry, &volumes, &bind, &mask, &depth_view);
         passes.record_faces_mark(
             &mut enc,
-            &geometry,
+            geometry,
             &faces,
             &camera_bind,
             &mask_view,

@@ -20,7 +20,7 @@ use crate::render::lightmap::LightMap;
 use crate::render::ShadowSettings;
 use crate::scene::Camera;
 use crate::scene::Scene;
-use crate::study::profile::{Profile, ProfileError, ProfileSpec};
+use crate::study::profile::{compute_on, prepare, Profile, ProfileError, ProfileSpec};
 use crate::study::view_hours::{compute as view_hours, ViewHours};
 
 /// Flags a worker reads between units of work.
@@ -290,16 +290,20 @@ pub fn start_profile(
             ProfileError::Cancelled => ProfileUpdate::Failed("cancelled".into()),
             e => ProfileUpdate::Failed(e.to_string()),
         };
-        let profile =
-            crate::study::profile::compute(&gpu, &mesh, &spec, progress(0), &control.cancel);
-        let _ = tx.send(match profile {
-            Ok(p) => ProfileUpdate::Done(Box::new(p)),
-            Err(e) => return drop(tx.send(failed(e))),
+        let profile = prepare(&gpu, &mesh).and_then(|geometry| {
+            compute_on(&gpu, &geometry, &spec, progress(0), &control.cancel).map(|p| (p, geometry))
         });
+        let geometry = match profile {
+            Ok((p, geometry)) => {
+                let _ = tx.send(ProfileUpdate::Done(Box::new(p)));
+                geometry
+            }
+            Err(e) => return drop(tx.send(failed(e))),
+        };
         if let Some((camera, size)) = view {
             let v = view_hours(
                 &gpu,
-                &mesh,
+                &geometry,
                 &spec,
                 &camera,
                 size,

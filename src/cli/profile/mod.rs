@@ -25,7 +25,9 @@ use crate::shadow::SilhouetteMethod;
 use crate::study::annotate::PlanLabels;
 use crate::study::model::{recentre, up_axis_warning};
 use crate::study::output::{write_study, StudyOutput};
-use crate::study::profile::{compute, shared_extent, HoursMetric, Profile, ProfileSpec};
+use crate::study::profile::{
+    compute_on, prepare, shared_extent, HoursMetric, Profile, ProfileSpec,
+};
 use crate::study::rasters::read_areas;
 use crate::study::surfaces::parse_points;
 use crate::study::view_hours::{compute as view_hours, default_camera, write_model_view};
@@ -386,6 +388,8 @@ pub fn run(a: ProfileArgs) -> Result<(), CliError> {
         (e, _) => e,
     };
     let gpu = Gpu::shared().map_err(CliError::failure)?;
+    // Welded, with its edges (and the hextree on first use), once for every date and view.
+    let geometry = prepare(&gpu, &model)?;
     let bar = indicatif::ProgressBar::new(steps as u64);
     bar.set_style(
         indicatif::ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} steps, {eta} left")
@@ -407,9 +411,9 @@ pub fn run(a: ProfileArgs) -> Result<(), CliError> {
             ..spec.clone()
         };
         let t = std::time::Instant::now();
-        let result = compute(
+        let result = compute_on(
             &gpu,
-            &model,
+            &geometry,
             &spec,
             |done, _| bar.set_position((done_before + done) as u64),
             &cancel,
@@ -428,7 +432,7 @@ pub fn run(a: ProfileArgs) -> Result<(), CliError> {
             Some(camera) => {
                 let result = view_hours(
                     &gpu,
-                    &model,
+                    &geometry,
                     &spec,
                     camera,
                     a.view_size,
