@@ -119,9 +119,12 @@ fn compose(
 /// the labels' title and subtitle.
 pub fn titled(body: &image::RgbaImage, labels: &PlanLabels) -> image::RgbaImage {
     let (bw, bh) = body.dimensions();
-    compose((bw.max(480), TOP + bh), body, 0, |root| {
-        draw_titles(root, labels)
-    })
+    // Wide enough for the lines (sans-serif averages under 0.6 of its size per character).
+    let text = |line: &str, px: f64| (line.chars().count() as f64 * 0.6 * px) as u32 + 24;
+    let width = bw
+        .max(text(&labels.title, 21.0))
+        .max(text(&labels.subtitle, 15.0));
+    compose((width, TOP + bh), body, 0, |root| draw_titles(root, labels))
 }
 
 fn draw_titles<DB: DrawingBackend>(
