@@ -8,6 +8,7 @@ mod common;
 use glam::{DVec3, DVec4};
 use goniolight::geometry::generate::{bumpy_surface, cuboid, torus};
 use goniolight::geometry::obj::read_obj;
+use goniolight::geometry::split::split_long_edges;
 use goniolight::geometry::Mesh;
 use goniolight::shadow::raycast::{in_shadow, near_plane_shadowed_by_sampling, needs_zfail};
 use goniolight::shadow::volume::ShadowVolume;
@@ -88,6 +89,48 @@ fn brute_and_hextree_agree_on_the_bundled_models() {
             [0.5, 0.5, 0.5, 1.0],
         ] {
             check_methods_agree(&name, &mesh, light, 7);
+        }
+    }
+}
+
+#[test]
+fn many_faces_on_few_planes_fill_leaves_below_the_maximum_depth() {
+    // A box whose six sides are each ~1 500 coplanar triangles: most edges join two faces
+    // of one plane (the same dual point), so they all reach the maximum depth in a few
+    // cells and are cut into leaves one level further down. An open box (its top removed)
+    // checks the open-surface edges stored there too.
+    let closed = split_long_edges(&cuboid(DVec3::ZERO, DVec3::new(4.0, 3.0, 2.0)), 0.1);
+    let mut open = closed.clone();
+    open.triangles.retain(|t| {
+        t.iter()
+            .any(|&v| (open.positions[v as usize].z - 2.0).abs() > 1e-9)
+    });
+    assert!(open.triangles.len() < closed.triangles.len());
+    for (name, mesh) in [
+        ("tessellated box", &closed),
+        ("open tessellated box", &open),
+    ] {
+        assert!(
+            mesh.triangles.len() > 8_000,
+            "{name}: {}",
+            mesh.triangles.len()
+        );
+        let sm = SilhouetteMesh::new(mesh, name, 1e-9).unwrap();
+        for depth in [2, 5] {
+            let tree = Hextree::build(&sm, depth);
+            let per_level = tree.edges_per_level();
+            assert_eq!(per_level.iter().sum::<usize>(), sm.manifold.len(), "{name}");
+            assert!(
+                per_level[depth as usize + 1] > 0,
+                "{name} depth {depth}: no leaf cut below the maximum depth: {per_level:?}"
+            );
+            for light in [
+                [6.0, 5.0, 4.0, 1.0],
+                [-1.0, 1.5, 9.0, 1.0],
+                [0.3, -0.2, -0.9, 0.0],
+            ] {
+                check_methods_agree(name, mesh, light, depth);
+            }
         }
     }
 }

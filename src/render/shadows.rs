@@ -207,7 +207,7 @@ impl ShadowPasses {
     /// Prepares the shadows of `scene` for one frame of `width` × `height` seen through
     /// `view_proj` with near rectangle `near`: draws the paraboloid maps now (they do not
     /// depend on the camera) or builds the lights' volumes (recorded per frame by
-    /// [`ShadowFrame::record_mask`]).
+    /// [`ShadowPasses::record_mask`]).
     #[allow(clippy::too_many_arguments)]
     pub fn prepare(
         &self,
