@@ -548,6 +548,38 @@ fn polygon_area(coords: &serde_json::Value) -> f64 {
         .sum()
 }
 
+/// The value of attribute `name` in an SVG tag's text.
+fn svg_attr(tag: &str, name: &str) -> String {
+    let start = tag.find(&format!(" {name}=\"")).unwrap() + name.len() + 3;
+    tag[start..].split('"').next().unwrap().to_string()
+}
+
+/// The suns a sun-path diagram plots: (time, azimuth, elevation) read back from their
+/// positions through the frame the SVG itself draws (`unproject`: the frame tag and a
+/// sun's x, y to azimuth and elevation).
+fn plotted_suns(
+    svg: &str,
+    frame_tag: &str,
+    frame_id: &str,
+    unproject: impl Fn(&str, f64, f64) -> (f64, f64),
+) -> Vec<(String, f64, f64)> {
+    let frame = svg
+        .split(&format!("<{frame_tag}"))
+        .find(|t| t.contains(&format!("id=\"{frame_id}\"")))
+        .unwrap_or_else(|| panic!("no {frame_tag} {frame_id}"));
+    svg.split("<circle")
+        .filter(|t| t.contains("class=\"sun\""))
+        .map(|tag| {
+            let (x, y): (f64, f64) = (
+                svg_attr(tag, "cx").parse().unwrap(),
+                svg_attr(tag, "cy").parse().unwrap(),
+            );
+            let (az, el) = unproject(frame, x, y);
+            (svg_attr(tag, "data-time"), az, el)
+        })
+        .collect()
+}
+
 #[test]
 fn sun_path_diagram_plots_the_suns_that_sun_json_gives() {
     let Some((_tmp, out)) = study_dir() else {
@@ -557,38 +589,32 @@ fn sun_path_diagram_plots_the_suns_that_sun_json_gives() {
         &out,
         &["--date", "2026-03-21", "--resolution", "64"],
     ));
+    let num = |tag: &str, name: &str| -> f64 { svg_attr(tag, name).parse().unwrap() };
     let svg = read(&out, "sunpath.svg");
-    let attr = |tag: &str, name: &str| -> String {
-        let start = tag.find(&format!(" {name}=\"")).unwrap() + name.len() + 3;
-        tag[start..].split('"').next().unwrap().to_string()
-    };
-    let horizon = svg
-        .split("<circle")
-        .find(|t| t.contains("id=\"horizon\""))
-        .unwrap();
-    let (cx, cy, r): (f64, f64, f64) = (
-        attr(horizon, "cx").parse().unwrap(),
-        attr(horizon, "cy").parse().unwrap(),
-        attr(horizon, "r").parse().unwrap(),
-    );
-    let suns: Vec<&str> = svg
-        .split("<circle")
-        .filter(|t| t.contains("class=\"sun\""))
-        .collect();
-    assert_eq!(suns.len(), 9, "08:00 … 16:00");
-    for tag in suns {
-        let (x, y): (f64, f64) = (
-            attr(tag, "cx").parse().unwrap(),
-            attr(tag, "cy").parse().unwrap(),
-        );
-        // Invert the stereographic projection: r = R tan(zenith / 2), north up, east right.
-        let (dx, dy) = (x - cx, cy - y);
+    // Invert the stereographic projection: r = R tan(zenith / 2), north up, east right.
+    let stereographic = plotted_suns(&svg, "circle", "horizon", |horizon, x, y| {
+        let (dx, dy) = (x - num(horizon, "cx"), num(horizon, "cy") - y);
         let azimuth = dx.atan2(dy).to_degrees().rem_euclid(360.0);
-        let elevation = 90.0 - 2.0 * (dx.hypot(dy) / r).atan().to_degrees();
-        let time = attr(tag, "data-time");
+        let zenith = 2.0 * (dx.hypot(dy) / num(horizon, "r")).atan().to_degrees();
+        (azimuth, 90.0 - zenith)
+    });
+    // The cylindrical chart: azimuth 0°–360° across its frame, elevation 0°–90° up it.
+    let cylindrical_svg = read(&out, "sunpath-cylindrical.svg");
+    assert!(cylindrical_svg.contains(r#"data-azimuth="0-360" data-elevation="0-90""#));
+    let cylindrical = plotted_suns(&cylindrical_svg, "rect", "frame", |frame, x, y| {
+        let (left, top) = (num(frame, "x"), num(frame, "y"));
+        let (width, height) = (num(frame, "width"), num(frame, "height"));
+        (
+            360.0 * (x - left) / width,
+            90.0 * (top + height - y) / height,
+        )
+    });
+    assert_eq!(stereographic.len(), 9, "08:00 … 16:00");
+    assert_eq!(cylindrical.len(), 9, "08:00 … 16:00");
+    for (time, azimuth, elevation) in stereographic.iter().chain(&cylindrical) {
         let (code, json, err) = run_cli(
             &[
-                "sun", "--lat", "48.21", "--lon", "16.37", "--time", &time, "--json",
+                "sun", "--lat", "48.21", "--lon", "16.37", "--time", time, "--json",
             ],
             "",
         );
@@ -603,13 +629,15 @@ fn sun_path_diagram_plots_the_suns_that_sun_json_gives() {
             "{time}: plotted {azimuth} {elevation}, sun {az} {el}"
         );
     }
-    // The diagram has the date arcs and hour lines.
-    assert_eq!(
-        svg.matches("class=\"date\" data-date=\"2026-06-21\"")
-            .count(),
-        1
-    );
-    assert!(svg.matches("class=\"hour\"").count() >= 12);
+    // Both diagrams have the date arcs and hour lines.
+    for svg in [&svg, &cylindrical_svg] {
+        assert_eq!(
+            svg.matches("class=\"date\" data-date=\"2026-06-21\"")
+                .count(),
+            1
+        );
+        assert!(svg.matches("class=\"hour\"").count() >= 12);
+    }
 }
 
 #[test]

@@ -11,10 +11,10 @@ use crate::study::annotate::PlanLabels;
 use crate::study::mask::ObstructionMask;
 use crate::study::output::StudySummary;
 use crate::study::profile::{Profile, ProfileSpec};
-use crate::study::sunpath::SunPathDiagram;
+use crate::study::sunpath::{Projection, SunPathDiagram};
 
-/// The sun-path diagram of the study's site with this date's steps marked
-/// (`sunpath.svg`), and one per window point with the sky the model hides from it
+/// The sun-path diagram of the study's site with this date's steps marked, stereographic
+/// (`sunpath.svg`) and cylindrical (`sunpath-cylindrical.svg`), and one per window point with the sky the model hides from it
 /// (`sunpath-NAME.svg`, the name's other characters than letters, digits, `-` and `_` as
 /// `_`; a name taken already gets `-2`, `-3` …).
 pub(super) fn write_sun_path(
@@ -37,11 +37,14 @@ pub(super) fn write_sun_path(
         title: format!("Sun path — {}", labels.title),
         marked: suns,
         mask: None,
+        projection: Projection::Cylindrical,
     };
     let write = |diagram: &SunPathDiagram, name: &str| {
         let svg = diagram.svg().map_err(|e| CliError::failure(anyhow!(e)))?;
         write_atomic(&dir.join(name), svg.as_bytes()).map_err(CliError::failure)
     };
+    write(&diagram, "sunpath-cylindrical.svg")?;
+    diagram.projection = Projection::Stereographic;
     write(&diagram, "sunpath.svg")?;
     let title = diagram.title.clone();
     let names = diagram_names(masks.iter().map(|m| m.name.as_str()));
@@ -54,9 +57,10 @@ pub(super) fn write_sun_path(
 }
 
 /// The files of the points' diagrams: `sunpath-NAME.svg` with [`file_safe`] names; two
-/// names alike but for their odd characters get `-2`, `-3` … after the first.
+/// names alike but for their odd characters get `-2`, `-3` … after the first, and so does a
+/// point named like the site's cylindrical diagram.
 fn diagram_names<'a>(points: impl Iterator<Item = &'a str>) -> Vec<String> {
-    let mut used = std::collections::HashSet::new();
+    let mut used = std::collections::HashSet::from(["sunpath-cylindrical.svg".to_string()]);
     points
         .map(|point| {
             let stem = file_safe(point);
@@ -120,14 +124,15 @@ mod tests {
 
     #[test]
     fn point_diagrams_get_safe_distinct_file_names() {
-        let names = diagram_names(["a b", "a_b", "a/b", "Süd-1"].into_iter());
+        let names = diagram_names(["a b", "a_b", "a/b", "Süd-1", "cylindrical"].into_iter());
         assert_eq!(
             names,
             [
                 "sunpath-a_b.svg",
                 "sunpath-a_b-2.svg",
                 "sunpath-a_b-3.svg",
-                "sunpath-S_d-1.svg"
+                "sunpath-S_d-1.svg",
+                "sunpath-cylindrical-2.svg"
             ]
         );
     }
