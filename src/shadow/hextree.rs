@@ -427,9 +427,16 @@ impl Hextree {
         depth: u32,
         stop_fraction: f64,
     ) -> f64 {
+        self.judge(&Probe::new(mesh, light), depth, stop_fraction).1
+    }
+
+    /// [`Hextree::frontier`] with its edge count as a fraction of all the manifold edges.
+    fn judge(&self, probe: &Probe, depth: u32, stop_fraction: f64) -> (Frontier, f64) {
         let total = self.nodes[0].subtree_edges.max(1) as f64;
         let stop = (stop_fraction * total).ceil() as u64;
-        self.frontier(&Probe::new(mesh, light), depth, stop).edges as f64 / total
+        let frontier = self.frontier(probe, depth, stop);
+        let fraction = frontier.edges as f64 / total;
+        (frontier, fraction)
     }
 
     /// Silhouette edges for `light`: the same set as [`SilhouetteMesh::brute`]. When the
@@ -438,10 +445,8 @@ impl Hextree {
     /// reads less memory; otherwise the traversal goes on from the nodes judged.
     pub fn query(&self, mesh: &SilhouetteMesh, light: &Light) -> Silhouette {
         let probe = Probe::new(mesh, light);
-        let total = self.nodes[0].subtree_edges.max(1) as f64;
-        let stop = (FALLBACK_FRACTION * total).ceil() as u64;
-        let frontier = self.frontier(&probe, ESTIMATE_DEPTH, stop);
-        if frontier.edges as f64 / total > FALLBACK_FRACTION {
+        let (frontier, fraction) = self.judge(&probe, ESTIMATE_DEPTH, FALLBACK_FRACTION);
+        if fraction > FALLBACK_FRACTION {
             return mesh.brute(light);
         }
         self.walk(mesh, &probe, frontier.nodes)
@@ -467,15 +472,17 @@ impl Hextree {
         let mut stack = start;
         stack.reverse();
         // Leaves found, tested [`LEAF_LAG`] leaves later, when their data has arrived.
-        let mut pending = std::collections::VecDeque::with_capacity(LEAF_LAG + 1);
+        let mut pending = std::collections::VecDeque::with_capacity(LEAF_LAG);
         while let Some(id) = stack.pop() {
             let n = &self.nodes[id as usize];
             if n.child_count == 0 {
-                pending.push_back(id);
-                if pending.len() > LEAF_LAG {
-                    let leaf = &self.nodes[pending.pop_front().unwrap_or(id) as usize];
-                    self.test_leaf(leaf, probe.l, &mut scratch, &mut out);
+                if pending.len() == LEAF_LAG {
+                    if let Some(first) = pending.pop_front() {
+                        let leaf = &self.nodes[first as usize];
+                        self.test_leaf(leaf, probe.l, &mut scratch, &mut out);
+                    }
                 }
+                pending.push_back(id);
                 continue;
             }
             // In reverse, so that they are visited in memory order. Their own children
