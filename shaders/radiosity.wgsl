@@ -32,8 +32,9 @@ struct SolveParams {
 };
 
 struct ShooterInfo {
-    // first entry of shooter_elements, element count, (a workgroup's record: the
-    // shooter), first piece.
+    // first entry of shooter_elements, element count, z: the shooter's weight in the
+    // selection (f32 bits; importance-driven shooting) or, in a workgroup's record, the
+    // shooter; first piece.
     range: vec4<u32>,
     // rgb reflectance, w area.
     reflectance_area: vec4<f32>,
@@ -59,7 +60,8 @@ struct PatchInfo {
 @group(0) @binding(4) var<storage, read_write> unshot: array<vec4<f32>>;
 @group(0) @binding(5) var<storage, read> shooters: array<ShooterInfo>;
 // Per shooter: rgb unshot power, w Σ |luminance| power; then the selection record at
-// shooter_count + 0: shooter (bits), its power, Σ |unshot power|; + 1: overshoot rgb;
+// shooter_count + 0: shooter (bits), its power (weighted), Σ |unshot power|, Σ weight ×
+// |unshot power|; + 1: overshoot rgb;
 // + 2: total unshot power rgb.
 @group(0) @binding(6) var<storage, read_write> shooter_power: array<vec4<f32>>;
 // The shot's patches.
@@ -159,18 +161,24 @@ fn large_shooter_sums(
 @compute @workgroup_size(256)
 fn select_shooter(@builtin(local_invocation_index) l: u32) {
     var sum = vec4<f32>(0.0);
+    var weighted = 0.0;
     for (var t = l; t < params.shooter_count; t += 256u) {
         sum += shooter_power[t];
+        weighted += shooter_power[t].w * bitcast<f32>(shooters[t].range.z);
     }
     wg_sum[l] = sum;
+    wg_best[l] = weighted;
     workgroupBarrier();
     for (var s = 128u; s > 0u; s >>= 1u) {
         if (l < s) {
             wg_sum[l] += wg_sum[l + s];
+            wg_best[l] += wg_best[l + s];
         }
         workgroupBarrier();
     }
     let total = wg_sum[0];
+    let total_weighted = wg_best[0];
+    workgroupBarrier();
     let ambient = total.rgb / params.total_area / (1.0 - params.mean_reflectance);
     var best = -1.0;
     var best_index = 0xffffffffu;
@@ -185,7 +193,7 @@ fn select_shooter(@builtin(local_invocation_index) l: u32) {
         if (params.overshoot != 0u) {
             extra = max(min(info.reflectance_area.rgb * ambient, total.rgb / area - mean), vec3<f32>(0.0));
         }
-        let power = abs(dot(mean + extra, LUMA)) * area;
+        let power = abs(dot(mean + extra, LUMA)) * area * bitcast<f32>(info.range.z);
         if (power > best) {
             best = power;
             best_index = t;
@@ -211,7 +219,7 @@ fn select_shooter(@builtin(local_invocation_index) l: u32) {
             extra = max(min(info.reflectance_area.rgb * ambient, total.rgb / area - mean), vec3<f32>(0.0));
         }
         let at = params.shooter_count;
-        shooter_power[at] = vec4<f32>(bitcast<f32>(t), wg_best[0], total.w, 0.0);
+        shooter_power[at] = vec4<f32>(bitcast<f32>(t), wg_best[0], total.w, total_weighted);
         shooter_power[at + 1u] = vec4<f32>(extra, 0.0);
         shooter_power[at + 2u] = vec4<f32>(total.rgb, 0.0);
     }

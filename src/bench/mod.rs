@@ -4,6 +4,7 @@
 pub mod clusters;
 pub mod profile;
 pub mod radiosity;
+pub mod radiosity_view;
 pub mod raycast;
 pub mod render;
 pub mod silhouette;

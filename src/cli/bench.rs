@@ -99,6 +99,47 @@ pub enum BenchCommand {
         #[arg(long)]
         shared: Option<std::path::PathBuf>,
     },
+    /// View-driven radiosity (Bozalina §6.2 as a number): seconds until the image in view
+    /// is within --tolerance of the converged image, global vs importance-driven vs
+    /// perspective-driven, from the scene's camera or --eye/--look-at/--fov.
+    RadiosityView {
+        /// Print JSON.
+        #[arg(long)]
+        json: bool,
+        /// The scene (default: the bundled assets/scenes/furnished_room.toml).
+        #[arg(long)]
+        scene: Option<std::path::PathBuf>,
+        /// Eye position "x,y,z", metres (default: the scene's camera).
+        #[arg(long, value_delimiter = ',', num_args = 3, requires = "look_at")]
+        eye: Option<Vec<f64>>,
+        /// The point looked at "x,y,z", metres.
+        #[arg(long, value_delimiter = ',', num_args = 3, requires = "eye")]
+        look_at: Option<Vec<f64>>,
+        /// Vertical field of view with --eye, degrees.
+        #[arg(long, default_value_t = 60.0)]
+        fov: f64,
+        /// Texels per metre.
+        #[arg(long, default_value_t = 10.0)]
+        texel_density: f64,
+        /// Patch level.
+        #[arg(long, default_value_t = 2)]
+        level: u32,
+        /// Shooters.
+        #[arg(long, value_enum, default_value = "clusters")]
+        hierarchy: crate::radiosity::shooters::Hierarchy,
+        /// Within this share of the image's mean luminance (0.05: 5 %).
+        #[arg(long, default_value_t = 0.05)]
+        tolerance: f64,
+        /// The converged image: a global solve to this convergence.
+        #[arg(long, default_value_t = 0.999)]
+        reference: f64,
+        /// Give up on a drive after this many seconds.
+        #[arg(long, default_value_t = 600.0)]
+        time_limit: f64,
+        /// Perspective-driven: the first area of interest's margin, degrees.
+        #[arg(long, default_value_t = 10.0)]
+        fov_margin: f64,
+    },
     /// GPU radiosity on a Cornell-box-like scene (Wallner Table 4.1, "Cornell box high":
     /// ~127 000 elements): time to 90 % and 99 % convergence, hemicube vs stereographic,
     /// flat vs face-cluster shooters.
@@ -183,6 +224,38 @@ pub fn run(cmd: BenchCommand) -> Result<(), CliError> {
             scale,
         } => run_raycast(json, rays, brute_rays, scale),
         BenchCommand::Clusters { json, shared } => run_clusters(json, shared),
+        BenchCommand::RadiosityView {
+            json,
+            scene,
+            eye,
+            look_at,
+            fov,
+            texel_density,
+            level,
+            hierarchy,
+            tolerance,
+            reference,
+            time_limit,
+            fov_margin,
+        } => {
+            let plan = crate::bench::radiosity_view::ViewBenchPlan {
+                texel_density,
+                level,
+                hierarchy,
+                tolerance,
+                reference,
+                time_limit,
+                fov_margin,
+            };
+            let eye = eye.zip(look_at).map(|(e, l)| {
+                (
+                    glam::DVec3::from_slice(&e),
+                    glam::DVec3::from_slice(&l),
+                    fov,
+                )
+            });
+            run_radiosity_view(json, scene, eye, plan)
+        }
         BenchCommand::Radiosity {
             json,
             elements,
@@ -442,6 +515,94 @@ fn run_render(as_json: bool, plan: render_bench::BenchPlan, quick: bool) -> Resu
             r.catmull_rom_ratio(),
             r.table_ratio(),
             r.cube_ratio()
+        );
+    }
+    Ok(())
+}
+
+fn run_radiosity_view(
+    as_json: bool,
+    scene: Option<std::path::PathBuf>,
+    eye: Option<(glam::DVec3, glam::DVec3, f64)>,
+    plan: crate::bench::radiosity_view::ViewBenchPlan,
+) -> Result<(), CliError> {
+    use crate::radiosity::view::ViewPoint;
+    let ok = |v: f64, lo: f64, hi: f64| v.is_finite() && v > lo && v <= hi;
+    if !(ok(plan.texel_density, 0.0, 1e4)
+        && ok(plan.tolerance, 0.0, 1.0)
+        && ok(plan.reference, 0.0, 1.0)
+        && ok(plan.time_limit, 0.0, 1e6)
+        && (0.0..=180.0).contains(&plan.fov_margin)
+        && plan.level <= 6
+        && eye
+            .is_none_or(|(e, l, f)| e.is_finite() && l.is_finite() && e != l && ok(f, 0.0, 179.0)))
+    {
+        return Err(CliError::input(anyhow::anyhow!(
+            "--texel-density > 0, --tolerance and --reference in (0, 1], --time-limit > 0, --fov-margin in 0..=180, --level in 0..=6, --fov in (0, 179), --eye ≠ --look-at"
+        )));
+    }
+    let path =
+        scene.unwrap_or_else(|| crate::io::data_root().join("assets/scenes/furnished_room.toml"));
+    let scene = crate::scene::Scene::load(&path)?;
+    let mut camera = scene.camera;
+    if let Some((e, l, fov)) = eye {
+        camera = crate::scene::camera::Camera {
+            up: if (l - e).normalize().cross(glam::DVec3::Z).length() < 1e-6 {
+                glam::DVec3::Y
+            } else {
+                glam::DVec3::Z
+            },
+            ..crate::scene::camera::Camera::perspective(e, l, fov)
+        };
+    }
+    let shown = crate::render::RenderSettings::from_display(&scene.display);
+    let aspect = shown.width as f64 / shown.height.max(1) as f64;
+    let point = ViewPoint::new(&camera, aspect).ok_or_else(|| {
+        CliError::input(anyhow::anyhow!(
+            "{}: the camera is orthographic; give --eye and --look-at",
+            path.display()
+        ))
+    })?;
+    let gpu = Gpu::shared()?;
+    eprintln!("GPU: {}", gpu.describe());
+    let result = crate::bench::radiosity_view::run(&gpu, &scene, &point, plan, |what| {
+        eprintln!("solving: {what} …")
+    })
+    .map_err(CliError::failure)?;
+    if as_json {
+        println!(
+            "{}",
+            json!({ "bench": result, "gpu": gpu.describe(), "scene": path })
+        );
+        return Ok(());
+    }
+    println!(
+        "{}: {}, {} elements ({} seen), reference: global to {:.2} % in {:.1} s",
+        gpu.describe(),
+        path.display(),
+        result.elements,
+        result.elements_seen,
+        100.0 * result.reference_convergence,
+        result.reference_seconds
+    );
+    let tol = 100.0 * result.tolerance;
+    println!("| drive | importance s | to {tol:.0} % shown s | to {tol:.0} % shot s | shots | × global (shot) | maps |");
+    println!("|---|---|---|---|---|---|---|");
+    let fmt = |v: Option<f64>| v.map_or("not reached".to_string(), |s| format!("{s:.2}"));
+    let base = result.rows.first().and_then(|r| r.seconds_shot);
+    for r in &result.rows {
+        let ratio = match (base, r.seconds_shot) {
+            (Some(b), Some(s)) if s > 0.0 => format!("{:.2}×", b / s),
+            _ => "–".to_string(),
+        };
+        println!(
+            "| {} | {:.2} | {} | {} | {} | {ratio} | {} |",
+            r.drive,
+            r.importance_seconds,
+            fmt(r.seconds_shown),
+            fmt(r.seconds_shot),
+            r.shots_shot.map_or("–".to_string(), |s| s.to_string()),
+            r.maps
         );
     }
     Ok(())

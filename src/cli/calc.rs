@@ -127,6 +127,13 @@ pub fn run(args: CalcArgs) -> Result<(), CliError> {
         )));
     }
     args.solver.check()?;
+    if args.solver.drive != crate::radiosity::view::Drive::Global {
+        // A grid's lux must not depend on where the camera looks.
+        return Err(CliError::input(anyhow!(
+            "--drive {}: calc's interreflected light is solved for the whole scene (--drive global); view-driven solutions are for `radiosity` and the viewer",
+            format!("{:?}", args.solver.drive).to_lowercase()
+        )));
+    }
     let mut names = std::collections::HashSet::new();
     for g in &scene.grids {
         if !names.insert(csv_name(&g.entry.name)) {

@@ -23,6 +23,7 @@ use crate::radiosity::links::DEFAULT_LINK_ERROR;
 use crate::radiosity::scene::{luminance, RadiosityScene};
 use crate::radiosity::shooters::{Hierarchy, Shooters, DEFAULT_CELL_POWER};
 use crate::radiosity::solve::{self, ConvergencePoint, StopAt, StopReason};
+use crate::radiosity::view::{self, Drive, ViewDriven, ViewPoint};
 use crate::radiosity::{Ambient, FormFactorKind, SolverSettings};
 use crate::render::lightmap::LightMap;
 use crate::render::output::write_image;
@@ -75,6 +76,19 @@ pub struct SolverArgs {
     /// Ambient term: for display only, also for overshooting, or none.
     #[arg(long, value_enum, default_value = "display")]
     pub ambient: Ambient,
+    /// What chooses the work, from the scene's camera (Bozalina 2011): `global` shoots
+    /// the most unshot power to every element; `importance` weighs each shooter by the
+    /// importance the camera sends through the scene (what the view will see of its
+    /// light); `perspective` also limits the receivers to the view's frustum plus
+    /// --fov-margin, widened as the view's light settles (what waited is caught up).
+    /// With importance and perspective, convergence and the displayed ambient term are
+    /// the view's.
+    #[arg(long, value_enum, default_value = "global")]
+    pub drive: Drive,
+    /// With --drive perspective: degrees added to the camera's half field of view for
+    /// the first area of interest (each later stage adds 30°).
+    #[arg(long, value_name = "DEG", default_value_t = 10.0)]
+    pub fov_margin: f64,
 }
 
 impl SolverArgs {
@@ -101,6 +115,12 @@ impl SolverArgs {
         }
         if !(16..=4096).contains(&self.map_size) {
             return bad(format!("--map-size {} is not in 16..=4096", self.map_size));
+        }
+        if !(self.fov_margin.is_finite() && (0.0..=180.0).contains(&self.fov_margin)) {
+            return bad(format!(
+                "--fov-margin {} is not in 0..=180 degrees",
+                self.fov_margin
+            ));
         }
         if let Some(t) = self.time_limit {
             if !(t.is_finite() && t > 0.0) {
@@ -273,6 +293,8 @@ pub struct Prepared<'s> {
     initial: InitialState,
     solver: SolverArgs,
     interp: crate::photometry::Interp,
+    /// The scene's camera, where the view drives the solution.
+    view: Option<ViewPoint>,
     /// Seconds from the start of the command to here.
     pub prepared_s: f64,
 }
@@ -301,6 +323,19 @@ pub fn prepare<'s>(
     started: Instant,
 ) -> Result<Prepared<'s>, CliError> {
     let load_s = started.elapsed().as_secs_f64();
+    let view = match solver.drive {
+        Drive::Global => None,
+        drive => {
+            let aspect = settings.width as f64 / settings.height.max(1) as f64;
+            Some(ViewPoint::new(&scene.camera, aspect).ok_or_else(|| {
+                CliError::input(anyhow!(
+                    "{}: --drive {} needs a perspective camera (the scene's is orthographic)",
+                    label.display(),
+                    format!("{drive:?}").to_lowercase()
+                ))
+            })?)
+        }
+    };
     let stage = StageSpinner::new(match solver.hierarchy {
         Hierarchy::None => "elements and atlas",
         Hierarchy::Clusters => "face clusters, charts, elements and atlas",
@@ -339,11 +374,47 @@ pub fn prepare<'s>(
         initial,
         solver: solver.clone(),
         interp,
+        view,
         prepared_s,
     })
 }
 
 impl Prepared<'_> {
+    /// The view's weights and importance (an importance solve of at most a quarter of
+    /// `time_budget`); an error when the camera sees no surface.
+    fn drive(
+        &self,
+        point: &ViewPoint,
+        settings: SolverSettings,
+        gpu_settings: GpuSettings,
+        time_budget: Option<Duration>,
+    ) -> Result<ViewDriven, CliError> {
+        let weights = view::view_weights(&self.rscene, point);
+        let seen = weights.iter().filter(|&&w| w > 0.0).count();
+        if seen == 0 {
+            return Err(CliError::input(anyhow!(
+                "{}: --drive {}: the camera sees no surface of the scene (check camera.position and camera.look_at)",
+                self.label.display(),
+                format!("{:?}", self.solver.drive).to_lowercase()
+            )));
+        }
+        let driven = ViewDriven::new(
+            &self.gpu,
+            &self.rscene,
+            settings,
+            gpu_settings,
+            weights,
+            time_budget.map(|b| b / 4),
+        )?;
+        eprintln!(
+            "{}: the camera sees {seen} of {} elements; importance solved in {:.2} s",
+            self.label.display(),
+            self.rscene.elements.len(),
+            driven.importance_seconds
+        );
+        Ok(driven)
+    }
+
     /// Shoots until the solver's stop (Ctrl-C stops early), with a progress bar, and
     /// reads the solution back.
     pub fn solve(&self) -> Result<Solved<'_>, CliError> {
@@ -359,15 +430,16 @@ impl Prepared<'_> {
         };
         let shooters = Shooters::build(rscene, args.hierarchy);
         let shooter_count = shooters.len();
+        let settings = SolverSettings {
+            form_factor: args.form_factor,
+            ambient: args.ambient,
+            interp: self.interp,
+        };
         let mut solver = GpuSolver::with_shooters(
             &self.gpu,
             rscene,
             &self.initial,
-            SolverSettings {
-                form_factor: args.form_factor,
-                ambient: args.ambient,
-                interp: self.interp,
-            },
+            settings,
             gpu_settings,
             shooters,
         );
@@ -389,8 +461,21 @@ impl Prepared<'_> {
             },
             solver.visibility_triangles(),
         );
+        let mut stop_at = args.stop();
+        let driven = match &self.view {
+            Some(point) => {
+                let d = self.drive(point, settings, gpu_settings, stop_at.time_budget)?;
+                d.drive(&mut solver, args.drive, point, args.fov_margin)?;
+                // The importance solve's time is the solve's.
+                stop_at.time_budget = stop_at
+                    .time_budget
+                    .map(|b| b.saturating_sub(Duration::from_secs_f64(d.importance_seconds)));
+                Some(d)
+            }
+            None => None,
+        };
         let bar = progress_bar()?;
-        let (stop, log) = solver.solve(&args.stop(), &cancel, |p: &ConvergencePoint| {
+        let (stop, log) = solver.solve(&stop_at, &cancel, |p: &ConvergencePoint| {
             bar.set_position((p.convergence.clamp(0.0, 1.0) * 10_000.0) as u64);
             bar.set_message(format!(
                 "{:.2} % converged, {} shots",
@@ -402,8 +487,21 @@ impl Prepared<'_> {
         let solve_s = log.last().map_or(0.0, |p| p.seconds);
         let (radiosity, illuminance) = solver.radiosity_and_illuminance()?;
         let unshot = solver.unshot()?;
-        let (shown, shown_lux) =
-            solve::displayed(rscene, &radiosity, &illuminance, &unshot, args.ambient);
+        let (shown, shown_lux) = match &driven {
+            Some(d) if args.ambient != Ambient::None => {
+                solve::with_ambient(rscene, &radiosity, &illuminance, d.ambient(rscene, &unshot))
+            }
+            _ => solve::displayed(rscene, &radiosity, &illuminance, &unshot, args.ambient),
+        };
+        if let Some((stage, stages)) = solver.area_stage() {
+            eprintln!(
+                "{}: area of interest at stage {} of {stages}; {} charts still wait, {} shots kept for them",
+                self.label.display(),
+                stage + 1,
+                solver.waiting_charts(),
+                solver.missed_shots(),
+            );
+        }
         let last = log.last().copied();
         eprintln!(
             "{}: {} shots, {:.2} % converged ({stop}) in {solve_s:.2} s (+{:.2} s to prepare); {} visibility maps drawn, {} cells skipped (no receiver takes light from them); receivers culled to {:.0} % of the elements per map{}",

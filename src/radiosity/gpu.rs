@@ -22,6 +22,9 @@ use crate::geometry::split::split_long_edges;
 use crate::gpu::{Gpu, GpuError};
 use crate::render::layouts::{buffer_binding, entry};
 
+mod deferred;
+pub use deferred::WIDEN_AT;
+
 /// How a shooting patch sees what it can reach.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Deserialize)]
 #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
@@ -142,6 +145,9 @@ pub struct Selection {
     pub power: f64,
     /// Σ |unshot luminance| × area over all elements, lm.
     pub unshot_power: f64,
+    /// The same sum with each shooter's power times its weight
+    /// ([`GpuSolver::set_shooter_weights`]; without weights, `unshot_power`).
+    pub weighted_power: f64,
 }
 
 struct Pipelines {
@@ -188,6 +194,15 @@ pub struct GpuSolver<'a> {
     size: f64,
     /// Shots so far.
     pub shots: usize,
+    /// The shooters' records as uploaded (their weights in `[2]`).
+    shooter_info: Vec<[u32; 8]>,
+    shooter_buf: wgpu::Buffer,
+    /// Whether the selection weighs the shooters ([`GpuSolver::set_shooter_weights`]).
+    weighted: bool,
+    /// Receivers that wait, and the shots they missed (perspective-driven radiosity).
+    deferral: Option<deferred::Deferral>,
+    /// The area of interest's stages (perspective-driven radiosity).
+    stages: Option<deferred::Stages>,
     /// Patches in the next batch of a shot: adapted so a batch takes about
     /// [`BATCH_SECONDS`] (between 1 and [`PATCHES_PER_BATCH`]).
     batch: usize,
@@ -439,7 +454,8 @@ impl<'a> GpuSolver<'a> {
                 [
                     shooters.first[k],
                     shooters.count[k],
-                    0,
+                    // The shooter's weight in the selection (1: its power alone).
+                    1f32.to_bits(),
                     shooters.first_piece[k],
                     r.x.to_bits(),
                     r.y.to_bits(),
@@ -491,7 +507,9 @@ impl<'a> GpuSolver<'a> {
         );
         let radiosity = storage(gpu, "radiosity", &bytes(&start_lit), true);
         let unshot = storage(gpu, "unshot", &bytes(&start), true);
-        let shooter_buf = storage(gpu, "shooters", bytemuck::cast_slice(&shooter_info), false);
+        // Writable: the selection's weights change (view-driven shooting).
+        let shooter_buf = storage(gpu, "shooters", bytemuck::cast_slice(&shooter_info), true);
+        shooter_info.truncate(shooters.len());
         // The selection record follows the shooters' sums.
         let shooter_power = storage(
             gpu,
@@ -605,6 +623,11 @@ impl<'a> GpuSolver<'a> {
             atlas,
             size: scene_size,
             shots: 0,
+            shooter_info,
+            shooter_buf,
+            weighted: false,
+            deferral: None,
+            stages: None,
             batch: FIRST_BATCH,
             patch_delta,
             max_patches,
@@ -688,14 +711,44 @@ impl<'a> GpuSolver<'a> {
         self.gpu.queue.submit([enc.finish()]);
         let v = self.gpu.read_f32(&self.selection)?;
         let index = v[0].to_bits();
+        let shooter = (index != u32::MAX && v[1] > 0.0).then_some(index as usize);
+        // The shader's choice is by weighted power; the shot's cells are sized by the
+        // power itself.
+        let weight = shooter.map_or(1.0, |k| f32::from_bits(self.shooter_info[k][2]));
         let selection = Selection {
-            shooter: (index != u32::MAX && v[1] > 0.0).then_some(index as usize),
-            power: v[1] as f64,
+            shooter,
+            power: (v[1] / weight) as f64,
             unshot_power: v[2] as f64,
+            weighted_power: v[3] as f64,
         };
         self.initial_power.get_or_insert(selection.unshot_power);
         self.last_power = selection.power;
         Ok(selection)
+    }
+
+    /// Weighs each shooter's unshot power by `weights` (one per shooter, ≥ 0) in the
+    /// selection and in [`Selection::weighted_power`]: importance-driven shooting.
+    pub fn set_shooter_weights(&mut self, weights: &[f64]) {
+        assert_eq!(weights.len(), self.shooters.len());
+        for (record, w) in self.shooter_info.iter_mut().zip(weights) {
+            record[2] = (w.max(0.0) as f32).to_bits();
+        }
+        self.gpu.queue.write_buffer(
+            &self.shooter_buf,
+            0,
+            bytemuck::cast_slice(&self.shooter_info),
+        );
+        self.weighted = true;
+    }
+
+    /// The scene it solves.
+    pub fn scene(&self) -> &RadiosityScene {
+        self.scene
+    }
+
+    /// Whether the selection weighs the shooters.
+    pub fn is_weighted(&self) -> bool {
+        self.weighted
     }
 
     /// Triangles each visibility map draws (the casters with CAD fans merged).
@@ -821,7 +874,7 @@ impl<'a> GpuSolver<'a> {
     /// weakest deferred. Its element order and cells go to the GPU, every cell's unshot
     /// radiosity is gathered there (before any is cleared), and — when there are coarse
     /// cells — read back for the links' oracle.
-    fn plan(&mut self, s: usize) -> Result<(ShotPlan, Links), GpuError> {
+    fn plan(&mut self, s: usize) -> Result<(ShotPlan, Links, Vec<[f32; 4]>), GpuError> {
         let initial = self.initial_power.unwrap_or(0.0);
         let budget = self.gpu_settings.cell_power * initial;
         let levels = if self.gpu_settings.link_error > 0.0 {
@@ -859,13 +912,23 @@ impl<'a> GpuSolver<'a> {
         let mut enc = self.gpu.device.create_command_encoder(&Default::default());
         self.dispatch(&mut enc, &self.pipelines.gather, cells, 1);
         self.gpu.queue.submit([enc.finish()]);
-        let radiosity: Vec<f64> = if plan.patches.iter().any(|p| p.level > 0) {
-            let delta = self
+        // Read back for the links' oracle, and to be shot again later when receivers
+        // wait (perspective-driven radiosity).
+        let coarse = plan.patches.iter().any(|p| p.level > 0);
+        let delta: Vec<[f32; 4]> = if coarse || self.deferral.is_some() {
+            let d = self
                 .gpu
                 .read_f32_prefix(&self.patch_delta, 16 * cells as u64)?;
+            d.chunks_exact(4)
+                .map(|c| [c[0], c[1], c[2], c[3]])
+                .collect()
+        } else {
+            Vec::new()
+        };
+        let radiosity: Vec<f64> = if coarse {
             let luma = Vec3::new(0.2126, 0.7152, 0.0722);
             delta
-                .chunks_exact(4)
+                .iter()
                 .map(|d| Vec3::new(d[0], d[1], d[2]).dot(luma) as f64)
                 .collect()
         } else {
@@ -873,7 +936,7 @@ impl<'a> GpuSolver<'a> {
         };
         let epsilon = self.gpu_settings.link_error * initial / self.scene.total_area.max(1e-300);
         let links = super::links::link(&plan, &radiosity, &self.receivers, epsilon);
-        Ok((plan, links))
+        Ok((plan, links, delta))
     }
 
     /// Per piece of shooter `s`, its unshot power (with the overshoot), lm: summed on the
@@ -924,7 +987,9 @@ impl<'a> GpuSolver<'a> {
     /// cells it did not shoot what it held back, so energy is neither lost nor counted
     /// twice. True when the whole shooter was shot.
     pub fn shoot_until(&mut self, s: usize, stop: &dyn Fn() -> bool) -> Result<bool, GpuError> {
-        let (plan, links) = self.plan(s)?;
+        let (plan, links, delta) = self.plan(s)?;
+        // The cells shot while some receiver in front of them waited.
+        let mut missed = Vec::new();
         // Top cells and their subtrees (depth first: a subtree runs to the next top).
         let tops: Vec<usize> = (0..plan.patches.len())
             .filter(|&k| plan.patches[k].parent == u32::MAX)
@@ -943,9 +1008,12 @@ impl<'a> GpuSolver<'a> {
                 drawn.extend((tops[t]..subtree_end(t)).filter(|&k| links.drawn[k]));
                 t += 1;
             }
-            self.cull(&plan.patches[tops[from]..subtree_end(t - 1)]);
+            let waiting = self.cull(&plan.patches[tops[from]..subtree_end(t - 1)]);
             let clear = if from == 0 { 0..plan.shot } else { 0..0 };
             self.shoot_batch(s, &plan, &links, &drawn, clear)?;
+            if waiting {
+                missed.extend_from_slice(&drawn);
+            }
             let cells: usize = (tops[from]..subtree_end(t - 1)).count();
             self.drawn += drawn.len();
             self.skipped += cells - drawn.len();
@@ -961,18 +1029,34 @@ impl<'a> GpuSolver<'a> {
                 if stop() {
                     self.restore(s, tops[t], plan.patches.len());
                     self.shots += 1;
+                    self.defer(s, plan, links, delta, missed);
                     return Ok(false);
                 }
             }
         }
         self.shots += 1;
+        self.defer(s, plan, links, delta, missed);
         Ok(true)
     }
 
     /// Receiver culling for the cells `patches`: only the charts in front of one of their
-    /// planes receive (their element ranges follow the cells in the patch buffer).
-    fn cull(&mut self, patches: &[PlannedPatch]) {
-        let ranges = self.receivers.in_front_of_any(&cell_planes(patches));
+    /// planes receive (their element ranges follow the cells in the patch buffer), and
+    /// of those only the ones not waiting ([`GpuSolver::set_receiving`]). True when some
+    /// chart in front waits.
+    fn cull(&mut self, patches: &[PlannedPatch]) -> bool {
+        let mut charts = self.receivers.charts_in_front_of_any(&cell_planes(patches));
+        let in_front = charts.len();
+        if let Some(d) = &self.deferral {
+            charts.retain(|&k| d.receiving[k]);
+        }
+        self.set_receivers(&charts);
+        charts.len() < in_front
+    }
+
+    /// The receivers of the next batch: the elements of `charts` (receiver indices).
+    fn set_receivers(&mut self, charts: &[usize]) {
+        let mut ranges: Vec<(u32, u32)> = charts.iter().map(|&k| self.receivers.range(k)).collect();
+        ranges.sort_unstable();
         let mut threads = 0u32;
         let records: Vec<[u32; 4]> = ranges
             .iter()

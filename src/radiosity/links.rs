@@ -150,6 +150,18 @@ impl ReceiverBoxes {
     /// taken in that many runs of consecutive planes, each bounded by the cone of its
     /// normals around the sphere of its points.
     pub fn in_front_of_any(&self, planes: &[(DVec3, DVec3, f64)]) -> Vec<(u32, u32)> {
+        let mut out: Vec<(u32, u32)> = self
+            .charts_in_front_of_any(planes)
+            .into_iter()
+            .map(|k| self.ranges[k])
+            .collect();
+        out.sort_unstable();
+        out
+    }
+
+    /// The charts (indices, see [`ReceiverBoxes::range`]) of
+    /// [`ReceiverBoxes::in_front_of_any`], in no order.
+    pub fn charts_in_front_of_any(&self, planes: &[(DVec3, DVec3, f64)]) -> Vec<usize> {
         let runs: Vec<PlaneRun> = planes
             .chunks(planes.len().div_ceil(MAX_CULLING_PLANES).max(1))
             .map(PlaneRun::new)
@@ -164,9 +176,22 @@ impl ReceiverBoxes {
             false,
             &mut |k| charts.push(k),
         );
-        let mut out: Vec<(u32, u32)> = charts.into_iter().map(|k| self.ranges[k]).collect();
-        out.sort_unstable();
-        out
+        charts
+    }
+
+    /// The charts with elements.
+    pub fn len(&self) -> usize {
+        self.ranges.len()
+    }
+
+    /// Whether no chart has elements.
+    pub fn is_empty(&self) -> bool {
+        self.ranges.is_empty()
+    }
+
+    /// Chart `k`'s elements (first, count): the scene's charts with elements, in order.
+    pub fn range(&self, k: usize) -> (u32, u32) {
+        self.ranges[k]
     }
 
     /// Walks the hierarchy where `wanted` holds, calling `found` with each chart whose

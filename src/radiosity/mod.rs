@@ -17,6 +17,7 @@ pub mod refine;
 pub mod scene;
 pub mod shooters;
 pub mod solve;
+pub mod view;
 
 use crate::photometry::Interp;
 pub use form_factor::FormFactorKind;

@@ -72,7 +72,8 @@ pub struct ConvergencePoint {
     pub shooter: Option<usize>,
     /// Σ |unshot luminance| × area, lm.
     pub unshot_power: f64,
-    /// 1 − unshot / initial unshot power.
+    /// 1 − unshot / initial unshot power (each shooter's power times its weight where
+    /// the view drives the solution: [`GpuSolver::set_shooter_weights`]).
     pub convergence: f64,
 }
 
@@ -102,22 +103,32 @@ impl GpuSolver<'_> {
         let mut log = Vec::new();
         let mut initial = None;
         loop {
-            let s = self.select()?;
-            let initial = *initial.get_or_insert(s.unshot_power);
+            let mut s = self.select()?;
+            while self.widen_if_due(&s)? {
+                s = self.select()?;
+            }
+            // Weighed by importance where the view drives the solution.
+            let unshot = if self.is_weighted() {
+                s.weighted_power
+            } else {
+                s.unshot_power
+            };
+            let initial = *initial.get_or_insert(unshot);
             let point = ConvergencePoint {
                 shot: self.shots,
                 seconds: started.elapsed().as_secs_f64(),
                 shooter: s.shooter,
                 unshot_power: s.unshot_power,
                 convergence: if initial > 0.0 {
-                    1.0 - s.unshot_power / initial
+                    1.0 - unshot / initial
                 } else {
                     1.0
                 },
             };
             progress(&point);
             log.push(point);
-            let reason = if point.convergence >= stop.converge {
+            // Converged only when no receiver waits for shots it missed.
+            let reason = if point.convergence >= stop.converge && self.area_is_whole() {
                 Some(StopReason::Converged)
             } else if s.shooter.is_none() {
                 Some(StopReason::NothingLeft)
@@ -169,7 +180,18 @@ pub fn displayed(
     if ambient == Ambient::None {
         return (radiosity.to_vec(), illuminance.to_vec());
     }
-    let a = ambient_term(scene, unshot);
+    with_ambient(scene, radiosity, illuminance, ambient_term(scene, unshot))
+}
+
+/// A solution with the ambient term `a` added (reflectance × `a` to the radiosity, its
+/// luminance to the illuminance): [`displayed`] with a term of the caller's (the view's,
+/// [`super::view::view_ambient`]).
+pub fn with_ambient(
+    scene: &RadiosityScene,
+    radiosity: &[DVec3],
+    illuminance: &[f64],
+    a: DVec3,
+) -> (Vec<DVec3>, Vec<f64>) {
     let lux = luminance(a);
     (0..radiosity.len())
         .map(|e| {

@@ -1,0 +1,208 @@
+//! `goniolight bench radiosity-view`: Bozalina's "time to significant lighting events"
+//! (§6.2, judged by eye) as a number — the time until the image in view is within a
+//! tolerance (mean absolute luminance, weighted by the pixels each element covers) of the
+//! converged image — for global progressive refinement, importance-driven and
+//! perspective-driven radiosity, measured side by side in one run.
+
+use std::sync::atomic::AtomicBool;
+use std::time::Instant;
+
+use glam::DVec3;
+
+use crate::gpu::Gpu;
+use crate::radiosity::gpu::{GpuSettings, GpuSolver};
+use crate::radiosity::initial::{InitialState, LuminaireLight};
+use crate::radiosity::scene::{luminance, RadiosityScene};
+use crate::radiosity::shooters::Hierarchy;
+use crate::radiosity::solve::{self, StopAt};
+use crate::radiosity::view::{self, Drive, ViewDriven, ViewPoint};
+use crate::radiosity::SolverSettings;
+use crate::scene::Scene;
+
+/// One drive's run.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct ViewBenchRow {
+    /// "global", "importance" or "perspective".
+    pub drive: String,
+    /// Seconds of the importance solve (counted in the times below).
+    pub importance_seconds: f64,
+    /// Seconds until the displayed image (with the drive's ambient term) is within the
+    /// tolerance; `None`: not within the time limit.
+    pub seconds_shown: Option<f64>,
+    /// Seconds until the shot light alone (no ambient term) is within the tolerance.
+    pub seconds_shot: Option<f64>,
+    /// Shots until the shot light alone is within the tolerance.
+    pub shots_shot: Option<usize>,
+    /// The displayed image's error when the run ended.
+    pub final_error: f64,
+    /// Visibility maps drawn in the run.
+    pub maps: usize,
+    /// Shots in the run.
+    pub shots: usize,
+}
+
+/// What the run measured.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct ViewBench {
+    /// Elements.
+    pub elements: usize,
+    /// Elements the camera sees.
+    pub elements_seen: usize,
+    /// Seconds of the reference (global) solve.
+    pub reference_seconds: f64,
+    /// Its convergence.
+    pub reference_convergence: f64,
+    /// The tolerance, a share of the image's mean luminance.
+    pub tolerance: f64,
+    /// One row per drive.
+    pub rows: Vec<ViewBenchRow>,
+}
+
+/// The benchmark's settings.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ViewBenchPlan {
+    /// Texels per metre.
+    pub texel_density: f64,
+    /// Patch level.
+    pub level: u32,
+    /// Shooters.
+    pub hierarchy: Hierarchy,
+    /// The tolerance (0.05: within 5 %).
+    pub tolerance: f64,
+    /// The reference's convergence.
+    pub reference: f64,
+    /// Give up on a drive after this many seconds.
+    pub time_limit: f64,
+    /// With perspective: the area of interest's margin, degrees.
+    pub fov_margin: f64,
+}
+
+/// The view's error of `radiosity` against `reference`: Σ W |ΔL| / Σ W L over the
+/// elements, W the pixels each covers (view weight × area), L luminance.
+pub fn view_error(
+    scene: &RadiosityScene,
+    weights: &[f64],
+    radiosity: &[DVec3],
+    reference: &[DVec3],
+) -> f64 {
+    let el = &scene.elements;
+    let (mut diff, mut total) = (0.0, 0.0);
+    for e in 0..el.len() {
+        let w = weights[e] * el.area[e];
+        let r = luminance(reference[e]);
+        diff += w * (luminance(radiosity[e]) - r).abs();
+        total += w * r;
+    }
+    diff / total.max(1e-300)
+}
+
+/// Runs the benchmark on `scene` seen from `point`.
+pub fn run(
+    gpu: &Gpu,
+    scene: &Scene,
+    point: &ViewPoint,
+    plan: ViewBenchPlan,
+    mut progress: impl FnMut(&str),
+) -> anyhow::Result<ViewBench> {
+    let settings = SolverSettings::default();
+    let mut shadows = crate::render::ShadowSettings::default();
+    crate::render::limits::check_scene(gpu, scene, &mut shadows)?;
+    let rscene =
+        RadiosityScene::with_hierarchy(scene, plan.texel_density, plan.level, plan.hierarchy)?;
+    crate::render::limits::check_radiosity(gpu, rscene.elements.len())?;
+    let light = LuminaireLight::new(gpu, scene, settings.interp);
+    let initial = InitialState::from_luminaires_gpu(gpu, &light, &rscene, &shadows)?;
+    let gpu_settings = GpuSettings {
+        hierarchy: plan.hierarchy,
+        ..GpuSettings::default()
+    };
+    let weights = view::view_weights(&rscene, point);
+    let elements_seen = weights.iter().filter(|&&w| w > 0.0).count();
+    anyhow::ensure!(elements_seen > 0, "the camera sees no surface of the scene");
+
+    progress("reference");
+    let started = Instant::now();
+    let mut reference = GpuSolver::new(gpu, &rscene, &initial, settings, gpu_settings);
+    let stop = StopAt {
+        converge: plan.reference,
+        ..StopAt::default()
+    };
+    let (_, log) = reference.solve(&stop, &AtomicBool::new(false), |_| {})?;
+    let reference_seconds = started.elapsed().as_secs_f64();
+    let reference = reference.radiosity()?;
+
+    let mut rows = Vec::new();
+    for drive in [Drive::Global, Drive::Importance, Drive::Perspective] {
+        progress(&format!("{drive:?}").to_lowercase());
+        let mut solver = GpuSolver::new(gpu, &rscene, &initial, settings, gpu_settings);
+        // The clock runs only while the solver works (not while the bench reads back).
+        let mut clock = 0.0;
+        let driven = match drive {
+            Drive::Global => None,
+            _ => {
+                let d =
+                    ViewDriven::new(gpu, &rscene, settings, gpu_settings, weights.clone(), None)?;
+                let t = Instant::now();
+                d.drive(&mut solver, drive, point, plan.fov_margin)?;
+                clock += d.importance_seconds + t.elapsed().as_secs_f64();
+                Some(d)
+            }
+        };
+        let importance_seconds = clock;
+        let mut row = ViewBenchRow {
+            drive: format!("{drive:?}").to_lowercase(),
+            importance_seconds,
+            seconds_shown: None,
+            seconds_shot: None,
+            shots_shot: None,
+            final_error: f64::NAN,
+            maps: 0,
+            shots: 0,
+        };
+        loop {
+            let (radiosity, illuminance) = solver.radiosity_and_illuminance()?;
+            let unshot = solver.unshot()?;
+            let ambient = match &driven {
+                Some(d) => d.ambient(&rscene, &unshot),
+                None => solve::ambient_term(&rscene, &unshot),
+            };
+            let shown = solve::with_ambient(&rscene, &radiosity, &illuminance, ambient).0;
+            let error_shown = view_error(&rscene, &weights, &shown, &reference);
+            let error_shot = view_error(&rscene, &weights, &radiosity, &reference);
+            if error_shown <= plan.tolerance && row.seconds_shown.is_none() {
+                row.seconds_shown = Some(clock);
+            }
+            if error_shot <= plan.tolerance && row.seconds_shot.is_none() {
+                row.seconds_shot = Some(clock);
+                row.shots_shot = Some(solver.shots);
+            }
+            row.final_error = error_shown;
+            if row.seconds_shot.is_some() && row.seconds_shown.is_some() || clock > plan.time_limit
+            {
+                break;
+            }
+            let t = Instant::now();
+            let one = StopAt {
+                converge: 1.0,
+                max_shots: Some(solver.shots + 1),
+                time_budget: None,
+            };
+            let (reason, _) = solver.solve(&one, &AtomicBool::new(false), |_| {})?;
+            clock += t.elapsed().as_secs_f64();
+            if reason == solve::StopReason::NothingLeft {
+                break;
+            }
+        }
+        row.maps = solver.drawn;
+        row.shots = solver.shots;
+        rows.push(row);
+    }
+    Ok(ViewBench {
+        elements: rscene.elements.len(),
+        elements_seen,
+        reference_seconds,
+        reference_convergence: log.last().map_or(1.0, |p| p.convergence),
+        tolerance: plan.tolerance,
+        rows,
+    })
+}

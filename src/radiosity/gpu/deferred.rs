@@ -1,0 +1,199 @@
+//! Receivers that wait (perspective-driven radiosity, Bozalina §5.2): while a chart lies
+//! outside the area of interest it receives nothing, and each shot it misses is kept —
+//! the shooter's cells, their links and the unshot radiosity they shot — instead of
+//! Bozalina's N × N table of stored radiosity. When the chart joins the area, the shots
+//! it missed are shot again at it alone, in order, so its light is what it would have
+//! been had it received all along.
+
+use super::super::links::Links;
+use super::super::shooters::ShotPlan;
+use super::{cell_planes, GpuSolver};
+use crate::gpu::GpuError;
+
+/// A shot some waiting receiver missed.
+pub(super) struct MissedShot {
+    shooter: usize,
+    plan: ShotPlan,
+    links: Links,
+    /// Per cell of the plan, the rgb unshot radiosity it shot.
+    delta: Vec<[f32; 4]>,
+    /// The cells whose maps were drawn while a receiver waited.
+    cells: Vec<usize>,
+}
+
+/// The area of interest's stages (perspective-driven radiosity), and where it stands.
+pub(super) struct Stages {
+    /// Per stage, per chart of the elements, whether it receives; the last: every chart.
+    stages: Vec<Vec<bool>>,
+    at: usize,
+    /// The weighted unshot power when the stage began.
+    start: Option<f64>,
+}
+
+/// The area of interest widens when the weighted unshot power has fallen to this share
+/// of what it was when its stage began ("a pre-determined amount of processing",
+/// Bozalina §5.1).
+pub const WIDEN_AT: f64 = 0.25;
+
+/// Which receivers wait, and what they missed.
+pub(super) struct Deferral {
+    /// Per receiver chart ([`super::ReceiverBoxes::range`]), whether it receives now.
+    pub(super) receiving: Vec<bool>,
+    /// Per waiting chart, the first shot of `missed` it has not had.
+    missed_from: Vec<usize>,
+    missed: Vec<MissedShot>,
+}
+
+impl GpuSolver<'_> {
+    /// Which charts receive (`receiving`, one per chart of the scene's elements,
+    /// `elements.charts` order); the others wait. A chart that starts receiving is first
+    /// given the shots it missed. Returns how many shots were given again.
+    pub fn set_receiving(&mut self, receiving: &[bool]) -> Result<usize, GpuError> {
+        let el = &self.scene.elements;
+        assert_eq!(receiving.len(), el.charts.len());
+        let wanted: Vec<bool> = (0..self.receivers.len())
+            .map(|k| receiving[el.chart[self.receivers.range(k).0 as usize] as usize])
+            .collect();
+        let deferral = self.deferral.get_or_insert_with(|| Deferral {
+            receiving: vec![true; wanted.len()],
+            missed_from: vec![0; wanted.len()],
+            missed: Vec::new(),
+        });
+        // Charts grouped by the first shot they missed (most join together).
+        let mut joining: Vec<(usize, Vec<usize>)> = Vec::new();
+        for (k, &now) in wanted.iter().enumerate() {
+            match (deferral.receiving[k], now) {
+                (true, false) => deferral.missed_from[k] = deferral.missed.len(),
+                (false, true) => {
+                    let from = deferral.missed_from[k];
+                    match joining.iter_mut().find(|(f, _)| *f == from) {
+                        Some((_, charts)) => charts.push(k),
+                        None => joining.push((from, vec![k])),
+                    }
+                }
+                _ => {}
+            }
+        }
+        deferral.receiving = wanted;
+        let mut given = 0;
+        let missed = std::mem::take(&mut deferral.missed);
+        for (from, charts) in &joining {
+            for shot in &missed[*from..] {
+                self.shoot_again(shot, charts)?;
+                given += 1;
+            }
+        }
+        let deferral = self.deferral.as_mut().expect("set above");
+        if deferral.receiving.iter().all(|&r| r) {
+            // Nobody waits: nothing missed needs keeping.
+            deferral.missed_from.fill(0);
+        } else {
+            deferral.missed = missed;
+        }
+        Ok(given)
+    }
+
+    /// Limits the receivers to an area of interest that widens stage by stage (per
+    /// stage, per chart of the elements, whether it receives; narrowest first, the last
+    /// stage every chart): see [`GpuSolver::widen_if_due`].
+    pub fn set_area_of_interest(&mut self, stages: Vec<Vec<bool>>) -> Result<(), GpuError> {
+        assert!(stages.last().is_some_and(|s| s.iter().all(|&r| r)));
+        self.set_receiving(&stages[0])?;
+        self.stages = Some(Stages {
+            stages,
+            at: 0,
+            start: None,
+        });
+        Ok(())
+    }
+
+    /// Widens the area of interest to its next stage (giving the charts that join the
+    /// shots they missed) when the selection `s` shows the stage's work done: its
+    /// weighted unshot power down to [`WIDEN_AT`] of the stage's start, or nothing left
+    /// to shoot. True when it widened (select again: what joined has light to shoot).
+    pub fn widen_if_due(&mut self, s: &super::Selection) -> Result<bool, GpuError> {
+        let Some(stages) = &mut self.stages else {
+            return Ok(false);
+        };
+        if stages.at + 1 >= stages.stages.len() {
+            return Ok(false);
+        }
+        let start = *stages.start.get_or_insert(s.weighted_power);
+        if s.shooter.is_some() && s.weighted_power > WIDEN_AT * start {
+            return Ok(false);
+        }
+        stages.at += 1;
+        stages.start = None;
+        let next = stages.stages[stages.at].clone();
+        self.set_receiving(&next)?;
+        Ok(true)
+    }
+
+    /// Whether every chart receives (no area of interest, or its last stage).
+    pub fn area_is_whole(&self) -> bool {
+        self.stages
+            .as_ref()
+            .is_none_or(|s| s.at + 1 >= s.stages.len())
+    }
+
+    /// The area of interest's stage (0: the narrowest) and how many there are.
+    pub fn area_stage(&self) -> Option<(usize, usize)> {
+        self.stages.as_ref().map(|s| (s.at, s.stages.len()))
+    }
+
+    /// Receiver charts that wait now.
+    pub fn waiting_charts(&self) -> usize {
+        self.deferral
+            .as_ref()
+            .map_or(0, |d| d.receiving.iter().filter(|&&r| !r).count())
+    }
+
+    /// Shots kept for waiting receivers.
+    pub fn missed_shots(&self) -> usize {
+        self.deferral.as_ref().map_or(0, |d| d.missed.len())
+    }
+
+    /// Keeps shot `cells` of shooter `s` for the receivers that waited (none: nothing
+    /// kept).
+    pub(super) fn defer(
+        &mut self,
+        s: usize,
+        plan: ShotPlan,
+        links: Links,
+        delta: Vec<[f32; 4]>,
+        cells: Vec<usize>,
+    ) {
+        if cells.is_empty() {
+            return;
+        }
+        if let Some(d) = &mut self.deferral {
+            d.missed.push(MissedShot {
+                shooter: s,
+                plan,
+                links,
+                delta,
+                cells,
+            });
+        }
+    }
+
+    /// Shoots `shot` again at the receiver charts `charts` only (nothing is cleared: its
+    /// shooter's unshot radiosity was taken when it was first shot).
+    fn shoot_again(&mut self, shot: &MissedShot, charts: &[usize]) -> Result<(), GpuError> {
+        self.gpu
+            .queue
+            .write_buffer(&self.patch_delta, 0, bytemuck::cast_slice(&shot.delta));
+        // Those in front of its cells, as when it was first shot.
+        let cells: Vec<_> = shot
+            .cells
+            .iter()
+            .map(|&c| shot.plan.patches[c].clone())
+            .collect();
+        let mut in_front = self.receivers.charts_in_front_of_any(&cell_planes(&cells));
+        in_front.retain(|k| charts.binary_search(k).is_ok());
+        self.set_receivers(&in_front);
+        self.shoot_batch(shot.shooter, &shot.plan, &shot.links, &shot.cells, 0..0)?;
+        self.drawn += shot.cells.len();
+        Ok(())
+    }
+}

@@ -1,0 +1,342 @@
+//! View-driven radiosity (Bozalina 2011 §4–5; Smits, Arvo and Salesin 1992): importance
+//! emitted by the camera and carried through the scene like light, shooters chosen by
+//! unshot power × importance, and receivers limited to an area of interest around the
+//! view that widens as the view's light settles.
+//!
+//! Importance, derived for progressive shooting: the view measures Σᵢ Vᵢ Bᵢ, with Vᵢ the
+//! share of the image element i covers (`vᵢ Aᵢ`, [`view_weights`]). Unshot radiosity ΔBⱼ
+//! raises it, once shot and carried on, by ΔBⱼ Aⱼ Hⱼ, where Hⱼ = Σᵢ Fⱼᵢ uᵢ is the
+//! irradiance j receives from the field u = ρ (v + H): a radiosity solution whose emission
+//! is ρᵢ vᵢ. So the importance is solved by the radiosity solver itself (same visibility
+//! maps, [`importance`]), read back as each element's received "illuminance", and a
+//! shooter's weight is its elements' mean H ([`shooter_weights`]).
+
+use glam::DVec3;
+use rayon::prelude::*;
+
+use super::gpu::{GpuSettings, GpuSolver};
+use super::initial::InitialState;
+use super::scene::{luminance, RadiosityScene};
+use super::shooters::Shooters;
+use super::solve::StopAt;
+use super::{Ambient, SolverSettings};
+use crate::gpu::{Gpu, GpuError};
+use crate::scene::camera::{Camera, Projection};
+use crate::shadow::IgnoredTriangles;
+
+/// What drives the choice of shooters and receivers.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Deserialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+#[serde(rename_all = "lowercase")]
+pub enum Drive {
+    /// Progressive refinement: the shooter with the most unshot power; every element
+    /// receives (view-independent).
+    #[default]
+    Global,
+    /// The shooter with the most unshot power × importance from the camera.
+    Importance,
+    /// Importance-driven shooters, and receivers limited to the area of interest (the
+    /// view's frustum plus a margin, widened as the view's light settles); the shots a
+    /// receiver outside it missed are shot at it when it joins.
+    Perspective,
+}
+
+/// A share of the shooters' weights every shooter keeps: one no camera ray and no
+/// importance reaches is still shot in the end, so the solution converges everywhere.
+pub const WEIGHT_FLOOR: f64 = 1e-3;
+/// How far the importance solve runs (its own convergence): it only ranks shooters.
+pub const IMPORTANCE_CONVERGE: f64 = 0.8;
+/// The importance solve's cells carry this many times the light solve's share of the
+/// power, and its visibility maps have this many times fewer texels per side: a coarser
+/// solution, as Bozalina keeps importance at half the radiosity's resolution.
+pub const IMPORTANCE_COARSENING: f64 = 4.0;
+/// How much wider each stage of the area of interest is, degrees of half-angle.
+pub const STAGE_STEP_DEG: f64 = 30.0;
+
+/// The camera as the solver sees it: a perspective view.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ViewPoint {
+    /// Eye, metres.
+    pub eye: DVec3,
+    forward: DVec3,
+    right: DVec3,
+    up: DVec3,
+    /// tan of the half field of view, across and up.
+    tan_half: (f64, f64),
+}
+
+impl ViewPoint {
+    /// The view of `camera` with an image `aspect` (width / height) wide; `None` for an
+    /// orthographic camera (it has no eye to drive from).
+    pub fn new(camera: &Camera, aspect: f64) -> Option<ViewPoint> {
+        let Projection::Perspective { fov_deg } = camera.projection else {
+            return None;
+        };
+        let forward = (camera.look_at - camera.position).normalize();
+        let right = forward.cross(camera.up).normalize();
+        let up = right.cross(forward);
+        let tan_y = (0.5 * fov_deg.to_radians()).tan();
+        Some(ViewPoint {
+            eye: camera.position,
+            forward,
+            right,
+            up,
+            tan_half: (tan_y * aspect, tan_y),
+        })
+    }
+
+    /// The half-angle of the cone around the view direction that holds the image (to
+    /// its corners), degrees.
+    pub fn half_diagonal_deg(&self) -> f64 {
+        self.tan_half.0.hypot(self.tan_half.1).atan().to_degrees()
+    }
+
+    /// Where `p` appears: (x, y) on the image plane at distance 1 (in the image when both
+    /// are within `tan_half`), and its depth along the view; `None` behind the eye.
+    fn image(&self, p: DVec3) -> Option<(f64, f64, f64)> {
+        let d = p - self.eye;
+        let z = d.dot(self.forward);
+        (z > 0.0).then(|| (d.dot(self.right) / z, d.dot(self.up) / z, z))
+    }
+
+    /// Whether the eye sees the front of a surface at `p` facing `n`: nothing of `scene`
+    /// in between.
+    fn sees(&self, scene: &RadiosityScene, p: DVec3, n: DVec3, eps: f64) -> bool {
+        let to_eye = self.eye - p;
+        let distance = to_eye.length();
+        if distance <= 0.0 || n.dot(to_eye) <= 0.0 {
+            return false;
+        }
+        if distance <= 2.0 * eps {
+            return true;
+        }
+        let dir = to_eye / distance;
+        let none = IgnoredTriangles::default();
+        !scene
+            .visibility_bvh()
+            .blocked(p + n * eps, dir, 0.0, distance - eps, &none)
+    }
+}
+
+/// The offset from a surface a ray to the eye starts at, metres.
+fn ray_offset(scene: &RadiosityScene) -> f64 {
+    1e-5 * scene
+        .casters
+        .bounds()
+        .map_or(1.0, |(lo, hi)| (hi - lo).length())
+}
+
+/// Per element, the share of the image it covers per m² of its area (up to a constant):
+/// cos θ / (d² cos³ α) — the solid angle it subtends at the eye per area, times the
+/// pixels per steradian at its angle α from the view direction — where the eye sees its
+/// centre inside the image; 0 elsewhere.
+pub fn view_weights(scene: &RadiosityScene, view: &ViewPoint) -> Vec<f64> {
+    let el = &scene.elements;
+    let eps = ray_offset(scene);
+    (0..el.len())
+        .into_par_iter()
+        .map(|e| {
+            let p = el.position[e];
+            let n = el.normal(e);
+            let Some((x, y, z)) = view.image(p) else {
+                return 0.0;
+            };
+            if x.abs() > view.tan_half.0
+                || y.abs() > view.tan_half.1
+                || !view.sees(scene, p, n, eps)
+            {
+                return 0.0;
+            }
+            let to_eye = view.eye - p;
+            let d2 = to_eye.length_squared();
+            let cos_surface = n.dot(to_eye) / d2.sqrt();
+            let cos_axis = z / d2.sqrt();
+            cos_surface / (d2 * cos_axis.powi(3))
+        })
+        .collect()
+}
+
+/// Per chart of the scene's elements, whether the eye sees one of its elements within
+/// `half_angle_deg` of the view direction; from 180° every chart (also those hidden).
+pub fn charts_in_cone(scene: &RadiosityScene, view: &ViewPoint, half_angle_deg: f64) -> Vec<bool> {
+    let el = &scene.elements;
+    if half_angle_deg >= 180.0 {
+        return vec![true; el.charts.len()];
+    }
+    let cos_limit = half_angle_deg.to_radians().cos();
+    let eps = ray_offset(scene);
+    el.charts
+        .par_iter()
+        .map(|c| {
+            (c.first..c.first + c.count).any(|e| {
+                let e = e as usize;
+                let p = el.position[e];
+                let d = (p - view.eye).normalize_or_zero();
+                d.dot(view.forward) >= cos_limit && view.sees(scene, p, el.normal(e), eps)
+            })
+        })
+        .collect()
+}
+
+/// The stages of the area of interest, narrowest first: the image's cone widened by
+/// `margin_deg`, then by [`STAGE_STEP_DEG`] more each, and last every chart.
+pub fn area_stages(scene: &RadiosityScene, view: &ViewPoint, margin_deg: f64) -> Vec<Vec<bool>> {
+    let mut stages = Vec::new();
+    let mut angle = view.half_diagonal_deg() + margin_deg.max(0.0);
+    while angle < 180.0 {
+        stages.push(charts_in_cone(scene, view, angle));
+        angle += STAGE_STEP_DEG;
+    }
+    stages.push(vec![true; scene.elements.charts.len()]);
+    stages.dedup();
+    stages
+}
+
+/// The importance H per element (see the module's notes): a radiosity solution of the
+/// scene without luminaires whose emission is reflectance × `view` weight, solved on the
+/// GPU to [`IMPORTANCE_CONVERGE`] (or `time_budget`), read back as each element's received
+/// irradiance (luminance).
+pub fn importance(
+    gpu: &Gpu,
+    scene: &RadiosityScene,
+    settings: SolverSettings,
+    gpu_settings: GpuSettings,
+    view: &[f64],
+    time_budget: Option<std::time::Duration>,
+) -> Result<Vec<f64>, GpuError> {
+    let radiosity = (0..scene.elements.len())
+        .map(|e| scene.element_reflectance(e) * view[e])
+        .collect();
+    let initial = InitialState {
+        radiosity,
+        illuminance: vec![0.0; scene.elements.len()],
+    };
+    let settings = SolverSettings {
+        ambient: Ambient::None,
+        ..settings
+    };
+    let gpu_settings = GpuSettings {
+        cell_power: (gpu_settings.cell_power * IMPORTANCE_COARSENING).min(1.0),
+        map_size: ((gpu_settings.map_size as f64 / IMPORTANCE_COARSENING) as u32).max(32),
+        ..gpu_settings
+    };
+    let mut solver = GpuSolver::new(gpu, scene, &initial, settings, gpu_settings);
+    let stop = StopAt {
+        converge: IMPORTANCE_CONVERGE,
+        max_shots: None,
+        time_budget,
+    };
+    let cancel = std::sync::atomic::AtomicBool::new(false);
+    solver.solve(&stop, &cancel, |_| {})?;
+    Ok(solver.radiosity_and_illuminance()?.1)
+}
+
+/// Per shooter, its weight in the selection: its elements' area-weighted mean
+/// importance, plus [`WEIGHT_FLOOR`] × the scene's.
+pub fn shooter_weights(
+    scene: &RadiosityScene,
+    shooters: &Shooters,
+    importance: &[f64],
+) -> Vec<f64> {
+    let el = &scene.elements;
+    let mean_of = |elements: &[u32]| {
+        let (sum, area) = elements.iter().fold((0.0, 0.0), |(s, a), &e| {
+            let e = e as usize;
+            (s + importance[e] * el.area[e], a + el.area[e])
+        });
+        if area > 0.0 {
+            sum / area
+        } else {
+            0.0
+        }
+    };
+    let means: Vec<f64> = (0..shooters.len())
+        .map(|k| mean_of(shooters.elements_of(k)))
+        .collect();
+    let total: f64 = (0..el.len()).map(|e| importance[e] * el.area[e]).sum();
+    let floor = WEIGHT_FLOOR * total / scene.total_area.max(1e-300);
+    means.into_iter().map(|m| m + floor).collect()
+}
+
+/// The ambient term as the view sees it: the unshot power's expected gain in the view,
+/// Σⱼ ΔBⱼ Aⱼ Hⱼ, spread evenly over what the view shows (Σᵢ vᵢ Aᵢ ρᵢ), so that the
+/// image's mean is right where the global term ([`super::solve::ambient_term`]) spreads
+/// the unshot power over the whole scene. Zero when the view shows nothing.
+pub fn view_ambient(
+    scene: &RadiosityScene,
+    unshot: &[DVec3],
+    importance: &[f64],
+    view: &[f64],
+) -> DVec3 {
+    let el = &scene.elements;
+    let gain: DVec3 = (0..el.len())
+        .map(|e| unshot[e] * el.area[e] * importance[e])
+        .sum();
+    let shown: f64 = (0..el.len())
+        .map(|e| view[e] * el.area[e] * luminance(scene.element_reflectance(e)))
+        .sum();
+    if shown > 0.0 {
+        gain / shown
+    } else {
+        DVec3::ZERO
+    }
+}
+
+/// What a view-driven solution keeps: the view's weights and the importance.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ViewDriven {
+    /// Per element, [`view_weights`].
+    pub view: Vec<f64>,
+    /// Per element, the importance H ([`importance`]).
+    pub importance: Vec<f64>,
+    /// Seconds the importance solve took.
+    pub importance_seconds: f64,
+}
+
+impl ViewDriven {
+    /// Solves the importance of the view whose [`view_weights`] are `view` (an importance
+    /// solve of at most `time_budget`).
+    pub fn new(
+        gpu: &Gpu,
+        scene: &RadiosityScene,
+        settings: SolverSettings,
+        gpu_settings: GpuSettings,
+        view: Vec<f64>,
+        time_budget: Option<std::time::Duration>,
+    ) -> Result<ViewDriven, GpuError> {
+        let started = std::time::Instant::now();
+        let importance = importance(gpu, scene, settings, gpu_settings, &view, time_budget)?;
+        Ok(ViewDriven {
+            view,
+            importance,
+            importance_seconds: started.elapsed().as_secs_f64(),
+        })
+    }
+
+    /// Sets `solver` to be driven by this view: the shooters weighed by importance, and
+    /// for [`Drive::Perspective`] the receivers limited to the area of interest seen from
+    /// `point` ([`area_stages`] with `margin_deg`). [`Drive::Global`] changes nothing.
+    pub fn drive(
+        &self,
+        solver: &mut GpuSolver,
+        drive: Drive,
+        point: &ViewPoint,
+        margin_deg: f64,
+    ) -> Result<(), GpuError> {
+        if drive == Drive::Global {
+            return Ok(());
+        }
+        let weights = shooter_weights(solver.scene(), solver.shooters(), &self.importance);
+        solver.set_shooter_weights(&weights);
+        if drive == Drive::Perspective {
+            let stages = area_stages(solver.scene(), point, margin_deg);
+            solver.set_area_of_interest(stages)?;
+        }
+        Ok(())
+    }
+
+    /// [`view_ambient`] of `unshot`.
+    pub fn ambient(&self, scene: &RadiosityScene, unshot: &[DVec3]) -> DVec3 {
+        view_ambient(scene, unshot, &self.importance, &self.view)
+    }
+}
