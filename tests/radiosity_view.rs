@@ -108,15 +108,7 @@ fn importance_and_perspective_driven_solutions_converge_to_the_global_one_in_vie
 fn two_rooms() -> Scene {
     let mut scene = furnace_common::closed_box(0.5, 10.0);
     let room_a = scene.meshes[0].clone();
-    let walls = goniolight::geometry::generate::cuboid(
-        DVec3::new(10.0, 0.0, 0.0),
-        DVec3::new(12.0, 1.5, 1.0),
-    );
-    let inward: Vec<[Vec3; 3]> = walls
-        .triangles
-        .iter()
-        .map(|t| [t[0], t[2], t[1]].map(|i| walls.positions[i as usize].as_vec3()))
-        .collect();
+    let inward = furnace_common::inward_box(DVec3::new(10.0, 0.0, 0.0), DVec3::new(12.0, 1.5, 1.0));
     scene.materials.push(Material {
         diffuse: Vec3::splat(0.5),
         emission: Vec3::splat(40.0),

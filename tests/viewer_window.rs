@@ -365,3 +365,27 @@ fn view_without_a_scene_works_outside_the_checkout() {
         "{off} of {total} pixels differ (worst {worst})"
     );
 }
+
+/// `view --indirect ambient|radiosity` starts the solver with the window: the ambient
+/// estimate is shown without a shot, radiosity shoots while the frames are drawn.
+#[test]
+fn the_viewer_starts_with_the_indirect_light_asked_for() {
+    if skip() {
+        return;
+    }
+    let scene = root().join("assets/scenes/box_room.toml");
+    let scene = scene.to_str().unwrap();
+    let summary = |args: &[&str]| -> serde_json::Value {
+        let (code, out, err) = view_under_xvfb(args);
+        assert_eq!(code, 0, "{args:?}: {err}");
+        serde_json::from_str(out.lines().last().unwrap()).unwrap()
+    };
+    let none = summary(&[scene, "--frames", "3"]);
+    assert_eq!(none["indirect_shown"], false, "{none}");
+    let ambient = summary(&[scene, "--indirect", "ambient", "--frames", "150"]);
+    assert_eq!(ambient["indirect_shown"], true, "{ambient}");
+    assert_eq!(ambient["indirect_shots"], 0, "{ambient}");
+    let solved = summary(&[scene, "--indirect", "radiosity", "--frames", "150"]);
+    assert_eq!(solved["indirect_shown"], true, "{solved}");
+    assert!(solved["indirect_shots"].as_u64().unwrap() > 0, "{solved}");
+}

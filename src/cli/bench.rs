@@ -110,10 +110,10 @@ pub enum BenchCommand {
         #[arg(long)]
         scene: Option<std::path::PathBuf>,
         /// Eye position "x,y,z", metres (default: the scene's camera).
-        #[arg(long, value_delimiter = ',', num_args = 3, requires = "look_at")]
+        #[arg(long, value_delimiter = ',', requires = "look_at")]
         eye: Option<Vec<f64>>,
         /// The point looked at "x,y,z", metres.
-        #[arg(long, value_delimiter = ',', num_args = 3, requires = "eye")]
+        #[arg(long, value_delimiter = ',', requires = "eye")]
         look_at: Option<Vec<f64>>,
         /// Vertical field of view with --eye, degrees.
         #[arg(long, default_value_t = 60.0)]
@@ -247,6 +247,11 @@ pub fn run(cmd: BenchCommand) -> Result<(), CliError> {
                 time_limit,
                 fov_margin,
             };
+            if eye.iter().chain(&look_at).any(|v| v.len() != 3) {
+                return Err(CliError::input(anyhow::anyhow!(
+                    "--eye and --look-at take three numbers \"x,y,z\""
+                )));
+            }
             let eye = eye.zip(look_at).map(|(e, l)| {
                 (
                     glam::DVec3::from_slice(&e),

@@ -17,7 +17,7 @@ use crate::gpu::Gpu;
 use crate::io::write_atomic;
 use crate::photometry::{check, Luminaire};
 use crate::render::Renderer;
-use crate::scene::{Mode, Scene};
+use crate::scene::{DisplayIndirect, Mode, Scene};
 
 /// The bundled luminaire of the demo.
 pub static DEMO_LUMINAIRE: &[u8] =
@@ -35,6 +35,9 @@ pub struct DemoArgs {
     /// Image options (override the scene's `[display]`; the mode is set per image).
     #[command(flatten)]
     pub image: ImageOptions,
+    /// Indirect light (default: radiosity, for --indirect-time seconds).
+    #[command(flatten)]
+    pub indirect: super::indirect::IndirectArgs,
 }
 
 /// The bundled furnished room (the checkout's, or the copy extracted from the binary).
@@ -51,6 +54,19 @@ fn render_both(args: &DemoArgs) -> Result<(), CliError> {
     let scene = super::render::scene_at(Scene::load(&scene_path)?, args.image.time)?;
     let gpu = Gpu::shared()?;
     println!("GPU: {}", gpu.describe());
+    // One solution for both images.
+    let choice = args.indirect.choice(&scene, DisplayIndirect::Radiosity);
+    let mut base = args.image.settings(&scene)?;
+    let map = super::indirect::light_map(
+        &scene_path,
+        &scene,
+        &mut base,
+        choice,
+        args.indirect.indirect_time,
+    )?;
+    if let Some((_, what)) = &map {
+        println!("{what}");
+    }
     let renderer = Renderer::new(&gpu);
     for (mode, stem) in [
         (Mode::Shaded, "room-shaded"),
@@ -58,11 +74,22 @@ fn render_both(args: &DemoArgs) -> Result<(), CliError> {
     ] {
         let mut opts = args.image.clone();
         opts.mode = Some(mode);
-        let settings = opts.settings(&scene)?;
+        let settings = crate::render::RenderSettings {
+            shown_light: base.shown_light,
+            ..opts.settings(&scene)?
+        };
         let png = args.out_dir.join(format!("{stem}.png"));
         let exr = args.out_dir.join(format!("{stem}.exr"));
-        let (_, report) =
-            render_to_files(&gpu, &renderer, &scene, None, &settings, &png, Some(&exr))?;
+        let light_map = map.as_ref().map(|m| &m.0);
+        let (_, report) = render_to_files(
+            &gpu,
+            &renderer,
+            &scene,
+            light_map,
+            &settings,
+            &png,
+            Some(&exr),
+        )?;
         println!("{report}");
     }
     Ok(())
@@ -70,6 +97,7 @@ fn render_both(args: &DemoArgs) -> Result<(), CliError> {
 
 /// Runs the demo.
 pub fn run(args: DemoArgs) -> Result<(), CliError> {
+    args.indirect.check()?;
     let lum = Luminaire::from_bytes("luminaires/eulumdat-analysis/sample_18.ldt", DEMO_LUMINAIRE)?;
     std::fs::create_dir_all(&args.out_dir)
         .map_err(|e| CliError::failure(anyhow::anyhow!("{}: {e}", args.out_dir.display())))?;

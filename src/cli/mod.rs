@@ -7,6 +7,7 @@ mod calc;
 mod calc_report;
 mod demo;
 mod error;
+mod indirect;
 mod ldt;
 mod profile;
 mod radiosity;

@@ -569,6 +569,11 @@ impl Solved<'_> {
         Ok((gathered.into_iter().map(luminance).collect(), patches.len()))
     }
 
+    /// The light-map atlas of the solution as shown.
+    pub fn light_map(&self) -> LightMap {
+        solve::light_map(&self.prepared.rscene, &self.shown, &self.shown_lux)
+    }
+
     /// The fraction of the initial unshot power shot when the solver stopped.
     pub fn convergence(&self) -> f64 {
         self.log.last().map_or(1.0, |p| p.convergence)
@@ -619,7 +624,7 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
         );
     }
     let rscene = &prepared.rscene;
-    let light_map = solve::light_map(rscene, &solved.shown, &solved.shown_lux);
+    let light_map = solved.light_map();
     if let Some(path) = &args.export {
         let names: Vec<String> = scene.materials.iter().map(|m| m.name.clone()).collect();
         let material_bake: Vec<_> = scene.materials.iter().map(|m| m.bake).collect();
@@ -646,6 +651,7 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
             csv: solve::convergence_csv(&solved.log),
         };
         settings.read_hdr = true;
+        settings.shown_light = crate::scene::DisplayIndirect::Radiosity;
         write_outputs(&prepared.gpu, &scene, &settings, &outputs, &dir)?;
     }
     if solved.stop == StopReason::Cancelled {

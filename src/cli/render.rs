@@ -21,7 +21,7 @@ use crate::render::{
     MAX_IMAGE_SIZE,
 };
 use crate::scene::palette::MAX_STEPS;
-use crate::scene::{Mode, Palette, Scene, Tonemap};
+use crate::scene::{DisplayIndirect, Mode, Palette, Scene, Tonemap};
 use crate::shadow::SilhouetteMethod;
 
 /// Options of `render`.
@@ -38,6 +38,9 @@ pub struct RenderArgs {
     /// Image options (override the scene's `[display]`).
     #[command(flatten)]
     pub image: ImageOptions,
+    /// Indirect light.
+    #[command(flatten)]
+    pub indirect: super::indirect::IndirectArgs,
 }
 
 /// Image options shared by `render` and `demo`.
@@ -186,7 +189,7 @@ impl ImageOptions {
 
 /// The illuminance line of a report: percentiles over the surface pixels, the maximum
 /// beside the 99th percentile (it is usually a surface touching a luminaire), the scale.
-fn lux_report(frame: &RenderedFrame) -> String {
+fn lux_report(frame: &RenderedFrame, light: DisplayIndirect) -> String {
     let scale = format!("scale 0–{} lx", format_lux(frame.tone.lux_max));
     match frame.stats.lux {
         Some(p) => {
@@ -196,8 +199,14 @@ fn lux_report(frame: &RenderedFrame) -> String {
                 ""
             };
             format!(
-                "illuminance over the surfaces in view: mean {:.0} lx, median {:.0}, 5 % {:.0}, 95 % {:.0}, 99 % {:.0}, max {:.0}{note}; {scale}",
-                p.mean, p.median, p.p5, p.p95, p.p99, p.max
+                "illuminance ({}) over the surfaces in view: mean {:.0} lx, median {:.0}, 5 % {:.0}, 95 % {:.0}, 99 % {:.0}, max {:.0}{note}; {scale}",
+                light.describe(),
+                p.mean,
+                p.median,
+                p.p5,
+                p.p95,
+                p.p99,
+                p.max
             )
         }
         None => format!("no surface in view; {scale}"),
@@ -251,7 +260,7 @@ pub fn render_to_files(
             "log-average luminance {:.1} cd/m², max {:.0} cd/m²",
             frame.stats.log_average_luminance, frame.stats.max_luminance
         ),
-        Mode::Illuminance => lux_report(&frame),
+        Mode::Illuminance => lux_report(&frame, settings.shown_light),
     };
     let report = format!(
         "{}: {} triangles, {} luminaires, {}×{} in {ms:.0} ms; {what} → {}{}",
@@ -273,20 +282,32 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
     if let Some(e) = &args.exr {
         check_extension(e, "exr", "--exr")?;
     }
+    args.indirect.check()?;
     let scene = scene_at(Scene::load(&args.scene)?, args.image.time)?;
-    let settings = args.image.settings(&scene)?;
+    let mut settings = args.image.settings(&scene)?;
+    let choice = args.indirect.choice(&scene, DisplayIndirect::None);
+    let map = super::indirect::light_map(
+        &args.scene,
+        &scene,
+        &mut settings,
+        choice,
+        args.indirect.indirect_time,
+    )?;
     let gpu = Gpu::shared()?;
     let renderer = Renderer::new(&gpu);
     let (_, report) = render_to_files(
         &gpu,
         &renderer,
         &scene,
-        None,
+        map.as_ref().map(|m| &m.0),
         &settings,
         &args.out,
         args.exr.as_deref(),
     )?;
     println!("{report}");
+    if let Some((_, what)) = &map {
+        println!("{what}");
+    }
     Ok(())
 }
 

@@ -43,6 +43,11 @@ pub struct ViewArgs {
     /// turn from 0 while the window is open).
     #[arg(long, value_name = "SECONDS")]
     pub time: Option<f64>,
+    /// Light shown besides the luminaires' direct light at start: none, ambient (their
+    /// first bounce and the ambient term) or radiosity (solved in the background, shown
+    /// as it converges); default: the scene's display.indirect, else none.
+    #[arg(long, value_enum)]
+    pub indirect: Option<crate::scene::DisplayIndirect>,
 }
 
 /// Runs `view`.
@@ -81,6 +86,7 @@ pub fn run(args: ViewArgs) -> Result<(), CliError> {
         mode: args.mode,
         sun_minutes,
         time_s: args.time,
+        indirect: args.indirect,
         window: WindowOptions {
             size: [args.width, args.height],
             frames: args.frames.or(args.screenshot.as_ref().map(|_| 3)),

@@ -7,8 +7,13 @@ use super::tonemap::{linear_to_srgb, ToneSettings};
 use crate::photometry::plot::register_font;
 
 /// `view` widened by a panel on the right carrying the lux legend of `tone`: its
-/// palette (stepped when it has steps) and nice labels, the top one marked "≥".
-pub fn beside_lux_legend(view: &image::RgbaImage, tone: &ToneSettings) -> image::RgbaImage {
+/// palette (stepped when it has steps) and nice labels, the top one marked "≥", under the
+/// title "lux" and `light` (what the lux are: "direct", "total", …).
+pub fn beside_lux_legend(
+    view: &image::RgbaImage,
+    tone: &ToneSettings,
+    light: &str,
+) -> image::RgbaImage {
     let values = tone.legend_labels();
     let last = values.len() - 1;
     let labels: Vec<String> = values
@@ -22,7 +27,7 @@ pub fn beside_lux_legend(view: &image::RgbaImage, tone: &ToneSettings) -> image:
             }
         })
         .collect();
-    with_legend_panel(view, "lux", &labels, |t| {
+    with_legend_panel(view, &format!("lux\n{light}"), &labels, |t| {
         let c = tone.palette.stepped_colour(t, tone.steps);
         [
             linear_to_srgb(c.x),
@@ -44,7 +49,7 @@ pub fn with_legend_panel(
     if h < font_px(h) * 8 {
         return plan.clone(); // too small to carry a legend
     }
-    let panel = panel_width(h, labels);
+    let panel = panel_width(h, title, labels);
     let mut out = image::RgbaImage::from_pixel(w + panel, h, image::Rgba([255, 255, 255, 255]));
     image::imageops::replace(&mut out, plan, 0, 0);
     draw_colour_bar(&mut out, title, labels, colour);
@@ -55,12 +60,15 @@ fn font_px(height: u32) -> u32 {
     (height / 40).clamp(9, 22)
 }
 
-fn panel_width(height: u32, labels: &[String]) -> u32 {
+/// Wide enough for the labels beside the bar, and for the title's lines.
+fn panel_width(height: u32, title: &str, labels: &[String]) -> u32 {
     let widest = labels.iter().map(|l| l.chars().count()).max().unwrap_or(4) as u32;
-    font_px(height) * (widest / 2 + 4).max(6)
+    let title = title.lines().map(|l| l.chars().count()).max().unwrap_or(0) as u32;
+    font_px(height) * (widest / 2 + 4).max(6).max(title * 3 / 5 + 1)
 }
 
-/// Draws a vertical colour bar into a panel at `image`'s right edge: `title` on top,
+/// Draws a vertical colour bar into a panel at `image`'s right edge: `title` on top (one
+/// line per line of it),
 /// `colour(t)` (sRGB) from t = 0 at the bottom to 1 at the top, and `labels` spread
 /// evenly from bottom to top.
 pub fn draw_colour_bar(
@@ -72,7 +80,7 @@ pub fn draw_colour_bar(
     register_font();
     let (w, h) = image.dimensions();
     let font_px = font_px(h);
-    let panel_w = panel_width(h, labels);
+    let panel_w = panel_width(h, title, labels);
     if w < panel_w * 2 || h < font_px * 8 {
         return; // too small to carry a legend
     }
@@ -86,12 +94,16 @@ pub fn draw_colour_bar(
             RGBColor(245, 245, 245).mix(0.85).filled(),
         ));
         let style = ("sans-serif", font_px).into_font().color(&BLACK);
-        let _ = root.draw(&Text::new(
-            title,
-            (x0 + margin / 2, margin / 2),
-            style.clone(),
-        ));
-        let top = margin * 2;
+        let mut lines = 0;
+        for (k, line) in title.lines().enumerate() {
+            let _ = root.draw(&Text::new(
+                line,
+                (x0 + margin / 2, margin / 2 + k as i32 * margin * 6 / 5),
+                style.clone(),
+            ));
+            lines += 1;
+        }
+        let top = margin * 2 + (lines.max(1) - 1) * margin * 6 / 5;
         let bottom = h as i32 - margin;
         let bar_x = x0 + margin / 2;
         let bar_w = (font_px as i32).max(8);

@@ -29,7 +29,7 @@ pub use tonemap::{ImageStats, LuxPercentiles, ToneSettings};
 
 use crate::gpu::{Gpu, GpuError};
 use crate::photometry::Interp;
-use crate::scene::{Camera, DisplayEntry, Mode, Palette, Scene, Tonemap};
+use crate::scene::{Camera, DisplayEntry, DisplayIndirect, Mode, Palette, Scene, Tonemap};
 use layouts::Layouts;
 use passes::ScenePasses;
 use shadows::{ShadowFrame, ShadowPasses};
@@ -66,6 +66,10 @@ pub struct RenderSettings {
     /// Samples per pixel side for the displayed image (1: none; odd, see
     /// [`targets::Targets`]); the numbers are the pixel centres either way.
     pub supersample: u32,
+    /// What the image's light is — the luminaires' direct light, or with a light map
+    /// ([`Renderer::upload_solved`]) an ambient estimate or a radiosity solution's total —
+    /// named on the illuminance legend.
+    pub shown_light: DisplayIndirect,
 }
 
 impl RenderSettings {
@@ -100,6 +104,7 @@ impl RenderSettings {
             read_hdr: false,
             shadows: ShadowSettings::with(d.shadows.unwrap_or_default()),
             supersample: 1,
+            shown_light: DisplayIndirect::None,
         }
     }
 }
@@ -223,7 +228,7 @@ impl Renderer {
         let mut image = image::RgbaImage::from_raw(settings.width, settings.height, pixels)
             .ok_or_else(|| GpuError::Operation("read-back size mismatch".into()))?;
         if settings.mode == Mode::Illuminance {
-            image = legend::beside_lux_legend(&image, &tone);
+            image = legend::beside_lux_legend(&image, &tone, settings.shown_light.legend_word());
         }
         let (hdr, shadow_mask) = if settings.read_hdr {
             (

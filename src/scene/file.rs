@@ -291,4 +291,47 @@ pub struct DisplayEntry {
     /// Shadows: "none", "paraboloid" (default) or "volumes".
     #[serde(skip_serializing_if = "Option::is_none")]
     pub shadows: Option<crate::shadow::ShadowTechnique>,
+    /// The light shown besides the luminaires' direct light: "none", "ambient" or
+    /// "radiosity" (`render --indirect`; default: none for `render`, radiosity for
+    /// `demo`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub indirect: Option<DisplayIndirect>,
+}
+
+/// What an image shows of the light that surfaces send each other.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, Default)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+#[serde(rename_all = "lowercase")]
+pub enum DisplayIndirect {
+    /// The luminaires' direct light only (exact per pixel).
+    #[default]
+    None,
+    /// Plus an ambient term (Cohen et al. 1988): the luminaires' first bounce spread
+    /// evenly over the scene as 1 / (1 − ρ̄) times its mean — an estimate, shown at the
+    /// light map's resolution.
+    Ambient,
+    /// Plus the interreflected light of a radiosity solution run for the command's time
+    /// budget (with the ambient term for what is not shot yet), at the light map's
+    /// resolution.
+    Radiosity,
+}
+
+impl DisplayIndirect {
+    /// What the image's lux are, in a word or two (a legend's title).
+    pub fn legend_word(self) -> &'static str {
+        match self {
+            DisplayIndirect::None => "direct",
+            DisplayIndirect::Ambient => "+ ambient",
+            DisplayIndirect::Radiosity => "total",
+        }
+    }
+
+    /// What the image's light is, for reports.
+    pub fn describe(self) -> &'static str {
+        match self {
+            DisplayIndirect::None => "direct",
+            DisplayIndirect::Ambient => "direct + ambient estimate",
+            DisplayIndirect::Radiosity => "total",
+        }
+    }
 }

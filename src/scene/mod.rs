@@ -18,7 +18,7 @@ use std::path::{Path, PathBuf};
 use glam::DVec3;
 
 pub use camera::{Camera, Projection};
-pub use file::{DisplayEntry, Mode, SceneFile, Tonemap, UpAxis, MAX_IMAGE_SIZE};
+pub use file::{DisplayEntry, DisplayIndirect, Mode, SceneFile, Tonemap, UpAxis, MAX_IMAGE_SIZE};
 pub use model::{Material, SceneMesh};
 pub use observer::Observer;
 pub use palette::Palette;

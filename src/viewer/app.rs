@@ -108,6 +108,8 @@ pub struct RadiosityState {
     pub light_map: Option<Arc<LightMap>>,
     /// What the solver said last.
     pub status: String,
+    /// Indirect light to start as soon as the GPU is there (`view --indirect`).
+    pub start_with: crate::scene::DisplayIndirect,
 }
 
 /// What the shadow-profile window shows.

@@ -60,6 +60,8 @@ pub struct StartOptions {
     pub sun_minutes: Option<f64>,
     /// Hold effect lights at this animation time, seconds (default: they turn).
     pub time_s: Option<f64>,
+    /// Indirect light at start (default: the scene's `display.indirect`, else none).
+    pub indirect: Option<crate::scene::DisplayIndirect>,
     /// The window's size, how many frames to render before exiting and the screenshot.
     pub window: window::WindowOptions,
 }
@@ -74,6 +76,7 @@ pub fn start(options: StartOptions) -> Result<window::RunSummary, ViewerError> {
     let up = options.up;
     let scene = load_scene_or_model(&path, up)?;
     let is_scene = !scene.path.as_os_str().is_empty();
+    let indirect = options.indirect.or(scene.display.indirect).unwrap_or_default();
     let mut app = ViewerApp::new(
         scene,
         is_scene.then(|| path.clone()),
@@ -86,6 +89,7 @@ pub fn start(options: StartOptions) -> Result<window::RunSummary, ViewerError> {
         }
     }
     app.obj_up = up;
+    app.radiosity.start_with = indirect;
     if let Some(m) = options.mode {
         app.display.mode = m;
     }

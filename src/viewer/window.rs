@@ -44,6 +44,12 @@ pub struct RunSummary {
     pub surface_format: String,
     /// The screenshot written.
     pub screenshot: Option<PathBuf>,
+    /// Whether a radiosity light map (or the ambient estimate) was shown at the end.
+    pub indirect_shown: bool,
+    /// Radiosity shots by then.
+    pub indirect_shots: usize,
+    /// What the radiosity solver said last.
+    pub indirect_status: String,
 }
 
 struct Running {
@@ -90,6 +96,10 @@ pub fn run(app: ViewerApp, options: WindowOptions) -> anyhow::Result<RunSummary>
     }
     let n = handler.frame_ms.len().max(1) as f64;
     handler.summary.mean_frame_ms = handler.frame_ms.iter().sum::<f64>() / n;
+    let radiosity = &handler.app.radiosity;
+    handler.summary.indirect_shown = radiosity.light_map.is_some();
+    handler.summary.indirect_shots = radiosity.shots;
+    handler.summary.indirect_status = radiosity.status.clone();
     Ok(handler.summary)
 }
 
@@ -152,6 +162,7 @@ impl Handler {
             egui_wgpu::Renderer::new(&gpu.device, format, egui_wgpu::RendererOptions::default());
         self.app.status.gpu = gpu.describe();
         self.app.gpu = Some(gpu.clone());
+        self.app.start_indirect();
         self.summary.gpu = gpu.describe();
         self.summary.surface_format = format!("{format:?}");
         Ok(Running {

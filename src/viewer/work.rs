@@ -307,6 +307,22 @@ impl ViewerApp {
         }
     }
 
+    /// Starts what `start_with` asks for once (`view --indirect`): a radiosity solution,
+    /// or one that stops before its first shot (the luminaires' first bounce and the
+    /// ambient term).
+    pub fn start_indirect(&mut self) {
+        use crate::scene::DisplayIndirect;
+        let wanted = std::mem::take(&mut self.radiosity.start_with);
+        let converge = self.radiosity.settings.converge;
+        match wanted {
+            DisplayIndirect::None => return,
+            DisplayIndirect::Ambient => self.radiosity.settings.converge = 0.0,
+            DisplayIndirect::Radiosity => {}
+        }
+        self.start_radiosity();
+        self.radiosity.settings.converge = converge;
+    }
+
     /// Pauses or resumes the solver.
     pub fn toggle_radiosity_pause(&mut self) {
         if let Some(w) = &self.radiosity.worker {

@@ -47,7 +47,8 @@ pub(super) struct Deferral {
 impl GpuSolver<'_> {
     /// Which charts receive (`receiving`, one per chart of the scene's elements,
     /// `elements.charts` order); the others wait. A chart that starts receiving is first
-    /// given the shots it missed. Returns how many shots were given again.
+    /// given the shots it missed. Returns how many shots were shot again (those with a
+    /// joining chart in front of them).
     pub fn set_receiving(&mut self, receiving: &[bool]) -> Result<usize, GpuError> {
         let el = &self.scene.elements;
         assert_eq!(receiving.len(), el.charts.len());
@@ -79,8 +80,9 @@ impl GpuSolver<'_> {
         let missed = std::mem::take(&mut deferral.missed);
         for (from, charts) in &joining {
             for shot in &missed[*from..] {
-                self.shoot_again(shot, charts)?;
-                given += 1;
+                if self.shoot_again(shot, charts)? {
+                    given += 1;
+                }
             }
         }
         let deferral = self.deferral.as_mut().expect("set above");
@@ -177,23 +179,37 @@ impl GpuSolver<'_> {
         }
     }
 
-    /// Shoots `shot` again at the receiver charts `charts` only (nothing is cleared: its
-    /// shooter's unshot radiosity was taken when it was first shot).
-    fn shoot_again(&mut self, shot: &MissedShot, charts: &[usize]) -> Result<(), GpuError> {
+    /// Shoots `shot` again at the receiver charts `charts` (sorted) only (nothing is
+    /// cleared: its shooter's unshot radiosity was taken when it was first shot). False
+    /// when none of them is in front of its cells (nothing to shoot).
+    fn shoot_again(&mut self, shot: &MissedShot, charts: &[usize]) -> Result<bool, GpuError> {
         self.gpu
             .queue
             .write_buffer(&self.patch_delta, 0, bytemuck::cast_slice(&shot.delta));
-        // Those in front of its cells, as when it was first shot.
-        let cells: Vec<_> = shot
+        // Only the cells with one of `charts` in front of them are drawn again, and only
+        // those charts receive (as when it was first shot: the culling's own test).
+        let joining = |planes: &[(glam::DVec3, glam::DVec3, f64)]| {
+            let mut found = self.receivers.charts_in_front_of_any(planes);
+            found.retain(|k| charts.binary_search(k).is_ok());
+            found
+        };
+        let cells: Vec<usize> = shot
             .cells
+            .iter()
+            .copied()
+            .filter(|&c| !joining(&cell_planes(&shot.plan.patches[c..=c])).is_empty())
+            .collect();
+        if cells.is_empty() {
+            return Ok(false);
+        }
+        let patches: Vec<_> = cells
             .iter()
             .map(|&c| shot.plan.patches[c].clone())
             .collect();
-        let mut in_front = self.receivers.charts_in_front_of_any(&cell_planes(&cells));
-        in_front.retain(|k| charts.binary_search(k).is_ok());
-        self.set_receivers(&in_front);
-        self.shoot_batch(shot.shooter, &shot.plan, &shot.links, &shot.cells, 0..0)?;
-        self.drawn += shot.cells.len();
-        Ok(())
+        let receivers = joining(&cell_planes(&patches));
+        self.set_receivers(&receivers);
+        self.shoot_batch(shot.shooter, &shot.plan, &shot.links, &cells, 0..0)?;
+        self.drawn += cells.len();
+        Ok(true)
     }
 }

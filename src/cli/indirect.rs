@@ -1,0 +1,93 @@
+//! `--indirect none|ambient|radiosity` of `render` and `demo`: the light surfaces send each
+//! other, shown beside the luminaires' direct light — an ambient estimate from their first
+//! bounce, or a radiosity solution run for a time budget — through the radiosity solver's
+//! light map.
+
+use std::path::Path;
+use std::time::Instant;
+
+use anyhow::anyhow;
+use clap::{Args, FromArgMatches};
+
+use super::radiosity::{prepare, SolverArgs};
+use super::CliError;
+use crate::render::lightmap::LightMap;
+use crate::render::RenderSettings;
+use crate::scene::{DisplayIndirect, Scene};
+
+/// The indirect-light options of `render` and `demo`.
+#[derive(Debug, Clone, Args)]
+pub struct IndirectArgs {
+    /// Light shown besides the luminaires' direct light: none (direct only, exact per
+    /// pixel), ambient (their first bounce spread evenly: an estimate) or radiosity (a
+    /// solution run for --indirect-time); both at the light map's resolution (default:
+    /// the scene's display.indirect, else none for render and radiosity for demo).
+    #[arg(long, value_enum)]
+    pub indirect: Option<DisplayIndirect>,
+    /// With --indirect radiosity: seconds of shooting.
+    #[arg(long, value_name = "S", default_value_t = 10.0)]
+    pub indirect_time: f64,
+}
+
+impl IndirectArgs {
+    /// An error naming a bad --indirect-time.
+    pub fn check(&self) -> Result<(), CliError> {
+        if !(self.indirect_time.is_finite() && self.indirect_time > 0.0) {
+            return Err(CliError::input(anyhow!(
+                "--indirect-time {} must be a positive number of seconds",
+                self.indirect_time
+            )));
+        }
+        Ok(())
+    }
+
+    /// What to show: the flag, else the scene's `display.indirect`, else `default`.
+    pub fn choice(&self, scene: &Scene, default: DisplayIndirect) -> DisplayIndirect {
+        self.indirect.or(scene.display.indirect).unwrap_or(default)
+    }
+}
+
+/// The radiosity solver's options at their defaults (as `radiosity` parses them).
+fn default_solver() -> Result<SolverArgs, CliError> {
+    let command = SolverArgs::augment_args(clap::Command::new("indirect"));
+    let matches = command
+        .try_get_matches_from(["indirect"])
+        .map_err(|e| CliError::failure(anyhow!(e)))?;
+    SolverArgs::from_arg_matches(&matches).map_err(|e| CliError::failure(anyhow!(e)))
+}
+
+/// The light map that shows `choice` for `scene` (`label`: its file, for messages), and
+/// a line saying what it holds; `None` for [`DisplayIndirect::None`]. Sets
+/// `settings.shown_light`.
+pub fn light_map(
+    label: &Path,
+    scene: &Scene,
+    settings: &mut RenderSettings,
+    choice: DisplayIndirect,
+    seconds: f64,
+) -> Result<Option<(LightMap, String)>, CliError> {
+    settings.shown_light = choice;
+    let mut solver = default_solver()?;
+    match choice {
+        DisplayIndirect::None => return Ok(None),
+        // No shot: the luminaires' first bounce and the ambient term alone.
+        DisplayIndirect::Ambient => solver.max_shots = Some(0),
+        DisplayIndirect::Radiosity => solver.time_limit = Some(seconds),
+    }
+    let started = Instant::now();
+    let prepared = prepare(label, scene, &solver, settings, started)?;
+    let solved = prepared.solve()?;
+    let what = match choice {
+        DisplayIndirect::Ambient => format!(
+            "indirect light: ambient estimate from the luminaires' first bounce ({:.1} s)",
+            started.elapsed().as_secs_f64()
+        ),
+        _ => format!(
+            "indirect light: radiosity, {:.1} % converged ({}) in {:.1} s, the ambient term for the rest",
+            100.0 * solved.convergence(),
+            solved.stop,
+            started.elapsed().as_secs_f64()
+        ),
+    };
+    Ok(Some((solved.light_map(), what)))
+}
