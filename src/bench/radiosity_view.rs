@@ -96,6 +96,43 @@ pub fn view_error(
     diff / total.max(1e-300)
 }
 
+/// `scene` repeated `n` times in a row along +x, 0.5 m apart (meshes, materials shared,
+/// luminaires and their housings): a building of closed rooms where the camera, in the
+/// first, sees a small part.
+pub fn row_of_rooms(scene: &Scene, n: usize) -> Scene {
+    let (lo, hi) = scene
+        .meshes
+        .iter()
+        .flat_map(|m| &m.positions)
+        .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), p| {
+            (lo.min(p.x), hi.max(p.x))
+        });
+    let step = f64::from(hi - lo).max(0.0) + 0.5;
+    let mut out = scene.clone();
+    let meshes = scene.meshes.len();
+    for k in 1..n {
+        let dx = step * k as f64;
+        out.meshes.extend(scene.meshes.iter().map(|m| {
+            let mut m = m.clone();
+            for p in &mut m.positions {
+                p.x += dx as f32;
+            }
+            m
+        }));
+        out.luminaires.extend(scene.luminaires.iter().map(|l| {
+            let mut l = l.clone();
+            l.position.x += dx;
+            if let Some(h) = &mut l.housing {
+                for m in &mut h.meshes {
+                    *m += meshes * k;
+                }
+            }
+            l
+        }));
+    }
+    out
+}
+
 /// Runs the benchmark on `scene` seen from `point`.
 pub fn run(
     gpu: &Gpu,

@@ -139,6 +139,10 @@ pub enum BenchCommand {
         /// Perspective-driven: the first area of interest's margin, degrees.
         #[arg(long, default_value_t = 10.0)]
         fov_margin: f64,
+        /// The scene this many times in a row along +x (closed rooms; the camera in the
+        /// first sees a small part of the whole).
+        #[arg(long, default_value_t = 1)]
+        rooms: usize,
     },
     /// GPU radiosity on a Cornell-box-like scene (Wallner Table 4.1, "Cornell box high":
     /// ~127 000 elements): time to 90 % and 99 % convergence, hemicube vs stereographic,
@@ -237,6 +241,7 @@ pub fn run(cmd: BenchCommand) -> Result<(), CliError> {
             reference,
             time_limit,
             fov_margin,
+            rooms,
         } => {
             let plan = crate::bench::radiosity_view::ViewBenchPlan {
                 texel_density,
@@ -259,7 +264,7 @@ pub fn run(cmd: BenchCommand) -> Result<(), CliError> {
                     fov,
                 )
             });
-            run_radiosity_view(json, scene, eye, plan)
+            run_radiosity_view(json, scene, eye, rooms, plan)
         }
         BenchCommand::Radiosity {
             json,
@@ -529,6 +534,7 @@ fn run_radiosity_view(
     as_json: bool,
     scene: Option<std::path::PathBuf>,
     eye: Option<(glam::DVec3, glam::DVec3, f64)>,
+    rooms: usize,
     plan: crate::bench::radiosity_view::ViewBenchPlan,
 ) -> Result<(), CliError> {
     use crate::radiosity::view::ViewPoint;
@@ -539,16 +545,18 @@ fn run_radiosity_view(
         && ok(plan.time_limit, 0.0, 1e6)
         && (0.0..=180.0).contains(&plan.fov_margin)
         && plan.level <= 6
+        && (1..=64).contains(&rooms)
         && eye
             .is_none_or(|(e, l, f)| e.is_finite() && l.is_finite() && e != l && ok(f, 0.0, 179.0)))
     {
         return Err(CliError::input(anyhow::anyhow!(
-            "--texel-density > 0, --tolerance and --reference in (0, 1], --time-limit > 0, --fov-margin in 0..=180, --level in 0..=6, --fov in (0, 179), --eye ≠ --look-at"
+            "--texel-density > 0, --tolerance and --reference in (0, 1], --time-limit > 0, --fov-margin in 0..=180, --level in 0..=6, --rooms in 1..=64, --fov in (0, 179), --eye ≠ --look-at"
         )));
     }
     let path =
         scene.unwrap_or_else(|| crate::io::data_root().join("assets/scenes/furnished_room.toml"));
-    let scene = crate::scene::Scene::load(&path)?;
+    let scene =
+        crate::bench::radiosity_view::row_of_rooms(&crate::scene::Scene::load(&path)?, rooms);
     let mut camera = scene.camera;
     if let Some((e, l, fov)) = eye {
         camera = crate::scene::camera::Camera {
@@ -582,9 +590,14 @@ fn run_radiosity_view(
         return Ok(());
     }
     println!(
-        "{}: {}, {} elements ({} seen), reference: global to {:.2} % in {:.1} s",
+        "{}: {}{}, {} elements ({} seen), reference: global to {:.2} % in {:.1} s",
         gpu.describe(),
         path.display(),
+        if rooms > 1 {
+            format!(" × {rooms} rooms")
+        } else {
+            String::new()
+        },
         result.elements,
         result.elements_seen,
         100.0 * result.reference_convergence,

@@ -1,7 +1,9 @@
 //! `goniolight demo`: the main job on the bundled data.
 //!
 //! Renders the bundled furnished room (`assets/scenes/furnished_room.toml`) shaded and in
-//! false-colour illuminance (PNG + EXR), then runs the interpolation check on the bundled
+//! false-colour illuminance (PNG + EXR) with its interreflected light (a radiosity solution
+//! run for `--indirect-time` seconds, shown through the light map; `--indirect none` for
+//! the direct light alone), then runs the interpolation check on the bundled
 //! raw lab measurement (`luminaires/eulumdat-analysis/sample_18.ldt`, 1° × 1°)
 //! downsampled to the 15° × 5° grid of a typical manufacturer file, prints the table, and
 //! writes the polar diagram and the check as JSON.

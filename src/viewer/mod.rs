@@ -76,7 +76,10 @@ pub fn start(options: StartOptions) -> Result<window::RunSummary, ViewerError> {
     let up = options.up;
     let scene = load_scene_or_model(&path, up)?;
     let is_scene = !scene.path.as_os_str().is_empty();
-    let indirect = options.indirect.or(scene.display.indirect).unwrap_or_default();
+    let indirect = options
+        .indirect
+        .or(scene.display.indirect)
+        .unwrap_or_default();
     let mut app = ViewerApp::new(
         scene,
         is_scene.then(|| path.clone()),
