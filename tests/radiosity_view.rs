@@ -290,3 +290,50 @@ fn the_command_refuses_what_a_view_cannot_drive() {
     assert!(err.contains("--drive importance"), "{err}");
     assert!(!std::path::Path::new(out).exists());
 }
+
+#[test]
+fn the_benchmark_measures_every_drive_through_the_command() {
+    let Some(_gpu) = gpu_common::gpu() else {
+        return;
+    };
+    let scene = common::root().join("assets/scenes/boxes_room.toml");
+    let (code, out, err) = common::run_cli(
+        &[
+            "bench",
+            "radiosity-view",
+            "--json",
+            "--scene",
+            scene.to_str().unwrap(),
+            "--texel-density",
+            "4",
+            "--level",
+            "1",
+            "--reference",
+            "0.99",
+            "--tolerance",
+            "0.1",
+            "--rooms",
+            "2",
+        ],
+        "",
+    );
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let bench = &v["bench"];
+    let rows = bench["rows"].as_array().unwrap();
+    let drives: Vec<&str> = rows.iter().map(|r| r["drive"].as_str().unwrap()).collect();
+    assert_eq!(drives, ["global", "importance", "perspective"]);
+    // Two rooms: the camera sees less than half of the elements.
+    let (seen, all) = (
+        bench["elements_seen"].as_u64().unwrap(),
+        bench["elements"].as_u64().unwrap(),
+    );
+    assert!(seen > 0 && 2 * seen < all, "{seen} of {all}");
+    for r in rows {
+        let shot = r["seconds_shot"].as_f64().expect("each drive reaches 10 %");
+        assert!(r["importance_seconds"].as_f64().unwrap() <= shot, "{r}");
+        assert!(r["seconds_shown"].as_f64().is_some(), "{r}");
+    }
+    let (code, _, err) = common::run_cli(&["bench", "radiosity-view", "--rooms", "0"], "");
+    assert_eq!(code, 2, "{err}");
+}
