@@ -12,6 +12,7 @@ mod ldt;
 mod profile;
 mod radiosity;
 mod render;
+mod render_command;
 mod silhouette;
 mod sun;
 #[cfg(feature = "viewer")]
@@ -39,7 +40,7 @@ pub enum Command {
     /// Run the main job on the bundled data and write its outputs.
     Demo(demo::DemoArgs),
     /// Render a scene (shaded or false-colour illuminance) to PNG and optionally EXR.
-    Render(render::RenderArgs),
+    Render(render_command::RenderArgs),
     /// Read "x y z nx ny nz" lines from stdin and print the direct illuminance (lux) at each.
     Illuminance(render::IlluminanceArgs),
     /// Lighting calculations on the scene's `[[grid]]` surfaces and `[[observer]]`s:
@@ -97,7 +98,7 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
     match cli.command {
         Command::Ldt(cmd) => ldt::run(cmd),
         Command::Demo(args) => demo::run(args),
-        Command::Render(args) => render::run(args),
+        Command::Render(args) => render_command::run(args),
         Command::Illuminance(args) => render::run_illuminance(args),
         Command::Calc(args) => calc::run(args),
         Command::Sun(args) => sun::run(args),

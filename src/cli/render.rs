@@ -24,25 +24,6 @@ use crate::scene::palette::MAX_STEPS;
 use crate::scene::{DisplayIndirect, Mode, Palette, Scene, Tonemap};
 use crate::shadow::SilhouetteMethod;
 
-/// Options of `render`.
-#[derive(Debug, Args)]
-pub struct RenderArgs {
-    /// The scene file (TOML).
-    pub scene: PathBuf,
-    /// The image to write (PNG).
-    #[arg(long)]
-    pub out: PathBuf,
-    /// Also write linear values as OpenEXR (cd/m² when shaded, lux in illuminance mode).
-    #[arg(long)]
-    pub exr: Option<PathBuf>,
-    /// Image options (override the scene's `[display]`).
-    #[command(flatten)]
-    pub image: ImageOptions,
-    /// Indirect light.
-    #[command(flatten)]
-    pub indirect: super::indirect::IndirectArgs,
-}
-
 /// Image options shared by `render` and `demo`.
 #[derive(Debug, Args, Clone, Default)]
 pub struct ImageOptions {
@@ -213,20 +194,6 @@ fn lux_report(frame: &RenderedFrame, light: DisplayIndirect) -> String {
     }
 }
 
-fn check_extension(path: &Path, ext: &str, flag: &str) -> Result<(), CliError> {
-    let ok = path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case(ext));
-    if ok {
-        Ok(())
-    } else {
-        Err(CliError::input(anyhow!(
-            "{flag} {}: the file name must end in .{ext}",
-            path.display()
-        )))
-    }
-}
-
 /// Renders `scene` with `settings` (with a solved radiosity light map when given) and
 /// writes the PNG (and EXR): the shared body of `render`, `demo` and `radiosity`. Returns
 /// the frame and a one-line report for the caller to print.
@@ -274,41 +241,6 @@ pub fn render_to_files(
             .unwrap_or_default()
     );
     Ok((frame, report))
-}
-
-/// Runs `render`.
-pub fn run(args: RenderArgs) -> Result<(), CliError> {
-    check_extension(&args.out, "png", "--out")?;
-    if let Some(e) = &args.exr {
-        check_extension(e, "exr", "--exr")?;
-    }
-    args.indirect.check()?;
-    let scene = scene_at(Scene::load(&args.scene)?, args.image.time)?;
-    let mut settings = args.image.settings(&scene)?;
-    let choice = args.indirect.choice(&scene, DisplayIndirect::None);
-    let map = super::indirect::light_map(
-        &args.scene,
-        &scene,
-        &mut settings,
-        choice,
-        args.indirect.indirect_time,
-    )?;
-    let gpu = Gpu::shared()?;
-    let renderer = Renderer::new(&gpu);
-    let (_, report) = render_to_files(
-        &gpu,
-        &renderer,
-        &scene,
-        map.as_ref().map(|m| &m.0),
-        &settings,
-        &args.out,
-        args.exr.as_deref(),
-    )?;
-    println!("{report}");
-    if let Some((_, what)) = &map {
-        println!("{what}");
-    }
-    Ok(())
 }
 
 /// Options of `illuminance`.

@@ -1,0 +1,82 @@
+//! `goniolight render`: one image of a scene, with the indirect light asked for
+//! ([`super::indirect`]).
+
+use clap::Args;
+use std::path::{Path, PathBuf};
+
+use anyhow::anyhow;
+
+use super::indirect::{light_map, IndirectArgs};
+use super::render::{render_to_files, scene_at, ImageOptions};
+use super::CliError;
+use crate::gpu::Gpu;
+use crate::render::Renderer;
+use crate::scene::{DisplayIndirect, Scene};
+
+/// Options of `render`.
+#[derive(Debug, Args)]
+pub struct RenderArgs {
+    /// The scene file (TOML).
+    pub scene: PathBuf,
+    /// The image to write (PNG).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Also write linear values as OpenEXR (cd/m² when shaded, lux in illuminance mode).
+    #[arg(long)]
+    pub exr: Option<PathBuf>,
+    /// Image options (override the scene's `[display]`).
+    #[command(flatten)]
+    pub image: ImageOptions,
+    /// Indirect light.
+    #[command(flatten)]
+    pub indirect: IndirectArgs,
+}
+
+fn check_extension(path: &Path, ext: &str, flag: &str) -> Result<(), CliError> {
+    let ok = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case(ext));
+    if ok {
+        Ok(())
+    } else {
+        Err(CliError::input(anyhow!(
+            "{flag} {}: the file name must end in .{ext}",
+            path.display()
+        )))
+    }
+}
+
+/// Runs `render`.
+pub fn run(args: RenderArgs) -> Result<(), CliError> {
+    check_extension(&args.out, "png", "--out")?;
+    if let Some(e) = &args.exr {
+        check_extension(e, "exr", "--exr")?;
+    }
+    args.indirect.check()?;
+    let scene = scene_at(Scene::load(&args.scene)?, args.image.time)?;
+    let mut settings = args.image.settings(&scene)?;
+    let choice = args.indirect.choice(&scene, DisplayIndirect::None);
+    let map = light_map(
+        &args.scene,
+        &scene,
+        &mut settings,
+        choice,
+        args.indirect.indirect_time,
+    )?;
+    let gpu = Gpu::shared()?;
+    let renderer = Renderer::new(&gpu);
+    let (_, report) = render_to_files(
+        &gpu,
+        &renderer,
+        &scene,
+        map.as_ref().map(|m| &m.0),
+        &settings,
+        &args.out,
+        args.exr.as_deref(),
+    )?;
+    println!("{report}");
+    if let Some((_, what)) = &map {
+        println!("{what}");
+    }
+    Ok(())
+}
