@@ -103,7 +103,8 @@ pub fn draw_colour_bar(
             ));
             lines += 1;
         }
-        let top = margin * 2 + (lines.max(1) - 1) * margin * 6 / 5;
+        // Under a title of several lines, half a line more before the top label.
+        let top = margin * 2 + (lines.max(1) - 1) * (margin * 6 / 5 + margin / 2);
         let bottom = h as i32 - margin;
         let bar_x = x0 + margin / 2;
         let bar_w = (font_px as i32).max(8);
