@@ -58,22 +58,30 @@ pub struct ViewBench {
     pub rows: Vec<ViewBenchRow>,
 }
 
-/// The benchmark's settings.
+/// The benchmark's settings (`bench radiosity-view`'s options).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "cli", derive(clap::Args))]
 pub struct ViewBenchPlan {
     /// Texels per metre.
+    #[cfg_attr(feature = "cli", arg(long, default_value_t = 10.0))]
     pub texel_density: f64,
     /// Patch level.
+    #[cfg_attr(feature = "cli", arg(long, default_value_t = 2))]
     pub level: u32,
     /// Shooters.
+    #[cfg_attr(feature = "cli", arg(long, value_enum, default_value = "clusters"))]
     pub hierarchy: Hierarchy,
-    /// The tolerance (0.05: within 5 %).
+    /// Within this share of the image's mean luminance (0.05: 5 %).
+    #[cfg_attr(feature = "cli", arg(long, default_value_t = 0.05))]
     pub tolerance: f64,
-    /// The reference's convergence.
+    /// The converged image: a global solve to this convergence.
+    #[cfg_attr(feature = "cli", arg(long, default_value_t = 0.999))]
     pub reference: f64,
     /// Give up on a drive after this many seconds.
+    #[cfg_attr(feature = "cli", arg(long, default_value_t = 600.0))]
     pub time_limit: f64,
-    /// With perspective: the area of interest's margin, degrees.
+    /// Perspective-driven: the first area of interest's margin, degrees.
+    #[cfg_attr(feature = "cli", arg(long, default_value_t = 10.0))]
     pub fov_margin: f64,
 }
 
@@ -170,7 +178,7 @@ pub fn run(
 
     let mut rows = Vec::new();
     for drive in [Drive::Global, Drive::Importance, Drive::Perspective] {
-        progress(&format!("{drive:?}").to_lowercase());
+        progress(drive.name());
         let mut solver = GpuSolver::new(gpu, &rscene, &initial, settings, gpu_settings);
         // The clock runs only while the solver works (not while the bench reads back).
         let mut clock = 0.0;
@@ -187,7 +195,7 @@ pub fn run(
         };
         let importance_seconds = clock;
         let mut row = ViewBenchRow {
-            drive: format!("{drive:?}").to_lowercase(),
+            drive: drive.name().to_string(),
             importance_seconds,
             seconds_shown: None,
             seconds_shot: None,

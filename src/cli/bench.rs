@@ -118,27 +118,9 @@ pub enum BenchCommand {
         /// Vertical field of view with --eye, degrees.
         #[arg(long, default_value_t = 60.0)]
         fov: f64,
-        /// Texels per metre.
-        #[arg(long, default_value_t = 10.0)]
-        texel_density: f64,
-        /// Patch level.
-        #[arg(long, default_value_t = 2)]
-        level: u32,
-        /// Shooters.
-        #[arg(long, value_enum, default_value = "clusters")]
-        hierarchy: crate::radiosity::shooters::Hierarchy,
-        /// Within this share of the image's mean luminance (0.05: 5 %).
-        #[arg(long, default_value_t = 0.05)]
-        tolerance: f64,
-        /// The converged image: a global solve to this convergence.
-        #[arg(long, default_value_t = 0.999)]
-        reference: f64,
-        /// Give up on a drive after this many seconds.
-        #[arg(long, default_value_t = 600.0)]
-        time_limit: f64,
-        /// Perspective-driven: the first area of interest's margin, degrees.
-        #[arg(long, default_value_t = 10.0)]
-        fov_margin: f64,
+        /// What it solves with.
+        #[command(flatten)]
+        plan: crate::bench::radiosity_view::ViewBenchPlan,
         /// The scene this many times in a row along +x (closed rooms; the camera in the
         /// first sees a small part of the whole).
         #[arg(long, default_value_t = 1)]
@@ -234,24 +216,9 @@ pub fn run(cmd: BenchCommand) -> Result<(), CliError> {
             eye,
             look_at,
             fov,
-            texel_density,
-            level,
-            hierarchy,
-            tolerance,
-            reference,
-            time_limit,
-            fov_margin,
+            plan,
             rooms,
         } => {
-            let plan = crate::bench::radiosity_view::ViewBenchPlan {
-                texel_density,
-                level,
-                hierarchy,
-                tolerance,
-                reference,
-                time_limit,
-                fov_margin,
-            };
             if eye.iter().chain(&look_at).any(|v| v.len() != 3) {
                 return Err(CliError::input(anyhow::anyhow!(
                     "--eye and --look-at take three numbers \"x,y,z\""

@@ -131,7 +131,7 @@ pub fn run(args: CalcArgs) -> Result<(), CliError> {
         // A grid's lux must not depend on where the camera looks.
         return Err(CliError::input(anyhow!(
             "--drive {}: calc's interreflected light is solved for the whole scene (--drive global); view-driven solutions are for `radiosity` and the viewer",
-            format!("{:?}", args.solver.drive).to_lowercase()
+            args.solver.drive.name()
         )));
     }
     let mut names = std::collections::HashSet::new();

@@ -331,7 +331,7 @@ pub fn prepare<'s>(
                 CliError::input(anyhow!(
                     "{}: --drive {} needs a perspective camera (the scene's is orthographic)",
                     label.display(),
-                    format!("{drive:?}").to_lowercase()
+                    drive.name()
                 ))
             })?)
         }
@@ -395,7 +395,7 @@ impl Prepared<'_> {
             return Err(CliError::input(anyhow!(
                 "{}: --drive {}: the camera sees no surface of the scene (check camera.position and camera.look_at)",
                 self.label.display(),
-                format!("{:?}", self.solver.drive).to_lowercase()
+                self.solver.drive.name()
             )));
         }
         let driven = ViewDriven::new(

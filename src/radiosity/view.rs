@@ -41,6 +41,17 @@ pub enum Drive {
     Perspective,
 }
 
+impl Drive {
+    /// The name as the command line spells it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Drive::Global => "global",
+            Drive::Importance => "importance",
+            Drive::Perspective => "perspective",
+        }
+    }
+}
+
 /// A share of the shooters' weights every shooter keeps: one no camera ray and no
 /// importance reaches is still shot in the end, so the solution converges everywhere.
 pub const WEIGHT_FLOOR: f64 = 1e-3;
