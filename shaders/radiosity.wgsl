@@ -193,7 +193,9 @@ fn select_shooter(@builtin(local_invocation_index) l: u32) {
         if (params.overshoot != 0u) {
             extra = max(min(info.reflectance_area.rgb * ambient, total.rgb / area - mean), vec3<f32>(0.0));
         }
-        let power = abs(dot(mean + extra, LUMA)) * area * bitcast<f32>(info.range.z);
+        // Unshot light of both signs (a luminaire moved: negative where its light went,
+        // GpuSolver::relight) must not cancel in the ranking: at least Σ |unshot| × area.
+        let power = max(abs(dot(mean + extra, LUMA)) * area, shooter_power[t].w) * bitcast<f32>(info.range.z);
         if (power > best) {
             best = power;
             best_index = t;
@@ -238,9 +240,10 @@ fn gather_patches(
     }
     let p = patches[params.patch_first + i];
     let extra = shooter_power[params.shooter_count + 1u].rgb;
-    let power = workgroup_range_sum(p.range.x, p.range.y, extra, l).rgb;
+    let sum = workgroup_range_sum(p.range.x, p.range.y, extra, l);
     if (l == 0u) {
-        patch_delta[i] = vec4<f32>(power / max(p.area, 1e-30), 0.0);
+        // w: the mean |unshot luminance|, for the cells' sizes and the links' oracle.
+        patch_delta[i] = sum / max(p.area, 1e-30);
     }
 }
 

@@ -23,6 +23,7 @@ use crate::gpu::{Gpu, GpuError};
 use crate::render::layouts::{buffer_binding, entry};
 
 mod deferred;
+mod relight;
 pub use deferred::WIDEN_AT;
 
 /// How a shooting patch sees what it can reach.
@@ -401,6 +402,14 @@ fn dispatch_groups(pass: &mut wgpu::ComputePass<'_>, groups: u32) {
     let groups = groups.max(1);
     let rows = groups.div_ceil(MAX_GROUPS_X);
     pass.dispatch_workgroups(groups.div_ceil(rows), rows, 1);
+}
+
+/// How much a gathered cell or piece shoots (`gather_patches`: rgb the unshot radiosity,
+/// w the mean |unshot luminance|): the larger of its signed luminance and w, so light of
+/// both signs (a relit solution, [`GpuSolver::relight`]) does not cancel.
+fn unshot_magnitude(d: &[f32; 4]) -> f64 {
+    let signed = super::scene::luminance(DVec3::new(d[0] as f64, d[1] as f64, d[2] as f64));
+    signed.abs().max(d[3] as f64)
 }
 
 fn v4(v: DVec3, w: f32) -> [f32; 4] {
@@ -926,11 +935,7 @@ impl<'a> GpuSolver<'a> {
             Vec::new()
         };
         let radiosity: Vec<f64> = if coarse {
-            let luma = Vec3::new(0.2126, 0.7152, 0.0722);
-            delta
-                .iter()
-                .map(|d| Vec3::new(d[0], d[1], d[2]).dot(luma) as f64)
-                .collect()
+            delta.iter().map(unshot_magnitude).collect()
         } else {
             vec![0.0; plan.patches.len()]
         };
@@ -973,7 +978,7 @@ impl<'a> GpuSolver<'a> {
             .read_f32_prefix(&self.patch_delta, 16 * u64::from(count))?;
         Ok(sums
             .chunks_exact(4)
-            .map(|d| super::scene::luminance(DVec3::new(d[0] as f64, d[1] as f64, d[2] as f64)))
+            .map(|d| unshot_magnitude(&[d[0], d[1], d[2], d[3]]))
             .collect())
     }
 

@@ -54,7 +54,7 @@ impl InitialState {
         if light.scene.lights.count == 0 {
             return Ok(InitialState::emission(radiosity_scene));
         }
-        let samples = DirectSamples::new(radiosity_scene);
+        let samples = DirectSamples::near(radiosity_scene, &light.positions);
         let direct = light.rgb(gpu, &samples.points, shadows)?;
         Ok(InitialState::with_direct(
             radiosity_scene,
@@ -68,6 +68,8 @@ impl InitialState {
 pub struct LuminaireLight {
     scene: GpuScene,
     probe: IlluminanceProbe,
+    /// Where the luminaires are (the elements' sample grids are finer near them).
+    positions: Vec<DVec3>,
 }
 
 impl LuminaireLight {
@@ -76,6 +78,7 @@ impl LuminaireLight {
         LuminaireLight {
             scene: GpuScene::new(gpu, &Layouts::new(gpu), scene),
             probe: IlluminanceProbe::new(gpu, LightModel::Ldt(interp)),
+            positions: scene.luminaires.iter().map(|l| l.position).collect(),
         }
     }
 
@@ -117,16 +120,22 @@ pub struct DirectSamples {
 impl DirectSamples {
     /// The samples of every element of `scene` for its luminaires.
     pub fn new(scene: &RadiosityScene) -> DirectSamples {
+        let positions: Vec<DVec3> = scene.luminaires.iter().map(|l| l.position).collect();
+        DirectSamples::near(scene, &positions)
+    }
+
+    /// The samples of every element of `scene` for luminaires at `positions` (the
+    /// scene's luminaires moved: a solution relit, [`super::gpu::GpuSolver::relight`]).
+    pub fn near(scene: &RadiosityScene, positions: &[DVec3]) -> DirectSamples {
         let el = &scene.elements;
         let mut points = Vec::with_capacity(el.len());
         let mut first = Vec::with_capacity(el.len() + 1);
         for e in 0..el.len() {
             first.push(points.len());
             let texel_m = el.charts[el.chart[e] as usize].texel_m;
-            let nearest = scene
-                .luminaires
+            let nearest = positions
                 .iter()
-                .map(|l| l.position.distance(el.position[e]))
+                .map(|p| p.distance(el.position[e]))
                 .fold(f64::INFINITY, f64::min);
             let n = ((4.0 * texel_m / nearest.max(1e-9)).ceil() as u32).clamp(1, 8);
             let normal = el.normal(e);

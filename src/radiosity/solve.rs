@@ -97,11 +97,26 @@ impl GpuSolver<'_> {
         &mut self,
         stop: &StopAt,
         cancel: &AtomicBool,
+        progress: impl FnMut(&ConvergencePoint),
+    ) -> Result<(StopReason, Vec<ConvergencePoint>), GpuError> {
+        self.solve_to_scale(stop, None, cancel, progress)
+    }
+
+    /// [`GpuSolver::solve`] with convergence measured against `scale` (the unshot power,
+    /// weighted where the view drives the solution, it is the fraction of), instead of
+    /// the first selection's: a relit solution ([`GpuSolver::relight`]) stops where a
+    /// fresh solve of its new luminaires would, with `scale` from
+    /// [`GpuSolver::start_power`] of their start.
+    pub fn solve_to_scale(
+        &mut self,
+        stop: &StopAt,
+        scale: Option<f64>,
+        cancel: &AtomicBool,
         mut progress: impl FnMut(&ConvergencePoint),
     ) -> Result<(StopReason, Vec<ConvergencePoint>), GpuError> {
         let started = Instant::now();
         let mut log = Vec::new();
-        let mut initial = None;
+        let mut initial = scale;
         loop {
             let mut s = self.select()?;
             while self.widen_if_due(&s)? {
