@@ -430,9 +430,13 @@ fn radiosity_runs_in_the_background_pauses_and_converges() {
         h.get_by_label("Resume").click();
         h.step();
     }
-    run_until(&mut h, |a| a.radiosity.worker.is_none());
+    run_until(&mut h, converged);
     let r = &h.state().radiosity;
-    assert!(r.status.starts_with("done: converged"), "{}", r.status);
+    assert!(r.worker.is_some(), "a converged solver waits for changes");
+    assert!(
+        !h.state().busy(),
+        "a waiting solver does not keep the window painting"
+    );
     let last = r.log.last().unwrap();
     assert!(last[1] >= 0.95, "{last:?}");
     assert!(
@@ -442,9 +446,85 @@ fn radiosity_runs_in_the_background_pauses_and_converges() {
     let map = r.light_map.as_ref().expect("a light map");
     assert!(map.texels.iter().any(|t| t[3] > 0.0));
     assert!(h.state().revision > r0);
-    // Changing a light drops the solution.
-    h.state_mut().lights_changed();
+    // Reset drops the solution and the solver.
+    h.get_by_label("Reset").click();
+    h.run();
     assert!(h.state().radiosity.light_map.is_none());
+    assert!(h.state().radiosity.worker.is_none());
+}
+
+/// Whether the solver says it has converged (and waits for changes).
+fn converged(a: &ViewerApp) -> bool {
+    a.radiosity.status.starts_with("done: converged")
+}
+
+/// Starts radiosity in `a` (box room, coarse elements, to 99.5 %) and runs it to
+/// convergence.
+fn solved_in_the_viewer(
+    mut a: ViewerApp,
+    gpu: &Arc<goniolight::gpu::Gpu>,
+) -> Harness<'static, ViewerApp> {
+    a.gpu = Some(gpu.clone());
+    a.radiosity.settings.texel_density = 4.0;
+    a.radiosity.settings.converge = 0.995;
+    let mut h = harness(a);
+    h.state_mut().start_radiosity();
+    run_until(&mut h, converged);
+    h
+}
+
+/// Mean |a − b| / mean |b| of two light maps' illuminance.
+fn map_difference(
+    a: &goniolight::render::lightmap::LightMap,
+    b: &goniolight::render::lightmap::LightMap,
+) -> f64 {
+    assert_eq!(a.texels.len(), b.texels.len());
+    let diff: f64 = a
+        .texels
+        .iter()
+        .zip(&b.texels)
+        .map(|(x, y)| (x[3] - y[3]).abs() as f64)
+        .sum();
+    let size: f64 = b.texels.iter().map(|y| y[3].abs() as f64).sum();
+    diff / size
+}
+
+/// Moving and dimming a luminaire while radiosity runs re-shoots the change in place: the
+/// solver goes on (its shots keep counting) and ends where a fresh solve of the changed
+/// scene ends.
+#[test]
+fn moving_a_luminaire_relights_the_running_solution() {
+    let Some(gpu) = gpu_common::gpu() else { return };
+    let gpu = Arc::new(gpu);
+    let mut h = solved_in_the_viewer(app("box_room.toml"), &gpu);
+    let shots = h.state().radiosity.shots;
+    let before = h.state().radiosity.light_map.clone().unwrap();
+    let change = |a: &mut ViewerApp| {
+        a.scene.luminaires[0].position += glam::DVec3::new(1.5, 0.8, -0.3);
+        a.scene.luminaires[0].multiplier *= 0.5;
+    };
+    change(h.state_mut());
+    h.state_mut().lights_changed();
+    assert!(h.state().radiosity.status.starts_with("relighting"));
+    assert!(h.state().busy());
+    run_until(&mut h, converged);
+    let r = &h.state().radiosity;
+    assert!(r.shots > shots, "relit from scratch: {} ≤ {shots}", r.shots);
+    let relit = r.light_map.clone().unwrap();
+
+    let mut moved = app("box_room.toml");
+    change(&mut moved);
+    let fresh = solved_in_the_viewer(moved, &gpu);
+    let fresh = fresh.state().radiosity.light_map.clone().unwrap();
+    let off = map_difference(&relit, &fresh);
+    let stale = map_difference(&before, &fresh);
+    eprintln!(
+        "relit {:.3} % off the fresh solve (before the change {:.1} %)",
+        100.0 * off,
+        100.0 * stale
+    );
+    assert!(stale > 0.2, "{stale}");
+    assert!(off < 0.01, "relit light map {:.3} % off", 100.0 * off);
 }
 
 #[test]
@@ -663,4 +743,30 @@ fn photometry_window_shows_the_datasheet_diagrams_ldt_plot_draws() {
     h.get_by_label("Interpolations").click();
     h.run();
     h.get_by_label("Beam angle (50 %)");
+}
+
+/// A perspective-driven solver in the viewer follows the camera once it stands still:
+/// the importance is solved again for the new view and the solution goes on (no restart).
+#[test]
+fn a_view_driven_solver_follows_the_camera() {
+    let Some(gpu) = gpu_common::gpu() else { return };
+    let mut a = app("boxes_room.toml");
+    a.gpu = Some(Arc::new(gpu));
+    a.radiosity.settings.texel_density = 4.0;
+    a.radiosity.settings.converge = 0.999;
+    a.radiosity.settings.drive = goniolight::radiosity::view::Drive::Perspective;
+    let mut h = harness(a);
+    h.state_mut().start_radiosity();
+    run_until(&mut h, |a| a.radiosity.shots > 0);
+    let shots = h.state().radiosity.shots;
+    // A little to the side and down: the eye stays in the room.
+    h.state_mut().camera.rotate(-3.0, -10.0);
+    run_until(&mut h, |a| {
+        a.radiosity.status.starts_with("following the view")
+    });
+    let r = &h.state().radiosity;
+    assert!(r.shots >= shots, "restarted: {} < {shots}", r.shots);
+    let view = h.state().camera.camera(h.state().extent());
+    assert_eq!(r.followed.as_ref().map(|f| &f.0), Some(&view));
+    run_until(&mut h, converged);
 }

@@ -10,7 +10,8 @@ use glam::DVec3;
 
 use super::camera::ViewCamera;
 use super::files::{Dialog, RecentFiles};
-use super::jobs::{ProfileUpdate, RadiositySettings, RadiosityUpdate, Worker};
+use super::jobs::{ProfileUpdate, Worker};
+use super::live_radiosity::{LiveLink, RadiositySettings, RadiosityUpdate};
 use super::sun::SunControls;
 use crate::gpu::Gpu;
 use crate::photometry::Interp;
@@ -94,8 +95,17 @@ impl AimControls {
 pub struct RadiosityState {
     /// Settings of the next run.
     pub settings: RadiositySettings,
-    /// The running (or paused) solver.
+    /// The running (or paused, or converged and waiting) solver.
     pub worker: Option<Worker<RadiosityUpdate>>,
+    /// Commands and frame credit of the running solver.
+    pub link: Option<LiveLink>,
+    /// Whether the solver has converged and waits for a change.
+    pub waiting: bool,
+    /// The view the solver was last given (camera, width / height), and since when the
+    /// camera has been elsewhere.
+    pub followed: Option<(crate::scene::Camera, f64)>,
+    /// When the camera was last seen away from [`RadiosityState::followed`].
+    pub moved_at: Option<std::time::Instant>,
     /// Whether the worker is paused.
     pub paused: bool,
     /// (seconds, converged fraction) of every shot.
@@ -289,11 +299,24 @@ impl ViewerApp {
             .map(|m| m.text.as_str())
     }
 
-    /// Marks the lights as changed: the GPU scene is rebuilt and a radiosity solution of
-    /// the old lights is dropped.
+    /// Marks the lights as changed: the GPU scene is rebuilt, and a running radiosity
+    /// solver is told the new luminaires and re-shoots their change in place (a solution
+    /// without a solver is dropped).
     pub fn lights_changed(&mut self) {
         self.revision += 1;
-        if self.radiosity.worker.is_some() || self.radiosity.light_map.is_some() {
+        let scene = Box::new(self.render_scene());
+        let r = &mut self.radiosity;
+        let relit = match (&r.worker, &r.link) {
+            (Some(_), Some(link)) => link
+                .commands
+                .send(super::live_radiosity::RadiosityCommand::Relight(scene))
+                .is_ok(),
+            _ => false,
+        };
+        if relit {
+            r.waiting = false;
+            r.status = "relighting: re-shooting the luminaires' change…".into();
+        } else if r.worker.is_some() || r.light_map.is_some() {
             self.reset_radiosity();
             self.info("radiosity reset: the lights changed");
         }
@@ -426,6 +449,10 @@ impl ViewerApp {
         if let Some(w) = self.radiosity.worker.take() {
             w.cancel();
         }
+        self.radiosity.link = None;
+        self.radiosity.waiting = false;
+        self.radiosity.followed = None;
+        self.radiosity.moved_at = None;
         let had_map = self.radiosity.light_map.take().is_some();
         self.radiosity.log.clear();
         self.radiosity.shots = 0;
@@ -443,7 +470,7 @@ impl ViewerApp {
 
     /// Whether background work is running (the window keeps repainting).
     pub fn busy(&self) -> bool {
-        self.radiosity.worker.is_some()
+        (self.radiosity.worker.is_some() && !self.radiosity.waiting)
             || self.profile.worker.is_some()
             || self.sun.animate
             || self.effects_turning()

@@ -8,6 +8,7 @@ mod app_files;
 pub mod camera;
 pub mod files;
 pub mod jobs;
+pub mod live_radiosity;
 pub mod luminaires;
 pub mod photometry_sheet;
 pub mod sun;

@@ -9,10 +9,12 @@ use egui_plot::{Line, Plot, PlotPoints};
 
 use super::app::ProfileShown;
 use super::app::ViewerApp;
-use super::jobs::{self, ProfileUpdate, RadiosityUpdate};
+use super::jobs::{self, ProfileUpdate};
+use super::live_radiosity::{self, RadiosityCommand, RadiosityUpdate};
 use super::view::parsed_field;
 use crate::radiosity::gpu::Visibility;
 use crate::radiosity::shooters::Hierarchy;
+use crate::radiosity::view::Drive;
 use crate::radiosity::{Ambient, FormFactorKind};
 use crate::render::ShadowTechnique;
 use crate::scene::Projection;
@@ -21,6 +23,9 @@ use crate::study::profile::ProfileSpec;
 use crate::study::view_hours::view_image;
 use crate::study::HoursMetric;
 use crate::sun::{Site, Zone};
+
+/// Seconds the camera stands still before a view-driven solver follows it.
+pub const FOLLOW_AFTER_S: f64 = 0.3;
 
 /// The size of the hours-of-sun view computed with a profile, pixels.
 const MODEL_VIEW_SIZE: (u32, u32) = (800, 600);
@@ -232,6 +237,24 @@ impl ViewerApp {
                     );
                     choice_row(
                         ui,
+                        "Driven by",
+                        &mut st.drive,
+                        &[
+                            (Drive::Global, "whole scene"),
+                            (Drive::Importance, "importance (view)"),
+                            (Drive::Perspective, "perspective (view)"),
+                        ],
+                    );
+                    let label = ui.label("Margin around the view (°)");
+                    ui.add(egui::DragValue::new(&mut st.fov_margin_deg).range(0.0..=90.0))
+                        .labelled_by(label.id);
+                    ui.end_row();
+                    let label = ui.label("Solver ms per frame (0: all)");
+                    ui.add(egui::DragValue::new(&mut st.frame_budget_ms).range(0.0..=1000.0))
+                        .labelled_by(label.id);
+                    ui.end_row();
+                    choice_row(
+                        ui,
                         "Ambient term",
                         &mut st.solver.ambient,
                         &[
@@ -293,14 +316,18 @@ impl ViewerApp {
         self.reset_radiosity();
         let mut settings = self.radiosity.settings;
         settings.solver.interp = self.display.interp;
-        match jobs::start_radiosity(
+        let view = self.radiosity_view();
+        self.radiosity.followed = Some(view.clone());
+        match live_radiosity::start(
             gpu,
             self.render_scene(),
             settings,
             self.display.shadows.clone(),
+            Some(view),
         ) {
-            Ok(w) => {
+            Ok((w, link)) => {
                 self.radiosity.worker = Some(w);
+                self.radiosity.link = Some(link);
                 self.radiosity.status = "meshing and shooting the luminaires…".into();
             }
             Err(e) => self.error(format!("radiosity: {e}")),
@@ -333,8 +360,59 @@ impl ViewerApp {
         }
     }
 
-    /// Takes what the workers reported since the last frame.
+    /// The camera and the viewport's width / height, as a view-driven solver sees them.
+    fn radiosity_view(&self) -> (crate::scene::Camera, f64) {
+        let [w, h] = self.status.viewport_px;
+        let aspect = if w > 0 && h > 0 {
+            w as f64 / h as f64
+        } else {
+            16.0 / 9.0
+        };
+        (self.camera.camera(self.extent()), aspect)
+    }
+
+    /// Tells a view-driven solver the view once the camera has stood still for
+    /// [`FOLLOW_AFTER_S`] away from the view it has.
+    fn follow_the_view(&mut self, ctx: &egui::Context) {
+        let r = &self.radiosity;
+        if r.settings.drive == crate::radiosity::view::Drive::Global || r.link.is_none() {
+            return;
+        }
+        let view = self.radiosity_view();
+        let r = &mut self.radiosity;
+        // The camera decides; a resized viewport alone does not re-solve the importance.
+        if r.followed.as_ref().map(|f| &f.0) == Some(&view.0) {
+            r.moved_at = None;
+            return;
+        }
+        let now = std::time::Instant::now();
+        let since = *r.moved_at.get_or_insert(now);
+        if (now - since).as_secs_f64() < FOLLOW_AFTER_S {
+            // A waiting solver does not keep the window painting: come back then.
+            ctx.request_repaint_after(std::time::Duration::from_secs_f64(FOLLOW_AFTER_S));
+            return;
+        }
+        let (camera, aspect) = view.clone();
+        if let Some(link) = &r.link {
+            if link
+                .commands
+                .send(RadiosityCommand::View(camera, aspect))
+                .is_ok()
+            {
+                r.followed = Some(view);
+                r.moved_at = None;
+                r.waiting = false;
+            }
+        }
+    }
+
+    /// Takes what the workers reported since the last frame, and grants the radiosity
+    /// solver this frame's share of time.
     pub fn poll_jobs(&mut self, ctx: &egui::Context) {
+        if let Some(link) = &self.radiosity.link {
+            link.credit.grant();
+        }
+        self.follow_the_view(ctx);
         if let Some(w) = &mut self.radiosity.worker {
             let updates = w.poll();
             let finished = w.finished();
@@ -343,6 +421,7 @@ impl ViewerApp {
             }
             if finished {
                 self.radiosity.worker = None;
+                self.radiosity.link = None;
                 self.radiosity.paused = false;
             }
         }
@@ -406,7 +485,11 @@ impl ViewerApp {
                     self.revision += 1;
                 }
             }
-            RadiosityUpdate::Done(reason) => r.status = format!("done: {reason}"),
+            RadiosityUpdate::Note(note) => r.status = note,
+            RadiosityUpdate::Done(reason) => {
+                r.status = format!("done: {reason}; waiting for changes");
+                r.waiting = true;
+            }
             RadiosityUpdate::Failed(e) => {
                 r.status = format!("failed: {e}");
                 self.error(format!("radiosity: {e}"));

@@ -1,0 +1,476 @@
+//! The viewer's radiosity, live: a background solver that shoots within a time budget
+//! granted frame by frame (so the window stays interactive while it converges), shows its
+//! solution every few tenths of a second with the ambient term for what is not shot yet,
+//! follows the camera when the view drives it (importance or perspective, Bozalina), and
+//! when luminaires move, dim, come or go re-shoots the change in place
+//! ([`crate::radiosity::gpu::GpuSolver::relight`]) instead of starting over. Once
+//! converged it waits for the next change.
+
+use std::sync::atomic::{AtomicI64, Ordering};
+use std::sync::mpsc::{Receiver, RecvTimeoutError, Sender, TryRecvError};
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+use super::jobs::{JobControl, Worker};
+use crate::gpu::Gpu;
+use crate::radiosity::gpu::{GpuSettings, GpuSolver};
+use crate::radiosity::initial::{InitialState, LuminaireLight};
+use crate::radiosity::scene::RadiosityScene;
+use crate::radiosity::shooters::Hierarchy;
+use crate::radiosity::solve;
+use crate::radiosity::view::{self, Drive, ViewDriven, ViewPoint};
+use crate::radiosity::SolverSettings;
+use crate::render::lightmap::LightMap;
+use crate::render::ShadowSettings;
+use crate::scene::{Camera, Scene};
+
+/// The longest an importance solve for a new view may take, seconds.
+const IMPORTANCE_SECONDS: f64 = 2.0;
+
+/// What a radiosity run is asked to do.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RadiositySettings {
+    /// Elements (light-map texels) per metre.
+    pub texel_density: f64,
+    /// Shooting patches of 2^level texels.
+    pub level: u32,
+    /// Stop at this converged fraction of the initial unshot power (0: shoot nothing,
+    /// show the luminaires' first bounce and the ambient term).
+    pub converge: f64,
+    /// Form factor and ambient options.
+    pub solver: SolverSettings,
+    /// Visibility maps.
+    pub gpu: GpuSettings,
+    /// Seconds between displayed updates.
+    pub update_every_s: f64,
+    /// What chooses the shooters and receivers: the whole scene, or the camera's view.
+    pub drive: Drive,
+    /// Perspective drive: degrees around the image the area of interest starts with.
+    pub fov_margin_deg: f64,
+    /// Milliseconds of solving each displayed frame grants (0: no limit).
+    pub frame_budget_ms: f64,
+}
+
+impl Default for RadiositySettings {
+    fn default() -> Self {
+        RadiositySettings {
+            texel_density: 10.0,
+            level: 2,
+            converge: 0.99,
+            solver: SolverSettings::default(),
+            gpu: GpuSettings {
+                hierarchy: Hierarchy::Clusters,
+                ..GpuSettings::default()
+            },
+            update_every_s: 0.5,
+            drive: Drive::Global,
+            fov_margin_deg: 10.0,
+            frame_budget_ms: 40.0,
+        }
+    }
+}
+
+/// A radiosity worker's report.
+pub enum RadiosityUpdate {
+    /// The scene was meshed and the luminaires shot.
+    Prepared {
+        /// Elements (texels).
+        elements: usize,
+        /// Shooting patches.
+        patches: usize,
+    },
+    /// The solution so far.
+    Progress {
+        /// Shots done.
+        shots: usize,
+        /// Seconds of shooting (pauses excluded).
+        seconds: f64,
+        /// Converged fraction.
+        convergence: f64,
+        /// The displayable solution, when one was made for this update.
+        light_map: Option<Arc<LightMap>>,
+    },
+    /// What changed on the way (relit, view followed), for the status line.
+    Note(String),
+    /// Converged or nothing left to shoot: the worker waits for a change.
+    Done(String),
+    /// An error (the worker has ended).
+    Failed(String),
+}
+
+/// What the viewer tells a running solver.
+pub enum RadiosityCommand {
+    /// The luminaires changed (the geometry did not): this is the scene now.
+    Relight(Box<Scene>),
+    /// The camera moved: the view (with the viewport's width / height) to drive by.
+    View(Camera, f64),
+}
+
+/// The solver's share of each frame: every displayed frame grants
+/// [`RadiositySettings::frame_budget_ms`], the worker spends it on shots (stopping a shot
+/// between batches when it is used up) and waits while none is left. At most two frames'
+/// worth is kept, so an idle window does not save up a long stall.
+#[derive(Debug)]
+pub struct FrameCredit {
+    per_frame_us: i64,
+    credit_us: AtomicI64,
+}
+
+impl FrameCredit {
+    /// A credit of `per_frame_ms` per frame (0: unlimited).
+    pub fn new(per_frame_ms: f64) -> FrameCredit {
+        let per_frame_us = (per_frame_ms.max(0.0) * 1000.0) as i64;
+        FrameCredit {
+            per_frame_us,
+            credit_us: AtomicI64::new(per_frame_us),
+        }
+    }
+
+    /// One frame was displayed.
+    pub fn grant(&self) {
+        let cap = 2 * self.per_frame_us;
+        let _ = self
+            .credit_us
+            .fetch_update(Ordering::SeqCst, Ordering::SeqCst, |c| {
+                Some((c.max(0) + self.per_frame_us).min(cap))
+            });
+    }
+
+    /// How long the solver may work now (`None`: no limit; zero: wait for a frame).
+    pub fn available(&self) -> Option<Duration> {
+        (self.per_frame_us > 0)
+            .then(|| Duration::from_micros(self.credit_us.load(Ordering::SeqCst).max(0) as u64))
+    }
+
+    /// The solver worked `spent`.
+    pub fn spend(&self, spent: Duration) {
+        if self.per_frame_us > 0 {
+            self.credit_us
+                .fetch_sub(spent.as_micros() as i64, Ordering::SeqCst);
+        }
+    }
+}
+
+/// The viewer's hold on a running live solver besides its worker: where commands go and
+/// its frame credit.
+pub struct LiveLink {
+    /// Commands to it.
+    pub commands: Sender<RadiosityCommand>,
+    /// Its share of each frame.
+    pub credit: Arc<FrameCredit>,
+}
+
+/// Starts a live radiosity solution of `scene` on `gpu`, driven by `view` (a camera and
+/// the viewport's width / height) when `settings.drive` is not global.
+pub fn start(
+    gpu: Arc<Gpu>,
+    scene: Scene,
+    settings: RadiositySettings,
+    shadows: ShadowSettings,
+    view: Option<(Camera, f64)>,
+) -> std::io::Result<(Worker<RadiosityUpdate>, LiveLink)> {
+    let (commands, inbox) = std::sync::mpsc::channel();
+    let credit = Arc::new(FrameCredit::new(settings.frame_budget_ms));
+    let share = credit.clone();
+    let worker = Worker::spawn("radiosity", move |tx, control| {
+        let job = Job {
+            gpu: &gpu,
+            settings: &settings,
+            shadows: &shadows,
+            tx: &tx,
+            control: &control,
+            credit: &share,
+        };
+        if let Err(e) = job.run(&scene, view, &inbox) {
+            let _ = tx.send(RadiosityUpdate::Failed(e));
+        }
+    })?;
+    Ok((worker, LiveLink { commands, credit }))
+}
+
+struct Job<'a> {
+    gpu: &'a Gpu,
+    settings: &'a RadiositySettings,
+    shadows: &'a ShadowSettings,
+    tx: &'a Sender<RadiosityUpdate>,
+    control: &'a JobControl,
+    credit: &'a FrameCredit,
+}
+
+/// The view driving a solution.
+struct Driver {
+    driven: ViewDriven,
+    point: ViewPoint,
+}
+
+fn err(e: &dyn std::fmt::Display) -> String {
+    e.to_string()
+}
+
+impl Job<'_> {
+    fn send(&self, u: RadiosityUpdate) {
+        let _ = self.tx.send(u);
+    }
+
+    /// The luminaires' first shot of `scene` on the elements.
+    fn first_shot(&self, scene: &Scene, rscene: &RadiosityScene) -> Result<InitialState, String> {
+        let light = LuminaireLight::new(self.gpu, scene, self.settings.solver.interp);
+        InitialState::from_luminaires_gpu(self.gpu, &light, rscene, self.shadows)
+            .map_err(|e| err(&e))
+    }
+
+    /// Solves the importance of `view` and drives `solver` by it (nothing for a global
+    /// drive or an orthographic camera).
+    fn follow(
+        &self,
+        solver: &mut GpuSolver,
+        view: &(Camera, f64),
+    ) -> Result<Option<Driver>, String> {
+        let s = self.settings;
+        let Some(point) = ViewPoint::new(&view.0, view.1).filter(|_| s.drive != Drive::Global)
+        else {
+            return Ok(None);
+        };
+        let weights = view::view_weights(solver.scene(), &point);
+        if weights.iter().all(|&w| w == 0.0) {
+            return Ok(None);
+        }
+        let budget = Some(Duration::from_secs_f64(IMPORTANCE_SECONDS));
+        let driven = ViewDriven::new(self.gpu, solver.scene(), s.solver, s.gpu, weights, budget)
+            .map_err(|e| err(&e))?;
+        driven
+            .drive(solver, s.drive, &point, s.fov_margin_deg)
+            .map_err(|e| err(&e))?;
+        Ok(Some(Driver { driven, point }))
+    }
+
+    /// The solution as shown: with the ambient term (the view's where the view drives).
+    fn show(
+        &self,
+        solver: &GpuSolver,
+        driver: &Option<Driver>,
+        seconds: f64,
+        convergence: f64,
+    ) -> Result<(), String> {
+        let rscene = solver.scene();
+        let (b, e) = solver.radiosity_and_illuminance().map_err(|e| err(&e))?;
+        let unshot = solver.unshot().map_err(|e| err(&e))?;
+        let ambient = self.settings.solver.ambient;
+        let (b, e) = match driver {
+            Some(d) if ambient != crate::radiosity::Ambient::None => {
+                solve::with_ambient(rscene, &b, &e, d.driven.ambient(rscene, &unshot))
+            }
+            _ => solve::displayed(rscene, &b, &e, &unshot, ambient),
+        };
+        self.send(RadiosityUpdate::Progress {
+            shots: solver.shots,
+            seconds,
+            convergence,
+            light_map: Some(Arc::new(solve::light_map(rscene, &b, &e))),
+        });
+        Ok(())
+    }
+
+    /// Meshes, shoots the luminaires, then solves until cancelled, taking commands.
+    fn run(
+        &self,
+        scene: &Scene,
+        view: Option<(Camera, f64)>,
+        inbox: &Receiver<RadiosityCommand>,
+    ) -> Result<(), String> {
+        let s = self.settings;
+        let rscene =
+            RadiosityScene::with_hierarchy(scene, s.texel_density, s.level, s.gpu.hierarchy)
+                .map_err(|e| err(&e))?;
+        let mut start = self.first_shot(scene, &rscene)?;
+        let mut solver = GpuSolver::new(self.gpu, &rscene, &start, s.solver, s.gpu);
+        self.send(RadiosityUpdate::Prepared {
+            elements: rscene.elements.len(),
+            patches: rscene.elements.patches.len(),
+        });
+        let mut driver = match &view {
+            Some(v) => self.follow(&mut solver, v)?,
+            None => None,
+        };
+        let scale_of = |solver: &GpuSolver, start: &InitialState| {
+            let (plain, weighted) = solver.start_power(&start.radiosity);
+            if solver.is_weighted() {
+                weighted
+            } else {
+                plain
+            }
+        };
+        let mut scale = scale_of(&solver, &start);
+        let mut seconds = 0.0;
+        let mut done = false;
+        let mut last_shown: Option<Instant> = None;
+        let mut convergence = 0.0;
+        loop {
+            if self.control.cancel.load(Ordering::SeqCst) {
+                return Ok(());
+            }
+            // A converged solver sleeps until told something.
+            let command = if done {
+                match inbox.recv_timeout(Duration::from_millis(50)) {
+                    Ok(c) => Some(c),
+                    Err(RecvTimeoutError::Timeout) => None,
+                    Err(RecvTimeoutError::Disconnected) => return Ok(()),
+                }
+            } else {
+                match inbox.try_recv() {
+                    Ok(c) => Some(c),
+                    Err(TryRecvError::Empty) => None,
+                    Err(TryRecvError::Disconnected) => return Ok(()),
+                }
+            };
+            if let Some(first) = command {
+                let (relight, view) = latest(first, inbox);
+                let took = Instant::now();
+                let mut notes = Vec::new();
+                if let Some(new_scene) = relight {
+                    let new = self.first_shot(&new_scene, &rscene)?;
+                    solver.relight(&start, &new).map_err(|e| err(&e))?;
+                    start = new;
+                    // The area of interest starts again around the view.
+                    if let Some(d) = &driver {
+                        d.driven
+                            .drive(&mut solver, s.drive, &d.point, s.fov_margin_deg)
+                            .map_err(|e| err(&e))?;
+                    }
+                    notes.push("relit: the luminaires' change re-shot in place");
+                }
+                if let Some(v) = view {
+                    match self.follow(&mut solver, &v)? {
+                        Some(d) => {
+                            driver = Some(d);
+                            notes.push("following the view (importance solved again)");
+                        }
+                        None if driver.is_some() => {
+                            notes.push("the view sees no surface: still driven by the last one")
+                        }
+                        None => {}
+                    }
+                }
+                if notes.is_empty() {
+                    continue;
+                }
+                scale = scale_of(&solver, &start);
+                done = false;
+                self.send(RadiosityUpdate::Note(format!(
+                    "{} ({:.2} s)",
+                    notes.join("; "),
+                    took.elapsed().as_secs_f64()
+                )));
+                self.show(&solver, &driver, seconds, convergence)?;
+                last_shown = Some(Instant::now());
+                continue;
+            }
+            if done {
+                continue;
+            }
+            if self.control.pause.load(Ordering::SeqCst) {
+                self.control.holding.store(true, Ordering::SeqCst);
+                std::thread::sleep(Duration::from_millis(30));
+                continue;
+            }
+            self.control.holding.store(false, Ordering::SeqCst);
+            let available = self.credit.available();
+            if available.is_some_and(|d| d.is_zero()) {
+                std::thread::sleep(Duration::from_millis(2));
+                continue;
+            }
+            let started = Instant::now();
+            let mut sel = solver.select().map_err(|e| err(&e))?;
+            while solver.widen_if_due(&sel).map_err(|e| err(&e))? {
+                sel = solver.select().map_err(|e| err(&e))?;
+            }
+            let unshot = if solver.is_weighted() {
+                sel.weighted_power
+            } else {
+                sel.unshot_power
+            };
+            convergence = if scale > 0.0 {
+                1.0 - unshot / scale
+            } else {
+                1.0
+            };
+            let finished = match sel.shooter {
+                _ if s.converge <= 0.0 => Some("converged"),
+                _ if convergence >= s.converge && solver.area_is_whole() => Some("converged"),
+                None => Some("nothing left to shoot"),
+                Some(t) => {
+                    let over = || {
+                        self.control.cancel.load(Ordering::Relaxed)
+                            || available.is_some_and(|d| started.elapsed() >= d)
+                    };
+                    solver.shoot_until(t, &over).map_err(|e| err(&e))?;
+                    None
+                }
+            };
+            let spent = started.elapsed();
+            self.credit.spend(spent);
+            seconds += spent.as_secs_f64();
+            let due = last_shown.is_none_or(|t| t.elapsed().as_secs_f64() >= s.update_every_s);
+            if finished.is_some() || due {
+                self.show(&solver, &driver, seconds, convergence)?;
+                last_shown = Some(Instant::now());
+            } else {
+                self.send(RadiosityUpdate::Progress {
+                    shots: solver.shots,
+                    seconds,
+                    convergence,
+                    light_map: None,
+                });
+            }
+            if let Some(reason) = finished {
+                self.send(RadiosityUpdate::Done(reason.into()));
+                done = true;
+            }
+        }
+    }
+}
+
+/// `first` and every command waiting behind it, reduced to the latest luminaires and the
+/// latest view (a dragged luminaire sends one per frame; only where it ends counts).
+fn latest(
+    first: RadiosityCommand,
+    inbox: &Receiver<RadiosityCommand>,
+) -> (Option<Box<Scene>>, Option<(Camera, f64)>) {
+    let (mut relight, mut view) = (None, None);
+    for c in std::iter::once(first).chain(inbox.try_iter()) {
+        match c {
+            RadiosityCommand::Relight(scene) => relight = Some(scene),
+            RadiosityCommand::View(camera, aspect) => view = Some((camera, aspect)),
+        }
+    }
+    (relight, view)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::FrameCredit;
+    use std::time::Duration;
+
+    #[test]
+    fn each_frame_grants_its_share_and_at_most_two_frames_are_kept() {
+        let c = FrameCredit::new(40.0);
+        assert_eq!(c.available(), Some(Duration::from_millis(40)));
+        c.spend(Duration::from_millis(55));
+        assert_eq!(c.available(), Some(Duration::ZERO), "overspent: wait");
+        // The overspent 15 ms are forgiven by the next frame (a batch may overrun).
+        c.grant();
+        assert_eq!(c.available(), Some(Duration::from_millis(40)));
+        for _ in 0..10 {
+            c.grant();
+        }
+        assert_eq!(c.available(), Some(Duration::from_millis(80)));
+    }
+
+    #[test]
+    fn no_budget_means_no_limit() {
+        let c = FrameCredit::new(0.0);
+        c.spend(Duration::from_secs(5));
+        c.grant();
+        assert_eq!(c.available(), None);
+    }
+}
