@@ -391,7 +391,6 @@ fn radiosity_runs_in_the_background_pauses_and_converges() {
     let mut h = harness(a);
     h.get_by_label("Radiosity").click();
     h.run();
-    let r0 = h.state().revision;
     h.get_by_label("Start").click();
     h.step();
     assert!(h.state().radiosity.worker.is_some());
@@ -445,7 +444,6 @@ fn radiosity_runs_in_the_background_pauses_and_converges() {
     );
     let map = r.light_map.as_ref().expect("a light map");
     assert!(map.texels.iter().any(|t| t[3] > 0.0));
-    assert!(h.state().revision > r0);
     // Reset drops the solution and the solver.
     h.get_by_label("Reset").click();
     h.run();

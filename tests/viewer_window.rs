@@ -207,6 +207,15 @@ fn bad_flags_and_a_missing_display_are_clear_errors() {
     assert!(err.contains(".png"), "{err}");
     let (code, _, err) = common::run_cli(&["view", "--frames", "0"], "");
     assert_eq!(code, 2, "{err}");
+    for ms in ["-1", "NaN", "5000"] {
+        let flag = format!("--solver-ms-per-frame={ms}");
+        let (code, _, err) = common::run_cli(&["view", &flag, "--frames", "1"], "");
+        assert_eq!(code, 2, "{err}");
+        assert!(err.contains("--solver-ms-per-frame"), "{err}");
+    }
+    let (code, _, err) = common::run_cli(&["view", "--drive", "sideways"], "");
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("perspective"), "{err}");
     let (code, _, err) = common::run_cli(&["view", "no/such/scene.toml", "--frames", "1"], "");
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("no/such/scene.toml"), "{err}");
@@ -388,4 +397,76 @@ fn the_viewer_starts_with_the_indirect_light_asked_for() {
     let solved = summary(&[scene, "--indirect", "radiosity", "--frames", "150"]);
     assert_eq!(solved["indirect_shown"], true, "{solved}");
     assert!(solved["indirect_shots"].as_u64().unwrap() > 0, "{solved}");
+}
+
+/// The live solve in the window: the lux read at the viewport's centre starts at the
+/// direct light and, after the frames, is the batch solve's (`render --indirect
+/// radiosity` of the same view, read from its EXR) within 2 %.
+#[test]
+fn the_live_solve_converges_to_the_batch_solve_under_the_centre_pixel() {
+    if skip() {
+        return;
+    }
+    let scene = root().join("assets/scenes/box_room.toml");
+    let scene = scene.to_str().unwrap();
+    let summary = |args: &[&str]| -> serde_json::Value {
+        let (code, out, err) = view_under_xvfb(args);
+        assert_eq!(code, 0, "{args:?}: {err}");
+        serde_json::from_str(out.lines().last().unwrap()).unwrap()
+    };
+    let lux = |s: &serde_json::Value| s["centre_lux"].as_f64().expect("a surface at the centre");
+    let direct = summary(&[scene, "--mode", "illuminance", "--frames", "3"]);
+    let live = summary(&[
+        scene,
+        "--mode",
+        "illuminance",
+        "--indirect",
+        "radiosity",
+        "--frames",
+        "600",
+    ]);
+    assert!(
+        live["indirect_status"]
+            .as_str()
+            .unwrap()
+            .starts_with("done: converged"),
+        "{live}"
+    );
+    let v = viewport_px(&live);
+    let dir = tempfile::tempdir().unwrap();
+    let exr = dir.path().join("batch.exr");
+    let (code, _, err) = common::run_cli(
+        &[
+            "render",
+            scene,
+            "--mode",
+            "illuminance",
+            "--indirect",
+            "radiosity",
+            "--indirect-time",
+            "300",
+            "--width",
+            &v[2].to_string(),
+            "--height",
+            &v[3].to_string(),
+            "--out",
+            dir.path().join("batch.png").to_str().unwrap(),
+            "--exr",
+            exr.to_str().unwrap(),
+        ],
+        "",
+    );
+    assert_eq!(code, 0, "{err}");
+    let image = image::open(&exr).unwrap().to_rgb32f();
+    let batch = image.get_pixel(v[2] / 2, v[3] / 2)[0] as f64;
+    let (d, l) = (lux(&direct), lux(&live));
+    eprintln!("centre: direct {d:.2} lx, live {l:.2} lx, batch {batch:.2} lx");
+    assert!(
+        (d - batch).abs() > 0.2 * batch,
+        "no indirect light to converge to"
+    );
+    assert!(
+        (l - batch).abs() <= 0.02 * batch,
+        "live {l} lx, batch {batch} lx"
+    );
 }

@@ -48,6 +48,14 @@ pub struct ViewArgs {
     /// as it converges); default: the scene's display.indirect, else none.
     #[arg(long, value_enum)]
     pub indirect: Option<crate::scene::DisplayIndirect>,
+    /// What drives the viewer's radiosity: global (the whole scene), importance or
+    /// perspective (the camera's view, followed as it moves); also in the Radiosity panel.
+    #[arg(long, value_enum, default_value = "global")]
+    pub drive: crate::radiosity::view::Drive,
+    /// Milliseconds of radiosity solving each displayed frame grants, so the window stays
+    /// interactive while it converges (0: no limit).
+    #[arg(long, value_name = "MS", default_value_t = 40.0)]
+    pub solver_ms_per_frame: f64,
 }
 
 /// Runs `view`.
@@ -79,6 +87,13 @@ pub fn run(args: ViewArgs) -> Result<(), CliError> {
             return bad(format!("--time {t} is not a finite number"));
         }
     }
+    if !(args.solver_ms_per_frame.is_finite() && (0.0..=1000.0).contains(&args.solver_ms_per_frame))
+    {
+        return bad(format!(
+            "--solver-ms-per-frame {} is not in 0..=1000",
+            args.solver_ms_per_frame
+        ));
+    }
     let options = StartOptions {
         path: args.path.clone(),
         add: args.add.clone(),
@@ -87,6 +102,8 @@ pub fn run(args: ViewArgs) -> Result<(), CliError> {
         sun_minutes,
         time_s: args.time,
         indirect: args.indirect,
+        drive: args.drive,
+        solver_ms_per_frame: Some(args.solver_ms_per_frame),
         window: WindowOptions {
             size: [args.width, args.height],
             frames: args.frames.or(args.screenshot.as_ref().map(|_| 3)),

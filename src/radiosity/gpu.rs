@@ -86,7 +86,7 @@ pub const PATCHES_PER_BATCH: usize = 64;
 /// Patches in a solver's first batch (then adapted to the machine and scene).
 const FIRST_BATCH: usize = 4;
 /// The time a batch should take, seconds: how far a time limit or Ctrl-C may be overrun.
-const BATCH_SECONDS: f64 = 0.05;
+pub const BATCH_SECONDS: f64 = 0.05;
 
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
@@ -207,6 +207,8 @@ pub struct GpuSolver<'a> {
     /// Patches in the next batch of a shot: adapted so a batch takes about
     /// [`BATCH_SECONDS`] (between 1 and [`PATCHES_PER_BATCH`]).
     batch: usize,
+    /// What a batch should take, seconds ([`BATCH_SECONDS`] unless set).
+    batch_seconds: f64,
     /// Per cell of the shot: rgb unshot radiosity it shoots.
     patch_delta: wgpu::Buffer,
     /// Entries of the patch buffer for cells; the receiver ranges follow.
@@ -638,6 +640,7 @@ impl<'a> GpuSolver<'a> {
             deferral: None,
             stages: None,
             batch: FIRST_BATCH,
+            batch_seconds: BATCH_SECONDS,
             patch_delta,
             max_patches,
             culled: (0, 0),
@@ -748,6 +751,13 @@ impl<'a> GpuSolver<'a> {
             bytemuck::cast_slice(&self.shooter_info),
         );
         self.weighted = true;
+    }
+
+    /// Sizes the batches of a shot to take about `seconds` each (default [`BATCH_SECONDS`],
+    /// at most that): a shot stopped by [`GpuSolver::shoot_until`] overruns its stop by
+    /// at most about one batch (the viewer's per-frame budget).
+    pub fn set_batch_seconds(&mut self, seconds: f64) {
+        self.batch_seconds = seconds.clamp(1e-3, BATCH_SECONDS);
     }
 
     /// The scene it solves.
@@ -1026,9 +1036,9 @@ impl<'a> GpuSolver<'a> {
                 self.gpu.wait()?;
                 // Twice as many next time while well under the target, half when over.
                 let took = started.elapsed().as_secs_f64();
-                if took < 0.5 * BATCH_SECONDS {
+                if took < 0.5 * self.batch_seconds {
                     self.batch = (self.batch * 2).min(PATCHES_PER_BATCH);
-                } else if took > BATCH_SECONDS {
+                } else if took > self.batch_seconds {
                     self.batch = (self.batch / 2).max(1);
                 }
                 if stop() {

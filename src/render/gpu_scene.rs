@@ -348,6 +348,13 @@ impl GpuScene {
         }
     }
 
+    /// Shows `map` instead of the light map uploaded with the scene, which must have the
+    /// same layout ([`LightMap::same_layout`]: the vertices keep their atlas places).
+    pub fn set_light_map(&mut self, gpu: &Gpu, map: &LightMap) {
+        self.light_map = lightmap::upload(gpu, Some(map));
+        self.has_light_map = true;
+    }
+
     /// The casters prepared for shadow volumes (built on first use; `None` when the
     /// scene has no usable triangle).
     pub fn volume_geometry(&self, gpu: &Gpu) -> Option<&VolumeGeometry> {

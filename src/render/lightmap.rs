@@ -21,6 +21,16 @@ pub struct LightMap {
     pub triangle_uv: Vec<[Vec2; 3]>,
 }
 
+impl LightMap {
+    /// Whether `other` lays the same triangles out in the same atlas (a later solution
+    /// of the same elements): its texels can replace these without new vertices.
+    pub fn same_layout(&self, other: &LightMap) -> bool {
+        self.width == other.width
+            && self.height == other.height
+            && self.triangle_uv == other.triangle_uv
+    }
+}
+
 /// Texture format of the light map on the GPU (filterable).
 const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 

@@ -284,6 +284,10 @@ impl Job<'_> {
                 .map_err(|e| err(&e))?;
         let mut start = self.first_shot(scene, &rscene)?;
         let mut solver = GpuSolver::new(self.gpu, &rscene, &start, s.solver, s.gpu);
+        if s.frame_budget_ms > 0.0 {
+            // A shot stops between batches: half a frame's share each.
+            solver.set_batch_seconds(s.frame_budget_ms / 2000.0);
+        }
         self.send(RadiosityUpdate::Prepared {
             elements: rscene.elements.len(),
             patches: rscene.elements.patches.len(),

@@ -63,6 +63,11 @@ pub struct StartOptions {
     pub time_s: Option<f64>,
     /// Indirect light at start (default: the scene's `display.indirect`, else none).
     pub indirect: Option<crate::scene::DisplayIndirect>,
+    /// What drives the radiosity solver (the Radiosity panel's "Driven by").
+    pub drive: crate::radiosity::view::Drive,
+    /// Milliseconds of solving each frame grants the radiosity solver (0: no limit;
+    /// `None`: the panel's default).
+    pub solver_ms_per_frame: Option<f64>,
     /// The window's size, how many frames to render before exiting and the screenshot.
     pub window: window::WindowOptions,
 }
@@ -94,6 +99,10 @@ pub fn start(options: StartOptions) -> Result<window::RunSummary, ViewerError> {
     }
     app.obj_up = up;
     app.radiosity.start_with = indirect;
+    app.radiosity.settings.drive = options.drive;
+    if let Some(ms) = options.solver_ms_per_frame {
+        app.radiosity.settings.frame_budget_ms = ms;
+    }
     if let Some(m) = options.mode {
         app.display.mode = m;
     }

@@ -4,11 +4,13 @@
 //! cursor and writes screenshots.
 
 use std::path::Path;
+use std::sync::Arc;
 
 use anyhow::Context as _;
 
 use super::app::ViewerApp;
 use crate::gpu::{Gpu, GpuError};
+use crate::render::lightmap::LightMap;
 use crate::render::targets::Targets;
 use crate::render::{GpuScene, RenderSettings, Renderer};
 use crate::scene::Camera;
@@ -17,6 +19,8 @@ use crate::scene::Camera;
 #[derive(Clone, PartialEq)]
 struct RenderedFrom {
     revision: u64,
+    /// Light maps put into the uploaded scene so far.
+    maps: u64,
     camera: Camera,
     settings: RenderSettings,
 }
@@ -25,6 +29,9 @@ struct RenderedFrom {
 pub struct Viewport {
     renderer: Renderer,
     scene: Option<(u64, GpuScene)>,
+    /// The light map the uploaded scene shows, and how many were put in so far.
+    shown_map: Option<Arc<LightMap>>,
+    maps: u64,
     targets: Option<Targets>,
     /// The displayable image seen as gamma-encoded bytes (what egui samples).
     gamma_view: Option<wgpu::TextureView>,
@@ -44,6 +51,8 @@ impl Viewport {
         Viewport {
             renderer: Renderer::new(gpu),
             scene: None,
+            shown_map: None,
+            maps: 0,
             targets: None,
             gamma_view: None,
             texture: None,
@@ -66,7 +75,24 @@ impl Viewport {
             w.clamp(1, crate::render::MAX_IMAGE_SIZE),
             h.clamp(1, crate::render::MAX_IMAGE_SIZE),
         );
-        if self.scene.as_ref().map(|s| s.0) != Some(app.revision) {
+        let map = app.radiosity.light_map.clone();
+        let map_changed = !same_arc(&map, &self.shown_map);
+        let uploaded_revision = self.scene.as_ref().map(|s| s.0);
+        if uploaded_revision == Some(app.revision) && map_changed {
+            // A newer solution of the same atlas: only the texture changes (a whole
+            // upload drops the shadow casters' caches; seconds on a big scene).
+            if let (Some((_, scene)), Some(old), Some(new)) =
+                (&mut self.scene, &self.shown_map, &map)
+            {
+                if old.same_layout(new) {
+                    scene.set_light_map(gpu, new);
+                    self.shown_map = map.clone();
+                    self.maps += 1;
+                }
+            }
+        }
+        let map_changed = !same_arc(&map, &self.shown_map);
+        if uploaded_revision != Some(app.revision) || map_changed {
             let scene = app.render_scene();
             // A scene beyond the GPU ends the viewer with the reason, never a panic.
             let mut shadows = app.render_settings(w, h).shadows;
@@ -81,11 +107,13 @@ impl Viewport {
                 }
             }
             self.fitted_tessellation_m = shadows.tessellation_m;
-            let uploaded = match &app.radiosity.light_map {
+            let uploaded = match &map {
                 Some(map) => self.renderer.upload_solved(gpu, &scene, map),
                 None => self.renderer.upload(gpu, &scene),
             };
             self.scene = Some((app.revision, uploaded));
+            self.shown_map = map;
+            self.maps += 1;
         }
         let resized = self
             .targets
@@ -109,6 +137,7 @@ impl Viewport {
         *t = t.max(self.fitted_tessellation_m);
         let from = RenderedFrom {
             revision: app.revision,
+            maps: self.maps,
             camera: app.camera.camera(app.extent()),
             settings,
         };
@@ -161,13 +190,36 @@ impl Viewport {
         if x >= t.width || y >= t.height {
             return Ok(());
         }
-        let texel: [f32; 4] = bytemuck::pod_read_unaligned(&gpu.read_texel(&t.hdr, x, y)?);
-        let surface = texel[3] >= 0.0;
-        app.status.cursor_lux = surface.then_some(texel[3] as f64);
-        let rgb = glam::Vec3::new(texel[0], texel[1], texel[2]).as_dvec3();
-        app.status.cursor_luminance =
-            surface.then_some(rgb.dot(crate::scene::placement::LUMINANCE_WEIGHTS));
+        let (lux, luminance) = self.read_at_pixel(gpu, [x, y])?.unzip();
+        app.status.cursor_lux = lux;
+        app.status.cursor_luminance = luminance;
         Ok(())
+    }
+
+    /// Illuminance (lux) and luminance (cd/m²) at viewport pixel `at` of the last image
+    /// (`None` where no surface is seen or outside it).
+    fn read_at_pixel(&self, gpu: &Gpu, at: [u32; 2]) -> Result<Option<(f64, f64)>, GpuError> {
+        let Some(t) = &self.targets else {
+            return Ok(None);
+        };
+        let [x, y] = at;
+        if x >= t.width || y >= t.height {
+            return Ok(None);
+        }
+        let texel: [f32; 4] = bytemuck::pod_read_unaligned(&gpu.read_texel(&t.hdr, x, y)?);
+        let rgb = glam::Vec3::new(texel[0], texel[1], texel[2]).as_dvec3();
+        let luminance = rgb.dot(crate::scene::placement::LUMINANCE_WEIGHTS);
+        Ok((texel[3] >= 0.0).then_some((texel[3] as f64, luminance)))
+    }
+
+    /// The illuminance (lux) at the centre pixel of the last image (`None`: no surface).
+    pub fn centre_lux(&self, gpu: &Gpu) -> Result<Option<f64>, GpuError> {
+        let Some(t) = &self.targets else {
+            return Ok(None);
+        };
+        Ok(self
+            .read_at_pixel(gpu, [t.width / 2, t.height / 2])?
+            .map(|(lux, _)| lux))
     }
 
     /// Renders the current view at the viewport's size and writes it as PNG (with the
@@ -186,5 +238,14 @@ impl Viewport {
         crate::render::output::write_image(png, &frame.image)?;
         crate::render::output::write_image(&exr, &linear)?;
         Ok(())
+    }
+}
+
+/// Whether `a` and `b` are the same map (or both none).
+fn same_arc(a: &Option<Arc<LightMap>>, b: &Option<Arc<LightMap>>) -> bool {
+    match (a, b) {
+        (Some(a), Some(b)) => Arc::ptr_eq(a, b),
+        (None, None) => true,
+        _ => false,
     }
 }

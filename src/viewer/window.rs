@@ -50,6 +50,9 @@ pub struct RunSummary {
     pub indirect_shots: usize,
     /// What the radiosity solver said last.
     pub indirect_status: String,
+    /// The illuminance at the viewport's centre pixel in the last frame, lux (the lux
+    /// read-out as if the cursor were there; `None`: no surface there).
+    pub centre_lux: Option<f64>,
 }
 
 struct Running {
@@ -234,6 +237,7 @@ impl Handler {
         let frames_done = self.summary.frames + 1;
         let last = self.options.frames.is_some_and(|n| frames_done >= n);
         if last {
+            self.summary.centre_lux = r.viewport.centre_lux(&r.gpu)?;
             if let Some(path) = self.options.screenshot.clone() {
                 capture(r, &jobs, &screen, &path)?;
                 self.summary.screenshot = Some(path);

@@ -317,7 +317,7 @@ impl ViewerApp {
         let mut settings = self.radiosity.settings;
         settings.solver.interp = self.display.interp;
         let view = self.radiosity_view();
-        self.radiosity.followed = Some(view.clone());
+        self.radiosity.followed = Some(view);
         match live_radiosity::start(
             gpu,
             self.render_scene(),
@@ -392,7 +392,7 @@ impl ViewerApp {
             ctx.request_repaint_after(std::time::Duration::from_secs_f64(FOLLOW_AFTER_S));
             return;
         }
-        let (camera, aspect) = view.clone();
+        let (camera, aspect) = view;
         if let Some(link) = &r.link {
             if link
                 .commands
@@ -481,8 +481,8 @@ impl ViewerApp {
                 r.shots = shots;
                 r.log.push([seconds, convergence]);
                 if let Some(m) = light_map {
+                    // The viewport swaps the texture (a new layout: the whole scene).
                     r.light_map = Some(m);
-                    self.revision += 1;
                 }
             }
             RadiosityUpdate::Note(note) => r.status = note,
