@@ -43,8 +43,12 @@ fn mean_difference(a: &[DVec3], b: &[DVec3]) -> f64 {
     diff / size
 }
 
-fn boxes_room() -> Scene {
-    Scene::load(&common::root().join("assets/scenes/boxes_room.toml")).unwrap()
+/// The boxes room, its elements (coarse, face clusters) and its luminaire's first shot.
+fn boxes_room(gpu: &Gpu) -> (Scene, RadiosityScene, InitialState) {
+    let scene = Scene::load(&common::root().join("assets/scenes/boxes_room.toml")).unwrap();
+    let r = RadiosityScene::with_hierarchy(&scene, 4.0, 1, Hierarchy::Clusters).unwrap();
+    let lit = first_shot(gpu, &scene, &r);
+    (scene, r, lit)
 }
 
 #[test]
@@ -52,9 +56,7 @@ fn a_moved_and_dimmed_luminaire_relit_in_place_equals_a_fresh_solve() {
     let Some(gpu) = gpu_common::gpu() else {
         return;
     };
-    let scene = boxes_room();
-    let r = RadiosityScene::with_hierarchy(&scene, 4.0, 1, Hierarchy::Clusters).unwrap();
-    let old = first_shot(&gpu, &scene, &r);
+    let (scene, r, old) = boxes_room(&gpu);
     let mut changed = scene.clone();
     changed.luminaires[0].position += DVec3::new(1.6, 1.0, -0.4);
     changed.luminaires[0].multiplier *= 0.6;
@@ -112,9 +114,7 @@ fn a_luminaire_turned_off_takes_all_its_light_away() {
     let Some(gpu) = gpu_common::gpu() else {
         return;
     };
-    let scene = boxes_room();
-    let r = RadiosityScene::with_hierarchy(&scene, 4.0, 1, Hierarchy::Clusters).unwrap();
-    let old = first_shot(&gpu, &scene, &r);
+    let (scene, r, old) = boxes_room(&gpu);
     let mut dark = scene.clone();
     dark.luminaires.clear();
     let new = first_shot(&gpu, &dark, &r);

@@ -375,6 +375,13 @@ fn view_without_a_scene_works_outside_the_checkout() {
     );
 }
 
+/// The JSON summary `view ARGS` prints under Xvfb (it must succeed).
+fn summary(args: &[&str]) -> serde_json::Value {
+    let (code, out, err) = view_under_xvfb(args);
+    assert_eq!(code, 0, "{args:?}: {err}");
+    serde_json::from_str(out.lines().last().unwrap()).unwrap()
+}
+
 /// `view --indirect ambient|radiosity` starts the solver with the window: the ambient
 /// estimate is shown without a shot, radiosity shoots while the frames are drawn.
 #[test]
@@ -384,11 +391,6 @@ fn the_viewer_starts_with_the_indirect_light_asked_for() {
     }
     let scene = root().join("assets/scenes/box_room.toml");
     let scene = scene.to_str().unwrap();
-    let summary = |args: &[&str]| -> serde_json::Value {
-        let (code, out, err) = view_under_xvfb(args);
-        assert_eq!(code, 0, "{args:?}: {err}");
-        serde_json::from_str(out.lines().last().unwrap()).unwrap()
-    };
     let none = summary(&[scene, "--frames", "3"]);
     assert_eq!(none["indirect_shown"], false, "{none}");
     let ambient = summary(&[scene, "--indirect", "ambient", "--frames", "150"]);
@@ -409,11 +411,6 @@ fn the_live_solve_converges_to_the_batch_solve_under_the_centre_pixel() {
     }
     let scene = root().join("assets/scenes/box_room.toml");
     let scene = scene.to_str().unwrap();
-    let summary = |args: &[&str]| -> serde_json::Value {
-        let (code, out, err) = view_under_xvfb(args);
-        assert_eq!(code, 0, "{args:?}: {err}");
-        serde_json::from_str(out.lines().last().unwrap()).unwrap()
-    };
     let lux = |s: &serde_json::Value| s["centre_lux"].as_f64().expect("a surface at the centre");
     let direct = summary(&[scene, "--mode", "illuminance", "--frames", "3"]);
     let live = summary(&[
