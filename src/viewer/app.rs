@@ -305,11 +305,14 @@ impl ViewerApp {
     pub fn lights_changed(&mut self) {
         self.revision += 1;
         let scene = Box::new(self.render_scene());
+        let interp = self.display.interp;
         let r = &mut self.radiosity;
         let relit = match (&r.worker, &r.link) {
             (Some(_), Some(link)) => link
                 .commands
-                .send(super::live_radiosity::RadiosityCommand::Relight(scene))
+                .send(super::live_radiosity::RadiosityCommand::Relight(
+                    scene, interp,
+                ))
                 .is_ok(),
             _ => false,
         };

@@ -13,6 +13,7 @@ use std::time::{Duration, Instant};
 
 use super::jobs::{JobControl, Worker};
 use crate::gpu::Gpu;
+use crate::photometry::Interp;
 use crate::radiosity::gpu::{GpuSettings, GpuSolver};
 use crate::radiosity::initial::{InitialState, LuminaireLight};
 use crate::radiosity::scene::RadiosityScene;
@@ -100,8 +101,9 @@ pub enum RadiosityUpdate {
 
 /// What the viewer tells a running solver.
 pub enum RadiosityCommand {
-    /// The luminaires changed (the geometry did not): this is the scene now.
-    Relight(Box<Scene>),
+    /// The luminaires changed (the geometry did not): this is the scene now, its
+    /// distributions interpolated so.
+    Relight(Box<Scene>, Interp),
     /// The camera moved: the view (with the viewport's width / height) to drive by.
     View(Camera, f64),
 }
@@ -213,8 +215,13 @@ impl Job<'_> {
     }
 
     /// The luminaires' first shot of `scene` on the elements.
-    fn first_shot(&self, scene: &Scene, rscene: &RadiosityScene) -> Result<InitialState, String> {
-        let light = LuminaireLight::new(self.gpu, scene, self.settings.solver.interp);
+    fn first_shot(
+        &self,
+        scene: &Scene,
+        interp: Interp,
+        rscene: &RadiosityScene,
+    ) -> Result<InitialState, String> {
+        let light = LuminaireLight::new(self.gpu, scene, interp);
         InitialState::from_luminaires_gpu(self.gpu, &light, rscene, self.shadows)
             .map_err(|e| err(&e))
     }
@@ -282,7 +289,7 @@ impl Job<'_> {
         let rscene =
             RadiosityScene::with_hierarchy(scene, s.texel_density, s.level, s.gpu.hierarchy)
                 .map_err(|e| err(&e))?;
-        let mut start = self.first_shot(scene, &rscene)?;
+        let mut start = self.first_shot(scene, s.solver.interp, &rscene)?;
         let mut solver = GpuSolver::new(self.gpu, &rscene, &start, s.solver, s.gpu);
         if s.frame_budget_ms > 0.0 {
             // A shot stops between batches: half a frame's share each.
@@ -328,11 +335,11 @@ impl Job<'_> {
                 }
             };
             if let Some(first) = command {
-                let (relight, view) = latest(first, inbox);
+                let Latest { relight, view } = latest(first, inbox);
                 let took = Instant::now();
                 let mut notes = Vec::new();
-                if let Some(new_scene) = relight {
-                    let new = self.first_shot(&new_scene, &rscene)?;
+                if let Some((new_scene, interp)) = relight {
+                    let new = self.first_shot(&new_scene, interp, &rscene)?;
                     solver.relight(&start, &new).map_err(|e| err(&e))?;
                     start = new;
                     // The area of interest starts again around the view.
@@ -434,20 +441,25 @@ impl Job<'_> {
     }
 }
 
-/// `first` and every command waiting behind it, reduced to the latest luminaires and the
-/// latest view (a dragged luminaire sends one per frame; only where it ends counts).
-fn latest(
-    first: RadiosityCommand,
-    inbox: &Receiver<RadiosityCommand>,
-) -> (Option<Box<Scene>>, Option<(Camera, f64)>) {
-    let (mut relight, mut view) = (None, None);
+/// What the commands waiting at once come to: the latest luminaires (and interpolation)
+/// and the latest view.
+#[derive(Default)]
+struct Latest {
+    relight: Option<(Box<Scene>, Interp)>,
+    view: Option<(Camera, f64)>,
+}
+
+/// `first` and every command waiting behind it, reduced to the latest of each kind (a
+/// dragged luminaire sends one per frame; only where it ends counts).
+fn latest(first: RadiosityCommand, inbox: &Receiver<RadiosityCommand>) -> Latest {
+    let mut latest = Latest::default();
     for c in std::iter::once(first).chain(inbox.try_iter()) {
         match c {
-            RadiosityCommand::Relight(scene) => relight = Some(scene),
-            RadiosityCommand::View(camera, aspect) => view = Some((camera, aspect)),
+            RadiosityCommand::Relight(scene, interp) => latest.relight = Some((scene, interp)),
+            RadiosityCommand::View(camera, aspect) => latest.view = Some((camera, aspect)),
         }
     }
-    (relight, view)
+    latest
 }
 
 #[cfg(test)]
