@@ -487,12 +487,14 @@ impl Prepared<'_> {
         let solve_s = log.last().map_or(0.0, |p| p.seconds);
         let (radiosity, illuminance) = solver.radiosity_and_illuminance()?;
         let unshot = solver.unshot()?;
-        let (shown, shown_lux) = match &driven {
-            Some(d) if args.ambient != Ambient::None => {
-                solve::with_ambient(rscene, &radiosity, &illuminance, d.ambient(rscene, &unshot))
-            }
-            _ => solve::displayed(rscene, &radiosity, &illuminance, &unshot, args.ambient),
-        };
+        let (shown, shown_lux) = crate::radiosity::view::displayed(
+            rscene,
+            &radiosity,
+            &illuminance,
+            &unshot,
+            args.ambient,
+            driven.as_ref(),
+        );
         if let Some((stage, stages)) = solver.area_stage() {
             eprintln!(
                 "{}: area of interest at stage {} of {stages}; {} charts still wait, {} shots kept for them",

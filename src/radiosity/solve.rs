@@ -7,7 +7,7 @@ use std::time::{Duration, Instant};
 
 use glam::{DVec3, Vec2};
 
-use super::gpu::GpuSolver;
+use super::gpu::{GpuSolver, Selection};
 use super::scene::{luminance, RadiosityScene};
 use super::Ambient;
 use crate::gpu::GpuError;
@@ -91,6 +91,27 @@ pub fn convergence_csv(log: &[ConvergencePoint]) -> String {
 }
 
 impl GpuSolver<'_> {
+    /// The next selection, the area of interest widened first where its stage's work is
+    /// done (perspective-driven radiosity; select again after widening: what joined has
+    /// light to shoot).
+    pub fn select_next(&mut self) -> Result<Selection, GpuError> {
+        let mut s = self.select()?;
+        while self.widen_if_due(&s)? {
+            s = self.select()?;
+        }
+        Ok(s)
+    }
+
+    /// The unshot power convergence is measured on: weighed by importance where the view
+    /// drives the solution ([`Selection::weighted_power`]), else all of it.
+    pub fn measured(&self, s: &Selection) -> f64 {
+        if self.is_weighted() {
+            s.weighted_power
+        } else {
+            s.unshot_power
+        }
+    }
+
     /// Shoots until `stop` says so or `cancel` is set. `progress` sees every log point
     /// as it is made. Returns why it stopped and the log (its first point is the start).
     pub fn solve(
@@ -118,16 +139,8 @@ impl GpuSolver<'_> {
         let mut log = Vec::new();
         let mut initial = scale;
         loop {
-            let mut s = self.select()?;
-            while self.widen_if_due(&s)? {
-                s = self.select()?;
-            }
-            // Weighed by importance where the view drives the solution.
-            let unshot = if self.is_weighted() {
-                s.weighted_power
-            } else {
-                s.unshot_power
-            };
+            let s = self.select_next()?;
+            let unshot = self.measured(&s);
             let initial = *initial.get_or_insert(unshot);
             let point = ConvergencePoint {
                 shot: self.shots,

@@ -296,6 +296,24 @@ pub fn view_ambient(
     }
 }
 
+/// A solution as displayed ([`super::solve::displayed`]), with the view's ambient term
+/// ([`ViewDriven::ambient`]) where a view drives it and the ambient term is shown.
+pub fn displayed(
+    scene: &RadiosityScene,
+    radiosity: &[DVec3],
+    illuminance: &[f64],
+    unshot: &[DVec3],
+    ambient: Ambient,
+    driven: Option<&ViewDriven>,
+) -> (Vec<DVec3>, Vec<f64>) {
+    match driven {
+        Some(d) if ambient != Ambient::None => {
+            super::solve::with_ambient(scene, radiosity, illuminance, d.ambient(scene, unshot))
+        }
+        _ => super::solve::displayed(scene, radiosity, illuminance, unshot, ambient),
+    }
+}
+
 /// What a view-driven solution keeps: the view's weights and the importance.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ViewDriven {

@@ -262,13 +262,9 @@ impl Job<'_> {
         let rscene = solver.scene();
         let (b, e) = solver.radiosity_and_illuminance().map_err(|e| err(&e))?;
         let unshot = solver.unshot().map_err(|e| err(&e))?;
+        let driven = driver.as_ref().map(|d| &d.driven);
         let ambient = self.settings.solver.ambient;
-        let (b, e) = match driver {
-            Some(d) if ambient != crate::radiosity::Ambient::None => {
-                solve::with_ambient(rscene, &b, &e, d.driven.ambient(rscene, &unshot))
-            }
-            _ => solve::displayed(rscene, &b, &e, &unshot, ambient),
-        };
+        let (b, e) = view::displayed(rscene, &b, &e, &unshot, ambient, driven);
         self.send(RadiosityUpdate::Progress {
             shots: solver.shots,
             seconds,
@@ -303,15 +299,7 @@ impl Job<'_> {
             Some(v) => self.follow(&mut solver, v)?,
             None => None,
         };
-        let scale_of = |solver: &GpuSolver, start: &InitialState| {
-            let (plain, weighted) = solver.start_power(&start.radiosity);
-            if solver.is_weighted() {
-                weighted
-            } else {
-                plain
-            }
-        };
-        let mut scale = scale_of(&solver, &start);
+        let mut scale = solver.start_scale(&start.radiosity);
         let mut seconds = 0.0;
         let mut done = false;
         let mut last_shown: Option<Instant> = None;
@@ -365,7 +353,7 @@ impl Job<'_> {
                 if notes.is_empty() {
                     continue;
                 }
-                scale = scale_of(&solver, &start);
+                scale = solver.start_scale(&start.radiosity);
                 done = false;
                 self.send(RadiosityUpdate::Note(format!(
                     "{} ({:.2} s)",
@@ -391,15 +379,8 @@ impl Job<'_> {
                 continue;
             }
             let started = Instant::now();
-            let mut sel = solver.select().map_err(|e| err(&e))?;
-            while solver.widen_if_due(&sel).map_err(|e| err(&e))? {
-                sel = solver.select().map_err(|e| err(&e))?;
-            }
-            let unshot = if solver.is_weighted() {
-                sel.weighted_power
-            } else {
-                sel.unshot_power
-            };
+            let sel = solver.select_next().map_err(|e| err(&e))?;
+            let unshot = solver.measured(&sel);
             convergence = if scale > 0.0 {
                 1.0 - unshot / scale
             } else {

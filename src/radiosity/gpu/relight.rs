@@ -39,12 +39,21 @@ impl GpuSolver<'_> {
         Ok(())
     }
 
-    /// The unshot power a solution starting from `radiosity` (one per element) has, lm:
-    /// Σ |luminance| × area, and the same weighed by the shooters' selection weights
-    /// ([`GpuSolver::set_shooter_weights`]; 1 each until set). These are what a fresh
-    /// solve's first selection reports ([`super::Selection::unshot_power`] and
-    /// [`super::Selection::weighted_power`]): the scale a relit solution's convergence is
+    /// The unshot power a solution starting from `radiosity` (one per element) has, lm, as
+    /// convergence measures it ([`GpuSolver::measured`]): Σ |luminance| × area, weighed by
+    /// the shooters' selection weights where the view drives the solution. It is what a
+    /// fresh solve's first selection reports: the scale a relit solution's convergence is
     /// measured on, so that it stops where a fresh solve of the new luminaires would.
+    pub fn start_scale(&self, radiosity: &[DVec3]) -> f64 {
+        let (plain, weighted) = self.start_power(radiosity);
+        if self.is_weighted() {
+            weighted
+        } else {
+            plain
+        }
+    }
+
+    /// [`GpuSolver::start_scale`]'s two measures: (all of it, weighted).
     pub fn start_power(&self, radiosity: &[DVec3]) -> (f64, f64) {
         let el = &self.scene.elements;
         let shooter_of = &self.shooters.element_shooter;
