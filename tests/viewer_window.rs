@@ -1,6 +1,7 @@
 //! `goniolight view` in a real window under Xvfb on the GPU (lavapipe in CI):
 //! `--frames N --screenshot out.png` for every bundled scene, the viewport's pixels
 //! against `goniolight render` of the same view, bad input and a missing display.
+//! `view --headless` draws the same frames offscreen with no display.
 //! Needs `xvfb-run` (scripts/install-deps.sh installs it); fails, never skips, without
 //! it, unless GPU tests are opted out with GONIOLIGHT_SKIP_GPU_TESTS=1.
 
@@ -100,6 +101,34 @@ fn differing_pixels(
     (off, worst)
 }
 
+/// Asserts that the viewport of `window` (a `view --screenshot` of `scene`) shows what
+/// `render` makes of the same view (at most 0.1 % of its pixels off by more than 2
+/// levels); returns the viewport rectangle.
+fn viewport_is_the_render(
+    name: &str,
+    window: &image::RgbaImage,
+    summary: &serde_json::Value,
+    scene: &Path,
+    dir: &Path,
+) -> Vec<u32> {
+    let v = viewport_px(summary);
+    // The side panel, menu and status bar take their share; the view the rest.
+    assert!(v[0] > 100 && v[2] > 300 && v[3] > 300, "{v:?}");
+    let reference = dir.join(format!("{name}-render.png"));
+    render(scene, v[2], v[3], &reference);
+    let reference = image::open(&reference).unwrap().to_rgba8();
+    let (off, worst) = differing_pixels(window, &v, &reference);
+    let total = (v[2] * v[3]) as usize;
+    eprintln!(
+        "{name}: viewport {v:?}, {off} of {total} pixels differ by > 2 levels (worst {worst})"
+    );
+    assert!(
+        off * 1000 <= total,
+        "{name}: {off} of {total} pixels differ (worst {worst})"
+    );
+    v
+}
+
 #[test]
 fn every_bundled_scene_renders_in_the_window_like_the_render_command() {
     if skip() {
@@ -132,22 +161,7 @@ fn every_bundled_scene_renders_in_the_window_like_the_render_command() {
         let window = image::open(&shot).unwrap().to_rgba8();
         assert_eq!([window.width(), window.height()], [900, 600]);
         assert_eq!(summary["window_px"], serde_json::json!([900, 600]));
-        let v = viewport_px(&summary);
-        // The side panel, menu and status bar take their share; the view the rest.
-        assert!(v[0] > 100 && v[2] > 300 && v[3] > 300, "{v:?}");
-        // The viewport shows exactly what `render` makes of the same view.
-        let reference = dir.path().join(format!("{name}-render.png"));
-        render(&scene, v[2], v[3], &reference);
-        let reference = image::open(&reference).unwrap().to_rgba8();
-        let (off, worst) = differing_pixels(&window, &v, &reference);
-        let total = (v[2] * v[3]) as usize;
-        eprintln!(
-            "{name}: viewport {v:?}, {off} of {total} pixels differ by > 2 levels (worst {worst})"
-        );
-        assert!(
-            off * 1000 <= total,
-            "{name}: {off} of {total} pixels differ (worst {worst})"
-        );
+        let v = viewport_is_the_render(name, &window, &summary, &scene, dir.path());
         // The UI is there: the side panel is egui's panel grey with text on it.
         let panel: Vec<u8> = (40..v[3])
             .flat_map(|y| (2..v[0] - 2).map(move |x| (x, y)))
@@ -220,16 +234,12 @@ fn bad_flags_and_a_missing_display_are_clear_errors() {
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("no/such/scene.toml"), "{err}");
     // No display at all: a message that says what to do, no panic.
-    let out = Command::new(env!("CARGO_BIN_EXE_goniolight"))
-        .args(["view", "--frames", "1"])
-        .env_remove("DISPLAY")
-        .env_remove("WAYLAND_DISPLAY")
-        .env("GONIOLIGHT_CONFIG_DIR", dir.path())
-        .output()
-        .unwrap();
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(1), "{err}");
-    assert!(err.contains("xvfb-run"), "{err}");
+    let (code, _, err) = view_without_a_display(&["--frames", "1"], dir.path());
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains("xvfb-run") && err.contains("--headless"),
+        "{err}"
+    );
     assert!(!err.contains("panicked"), "{err}");
 }
 
@@ -466,4 +476,94 @@ fn the_live_solve_converges_to_the_batch_solve_under_the_centre_pixel() {
         (l - batch).abs() <= 0.02 * batch,
         "live {l} lx, batch {batch} lx"
     );
+}
+
+/// `goniolight view ARGS` with no display at all; returns (code, stdout, stderr).
+fn view_without_a_display(args: &[&str], config: &Path) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_goniolight"))
+        .arg("view")
+        .args(args)
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .env("GONIOLIGHT_CONFIG_DIR", config)
+        .output()
+        .unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+/// `view --headless` draws the window's frames offscreen with no display: the viewport is
+/// what `render` makes of the same view, the UI is drawn around it, the live solve shoots
+/// while the frames are drawn and their times are reported (how frame rates are measured
+/// on a GPU server); without a frame count it is refused.
+#[test]
+fn headless_frames_are_the_windows_without_a_display() {
+    if skip() {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let scene = root().join("assets/scenes/furnished_room.toml");
+    let shot = dir.path().join("headless.png");
+    let (code, out, err) = view_without_a_display(
+        &[
+            scene.to_str().unwrap(),
+            "--headless",
+            "--mode",
+            "shaded",
+            "--width",
+            "900",
+            "--height",
+            "600",
+            "--frames",
+            "4",
+            "--time",
+            "0",
+            "--screenshot",
+            shot.to_str().unwrap(),
+        ],
+        dir.path(),
+    );
+    assert_eq!(code, 0, "{err}");
+    let summary: serde_json::Value = serde_json::from_str(out.trim()).unwrap();
+    assert_eq!(summary["headless"], true, "{summary}");
+    assert_eq!(summary["frames"], 4, "{summary}");
+    assert_eq!(summary["window_px"], serde_json::json!([900, 600]));
+    let window = image::open(&shot).unwrap().to_rgba8();
+    assert_eq!([window.width(), window.height()], [900, 600]);
+    let v = viewport_is_the_render("headless", &window, &summary, &scene, dir.path());
+    let panel_text = (40..v[3])
+        .flat_map(|y| (2..v[0] - 2).map(move |x| (x, y)))
+        .filter(|&(x, y)| window.get_pixel(x, y)[0] > 150)
+        .count();
+    assert!(panel_text > 200, "no text in the side panel");
+
+    let box_room = root().join("assets/scenes/box_room.toml");
+    let (code, out, err) = view_without_a_display(
+        &[
+            box_room.to_str().unwrap(),
+            "--headless",
+            "--indirect",
+            "radiosity",
+            "--frames",
+            "60",
+        ],
+        dir.path(),
+    );
+    assert_eq!(code, 0, "{err}");
+    let live: serde_json::Value = serde_json::from_str(out.trim()).unwrap();
+    assert_eq!(live["indirect_shown"], true, "{live}");
+    assert!(live["indirect_shots"].as_u64().unwrap() > 0, "{live}");
+    let ms = |k: &str| live[k].as_f64().unwrap();
+    let solving = live["solving_frames"].as_u64().unwrap();
+    assert!((1..=59).contains(&solving), "{live}");
+    assert!(ms("solving_mean_frame_ms") > 0.0, "{live}");
+    assert!(ms("solving_p95_frame_ms") <= ms("max_frame_ms"), "{live}");
+    assert!(ms("mean_frame_ms") <= ms("max_frame_ms"), "{live}");
+
+    let (code, _, err) = view_without_a_display(&["--headless"], dir.path());
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("--frames"), "{err}");
 }

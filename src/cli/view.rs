@@ -20,6 +20,11 @@ pub struct ViewArgs {
     /// After the last frame, save the whole window (UI included) as PNG and exit.
     #[arg(long)]
     pub screenshot: Option<PathBuf>,
+    /// Render the frames offscreen, without a window or a display (needs --frames or
+    /// --screenshot; the size is then in pixels). The summary's frame times are the
+    /// viewer's own work, GPU included, without presenting.
+    #[arg(long)]
+    pub headless: bool,
     /// Window width, logical pixels.
     #[arg(long, default_value_t = 1280)]
     pub width: u32,
@@ -69,6 +74,11 @@ pub fn run(args: ViewArgs) -> Result<(), CliError> {
             return bad(format!("{name} {v} is not in 64..=8192"));
         }
     }
+    if args.headless && args.frames.is_none() && args.screenshot.is_none() {
+        return bad(
+            "--headless needs --frames N (or --screenshot): it has no window to close".into(),
+        );
+    }
     if let Some(s) = &args.screenshot {
         if image::ImageFormat::from_path(s).ok() != Some(image::ImageFormat::Png) {
             return bad(format!("--screenshot {}: must end in .png", s.display()));
@@ -108,6 +118,7 @@ pub fn run(args: ViewArgs) -> Result<(), CliError> {
             size: [args.width, args.height],
             frames: args.frames.or(args.screenshot.as_ref().map(|_| 3)),
             screenshot: args.screenshot.clone(),
+            headless: args.headless,
         },
     };
     let summary = start(options)?;

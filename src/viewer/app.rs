@@ -473,11 +473,29 @@ impl ViewerApp {
 
     /// Whether background work is running (the window keeps repainting).
     pub fn busy(&self) -> bool {
-        (self.radiosity.worker.is_some() && !self.radiosity.waiting)
+        self.solving()
             || self.profile.worker.is_some()
             || self.sun.animate
             || self.effects_turning()
             || self.dialog.is_some()
+    }
+
+    /// Cancels the background work (the radiosity solver, a shadow profile) and waits for
+    /// every worker thread to end, at most `limit` (the end of a run: a process must not
+    /// exit under a worker inside the GPU driver). True when they all ended.
+    pub fn stop_background(&mut self, limit: std::time::Duration) -> bool {
+        if let Some(w) = &self.radiosity.worker {
+            w.cancel();
+        }
+        if let Some(w) = &self.profile.worker {
+            w.cancel();
+        }
+        super::jobs::wait_for_workers(limit)
+    }
+
+    /// True while the radiosity solver is at work (running, not waiting for a change).
+    pub fn solving(&self) -> bool {
+        self.radiosity.worker.is_some() && !self.radiosity.waiting
     }
 
     /// Builds the whole UI for one frame.

@@ -1,9 +1,10 @@
 //! Background work of the viewer: workers on their own threads (sharing the window's GPU
 //! device) report progress through channels that the UI polls every frame, and stop when
-//! asked; the UI thread never waits for them. The shadow profile's worker is here, the
-//! radiosity's in [`super::live_radiosity`].
+//! asked; the UI thread never waits for them (only the end of a run does, for a bounded
+//! time: [`wait_for_workers`]). The shadow profile's worker is here, the radiosity's in
+//! [`super::live_radiosity`].
 
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::mpsc::{channel, Receiver, Sender};
 use std::sync::Arc;
 
@@ -25,6 +26,40 @@ pub struct JobControl {
     pub holding: AtomicBool,
 }
 
+/// Worker threads of this process that have not ended yet.
+static RUNNING: AtomicUsize = AtomicUsize::new(0);
+
+/// Counts a worker thread as running until it is dropped (when the thread ends, also by a
+/// panic).
+struct Running;
+
+impl Running {
+    fn start() -> Running {
+        RUNNING.fetch_add(1, Ordering::SeqCst);
+        Running
+    }
+}
+
+impl Drop for Running {
+    fn drop(&mut self) {
+        RUNNING.fetch_sub(1, Ordering::SeqCst);
+    }
+}
+
+/// Waits until every worker thread has ended, at most `limit`; true when they have. A
+/// process that exits while a worker is inside the GPU driver can crash there (NVIDIA's
+/// Vulkan driver does), so a run cancels its workers and waits here before returning.
+pub fn wait_for_workers(limit: std::time::Duration) -> bool {
+    let until = std::time::Instant::now() + limit;
+    while RUNNING.load(Ordering::SeqCst) > 0 {
+        if std::time::Instant::now() >= until {
+            return false;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    true
+}
+
 /// A worker thread sending updates of type `U`.
 pub struct Worker<U> {
     /// Its flags.
@@ -42,9 +77,13 @@ impl<U: Send + 'static> Worker<U> {
         let control = Arc::new(JobControl::default());
         let (tx, rx) = channel();
         let flags = control.clone();
+        let running = Running::start();
         std::thread::Builder::new()
             .name(name.into())
-            .spawn(move || work(tx, flags))?;
+            .spawn(move || {
+                let _running = running;
+                work(tx, flags)
+            })?;
         Ok(Worker {
             control,
             updates: rx,

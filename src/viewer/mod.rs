@@ -7,6 +7,8 @@ pub mod app;
 mod app_files;
 pub mod camera;
 pub mod files;
+pub mod frame;
+mod headless;
 pub mod jobs;
 pub mod live_radiosity;
 pub mod luminaires;

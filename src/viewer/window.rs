@@ -4,7 +4,7 @@
 
 use std::path::PathBuf;
 use std::sync::Arc;
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 use anyhow::{anyhow, Context as _};
 use winit::application::ApplicationHandler;
@@ -13,7 +13,7 @@ use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop};
 use winit::window::{Window, WindowId};
 
 use super::app::ViewerApp;
-use super::viewport::Viewport;
+use super::frame::{FrameClock, FramePainter};
 use crate::gpu::Gpu;
 
 /// How the window runs.
@@ -25,6 +25,8 @@ pub struct WindowOptions {
     pub frames: Option<u64>,
     /// After the last frame, save the window (UI included) here as PNG.
     pub screenshot: Option<PathBuf>,
+    /// Render the frames offscreen, without a window or a display (needs `frames`).
+    pub headless: bool,
 }
 
 /// What a run did (printed as JSON by `view --frames`).
@@ -36,8 +38,21 @@ pub struct RunSummary {
     pub window_px: [u32; 2],
     /// The viewport within it (x, y, width, height), physical pixels.
     pub viewport_px: [u32; 4],
-    /// Mean frame time over the frames after the first, ms.
+    /// Whether the frames were rendered offscreen (`view --headless`).
+    pub headless: bool,
+    /// Mean frame time over the frames after the first, ms (start to start: the UI, the
+    /// viewport's render, painting and, in a window, presenting).
     pub mean_frame_ms: f64,
+    /// The 95th percentile of the frame times, ms.
+    pub p95_frame_ms: f64,
+    /// The longest frame, ms.
+    pub max_frame_ms: f64,
+    /// Frames that began while the radiosity solver was at work (not waiting, not done).
+    pub solving_frames: u64,
+    /// Their mean frame time, ms (0: none).
+    pub solving_mean_frame_ms: f64,
+    /// Their 95th percentile, ms.
+    pub solving_p95_frame_ms: f64,
     /// The GPU.
     pub gpu: String,
     /// The surface format.
@@ -57,13 +72,10 @@ pub struct RunSummary {
 
 struct Running {
     window: Arc<Window>,
-    gpu: Arc<Gpu>,
     surface: wgpu::Surface<'static>,
     config: wgpu::SurfaceConfiguration,
-    egui_ctx: egui::Context,
     egui_state: egui_winit::State,
-    egui_renderer: egui_wgpu::Renderer,
-    viewport: Viewport,
+    painter: FramePainter,
 }
 
 struct Handler {
@@ -72,16 +84,18 @@ struct Handler {
     running: Option<Running>,
     error: Option<anyhow::Error>,
     summary: RunSummary,
-    last_frame: Option<Instant>,
-    frame_ms: Vec<f64>,
+    clock: FrameClock,
     next_repaint: Option<Instant>,
 }
 
 /// Opens the window and runs the viewer until it is closed (or has rendered
-/// `options.frames` frames).
+/// `options.frames` frames); with `options.headless`, renders the frames offscreen.
 pub fn run(app: ViewerApp, options: WindowOptions) -> anyhow::Result<RunSummary> {
+    if options.headless {
+        return super::headless::run(app, options);
+    }
     let event_loop = EventLoop::new().map_err(|e| {
-        anyhow!("cannot open a window: {e}. The viewer needs a display (X11 or Wayland); on a machine without one run it under Xvfb: `xvfb-run -a goniolight view …`")
+        anyhow!("cannot open a window: {e}. The viewer needs a display (X11 or Wayland); on a machine without one run it under Xvfb: `xvfb-run -a goniolight view …`, or render its frames offscreen with `view --headless --frames N`")
     })?;
     let mut handler = Handler {
         app,
@@ -89,21 +103,46 @@ pub fn run(app: ViewerApp, options: WindowOptions) -> anyhow::Result<RunSummary>
         running: None,
         error: None,
         summary: RunSummary::default(),
-        last_frame: None,
-        frame_ms: Vec::new(),
+        clock: FrameClock::default(),
         next_repaint: None,
     };
-    event_loop.run_app(&mut handler).context("event loop")?;
+    let ran = event_loop.run_app(&mut handler).context("event loop");
+    handler.app.stop_background(WORKERS_STOP_LIMIT);
+    ran?;
     if let Some(e) = handler.error {
         return Err(e);
     }
-    let n = handler.frame_ms.len().max(1) as f64;
-    handler.summary.mean_frame_ms = handler.frame_ms.iter().sum::<f64>() / n;
-    let radiosity = &handler.app.radiosity;
-    handler.summary.indirect_shown = radiosity.light_map.is_some();
-    handler.summary.indirect_shots = radiosity.shots;
-    handler.summary.indirect_status = radiosity.status.clone();
-    Ok(handler.summary)
+    Ok(handler.summary.finish(&handler.app, &handler.clock))
+}
+
+/// How long the end of a run waits for background work to stop.
+pub(super) const WORKERS_STOP_LIMIT: std::time::Duration = std::time::Duration::from_secs(60);
+
+impl RunSummary {
+    /// Hands the GPU to `app`, starts the indirect light it opens with and notes the GPU.
+    pub(super) fn start(
+        &mut self,
+        app: &mut ViewerApp,
+        gpu: &Arc<Gpu>,
+        format: wgpu::TextureFormat,
+    ) {
+        app.status.gpu = gpu.describe();
+        app.gpu = Some(gpu.clone());
+        app.start_indirect();
+        self.gpu = gpu.describe();
+        self.surface_format = format!("{format:?}");
+    }
+
+    /// Fills in the frame times and the radiosity solver's state at the end of a run.
+    pub(super) fn finish(mut self, app: &ViewerApp, clock: &FrameClock) -> RunSummary {
+        clock.summarise(&mut self);
+        let radiosity = &app.radiosity;
+        self.indirect_shown = radiosity.light_map.is_some();
+        self.indirect_shots = radiosity.shots;
+        self.indirect_status = radiosity.status.clone();
+        self.viewport_px = app.status.viewport_rect_px;
+        self
+    }
 }
 
 impl Handler {
@@ -152,31 +191,22 @@ impl Handler {
             view_formats: vec![],
         };
         surface.configure(&gpu.device, &config);
-        let egui_ctx = egui::Context::default();
+        let painter = FramePainter::new(gpu.clone(), format);
         let egui_state = egui_winit::State::new(
-            egui_ctx.clone(),
+            painter.egui_ctx.clone(),
             egui::ViewportId::ROOT,
             &window,
             Some(window.scale_factor() as f32),
             None,
             Some(gpu.device.limits().max_texture_dimension_2d as usize),
         );
-        let egui_renderer =
-            egui_wgpu::Renderer::new(&gpu.device, format, egui_wgpu::RendererOptions::default());
-        self.app.status.gpu = gpu.describe();
-        self.app.gpu = Some(gpu.clone());
-        self.app.start_indirect();
-        self.summary.gpu = gpu.describe();
-        self.summary.surface_format = format!("{format:?}");
+        self.summary.start(&mut self.app, &gpu, format);
         Ok(Running {
-            viewport: Viewport::new(&gpu),
             window,
-            gpu,
             surface,
             config,
-            egui_ctx,
             egui_state,
-            egui_renderer,
+            painter,
         })
     }
 
@@ -185,142 +215,53 @@ impl Handler {
             return Ok(());
         };
         let now = Instant::now();
-        if let Some(last) = self.last_frame.replace(now) {
-            let ms = (now - last).as_secs_f64() * 1000.0;
-            self.frame_ms.push(ms);
-            let s = &mut self.app.status.frame_ms;
-            *s = if *s == 0.0 { ms } else { 0.9 * *s + 0.1 * ms };
-        }
+        self.clock.tick(&mut self.app);
         let raw = r.egui_state.take_egui_input(&r.window);
-        let app = &mut self.app;
-        let mut full = r.egui_ctx.run_ui(raw, |ui| app.ui(ui));
-        let mut textures = std::mem::take(&mut full.textures_delta);
-        for (id, deltas) in textures.set.drain() {
-            for delta in deltas {
-                r.egui_renderer
-                    .update_texture(&r.gpu.device, &r.gpu.queue, id, &delta);
-            }
-        }
-        // Freed after painting (or now, if this frame is not painted).
-        let free = std::mem::take(&mut textures.free);
-        let free_textures = |renderer: &mut egui_wgpu::Renderer| {
-            for id in &free {
-                renderer.free_texture(id);
-            }
-        };
+        let size_px = [r.config.width, r.config.height];
+        let mut frame = r.painter.prepare(&mut self.app, raw, size_px)?;
+        let platform_output = std::mem::take(&mut frame.platform_output);
         r.egui_state
-            .handle_platform_output(&r.window, full.platform_output);
-        r.viewport
-            .update(&r.gpu, &mut self.app, &mut r.egui_renderer)?;
-        let jobs = r.egui_ctx.tessellate(full.shapes, full.pixels_per_point);
-        let screen = egui_wgpu::ScreenDescriptor {
-            size_in_pixels: [r.config.width, r.config.height],
-            pixels_per_point: full.pixels_per_point,
-        };
+            .handle_platform_output(&r.window, platform_output);
         let surface_texture = match r.surface.get_current_texture() {
             wgpu::CurrentSurfaceTexture::Success(t)
             | wgpu::CurrentSurfaceTexture::Suboptimal(t) => t,
             wgpu::CurrentSurfaceTexture::Outdated | wgpu::CurrentSurfaceTexture::Lost => {
-                r.surface.configure(&r.gpu.device, &r.config);
+                r.surface.configure(&r.painter.gpu.device, &r.config);
                 r.window.request_redraw();
-                free_textures(&mut r.egui_renderer);
+                r.painter.finish(frame);
                 return Ok(());
             }
             _ => {
                 r.window.request_redraw();
-                free_textures(&mut r.egui_renderer);
+                r.painter.finish(frame);
                 return Ok(());
             }
         };
         let view = surface_texture.texture.create_view(&Default::default());
-        paint(&r.gpu, &mut r.egui_renderer, &jobs, &screen, &view);
+        r.painter.paint(&frame, &view);
         let frames_done = self.summary.frames + 1;
         let last = self.options.frames.is_some_and(|n| frames_done >= n);
         if last {
-            self.summary.centre_lux = r.viewport.centre_lux(&r.gpu)?;
+            self.summary.centre_lux = r.painter.viewport.centre_lux(&r.painter.gpu)?;
             if let Some(path) = self.options.screenshot.clone() {
-                capture(r, &jobs, &screen, &path)?;
+                // The same frame painted offscreen (a surface texture cannot be read).
+                let texture = r.painter.offscreen_target(size_px);
+                r.painter
+                    .paint(&frame, &texture.create_view(&Default::default()));
+                r.painter.save(&texture, &path)?;
                 self.summary.screenshot = Some(path);
             }
         }
-        r.gpu.queue.present(surface_texture);
-        free_textures(&mut r.egui_renderer);
+        r.painter.gpu.queue.present(surface_texture);
+        self.next_repaint = now.checked_add(frame.repaint_delay);
+        r.painter.finish(frame);
         self.summary.frames = frames_done;
-        self.summary.window_px = [r.config.width, r.config.height];
-        self.summary.viewport_px = self.app.status.viewport_rect_px;
-        let delay = full
-            .viewport_output
-            .get(&egui::ViewportId::ROOT)
-            .map_or(Duration::MAX, |v| v.repaint_delay);
-        self.next_repaint = now.checked_add(delay);
+        self.summary.window_px = size_px;
         if last {
             event_loop.exit();
         }
         Ok(())
     }
-}
-
-/// Paints egui (the viewport image is one of its textures) into `target`.
-fn paint(
-    gpu: &Gpu,
-    renderer: &mut egui_wgpu::Renderer,
-    jobs: &[egui::ClippedPrimitive],
-    screen: &egui_wgpu::ScreenDescriptor,
-    target: &wgpu::TextureView,
-) {
-    let mut enc = gpu.device.create_command_encoder(&Default::default());
-    let extra = renderer.update_buffers(&gpu.device, &gpu.queue, &mut enc, jobs, screen);
-    {
-        let mut pass = enc
-            .begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("egui"),
-                color_attachments: &[Some(crate::gpu::cleared_attachment(
-                    target,
-                    wgpu::Color::BLACK,
-                ))],
-                ..Default::default()
-            })
-            .forget_lifetime();
-        renderer.render(&mut pass, jobs, screen);
-    }
-    gpu.queue.submit(extra.into_iter().chain([enc.finish()]));
-}
-
-/// Paints the same frame into an offscreen texture of the surface's format and saves it.
-fn capture(
-    r: &mut Running,
-    jobs: &[egui::ClippedPrimitive],
-    screen: &egui_wgpu::ScreenDescriptor,
-    path: &std::path::Path,
-) -> anyhow::Result<()> {
-    let (w, h, format) = (r.config.width, r.config.height, r.config.format);
-    let texture = r.gpu.device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("window capture"),
-        size: wgpu::Extent3d {
-            width: w,
-            height: h,
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format,
-        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-        view_formats: &[],
-    });
-    let view = texture.create_view(&Default::default());
-    paint(&r.gpu, &mut r.egui_renderer, jobs, screen, &view);
-    let mut bytes = r.gpu.read_texture(&texture)?;
-    match format {
-        wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Bgra8UnormSrgb => {
-            bytes.chunks_exact_mut(4).for_each(|p| p.swap(0, 2))
-        }
-        wgpu::TextureFormat::Rgba8Unorm | wgpu::TextureFormat::Rgba8UnormSrgb => {}
-        other => return Err(anyhow!("cannot save a window of format {other:?}")),
-    }
-    bytes.chunks_exact_mut(4).for_each(|p| p[3] = 255);
-    let image = image::RgbaImage::from_raw(w, h, bytes).context("capture size mismatch")?;
-    crate::render::output::write_image(path, &image)
 }
 
 impl ApplicationHandler for Handler {
@@ -348,7 +289,7 @@ impl ApplicationHandler for Handler {
             WindowEvent::Resized(size) => {
                 r.config.width = size.width.max(1);
                 r.config.height = size.height.max(1);
-                r.surface.configure(&r.gpu.device, &r.config);
+                r.surface.configure(&r.painter.gpu.device, &r.config);
                 r.window.request_redraw();
             }
             WindowEvent::RedrawRequested => {
