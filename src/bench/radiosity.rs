@@ -11,7 +11,7 @@ use crate::radiosity::initial::{InitialState, LuminaireLight};
 use crate::radiosity::scene::RadiosityScene;
 use crate::radiosity::shooters::{Hierarchy, Shooters};
 use crate::radiosity::solve::StopAt;
-use crate::radiosity::SolverSettings;
+use crate::radiosity::{Ambient, SolverSettings};
 use crate::scene::Scene;
 
 /// One measured solution.
@@ -23,6 +23,12 @@ pub struct RadiosityBenchRow {
     pub hierarchy: String,
     /// The links' error (`--link-error`; 0: every receiver takes the finest cells).
     pub link_error: f64,
+    /// "display" or "overshoot" (ambient overshooting).
+    pub ambient: String,
+    /// The cells' largest share of the initial unshot power (`--cell-power`).
+    pub cell_power: f64,
+    /// Side of a visibility map (a hemicube face or the stereographic map), texels.
+    pub map_size: u32,
     /// Visibility maps drawn (one per drawn cell or patch).
     pub maps: usize,
     /// Shooters.
@@ -53,6 +59,8 @@ pub struct RadiosityBenchRow {
     pub shots: usize,
     /// The convergence reached (fraction of the initial unshot power shot).
     pub convergence: f64,
+    /// Where the shots' time went, by phase.
+    pub phase_seconds: crate::radiosity::gpu::ShotTimes,
 }
 
 /// Total area of a scene's triangles, m².
@@ -82,10 +90,25 @@ pub struct RadiosityBenchPlan {
     pub max_shots: usize,
     /// Give up after this many seconds per solution.
     pub time_limit: Option<f64>,
+    /// Side of a visibility map, texels.
+    pub map_size: u32,
 }
 
-/// One solution to measure: visibility, shooters and the links' error.
-pub type RadiosityBenchConfig = (Visibility, Hierarchy, f64);
+/// One solution to measure.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RadiosityBenchConfig {
+    /// Visibility maps.
+    pub visibility: Visibility,
+    /// Who shoots.
+    pub hierarchy: Hierarchy,
+    /// The links' error (with clusters).
+    pub link_error: f64,
+    /// Ambient term use: `Display` (shown only) or `Overshoot` (Wallner §4.3.5).
+    pub ambient: Ambient,
+    /// With clusters: the largest share of the initial unshot power one shooting cell
+    /// carries ([`GpuSettings::cell_power`]).
+    pub cell_power: f64,
+}
 
 /// Solves `scene` with about `plan.elements` elements once per entry of `configs`, to 99 %
 /// or the plan's limits. The scene and each hierarchy's elements are checked against the
@@ -95,7 +118,7 @@ pub fn run(
     scene: &Scene,
     plan: RadiosityBenchPlan,
     configs: &[RadiosityBenchConfig],
-    mut progress: impl FnMut(Visibility, Hierarchy, f64),
+    mut progress: impl FnMut(&RadiosityBenchConfig, f64),
 ) -> anyhow::Result<Vec<RadiosityBenchRow>> {
     let RadiosityBenchPlan {
         elements,
@@ -103,17 +126,25 @@ pub fn run(
         level,
         max_shots,
         time_limit,
+        map_size,
     } = plan;
     let density =
         texel_density.unwrap_or_else(|| (elements as f64 / surface_area(scene).max(1e-9)).sqrt());
-    let settings = SolverSettings::default();
+    let defaults = SolverSettings::default();
     let mut shadows = crate::render::ShadowSettings::default();
     crate::render::limits::check_scene(gpu, scene, &mut shadows)?;
-    let light = LuminaireLight::new(gpu, scene, settings.interp);
+    let light = LuminaireLight::new(gpu, scene, defaults.interp);
     // The hierarchy lays the charts too, so each has its own elements.
     let mut prepared: Vec<(Hierarchy, RadiosityScene, InitialState)> = Vec::new();
     let mut rows = Vec::new();
-    for &(visibility, hierarchy, link_error) in configs {
+    for config in configs {
+        let RadiosityBenchConfig {
+            visibility,
+            hierarchy,
+            link_error,
+            ambient,
+            cell_power,
+        } = *config;
         if !prepared.iter().any(|p| p.0 == hierarchy) {
             let rscene = RadiosityScene::with_hierarchy(scene, density, level, hierarchy)?;
             crate::render::limits::check_radiosity(gpu, rscene.elements.len())?;
@@ -127,7 +158,13 @@ pub fn run(
             visibility,
             hierarchy,
             link_error,
+            map_size,
+            cell_power,
             ..GpuSettings::default()
+        };
+        let settings = SolverSettings {
+            ambient,
+            ..defaults
         };
         let built = std::time::Instant::now();
         let shooters = Shooters::build(rscene, hierarchy);
@@ -141,7 +178,7 @@ pub fn run(
             time_budget: time_limit.map(std::time::Duration::from_secs_f64),
         };
         let (_, log) = solver.solve(&stop, &AtomicBool::new(false), |p| {
-            progress(visibility, hierarchy, p.convergence)
+            progress(config, p.convergence)
         })?;
         let reach = |target: f64| log.iter().find(|p| p.convergence >= target);
         let seconds = log.last().map_or(0.0, |p| p.seconds);
@@ -149,6 +186,9 @@ pub fn run(
             visibility: format!("{visibility:?}").to_lowercase(),
             hierarchy: format!("{hierarchy:?}").to_lowercase(),
             link_error,
+            ambient: format!("{ambient:?}").to_lowercase(),
+            cell_power,
+            map_size,
             maps: solver.drawn,
             shooters: shooter_count,
             shooters_seconds,
@@ -164,6 +204,7 @@ pub fn run(
             seconds,
             shots: solver.shots,
             convergence: log.last().map_or(0.0, |p| p.convergence),
+            phase_seconds: solver.times,
         });
     }
     Ok(rows)

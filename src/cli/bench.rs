@@ -164,6 +164,17 @@ pub enum BenchCommand {
         /// receiver takes the finest cells). One row per value for clusters.
         #[arg(long, value_delimiter = ',', default_value = "0.05")]
         link_error: Vec<f64>,
+        /// Ambient term uses to compare (comma-separated): `display` (shown only) or
+        /// `overshoot` (ambient overshooting, Wallner §4.3.5).
+        #[arg(long, value_enum, value_delimiter = ',', default_value = "display")]
+        ambient: Vec<crate::radiosity::Ambient>,
+        /// Side of a visibility map (a hemicube face or the stereographic map), texels.
+        #[arg(long, default_value_t = 256)]
+        map_size: u32,
+        /// With `--hierarchy clusters`: the largest shares of the initial unshot power one
+        /// shooting cell carries, to compare (comma-separated; smaller: more, finer cells).
+        #[arg(long, value_delimiter = ',', default_values_t = [crate::radiosity::shooters::DEFAULT_CELL_POWER])]
+        cell_power: Vec<f64>,
         /// The scene (default: the bundled assets/scenes/cornell_box.toml).
         #[arg(long)]
         scene: Option<std::path::PathBuf>,
@@ -243,6 +254,9 @@ pub fn run(cmd: BenchCommand) -> Result<(), CliError> {
             visibility,
             hierarchy,
             link_error,
+            ambient,
+            map_size,
+            cell_power,
             scene,
         } => {
             let plan = crate::bench::radiosity::RadiosityBenchPlan {
@@ -251,8 +265,9 @@ pub fn run(cmd: BenchCommand) -> Result<(), CliError> {
                 level,
                 max_shots,
                 time_limit,
+                map_size,
             };
-            use crate::radiosity::shooters::Hierarchy;
+            use crate::radiosity::shooters::{Hierarchy, DEFAULT_CELL_POWER};
             if link_error
                 .iter()
                 .any(|e| !(e.is_finite() && (0.0..=1.0).contains(e)))
@@ -261,13 +276,33 @@ pub fn run(cmd: BenchCommand) -> Result<(), CliError> {
                     "--link-error values must be in [0, 1]"
                 )));
             }
+            if cell_power
+                .iter()
+                .any(|p| !(p.is_finite() && *p > 0.0 && *p <= 1.0))
+            {
+                return Err(CliError::input(anyhow::anyhow!(
+                    "--cell-power values must be in (0, 1]"
+                )));
+            }
             let mut configs = Vec::new();
-            for &v in &visibility {
-                for &h in &hierarchy {
-                    match h {
-                        Hierarchy::None => configs.push((v, h, 0.0)),
-                        Hierarchy::Clusters => {
-                            configs.extend(link_error.iter().map(|&e| (v, h, e)))
+            for &a in &ambient {
+                for &v in &visibility {
+                    for &h in &hierarchy {
+                        // Links and cells exist only with clusters.
+                        let (errors, powers) = match h {
+                            Hierarchy::None => (&[0.0][..], &[DEFAULT_CELL_POWER][..]),
+                            Hierarchy::Clusters => (&link_error[..], &cell_power[..]),
+                        };
+                        for &e in errors {
+                            configs.extend(powers.iter().map(|&p| {
+                                crate::bench::radiosity::RadiosityBenchConfig {
+                                    visibility: v,
+                                    hierarchy: h,
+                                    link_error: e,
+                                    ambient: a,
+                                    cell_power: p,
+                                }
+                            }));
                         }
                     }
                 }
@@ -350,9 +385,10 @@ fn run_radiosity(
         || plan.max_shots == 0
         || !time_ok
         || !density_ok
+        || !(16..=4096).contains(&plan.map_size)
     {
         return Err(CliError::input(anyhow::anyhow!(
-            "--elements must be in 1..=50000000, --texel-density > 0, --level in 0..=6, --max-shots > 0, --time-limit > 0"
+            "--elements must be in 1..=50000000, --texel-density > 0, --level in 0..=6, --max-shots > 0, --time-limit > 0, --map-size in 16..=4096"
         )));
     }
     let path =
@@ -361,8 +397,11 @@ fn run_radiosity(
     let gpu = Gpu::shared()?;
     eprintln!("GPU: {}", gpu.describe());
     let bar = indicatif::ProgressBar::new(1000);
-    let rows = rbench::run(&gpu, &scene, plan, configs, |v, h, c| {
-        bar.set_message(format!("{v:?}, hierarchy {h:?}"));
+    let rows = rbench::run(&gpu, &scene, plan, configs, |config, c| {
+        bar.set_message(format!(
+            "{:?}, hierarchy {:?}, ambient {:?}",
+            config.visibility, config.hierarchy, config.ambient
+        ));
         bar.set_position((c.clamp(0.0, 1.0) * 1000.0) as u64);
     })
     .map_err(CliError::failure)?;
@@ -382,8 +421,8 @@ fn run_radiosity(
         first.triangles,
         first.texel_density,
     );
-    println!("| visibility | hierarchy | link error | elements | patches | shooters (built in) | maps drawn | shots to 90 % | s to 90 % | shots to 99 % | s to 99 % | ms/shot | time to 90 % / first row |");
-    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|");
+    println!("| visibility | ambient | hierarchy | link error | cell power | elements | patches | shooters (built in) | maps drawn | shots to 90 % | s to 90 % | shots to 99 % | s to 99 % | ms/shot | time to 90 % / first row |");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     let opt = |v: Option<f64>| v.map_or("—".to_string(), |v| format!("{v:.2}"));
     let shots = |v: Option<usize>| v.map_or("—".to_string(), |v| v.to_string());
     for r in &rows {
@@ -393,14 +432,15 @@ fn run_radiosity(
             (Some(a), None) if first.seconds > 0.0 => format!("< {:.3}", a / first.seconds),
             _ => "—".into(),
         };
-        let link = if r.hierarchy == "none" {
-            "—".to_string()
+        let (link, cell) = if r.hierarchy == "none" {
+            ("—".to_string(), "—".to_string())
         } else {
-            r.link_error.to_string()
+            (r.link_error.to_string(), r.cell_power.to_string())
         };
         println!(
-            "| {} | {} | {link} | {} | {} | {} ({:.2} s) | {} | {} | {} | {} | {} | {:.1} | {ratio} |",
+            "| {} | {} | {} | {link} | {cell} | {} | {} | {} ({:.2} s) | {} | {} | {} | {} | {} | {:.1} | {ratio} |",
             r.visibility,
+            r.ambient,
             r.hierarchy,
             r.elements,
             r.patches,
@@ -414,10 +454,32 @@ fn run_radiosity(
             r.ms_per_shot
         );
     }
+    println!("Where the shots' time went (s; a phase that reads from the GPU waits there for the work before it):");
+    for r in &rows {
+        let t = &r.phase_seconds;
+        println!(
+            "{} / {} / {} / link error {} / cell power {}: select {:.2}, piece powers {:.2}, plan {:.2}, gather {:.2}, links {:.2}, cull {:.2}, record {:.2}, batch wait {:.2}; the rest {:.2}",
+            r.visibility,
+            r.ambient,
+            r.hierarchy,
+            r.link_error,
+            r.cell_power,
+            t.select,
+            t.piece_powers,
+            t.plan,
+            t.gather,
+            t.links,
+            t.cull,
+            t.record,
+            t.batch_wait,
+            (r.seconds - t.total()).max(0.0),
+        );
+    }
     for r in rows.iter().filter(|r| r.seconds_99.is_none()) {
         println!(
-            "{} / {} / link error {}: {:.2} % after {} shots in {:.1} s (— : not reached within --max-shots {} or --time-limit)",
+            "{} / {} / {} / link error {}: {:.2} % after {} shots in {:.1} s (— : not reached within --max-shots {} or --time-limit)",
             r.visibility,
+            r.ambient,
             r.hierarchy,
             r.link_error,
             100.0 * r.convergence,

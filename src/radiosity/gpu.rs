@@ -81,6 +81,57 @@ const _: () = assert!(
     std::mem::size_of::<ElementRecord>() as u64 == crate::render::limits::RADIOSITY_ELEMENT_BYTES
 );
 
+/// Where a solver's shots spend their time, seconds of wall clock on the thread that
+/// drives it, by phase (`bench radiosity --json`: `phase_seconds`). A phase that reads
+/// from the GPU also waits there for the work submitted before it.
+#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize)]
+pub struct ShotTimes {
+    /// Choosing the shooter: the reduction and the read-back of its record (waits for
+    /// the last shot's GPU work).
+    pub select: f64,
+    /// A shooter of several pieces: each piece's unshot power, summed on the GPU and read
+    /// back.
+    pub piece_powers: f64,
+    /// Planning the shot's cells on the CPU ([`Shooters::plan_shot`]).
+    pub plan: f64,
+    /// Gathering the cells' unshot radiosity on the GPU, and reading it back where the
+    /// links or waiting receivers need it.
+    pub gather: f64,
+    /// Linking receivers to cells on the CPU ([`super::links::link`]).
+    pub links: f64,
+    /// Culling the receivers of each batch on the CPU.
+    pub cull: f64,
+    /// Recording and submitting each batch's maps and receive passes.
+    pub record: f64,
+    /// Waiting for a batch before the next (so a shot can stop between batches).
+    pub batch_wait: f64,
+}
+
+impl ShotTimes {
+    /// The sum of the phases, seconds.
+    pub fn total(&self) -> f64 {
+        self.select
+            + self.piece_powers
+            + self.plan
+            + self.gather
+            + self.links
+            + self.cull
+            + self.record
+            + self.batch_wait
+    }
+}
+
+/// Adds the seconds since `since` to `phase` and restarts the clock.
+fn lap(phase: &mut f64, since: &mut std::time::Instant) {
+    let now = std::time::Instant::now();
+    *phase += (now - *since).as_secs_f64();
+    *since = now;
+}
+
+/// Receiver culling takes a subtree of at most this many charts whole where its box is
+/// in front of a cell ([`ReceiverBoxes::charts_roughly_in_front_of_any`]).
+const RECEIVER_GROUP: u32 = 16;
+
 /// Most patches shot per GPU submission; the solver may stop between batches.
 pub const PATCHES_PER_BATCH: usize = 64;
 /// Patches in a solver's first batch (then adapted to the machine and scene).
@@ -226,6 +277,8 @@ pub struct GpuSolver<'a> {
     /// Cells or patches whose visibility map was skipped so far: no receiver takes light
     /// from them (behind the shooter, or linked to a coarser or finer cell).
     pub skipped: usize,
+    /// Where the shots' time went so far (wall clock on the calling thread).
+    pub times: ShotTimes,
 }
 
 fn storage(gpu: &Gpu, label: &str, data: &[u8], writable: bool) -> wgpu::Buffer {
@@ -649,6 +702,7 @@ impl<'a> GpuSolver<'a> {
             receivers: ReceiverBoxes::new(scene),
             drawn: 0,
             skipped: 0,
+            times: ShotTimes::default(),
         };
         solver.write_params(u32::MAX, 0, 0, 0..0);
         solver
@@ -701,6 +755,7 @@ impl<'a> GpuSolver<'a> {
 
     /// Chooses the next shooter on the GPU (reduction over the shooters).
     pub fn select(&mut self) -> Result<Selection, GpuError> {
+        let mut clock = std::time::Instant::now();
         self.write_params(u32::MAX, 0, 0, 0..0);
         let mut enc = self.gpu.device.create_command_encoder(&Default::default());
         let shooters = self.shooters.len() as u32;
@@ -722,6 +777,7 @@ impl<'a> GpuSolver<'a> {
         );
         self.gpu.queue.submit([enc.finish()]);
         let v = self.gpu.read_f32(&self.selection)?;
+        lap(&mut self.times.select, &mut clock);
         let index = v[0].to_bits();
         let shooter = (index != u32::MAX && v[1] > 0.0).then_some(index as usize);
         // The shader's choice is by weighted power; the shot's cells are sized by the
@@ -901,10 +957,13 @@ impl<'a> GpuSolver<'a> {
         } else {
             0
         };
+        let mut clock = std::time::Instant::now();
         let power = self.piece_powers(s)?;
+        lap(&mut self.times.piece_powers, &mut clock);
         let plan = self
             .shooters
             .plan_shot(self.scene, s, &power, budget, levels);
+        lap(&mut self.times.plan, &mut clock);
         let first = self.shooters.first[s];
         self.gpu.queue.write_buffer(
             &self.shooter_elements,
@@ -949,8 +1008,10 @@ impl<'a> GpuSolver<'a> {
         } else {
             vec![0.0; plan.patches.len()]
         };
+        lap(&mut self.times.gather, &mut clock);
         let epsilon = self.gpu_settings.link_error * initial / self.scene.total_area.max(1e-300);
         let links = super::links::link(&plan, &radiosity, &self.receivers, epsilon);
+        lap(&mut self.times.links, &mut clock);
         Ok((plan, links, delta))
     }
 
@@ -1023,9 +1084,12 @@ impl<'a> GpuSolver<'a> {
                 drawn.extend((tops[t]..subtree_end(t)).filter(|&k| links.drawn[k]));
                 t += 1;
             }
+            let mut clock = std::time::Instant::now();
             let waiting = self.cull(&plan.patches[tops[from]..subtree_end(t - 1)]);
+            lap(&mut self.times.cull, &mut clock);
             let clear = if from == 0 { 0..plan.shot } else { 0..0 };
             self.shoot_batch(s, &plan, &links, &drawn, clear)?;
+            lap(&mut self.times.record, &mut clock);
             if waiting {
                 missed.extend_from_slice(&drawn);
             }
@@ -1034,6 +1098,7 @@ impl<'a> GpuSolver<'a> {
             self.skipped += cells - drawn.len();
             if t < tops.len() {
                 self.gpu.wait()?;
+                lap(&mut self.times.batch_wait, &mut clock);
                 // Twice as many next time while well under the target, half when over.
                 let took = started.elapsed().as_secs_f64();
                 if took < 0.5 * self.batch_seconds {
@@ -1059,7 +1124,16 @@ impl<'a> GpuSolver<'a> {
     /// of those only the ones not waiting ([`GpuSolver::set_receiving`]). True when some
     /// chart in front waits.
     fn cull(&mut self, patches: &[PlannedPatch]) -> bool {
-        let mut charts = self.receivers.charts_in_front_of_any(&cell_planes(patches));
+        // Exact where receivers wait (perspective-driven: what is skipped is caught up
+        // later), else by groups of charts: a superset, far cheaper on many tiny charts.
+        let group = if self.deferral.is_some() {
+            1
+        } else {
+            RECEIVER_GROUP
+        };
+        let mut charts = self
+            .receivers
+            .charts_roughly_in_front_of_any(&cell_planes(patches), group);
         let in_front = charts.len();
         if let Some(d) = &self.deferral {
             charts.retain(|&k| d.receiving[k]);
@@ -1068,10 +1142,10 @@ impl<'a> GpuSolver<'a> {
         charts.len() < in_front
     }
 
-    /// The receivers of the next batch: the elements of `charts` (receiver indices).
+    /// The receivers of the next batch: the elements of `charts` (receiver indices), as
+    /// [`ReceiverBoxes::merged_ranges`].
     fn set_receivers(&mut self, charts: &[usize]) {
-        let mut ranges: Vec<(u32, u32)> = charts.iter().map(|&k| self.receivers.range(k)).collect();
-        ranges.sort_unstable();
+        let ranges = self.receivers.merged_ranges(charts);
         let mut threads = 0u32;
         let records: Vec<[u32; 4]> = ranges
             .iter()
