@@ -129,6 +129,29 @@ fn viewport_is_the_render(
     v
 }
 
+/// `view` arguments for 4 frames of `scene`, shaded, 900 × 600, saved to `shot`.
+fn screenshot_args(scene: &Path, shot: &Path) -> Vec<String> {
+    let (scene, shot) = (scene.display().to_string(), shot.display().to_string());
+    [
+        scene.as_str(),
+        "--mode",
+        "shaded",
+        "--width",
+        "900",
+        "--height",
+        "600",
+        "--frames",
+        "4",
+        // Effect lights held where `render` draws them (they turn otherwise).
+        "--time",
+        "0",
+        "--screenshot",
+        shot.as_str(),
+    ]
+    .map(String::from)
+    .to_vec()
+}
+
 #[test]
 fn every_bundled_scene_renders_in_the_window_like_the_render_command() {
     if skip() {
@@ -138,22 +161,9 @@ fn every_bundled_scene_renders_in_the_window_like_the_render_command() {
     for name in ["box_room", "cornell_box", "effect_stage", "furnished_room"] {
         let scene = root().join(format!("assets/scenes/{name}.toml"));
         let shot = dir.path().join(format!("{name}-window.png"));
-        let (code, out, err) = view_under_xvfb(&[
-            &scene.display().to_string(),
-            "--mode",
-            "shaded",
-            "--width",
-            "900",
-            "--height",
-            "600",
-            "--frames",
-            "4",
-            // Effect lights held where `render` draws them (they turn otherwise).
-            "--time",
-            "0",
-            "--screenshot",
-            &shot.display().to_string(),
-        ]);
+        let args = screenshot_args(&scene, &shot);
+        let (code, out, err) =
+            view_under_xvfb(&args.iter().map(|a| a.as_str()).collect::<Vec<_>>());
         assert_eq!(code, 0, "{name}: {err}");
         let summary: serde_json::Value =
             serde_json::from_str(out.trim()).unwrap_or_else(|e| panic!("{e}: {out}"));
@@ -507,25 +517,10 @@ fn headless_frames_are_the_windows_without_a_display() {
     let dir = tempfile::tempdir().unwrap();
     let scene = root().join("assets/scenes/furnished_room.toml");
     let shot = dir.path().join("headless.png");
-    let (code, out, err) = view_without_a_display(
-        &[
-            scene.to_str().unwrap(),
-            "--headless",
-            "--mode",
-            "shaded",
-            "--width",
-            "900",
-            "--height",
-            "600",
-            "--frames",
-            "4",
-            "--time",
-            "0",
-            "--screenshot",
-            shot.to_str().unwrap(),
-        ],
-        dir.path(),
-    );
+    let mut args = screenshot_args(&scene, &shot);
+    args.push("--headless".into());
+    let args: Vec<&str> = args.iter().map(|a| a.as_str()).collect();
+    let (code, out, err) = view_without_a_display(&args, dir.path());
     assert_eq!(code, 0, "{err}");
     let summary: serde_json::Value = serde_json::from_str(out.trim()).unwrap();
     assert_eq!(summary["headless"], true, "{summary}");

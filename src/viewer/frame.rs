@@ -1,8 +1,8 @@
 //! One frame of the viewer, in a window or headless: egui's UI pass, the viewport's GPU
-//! render, egui's tessellation and painting into a target; and the frame-time statistics
-//! a run reports.
+//! render, egui's tessellation and painting into a target; how a run is asked for and
+//! what it reports (frame-time statistics included).
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
@@ -11,6 +11,90 @@ use anyhow::{anyhow, Context as _};
 use super::app::ViewerApp;
 use super::viewport::Viewport;
 use crate::gpu::Gpu;
+
+/// How the window runs.
+#[derive(Debug, Clone, Default)]
+pub struct WindowOptions {
+    /// Inner size, logical pixels.
+    pub size: [u32; 2],
+    /// Render this many frames, then exit.
+    pub frames: Option<u64>,
+    /// After the last frame, save the window (UI included) here as PNG.
+    pub screenshot: Option<PathBuf>,
+    /// Render the frames offscreen, without a window or a display (needs `frames`).
+    pub headless: bool,
+}
+
+/// What a run did (printed as JSON by `view --frames`).
+#[derive(Debug, Clone, Default, serde::Serialize)]
+pub struct RunSummary {
+    /// Frames rendered.
+    pub frames: u64,
+    /// Window size, physical pixels.
+    pub window_px: [u32; 2],
+    /// The viewport within it (x, y, width, height), physical pixels.
+    pub viewport_px: [u32; 4],
+    /// Whether the frames were rendered offscreen (`view --headless`).
+    pub headless: bool,
+    /// Mean frame time over the frames after the first, ms (start to start: the UI, the
+    /// viewport's render, painting and, in a window, presenting).
+    pub mean_frame_ms: f64,
+    /// The 95th percentile of the frame times, ms.
+    pub p95_frame_ms: f64,
+    /// The longest frame, ms.
+    pub max_frame_ms: f64,
+    /// Frames that began while the radiosity solver was at work (not waiting, not done).
+    pub solving_frames: u64,
+    /// Their mean frame time, ms (0: none).
+    pub solving_mean_frame_ms: f64,
+    /// Their 95th percentile, ms.
+    pub solving_p95_frame_ms: f64,
+    /// The GPU.
+    pub gpu: String,
+    /// The surface format.
+    pub surface_format: String,
+    /// The screenshot written.
+    pub screenshot: Option<PathBuf>,
+    /// Whether a radiosity light map (or the ambient estimate) was shown at the end.
+    pub indirect_shown: bool,
+    /// Radiosity shots by then.
+    pub indirect_shots: usize,
+    /// What the radiosity solver said last.
+    pub indirect_status: String,
+    /// The illuminance at the viewport's centre pixel in the last frame, lux (the lux
+    /// read-out as if the cursor were there; `None`: no surface there).
+    pub centre_lux: Option<f64>,
+}
+
+/// How long the end of a run waits for background work to stop.
+pub const WORKERS_STOP_LIMIT: std::time::Duration = std::time::Duration::from_secs(60);
+
+impl RunSummary {
+    /// Hands the GPU to `app`, starts the indirect light it opens with and notes the GPU.
+    pub(super) fn start(
+        &mut self,
+        app: &mut ViewerApp,
+        gpu: &Arc<Gpu>,
+        format: wgpu::TextureFormat,
+    ) {
+        app.status.gpu = gpu.describe();
+        app.gpu = Some(gpu.clone());
+        app.start_indirect();
+        self.gpu = gpu.describe();
+        self.surface_format = format!("{format:?}");
+    }
+
+    /// Fills in the frame times and the radiosity solver's state at the end of a run.
+    pub(super) fn finish(mut self, app: &ViewerApp, clock: &FrameClock) -> RunSummary {
+        clock.summarise(&mut self);
+        let radiosity = &app.radiosity;
+        self.indirect_shown = radiosity.light_map.is_some();
+        self.indirect_shots = radiosity.shots;
+        self.indirect_status = radiosity.status.clone();
+        self.viewport_px = app.status.viewport_rect_px;
+        self
+    }
+}
 
 /// What draws the viewer's frames: the GPU, egui and the viewport.
 pub struct FramePainter {
@@ -185,7 +269,7 @@ impl FrameClock {
     }
 
     /// Fills the frame-time fields of `summary`.
-    pub fn summarise(&self, summary: &mut super::window::RunSummary) {
+    pub fn summarise(&self, summary: &mut RunSummary) {
         let all: Vec<f64> = self.frames.iter().map(|f| f.0).collect();
         let solving: Vec<f64> = self.frames.iter().filter(|f| f.1).map(|f| f.0).collect();
         summary.mean_frame_ms = mean(&all);
@@ -232,9 +316,11 @@ mod tests {
 
     #[test]
     fn the_clock_splits_frames_while_solving() {
-        let mut clock = FrameClock::default();
-        clock.frames = vec![(10.0, true), (30.0, true), (100.0, false)];
-        let mut s = super::super::window::RunSummary::default();
+        let clock = FrameClock {
+            frames: vec![(10.0, true), (30.0, true), (100.0, false)],
+            ..FrameClock::default()
+        };
+        let mut s = RunSummary::default();
         clock.summarise(&mut s);
         assert!((s.mean_frame_ms - 140.0 / 3.0).abs() < 1e-9);
         assert_eq!(s.max_frame_ms, 100.0);

@@ -9,8 +9,7 @@ use std::time::Instant;
 use anyhow::anyhow;
 
 use super::app::ViewerApp;
-use super::frame::{FrameClock, FramePainter};
-use super::window::{RunSummary, WindowOptions};
+use super::frame::{FrameClock, FramePainter, RunSummary, WindowOptions, WORKERS_STOP_LIMIT};
 use crate::gpu::Gpu;
 
 /// The format frames are painted in (egui blends in gamma space).
@@ -30,7 +29,7 @@ pub fn run(mut app: ViewerApp, options: WindowOptions) -> anyhow::Result<RunSumm
     summary.start(&mut app, &gpu, FORMAT);
     let mut clock = FrameClock::default();
     let drawn = draw(&mut app, &gpu, &options, frames, &mut summary, &mut clock);
-    app.stop_background(super::window::WORKERS_STOP_LIMIT);
+    app.stop_background(WORKERS_STOP_LIMIT);
     drawn?;
     Ok(summary.finish(&app, &clock))
 }

@@ -117,5 +117,10 @@ pub fn start(options: StartOptions) -> Result<window::RunSummary, ViewerError> {
         app.sun.enabled = true;
         app.display.shadows.technique = crate::shadow::ShadowTechnique::Volumes;
     }
-    window::run(app, options.window).map_err(|e| ViewerError::Window(format!("{e:#}")))
+    let ran = if options.window.headless {
+        headless::run(app, options.window)
+    } else {
+        window::run(app, options.window)
+    };
+    ran.map_err(|e| ViewerError::Window(format!("{e:#}")))
 }

@@ -2,7 +2,6 @@
 //! viewport's GPU rendering. With a frame count it renders that many frames, optionally
 //! saves the whole window as a PNG, and exits (how tests and CI drive it under Xvfb).
 
-use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -13,62 +12,9 @@ use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop};
 use winit::window::{Window, WindowId};
 
 use super::app::ViewerApp;
-use super::frame::{FrameClock, FramePainter};
+use super::frame::{FrameClock, FramePainter, WORKERS_STOP_LIMIT};
+pub use super::frame::{RunSummary, WindowOptions};
 use crate::gpu::Gpu;
-
-/// How the window runs.
-#[derive(Debug, Clone, Default)]
-pub struct WindowOptions {
-    /// Inner size, logical pixels.
-    pub size: [u32; 2],
-    /// Render this many frames, then exit.
-    pub frames: Option<u64>,
-    /// After the last frame, save the window (UI included) here as PNG.
-    pub screenshot: Option<PathBuf>,
-    /// Render the frames offscreen, without a window or a display (needs `frames`).
-    pub headless: bool,
-}
-
-/// What a run did (printed as JSON by `view --frames`).
-#[derive(Debug, Clone, Default, serde::Serialize)]
-pub struct RunSummary {
-    /// Frames rendered.
-    pub frames: u64,
-    /// Window size, physical pixels.
-    pub window_px: [u32; 2],
-    /// The viewport within it (x, y, width, height), physical pixels.
-    pub viewport_px: [u32; 4],
-    /// Whether the frames were rendered offscreen (`view --headless`).
-    pub headless: bool,
-    /// Mean frame time over the frames after the first, ms (start to start: the UI, the
-    /// viewport's render, painting and, in a window, presenting).
-    pub mean_frame_ms: f64,
-    /// The 95th percentile of the frame times, ms.
-    pub p95_frame_ms: f64,
-    /// The longest frame, ms.
-    pub max_frame_ms: f64,
-    /// Frames that began while the radiosity solver was at work (not waiting, not done).
-    pub solving_frames: u64,
-    /// Their mean frame time, ms (0: none).
-    pub solving_mean_frame_ms: f64,
-    /// Their 95th percentile, ms.
-    pub solving_p95_frame_ms: f64,
-    /// The GPU.
-    pub gpu: String,
-    /// The surface format.
-    pub surface_format: String,
-    /// The screenshot written.
-    pub screenshot: Option<PathBuf>,
-    /// Whether a radiosity light map (or the ambient estimate) was shown at the end.
-    pub indirect_shown: bool,
-    /// Radiosity shots by then.
-    pub indirect_shots: usize,
-    /// What the radiosity solver said last.
-    pub indirect_status: String,
-    /// The illuminance at the viewport's centre pixel in the last frame, lux (the lux
-    /// read-out as if the cursor were there; `None`: no surface there).
-    pub centre_lux: Option<f64>,
-}
 
 struct Running {
     window: Arc<Window>,
@@ -89,11 +35,8 @@ struct Handler {
 }
 
 /// Opens the window and runs the viewer until it is closed (or has rendered
-/// `options.frames` frames); with `options.headless`, renders the frames offscreen.
+/// `options.frames` frames).
 pub fn run(app: ViewerApp, options: WindowOptions) -> anyhow::Result<RunSummary> {
-    if options.headless {
-        return super::headless::run(app, options);
-    }
     let event_loop = EventLoop::new().map_err(|e| {
         anyhow!("cannot open a window: {e}. The viewer needs a display (X11 or Wayland); on a machine without one run it under Xvfb: `xvfb-run -a goniolight view …`, or render its frames offscreen with `view --headless --frames N`")
     })?;
@@ -113,36 +56,6 @@ pub fn run(app: ViewerApp, options: WindowOptions) -> anyhow::Result<RunSummary>
         return Err(e);
     }
     Ok(handler.summary.finish(&handler.app, &handler.clock))
-}
-
-/// How long the end of a run waits for background work to stop.
-pub(super) const WORKERS_STOP_LIMIT: std::time::Duration = std::time::Duration::from_secs(60);
-
-impl RunSummary {
-    /// Hands the GPU to `app`, starts the indirect light it opens with and notes the GPU.
-    pub(super) fn start(
-        &mut self,
-        app: &mut ViewerApp,
-        gpu: &Arc<Gpu>,
-        format: wgpu::TextureFormat,
-    ) {
-        app.status.gpu = gpu.describe();
-        app.gpu = Some(gpu.clone());
-        app.start_indirect();
-        self.gpu = gpu.describe();
-        self.surface_format = format!("{format:?}");
-    }
-
-    /// Fills in the frame times and the radiosity solver's state at the end of a run.
-    pub(super) fn finish(mut self, app: &ViewerApp, clock: &FrameClock) -> RunSummary {
-        clock.summarise(&mut self);
-        let radiosity = &app.radiosity;
-        self.indirect_shown = radiosity.light_map.is_some();
-        self.indirect_shots = radiosity.shots;
-        self.indirect_status = radiosity.status.clone();
-        self.viewport_px = app.status.viewport_rect_px;
-        self
-    }
 }
 
 impl Handler {
