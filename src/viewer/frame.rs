@@ -12,10 +12,10 @@ use super::app::ViewerApp;
 use super::viewport::Viewport;
 use crate::gpu::Gpu;
 
-/// How the window runs.
+/// How a run of the viewer goes: in a window, or headless.
 #[derive(Debug, Clone, Default)]
 pub struct WindowOptions {
-    /// Inner size, logical pixels.
+    /// Inner size, logical pixels (headless: pixels).
     pub size: [u32; 2],
     /// Render this many frames, then exit.
     pub frames: Option<u64>,
@@ -67,7 +67,7 @@ pub struct RunSummary {
 }
 
 /// How long the end of a run waits for background work to stop.
-pub const WORKERS_STOP_LIMIT: std::time::Duration = std::time::Duration::from_secs(60);
+pub const WORKERS_STOP_LIMIT: Duration = Duration::from_secs(60);
 
 impl RunSummary {
     /// Hands the GPU to `app`, starts the indirect light it opens with and notes the GPU.
