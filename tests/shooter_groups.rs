@@ -12,8 +12,11 @@ mod common;
 use glam::DVec3;
 use goniolight::radiosity::cpu::CpuSolver;
 use goniolight::radiosity::gpu::{GpuSettings, GpuSolver};
+use goniolight::radiosity::links::LINK_LEVELS;
 use goniolight::radiosity::scene::RadiosityScene;
-use goniolight::radiosity::shooters::{Hierarchy, Shooters, ShotPlan, MERGE_NORMALS, SKIP_SHARE};
+use goniolight::radiosity::shooters::{
+    Hierarchy, PlanCache, Shooters, ShotPlan, DEFAULT_PLAN_CACHE_BYTES, MERGE_NORMALS, SKIP_SHARE,
+};
 use goniolight::radiosity::SolverSettings;
 use goniolight::scene::Scene;
 
@@ -193,6 +196,57 @@ fn a_shot_sizes_cells_by_each_pieces_power_merges_weak_curved_parts_and_defers_t
     }
     eprintln!("{merged_cells} merged cells, {deferred} pieces deferred");
     assert!(merged_cells > 0 && deferred > 0);
+}
+
+#[test]
+fn a_cached_plan_is_the_plan_made_afresh() {
+    let r = cathedral();
+    let shooters = Shooters::clusters(&r);
+    let mut by_pieces: Vec<usize> = (0..shooters.len()).collect();
+    by_pieces.sort_by_key(|&s| std::cmp::Reverse(shooters.piece_count[s]));
+    let mut cache = PlanCache::new(DEFAULT_PLAN_CACHE_BYTES);
+    let mut units = 0;
+    // The same shooters at three powers (strong: fine cells; middling; weak: merged
+    // cells), twice over: the second round is all hits and equal to the first.
+    for round in 0..2 {
+        for &s in by_pieces.iter().take(6) {
+            let power: Vec<f64> = shooters
+                .pieces_of(s)
+                .map(|p| shooters.pieces[p].area)
+                .collect();
+            let total: f64 = power.iter().sum();
+            for budget in [1e-4 * total, 0.05 * total, 2.0 * total] {
+                let fresh = shooters.plan_shot(&r, s, &power, budget, LINK_LEVELS);
+                let misses = cache.misses;
+                let cached =
+                    shooters.plan_shot_cached(&r, s, &power, budget, LINK_LEVELS, &mut cache);
+                assert_eq!(cached, fresh, "shooter {s}, budget {budget}");
+                if round == 1 {
+                    assert_eq!(cache.misses, misses, "shooter {s}: all from the cache");
+                } else {
+                    units += cache.misses - misses;
+                }
+            }
+        }
+    }
+    assert!(
+        units > 0 && cache.hits >= units,
+        "{units} units, {} hits",
+        cache.hits
+    );
+    // A cache with no room makes every plan and keeps none.
+    let mut none = PlanCache::new(0);
+    let s = by_pieces[0];
+    let power: Vec<f64> = shooters
+        .pieces_of(s)
+        .map(|p| shooters.pieces[p].area)
+        .collect();
+    let budget = 0.05 * power.iter().sum::<f64>();
+    for _ in 0..2 {
+        let plan = shooters.plan_shot_cached(&r, s, &power, budget, LINK_LEVELS, &mut none);
+        assert_eq!(plan, shooters.plan_shot(&r, s, &power, budget, LINK_LEVELS));
+    }
+    assert_eq!((none.hits, none.bytes()), (0, 0));
 }
 
 #[test]

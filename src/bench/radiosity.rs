@@ -61,6 +61,9 @@ pub struct RadiosityBenchRow {
     pub convergence: f64,
     /// Where the shots' time went, by phase.
     pub phase_seconds: crate::radiosity::gpu::ShotTimes,
+    /// Share of the shooting units whose cells came from the plan cache (laid out in an
+    /// earlier shot of the same side).
+    pub plan_cache_hits: f64,
 }
 
 /// Total area of a scene's triangles, m².
@@ -205,6 +208,10 @@ pub fn run(
             shots: solver.shots,
             convergence: log.last().map_or(0.0, |p| p.convergence),
             phase_seconds: solver.times,
+            plan_cache_hits: {
+                let c = &solver.plan_cache;
+                c.hits as f64 / (c.hits + c.misses).max(1) as f64
+            },
         });
     }
     Ok(rows)

@@ -458,7 +458,7 @@ fn run_radiosity(
     for r in &rows {
         let t = &r.phase_seconds;
         println!(
-            "{} / {} / {} / link error {} / cell power {}: select {:.2}, piece powers {:.2}, plan {:.2}, gather {:.2}, links {:.2}, cull {:.2}, record {:.2}, batch wait {:.2}; the rest {:.2}",
+            "{} / {} / {} / link error {} / cell power {}: select {:.2}, piece powers {:.2}, plan {:.2}, gather {:.2}, links {:.2}, cull {:.2}, record {:.2}, batch wait {:.2}; the rest {:.2}; cells from the plan cache {:.0} %",
             r.visibility,
             r.ambient,
             r.hierarchy,
@@ -473,6 +473,7 @@ fn run_radiosity(
             t.record,
             t.batch_wait,
             (r.seconds - t.total()).max(0.0),
+            100.0 * r.plan_cache_hits,
         );
     }
     for r in rows.iter().filter(|r| r.seconds_99.is_none()) {

@@ -501,6 +501,17 @@ impl Gpu {
         Ok(out)
     }
 
+    /// Blocks until the GPU has finished the submission `index` (and all before it).
+    pub fn wait_for(&self, index: wgpu::SubmissionIndex) -> Result<(), GpuError> {
+        self.device
+            .poll(wgpu::PollType::Wait {
+                submission_index: Some(index),
+                timeout: None,
+            })
+            .map(|_| ())
+            .map_err(|e| GpuError::Operation(e.to_string()))
+    }
+
     /// Blocks until the GPU has finished all submitted work.
     pub fn wait(&self) -> Result<(), GpuError> {
         self.device

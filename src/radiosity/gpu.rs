@@ -15,7 +15,8 @@ use super::links::{Links, ReceiverBoxes, DEFAULT_LINK_ERROR, LINK_LEVELS};
 use super::polygon::frame;
 use super::scene::RadiosityScene;
 use super::shooters::{
-    cell_planes, Hierarchy, PlannedPatch, Shooters, ShotPlan, DEFAULT_CELL_POWER,
+    cell_planes, Hierarchy, PlanCache, PlannedPatch, Shooters, ShotPlan, DEFAULT_CELL_POWER,
+    DEFAULT_PLAN_CACHE_BYTES,
 };
 use super::{Ambient, SolverSettings};
 use crate::geometry::split::split_long_edges;
@@ -92,7 +93,8 @@ pub struct ShotTimes {
     /// A shooter of several pieces: each piece's unshot power, summed on the GPU and read
     /// back.
     pub piece_powers: f64,
-    /// Planning the shot's cells on the CPU ([`Shooters::plan_shot`]).
+    /// Planning the shot's cells on the CPU ([`Shooters::plan_shot`]; a unit planned
+    /// before is copied from [`GpuSolver::plan_cache`]).
     pub plan: f64,
     /// Gathering the cells' unshot radiosity on the GPU, and reading it back where the
     /// links or waiting receivers need it.
@@ -279,6 +281,8 @@ pub struct GpuSolver<'a> {
     pub skipped: usize,
     /// Where the shots' time went so far (wall clock on the calling thread).
     pub times: ShotTimes,
+    /// The shooting units planned so far, for shots that repeat their layout.
+    pub plan_cache: PlanCache,
 }
 
 fn storage(gpu: &Gpu, label: &str, data: &[u8], writable: bool) -> wgpu::Buffer {
@@ -703,6 +707,7 @@ impl<'a> GpuSolver<'a> {
             drawn: 0,
             skipped: 0,
             times: ShotTimes::default(),
+            plan_cache: PlanCache::new(DEFAULT_PLAN_CACHE_BYTES),
         };
         solver.write_params(u32::MAX, 0, 0, 0..0);
         solver
@@ -960,9 +965,14 @@ impl<'a> GpuSolver<'a> {
         let mut clock = std::time::Instant::now();
         let power = self.piece_powers(s)?;
         lap(&mut self.times.piece_powers, &mut clock);
-        let plan = self
-            .shooters
-            .plan_shot(self.scene, s, &power, budget, levels);
+        let plan = self.shooters.plan_shot_cached(
+            self.scene,
+            s,
+            &power,
+            budget,
+            levels,
+            &mut self.plan_cache,
+        );
         lap(&mut self.times.plan, &mut clock);
         let first = self.shooters.first[s];
         self.gpu.queue.write_buffer(
@@ -1055,9 +1065,10 @@ impl<'a> GpuSolver<'a> {
 
     /// [`GpuSolver::shoot`] in batches of top cells (drawing at most
     /// [`PATCHES_PER_BATCH`] visibility maps, sized so one takes about 50 ms), asking
-    /// `stop` between batches (after the GPU has finished the last): a shooter of
-    /// thousands of patches no longer overruns a time limit or Ctrl-C by more than a
-    /// batch. Every shot element loses its unshot radiosity before the first batch (a
+    /// `stop` between batches (once the GPU has finished the batch before the one it
+    /// works on: the CPU culls and records the next batch meanwhile): a shooter of
+    /// thousands of patches no longer overruns a time limit or Ctrl-C by more than two
+    /// batches. Every shot element loses its unshot radiosity before the first batch (a
     /// shooter's pieces light each other: light one takes from another during the shot
     /// stays unshot) and the GPU holds it; a shot stopped early gives the elements of the
     /// cells it did not shoot what it held back, so energy is neither lost nor counted
@@ -1072,6 +1083,9 @@ impl<'a> GpuSolver<'a> {
             .collect();
         let subtree_end = |t: usize| tops.get(t + 1).copied().unwrap_or(plan.patches.len());
         let mut t = 0;
+        // The batch before the one just submitted: the CPU culls and records the next
+        // batch while the GPU works on this one, and waits only for the one before.
+        let mut previous: Option<wgpu::SubmissionIndex> = None;
         while t < tops.len() {
             let started = std::time::Instant::now();
             let mut drawn = Vec::new();
@@ -1088,7 +1102,7 @@ impl<'a> GpuSolver<'a> {
             let waiting = self.cull(&plan.patches[tops[from]..subtree_end(t - 1)]);
             lap(&mut self.times.cull, &mut clock);
             let clear = if from == 0 { 0..plan.shot } else { 0..0 };
-            self.shoot_batch(s, &plan, &links, &drawn, clear)?;
+            let submitted = self.shoot_batch(s, &plan, &links, &drawn, clear)?;
             lap(&mut self.times.record, &mut clock);
             if waiting {
                 missed.extend_from_slice(&drawn);
@@ -1097,7 +1111,9 @@ impl<'a> GpuSolver<'a> {
             self.drawn += drawn.len();
             self.skipped += cells - drawn.len();
             if t < tops.len() {
-                self.gpu.wait()?;
+                if let Some(index) = previous.replace(submitted) {
+                    self.gpu.wait_for(index)?;
+                }
                 lap(&mut self.times.batch_wait, &mut clock);
                 // Twice as many next time while well under the target, half when over.
                 let took = started.elapsed().as_secs_f64();
@@ -1186,7 +1202,7 @@ impl<'a> GpuSolver<'a> {
         links: &Links,
         drawn: &[usize],
         clear: std::ops::Range<u32>,
-    ) -> Result<(), GpuError> {
+    ) -> Result<wgpu::SubmissionIndex, GpuError> {
         let first = self.shooters.first[s];
         let cells = plan.patches.len() as u32;
         self.write_params(s as u32, 0, cells, first + clear.start..first + clear.end);
@@ -1200,8 +1216,7 @@ impl<'a> GpuSolver<'a> {
             self.atlas.reserve(self.gpu, part.len() as u32 * faces);
             self.record_part(&mut enc, plan, links, part);
         }
-        self.gpu.queue.submit([enc.finish()]);
-        Ok(())
+        Ok(self.gpu.queue.submit([enc.finish()]))
     }
 
     /// Records the maps of the cells `drawn` into the atlas (which holds them) and their

@@ -74,9 +74,10 @@ pub(super) fn cluster_plan(
     keyed.sort_unstable();
     let order: Vec<u32> = keyed.iter().map(|k| k.1).collect();
     let grids: Vec<Grid> = (0..=top).map(|k| grid.coarser(k)).collect();
+    let triangles = triangles_of(scene, &order);
     let pieces: Vec<_> = grids
         .iter()
-        .map(|g| g.triangle_pieces(scene, &order))
+        .map(|g| g.triangle_pieces(scene, &triangles))
         .collect();
     let mut plan = ShotPlan {
         shot: order.len() as u32,
@@ -125,6 +126,21 @@ pub(super) fn cluster_plan(
         }
     }
     plan
+}
+
+/// Per cell of a grid, the corners of the triangle pieces inside it.
+type CellPieces = rustc_hash::FxHashMap<u64, Vec<DVec2>>;
+
+/// The triangles of the charts holding `elements` (each once).
+fn triangles_of(scene: &RadiosityScene, elements: &[u32]) -> Vec<u32> {
+    let el = &scene.elements;
+    let mut charts: Vec<u32> = elements.iter().map(|&e| el.chart[e as usize]).collect();
+    charts.sort_unstable();
+    charts.dedup();
+    charts
+        .iter()
+        .flat_map(|&c| el.charts[c as usize].triangles.iter().copied())
+        .collect()
 }
 
 /// The ranges of `keyed[start..end]` that share a cell at `level` (Z-order keys agree
@@ -301,22 +317,11 @@ impl Grid {
         (lo, (lo + DVec2::splat(self.side)).min(self.hi))
     }
 
-    /// Per cell, the corners of the pieces of the elements' triangles inside it.
-    fn triangle_pieces(
-        &self,
-        scene: &RadiosityScene,
-        elements: &[u32],
-    ) -> std::collections::HashMap<u64, Vec<DVec2>> {
+    /// Per cell, the corners of the pieces of `triangles` inside it.
+    fn triangle_pieces(&self, scene: &RadiosityScene, triangles: &[u32]) -> CellPieces {
         let mesh = &scene.casters;
-        let el = &scene.elements;
-        let mut charts: Vec<u32> = elements.iter().map(|&e| el.chart[e as usize]).collect();
-        charts.sort_unstable();
-        charts.dedup();
-        let triangles = charts
-            .iter()
-            .flat_map(|&c| el.charts[c as usize].triangles.iter().copied());
-        let mut pieces: std::collections::HashMap<u64, Vec<DVec2>> = Default::default();
-        for t in triangles {
+        let mut pieces = CellPieces::default();
+        for &t in triangles {
             let mut c = mesh.triangles[t as usize].map(|i| self.plane(mesh.positions[i as usize]));
             if (c[1] - c[0]).perp_dot(c[2] - c[0]) < 0.0 {
                 c.swap(1, 2);

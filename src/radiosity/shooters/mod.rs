@@ -22,8 +22,10 @@
 //! its own pieces), so no push-pull is needed: the hierarchy only decides who shoots and
 //! from where. The geometry is never changed.
 
+mod cache;
 mod cells;
 
+pub use cache::{PlanCache, UnitKey, DEFAULT_PLAN_CACHE_BYTES};
 use glam::{DVec2, DVec3};
 
 use super::clusters::obb::convex_hull;
@@ -536,6 +538,21 @@ impl Shooters {
         budget: f64,
         levels: u32,
     ) -> ShotPlan {
+        self.plan_shot_cached(scene, s, power, budget, levels, &mut PlanCache::new(0))
+    }
+
+    /// [`Shooters::plan_shot`] taking the units' plans from `cache` where it holds them
+    /// (and keeping the ones it makes there): the same plan, made once per unit and cell
+    /// side.
+    pub fn plan_shot_cached(
+        &self,
+        scene: &RadiosityScene,
+        s: usize,
+        power: &[f64],
+        budget: f64,
+        levels: u32,
+        cache: &mut PlanCache,
+    ) -> ShotPlan {
         let pieces = self.pieces_of(s);
         debug_assert_eq!(power.len(), pieces.len());
         let units = self.units(scene, s, power, budget);
@@ -546,11 +563,21 @@ impl Shooters {
             if unit_power < SKIP_SHARE * strongest {
                 waiting.extend(range.flat_map(|p| self.piece_elements(p).iter().copied()));
             } else if let Some(node) = merged {
-                plan.append(self.merged_plan(scene, range, node));
+                let key = UnitKey::Merged {
+                    first: range.start as u32,
+                    end: range.end as u32,
+                    node,
+                };
+                plan.append(cache.get_or_make(key, || self.merged_plan(scene, range, node)));
             } else {
                 let p = range.start;
                 let side = self.cell_side(p, unit_power, budget);
-                plan.append(self.piece_plan(scene, p, side, levels));
+                let key = UnitKey::Piece {
+                    piece: p as u32,
+                    side_bits: side.max(self.pieces[p].finest_cell).to_bits(),
+                    levels,
+                };
+                plan.append(cache.get_or_make(key, || self.piece_plan(scene, p, side, levels)));
             }
         }
         plan.order.extend(waiting);
