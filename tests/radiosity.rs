@@ -823,3 +823,96 @@ fn more_elements_than_one_binding_holds_are_refused() {
         "{message}"
     );
 }
+
+/// A room with an emissive ceiling and a 12 × 12 grid of small boxes on its floor (1 728
+/// triangles: several chunks of the visibility mesh).
+fn room_with_many_boxes() -> Scene {
+    let all = inward_box(DVec3::ZERO, DVec3::new(6.0, 6.0, 3.0));
+    let (ceiling, walls): (Vec<[Vec3; 3]>, Vec<[Vec3; 3]>) =
+        all.into_iter().partition(|t| t.iter().all(|v| v.z == 3.0));
+    let mut boxes = Vec::new();
+    for i in 0..12 {
+        for j in 0..12 {
+            let lo = DVec3::new(0.3 + 0.45 * i as f64, 0.3 + 0.45 * j as f64, 0.0);
+            let hi = lo + DVec3::new(0.25, 0.25, 0.2 + 0.05 * ((i * 7 + j * 3) % 11) as f64);
+            let cube = goniolight::geometry::generate::cuboid(lo, hi);
+            boxes.extend(
+                cube.triangles
+                    .iter()
+                    .map(|t| t.map(|k| cube.positions[k as usize].as_vec3())),
+            );
+        }
+    }
+    scene_of(
+        vec![
+            SceneMesh::from_triangles("walls", &walls, 0),
+            SceneMesh::from_triangles("ceiling", &ceiling, 1),
+            SceneMesh::from_triangles("boxes", &boxes, 0),
+        ],
+        vec![material(0.5, 0.0), material(0.7, 1000.0)],
+    )
+}
+
+#[test]
+fn faces_that_draw_only_the_chunks_they_can_see_give_the_same_solution() {
+    let Some(gpu) = gpu_common::gpu() else { return };
+    let r = RadiosityScene::new(&room_with_many_boxes(), 8.0, 1).unwrap();
+    let settings = SolverSettings::default();
+    let start = CpuSolver::new(&r, settings).state();
+    for visibility in [Visibility::Hemicube, Visibility::Stereographic] {
+        // Shoots the same shooters in the same order in both runs (the selection breaks
+        // ties between equal shooters either way): the first selected (a ceiling
+        // triangle: the two tie), then every 9th.
+        let solve = |chunk_culling: bool, first: Option<usize>| {
+            let gpu_settings = GpuSettings {
+                visibility,
+                chunk_culling,
+                ..GpuSettings::default()
+            };
+            let mut solver = GpuSolver::new(&gpu, &r, &start, settings, gpu_settings);
+            // Batches by count, not by the clock: both runs place their maps alike.
+            solver.fix_batch(16);
+            let chosen = solver.select().unwrap().shooter.unwrap();
+            let first = first.unwrap_or(chosen);
+            solver.shoot(first).unwrap();
+            for s in (0..solver.shooters().len()).step_by(9).take(12) {
+                solver.select().unwrap();
+                solver.shoot(s).unwrap();
+            }
+            let maps = solver.drawn as u64;
+            let per_map = solver.triangles_drawn as f64 / maps as f64;
+            let mesh = solver.visibility_triangles();
+            (solver.radiosity().unwrap(), per_map, mesh, first)
+        };
+        let (culled, culled_per_map, mesh, first) = solve(true, None);
+        let (whole, whole_per_map, _, _) = solve(false, Some(first));
+        let faces = if visibility == Visibility::Hemicube {
+            5.0
+        } else {
+            1.0
+        };
+        eprintln!(
+            "{visibility:?}: {mesh} triangles; per map {culled_per_map:.0} drawn with culling, {whole_per_map:.0} without"
+        );
+        assert_eq!(
+            whole_per_map,
+            faces * mesh as f64,
+            "without: the whole mesh per face"
+        );
+        let largest = whole.iter().map(|b| b.x).fold(0.0, f64::max);
+        for (e, (a, b)) in culled.iter().zip(&whole).enumerate() {
+            assert!(
+                (a.x - b.x).abs() <= 1e-6 * largest,
+                "{visibility:?}: element {e}: {} with culling, {} without",
+                a.x,
+                b.x
+            );
+        }
+        if visibility == Visibility::Hemicube {
+            assert!(
+                culled_per_map < 0.6 * whole_per_map,
+                "a hemicube's five faces draw {culled_per_map:.0} of {whole_per_map:.0}"
+            );
+        }
+    }
+}

@@ -31,6 +31,12 @@ pub struct RadiosityBenchRow {
     pub map_size: u32,
     /// Visibility maps drawn (one per drawn cell or patch).
     pub maps: usize,
+    /// Whether each face drew only the mesh chunks it can see.
+    pub chunk_culling: bool,
+    /// Visibility-mesh triangles drawn per map (over its faces).
+    pub triangles_per_map: f64,
+    /// Triangles of the visibility mesh.
+    pub visibility_triangles: usize,
     /// Shooters.
     pub shooters: usize,
     /// Seconds to build the shooters (the face-cluster hierarchy with clusters).
@@ -111,6 +117,9 @@ pub struct RadiosityBenchConfig {
     /// With clusters: the largest share of the initial unshot power one shooting cell
     /// carries ([`GpuSettings::cell_power`]).
     pub cell_power: f64,
+    /// Each visibility face draws only the mesh chunks it can see
+    /// ([`GpuSettings::chunk_culling`]).
+    pub chunk_culling: bool,
 }
 
 /// Solves `scene` with about `plan.elements` elements once per entry of `configs`, to 99 %
@@ -147,6 +156,7 @@ pub fn run(
             link_error,
             ambient,
             cell_power,
+            chunk_culling,
         } = *config;
         if !prepared.iter().any(|p| p.0 == hierarchy) {
             let rscene = RadiosityScene::with_hierarchy(scene, density, level, hierarchy)?;
@@ -163,6 +173,7 @@ pub fn run(
             link_error,
             map_size,
             cell_power,
+            chunk_culling,
             ..GpuSettings::default()
         };
         let settings = SolverSettings {
@@ -193,6 +204,9 @@ pub fn run(
             cell_power,
             map_size,
             maps: solver.drawn,
+            chunk_culling,
+            triangles_per_map: solver.triangles_drawn as f64 / solver.drawn.max(1) as f64,
+            visibility_triangles: solver.visibility_triangles(),
             shooters: shooter_count,
             shooters_seconds,
             triangles: rscene.elements.triangles.len(),

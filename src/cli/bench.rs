@@ -8,6 +8,15 @@ use super::{silhouette, CliError};
 use crate::bench::render as render_bench;
 use crate::gpu::Gpu;
 
+/// A setting compared on and off.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Switch {
+    /// On.
+    On,
+    /// Off.
+    Off,
+}
+
 /// Benchmarks.
 #[derive(Debug, Subcommand)]
 pub enum BenchCommand {
@@ -175,6 +184,10 @@ pub enum BenchCommand {
         /// shooting cell carries, to compare (comma-separated; smaller: more, finer cells).
         #[arg(long, value_delimiter = ',', default_values_t = [crate::radiosity::shooters::DEFAULT_CELL_POWER])]
         cell_power: Vec<f64>,
+        /// Whether each visibility face draws only the chunks of the mesh it can see, to
+        /// compare (comma-separated: `on`, `off`; the same maps either way).
+        #[arg(long, value_enum, value_delimiter = ',', default_value = "on")]
+        chunk_culling: Vec<Switch>,
         /// The scene (default: the bundled assets/scenes/cornell_box.toml).
         #[arg(long)]
         scene: Option<std::path::PathBuf>,
@@ -257,6 +270,7 @@ pub fn run(cmd: BenchCommand) -> Result<(), CliError> {
             ambient,
             map_size,
             cell_power,
+            chunk_culling,
             scene,
         } => {
             let plan = crate::bench::radiosity::RadiosityBenchPlan {
@@ -285,24 +299,27 @@ pub fn run(cmd: BenchCommand) -> Result<(), CliError> {
                 )));
             }
             let mut configs = Vec::new();
-            for &a in &ambient {
-                for &v in &visibility {
-                    for &h in &hierarchy {
-                        // Links and cells exist only with clusters.
-                        let (errors, powers) = match h {
-                            Hierarchy::None => (&[0.0][..], &[DEFAULT_CELL_POWER][..]),
-                            Hierarchy::Clusters => (&link_error[..], &cell_power[..]),
-                        };
-                        for &e in errors {
-                            configs.extend(powers.iter().map(|&p| {
-                                crate::bench::radiosity::RadiosityBenchConfig {
-                                    visibility: v,
-                                    hierarchy: h,
-                                    link_error: e,
-                                    ambient: a,
-                                    cell_power: p,
-                                }
-                            }));
+            for &culling in &chunk_culling {
+                for &a in &ambient {
+                    for &v in &visibility {
+                        for &h in &hierarchy {
+                            // Links and cells exist only with clusters.
+                            let (errors, powers) = match h {
+                                Hierarchy::None => (&[0.0][..], &[DEFAULT_CELL_POWER][..]),
+                                Hierarchy::Clusters => (&link_error[..], &cell_power[..]),
+                            };
+                            for &e in errors {
+                                configs.extend(powers.iter().map(|&p| {
+                                    crate::bench::radiosity::RadiosityBenchConfig {
+                                        visibility: v,
+                                        hierarchy: h,
+                                        link_error: e,
+                                        ambient: a,
+                                        cell_power: p,
+                                        chunk_culling: culling == Switch::On,
+                                    }
+                                }));
+                            }
                         }
                     }
                 }
@@ -310,6 +327,19 @@ pub fn run(cmd: BenchCommand) -> Result<(), CliError> {
             run_radiosity(json, plan, &configs, scene)
         }
     }
+}
+
+/// A radiosity benchmark row's settings, for the lines under the table.
+fn row_label(r: &crate::bench::radiosity::RadiosityBenchRow) -> String {
+    format!(
+        "{}{} / {} / {} / link error {} / cell power {}",
+        r.visibility,
+        if r.chunk_culling { "" } else { ", whole mesh" },
+        r.ambient,
+        r.hierarchy,
+        r.link_error,
+        r.cell_power
+    )
 }
 
 fn run_raycast(as_json: bool, rays: usize, brute_rays: usize, scale: f64) -> Result<(), CliError> {
@@ -421,8 +451,8 @@ fn run_radiosity(
         first.triangles,
         first.texel_density,
     );
-    println!("| visibility | ambient | hierarchy | link error | cell power | elements | patches | shooters (built in) | maps drawn | shots to 90 % | s to 90 % | shots to 99 % | s to 99 % | ms/shot | time to 90 % / first row |");
-    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
+    println!("| visibility | ambient | hierarchy | link error | cell power | elements | patches | shooters (built in) | maps drawn | triangles per map | shots to 90 % | s to 90 % | shots to 99 % | s to 99 % | ms/shot | time to 90 % / first row |");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     let opt = |v: Option<f64>| v.map_or("—".to_string(), |v| format!("{v:.2}"));
     let shots = |v: Option<usize>| v.map_or("—".to_string(), |v| v.to_string());
     for r in &rows {
@@ -438,8 +468,9 @@ fn run_radiosity(
             (r.link_error.to_string(), r.cell_power.to_string())
         };
         println!(
-            "| {} | {} | {} | {link} | {cell} | {} | {} | {} ({:.2} s) | {} | {} | {} | {} | {} | {:.1} | {ratio} |",
+            "| {}{} | {} | {} | {link} | {cell} | {} | {} | {} ({:.2} s) | {} | {:.0} | {} | {} | {} | {} | {:.1} | {ratio} |",
             r.visibility,
+            if r.chunk_culling { "" } else { ", whole mesh" },
             r.ambient,
             r.hierarchy,
             r.elements,
@@ -447,6 +478,7 @@ fn run_radiosity(
             r.shooters,
             r.shooters_seconds,
             r.maps,
+            r.triangles_per_map,
             shots(r.shots_90),
             opt(r.seconds_90),
             shots(r.shots_99),
@@ -458,12 +490,8 @@ fn run_radiosity(
     for r in &rows {
         let t = &r.phase_seconds;
         println!(
-            "{} / {} / {} / link error {} / cell power {}: select {:.2}, piece powers {:.2}, plan {:.2}, gather {:.2}, links {:.2}, cull {:.2}, record {:.2}, batch wait {:.2}; the rest {:.2}; cells from the plan cache {:.0} %",
-            r.visibility,
-            r.ambient,
-            r.hierarchy,
-            r.link_error,
-            r.cell_power,
+            "{}: select {:.2}, piece powers {:.2}, plan {:.2}, gather {:.2}, links {:.2}, cull {:.2}, record {:.2}, batch wait {:.2}; the rest {:.2}; cells from the plan cache {:.0} %",
+            row_label(r),
             t.select,
             t.piece_powers,
             t.plan,
@@ -478,11 +506,8 @@ fn run_radiosity(
     }
     for r in rows.iter().filter(|r| r.seconds_99.is_none()) {
         println!(
-            "{} / {} / {} / link error {}: {:.2} % after {} shots in {:.1} s (— : not reached within --max-shots {} or --time-limit)",
-            r.visibility,
-            r.ambient,
-            r.hierarchy,
-            r.link_error,
+            "{}: {:.2} % after {} shots in {:.1} s (— : not reached within --max-shots {} or --time-limit)",
+            row_label(r),
             100.0 * r.convergence,
             r.shots,
             r.seconds,

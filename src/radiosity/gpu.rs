@@ -23,8 +23,11 @@ use crate::geometry::split::split_long_edges;
 use crate::gpu::{Gpu, GpuError};
 use crate::render::layouts::{buffer_binding, entry};
 
+mod chunks;
 mod deferred;
 mod relight;
+
+pub use chunks::{MeshChunks, TileView};
 pub use deferred::WIDEN_AT;
 
 /// How a shooting patch sees what it can reach.
@@ -58,6 +61,10 @@ pub struct GpuSettings {
     /// share of the mean initial exitance ([`super::links`]); 0 links every receiver to
     /// the finest cells.
     pub link_error: f64,
+    /// Each visibility face draws only the chunks of the mesh its view can hold
+    /// ([`MeshChunks`]; the same maps); false draws the whole mesh every time (the
+    /// reference).
+    pub chunk_culling: bool,
 }
 
 impl Default for GpuSettings {
@@ -69,6 +76,7 @@ impl Default for GpuSettings {
             hierarchy: Hierarchy::None,
             cell_power: DEFAULT_CELL_POWER,
             link_error: DEFAULT_LINK_ERROR,
+            chunk_culling: true,
         }
     }
 }
@@ -243,6 +251,10 @@ pub struct GpuSolver<'a> {
     /// The visibility mesh's triangles (three vertex indices each).
     vertex_indices: wgpu::Buffer,
     index_count: u32,
+    /// The visibility mesh's chunks, for culling per face.
+    chunks: MeshChunks,
+    /// Visibility-mesh triangles drawn so far, over all faces of all maps.
+    pub triangles_drawn: u64,
     /// The visibility maps of a batch.
     atlas: VisibilityAtlas,
     size: f64,
@@ -262,6 +274,8 @@ pub struct GpuSolver<'a> {
     batch: usize,
     /// What a batch should take, seconds ([`BATCH_SECONDS`] unless set).
     batch_seconds: f64,
+    /// Whether `batch` stays as set ([`GpuSolver::fix_batch`]).
+    fixed_batch: bool,
     /// Per cell of the shot: rgb unshot radiosity it shoots.
     patch_delta: wgpu::Buffer,
     /// Entries of the patch buffer for cells; the receiver ranges follow.
@@ -644,7 +658,9 @@ impl<'a> GpuSolver<'a> {
             .iter()
             .map(|p| p.as_vec3().to_array())
             .collect();
-        let indices: Vec<u32> = mesh.triangles.iter().flatten().copied().collect();
+        let mut triangles = mesh.triangles.clone();
+        let chunks = MeshChunks::new(&mesh.positions, &mut triangles);
+        let indices: Vec<u32> = triangles.iter().flatten().copied().collect();
         let buffer = |label: &str, contents: &[u8], usage| {
             gpu.device
                 .create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -688,6 +704,8 @@ impl<'a> GpuSolver<'a> {
             vertices,
             vertex_indices,
             index_count: indices.len() as u32,
+            chunks,
+            triangles_drawn: 0,
             atlas,
             size: scene_size,
             shots: 0,
@@ -698,6 +716,7 @@ impl<'a> GpuSolver<'a> {
             stages: None,
             batch: FIRST_BATCH,
             batch_seconds: BATCH_SECONDS,
+            fixed_batch: false,
             patch_delta,
             max_patches,
             culled: (0, 0),
@@ -821,6 +840,17 @@ impl<'a> GpuSolver<'a> {
         self.batch_seconds = seconds.clamp(1e-3, BATCH_SECONDS);
     }
 
+    /// Shoots `cells` cells per batch from now on, whatever they take (at least 1, at
+    /// most [`PATCHES_PER_BATCH`]), instead of adapting the batch to the clock: two runs
+    /// then split their shots alike, for comparisons that must be exact. (Where a cell's
+    /// maps lie in the atlas follows the batch, and rasterization at another place in
+    /// the atlas may flip a texel along an edge seen at a grazing angle: a receiver
+    /// there may differ by a percent between runs, the total by about 10⁻⁷.)
+    pub fn fix_batch(&mut self, cells: usize) {
+        self.batch = cells.clamp(1, PATCHES_PER_BATCH);
+        self.fixed_batch = true;
+    }
+
     /// The scene it solves.
     pub fn scene(&self) -> &RadiosityScene {
         self.scene
@@ -856,13 +886,14 @@ impl<'a> GpuSolver<'a> {
         plan: &ShotPlan,
         links: &Links,
         drawn: &[usize],
-    ) -> (Vec<u8>, Vec<u8>, u32) {
+    ) -> (Vec<u8>, Vec<u8>, Vec<TileView>) {
         let faces_per_patch = faces_per_cell(self.gpu_settings.visibility) as usize;
         let (projection, far) = self.projection();
         let tolerance = self.receivers.plane_tolerance() as f32;
         let finite = |r: f64| r.min(f64::from(f32::MAX)) as f32;
         let mut shots = vec![0u8; drawn.len() * SHOT_STRIDE as usize];
         let mut faces = vec![0u8; drawn.len() * faces_per_patch * FACE_STRIDE as usize];
+        let mut views = Vec::with_capacity(drawn.len() * faces_per_patch);
         for (k, &patch) in drawn.iter().enumerate() {
             let p = &plan.patches[patch];
             let n = p.normal;
@@ -938,9 +969,17 @@ impl<'a> GpuSolver<'a> {
                 let at = (k * faces_per_patch + f) * FACE_STRIDE as usize;
                 faces[at..at + std::mem::size_of::<FaceGpu>()]
                     .copy_from_slice(bytemuck::bytes_of(&face));
+                views.push(if stereographic {
+                    TileView::HalfSpace {
+                        eye: eye.as_dvec3(),
+                        normal: n3.as_dvec3(),
+                    }
+                } else {
+                    TileView::Frustum(*m)
+                });
             }
         }
-        (shots, faces, faces_per_patch as u32)
+        (shots, faces, views)
     }
 
     /// Shoots shooter `s` (plus the overshoot the last [`GpuSolver::select`] chose).
@@ -1117,7 +1156,8 @@ impl<'a> GpuSolver<'a> {
                 lap(&mut self.times.batch_wait, &mut clock);
                 // Twice as many next time while well under the target, half when over.
                 let took = started.elapsed().as_secs_f64();
-                if took < 0.5 * self.batch_seconds {
+                if self.fixed_batch {
+                } else if took < 0.5 * self.batch_seconds {
                     self.batch = (self.batch * 2).min(PATCHES_PER_BATCH);
                 } else if took > self.batch_seconds {
                     self.batch = (self.batch / 2).max(1);
@@ -1228,7 +1268,7 @@ impl<'a> GpuSolver<'a> {
         links: &Links,
         drawn: &[usize],
     ) {
-        let (shots, faces, faces_per_patch) = self.shot_records(plan, links, drawn);
+        let (shots, faces, views) = self.shot_records(plan, links, drawn);
         let dev = &self.gpu.device;
         let uniform = |label: &str, data: &[u8]| {
             dev.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -1289,7 +1329,9 @@ impl<'a> GpuSolver<'a> {
             pass.set_vertex_buffer(0, self.vertices.slice(..));
             pass.set_index_buffer(self.vertex_indices.slice(..), wgpu::IndexFormat::Uint32);
             let size = self.atlas.size;
-            for tile in 0..drawn.len() as u32 * faces_per_patch {
+            let mut ranges = Vec::new();
+            for (tile, view) in views.iter().enumerate() {
+                let tile = tile as u32;
                 let (x, y) = self.atlas.origin(tile);
                 pass.set_viewport(x as f32, y as f32, size as f32, size as f32, 0.0, 1.0);
                 pass.set_scissor_rect(x, y, size, size);
@@ -1297,7 +1339,12 @@ impl<'a> GpuSolver<'a> {
                 pass.set_pipeline(&self.pipelines.clear_tile);
                 pass.draw(0..3, 0..1);
                 pass.set_pipeline(&self.pipelines.visibility);
-                pass.draw_indexed(0..self.index_count, 0, 0..1);
+                self.chunks
+                    .visible(view, self.gpu_settings.chunk_culling, &mut ranges);
+                for &(first, count) in &ranges {
+                    pass.draw_indexed(first..first + count, 0, 0..1);
+                    self.triangles_drawn += u64::from(count / 3);
+                }
             }
         }
         let receivers = self.culled.1;
