@@ -236,28 +236,37 @@ fn one_shot_in_a_closed_box_delivers_all_its_power() {
     assert!((te.first..te.first + te.count).all(|e| solver.unshot[e as usize] == DVec3::ZERO));
 }
 
-/// A room with an emissive ceiling and a box standing in it (the box shadows the floor).
-fn room_with_box() -> Scene {
-    let all = inward_box(DVec3::ZERO, DVec3::new(3.0, 2.0, 2.0));
-    // The two ceiling triangles (all corners at z = 2) emit.
-    let (ceiling, walls): (Vec<[Vec3; 3]>, Vec<[Vec3; 3]>) =
-        all.into_iter().partition(|t| t.iter().all(|v| v.z == 2.0));
-    let cube = goniolight::geometry::generate::cuboid(
-        DVec3::new(1.0, 0.6, 0.0),
-        DVec3::new(1.8, 1.3, 0.9),
-    );
-    let cube_tris: Vec<[Vec3; 3]> = cube
-        .triangles
+/// The triangles of the box [lo, hi], facing outward.
+fn outward_box(lo: DVec3, hi: DVec3) -> Vec<[Vec3; 3]> {
+    let cube = goniolight::geometry::generate::cuboid(lo, hi);
+    cube.triangles
         .iter()
         .map(|t| t.map(|i| cube.positions[i as usize].as_vec3()))
-        .collect();
+        .collect()
+}
+
+/// The room [0, size] (reflectance 0.5) whose ceiling emits, with `furniture` (0.5).
+fn lit_room(size: DVec3, furniture: Vec<[Vec3; 3]>) -> Scene {
+    let all = inward_box(DVec3::ZERO, size);
+    // The two ceiling triangles (all corners at the top) emit.
+    let top = size.z as f32;
+    let (ceiling, walls): (Vec<[Vec3; 3]>, Vec<[Vec3; 3]>) =
+        all.into_iter().partition(|t| t.iter().all(|v| v.z == top));
     scene_of(
         vec![
             SceneMesh::from_triangles("walls", &walls, 0),
             SceneMesh::from_triangles("ceiling", &ceiling, 1),
-            SceneMesh::from_triangles("box", &cube_tris, 0),
+            SceneMesh::from_triangles("furniture", &furniture, 0),
         ],
         vec![material(0.5, 0.0), material(0.7, 1000.0)],
+    )
+}
+
+/// A room with an emissive ceiling and a box standing in it (the box shadows the floor).
+fn room_with_box() -> Scene {
+    lit_room(
+        DVec3::new(3.0, 2.0, 2.0),
+        outward_box(DVec3::new(1.0, 0.6, 0.0), DVec3::new(1.8, 1.3, 0.9)),
     )
 }
 
@@ -827,30 +836,15 @@ fn more_elements_than_one_binding_holds_are_refused() {
 /// A room with an emissive ceiling and a 12 × 12 grid of small boxes on its floor (1 728
 /// triangles: several chunks of the visibility mesh).
 fn room_with_many_boxes() -> Scene {
-    let all = inward_box(DVec3::ZERO, DVec3::new(6.0, 6.0, 3.0));
-    let (ceiling, walls): (Vec<[Vec3; 3]>, Vec<[Vec3; 3]>) =
-        all.into_iter().partition(|t| t.iter().all(|v| v.z == 3.0));
     let mut boxes = Vec::new();
     for i in 0..12 {
         for j in 0..12 {
             let lo = DVec3::new(0.3 + 0.45 * i as f64, 0.3 + 0.45 * j as f64, 0.0);
             let hi = lo + DVec3::new(0.25, 0.25, 0.2 + 0.05 * ((i * 7 + j * 3) % 11) as f64);
-            let cube = goniolight::geometry::generate::cuboid(lo, hi);
-            boxes.extend(
-                cube.triangles
-                    .iter()
-                    .map(|t| t.map(|k| cube.positions[k as usize].as_vec3())),
-            );
+            boxes.extend(outward_box(lo, hi));
         }
     }
-    scene_of(
-        vec![
-            SceneMesh::from_triangles("walls", &walls, 0),
-            SceneMesh::from_triangles("ceiling", &ceiling, 1),
-            SceneMesh::from_triangles("boxes", &boxes, 0),
-        ],
-        vec![material(0.5, 0.0), material(0.7, 1000.0)],
-    )
+    lit_room(DVec3::new(6.0, 6.0, 3.0), boxes)
 }
 
 #[test]

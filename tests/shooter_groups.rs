@@ -125,7 +125,7 @@ fn a_shot_sizes_cells_by_each_pieces_power_merges_weak_curved_parts_and_defers_t
         // Strong: a cell may carry a millionth of the shooter's power; nothing merges, and
         // each shot piece shoots from the oracle's cells for its own power.
         let budget = 1e-6 * total;
-        let plan = shooters.plan_shot(&r, s, &power, budget, 0);
+        let plan = shooters.plan_shot(&r, s, &power, budget, 0, &mut PlanCache::new(0));
         check_plan(&shooters, s, &plan);
         for (k, p) in pieces.clone().enumerate() {
             let cells: Vec<_> = plan
@@ -158,7 +158,7 @@ fn a_shot_sizes_cells_by_each_pieces_power_merges_weak_curved_parts_and_defers_t
         // Weak: the whole shooter carries less than a cell's budget, so its curved parts
         // merge into cells facing their summed area normal.
         let budget = 2.0 * total;
-        let plan = shooters.plan_shot(&r, s, &power, budget, 0);
+        let plan = shooters.plan_shot(&r, s, &power, budget, 0, &mut PlanCache::new(0));
         check_plan(&shooters, s, &plan);
         for c in plan.patches.iter().filter(|c| c.merged) {
             merged_cells += 1;
@@ -216,10 +216,10 @@ fn a_cached_plan_is_the_plan_made_afresh() {
                 .collect();
             let total: f64 = power.iter().sum();
             for budget in [1e-4 * total, 0.05 * total, 2.0 * total] {
-                let fresh = shooters.plan_shot(&r, s, &power, budget, LINK_LEVELS);
+                let fresh =
+                    shooters.plan_shot(&r, s, &power, budget, LINK_LEVELS, &mut PlanCache::new(0));
                 let misses = cache.misses;
-                let cached =
-                    shooters.plan_shot_cached(&r, s, &power, budget, LINK_LEVELS, &mut cache);
+                let cached = shooters.plan_shot(&r, s, &power, budget, LINK_LEVELS, &mut cache);
                 assert_eq!(cached, fresh, "shooter {s}, budget {budget}");
                 if round == 1 {
                     assert_eq!(cache.misses, misses, "shooter {s}: all from the cache");
@@ -243,8 +243,11 @@ fn a_cached_plan_is_the_plan_made_afresh() {
         .collect();
     let budget = 0.05 * power.iter().sum::<f64>();
     for _ in 0..2 {
-        let plan = shooters.plan_shot_cached(&r, s, &power, budget, LINK_LEVELS, &mut none);
-        assert_eq!(plan, shooters.plan_shot(&r, s, &power, budget, LINK_LEVELS));
+        let plan = shooters.plan_shot(&r, s, &power, budget, LINK_LEVELS, &mut none);
+        assert_eq!(
+            plan,
+            shooters.plan_shot(&r, s, &power, budget, LINK_LEVELS, &mut PlanCache::new(0))
+        );
     }
     assert_eq!((none.hits, none.bytes()), (0, 0));
 }

@@ -1004,14 +1004,9 @@ impl<'a> GpuSolver<'a> {
         let mut clock = std::time::Instant::now();
         let power = self.piece_powers(s)?;
         lap(&mut self.times.piece_powers, &mut clock);
-        let plan = self.shooters.plan_shot_cached(
-            self.scene,
-            s,
-            &power,
-            budget,
-            levels,
-            &mut self.plan_cache,
-        );
+        let plan =
+            self.shooters
+                .plan_shot(self.scene, s, &power, budget, levels, &mut self.plan_cache);
         lap(&mut self.times.plan, &mut clock);
         let first = self.shooters.first[s];
         self.gpu.queue.write_buffer(

@@ -529,22 +529,10 @@ impl Shooters {
     /// coarser levels; the largest clusters of two or more pieces that together carry at
     /// most `budget` and agree in normal ([`MERGE_NORMALS`]) from one merged cell; and the
     /// pieces or merged cells with less than [`SKIP_SHARE`] of the strongest one's power
-    /// not at all this time (they stay unshot, after [`ShotPlan::shot`]).
+    /// not at all this time (they stay unshot, after [`ShotPlan::shot`]). The units'
+    /// plans come from `cache` where it holds them, and the ones made are kept there (the
+    /// same plan either way; `PlanCache::new(0)` keeps none).
     pub fn plan_shot(
-        &self,
-        scene: &RadiosityScene,
-        s: usize,
-        power: &[f64],
-        budget: f64,
-        levels: u32,
-    ) -> ShotPlan {
-        self.plan_shot_cached(scene, s, power, budget, levels, &mut PlanCache::new(0))
-    }
-
-    /// [`Shooters::plan_shot`] taking the units' plans from `cache` where it holds them
-    /// (and keeping the ones it makes there): the same plan, made once per unit and cell
-    /// side.
-    pub fn plan_shot_cached(
         &self,
         scene: &RadiosityScene,
         s: usize,
