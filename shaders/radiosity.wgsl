@@ -27,7 +27,8 @@ struct SolveParams {
     range_first: u32,
     // Shooters of more than SMALL_SHOOTER elements (listed after the shooters).
     large_shooters: u32,
-    _pad3: u32,
+    // 1 when element_receiving holds receiving normals (radiosity/shading.rs).
+    receiving_normals: u32,
     _pad4: u32,
 };
 
@@ -71,6 +72,9 @@ struct PatchInfo {
 @group(0) @binding(9) var<storage, read> element_normals: array<vec4<f32>>;
 // Per element of the shot, in its order: its unshot radiosity when clear_shooter took it.
 @group(0) @binding(10) var<storage, read_write> held: array<vec4<f32>>;
+// Per element (when params.receiving_normals is 1): xyz the normal it receives with (not
+// unit: a normal map's relief shortens it), w 1 where that is not its chart's normal.
+@group(0) @binding(11) var<storage, read> element_receiving: array<vec4<f32>>;
 
 const LUMA = vec3<f32>(0.2126, 0.7152, 0.0722);
 // Shooters of at most this many elements are summed by one thread (SMALL_SHOOTER in gpu.rs).
@@ -481,9 +485,23 @@ fn receive(
         return;
     }
     let p = element_points[i].xyz;
-    let n = normal_piece.xyz;
+    var n = normal_piece.xyz;
     if (!takes_light(p)) {
         return;
+    }
+    // A curved or normal-mapped receiver: the form factor with its receiving normal's
+    // direction times its length, never through its geometric back.
+    var scale = 1.0;
+    if (params.receiving_normals != 0u) {
+        let r = element_receiving[i];
+        let len = length(r.xyz);
+        if (r.w > 0.5) {
+            if (dot(n, shot.centroid.xyz - p) <= 0.0 || len <= 0.0) {
+                return;
+            }
+            n = r.xyz / len;
+            scale = len;
+        }
     }
     var f = 0.0;
     if (shot.info.z == 1u) {
@@ -491,6 +509,7 @@ fn receive(
     } else {
         f = disc_form_factor(p, n);
     }
+    f *= scale;
     if (f <= 0.0 || !visible_from_patch(p)) {
         return;
     }

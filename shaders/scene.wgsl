@@ -24,6 +24,9 @@ struct MaterialParams {
     specular: vec4<f32>,
     // x: 1 when a normal map is bound.
     flags: vec4<u32>,
+    // rgb: the diffuse map's mean colour (linear; white without one). A solved light map
+    // already holds it in its reflectance (radiosity/scene.rs).
+    texture_mean: vec4<f32>,
 };
 
 @group(0) @binding(0) var<uniform> frame: Frame;
@@ -139,8 +142,10 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> @location(0) ve
     }
     if (solved) {
         let map = textureSampleLevel(light_map, light_map_sampler, in.lightmap_uv, 0.0);
-        // Lambertian: L = B / π; a diffuse map modulates the (untextured) solution.
-        radiance += map.rgb * texture_rgb / PI;
+        // Lambertian: L = B / π. The solution reflects the diffuse map's mean colour; the
+        // map's texels vary it about that mean.
+        let relative = texture_rgb / max(material.texture_mean.rgb, vec3<f32>(1e-6));
+        radiance += map.rgb * relative / PI;
         lux = map.a;
     }
     return vec4<f32>(radiance, lux);

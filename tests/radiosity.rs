@@ -669,45 +669,59 @@ fn solved_display_is_the_light_map_plus_the_direct_specular_term() {
     // light, so the solved display (light map + specular) must look like the direct
     // render, highlight included.
     let Some(gpu) = gpu_common::gpu() else { return };
-    let floor = [
-        Vec3::new(-2.0, -2.0, 0.0),
-        Vec3::new(2.0, -2.0, 0.0),
-        Vec3::new(2.0, 2.0, 0.0),
-        Vec3::new(-2.0, 2.0, 0.0),
-    ];
+    solved_display_matches_the_direct_render(&gpu, None);
+    // Textured: the solution reflects the texture's mean colour, and the display varies
+    // it about that mean by the texels (a checker of 1.0 and 0.05 in linear light).
+    let checker = image::RgbaImage::from_fn(8, 8, |x, y| {
+        let v = if (x + y) % 2 == 0 { 255 } else { 64 };
+        image::Rgba([v, v, v, 255])
+    });
+    solved_display_matches_the_direct_render(&gpu, Some(checker));
+}
+
+fn solved_display_matches_the_direct_render(
+    gpu: &goniolight::gpu::Gpu,
+    texture: Option<image::RgbaImage>,
+) {
+    let floor = SceneMesh {
+        name: "floor".into(),
+        positions: vec![
+            Vec3::new(-2.0, -2.0, 0.0),
+            Vec3::new(2.0, -2.0, 0.0),
+            Vec3::new(2.0, 2.0, 0.0),
+            Vec3::new(-2.0, 2.0, 0.0),
+        ],
+        normals: vec![Vec3::Z; 4],
+        uvs: [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)]
+            .map(|(u, v)| glam::Vec2::new(u, v) * 3.0)
+            .to_vec(),
+        indices: vec![0, 1, 2, 0, 2, 3],
+        material: 0,
+    };
     let glossy = Material {
         specular: Vec3::splat(0.3),
         shininess: 60.0,
+        diffuse_map: texture.map(std::sync::Arc::new),
         ..material(0.5, 0.0)
     };
-    let mut scene = scene_of(
-        vec![SceneMesh::from_triangles(
-            "floor",
-            &[
-                [floor[0], floor[1], floor[2]],
-                [floor[0], floor[2], floor[3]],
-            ],
-            0,
-        )],
-        vec![glossy],
-    );
+    let mut scene = scene_of(vec![floor], vec![glossy]);
     let ldt = Luminaire::load(&luminaire("eulumdat-plot/sample_06_isym1.ldt")).unwrap();
     scene
         .luminaires
         .push(PlacedLuminaire::new("lamp", ldt, DVec3::new(0.0, 0.0, 1.5)));
     scene.camera = Camera::perspective(DVec3::new(0.0, -2.5, 1.2), DVec3::new(0.0, 0.6, 0.0), 60.0);
     let r = RadiosityScene::new(&scene, 40.0, 1).unwrap();
-    let light = LuminaireLight::new(&gpu, &scene, Interp::CatmullRom);
+    let light = LuminaireLight::new(gpu, &scene, Interp::CatmullRom);
     let shadows = ShadowSettings::none();
-    let start = InitialState::from_luminaires_gpu(&gpu, &light, &r, &shadows).unwrap();
+    let start = InitialState::from_luminaires_gpu(gpu, &light, &r, &shadows).unwrap();
     let map = solve::light_map(&r, &start.radiosity, &start.illuminance);
-    let renderer = Renderer::new(&gpu);
+    let renderer = Renderer::new(gpu);
     let mut settings = RenderSettings::from_display(&DisplayEntry::default());
     (settings.width, settings.height, settings.read_hdr) = (160, 120, true);
     settings.shadows = shadows;
     let luminance = |uploaded: &GpuScene| -> Vec<f32> {
         let frame = renderer
-            .render(&gpu, uploaded, &scene.camera, &settings)
+            .render(gpu, uploaded, &scene.camera, &settings)
             .unwrap();
         frame
             .hdr
@@ -716,8 +730,8 @@ fn solved_display_is_the_light_map_plus_the_direct_specular_term() {
             .map(|p| p[0] + p[1] + p[2])
             .collect()
     };
-    let direct = luminance(&renderer.upload(&gpu, &scene));
-    let solved = luminance(&renderer.upload_solved(&gpu, &scene, &map));
+    let direct = luminance(&renderer.upload(gpu, &scene));
+    let solved = luminance(&renderer.upload_solved(gpu, &scene, &map));
     let (peak, at) = direct
         .iter()
         .enumerate()

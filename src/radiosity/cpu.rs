@@ -174,10 +174,12 @@ impl<'a> CpuSolver<'a> {
                     continue;
                 }
                 let (pi, ni) = (el.position[i], el.normal(i));
-                let f = match self.settings.form_factor {
-                    FormFactorKind::Disc => form_factor::disc(pi, ni, p.centroid, nt, p.area),
-                    FormFactorKind::Polygon => form_factor::polygon(pi, ni, &p.polygon, nt),
-                };
+                let f = self.scene.element_receives(i, p.centroid - pi, |n| {
+                    match self.settings.form_factor {
+                        FormFactorKind::Disc => form_factor::disc(pi, n, p.centroid, nt, p.area),
+                        FormFactorKind::Polygon => form_factor::polygon(pi, n, &p.polygon, nt),
+                    }
+                });
                 if f <= 0.0 || !self.visible(p.centroid, nt, pi, ni) {
                     continue;
                 }

@@ -166,7 +166,8 @@ struct SolveParams {
     range_total: u32,
     range_first: u32,
     large_shooters: u32,
-    _pad: [u32; 2],
+    receiving_normals: u32,
+    _pad: u32,
 }
 
 #[repr(C)]
@@ -331,6 +332,7 @@ impl Pipelines {
             B::Storage { read_only: false },
             B::Storage { read_only: true },
             B::Storage { read_only: false },
+            B::Storage { read_only: true },
         ];
         let entries: Vec<_> = kinds
             .iter()
@@ -581,6 +583,24 @@ impl<'a> GpuSolver<'a> {
         });
         let element_points = storage(gpu, "element points", &bytes(&points), false);
         let element_normals = storage(gpu, "element normals", &bytes(&normals), false);
+        // Receiving normals only where some element has one of its own.
+        let receiving: Vec<ElementRecord> = (0..n)
+            .filter(|_| !scene.receiving_normals.is_empty())
+            .map(|e| {
+                let r = scene.element_receiving_normal(e);
+                v4(r, f32::from(u8::from(r != el.normal(e))))
+            })
+            .collect();
+        let element_receiving = storage(
+            gpu,
+            "element receiving normals",
+            &bytes(if receiving.is_empty() {
+                &[[0.0; 4]]
+            } else {
+                &receiving
+            }),
+            false,
+        );
         let shooter_elements = storage(
             gpu,
             "shooter elements",
@@ -630,6 +650,7 @@ impl<'a> GpuSolver<'a> {
                 (8, patch_delta.as_entire_binding()),
                 (9, element_normals.as_entire_binding()),
                 (10, held.as_entire_binding()),
+                (11, element_receiving.as_entire_binding()),
             ],
         );
         // Visibility needs only the surfaces, not their tessellation: a CAD fan's strips
@@ -755,7 +776,8 @@ impl<'a> GpuSolver<'a> {
             range_total: self.culled.1,
             range_first: self.max_patches as u32,
             large_shooters: self.large_shooters,
-            _pad: [0; 2],
+            receiving_normals: u32::from(!self.scene.receiving_normals.is_empty()),
+            _pad: 0,
         };
         self.gpu
             .queue

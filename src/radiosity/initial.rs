@@ -109,12 +109,21 @@ impl LuminaireLight {
 /// centroid, from four texels away; up to 8 × 8). A luminaire a few centimetres from a
 /// ceiling puts most of its upward flux on a handful of elements, where one sample at
 /// the centroid would be 10–20 % off; the average over the grid integrates it.
+///
+/// The points carry the direction of the element's receiving normal
+/// ([`RadiosityScene::element_receiving_normal`]) and the element's average is scaled by
+/// its length. Where a luminaire lies behind an element's plane but in front of its
+/// shading normal (the terminator of a curved mesh), the element's samples take the
+/// geometric normal instead, so no light arrives through its back.
 #[derive(Debug, Clone, PartialEq)]
 pub struct DirectSamples {
     /// The sample points with their element's normal.
     pub points: Vec<SurfacePoint>,
     /// Element e's samples are `points[first[e]..first[e + 1]]`.
     pub first: Vec<usize>,
+    /// Per element, what its samples' mean is multiplied by (the receiving normal's
+    /// length; 1 where the element receives with its chart's normal).
+    pub scale: Vec<f64>,
 }
 
 impl DirectSamples {
@@ -130,6 +139,7 @@ impl DirectSamples {
         let el = &scene.elements;
         let mut points = Vec::with_capacity(el.len());
         let mut first = Vec::with_capacity(el.len() + 1);
+        let mut scales = Vec::with_capacity(el.len());
         for e in 0..el.len() {
             first.push(points.len());
             let texel_m = el.charts[el.chart[e] as usize].texel_m;
@@ -138,7 +148,8 @@ impl DirectSamples {
                 .map(|p| p.distance(el.position[e]))
                 .fold(f64::INFINITY, f64::min);
             let n = ((4.0 * texel_m / nearest.max(1e-9)).ceil() as u32).clamp(1, 8);
-            let normal = el.normal(e);
+            let (normal, scale) = receiving_direction(scene, e, positions);
+            scales.push(scale);
             points.extend(
                 el.texel_samples(e, n)
                     .into_iter()
@@ -146,14 +157,43 @@ impl DirectSamples {
             );
         }
         first.push(points.len());
-        DirectSamples { points, first }
+        DirectSamples {
+            points,
+            first,
+            scale: scales,
+        }
     }
 
     /// Per element the mean of `values` (one per sample point).
     pub fn average(&self, values: &[DVec3]) -> Vec<DVec3> {
         self.first
             .windows(2)
-            .map(|w| values[w[0]..w[1]].iter().sum::<DVec3>() / (w[1] - w[0]).max(1) as f64)
+            .zip(&self.scale)
+            .map(|(w, scale)| {
+                values[w[0]..w[1]].iter().sum::<DVec3>() * *scale / (w[1] - w[0]).max(1) as f64
+            })
             .collect()
+    }
+}
+
+/// The unit normal element `e`'s direct-light samples take and the factor on their mean
+/// ([`DirectSamples`]), for luminaires at `positions`.
+fn receiving_direction(scene: &RadiosityScene, e: usize, positions: &[DVec3]) -> (DVec3, f64) {
+    let geometric = scene.elements.normal(e);
+    let receiving = scene.element_receiving_normal(e);
+    let length = receiving.length();
+    if receiving == geometric || length <= 0.0 {
+        return (geometric, 1.0);
+    }
+    let direction = receiving / length;
+    let at = scene.elements.position[e];
+    let through_back = positions.iter().any(|p| {
+        let to = *p - at;
+        to.dot(geometric) <= 0.0 && to.dot(direction) > 0.0
+    });
+    if through_back {
+        (geometric, 1.0)
+    } else {
+        (direction, length)
     }
 }

@@ -15,6 +15,7 @@ pub mod links;
 mod polygon;
 pub mod refine;
 pub mod scene;
+pub mod shading;
 pub mod shooters;
 pub mod solve;
 pub mod view;

@@ -15,12 +15,16 @@ use crate::shadow::{IgnoredTriangles, TriangleBvh};
 pub struct RadiosityScene {
     /// The elements and patches.
     pub elements: Elements,
-    /// Diffuse reflectance per material (RGB, 0..1).
+    /// Diffuse reflectance per material (RGB, 0..1): `Kd` times the mean colour of its
+    /// diffuse texture ([`crate::scene::Material::diffuse_reflectance`]).
     pub reflectance: Vec<DVec3>,
     /// Luminous exitance per material, lm/m² (RGB).
     pub emission: Vec<DVec3>,
     /// The luminaires.
     pub luminaires: Vec<PlacedLuminaire>,
+    /// Per element, the normal it receives with ([`super::shading`]); empty when every
+    /// element receives with its chart's normal.
+    pub receiving_normals: Vec<DVec3>,
     /// Every triangle as one mesh (occluders for the CPU's visibility rays).
     pub casters: Mesh,
     /// The ray-cast hierarchy over `casters`, built on first use.
@@ -101,12 +105,17 @@ impl RadiosityScene {
             }
         };
         let self_hit_epsilon = crate::shadow::raycast::self_hit_epsilon(&casters);
+        let source = scene;
         let mut scene = RadiosityScene {
             elements,
             reflectance: scene
                 .materials
                 .iter()
-                .map(|m| m.diffuse.as_dvec3().clamp(DVec3::ZERO, DVec3::splat(0.999)))
+                .map(|m| {
+                    m.diffuse_reflectance()
+                        .as_dvec3()
+                        .clamp(DVec3::ZERO, DVec3::splat(0.999))
+                })
                 .collect(),
             emission: scene
                 .materials
@@ -114,6 +123,7 @@ impl RadiosityScene {
                 .map(|m| m.emission.as_dvec3().max(DVec3::ZERO))
                 .collect(),
             luminaires: scene.luminaires.clone(),
+            receiving_normals: Vec::new(),
             casters,
             caster_bvh: std::sync::OnceLock::new(),
             visibility: std::sync::OnceLock::new(),
@@ -124,6 +134,7 @@ impl RadiosityScene {
             total_area: 0.0,
             mean_reflectance: 0.0,
         };
+        scene.receiving_normals = super::shading::receiving_normals(source, &scene.elements);
         let e = &scene.elements;
         scene.total_area = e.area.iter().sum();
         let reflected: f64 = (0..e.len())
@@ -192,6 +203,32 @@ impl RadiosityScene {
                 super::clusters::connected_surfaces(&self.casters, &materials)
             }
         }
+    }
+
+    /// The normal element `e` receives with: its chart's, or where the mesh is curved or
+    /// normal-mapped the mean of its shading normals ([`super::shading`]).
+    pub fn element_receiving_normal(&self, e: usize) -> DVec3 {
+        self.receiving_normals
+            .get(e)
+            .copied()
+            .unwrap_or_else(|| self.elements.normal(e))
+    }
+
+    /// The form factor element `e` at `p` takes from a source `to_source` away, where
+    /// `form_factor(n)` gives it for a receiver with unit normal `n`
+    /// ([`super::shading::receiving`]).
+    pub fn element_receives(
+        &self,
+        e: usize,
+        to_source: DVec3,
+        form_factor: impl Fn(DVec3) -> f64,
+    ) -> f64 {
+        super::shading::receiving(
+            self.elements.normal(e),
+            self.element_receiving_normal(e),
+            to_source,
+            form_factor,
+        )
     }
 
     /// Reflectance of element `e`.

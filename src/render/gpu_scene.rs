@@ -3,7 +3,7 @@
 
 use std::sync::{Arc, Mutex, OnceLock};
 
-use glam::{Vec2, Vec3};
+use glam::Vec2;
 use wgpu::util::DeviceExt;
 
 use super::layouts::Layouts;
@@ -16,7 +16,7 @@ use crate::gpu::ldt::LdtAtlas;
 use crate::gpu::ldt_table::LdtTables;
 use crate::gpu::Gpu;
 use crate::photometry::LdtTexture;
-use crate::scene::{Material, PlacedLuminaire, Scene, SceneMesh};
+use crate::scene::{Material, PlacedLuminaire, Scene};
 
 /// A vertex as the shaders read it.
 #[repr(C)]
@@ -198,6 +198,7 @@ struct MaterialGpu {
     diffuse: [f32; 4],
     specular: [f32; 4],
     flags: [u32; 4],
+    texture_mean: [f32; 4],
 }
 
 /// The uploaded scene.
@@ -259,7 +260,7 @@ impl GpuScene {
         let mut draws: Vec<Draw> = Vec::new();
         for i in order {
             let m = &scene.meshes[i];
-            let tangents = tangents(m);
+            let tangents = m.tangents();
             let vertex = |k: usize, lightmap_uv: Vec2| Vertex {
                 position: m.positions[k].to_array(),
                 normal: m.normals[k].to_array(),
@@ -413,48 +414,6 @@ impl GpuScene {
     }
 }
 
-/// Per-vertex tangents from the texture coordinates (w = handedness); any unit vector
-/// across the normal where the mapping is degenerate.
-fn tangents(m: &SceneMesh) -> Vec<[f32; 4]> {
-    let n = m.positions.len();
-    let mut tan = vec![Vec3::ZERO; n];
-    let mut bit = vec![Vec3::ZERO; n];
-    for t in m.indices.chunks_exact(3) {
-        let [a, b, c] = [t[0] as usize, t[1] as usize, t[2] as usize];
-        let (e1, e2) = (
-            m.positions[b] - m.positions[a],
-            m.positions[c] - m.positions[a],
-        );
-        let (d1, d2): (Vec2, Vec2) = (m.uvs[b] - m.uvs[a], m.uvs[c] - m.uvs[a]);
-        let det = d1.x * d2.y - d2.x * d1.y;
-        if det.abs() < 1e-12 {
-            continue;
-        }
-        let r = 1.0 / det;
-        let t_dir = (e1 * d2.y - e2 * d1.y) * r;
-        let b_dir = (e2 * d1.x - e1 * d2.x) * r;
-        for i in [a, b, c] {
-            tan[i] += t_dir;
-            bit[i] += b_dir;
-        }
-    }
-    (0..n)
-        .map(|i| {
-            let nrm = m.normals[i];
-            let mut t = (tan[i] - nrm * nrm.dot(tan[i])).normalize_or_zero();
-            if t == Vec3::ZERO {
-                t = nrm.any_orthonormal_vector();
-            }
-            let w = if nrm.cross(t).dot(bit[i]) < 0.0 {
-                -1.0
-            } else {
-                1.0
-            };
-            [t.x, t.y, t.z, w]
-        })
-        .collect()
-}
-
 /// Uploads a material texture with its full mip chain (see [`super::mipmaps`]).
 fn upload_rgba(
     gpu: &Gpu,
@@ -520,6 +479,7 @@ fn material_bind_group(gpu: &Gpu, layouts: &Layouts, m: &Material) -> wgpu::Bind
         ],
         specular: [m.specular.x, m.specular.y, m.specular.z, m.shininess],
         flags: [m.normal_map.is_some() as u32, 0, 0, 0],
+        texture_mean: m.texture_mean().extend(1.0).to_array(),
     };
     let buffer = gpu.uniform_buffer("material", &params);
     gpu.bind_group(

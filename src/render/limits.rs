@@ -101,12 +101,13 @@ fn scene_refusal(scene: &Scene, message: String) -> GpuError {
 }
 
 /// Bytes per radiosity element in each of the solver's per-element storage buffers
-/// (position and area; normal and shooter; radiosity; unshot radiosity: `radiosity/gpu.rs`
+/// (position and area; normal and shooter; receiving normal; radiosity; unshot radiosity:
+/// `radiosity/gpu.rs`
 /// checks its records against this), so a binding of 128 MiB holds 8.4 M elements.
 pub const RADIOSITY_ELEMENT_BYTES: u64 = 16;
 
 /// Storage buffers the radiosity solver binds per compute stage.
-pub const RADIOSITY_STORAGE_BUFFERS: u32 = 9;
+pub const RADIOSITY_STORAGE_BUFFERS: u32 = 11;
 
 /// Checks the radiosity solver's per-element buffers for `elements` fit `gpu`, and that it
 /// binds as many storage buffers as the solver needs.

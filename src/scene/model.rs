@@ -48,6 +48,33 @@ impl Default for Material {
     }
 }
 
+impl Material {
+    /// The mean colour of the diffuse texture in linear light (sRGB decoded; alpha
+    /// ignored), white without one.
+    pub fn texture_mean(&self) -> Vec3 {
+        let Some(img) = &self.diffuse_map else {
+            return Vec3::ONE;
+        };
+        let linear: Vec<f64> = (0..=255u8)
+            .map(|c| super::palette::srgb_to_linear(c) as f64)
+            .collect();
+        let mut sum = [0.0f64; 3];
+        for p in img.pixels() {
+            for (s, &c) in sum.iter_mut().zip(&p.0[..3]) {
+                *s += linear[c as usize];
+            }
+        }
+        let count = (img.width() as f64 * img.height() as f64).max(1.0);
+        Vec3::from_array(sum.map(|s| (s / count) as f32))
+    }
+
+    /// The diffuse reflectance radiosity uses: `Kd` times the diffuse texture's mean
+    /// colour (Wallner §2.3.3), so a textured wall bleeds its own colour.
+    pub fn diffuse_reflectance(&self) -> Vec3 {
+        self.diffuse * self.texture_mean()
+    }
+}
+
 /// A triangle mesh in world coordinates with one material.
 #[derive(Debug, Clone, Default)]
 pub struct SceneMesh {
@@ -83,6 +110,49 @@ impl SceneMesh {
             }
         }
         m
+    }
+
+    /// Per-vertex tangents from the texture coordinates (w = handedness); any unit vector
+    /// across the normal where the mapping is degenerate.
+    pub fn tangents(&self) -> Vec<[f32; 4]> {
+        let m = self;
+        let n = m.positions.len();
+        let mut tan = vec![Vec3::ZERO; n];
+        let mut bit = vec![Vec3::ZERO; n];
+        for t in m.indices.chunks_exact(3) {
+            let [a, b, c] = [t[0] as usize, t[1] as usize, t[2] as usize];
+            let (e1, e2) = (
+                m.positions[b] - m.positions[a],
+                m.positions[c] - m.positions[a],
+            );
+            let (d1, d2): (Vec2, Vec2) = (m.uvs[b] - m.uvs[a], m.uvs[c] - m.uvs[a]);
+            let det = d1.x * d2.y - d2.x * d1.y;
+            if det.abs() < 1e-12 {
+                continue;
+            }
+            let r = 1.0 / det;
+            let t_dir = (e1 * d2.y - e2 * d1.y) * r;
+            let b_dir = (e2 * d1.x - e1 * d2.x) * r;
+            for i in [a, b, c] {
+                tan[i] += t_dir;
+                bit[i] += b_dir;
+            }
+        }
+        (0..n)
+            .map(|i| {
+                let nrm = m.normals[i];
+                let mut t = (tan[i] - nrm * nrm.dot(tan[i])).normalize_or_zero();
+                if t == Vec3::ZERO {
+                    t = nrm.any_orthonormal_vector();
+                }
+                let w = if nrm.cross(t).dot(bit[i]) < 0.0 {
+                    -1.0
+                } else {
+                    1.0
+                };
+                [t.x, t.y, t.z, w]
+            })
+            .collect()
     }
 }
 
