@@ -468,11 +468,21 @@ impl TextureCache {
             .as_deref()
             .map(|t| self.texture(t))
             .transpose()?;
-        let normal_name = m
-            .normal_texture
-            .as_deref()
-            .or_else(|| m.unknown_param.get("norm").map(String::as_str));
-        let normal_map = normal_name.map(|t| self.texture(t)).transpose()?;
+        // `norm` is a normal map; `bump` / `map_Bump` a height map when it is grey
+        // (converted), a normal map otherwise.
+        let normal_map = match (m.unknown_param.get("norm"), m.normal_texture.as_deref()) {
+            (Some(norm), _) => Some(self.texture(norm)?),
+            (None, Some(bump)) => {
+                let img = self.texture(bump)?;
+                Some(if super::bump::is_height_map(&img) {
+                    let scale = super::bump::bump_multiplier(bump);
+                    Arc::new(super::bump::height_to_normal(&img, scale))
+                } else {
+                    img
+                })
+            }
+            (None, None) => None,
+        };
         Ok(Material {
             name: m.name.clone(),
             diffuse,
