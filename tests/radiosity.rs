@@ -2,8 +2,6 @@
 //! box with uniform exitance E and reflectance ρ converges to B = E / (1 − ρ)), energy
 //! conservation, and the GPU against the CPU reference.
 
-use std::path::PathBuf;
-
 use glam::{DVec3, Vec3};
 use goniolight::photometry::{Interp, Luminaire};
 use goniolight::radiosity::cpu::CpuSolver;
@@ -21,6 +19,10 @@ use goniolight::scene::{Camera, DisplayEntry, Material, PlacedLuminaire, Scene, 
 mod common;
 #[path = "common/gpu.rs"]
 mod gpu_common;
+#[path = "common/radiosity_scenes.rs"]
+mod radiosity_scenes;
+
+use radiosity_scenes::{material, scene_of};
 
 use common::luminaire;
 
@@ -31,29 +33,6 @@ fn inward_box(lo: DVec3, hi: DVec3) -> Vec<[Vec3; 3]> {
         .iter()
         .map(|t| [t[0], t[2], t[1]].map(|i| m.positions[i as usize].as_vec3()))
         .collect()
-}
-
-fn material(reflectance: f32, emission: f32) -> Material {
-    Material {
-        diffuse: Vec3::splat(reflectance),
-        emission: Vec3::splat(emission),
-        ..Material::default()
-    }
-}
-
-fn scene_of(meshes: Vec<SceneMesh>, materials: Vec<Material>) -> Scene {
-    Scene {
-        path: PathBuf::from("radiosity test"),
-        meshes,
-        materials,
-        luminaires: Vec::new(),
-        camera: Camera::perspective(DVec3::new(0.5, 0.5, 0.5), DVec3::ZERO, 60.0),
-        display: DisplayEntry::default(),
-        models: Vec::new(),
-        grids: Vec::new(),
-        calc: Default::default(),
-        observers: Vec::new(),
-    }
 }
 
 fn furnace(rho: f32, e: f32) -> Scene {

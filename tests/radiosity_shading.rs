@@ -2,7 +2,6 @@
 //! interpolated vertex normals perturbed by its normal map, and reflect their diffuse
 //! texture's mean colour.
 
-use std::path::PathBuf;
 use std::sync::Arc;
 
 use glam::{DVec3, Vec2, Vec3};
@@ -16,34 +15,15 @@ use goniolight::radiosity::SolverSettings;
 use goniolight::render::{ShadowSettings, ShadowTechnique};
 use goniolight::scene::palette::srgb_to_linear;
 use goniolight::scene::placement::aim_frame;
-use goniolight::scene::{Camera, DisplayEntry, Material, PlacedLuminaire, Scene, SceneMesh};
+use goniolight::scene::{PlacedLuminaire, Scene, SceneMesh};
 
 mod common;
 #[path = "common/gpu.rs"]
 mod gpu_common;
+#[path = "common/radiosity_scenes.rs"]
+mod radiosity_scenes;
 
-fn material(reflectance: f32, emission: f32) -> Material {
-    Material {
-        diffuse: Vec3::splat(reflectance),
-        emission: Vec3::splat(emission),
-        ..Material::default()
-    }
-}
-
-fn scene_of(meshes: Vec<SceneMesh>, materials: Vec<Material>) -> Scene {
-    Scene {
-        path: PathBuf::from("shading test"),
-        meshes,
-        materials,
-        luminaires: Vec::new(),
-        camera: Camera::perspective(DVec3::new(5.0, 0.0, 1.0), DVec3::ZERO, 60.0),
-        display: DisplayEntry::default(),
-        models: Vec::new(),
-        grids: Vec::new(),
-        calc: Default::default(),
-        observers: Vec::new(),
-    }
-}
+use radiosity_scenes::{material, scene_of};
 
 const RADIUS: f32 = 1.0;
 const FACETS: u32 = 12;
