@@ -88,11 +88,26 @@ fn shading_normal(in: VertexOut, geometric: vec3<f32>) -> vec3<f32> {
     if (material.flags.x == 0u) {
         return geometric;
     }
+    return perturbed(in, geometric, textureSample(normal_map, material_sampler, in.uv));
+}
+
+// `geometric` perturbed by the normal-map texel `texel` (shortened by its alpha).
+fn perturbed(in: VertexOut, geometric: vec3<f32>, texel: vec4<f32>) -> vec3<f32> {
     let t = normalize(in.tangent.xyz - geometric * dot(geometric, in.tangent.xyz));
     let b = cross(geometric, t) * in.tangent.w;
-    let texel = textureSample(normal_map, material_sampler, in.uv);
     let m = texel.xyz * 2.0 - 1.0;
     return normalize(t * m.x + b * m.y + geometric * m.z) * texel.a;
+}
+
+// The normal map's mip level whose texels each cover one light-map texel: there the map
+// holds the mean normal an element of the solution received with
+// (radiosity/shading.rs).
+fn element_level(in: VertexOut) -> f32 {
+    let map = vec2<f32>(textureDimensions(normal_map));
+    let atlas = vec2<f32>(textureDimensions(light_map));
+    let across = length(dpdx(in.uv * map)) / max(length(dpdx(in.lightmap_uv * atlas)), 1e-12);
+    let down = length(dpdy(in.uv * map)) / max(length(dpdy(in.lightmap_uv * atlas)), 1e-12);
+    return log2(max(max(across, down), 1.0));
 }
 
 @fragment
@@ -102,11 +117,23 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> @location(0) ve
         n_geo = -n_geo;
     }
     let n = shading_normal(in, n_geo);
+    let level = element_level(in);
     var texture_rgb = vec3<f32>(1.0);
     if (material.diffuse.w > 0.5) {
         texture_rgb = textureSample(diffuse_map, material_sampler, in.uv).rgb;
     }
     let solved = frame.light_map != 0u;
+    // A solved normal-mapped surface: the light map holds what each element received
+    // with its mean normal; the relief finer than an element is the direct light with
+    // the pixel's normal less that with the element's.
+    let relief = solved && material.flags.x != 0u;
+    var n_element = n;
+    if (relief) {
+        n_element = perturbed(in, n_geo, textureSampleLevel(normal_map, material_sampler, in.uv, level));
+    }
+    // The direct light with the pixel's normal and with the element's.
+    var lit_pixel = vec3<f32>(0.0);
+    var lit_element = vec3<f32>(0.0);
     // With a light map the diffuse light is the map's; only the specular term is direct.
     let kd = select(material.diffuse.rgb * texture_rgb, vec3<f32>(0.0), solved);
     let ks = material.specular.rgb;
@@ -139,13 +166,25 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> @location(0) ve
         let h = normalize(inc.to_light + v);
         let spec = ks * spec_norm * pow(max(dot(n, h), 0.0), ns);
         radiance += (kd / PI + spec) * light_color(l, -inc.to_light) * e;
+        if (relief) {
+            let light = light_color(l, -inc.to_light) * visible * inc.normal_lux;
+            lit_pixel += light * max(dot(n, inc.to_light), 0.0);
+            lit_element += light * max(dot(n_element, inc.to_light), 0.0);
+        }
     }
     if (solved) {
         let map = textureSampleLevel(light_map, light_map_sampler, in.lightmap_uv, 0.0);
         // Lambertian: L = B / π. The solution reflects the diffuse map's mean colour; the
         // map's texels vary it about that mean.
         let relative = texture_rgb / max(material.texture_mean.rgb, vec3<f32>(1e-6));
-        radiance += map.rgb * relative / PI;
+        let base = map.rgb * relative;
+        let added = base + material.diffuse.rgb * texture_rgb * (lit_pixel - lit_element);
+        // Where a shadow's edge crosses the element, the map holds less than the lit
+        // pixel's light and a darkening difference could exceed it: there the relief
+        // darkens in proportion instead (never below zero).
+        let ratio = select(vec3<f32>(1.0), lit_pixel / lit_element, lit_element > vec3<f32>(0.0));
+        let diffuse = select(added, max(added, base * ratio), added < base);
+        radiance += max(diffuse, vec3<f32>(0.0)) / PI;
         lux = map.a;
     }
     return vec4<f32>(radiance, lux);

@@ -114,7 +114,7 @@ fn stats(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(local_invocatio
         let t = textureLoad(hdr, vec2<i32>(gid.xy), 0);
         if (t.a >= 0.0) {
             let l = dot(t.rgb, LUMA);
-            a = vec4<f32>(log(1e-4 + l), 1.0, select(3.0e38, l, l > 0.0), l);
+            a = vec4<f32>(log(1e-4 + max(l, 0.0)), 1.0, select(3.0e38, l, l > 0.0), l);
             b = vec4<f32>(t.a, t.a, 0.0, 0.0);
         }
     }

@@ -648,20 +648,70 @@ fn solved_display_is_the_light_map_plus_the_direct_specular_term() {
     // light, so the solved display (light map + specular) must look like the direct
     // render, highlight included.
     let Some(gpu) = gpu_common::gpu() else { return };
-    solved_display_matches_the_direct_render(&gpu, None);
+    solved_display_matches_the_direct_render(&gpu, Floor::default());
     // Textured: the solution reflects the texture's mean colour, and the display varies
     // it about that mean by the texels (a checker of 1.0 and 0.05 in linear light).
     let checker = image::RgbaImage::from_fn(8, 8, |x, y| {
         let v = if (x + y) % 2 == 0 { 255 } else { 64 };
         image::Rgba([v, v, v, 255])
     });
-    solved_display_matches_the_direct_render(&gpu, Some(checker));
+    solved_display_matches_the_direct_render(
+        &gpu,
+        Floor {
+            texture: Some(checker),
+            ..Floor::default()
+        },
+    );
 }
 
-fn solved_display_matches_the_direct_render(
-    gpu: &goniolight::gpu::Gpu,
+#[test]
+fn solved_display_keeps_the_normal_maps_relief_finer_than_its_elements() {
+    // Stripes tilted ±30°, 6.25 cm wide, under 25 cm elements: each element receives
+    // with the stripes' mean normal, and the display adds back, per pixel, the direct
+    // light's difference between the pixel's normal and that mean. It must look like
+    // the direct render, relief and all.
+    let Some(gpu) = gpu_common::gpu() else { return };
+    let tilted = |deg: f64| {
+        let n = DVec3::new(deg.to_radians().sin(), 0.0, deg.to_radians().cos());
+        let c = (n * 0.5 + DVec3::splat(0.5)) * 255.0;
+        image::Rgba([c.x.round() as u8, c.y.round() as u8, c.z.round() as u8, 255])
+    };
+    let stripes = image::RgbaImage::from_fn(2, 2, |x, _| tilted(if x == 0 { 30.0 } else { -30.0 }));
+    solved_display_matches_the_direct_render(
+        &gpu,
+        Floor {
+            normal_map: Some(stripes),
+            repeat: 32.0,
+            texel_density: 4.0,
+            ..Floor::default()
+        },
+    );
+}
+
+/// The floor of the solved-display tests.
+struct Floor {
+    /// Diffuse texture.
     texture: Option<image::RgbaImage>,
-) {
+    /// Normal map.
+    normal_map: Option<image::RgbaImage>,
+    /// Texture repeats across the 4 m floor.
+    repeat: f32,
+    /// Light-map texels per metre.
+    texel_density: f64,
+}
+
+impl Default for Floor {
+    fn default() -> Floor {
+        Floor {
+            texture: None,
+            normal_map: None,
+            repeat: 3.0,
+            texel_density: 40.0,
+        }
+    }
+}
+
+fn solved_display_matches_the_direct_render(gpu: &goniolight::gpu::Gpu, floor_kind: Floor) {
     let floor = SceneMesh {
         name: "floor".into(),
         positions: vec![
@@ -672,7 +722,7 @@ fn solved_display_matches_the_direct_render(
         ],
         normals: vec![Vec3::Z; 4],
         uvs: [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)]
-            .map(|(u, v)| glam::Vec2::new(u, v) * 3.0)
+            .map(|(u, v)| glam::Vec2::new(u, v) * floor_kind.repeat)
             .to_vec(),
         indices: vec![0, 1, 2, 0, 2, 3],
         material: 0,
@@ -680,7 +730,8 @@ fn solved_display_matches_the_direct_render(
     let glossy = Material {
         specular: Vec3::splat(0.3),
         shininess: 60.0,
-        diffuse_map: texture.map(std::sync::Arc::new),
+        diffuse_map: floor_kind.texture.map(std::sync::Arc::new),
+        normal_map: floor_kind.normal_map.map(std::sync::Arc::new),
         ..material(0.5, 0.0)
     };
     let mut scene = scene_of(vec![floor], vec![glossy]);
@@ -689,7 +740,7 @@ fn solved_display_matches_the_direct_render(
         .luminaires
         .push(PlacedLuminaire::new("lamp", ldt, DVec3::new(0.0, 0.0, 1.5)));
     scene.camera = Camera::perspective(DVec3::new(0.0, -2.5, 1.2), DVec3::new(0.0, 0.6, 0.0), 60.0);
-    let r = RadiosityScene::new(&scene, 40.0, 1).unwrap();
+    let r = RadiosityScene::new(&scene, floor_kind.texel_density, 1).unwrap();
     let light = LuminaireLight::new(gpu, &scene, Interp::CatmullRom);
     let shadows = ShadowSettings::none();
     let start = InitialState::from_luminaires_gpu(gpu, &light, &r, &shadows).unwrap();
