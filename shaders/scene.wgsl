@@ -177,14 +177,14 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> @location(0) ve
         // Lambertian: L = B / π. The solution reflects the diffuse map's mean colour; the
         // map's texels vary it about that mean.
         let relative = texture_rgb / max(material.texture_mean.rgb, vec3<f32>(1e-6));
+        let kd_texel = material.diffuse.rgb * texture_rgb;
         let base = map.rgb * relative;
-        let added = base + material.diffuse.rgb * texture_rgb * (lit_pixel - lit_element);
-        // Where a shadow's edge crosses the element, the map holds less than the lit
-        // pixel's light and a darkening difference could exceed it: there the relief
-        // darkens in proportion instead (never below zero).
-        let ratio = select(vec3<f32>(1.0), lit_pixel / lit_element, lit_element > vec3<f32>(0.0));
-        let diffuse = select(added, max(added, base * ratio), added < base);
-        radiance += max(diffuse, vec3<f32>(0.0)) / PI;
+        // Where a shadow's edge crosses the element, the map holds less than a lit
+        // pixel's direct light: the relief is scaled by the share it holds, so it never
+        // takes away more than is there.
+        let direct = kd_texel * lit_element;
+        let share = select(vec3<f32>(1.0), clamp(base / direct, vec3<f32>(0.0), vec3<f32>(1.0)), direct > vec3<f32>(0.0));
+        radiance += max(base + share * kd_texel * (lit_pixel - lit_element), vec3<f32>(0.0)) / PI;
         lux = map.a;
     }
     return vec4<f32>(radiance, lux);

@@ -355,13 +355,18 @@ pub fn prepare<'s>(
     drop(stage);
     let prepared_s = started.elapsed().as_secs_f64();
     eprintln!(
-        "{}: prepared in {prepared_s:.2} s — load {load_s:.2} s, {}elements and atlas {:.2} s, luminaires' direct light {:.2} s; {} triangles{}",
+        "{}: prepared in {prepared_s:.2} s — load {load_s:.2} s, {}elements and atlas {:.2} s, {}luminaires' direct light {:.2} s; {} triangles{}",
         label.display(),
         match solver.hierarchy {
             Hierarchy::None => String::new(),
             Hierarchy::Clusters => format!("face clusters {:.2} s, ", rscene.clustering_seconds),
         },
-        elements_s - rscene.clustering_seconds,
+        elements_s - rscene.clustering_seconds - rscene.receiving_seconds,
+        if rscene.receiving_normals.is_empty() {
+            String::new()
+        } else {
+            format!("receiving normals {:.2} s, ", rscene.receiving_seconds)
+        },
         prepared_s - load_s - elements_s,
         scene.triangle_count(),
         crate::io::peak_memory_mb().map_or(String::new(), |mb| format!(", peak memory {mb} MB")),

@@ -25,6 +25,8 @@ pub struct RadiosityScene {
     /// Per element, the normal it receives with ([`super::shading`]); empty when every
     /// element receives with its chart's normal.
     pub receiving_normals: Vec<DVec3>,
+    /// Seconds spent on [`Self::receiving_normals`].
+    pub receiving_seconds: f64,
     /// Every triangle as one mesh (occluders for the CPU's visibility rays).
     pub casters: Mesh,
     /// The ray-cast hierarchy over `casters`, built on first use.
@@ -124,6 +126,7 @@ impl RadiosityScene {
                 .collect(),
             luminaires: scene.luminaires.clone(),
             receiving_normals: Vec::new(),
+            receiving_seconds: 0.0,
             casters,
             caster_bvh: std::sync::OnceLock::new(),
             visibility: std::sync::OnceLock::new(),
@@ -134,7 +137,9 @@ impl RadiosityScene {
             total_area: 0.0,
             mean_reflectance: 0.0,
         };
+        let shading = std::time::Instant::now();
         scene.receiving_normals = super::shading::receiving_normals(source, &scene.elements);
+        scene.receiving_seconds = shading.elapsed().as_secs_f64();
         let e = &scene.elements;
         scene.total_area = e.area.iter().sum();
         let reflected: f64 = (0..e.len())
