@@ -181,13 +181,45 @@ fn nothing_arrives_through_the_back_of_a_surface_whose_normals_lean_over() {
         vec![floor, below],
         vec![material(0.5, 0.0), material(0.0, 1000.0)],
     );
+    let mut scene = scene;
+    // A luminaire there too, aimed up at the floor's side.
+    let ldt = Luminaire::load(&common::luminaire("eulumdat-luminance/sample_07.ldt")).unwrap();
+    let mut lamp = PlacedLuminaire::new("below", ldt, DVec3::new(2.5, 0.5, 0.6));
+    lamp.rotation = aim_frame(Some(DVec3::new(-1.0, 0.0, 0.3)), 0.0);
+    scene.luminaires.push(lamp);
     let r = RadiosityScene::new(&scene, 8.0, 0).unwrap();
     assert!(!r.receiving_normals.is_empty());
     let cpu = emitters_shot(&r);
-    let lit = receivers(&r);
-    assert!(lit.len() > 50);
-    for e in lit {
+    let floor = receivers(&r);
+    assert!(floor.len() > 50);
+    for &e in &floor {
         assert_eq!(cpu.radiosity[e], DVec3::ZERO, "element {e}");
+        assert_eq!(cpu.illuminance[e], 0.0, "element {e}");
+    }
+    // The luminaire would light the floor through its back with its shading normals: it
+    // does light the elements with them where it is in front (their own check).
+    let lamp = &scene.luminaires[0];
+    let e = floor[0];
+    assert!(
+        lamp.illuminance_at(
+            r.elements.position[e],
+            r.element_receiving_normal(e).normalize(),
+            Interp::CatmullRom
+        ) > 1.0
+    );
+    let Some(gpu) = gpu_common::gpu() else { return };
+    let light = LuminaireLight::new(&gpu, &scene, Interp::CatmullRom);
+    let shadows = ShadowSettings::with(ShadowTechnique::Paraboloid);
+    let start = InitialState::from_luminaires_gpu(&gpu, &light, &r, &shadows).unwrap();
+    let settings = SolverSettings::default();
+    let mut solver = GpuSolver::new(&gpu, &r, &start, settings, GpuSettings::default());
+    for t in emitters(&r) {
+        solver.shoot(t).unwrap();
+    }
+    let got = solver.radiosity().unwrap();
+    for &e in &floor {
+        assert_eq!(start.illuminance[e], 0.0, "element {e}");
+        assert_eq!(got[e], DVec3::ZERO, "element {e}");
     }
 }
 
