@@ -530,3 +530,53 @@ fn the_cad_room_is_the_boxes_room_in_strips() {
         .count();
     assert!(slivers * 2 > mesh.triangles.len(), "{slivers} slivers");
 }
+
+#[test]
+fn a_grey_bump_map_is_a_height_map_turned_into_a_normal_map_and_a_coloured_one_is_kept() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("quad.obj"),
+        "mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n\
+         usemtl height\nf 1/1 2/2 3/3\nusemtl normal\nf 1/1 3/3 4/4\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.path().join("quad.mtl"),
+        "newmtl height\nKd 0.5 0.5 0.5\nbump -bm 2 ramp.png\nnewmtl normal\nKd 0.5 0.5 0.5\nmap_Bump tilted.png\n",
+    )
+    .unwrap();
+    // Height rising 0.1 per texel along x; a normal map tilted toward +x.
+    image::RgbaImage::from_fn(16, 4, |x, _| {
+        let v = (x as f32 * 0.1 * 255.0).round() as u8;
+        image::Rgba([v, v, v, 255])
+    })
+    .save(dir.path().join("ramp.png"))
+    .unwrap();
+    let tilted = image::Rgba([191, 128, 238, 255]);
+    image::RgbaImage::from_pixel(4, 4, tilted)
+        .save(dir.path().join("tilted.png"))
+        .unwrap();
+    let p = dir.path().join("s.toml");
+    std::fs::write(
+        &p,
+        "[[model]]\npath = \"quad.obj\"\nup = \"z\"\n[camera]\nposition = [0.5, -1, 2]\nlook_at = [0.5, 0.5, 0]\n",
+    )
+    .unwrap();
+    let s = Scene::load(&p).unwrap();
+    let map = |name: &str| {
+        s.materials
+            .iter()
+            .find(|m| m.name == name)
+            .and_then(|m| m.normal_map.clone())
+            .unwrap()
+    };
+    // The ramp with -bm 2: slope 0.1 per texel × 2 → n = normalise(−0.2, 0, 1).
+    let texel = map("height").get_pixel(5, 1).0;
+    let decode = |c: u8| c as f64 / 255.0 * 2.0 - 1.0;
+    let n = DVec3::new(decode(texel[0]), decode(texel[1]), decode(texel[2]));
+    assert!(
+        (n - DVec3::new(-0.2, 0.0, 1.0).normalize()).length() < 0.01,
+        "{n}"
+    );
+    assert_eq!(map("normal").get_pixel(1, 1), &tilted);
+}
