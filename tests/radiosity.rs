@@ -688,6 +688,50 @@ fn solved_display_keeps_the_normal_maps_relief_finer_than_its_elements() {
     );
 }
 
+#[test]
+fn a_normal_maps_solved_display_differs_from_the_flat_one_only_where_it_tilts() {
+    // The map's left half (the floor's x < 0, the image's left) is tilted 30° about the
+    // floor's y axis, its right half flat; the same floor without a map is the reference.
+    let Some(gpu) = gpu_common::gpu() else { return };
+    let tilt = DVec3::new(30f64.to_radians().sin(), 0.0, 30f64.to_radians().cos());
+    let c = (tilt * 0.5 + DVec3::splat(0.5)) * 255.0;
+    let tilted = image::Rgba([c.x.round() as u8, c.y.round() as u8, c.z.round() as u8, 255]);
+    let half = image::RgbaImage::from_fn(64, 64, |x, _| {
+        if x < 32 {
+            tilted
+        } else {
+            image::Rgba([128, 128, 255, 255])
+        }
+    });
+    let floor = |normal_map| Floor {
+        normal_map,
+        repeat: 1.0,
+        texel_density: 10.0,
+        ..Floor::default()
+    };
+    let (_, mapped) = direct_and_solved_displays(&gpu, floor(Some(half)));
+    let (_, flat) = direct_and_solved_displays(&gpu, floor(None));
+    // Median relative difference over the floor's pixels in columns of the image.
+    let median = |columns: std::ops::Range<usize>| {
+        let mut rel: Vec<f32> = (0..120)
+            .flat_map(|y| columns.clone().map(move |x| y * 160 + x))
+            .filter(|&i| flat[i] > 1.0)
+            .map(|i| (mapped[i] / flat[i] - 1.0).abs())
+            .collect();
+        assert!(rel.len() > 1000, "{}", rel.len());
+        rel.sort_by(f32::total_cmp);
+        rel[rel.len() / 2]
+    };
+    let (tilted_side, flat_side) = (median(5..60), median(100..155));
+    eprintln!(
+        "mapped vs flat solved display: tilted half {:.1} %, flat half {:.2} %",
+        100.0 * tilted_side,
+        100.0 * flat_side
+    );
+    assert!(tilted_side > 0.05, "{tilted_side}");
+    assert!(flat_side < 0.01, "{flat_side}");
+}
+
 /// The floor of the solved-display tests.
 struct Floor {
     /// Diffuse texture.
@@ -712,6 +756,39 @@ impl Default for Floor {
 }
 
 fn solved_display_matches_the_direct_render(gpu: &goniolight::gpu::Gpu, floor_kind: Floor) {
+    let (direct, solved) = direct_and_solved_displays(gpu, floor_kind);
+    let (peak, at) = direct
+        .iter()
+        .enumerate()
+        .fold((0.0f32, 0), |b, (i, &v)| if v > b.0 { (v, i) } else { b });
+    let mut rel: Vec<f32> = direct
+        .iter()
+        .zip(&solved)
+        .filter(|(d, _)| **d > 0.0)
+        .map(|(d, s)| (s / d - 1.0).abs())
+        .collect();
+    rel.sort_by(f32::total_cmp);
+    let median = rel[rel.len() / 2];
+    eprintln!(
+        "solved vs direct display: highlight {peak:.1} vs {:.1}, median difference {:.2} %",
+        solved[at],
+        100.0 * median
+    );
+    // The highlight is mostly specular: without the specular term it would drop by far.
+    assert!(
+        (solved[at] / peak - 1.0).abs() < 0.05,
+        "{} vs {peak}",
+        solved[at]
+    );
+    assert!(median < 0.03, "{median}");
+}
+
+/// The 160 × 120 HDR luminance (r + g + b) of the floor's direct render and of its
+/// solved display (its radiosity is the luminaire's direct light, no interreflection).
+fn direct_and_solved_displays(
+    gpu: &goniolight::gpu::Gpu,
+    floor_kind: Floor,
+) -> (Vec<f32>, Vec<f32>) {
     let floor = SceneMesh {
         name: "floor".into(),
         positions: vec![
@@ -762,30 +839,7 @@ fn solved_display_matches_the_direct_render(gpu: &goniolight::gpu::Gpu, floor_ki
     };
     let direct = luminance(&renderer.upload(gpu, &scene));
     let solved = luminance(&renderer.upload_solved(gpu, &scene, &map));
-    let (peak, at) = direct
-        .iter()
-        .enumerate()
-        .fold((0.0f32, 0), |b, (i, &v)| if v > b.0 { (v, i) } else { b });
-    let mut rel: Vec<f32> = direct
-        .iter()
-        .zip(&solved)
-        .filter(|(d, _)| **d > 0.0)
-        .map(|(d, s)| (s / d - 1.0).abs())
-        .collect();
-    rel.sort_by(f32::total_cmp);
-    let median = rel[rel.len() / 2];
-    eprintln!(
-        "solved vs direct display: highlight {peak:.1} vs {:.1}, median difference {:.2} %",
-        solved[at],
-        100.0 * median
-    );
-    // The highlight is mostly specular: without the specular term it would drop by far.
-    assert!(
-        (solved[at] / peak - 1.0).abs() < 0.05,
-        "{} vs {peak}",
-        solved[at]
-    );
-    assert!(median < 0.03, "{median}");
+    (direct, solved)
 }
 
 /// More elements than one 128 MiB binding held as the solver's first 48-byte records
