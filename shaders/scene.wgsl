@@ -117,7 +117,6 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> @location(0) ve
         n_geo = -n_geo;
     }
     let n = shading_normal(in, n_geo);
-    let level = element_level(in);
     var texture_rgb = vec3<f32>(1.0);
     if (material.diffuse.w > 0.5) {
         texture_rgb = textureSample(diffuse_map, material_sampler, in.uv).rgb;
@@ -129,7 +128,7 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> @location(0) ve
     let relief = solved && material.flags.x != 0u;
     var n_element = n;
     if (relief) {
-        n_element = perturbed(in, n_geo, textureSampleLevel(normal_map, material_sampler, in.uv, level));
+        n_element = perturbed(in, n_geo, textureSampleLevel(normal_map, material_sampler, in.uv, element_level(in)));
     }
     // The direct light with the pixel's normal and with the element's.
     var lit_pixel = vec3<f32>(0.0);

@@ -22,7 +22,7 @@ mod gpu_common;
 #[path = "common/radiosity_scenes.rs"]
 mod radiosity_scenes;
 
-use radiosity_scenes::{material, scene_of};
+use radiosity_scenes::{floor, material, scene_of, tilted};
 
 use common::luminaire;
 
@@ -671,11 +671,6 @@ fn solved_display_keeps_the_normal_maps_relief_finer_than_its_elements() {
     // light's difference between the pixel's normal and that mean. It must look like
     // the direct render, relief and all.
     let Some(gpu) = gpu_common::gpu() else { return };
-    let tilted = |deg: f64| {
-        let n = DVec3::new(deg.to_radians().sin(), 0.0, deg.to_radians().cos());
-        let c = (n * 0.5 + DVec3::splat(0.5)) * 255.0;
-        image::Rgba([c.x.round() as u8, c.y.round() as u8, c.z.round() as u8, 255])
-    };
     let stripes = image::RgbaImage::from_fn(2, 2, |x, _| tilted(if x == 0 { 30.0 } else { -30.0 }));
     solved_display_matches_the_direct_render(
         &gpu,
@@ -693,24 +688,21 @@ fn a_normal_maps_solved_display_differs_from_the_flat_one_only_where_it_tilts() 
     // The map's left half (the floor's x < 0, the image's left) is tilted 30° about the
     // floor's y axis, its right half flat; the same floor without a map is the reference.
     let Some(gpu) = gpu_common::gpu() else { return };
-    let tilt = DVec3::new(30f64.to_radians().sin(), 0.0, 30f64.to_radians().cos());
-    let c = (tilt * 0.5 + DVec3::splat(0.5)) * 255.0;
-    let tilted = image::Rgba([c.x.round() as u8, c.y.round() as u8, c.z.round() as u8, 255]);
     let half = image::RgbaImage::from_fn(64, 64, |x, _| {
         if x < 32 {
-            tilted
+            tilted(30.0)
         } else {
             image::Rgba([128, 128, 255, 255])
         }
     });
-    let floor = |normal_map| Floor {
+    let floor_with = |normal_map| Floor {
         normal_map,
         repeat: 1.0,
         texel_density: 10.0,
         ..Floor::default()
     };
-    let (_, mapped) = direct_and_solved_displays(&gpu, floor(Some(half)));
-    let (_, flat) = direct_and_solved_displays(&gpu, floor(None));
+    let (_, mapped) = direct_and_solved_displays(&gpu, floor_with(Some(half)));
+    let (_, flat) = direct_and_solved_displays(&gpu, floor_with(None));
     // Median relative difference over the floor's pixels in columns of the image.
     let median = |columns: std::ops::Range<usize>| {
         let mut rel: Vec<f32> = (0..120)
@@ -789,21 +781,7 @@ fn direct_and_solved_displays(
     gpu: &goniolight::gpu::Gpu,
     floor_kind: Floor,
 ) -> (Vec<f32>, Vec<f32>) {
-    let floor = SceneMesh {
-        name: "floor".into(),
-        positions: vec![
-            Vec3::new(-2.0, -2.0, 0.0),
-            Vec3::new(2.0, -2.0, 0.0),
-            Vec3::new(2.0, 2.0, 0.0),
-            Vec3::new(-2.0, 2.0, 0.0),
-        ],
-        normals: vec![Vec3::Z; 4],
-        uvs: [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)]
-            .map(|(u, v)| glam::Vec2::new(u, v) * floor_kind.repeat)
-            .to_vec(),
-        indices: vec![0, 1, 2, 0, 2, 3],
-        material: 0,
-    };
+    let floor = floor(Vec3::new(-2.0, -2.0, 0.0), 4.0, floor_kind.repeat);
     let glossy = Material {
         specular: Vec3::splat(0.3),
         shininess: 60.0,

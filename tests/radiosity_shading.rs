@@ -23,7 +23,7 @@ mod gpu_common;
 #[path = "common/radiosity_scenes.rs"]
 mod radiosity_scenes;
 
-use radiosity_scenes::{material, scene_of};
+use radiosity_scenes::{floor, material, scene_of, tilted};
 
 const RADIUS: f32 = 1.0;
 const FACETS: u32 = 12;
@@ -162,17 +162,8 @@ fn nothing_arrives_through_the_back_of_a_surface_whose_normals_lean_over() {
     // the shading normals face the emitter, the surface does not.
     let lean = |deg: f32| Vec3::new(deg.to_radians().sin(), 0.0, deg.to_radians().cos());
     let floor = SceneMesh {
-        name: "floor".into(),
-        positions: vec![
-            Vec3::new(0.0, 0.0, 1.0),
-            Vec3::new(1.0, 0.0, 1.0),
-            Vec3::new(1.0, 1.0, 1.0),
-            Vec3::new(0.0, 1.0, 1.0),
-        ],
         normals: vec![lean(50.0), lean(70.0), lean(70.0), lean(50.0)],
-        uvs: vec![Vec2::ZERO; 4],
-        indices: vec![0, 1, 2, 0, 2, 3],
-        material: 0,
+        ..floor(Vec3::Z, 1.0, 1.0)
     };
     let c = [(2.0, 0.0), (2.0, 1.0), (3.0, 1.0), (3.0, 0.0)].map(|(x, y)| Vec3::new(x, y, 0.5));
     // Facing up and toward the floor's side: in front of the shading normals only.
@@ -261,36 +252,15 @@ fn the_gpu_receives_with_the_receiving_normals_as_the_cpu_does() {
     assert!(differ > receivers.len() / 20, "{differ}");
 }
 
-/// A 2 m square floor at z = 0 facing up with texture coordinates 0..`repeat` across it.
-fn mapped_floor(repeat: f32) -> SceneMesh {
-    SceneMesh {
-        name: "floor".into(),
-        positions: vec![
-            Vec3::new(0.0, 0.0, 0.0),
-            Vec3::new(2.0, 0.0, 0.0),
-            Vec3::new(2.0, 2.0, 0.0),
-            Vec3::new(0.0, 2.0, 0.0),
-        ],
-        normals: vec![Vec3::Z; 4],
-        uvs: [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)]
-            .map(|(u, v)| Vec2::new(u, v) * repeat)
-            .to_vec(),
-        indices: vec![0, 1, 2, 0, 2, 3],
-        material: 0,
-    }
-}
-
-/// A normal-map texel tilted `deg` from the surface normal toward the tangent (+u).
-fn tilted(deg: f64) -> image::Rgba<u8> {
-    let n = DVec3::new(deg.to_radians().sin(), 0.0, deg.to_radians().cos());
-    let c = (n * 0.5 + DVec3::splat(0.5)) * 255.0;
-    image::Rgba([c.x.round() as u8, c.y.round() as u8, c.z.round() as u8, 255])
-}
-
 fn floor_with_normal_map(img: image::RgbaImage, repeat: f32) -> RadiosityScene {
     let mut m = material(0.5, 0.0);
     m.normal_map = Some(Arc::new(img));
-    RadiosityScene::new(&scene_of(vec![mapped_floor(repeat)], vec![m]), 4.0, 0).unwrap()
+    RadiosityScene::new(
+        &scene_of(vec![floor(Vec3::ZERO, 2.0, repeat)], vec![m]),
+        4.0,
+        0,
+    )
+    .unwrap()
 }
 
 #[test]
@@ -326,7 +296,12 @@ fn a_textured_surface_reflects_its_textures_mean_colour() {
     });
     let mut m = material(0.8, 0.0);
     m.diffuse_map = Some(Arc::new(img));
-    let r = RadiosityScene::new(&scene_of(vec![mapped_floor(1.0)], vec![m]), 4.0, 0).unwrap();
+    let r = RadiosityScene::new(
+        &scene_of(vec![floor(Vec3::ZERO, 2.0, 1.0)], vec![m]),
+        4.0,
+        0,
+    )
+    .unwrap();
     for (ch, got) in r.reflectance[0].to_array().iter().enumerate() {
         let mean: f64 = texels
             .iter()
@@ -337,7 +312,7 @@ fn a_textured_surface_reflects_its_textures_mean_colour() {
     }
     // Without a texture: Kd alone.
     let r = RadiosityScene::new(
-        &scene_of(vec![mapped_floor(1.0)], vec![material(0.8, 0.0)]),
+        &scene_of(vec![floor(Vec3::ZERO, 2.0, 1.0)], vec![material(0.8, 0.0)]),
         4.0,
         0,
     )

@@ -583,24 +583,20 @@ impl<'a> GpuSolver<'a> {
         });
         let element_points = storage(gpu, "element points", &bytes(&points), false);
         let element_normals = storage(gpu, "element normals", &bytes(&normals), false);
-        // Receiving normals only where some element has one of its own.
-        let receiving: Vec<ElementRecord> = (0..n)
-            .filter(|_| !scene.receiving_normals.is_empty())
-            .map(|e| {
-                let r = scene.element_receiving_normal(e);
-                v4(r, f32::from(u8::from(r != el.normal(e))))
-            })
-            .collect();
-        let element_receiving = storage(
-            gpu,
-            "element receiving normals",
-            &bytes(if receiving.is_empty() {
-                &[[0.0; 4]]
-            } else {
-                &receiving
-            }),
-            false,
-        );
+        // Receiving normals (w 1 where not the chart's) only where some element has its
+        // own; otherwise one unused record.
+        let receiving: Vec<ElementRecord> = if scene.receiving_normals.is_empty() {
+            vec![[0.0; 4]]
+        } else {
+            (0..n)
+                .map(|e| {
+                    let r = scene.element_receiving_normal(e);
+                    v4(r, f32::from(u8::from(r != el.normal(e))))
+                })
+                .collect()
+        };
+        let element_receiving =
+            storage(gpu, "element receiving normals", &bytes(&receiving), false);
         let shooter_elements = storage(
             gpu,
             "shooter elements",

@@ -181,11 +181,9 @@ impl DirectSamples {
 fn receiving_direction(scene: &RadiosityScene, e: usize, positions: &[DVec3]) -> (DVec3, f64) {
     let geometric = scene.elements.normal(e);
     let receiving = scene.element_receiving_normal(e);
-    let length = receiving.length();
-    if receiving == geometric || length <= 0.0 {
+    let Some((direction, length)) = super::shading::own_direction(geometric, receiving) else {
         return (geometric, 1.0);
-    }
-    let direction = receiving / length;
+    };
     let at = scene.elements.position[e];
     let through_back = positions.iter().any(|p| {
         let to = *p - at;

@@ -83,14 +83,20 @@ pub fn receiving(
     to_source: DVec3,
     form_factor: impl Fn(DVec3) -> f64,
 ) -> f64 {
-    if shading == geometric {
-        return form_factor(geometric);
+    match own_direction(geometric, shading) {
+        None if shading == geometric => form_factor(geometric),
+        Some((direction, length)) if geometric.dot(to_source) > 0.0 => {
+            form_factor(direction) * length
+        }
+        _ => 0.0,
     }
+}
+
+/// The unit direction and the length of receiving normal `shading` when it is not the
+/// geometric normal (`None` when it is, or when it has no length).
+pub fn own_direction(geometric: DVec3, shading: DVec3) -> Option<(DVec3, f64)> {
     let length = shading.length();
-    if geometric.dot(to_source) <= 0.0 || length <= 0.0 {
-        return 0.0;
-    }
-    form_factor(shading / length) * length
+    (shading != geometric && length > 0.0).then(|| (shading / length, length))
 }
 
 /// Element `e`'s mean shading normal.
