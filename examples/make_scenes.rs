@@ -65,25 +65,26 @@ impl Obj {
         }
     }
 
+    /// A horizontal `x` × `y` rectangle from the origin at height `z`, facing up (a floor)
+    /// or down (a ceiling).
+    fn level(&mut self, x: f64, y: f64, z: f64, up: bool) {
+        let p = |x: f64, y: f64| DVec3::new(x, y, z);
+        let corners = if up {
+            [p(0.0, 0.0), p(x, 0.0), p(x, y), p(0.0, y)]
+        } else {
+            [p(0.0, y), p(x, y), p(x, 0.0), p(0.0, 0.0)]
+        };
+        self.quad(corners, 1.0);
+    }
+
     /// The inside of a room `size` (floor at z = 0), faces pointing inward.
     fn room(&mut self, size: DVec3, floor: &str, wall: &str, feature_wall: &str, ceiling: &str) {
         let p = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
         let (x, y, z) = (size.x, size.y, size.z);
         self.object("floor", floor);
-        self.quad(
-            [
-                p(0.0, 0.0, 0.0),
-                p(x, 0.0, 0.0),
-                p(x, y, 0.0),
-                p(0.0, y, 0.0),
-            ],
-            1.0,
-        );
+        self.level(x, y, 0.0, true);
         self.object("ceiling", ceiling);
-        self.quad(
-            [p(0.0, y, z), p(x, y, z), p(x, 0.0, z), p(0.0, 0.0, z)],
-            1.0,
-        );
+        self.level(x, y, z, false);
         self.object("walls", wall);
         self.quad(
             [
@@ -436,6 +437,54 @@ newmtl ceiling
 Kd 0.7 0.7 0.7
 ";
 
+/// A 4 × 4 × 3 m room whose ceiling is a translucent panel at 2.6 m, wall to wall, with
+/// a plenum above it (its walls a material of their own, so no chart spans the panel's
+/// plane): the diffuse-transmission validation room.
+fn luminous_ceiling() -> Obj {
+    let (x, y, z, panel) = (4.0, 4.0, 3.0, 2.6);
+    let p = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
+    let mut o = Obj::default();
+    o.object("floor", "floor");
+    o.level(x, y, 0.0, true);
+    o.object("ceiling", "ceiling");
+    o.level(x, y, z, false);
+    o.object("panel", "opal");
+    o.level(x, y, panel, false);
+    for (name, material, lo, hi) in [
+        ("walls", "wall", 0.0, panel),
+        ("plenum", "plenum", panel, z),
+    ] {
+        o.object(name, material);
+        let corners = [
+            p(0.0, 0.0, 0.0),
+            p(x, 0.0, 0.0),
+            p(x, y, 0.0),
+            p(0.0, y, 0.0),
+        ];
+        for k in 0..4 {
+            let (a, b) = (corners[(k + 1) % 4], corners[k]);
+            o.quad(
+                [
+                    a + p(0.0, 0.0, lo),
+                    b + p(0.0, 0.0, lo),
+                    b + p(0.0, 0.0, hi),
+                    a + p(0.0, 0.0, hi),
+                ],
+                1.0,
+            );
+        }
+    }
+    o
+}
+
+/// The luminous ceiling's panel and plenum walls; the rest of its materials are
+/// [`ROOM_MTL`]'s. The panel's transmittance is set in its scene file.
+const LUMINOUS_CEILING_MTL: &str = "newmtl opal
+Kd 0.4 0.4 0.4
+newmtl plenum
+Kd 0.5 0.5 0.5
+";
+
 /// The furniture of the boxes room; the rest of its materials are [`ROOM_MTL`]'s.
 const FURNITURE_MTL: &str = "newmtl furniture
 Kd 0.4 0.4 0.4
@@ -681,6 +730,12 @@ fn main() -> anyhow::Result<()> {
     stage.cuboid(DVec3::new(2.99, 1.99, 2.35), DVec3::new(3.01, 2.01, 3.0));
     stage.write(&scenes.join("effect_stage.obj"), "effect_stage.mtl")?;
     std::fs::write(scenes.join("effect_stage.mtl"), STAGE_MTL)?;
+
+    luminous_ceiling().write(&scenes.join("luminous_ceiling.obj"), "luminous_ceiling.mtl")?;
+    std::fs::write(
+        scenes.join("luminous_ceiling.mtl"),
+        format!("{ROOM_MTL}{LUMINOUS_CEILING_MTL}"),
+    )?;
 
     let mut cornell = Obj::default();
     cornell_box(&mut cornell);

@@ -1,10 +1,14 @@
 #!/usr/bin/env python3
-"""goniolight's radiosity against Radiance in the bundled box room.
+"""goniolight's radiosity against Radiance in a bundled validation room.
 
-Builds the same 6 x 4 x 3 m room (reflectances 0.2 floor / 0.5 walls / 0.7 ceiling, read
-from assets/scenes/box_room.mtl) lit by the same luminaire (assets/scenes/box_room.toml:
-the LDT converted to IES by `goniolight ldt convert`, then to Radiance by `ies2rad`) in
-Radiance and in goniolight, and compares the illuminance on a work plane at 0.8 m:
+Builds the same room (its OBJ's polygons, Kd from its MTL, `[[material]]` overrides from
+its scene file; a translucent material becomes Radiance's two-sided `trans`) lit by the
+same luminaire (the LDT converted to IES by `goniolight ldt convert`, then to Radiance by
+`ies2rad`) in Radiance and in goniolight, and compares the illuminance on a work plane at
+0.8 m. `--scene box_room` (default): the 6 x 4 x 3 m box room, reflectances 0.2 floor /
+0.5 walls / 0.7 ceiling. `--scene luminous_ceiling`: a 4 x 4 x 3 m room under a
+translucent panel (reflectance 0.4, diffuse transmittance 0.3) lit from the plenum, where
+every lux on the work plane has come through the panel:
 
   direct: Radiance `rtrace -I -ab 0`  vs  `goniolight illuminance`
   total:  a converged Radiance run    vs  `goniolight radiosity --points`
@@ -13,9 +17,10 @@ and, with --bench, the time each needs to come within 2 % (mean absolute differe
 the converged Radiance work plane, measured side by side on this machine.
 
 Radiance comes from pyradiance (pip install pyradiance), which ships rtrace, oconv and
-ies2rad. Writes radiance_box_room.csv (x y z and every column) into --out.
+ies2rad. Writes radiance_SCENE.csv (x y z and every column) into --out.
 
-Usage: python3 scripts/compare_radiance.py [--goniolight BIN] [--out DIR] [--bench]
+Usage: python3 scripts/compare_radiance.py [--scene NAME] [--goniolight BIN] [--out DIR]
+       [--bench]
 """
 
 import argparse
@@ -29,7 +34,9 @@ import tomllib
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
-SCENE = ROOT / "assets/scenes/box_room.toml"
+SCENES = ROOT / "assets/scenes"
+# Set by main() from --scene: the scene file and the room's extent (the OBJ's bounds).
+SCENE = SCENES / "box_room.toml"
 ROOM = (6.0, 4.0, 3.0)
 WORK_PLANE_Z = 0.8
 # Radiance's luminous efficacy of its white light, lm/W.
@@ -58,40 +65,57 @@ def work_plane(step=0.5):
     ]
 
 
-def reflectances():
-    """Kd of floor, wall and ceiling from the scene's MTL file."""
+def obj_polygons(obj):
+    """The OBJ's faces as (material, [corner, ...]) and its file's `mtllib`."""
+    vertices, faces, material, mtllib = [], [], None, None
+    for line in obj.read_text().splitlines():
+        words = line.split()
+        if words[:1] == ["v"]:
+            vertices.append(tuple(float(w) for w in words[1:4]))
+        elif words[:1] == ["usemtl"]:
+            material = words[1]
+        elif words[:1] == ["mtllib"]:
+            mtllib = words[1]
+        elif words[:1] == ["f"]:
+            faces.append((material, [vertices[int(w.split("/")[0]) - 1] for w in words[1:]]))
+    return faces, mtllib
+
+
+def materials(mtl, overrides):
+    """Per material name (Kd, diffuse transmittance) from the MTL and the scene's
+    `[[material]]` overrides."""
     kd, name = {}, None
-    for line in (SCENE.parent / "box_room.mtl").read_text().splitlines():
+    for line in mtl.read_text().splitlines():
         words = line.split()
         if words[:1] == ["newmtl"]:
             name = words[1]
         elif words[:1] == ["Kd"] and name:
             kd[name] = [float(w) for w in words[1:4]]
-    return kd
+    out = {name: (rgb, [0.0, 0.0, 0.0]) for name, rgb in kd.items()}
+    for o in overrides:
+        rho, tau = out[o["name"]]
+        t = o.get("diffuse_transmittance", 0.0)
+        out[o["name"]] = (rho, t if isinstance(t, list) else [t] * 3)
+    return out
 
 
-def room_rad(kd, lum_rad, position):
-    """The room in Radiance's scene language (polygons facing inward)."""
-    x, y, z = ROOM
-    faces = {
-        "floor": [(0, 0, 0), (0, y, 0), (x, y, 0), (x, 0, 0)],
-        "ceiling": [(0, 0, z), (x, 0, z), (x, y, z), (0, y, z)],
-        "wall": [
-            [(0, 0, 0), (x, 0, 0), (x, 0, z), (0, 0, z)],
-            [(x, 0, 0), (x, y, 0), (x, y, z), (x, 0, z)],
-            [(x, y, 0), (0, y, 0), (0, y, z), (x, y, z)],
-            [(0, y, 0), (0, 0, 0), (0, 0, z), (0, y, z)],
-        ],
-    }
+def room_rad(scene, lum_rad, position):
+    """The scene's model in Radiance's scene language: `plastic` for opaque materials,
+    `trans` (two-sided; C (1 - t) reflected, C t transmitted diffusely) for translucent."""
+    model = scene["model"][0]
+    faces, mtllib = obj_polygons(SCENE.parent / model["path"])
+    mats = materials(SCENE.parent / mtllib, scene.get("material", []))
     out = []
-    for name, rgb in kd.items():
-        out.append(f"void plastic {name}\n0\n0\n5 {rgb[0]} {rgb[1]} {rgb[2]} 0 0\n")
-    for name, polys in faces.items():
-        if name != "wall":
-            polys = [polys]
-        for k, poly in enumerate(polys):
-            coords = " ".join(f"{a} {b} {c}" for a, b, c in poly)
-            out.append(f"{name} polygon {name}.{k}\n0\n0\n12 {coords}\n")
+    for name, (rho, tau) in mats.items():
+        if max(tau) > 0:
+            c = [r + t for r, t in zip(rho, tau)]
+            t = sum(tau) / sum(c)
+            out.append(f"void trans {name}\n0\n0\n7 {c[0]} {c[1]} {c[2]} 0 0 {t} 0\n")
+        else:
+            out.append(f"void plastic {name}\n0\n0\n5 {rho[0]} {rho[1]} {rho[2]} 0 0\n")
+    for k, (name, poly) in enumerate(faces):
+        coords = " ".join(f"{a} {b} {c}" for a, b, c in poly)
+        out.append(f"{name} polygon face.{k}\n0\n0\n{3 * len(poly)} {coords}\n")
     px, py, pz = position
     out.append(f"!xform -t {px} {py} {pz} {lum_rad}\n")
     return "".join(out)
@@ -129,17 +153,23 @@ def goniolight(binary, args, points):
 
 
 def mad(values, reference):
-    """Mean absolute difference relative to the reference's mean."""
+    """Mean absolute difference relative to the reference's mean (absolute, in lux,
+    where the reference is dark: nothing reaches the luminous ceiling's work plane
+    directly)."""
     diff = sum(abs(a - b) for a, b in zip(values, reference)) / len(reference)
-    return diff / (sum(reference) / len(reference))
+    mean = sum(reference) / len(reference)
+    return diff / mean if mean > 1e-9 else diff
 
 
 def worst(values, reference):
-    return max(abs(a / b - 1.0) for a, b in zip(values, reference))
+    """The worst relative difference (absolute, in lux, at dark reference points)."""
+    return max(abs(a / b - 1.0) if b > 1e-9 else abs(a) for a, b in zip(values, reference))
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--scene", default="box_room",
+                    choices=["box_room", "luminous_ceiling"])
     ap.add_argument("--goniolight", type=Path, default=ROOT / "target/release/goniolight")
     ap.add_argument("--out", type=Path, default=Path("radiance-compare"))
     ap.add_argument("--radiance-csv", type=Path,
@@ -148,6 +178,10 @@ def main():
     ap.add_argument("--bench", action="store_true",
                     help="also time both to within 2 %% of their converged work plane")
     a = ap.parse_args()
+    global SCENE, ROOM
+    SCENE = SCENES / f"{a.scene}.toml"
+    faces, _ = obj_polygons(SCENES / f"{a.scene}.obj")
+    ROOM = tuple(max(p[k] for _, poly in faces for p in poly) for k in range(3))
     if not a.goniolight.exists():
         subprocess.run(["cargo", "build", "--release", "--quiet"], cwd=ROOT, check=True)
     work = Path(tempfile.mkdtemp(prefix="goniolight-radiance-"))
@@ -170,7 +204,7 @@ def compare(a, work):
     # -i: a point-like sphere (1 cm) as goniolight's point source; -t default: white.
     subprocess.run(["ies2rad", "-dm", "-t", "default", "-i", "0.01", "-o", "lum",
                     "lum.ies"], cwd=work, env=env, check=True)
-    (work / "room.rad").write_text(room_rad(reflectances(), "lum.rad", lum["position"]))
+    (work / "room.rad").write_text(room_rad(scene, "lum.rad", lum["position"]))
     octree = work / "room.oct"
     with open(octree, "wb") as f:
         subprocess.run(["oconv", "room.rad"], cwd=work, env=env, check=True, stdout=f)
@@ -186,13 +220,13 @@ def compare(a, work):
     gl_total, t_gl_total = goniolight(
         a.goniolight, ["radiosity", "--points", "--converge", "0.999"], points)
     a.out.mkdir(parents=True, exist_ok=True)
-    with open(a.out / "radiance_box_room.csv", "w") as f:
+    with open(a.out / f"radiance_{a.scene}.csv", "w") as f:
         f.write("x,y,z,radiance_direct_lx,goniolight_direct_lx,"
                 "radiance_total_lx,goniolight_total_lx\n")
         for p, rd, gd, rt, gt in zip(points, rad_direct, gl_direct, rad_total, gl_total):
             f.write(f"{p[0]},{p[1]},{p[2]},{rd:.4f},{gd:.4f},{rt:.4f},{gt:.4f}\n")
     mean = lambda v: sum(v) / len(v)
-    print(f"box room 6 x 4 x 3 m, {len(points)} work-plane points at {WORK_PLANE_Z} m, "
+    print(f"{a.scene} {ROOM[0]:g} x {ROOM[1]:g} x {ROOM[2]:g} m, {len(points)} work-plane points at {WORK_PLANE_Z} m, "
           f"luminaire {ldt.name} at {lum['position']}")
     print("| quantity | Radiance mean lx | goniolight mean lx | mean abs. diff. | worst point |")
     print("|---|---|---|---|---|")

@@ -39,7 +39,15 @@ struct ShooterInfo {
     range: vec4<u32>,
     // rgb reflectance, w area.
     reflectance_area: vec4<f32>,
+    // rgb diffuse transmittance (radiosity/transmission.rs), w unused.
+    transmittance: vec4<f32>,
 };
+
+// What a shooter's surface sends back out of light arriving on both its sides (the
+// ambient term's): reflectance plus transmittance.
+fn reemittance(info: ShooterInfo) -> vec3<f32> {
+    return info.reflectance_area.rgb + info.transmittance.rgb;
+}
 
 struct PatchInfo {
     // first entry of shooter_elements, element count.
@@ -195,7 +203,7 @@ fn select_shooter(@builtin(local_invocation_index) l: u32) {
         let mean = shooter_power[t].rgb / area;
         var extra = vec3<f32>(0.0);
         if (params.overshoot != 0u) {
-            extra = max(min(info.reflectance_area.rgb * ambient, total.rgb / area - mean), vec3<f32>(0.0));
+            extra = max(min(reemittance(info) * ambient, total.rgb / area - mean), vec3<f32>(0.0));
         }
         // Unshot light of both signs (a luminaire moved: negative where its light went,
         // GpuSolver::relight) must not cancel in the ranking: at least Σ |unshot| × area.
@@ -222,7 +230,7 @@ fn select_shooter(@builtin(local_invocation_index) l: u32) {
             let info = shooters[t];
             let area = info.reflectance_area.w;
             let mean = shooter_power[t].rgb / area;
-            extra = max(min(info.reflectance_area.rgb * ambient, total.rgb / area - mean), vec3<f32>(0.0));
+            extra = max(min(reemittance(info) * ambient, total.rgb / area - mean), vec3<f32>(0.0));
         }
         let at = params.shooter_count;
         shooter_power[at] = vec4<f32>(bitcast<f32>(t), wg_best[0], total.w, total_weighted);
@@ -371,6 +379,14 @@ fn polygon_form_factor(p: vec3<f32>, n: vec3<f32>) -> f32 {
     return abs(sum) / (2.0 * PI);
 }
 
+// The shot's form factor (disc or polygon, as the shot says) at `p` with unit normal `n`.
+fn form_factor(p: vec3<f32>, n: vec3<f32>) -> f32 {
+    if (shot.info.z == 1u) {
+        return polygon_form_factor(p, n);
+    }
+    return disc_form_factor(p, n);
+}
+
 // Map texel and face of direction `v` (world, from the patch centroid to `p`).
 fn visibility_lookup(p: vec3<f32>, v: vec3<f32>) -> vec3<i32> {
     let size = i32(shot.info.w);
@@ -485,36 +501,40 @@ fn receive(
         return;
     }
     let p = element_points[i].xyz;
-    var n = normal_piece.xyz;
+    let geometric = normal_piece.xyz;
+    var n = geometric;
     if (!takes_light(p)) {
         return;
+    }
+    let info = shooters[shooter_of_piece(piece)];
+    // A translucent receiver sends on what arrives on its back (radiosity/transmission.rs).
+    var back = 0.0;
+    if (any(info.transmittance.rgb > vec3<f32>(0.0))) {
+        back = form_factor(p, -geometric);
     }
     // A curved or normal-mapped receiver: the form factor with its receiving normal's
     // direction times its length, never through its geometric back.
     var scale = 1.0;
+    var front = true;
     if (params.receiving_normals != 0u) {
         let r = element_receiving[i];
         let len = length(r.xyz);
         if (r.w > 0.5) {
-            if (dot(n, shot.centroid.xyz - p) <= 0.0 || len <= 0.0) {
-                return;
-            }
-            n = r.xyz / len;
+            front = dot(n, shot.centroid.xyz - p) > 0.0 && len > 0.0;
+            n = r.xyz / max(len, 1e-30);
             scale = len;
         }
     }
     var f = 0.0;
-    if (shot.info.z == 1u) {
-        f = polygon_form_factor(p, n);
-    } else {
-        f = disc_form_factor(p, n);
+    if (front) {
+        f = form_factor(p, n) * scale;
     }
-    f *= scale;
-    if (f <= 0.0 || !visible_from_patch(p)) {
+    if ((f <= 0.0 && back <= 0.0) || !visible_from_patch(p)) {
         return;
     }
-    let incident = patch_delta[shot.info.x].rgb * f * shot.link.z;
-    let gained = shooters[shooter_of_piece(piece)].reflectance_area.rgb * incident;
+    let delta = patch_delta[shot.info.x].rgb * shot.link.z;
+    let incident = delta * f;
+    let gained = info.reflectance_area.rgb * incident + info.transmittance.rgb * delta * back;
     radiosity[i] += vec4<f32>(gained, dot(incident, LUMA));
     unshot[i] += vec4<f32>(gained, 0.0);
 }

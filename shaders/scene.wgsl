@@ -27,6 +27,9 @@ struct MaterialParams {
     // rgb: the diffuse map's mean colour (linear; white without one). A solved light map
     // already holds it in its reflectance (radiosity/scene.rs).
     texture_mean: vec4<f32>,
+    // rgb: diffuse transmittance (radiosity/transmission.rs): a luminaire behind the
+    // surface lights it through; a solved light map already holds that.
+    transmittance: vec4<f32>,
 };
 
 @group(0) @binding(0) var<uniform> frame: Frame;
@@ -152,6 +155,14 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> @location(0) ve
         let d = l.position.xyz - in.world;
         let lit_geo = dot(d, n_geo) > 0.0;
         let lit_shading = dot(d, n) > 0.0;
+        if (!lit_geo && !solved && any(material.transmittance.rgb > vec3<f32>(0.0))) {
+            // Behind a translucent surface: what arrives on its far side, τ of it
+            // emitted diffusely on this one.
+            let through = light_visibility(l, i, in.world, -n_geo, slot);
+            let inc = light_incident(l, in.world);
+            let e = through * inc.normal_lux * max(dot(-n_geo, inc.to_light), 0.0);
+            radiance += material.transmittance.rgb / PI * light_color(l, -inc.to_light) * e;
+        }
         if (!(lit_geo || lit_shading)) {
             continue;
         }

@@ -353,6 +353,7 @@ fn floor_and_sheet() -> RadiosityScene {
         grids: Vec::new(),
         calc: Default::default(),
         observers: Vec::new(),
+        material_overrides: Vec::new(),
     };
     RadiosityScene::with_hierarchy(&scene, 10.0, 2, Hierarchy::Clusters).unwrap()
 }

@@ -162,6 +162,7 @@ fn worst_gpu_lookup(
             grids: Vec::new(),
             calc: Default::default(),
             observers: Vec::new(),
+            material_overrides: Vec::new(),
         };
         let uploaded = renderer.upload(&gpu, &scene);
         let got = IlluminanceProbe::new(&gpu, model)

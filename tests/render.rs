@@ -85,6 +85,7 @@ fn floor_scene(luminaires: Vec<PlacedLuminaire>, size: f32) -> Scene {
         grids: Vec::new(),
         calc: Default::default(),
         observers: Vec::new(),
+        material_overrides: Vec::new(),
     }
 }
 
@@ -513,6 +514,45 @@ fn sixteen_luminaires_in_one_pass_sum_like_the_cpu_reference() {
         }
     }
     assert!(worst <= 0.005, "worst relative difference {worst:e}");
+}
+
+/// A translucent floor lit from below: the side in view shows τ/π × the illuminance on
+/// its far side (CPU reference, per pixel) and receives no lux itself; an opaque one
+/// shows nothing.
+#[test]
+fn a_translucent_surface_glows_with_the_light_on_its_far_side() {
+    let Some(gpu) = gpu_common::gpu() else { return };
+    let mut lum = test_luminaires().remove(0);
+    lum.position = DVec3::new(0.3, -0.2, -1.5);
+    lum.rotation = aim_frame(Some(DVec3::new(0.1, 0.0, 1.0)), 0.0);
+    let size = 6.0;
+    let w = 48;
+    for tau in [0.3f32, 0.0] {
+        let mut scene = floor_scene(vec![lum.clone()], size);
+        scene.materials[0].diffuse_transmittance = Vec3::splat(tau);
+        let hdr = floor_hdr(&gpu, &scene, w);
+        let mut checked = 0;
+        for py in 0..w {
+            for px in 0..w {
+                let p = SurfacePoint {
+                    position: floor_point(px, py, w, size as f64),
+                    normal: -DVec3::Z,
+                };
+                let far_side = illuminance_cpu(std::slice::from_ref(&lum), &p, Interp::CatmullRom);
+                let want = tau as f64 / std::f64::consts::PI * far_side;
+                let got = hdr[(py * w + px) as usize];
+                assert_eq!(got[3], 0.0, "no lux on the side in view");
+                let rel = (got[1] as f64 - want).abs() / want.max(1e-3);
+                assert!(
+                    rel <= 0.01,
+                    "τ {tau}: pixel {px},{py}: {} cd/m² vs {want}",
+                    got[1]
+                );
+                checked += (want > 1.0) as usize;
+            }
+        }
+        assert!(tau == 0.0 || checked > (w * w / 4) as usize, "{checked}");
+    }
 }
 
 #[test]

@@ -7,7 +7,7 @@ mod common;
 use std::path::{Path, PathBuf};
 
 use common::{luminaire, raw_ldt, root, run_cli};
-use glam::{DMat3, DVec3};
+use glam::{DMat3, DVec3, Vec3};
 use goniolight::geometry::generate::XorShift;
 use goniolight::photometry::{angles_to_direction, Interp};
 use goniolight::render::illuminance::{illuminance_cpu, SurfacePoint};
@@ -290,6 +290,105 @@ fn bake_keys_set_the_models_materials() {
     );
     let (_dir, r) = load_text(&format!("{model}{camera}"));
     assert!(r.unwrap().materials.iter().all(|m| m.bake.is_none()));
+}
+
+/// `[[material]]` overrides an MTL material by name (and is saved back); a wrong name, a
+/// value out of range, reflectance plus transmittance above 1 or a specular key is an
+/// error naming the key. MTL `d`/`Tr`/`Tf` give the diffuse transmittance, except for
+/// glass (`illum` 4, 6, 7, 9), which stays opaque.
+#[test]
+fn material_overrides_and_mtl_transparency_set_the_transmittance() {
+    let (model, camera) = good_parts();
+    let (_dir, r) = load_text(&format!(
+        "{model}{camera}[[material]]\nname = \"wall\"\ndiffuse_transmittance = [0.1, 0.2, 0.3]\n"
+    ));
+    let s = r.unwrap();
+    let wall = s.materials.iter().find(|m| m.name == "wall").unwrap();
+    assert_eq!(wall.diffuse_transmittance, Vec3::new(0.1, 0.2, 0.3));
+    let floor = s.materials.iter().find(|m| m.name == "floor").unwrap();
+    assert_eq!(floor.diffuse_transmittance, Vec3::ZERO);
+    let saved = s.to_toml(&s.path).unwrap();
+    assert!(
+        saved.contains("[[material]]") && saved.contains("diffuse_transmittance"),
+        "{saved}"
+    );
+    for (entry, key, says) in [
+        (
+            "name = \"wal\"\ndiffuse_transmittance = 0.1",
+            "material[0].name",
+            "\"wall\"",
+        ),
+        (
+            "name = \"wall\"\ndiffuse_transmittance = 1.5",
+            "material[0].diffuse_transmittance",
+            "0..=1",
+        ),
+        (
+            "name = \"wall\"\ndiffuse_transmittance = 0.6",
+            "material[0]",
+            "more than it receives",
+        ),
+        (
+            "name = \"wall\"\nspecular_reflectance = 0.9",
+            "material[0].specular_reflectance",
+            "not modelled yet",
+        ),
+        (
+            "name = \"wall\"\nopacity = 0.9",
+            "material",
+            "unknown field",
+        ),
+    ] {
+        let (_dir, r) = load_text(&format!("{model}{camera}[[material]]\n{entry}\n"));
+        let e = r.unwrap_err().to_string();
+        assert!(
+            e.contains("bad.toml") && e.contains(key) && e.contains(says),
+            "{entry}: {e}"
+        );
+    }
+
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("m.obj"),
+        "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl frosted\nf 1 2 3\nusemtl tinted\nf 1 2 3\nusemtl glass\nf 1 2 3\nusemtl white\nf 1 2 3\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.path().join("m.mtl"),
+        "newmtl frosted\nKd 0.5 0.5 0.5\nd 0.75\nTf 1 1 1\nillum 2\n\
+         newmtl tinted\nKd 0.2 0.2 0.2\nTr 0.5\nTf 1 0.5 0.25\n\
+         newmtl glass\nKd 0 0 0\nd 0.2\nTf 0.9 0.9 0.9\nillum 7\n\
+         newmtl white\nKd 0.9 0.9 0.9\nd 0.5\n",
+    )
+    .unwrap();
+    let p = dir.path().join("m.toml");
+    std::fs::write(&p, "[[model]]\npath = \"m.obj\"\nup = \"z\"\n").unwrap();
+    let s = Scene::load(&p).unwrap();
+    let t = |name: &str| {
+        s.materials
+            .iter()
+            .find(|m| m.name == name)
+            .unwrap()
+            .diffuse_transmittance
+    };
+    assert!((t("frosted") - Vec3::splat(0.25)).abs().max_element() < 1e-6);
+    assert!(
+        (t("tinted") - Vec3::new(0.5, 0.25, 0.125))
+            .abs()
+            .max_element()
+            < 1e-6
+    );
+    assert_eq!(
+        t("glass"),
+        Vec3::ZERO,
+        "glass is specular: not modelled, opaque"
+    );
+    // Kd 0.9 leaves room for 0.1 only.
+    assert!(
+        (t("white") - Vec3::splat(0.1)).abs().max_element() < 1e-6,
+        "{}",
+        t("white")
+    );
 }
 
 /// A scene without `[camera]` loads: commands without an image need none, and images get

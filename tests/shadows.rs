@@ -100,6 +100,7 @@ fn scene(meshes: &[Mesh], luminaires: Vec<PlacedLuminaire>, camera: Camera) -> S
         grids: Vec::new(),
         calc: Default::default(),
         observers: Vec::new(),
+        material_overrides: Vec::new(),
     }
 }
 

@@ -159,6 +159,7 @@ pub fn bench_scene(major: u32, minor: u32, luminaires: &[PlacedLuminaire]) -> Sc
         grids: Vec::new(),
         calc: Default::default(),
         observers: Vec::new(),
+        material_overrides: Vec::new(),
     }
 }
 

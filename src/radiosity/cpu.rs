@@ -90,11 +90,12 @@ impl<'a> CpuSolver<'a> {
             .iter()
             .map(|p| self.direct(p.position, p.normal))
             .collect();
-        for (e, direct) in samples.average(&at_samples).into_iter().enumerate() {
-            let gained = self.scene.element_reflectance(e) * direct;
+        let state = InitialState::with_direct(self.scene, &samples.direct(&at_samples));
+        for (e, (b, lux)) in state.radiosity.iter().zip(&state.illuminance).enumerate() {
+            let gained = *b - self.scene.element_emission(e);
             self.radiosity[e] += gained;
             self.unshot[e] += gained;
-            self.illuminance[e] += luminance(direct);
+            self.illuminance[e] += lux;
         }
     }
 
@@ -144,7 +145,8 @@ impl<'a> CpuSolver<'a> {
             let unshot = self.chart_unshot(t);
             let extra = match self.settings.ambient {
                 Ambient::Overshoot => {
-                    let rho = self.scene.reflectance[te.material];
+                    let rho =
+                        self.scene.reflectance[te.material] + self.scene.transmittance[te.material];
                     (rho * ambient)
                         .min(total / te.area - unshot)
                         .max(DVec3::ZERO)
@@ -174,19 +176,26 @@ impl<'a> CpuSolver<'a> {
                     continue;
                 }
                 let (pi, ni) = (el.position[i], el.normal(i));
-                let f = self.scene.element_receives(i, p.centroid - pi, |n| {
-                    match self.settings.form_factor {
-                        FormFactorKind::Disc => form_factor::disc(pi, n, p.centroid, nt, p.area),
-                        FormFactorKind::Polygon => form_factor::polygon(pi, n, &p.polygon, nt),
-                    }
-                });
-                if f <= 0.0 || !self.visible(p.centroid, nt, pi, ni) {
-                    continue;
+                let form_factor = |n: DVec3| match self.settings.form_factor {
+                    FormFactorKind::Disc => form_factor::disc(pi, n, p.centroid, nt, p.area),
+                    FormFactorKind::Polygon => form_factor::polygon(pi, n, &p.polygon, nt),
+                };
+                let f = self.scene.element_receives(i, p.centroid - pi, form_factor);
+                if f > 0.0 && self.visible(p.centroid, nt, pi, ni) {
+                    let gained = self.scene.element_reflectance(i) * delta * f;
+                    self.radiosity[i] += gained;
+                    self.unshot[i] += gained;
+                    self.illuminance[i] += luminance(delta * f);
                 }
-                let gained = self.scene.element_reflectance(i) * delta * f;
-                self.radiosity[i] += gained;
-                self.unshot[i] += gained;
-                self.illuminance[i] += luminance(delta * f);
+                // A translucent receiver sends on what arrives on its back.
+                let tau = self.scene.element_transmittance(i);
+                if tau != DVec3::ZERO {
+                    let f = form_factor(-ni);
+                    if f > 0.0 && self.visible(p.centroid, nt, pi, -ni) {
+                        self.radiosity[i] += tau * delta * f;
+                        self.unshot[i] += tau * delta * f;
+                    }
+                }
             }
         }
         for e in te.first as usize..(te.first + te.count) as usize {

@@ -345,7 +345,9 @@ pub fn glb(
                     .cloned()
                     .unwrap_or_else(|| format!("material {m}")),
             ),
-            double_sided: true,
+            // Seen from behind, a surface shows its front's light; a translucent one has
+            // a back face of its own with the back's light (radiosity/transmission.rs).
+            double_sided: scene.transmittance.get(m).is_none_or(|t| *t == DVec3::ZERO),
             pbr_metallic_roughness: json::material::PbrMetallicRoughness {
                 base_color_texture,
                 ..Default::default()

@@ -262,7 +262,7 @@ pub struct GpuSolver<'a> {
     /// Shots so far.
     pub shots: usize,
     /// The shooters' records as uploaded (their weights in `[2]`).
-    shooter_info: Vec<[u32; 8]>,
+    shooter_info: Vec<ShooterRecord>,
     shooter_buf: wgpu::Buffer,
     /// Whether the selection weighs the shooters ([`GpuSolver::set_shooter_weights`]).
     weighted: bool,
@@ -468,6 +468,11 @@ fn faces_per_cell(visibility: Visibility) -> u32 {
 /// `SMALL_SHOOTER` in radiosity.wgsl.
 const SMALL_SHOOTER: u32 = 1024;
 
+/// A shooter's record as the shader reads it (`ShooterInfo`): first element, element
+/// count, weight (f32 bits), first piece; reflectance (RGB) and area; transmittance (RGB)
+/// and a pad.
+type ShooterRecord = [u32; 12];
+
 /// Most workgroups along one dimension of a dispatch (WebGPU's limit).
 const MAX_GROUPS_X: u32 = 65_535;
 
@@ -532,9 +537,10 @@ impl<'a> GpuSolver<'a> {
         let start_lit: Vec<[f32; 4]> = (0..n)
             .map(|e| v4(initial.radiosity[e], initial.illuminance[e] as f32))
             .collect();
-        let mut shooter_info: Vec<[u32; 8]> = (0..shooters.len())
+        let mut shooter_info: Vec<ShooterRecord> = (0..shooters.len())
             .map(|k| {
                 let r = scene.reflectance[shooters.material[k]].as_vec3();
+                let t = scene.transmittance[shooters.material[k]].as_vec3();
                 [
                     shooters.first[k],
                     shooters.count[k],
@@ -545,12 +551,16 @@ impl<'a> GpuSolver<'a> {
                     r.y.to_bits(),
                     r.z.to_bits(),
                     (shooters.area[k] as f32).to_bits(),
+                    t.x.to_bits(),
+                    t.y.to_bits(),
+                    t.z.to_bits(),
+                    0,
                 ]
             })
             .collect();
         // Shooters of more than SMALL_SHOOTER elements are summed by a workgroup each:
         // listed after the shooters (range.z: the shooter).
-        let large: Vec<[u32; 8]> = (0..shooters.len())
+        let large: Vec<ShooterRecord> = (0..shooters.len())
             .filter(|&k| shooters.count[k] > SMALL_SHOOTER)
             .map(|k| {
                 let mut record = shooter_info[k];

@@ -23,22 +23,42 @@ pub struct InitialState {
     pub illuminance: Vec<f64>,
 }
 
+/// The luminaires' direct illuminance per element (RGB lux), on its front and, for a
+/// translucent element, on its back.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DirectLight {
+    /// On the element's front (its own side).
+    pub front: Vec<DVec3>,
+    /// On its back (zero where it is opaque).
+    pub back: Vec<DVec3>,
+}
+
 impl InitialState {
     /// Emission only (no luminaire has shot).
     pub fn emission(scene: &RadiosityScene) -> InitialState {
-        InitialState::with_direct(scene, &vec![DVec3::ZERO; scene.elements.len()])
+        let none = vec![DVec3::ZERO; scene.elements.len()];
+        InitialState::with_direct(
+            scene,
+            &DirectLight {
+                front: none.clone(),
+                back: none,
+            },
+        )
     }
 
-    /// Emission plus reflectance × `direct` illuminance (RGB lux per element).
-    pub fn with_direct(scene: &RadiosityScene, direct: &[DVec3]) -> InitialState {
-        let radiosity = direct
-            .iter()
-            .enumerate()
-            .map(|(e, d)| scene.element_emission(e) + scene.element_reflectance(e) * *d)
+    /// Emission plus reflectance × the direct illuminance on the front plus transmittance
+    /// × that on the back ([`super::transmission`]); the illuminance is the front's.
+    pub fn with_direct(scene: &RadiosityScene, direct: &DirectLight) -> InitialState {
+        let radiosity = (0..direct.front.len())
+            .map(|e| {
+                scene.element_emission(e)
+                    + scene.element_reflectance(e) * direct.front[e]
+                    + scene.element_transmittance(e) * direct.back[e]
+            })
             .collect();
         InitialState {
             radiosity,
-            illuminance: direct.iter().map(|d| luminance(*d)).collect(),
+            illuminance: direct.front.iter().map(|d| luminance(*d)).collect(),
         }
     }
 
@@ -58,7 +78,7 @@ impl InitialState {
         let direct = light.rgb(gpu, &samples.points, shadows)?;
         Ok(InitialState::with_direct(
             radiosity_scene,
-            &samples.average(&direct),
+            &samples.direct(&direct),
         ))
     }
 }
@@ -115,12 +135,17 @@ impl LuminaireLight {
 /// its length. Where a luminaire lies behind an element's plane but in front of its
 /// shading normal (the terminator of a curved mesh), the element's samples take the
 /// geometric normal instead, so no light arrives through its back.
+///
+/// A translucent element ([`super::transmission`]) has a second grid facing its back,
+/// after every element's first.
 #[derive(Debug, Clone, PartialEq)]
 pub struct DirectSamples {
     /// The sample points with their element's normal.
     pub points: Vec<SurfacePoint>,
     /// Element e's samples are `points[first[e]..first[e + 1]]`.
     pub first: Vec<usize>,
+    /// The back grids: the element and its samples' range in `points`.
+    pub back: Vec<(usize, std::ops::Range<usize>)>,
     /// Per element, what its samples' mean is multiplied by (the receiving normal's
     /// length; 1 where the element receives with its chart's normal).
     pub scale: Vec<f64>,
@@ -140,39 +165,62 @@ impl DirectSamples {
         let mut points = Vec::with_capacity(el.len());
         let mut first = Vec::with_capacity(el.len() + 1);
         let mut scales = Vec::with_capacity(el.len());
-        for e in 0..el.len() {
-            first.push(points.len());
+        let grid = |e: usize| {
             let texel_m = el.charts[el.chart[e] as usize].texel_m;
             let nearest = positions
                 .iter()
                 .map(|p| p.distance(el.position[e]))
                 .fold(f64::INFINITY, f64::min);
             let n = ((4.0 * texel_m / nearest.max(1e-9)).ceil() as u32).clamp(1, 8);
+            el.texel_samples(e, n)
+        };
+        for e in 0..el.len() {
+            first.push(points.len());
             let (normal, scale) = receiving_direction(scene, e, positions);
             scales.push(scale);
             points.extend(
-                el.texel_samples(e, n)
+                grid(e)
                     .into_iter()
                     .map(|position| SurfacePoint { position, normal }),
             );
         }
         first.push(points.len());
+        let mut back = Vec::new();
+        for e in (0..el.len()).filter(|&e| scene.element_transmittance(e) != DVec3::ZERO) {
+            let start = points.len();
+            let normal = -el.normal(e);
+            points.extend(
+                grid(e)
+                    .into_iter()
+                    .map(|position| SurfacePoint { position, normal }),
+            );
+            back.push((e, start..points.len()));
+        }
         DirectSamples {
             points,
             first,
+            back,
             scale: scales,
         }
     }
 
-    /// Per element the mean of `values` (one per sample point).
-    pub fn average(&self, values: &[DVec3]) -> Vec<DVec3> {
-        self.first
+    /// Per element the mean of `values` (one per sample point) on its front and back.
+    pub fn direct(&self, values: &[DVec3]) -> DirectLight {
+        let mean = |r: std::ops::Range<usize>| {
+            let count = r.len().max(1) as f64;
+            values[r].iter().sum::<DVec3>() / count
+        };
+        let front = self
+            .first
             .windows(2)
             .zip(&self.scale)
-            .map(|(w, scale)| {
-                values[w[0]..w[1]].iter().sum::<DVec3>() * *scale / (w[1] - w[0]).max(1) as f64
-            })
-            .collect()
+            .map(|(w, scale)| mean(w[0]..w[1]) * *scale)
+            .collect();
+        let mut back = vec![DVec3::ZERO; self.scale.len()];
+        for (e, range) in &self.back {
+            back[*e] = mean(range.clone());
+        }
+        DirectLight { front, back }
     }
 }
 

@@ -18,6 +18,7 @@ pub mod scene;
 pub mod shading;
 pub mod shooters;
 pub mod solve;
+pub mod transmission;
 pub mod view;
 
 use crate::photometry::Interp;

@@ -18,6 +18,8 @@ pub struct RadiosityScene {
     /// Diffuse reflectance per material (RGB, 0..1): `Kd` times the mean colour of its
     /// diffuse texture ([`crate::scene::Material::diffuse_reflectance`]).
     pub reflectance: Vec<DVec3>,
+    /// Diffuse transmittance per material (RGB, 0..1; [`super::transmission`]).
+    pub transmittance: Vec<DVec3>,
     /// Luminous exitance per material, lm/m² (RGB).
     pub emission: Vec<DVec3>,
     /// The luminaires.
@@ -44,7 +46,8 @@ pub struct RadiosityScene {
     pub self_hit_epsilon: f64,
     /// Total surface area, m².
     pub total_area: f64,
-    /// The area-weighted mean reflectance (luminance), for the ambient term.
+    /// The area-weighted mean of what a surface sends back out, reflectance plus
+    /// transmittance (luminance), for the ambient term.
     pub mean_reflectance: f64,
 }
 
@@ -63,6 +66,9 @@ impl RadiosityScene {
         level: u32,
         hierarchy: Hierarchy,
     ) -> Result<Self, ElementError> {
+        // Translucent surfaces get back faces of their own (appended after the scene's).
+        let twinned = super::transmission::with_back_faces(scene);
+        let scene = &*twinned;
         let texel_m = 1.0 / texel_density;
         let mut triangles = Vec::with_capacity(scene.triangle_count());
         for m in &scene.meshes {
@@ -119,6 +125,15 @@ impl RadiosityScene {
                         .clamp(DVec3::ZERO, DVec3::splat(0.999))
                 })
                 .collect(),
+            transmittance: scene
+                .materials
+                .iter()
+                .map(|m| {
+                    m.diffuse_transmittance
+                        .as_dvec3()
+                        .clamp(DVec3::ZERO, DVec3::ONE)
+                })
+                .collect(),
             emission: scene
                 .materials
                 .iter()
@@ -143,9 +158,9 @@ impl RadiosityScene {
         let e = &scene.elements;
         scene.total_area = e.area.iter().sum();
         let reflected: f64 = (0..e.len())
-            .map(|k| luminance(scene.element_reflectance(k)) * e.area[k])
+            .map(|k| luminance(scene.element_reemittance(k)) * e.area[k])
             .sum();
-        scene.mean_reflectance = reflected / scene.total_area.max(1e-300);
+        scene.mean_reflectance = (reflected / scene.total_area.max(1e-300)).min(0.999);
         Ok(scene)
     }
 
@@ -239,6 +254,18 @@ impl RadiosityScene {
     /// Reflectance of element `e`.
     pub fn element_reflectance(&self, e: usize) -> DVec3 {
         self.reflectance[self.element_material(e)]
+    }
+
+    /// Diffuse transmittance of element `e`: the share of what arrives on its back that
+    /// it emits ([`super::transmission`]; zero for an opaque surface).
+    pub fn element_transmittance(&self, e: usize) -> DVec3 {
+        self.transmittance[self.element_material(e)]
+    }
+
+    /// What element `e` sends back out of what arrives on both its sides: reflectance
+    /// plus transmittance (light arriving everywhere, as the ambient term's does).
+    pub fn element_reemittance(&self, e: usize) -> DVec3 {
+        self.element_reflectance(e) + self.element_transmittance(e)
     }
 
     /// Exitance of element `e`, lm/m².

@@ -211,7 +211,8 @@ pub fn displayed(
     with_ambient(scene, radiosity, illuminance, ambient_term(scene, unshot))
 }
 
-/// A solution with the ambient term `a` added (reflectance × `a` to the radiosity, its
+/// A solution with the ambient term `a` added ((reflectance + transmittance) × `a` to the
+/// radiosity: it arrives on both sides of a translucent surface; its
 /// luminance to the illuminance): [`displayed`] with a term of the caller's (the view's,
 /// [`super::view::view_ambient`]).
 pub fn with_ambient(
@@ -224,7 +225,7 @@ pub fn with_ambient(
     (0..radiosity.len())
         .map(|e| {
             (
-                radiosity[e] + scene.element_reflectance(e) * a,
+                radiosity[e] + scene.element_reemittance(e) * a,
                 illuminance[e] + lux,
             )
         })

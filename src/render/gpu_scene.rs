@@ -199,6 +199,7 @@ struct MaterialGpu {
     specular: [f32; 4],
     flags: [u32; 4],
     texture_mean: [f32; 4],
+    transmittance: [f32; 4],
 }
 
 /// The uploaded scene.
@@ -480,6 +481,7 @@ fn material_bind_group(gpu: &Gpu, layouts: &Layouts, m: &Material) -> wgpu::Bind
         specular: [m.specular.x, m.specular.y, m.specular.z, m.shininess],
         flags: [m.normal_map.is_some() as u32, 0, 0, 0],
         texture_mean: m.texture_mean().extend(1.0).to_array(),
+        transmittance: m.diffuse_transmittance.extend(0.0).to_array(),
     };
     let buffer = gpu.uniform_buffer("material", &params);
     gpu.bind_group(

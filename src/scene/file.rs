@@ -32,6 +32,10 @@
 //! size = [6.0, 4.0]
 //! height = 0.8
 //!
+//! [[material]]                  # overrides an MTL material: see [`super::materials`]
+//! name = "opal"
+//! diffuse_transmittance = 0.3
+//!
 //! [[observer]]                  # glare (UGR) at an eye: see [`super::observer`]
 //! name = "desk"
 //! position = [1.5, 2.0, 1.2]
@@ -77,6 +81,9 @@ pub struct SceneFile {
     /// Observers rated for glare (UGR) by `goniolight calc`.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub observer: Vec<super::observer::ObserverEntry>,
+    /// Overrides of the models' MTL materials, by name ([`super::materials`]).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub material: Vec<super::materials::MaterialEntry>,
 }
 
 /// The up axis of an OBJ file.

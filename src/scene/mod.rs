@@ -8,6 +8,7 @@ pub mod bump;
 pub mod camera;
 pub mod file;
 pub mod grid;
+pub mod materials;
 pub mod model;
 pub mod observer;
 pub mod palette;
@@ -73,6 +74,8 @@ pub struct Scene {
     pub calc: grid::CalcSettings,
     /// Observers rated for glare (`[[observer]]`).
     pub observers: Vec<Observer>,
+    /// The `[[material]]` overrides as written (already applied to `materials`).
+    pub material_overrides: Vec<materials::MaterialEntry>,
 }
 
 /// Resolves the `[[table]]` entries (`what`: the table's name in keys and messages) one by
@@ -161,6 +164,8 @@ impl Scene {
             let key = format!("model[{i}]");
             meshes.extend(model::load_model(path, &key, &dir, entry, &mut materials)?);
         }
+        materials::apply(&parsed.material, &mut materials)
+            .map_err(|(key, message)| SceneError::new(path, key, message))?;
         if parsed.luminaire.len() > MAX_LUMINAIRES {
             return Err(SceneError::new(
                 path,
@@ -227,6 +232,7 @@ impl Scene {
             grids,
             calc,
             observers,
+            material_overrides: parsed.material,
         })
     }
 

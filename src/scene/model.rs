@@ -31,6 +31,10 @@ pub struct Material {
     /// How radiosity export bakes its surfaces, as the scene file says (`None`: chosen
     /// per surface).
     pub bake: Option<super::file::Bake>,
+    /// Diffuse transmittance (linear RGB): the share of the light arriving on one side
+    /// that the other side emits diffusely (MTL `d`/`Tr` with `Tf`, or `[[material]]`;
+    /// [`super::materials`]).
+    pub diffuse_transmittance: Vec3,
 }
 
 impl Default for Material {
@@ -44,6 +48,7 @@ impl Default for Material {
             diffuse_map: None,
             normal_map: None,
             bake: None,
+            diffuse_transmittance: Vec3::ZERO,
         }
     }
 }
@@ -417,6 +422,41 @@ fn convert(
     Ok((out, dropped))
 }
 
+/// An MTL material's diffuse transmittance ([`super::materials::mtl_transmittance`]).
+fn transmittance(m: &tobj::Material) -> Result<Vec3, String> {
+    let number = |key: &str| -> Result<Option<f64>, String> {
+        m.unknown_param
+            .get(key)
+            .map(|v| {
+                v.trim()
+                    .parse::<f64>()
+                    .map_err(|_| format!("{key} {v:?} is not a number"))
+            })
+            .transpose()
+    };
+    let tf = match m.unknown_param.get("Tf") {
+        None => None,
+        Some(v) => {
+            let values: Vec<f32> = v
+                .split_whitespace()
+                .map(str::parse)
+                .collect::<Result<_, _>>()
+                .map_err(|_| format!("Tf {v:?} is not three numbers"))?;
+            match values[..] {
+                [g] => Some(Vec3::splat(g)),
+                [r, g, b] => Some(Vec3::new(r, g, b)),
+                _ => return Err(format!("Tf {v:?} is not three numbers")),
+            }
+        }
+    };
+    let dissolve = m.dissolve;
+    let t = super::materials::mtl_transmittance(dissolve, number("Tr")?, tf, m.illumination_model);
+    if !t.is_finite() {
+        return Err(format!("Tf/d/Tr give a transmittance {t}"));
+    }
+    Ok(t)
+}
+
 /// Loads each texture once per model.
 struct TextureCache {
     dir: PathBuf,
@@ -483,7 +523,7 @@ impl TextureCache {
             }
             (None, None) => None,
         };
-        Ok(Material {
+        let mut material = Material {
             name: m.name.clone(),
             diffuse,
             specular,
@@ -492,6 +532,21 @@ impl TextureCache {
             diffuse_map,
             normal_map,
             bake: None,
-        })
+            diffuse_transmittance: transmittance(m)?,
+        };
+        // Exporters often keep Kd white on a see-through material: what it transmits is
+        // capped at what it does not reflect.
+        let room = (Vec3::ONE - material.diffuse_reflectance()).max(Vec3::ZERO);
+        if material.diffuse_transmittance.cmpgt(room).any() {
+            eprintln!(
+                "warning: material {:?}: reflectance {} plus transmittance {} exceeds 1; \
+                 the transmittance is capped at {room}",
+                m.name,
+                material.diffuse_reflectance(),
+                material.diffuse_transmittance
+            );
+            material.diffuse_transmittance = material.diffuse_transmittance.min(room);
+        }
+        Ok(material)
     }
 }

@@ -33,6 +33,7 @@ impl Scene {
             grid: self.grids.iter().map(|g| g.entry.clone()).collect(),
             calc: (self.calc != Default::default()).then_some(self.calc),
             observer: self.observers.iter().map(|o| o.entry.clone()).collect(),
+            material: self.material_overrides.clone(),
         }
     }
 

@@ -27,6 +27,7 @@ pub fn scene_of(meshes: Vec<SceneMesh>, materials: Vec<Material>) -> Scene {
         grids: Vec::new(),
         calc: Default::default(),
         observers: Vec::new(),
+        material_overrides: Vec::new(),
     }
 }
 

@@ -1,0 +1,254 @@
+//! `[[material]]`: the scene file overrides an MTL material by name, in every model that
+//! has it (DIALux and Relux users set reflectances per surface the same way).
+//!
+//! ```toml
+//! [[material]]
+//! name = "opal"                   # an MTL material name in the scene's models
+//! diffuse_transmittance = 0.3     # translucent: the far side emits diffusely
+//! [[material]]
+//! name = "wall"
+//! diffuse_reflectance = [0.7, 0.65, 0.6]  # what radiosity reflects (Kd × texture mean)
+//! ```
+//!
+//! Values are linear RGB or one number for all three, each in 0..=1, and a material's
+//! reflectance plus transmittance may not exceed 1 in any channel. The keys
+//! `specular_reflectance` (mirrors) and `specular_transmittance` (clear glass) are part of
+//! the format, but goniolight does not model specular transfer yet and refuses them
+//! rather than treat the surface as opaque.
+
+use glam::Vec3;
+use serde::{Deserialize, Serialize};
+
+use super::model::Material;
+
+/// A colour as the scene file writes it: one number (grey) or linear RGB.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize)]
+#[serde(untagged)]
+pub enum Rgb {
+    /// The same value in every channel.
+    Grey(f64),
+    /// Red, green, blue.
+    Colour([f64; 3]),
+}
+
+impl Rgb {
+    fn vec3(self) -> Vec3 {
+        match self {
+            Rgb::Grey(v) => Vec3::splat(v as f32),
+            Rgb::Colour(c) => Vec3::from_array(c.map(|v| v as f32)),
+        }
+    }
+}
+
+/// `[[material]]`.
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialEntry {
+    /// The MTL material name it overrides.
+    pub name: String,
+    /// The diffuse reflectance radiosity uses (`Kd` is set so that `Kd` × the diffuse
+    /// texture's mean colour equals it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub diffuse_reflectance: Option<Rgb>,
+    /// The share of the light arriving on one side that the other side emits diffusely.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub diffuse_transmittance: Option<Rgb>,
+    /// A mirror's reflectance (refused: not modelled yet).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub specular_reflectance: Option<Rgb>,
+    /// Clear glass's transmittance (refused: not modelled yet).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub specular_transmittance: Option<Rgb>,
+}
+
+/// Applies `entries` to `materials` (those of the scene's models). The error is the key
+/// and the message: an unknown name, a value out of range, reflectance plus transmittance
+/// above 1, or a specular key.
+pub fn apply(
+    entries: &[MaterialEntry],
+    materials: &mut [Material],
+) -> Result<(), (String, String)> {
+    for (i, entry) in entries.iter().enumerate() {
+        let key = format!("material[{i}]");
+        for (field, value) in [
+            ("specular_reflectance", entry.specular_reflectance),
+            ("specular_transmittance", entry.specular_transmittance),
+        ] {
+            if value.is_some() {
+                return Err((
+                    format!("{key}.{field}"),
+                    "mirrors and clear glass (specular transfer) are not modelled yet; \
+                     remove the key, or use diffuse_transmittance for a translucent surface"
+                        .into(),
+                ));
+            }
+        }
+        let reflectance = entry
+            .diffuse_reflectance
+            .map(|v| checked(v, &format!("{key}.diffuse_reflectance")))
+            .transpose()?;
+        let transmittance = entry
+            .diffuse_transmittance
+            .map(|v| checked(v, &format!("{key}.diffuse_transmittance")))
+            .transpose()?;
+        let mut found = false;
+        for m in materials.iter_mut().filter(|m| m.name == entry.name) {
+            found = true;
+            if let Some(r) = reflectance {
+                let mean = m.texture_mean();
+                if r.cmpgt(mean).any() {
+                    return Err((
+                        format!("{key}.diffuse_reflectance"),
+                        format!(
+                            "{r} is more than the diffuse texture's mean colour {mean} can \
+                             reflect with Kd = 1"
+                        ),
+                    ));
+                }
+                m.diffuse = r / mean.max(Vec3::splat(1e-6));
+            }
+            if let Some(t) = transmittance {
+                m.diffuse_transmittance = t;
+            }
+            let sum = m.diffuse_reflectance() + m.diffuse_transmittance;
+            if sum.max_element() > 1.0 + 1e-6 {
+                return Err((
+                    key.clone(),
+                    format!(
+                        "material {:?} would reflect {} and transmit {}: more than it receives",
+                        entry.name,
+                        m.diffuse_reflectance(),
+                        m.diffuse_transmittance
+                    ),
+                ));
+            }
+        }
+        if !found {
+            let mut known: Vec<&str> = materials.iter().skip(1).map(|m| m.name.as_str()).collect();
+            known.sort_unstable();
+            known.dedup();
+            return Err((
+                format!("{key}.name"),
+                format!(
+                    "no model has a material {:?} (their materials: {known:?})",
+                    entry.name
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// `value` as a colour when every channel is finite and within 0..=1.
+fn checked(value: Rgb, key: &str) -> Result<Vec3, (String, String)> {
+    let v = value.vec3();
+    if !v.is_finite() || v.min_element() < 0.0 || v.max_element() > 1.0 {
+        return Err((key.into(), format!("{v} must lie within 0..=1")));
+    }
+    Ok(v)
+}
+
+/// The diffuse transmittance an MTL material states: `(1 − d) × Tf` (`Tr` = 1 − `d` when
+/// `d` is absent; `Tf` white when absent) for the illumination models without
+/// refraction; nothing for `illum` 4, 6, 7 and 9 (glass: specular transmission, not
+/// modelled yet) and for opaque materials (`d` 1, the usual `Tf 1 1 1` alone).
+pub fn mtl_transmittance(
+    dissolve: Option<f64>,
+    tr: Option<f64>,
+    tf: Option<Vec3>,
+    illum: Option<u8>,
+) -> Vec3 {
+    if matches!(illum, Some(4 | 6 | 7 | 9)) {
+        return Vec3::ZERO;
+    }
+    let opacity = dissolve.or(tr.map(|t| 1.0 - t)).unwrap_or(1.0);
+    let clear = (1.0 - opacity).clamp(0.0, 1.0) as f32;
+    (tf.unwrap_or(Vec3::ONE).clamp(Vec3::ZERO, Vec3::ONE)) * clear
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn mtl_statements_map_to_a_transmittance() {
+        let t = mtl_transmittance(Some(0.8), None, Some(Vec3::splat(0.8)), Some(2));
+        assert!((t - Vec3::splat(0.16)).abs().max_element() < 1e-6);
+        assert_eq!(
+            mtl_transmittance(Some(1.0), None, Some(Vec3::ONE), Some(2)),
+            Vec3::ZERO
+        );
+        assert_eq!(
+            mtl_transmittance(None, None, Some(Vec3::ONE), None),
+            Vec3::ZERO
+        );
+        let tr = mtl_transmittance(None, Some(0.3), None, Some(2));
+        assert!((tr - Vec3::splat(0.3)).abs().max_element() < 1e-6);
+        assert_eq!(
+            mtl_transmittance(Some(0.2), None, None, Some(6)),
+            Vec3::ZERO
+        );
+    }
+
+    fn opal() -> Vec<Material> {
+        vec![
+            Material::default(),
+            Material {
+                name: "opal".into(),
+                diffuse: Vec3::splat(0.5),
+                ..Material::default()
+            },
+        ]
+    }
+
+    fn entry(name: &str) -> MaterialEntry {
+        MaterialEntry {
+            name: name.into(),
+            diffuse_reflectance: None,
+            diffuse_transmittance: None,
+            specular_reflectance: None,
+            specular_transmittance: None,
+        }
+    }
+
+    #[test]
+    fn overrides_set_values_and_refuse_what_they_cannot() {
+        let mut m = opal();
+        let e = MaterialEntry {
+            diffuse_transmittance: Some(Rgb::Grey(0.3)),
+            diffuse_reflectance: Some(Rgb::Colour([0.6, 0.5, 0.4])),
+            ..entry("opal")
+        };
+        apply(std::slice::from_ref(&e), &mut m).unwrap();
+        assert_eq!(m[1].diffuse_transmittance, Vec3::splat(0.3));
+        assert_eq!(m[1].diffuse_reflectance(), Vec3::new(0.6, 0.5, 0.4));
+        assert_eq!(m[0].diffuse_transmittance, Vec3::ZERO, "others untouched");
+
+        let too_much = MaterialEntry {
+            diffuse_transmittance: Some(Rgb::Grey(0.6)),
+            ..entry("opal")
+        };
+        let (key, message) = apply(&[too_much], &mut opal()).unwrap_err();
+        assert_eq!(key, "material[0]");
+        assert!(message.contains("more than it receives"), "{message}");
+
+        let (key, message) = apply(&[entry("glas")], &mut opal()).unwrap_err();
+        assert_eq!(key, "material[0].name");
+        assert!(message.contains("\"opal\""), "{message}");
+
+        let out_of_range = MaterialEntry {
+            diffuse_transmittance: Some(Rgb::Grey(-0.1)),
+            ..entry("opal")
+        };
+        let (key, _) = apply(&[out_of_range], &mut opal()).unwrap_err();
+        assert_eq!(key, "material[0].diffuse_transmittance");
+
+        let mirror = MaterialEntry {
+            specular_reflectance: Some(Rgb::Grey(0.9)),
+            ..entry("opal")
+        };
+        let (key, message) = apply(&[mirror], &mut opal()).unwrap_err();
+        assert_eq!(key, "material[0].specular_reflectance");
+        assert!(message.contains("not modelled yet"), "{message}");
+    }
+}
