@@ -83,7 +83,48 @@ pub struct SceneFile {
     pub observer: Vec<super::observer::ObserverEntry>,
     /// Overrides of the models' MTL materials, by name ([`super::materials`]).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub material: Vec<super::materials::MaterialEntry>,
+    pub material: Vec<MaterialEntry>,
+}
+
+/// A colour as the scene file writes it: one number (grey) or linear RGB.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize)]
+#[serde(untagged)]
+pub enum Rgb {
+    /// The same value in every channel.
+    Grey(f64),
+    /// Red, green, blue.
+    Colour([f64; 3]),
+}
+
+impl Rgb {
+    /// The colour as linear RGB.
+    pub fn vec3(self) -> glam::Vec3 {
+        match self {
+            Rgb::Grey(v) => glam::Vec3::splat(v as f32),
+            Rgb::Colour(c) => glam::Vec3::from_array(c.map(|v| v as f32)),
+        }
+    }
+}
+
+/// `[[material]]`.
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialEntry {
+    /// The MTL material name it overrides.
+    pub name: String,
+    /// The diffuse reflectance radiosity uses (`Kd` is set so that `Kd` × the diffuse
+    /// texture's mean colour equals it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub diffuse_reflectance: Option<Rgb>,
+    /// The share of the light arriving on one side that the other side emits diffusely.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub diffuse_transmittance: Option<Rgb>,
+    /// A mirror's reflectance (refused: not modelled yet).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub specular_reflectance: Option<Rgb>,
+    /// Clear glass's transmittance (refused: not modelled yet).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub specular_transmittance: Option<Rgb>,
 }
 
 /// The up axis of an OBJ file.

@@ -1,4 +1,4 @@
-//! `[[material]]`: the scene file overrides an MTL material by name, in every model that
+//! `[[material]]` ([`super::file::MaterialEntry`]): the scene file overrides an MTL material by name, in every model that
 //! has it (DIALux and Relux users set reflectances per surface the same way).
 //!
 //! ```toml
@@ -17,49 +17,9 @@
 //! rather than treat the surface as opaque.
 
 use glam::Vec3;
-use serde::{Deserialize, Serialize};
 
+use super::file::{MaterialEntry, Rgb};
 use super::model::Material;
-
-/// A colour as the scene file writes it: one number (grey) or linear RGB.
-#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize)]
-#[serde(untagged)]
-pub enum Rgb {
-    /// The same value in every channel.
-    Grey(f64),
-    /// Red, green, blue.
-    Colour([f64; 3]),
-}
-
-impl Rgb {
-    fn vec3(self) -> Vec3 {
-        match self {
-            Rgb::Grey(v) => Vec3::splat(v as f32),
-            Rgb::Colour(c) => Vec3::from_array(c.map(|v| v as f32)),
-        }
-    }
-}
-
-/// `[[material]]`.
-#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
-#[serde(deny_unknown_fields)]
-pub struct MaterialEntry {
-    /// The MTL material name it overrides.
-    pub name: String,
-    /// The diffuse reflectance radiosity uses (`Kd` is set so that `Kd` × the diffuse
-    /// texture's mean colour equals it).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub diffuse_reflectance: Option<Rgb>,
-    /// The share of the light arriving on one side that the other side emits diffusely.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub diffuse_transmittance: Option<Rgb>,
-    /// A mirror's reflectance (refused: not modelled yet).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub specular_reflectance: Option<Rgb>,
-    /// Clear glass's transmittance (refused: not modelled yet).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub specular_transmittance: Option<Rgb>,
-}
 
 /// Applies `entries` to `materials` (those of the scene's models). The error is the key
 /// and the message: an unknown name, a value out of range, reflectance plus transmittance
@@ -148,47 +108,9 @@ fn checked(value: Rgb, key: &str) -> Result<Vec3, (String, String)> {
     Ok(v)
 }
 
-/// The diffuse transmittance an MTL material states: `(1 − d) × Tf` (`Tr` = 1 − `d` when
-/// `d` is absent; `Tf` white when absent) for the illumination models without
-/// refraction; nothing for `illum` 4, 6, 7 and 9 (glass: specular transmission, not
-/// modelled yet) and for opaque materials (`d` 1, the usual `Tf 1 1 1` alone).
-pub fn mtl_transmittance(
-    dissolve: Option<f64>,
-    tr: Option<f64>,
-    tf: Option<Vec3>,
-    illum: Option<u8>,
-) -> Vec3 {
-    if matches!(illum, Some(4 | 6 | 7 | 9)) {
-        return Vec3::ZERO;
-    }
-    let opacity = dissolve.or(tr.map(|t| 1.0 - t)).unwrap_or(1.0);
-    let clear = (1.0 - opacity).clamp(0.0, 1.0) as f32;
-    (tf.unwrap_or(Vec3::ONE).clamp(Vec3::ZERO, Vec3::ONE)) * clear
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn mtl_statements_map_to_a_transmittance() {
-        let t = mtl_transmittance(Some(0.8), None, Some(Vec3::splat(0.8)), Some(2));
-        assert!((t - Vec3::splat(0.16)).abs().max_element() < 1e-6);
-        assert_eq!(
-            mtl_transmittance(Some(1.0), None, Some(Vec3::ONE), Some(2)),
-            Vec3::ZERO
-        );
-        assert_eq!(
-            mtl_transmittance(None, None, Some(Vec3::ONE), None),
-            Vec3::ZERO
-        );
-        let tr = mtl_transmittance(None, Some(0.3), None, Some(2));
-        assert!((tr - Vec3::splat(0.3)).abs().max_element() < 1e-6);
-        assert_eq!(
-            mtl_transmittance(Some(0.2), None, None, Some(6)),
-            Vec3::ZERO
-        );
-    }
 
     fn opal() -> Vec<Material> {
         vec![

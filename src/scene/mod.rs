@@ -75,7 +75,7 @@ pub struct Scene {
     /// Observers rated for glare (`[[observer]]`).
     pub observers: Vec<Observer>,
     /// The `[[material]]` overrides as written (already applied to `materials`).
-    pub material_overrides: Vec<materials::MaterialEntry>,
+    pub material_overrides: Vec<file::MaterialEntry>,
 }
 
 /// Resolves the `[[table]]` entries (`what`: the table's name in keys and messages) one by

@@ -422,7 +422,7 @@ fn convert(
     Ok((out, dropped))
 }
 
-/// An MTL material's diffuse transmittance ([`super::materials::mtl_transmittance`]).
+/// An MTL material's diffuse transmittance ([`mtl_transmittance`]).
 fn transmittance(m: &tobj::Material) -> Result<Vec3, String> {
     let number = |key: &str| -> Result<Option<f64>, String> {
         m.unknown_param
@@ -450,11 +450,29 @@ fn transmittance(m: &tobj::Material) -> Result<Vec3, String> {
         }
     };
     let dissolve = m.dissolve;
-    let t = super::materials::mtl_transmittance(dissolve, number("Tr")?, tf, m.illumination_model);
+    let t = mtl_transmittance(dissolve, number("Tr")?, tf, m.illumination_model);
     if !t.is_finite() {
         return Err(format!("Tf/d/Tr give a transmittance {t}"));
     }
     Ok(t)
+}
+
+/// The diffuse transmittance an MTL material states: `(1 − d) × Tf` (`Tr` = 1 − `d` when
+/// `d` is absent; `Tf` white when absent) for the illumination models without
+/// refraction; nothing for `illum` 4, 6, 7 and 9 (glass: specular transmission, not
+/// modelled yet) and for opaque materials (`d` 1, the usual `Tf 1 1 1` alone).
+pub fn mtl_transmittance(
+    dissolve: Option<f64>,
+    tr: Option<f64>,
+    tf: Option<Vec3>,
+    illum: Option<u8>,
+) -> Vec3 {
+    if matches!(illum, Some(4 | 6 | 7 | 9)) {
+        return Vec3::ZERO;
+    }
+    let opacity = dissolve.or(tr.map(|t| 1.0 - t)).unwrap_or(1.0);
+    let clear = (1.0 - opacity).clamp(0.0, 1.0) as f32;
+    (tf.unwrap_or(Vec3::ONE).clamp(Vec3::ZERO, Vec3::ONE)) * clear
 }
 
 /// Loads each texture once per model.
@@ -548,5 +566,30 @@ impl TextureCache {
             material.diffuse_transmittance = material.diffuse_transmittance.min(room);
         }
         Ok(material)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn mtl_statements_map_to_a_transmittance() {
+        let t = mtl_transmittance(Some(0.8), None, Some(Vec3::splat(0.8)), Some(2));
+        assert!((t - Vec3::splat(0.16)).abs().max_element() < 1e-6);
+        assert_eq!(
+            mtl_transmittance(Some(1.0), None, Some(Vec3::ONE), Some(2)),
+            Vec3::ZERO
+        );
+        assert_eq!(
+            mtl_transmittance(None, None, Some(Vec3::ONE), None),
+            Vec3::ZERO
+        );
+        let tr = mtl_transmittance(None, Some(0.3), None, Some(2));
+        assert!((tr - Vec3::splat(0.3)).abs().max_element() < 1e-6);
+        assert_eq!(
+            mtl_transmittance(Some(0.2), None, None, Some(6)),
+            Vec3::ZERO
+        );
     }
 }
