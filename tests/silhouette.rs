@@ -276,6 +276,53 @@ fn an_open_surface_casts_its_shadow_from_its_back_too() {
 }
 
 #[test]
+fn a_partition_inside_a_closed_room_casts_its_shadow_from_its_back() {
+    // A closed room split at z = 1 by a plate from wall to wall, facing down (a ceiling
+    // seen from the room), lit from above it: its border edges are the walls' too, so the
+    // room has no border edge, but three faces share each of those edges. Only a closed,
+    // consistently wound part may leave its unlit faces out of the volume; the plate's
+    // shadow must be cast from its back, as the ray cast does.
+    let (lo, hi) = (DVec3::new(-2.5, -2.5, -1.0), DVec3::new(2.5, 2.5, 3.0));
+    let mut room = Mesh::default();
+    for (a, b) in [(lo.z, 1.0), (1.0, hi.z)] {
+        let part = cuboid(DVec3::new(lo.x, lo.y, a), DVec3::new(hi.x, hi.y, b));
+        let base = room.positions.len() as u32;
+        room.positions.extend(&part.positions);
+        room.triangles.extend(
+            part.triangles
+                .iter()
+                .filter(|t| !t.iter().all(|&i| part.positions[i as usize].z == 1.0))
+                .map(|t| t.map(|i| i + base)),
+        );
+    }
+    let base = room.positions.len() as u32;
+    room.positions.extend([
+        DVec3::new(lo.x, lo.y, 1.0),
+        DVec3::new(hi.x, lo.y, 1.0),
+        DVec3::new(hi.x, hi.y, 1.0),
+        DVec3::new(lo.x, hi.y, 1.0),
+    ]);
+    room.triangles
+        .extend([[0, 2, 1], [0, 3, 2]].map(|t: [u32; 3]| t.map(|i| i + base)));
+    let sm = SilhouetteMesh::new(&room, "room", 1e-9).unwrap();
+    assert!(sm.two_sided.iter().all(|&t| t), "not a closed 2-manifold");
+    let light = Light::new([0.3, -0.2, 2.5, 1.0]).unwrap();
+    let vol = ShadowVolume::build(&sm, &light, &sm.brute(&light));
+    assert!(vol.is_closed());
+    let mut shadowed = 0;
+    for p in ground_grid() {
+        let cast = in_shadow(&room, &light, p, 1e-9);
+        assert_eq!(inside_volume(&vol, p), cast, "{p}");
+        shadowed += cast as usize;
+    }
+    assert_eq!(
+        shadowed,
+        ground_grid().count(),
+        "the whole floor is under the plate"
+    );
+}
+
+#[test]
 fn zpass_zfail_decision_matches_sampling() {
     let mesh = cuboid(DVec3::new(-1.0, -1.0, 0.0), DVec3::new(1.0, 1.0, 2.0));
     let light = Light::new([0.0, 0.0, 10.0, 1.0]).unwrap();

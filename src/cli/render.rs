@@ -210,6 +210,7 @@ pub fn render_to_files(
     settings.read_hdr = exr.is_some();
     let started = Instant::now();
     check_scene(gpu, scene, &mut settings.shadows)?;
+    warn_translucent_in_volumes(scene, &settings.shadows, light_map.is_some());
     let uploaded = match light_map {
         Some(map) => renderer.upload_solved(gpu, scene, map),
         None => renderer.upload(gpu, scene),
@@ -319,4 +320,26 @@ pub fn run_illuminance(args: IlluminanceArgs) -> Result<(), CliError> {
     }
     print!("{out}");
     Ok(())
+}
+
+/// Stencil shadow volumes start at a surface turned from the light, so a translucent
+/// surface lit from behind stays dark in a direct render with them: said once, with the
+/// choice that shows it (a solved light map holds the transmitted light either way).
+fn warn_translucent_in_volumes(
+    scene: &Scene,
+    shadows: &crate::render::ShadowSettings,
+    solved: bool,
+) {
+    let translucent = scene.meshes.iter().any(|m| {
+        scene.materials.get(m.material).is_some_and(|mat| {
+            crate::radiosity::transmission::is_translucent(mat.diffuse_transmittance)
+        })
+    });
+    if translucent && !solved && shadows.technique == crate::shadow::ShadowTechnique::Volumes {
+        eprintln!(
+            "warning: {}: stencil shadow volumes cannot light a translucent surface from \
+             behind; it stays dark in this image (--shadows paraboloid shows it)",
+            scene.path.display()
+        );
+    }
 }

@@ -69,8 +69,8 @@ pub struct SilhouetteMesh {
     /// Indices into `adjacency.edges` of every other edge (border, inconsistent,
     /// non-manifold), tested directly by every method.
     pub others: Vec<u32>,
-    /// Per face: whether it belongs to an open surface (a connected part with a border
-    /// edge), which casts a shadow from whichever side the light reaches: its faces turned
+    /// Per face: whether it belongs to an open surface (a connected part with an edge
+    /// that is not manifold: a border, faces wound alike, or a partition), which casts a shadow from whichever side the light reaches: its faces turned
     /// from the light count as lit with their winding reversed. A closed part's unlit
     /// faces need not (the lit ones' volume already holds their shadow).
     pub two_sided: Vec<bool>,
@@ -268,7 +268,9 @@ impl SilhouetteMesh {
 }
 
 /// Per face of `face_count`: whether its connected part (faces joined by edges that two or
-/// more faces share) has a border edge.
+/// more faces share) is open: has an edge that is not manifold (a border, two faces wound
+/// alike, or three or more faces: a partition inside a closed room). Only a closed,
+/// consistently wound part holds its unlit faces' shadow in its lit faces' volume.
 fn open_surfaces(adjacency: &Adjacency, face_count: usize) -> Vec<bool> {
     let mut parent: Vec<u32> = (0..face_count as u32).collect();
     fn root(parent: &mut [u32], mut f: u32) -> u32 {
@@ -282,7 +284,7 @@ fn open_surfaces(adjacency: &Adjacency, face_count: usize) -> Vec<bool> {
     let mut border_faces = Vec::new();
     for e in &adjacency.edges {
         let faces = adjacency.faces(e);
-        if faces.len() == 1 {
+        if adjacency.kind(e) != EdgeKind::Manifold {
             border_faces.push(faces[0].face);
         }
         for w in faces.windows(2) {
