@@ -115,6 +115,12 @@ fn element_level(in: VertexOut) -> f32 {
 
 @fragment
 fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
+    let solved = frame.light_map != 0u;
+    // Solved, a translucent surface has a back face of its own with its far side's light
+    // (scene/back_faces.rs): each side is drawn from its front only.
+    if (solved && !front && any(material.transmittance.rgb > vec3<f32>(0.0))) {
+        discard;
+    }
     var n_geo = normalize(in.normal);
     if (!front) {
         n_geo = -n_geo;
@@ -124,7 +130,6 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> @location(0) ve
     if (material.diffuse.w > 0.5) {
         texture_rgb = textureSample(diffuse_map, material_sampler, in.uv).rgb;
     }
-    let solved = frame.light_map != 0u;
     // A solved normal-mapped surface: the light map holds what each element received
     // with its mean normal; the relief finer than an element is the direct light with
     // the pixel's normal less that with the element's.

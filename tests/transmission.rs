@@ -9,15 +9,19 @@
 use std::path::Path;
 
 use glam::{DVec3, Vec3};
+use goniolight::photometry::Luminaire;
 use goniolight::radiosity::cpu::CpuSolver;
 use goniolight::radiosity::gpu::GpuSettings;
 use goniolight::radiosity::initial::{DirectSamples, InitialState, LuminaireLight};
 use goniolight::radiosity::scene::{luminance, RadiosityScene};
 use goniolight::radiosity::shooters::Hierarchy;
+use goniolight::radiosity::solve;
 use goniolight::radiosity::SolverSettings;
-use goniolight::render::ShadowSettings;
-use goniolight::scene::{Material, Scene, SceneMesh};
+use goniolight::render::{RenderSettings, Renderer, ShadowSettings};
+use goniolight::scene::placement::aim_frame;
+use goniolight::scene::{Camera, DisplayEntry, Material, PlacedLuminaire, Scene, SceneMesh};
 
+mod common;
 #[path = "common/furnace.rs"]
 mod furnace_common;
 #[path = "common/gpu.rs"]
@@ -272,4 +276,53 @@ fn gpu_and_cpu_agree_under_the_luminous_ceiling() {
             "{name}: GPU {g} against CPU {c}"
         );
     }
+}
+
+/// The solved display draws each side of a translucent surface with its own light: a
+/// floor lit from below shows τ E / π from above and ρ E / π from below (before, both
+/// sides showed the top's light map).
+#[test]
+fn each_side_of_a_translucent_surface_shows_its_own_light_when_solved() {
+    let Some(gpu) = gpu_common::gpu() else { return };
+    let mut scene = furnace_common::closed_box(0.5, 0.0);
+    scene.materials[0] = Material {
+        name: "opal".into(),
+        diffuse: Vec3::splat(0.4),
+        diffuse_transmittance: Vec3::splat(0.3),
+        ..Material::default()
+    };
+    let p = |x: f32, y: f32| Vec3::new(x, y, 0.0);
+    let quad = [
+        [p(-2.0, -2.0), p(2.0, -2.0), p(2.0, 2.0)],
+        [p(-2.0, -2.0), p(2.0, 2.0), p(-2.0, 2.0)],
+    ];
+    scene.meshes = vec![SceneMesh::from_triangles("floor", &quad, 0)];
+    let ldt = Luminaire::load(&common::luminaire("eulumdat-plot/sample_06_isym1.ldt")).unwrap();
+    let mut lamp = PlacedLuminaire::new("lamp", ldt, DVec3::new(0.0, 0.0, -1.5));
+    lamp.rotation = aim_frame(Some(DVec3::Z), 0.0);
+    scene.luminaires = vec![lamp];
+    let r = RadiosityScene::new(&scene, 8.0, 1).unwrap();
+    let start = CpuSolver::new(&r, SolverSettings::default()).state();
+    let map = solve::light_map(&r, &start.radiosity, &start.illuminance);
+    let renderer = Renderer::new(&gpu);
+    let uploaded = renderer.upload_solved(&gpu, &scene, &map);
+    let mut settings = RenderSettings::from_display(&DisplayEntry::default());
+    (settings.width, settings.height, settings.read_hdr) = (64, 64, true);
+    settings.shadows = ShadowSettings::none();
+    let mean_from = |z: f64| -> f64 {
+        let camera = Camera::perspective(DVec3::new(0.0, 0.01, z), DVec3::ZERO, 40.0);
+        let hdr = renderer
+            .render(&gpu, &uploaded, &camera, &settings)
+            .unwrap()
+            .hdr
+            .unwrap();
+        hdr.iter().map(|p| p[1] as f64).sum::<f64>() / hdr.len() as f64
+    };
+    let (above, below) = (mean_from(3.0), mean_from(-3.0));
+    eprintln!("solved display: {above:.3} cd/m² from above, {below:.3} from below");
+    assert!(above > 1.0, "{above}");
+    assert!(
+        (below / above / (0.4 / 0.3) - 1.0).abs() < 0.02,
+        "{below} / {above}"
+    );
 }

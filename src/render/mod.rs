@@ -153,14 +153,17 @@ impl Renderer {
     }
 
     /// Uploads a scene with its solved radiosity light map (displayed instead of the
-    /// direct diffuse light; the luminaires add their specular term).
+    /// direct diffuse light; the luminaires add their specular term). A translucent
+    /// surface's back faces come too, each side showing its own light
+    /// ([`crate::scene::back_faces`]).
     pub fn upload_solved(
         &self,
         gpu: &Gpu,
         scene: &Scene,
         light_map: &lightmap::LightMap,
     ) -> GpuScene {
-        GpuScene::with_light_map(gpu, &self.layouts, scene, Some(light_map))
+        let scene = crate::scene::back_faces::with_back_faces(scene);
+        GpuScene::with_light_map(gpu, &self.layouts, &scene, Some(light_map))
     }
 
     /// Renders the HDR image of `scene` seen by `camera` into `targets` `frames` times in

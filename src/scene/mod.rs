@@ -4,6 +4,7 @@
 //! Frames: the world is right-handed with +Z up (metres). A luminaire's own frame has
 //! γ = 0 along −Z and C0 along +X; [`PlacedLuminaire::rotation`] maps it to the world.
 
+pub mod back_faces;
 pub mod bump;
 pub mod camera;
 pub mod file;
