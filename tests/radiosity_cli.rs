@@ -429,6 +429,21 @@ fn bench_radiosity_json_has_the_contract_keys() {
         assert!(0.0 < s90 && s90 <= s99 && 0 < n90 && n90 < n99, "{r}");
         assert!(r["ms_per_shot"].as_f64().unwrap() > 0.0);
         assert_eq!(r["map_size"], 256);
+        // The GPU's own clock (lavapipe has timestamp queries): both passes took time,
+        // batches were timed, and the passes fit in the run.
+        let gpu = &r["gpu_pass_seconds"];
+        let (maps, receive) = (
+            gpu["maps"].as_f64().unwrap(),
+            gpu["receive"].as_f64().unwrap(),
+        );
+        assert!(maps > 0.0 && receive > 0.0, "{r}");
+        assert!(
+            maps + receive < 1.1 * r["seconds"].as_f64().unwrap() + 0.05,
+            "{r}"
+        );
+        assert!(gpu["batches"].as_u64().unwrap() >= 1, "{r}");
+        let receivers = r["receivers_per_map"].as_f64().unwrap();
+        assert!(receivers > 0.0 && receivers <= elements as f64, "{r}");
     }
 }
 

@@ -70,6 +70,11 @@ pub struct RadiosityBenchRow {
     /// Share of the shooting units whose cells came from the plan cache (laid out in an
     /// earlier shot of the same side).
     pub plan_cache_hits: f64,
+    /// Receiver threads dispatched per map (the batch's culled receivers).
+    pub receivers_per_map: f64,
+    /// The GPU's own time in the batches' visibility and receive passes (`None` where the
+    /// adapter has no timestamp queries).
+    pub gpu_pass_seconds: Option<crate::radiosity::gpu::GpuPassSeconds>,
 }
 
 /// Total area of a scene's triangles, m².
@@ -186,6 +191,7 @@ pub fn run(
         let shooter_count = shooters.len();
         let mut solver =
             GpuSolver::with_shooters(gpu, rscene, initial, settings, gpu_settings, shooters);
+        solver.time_passes();
         let stop = StopAt {
             converge: 0.99,
             max_shots: Some(max_shots),
@@ -196,6 +202,7 @@ pub fn run(
         })?;
         let reach = |target: f64| log.iter().find(|p| p.convergence >= target);
         let seconds = log.last().map_or(0.0, |p| p.seconds);
+        let gpu_pass_seconds = solver.gpu_pass_seconds()?;
         rows.push(RadiosityBenchRow {
             visibility: format!("{visibility:?}").to_lowercase(),
             hierarchy: format!("{hierarchy:?}").to_lowercase(),
@@ -226,6 +233,8 @@ pub fn run(
                 let c = &solver.plan_cache;
                 c.hits as f64 / (c.hits + c.misses).max(1) as f64
             },
+            receivers_per_map: solver.receiver_threads as f64 / solver.drawn.max(1) as f64,
+            gpu_pass_seconds,
         });
     }
     Ok(rows)

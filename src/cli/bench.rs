@@ -504,6 +504,23 @@ fn run_radiosity(
             100.0 * r.plan_cache_hits,
         );
     }
+    println!("The GPU's own clock (timestamps around each batch's passes; s):");
+    for r in &rows {
+        match &r.gpu_pass_seconds {
+            Some(g) => println!(
+                "{}: visibility maps {:.3} ({:.1} µs a map), receive {:.3} ({:.1} µs a map, {:.0} receivers a map), in {} batches; GPU busy in them {:.0} % of the run",
+                row_label(r),
+                g.maps,
+                1e6 * g.maps / r.maps.max(1) as f64,
+                g.receive,
+                1e6 * g.receive / r.maps.max(1) as f64,
+                r.receivers_per_map,
+                g.batches,
+                100.0 * (g.maps + g.receive) / r.seconds.max(1e-9),
+            ),
+            None => println!("{}: this adapter has no timestamp queries", row_label(r)),
+        }
+    }
     for r in rows.iter().filter(|r| r.seconds_99.is_none()) {
         println!(
             "{}: {:.2} % after {} shots in {:.1} s (— : not reached within --max-shots {} or --time-limit)",

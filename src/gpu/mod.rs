@@ -157,8 +157,10 @@ impl Gpu {
         };
         let info = adapter.get_info();
         check_backend(&adapter)?;
-        let wanted_features =
-            wgpu::Features::DEPTH32FLOAT_STENCIL8 | wgpu::Features::DEPTH_CLIP_CONTROL;
+        let wanted_features = wgpu::Features::DEPTH32FLOAT_STENCIL8
+                | wgpu::Features::DEPTH_CLIP_CONTROL
+                // The radiosity benchmark's GPU pass timers (radiosity/gpu/timers.rs).
+                | wgpu::Features::TIMESTAMP_QUERY;
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("goniolight"),
             required_features: adapter.features() & wanted_features,
@@ -463,8 +465,10 @@ impl Gpu {
         self.read_bytes_prefix(buffer, buffer.size(), before)
     }
 
-    /// [`Gpu::read_bytes`] of the first `size` bytes.
-    fn read_bytes_prefix(
+    /// Copies the first `size` bytes of `buffer` (which must allow COPY_SRC) back to the
+    /// CPU, after recording `before` (a copy or query resolve into it) in the same
+    /// submission.
+    pub fn read_bytes_prefix(
         &self,
         buffer: &wgpu::Buffer,
         size: u64,

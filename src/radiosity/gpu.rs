@@ -26,9 +26,11 @@ use crate::render::layouts::{buffer_binding, entry};
 mod chunks;
 mod deferred;
 mod relight;
+mod timers;
 
 pub use chunks::{MeshChunks, TileView};
 pub use deferred::WIDEN_AT;
+pub use timers::GpuPassSeconds;
 
 /// How a shooting patch sees what it can reach.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Deserialize)]
@@ -298,6 +300,8 @@ pub struct GpuSolver<'a> {
     pub times: ShotTimes,
     /// The shooting units planned so far, for shots that repeat their layout.
     pub plan_cache: PlanCache,
+    /// The GPU's timestamps around each batch's passes ([`GpuSolver::time_passes`]).
+    timers: Option<timers::PassTimers>,
 }
 
 fn storage(gpu: &Gpu, label: &str, data: &[u8], writable: bool) -> wgpu::Buffer {
@@ -749,6 +753,7 @@ impl<'a> GpuSolver<'a> {
             culled: (0, 0),
             large_shooters,
             receiver_threads: 0,
+            timers: None,
             receivers: ReceiverBoxes::new(scene),
             drawn: 0,
             skipped: 0,
@@ -1277,7 +1282,7 @@ impl<'a> GpuSolver<'a> {
         let most = (VisibilityAtlas::max_tiles(self.gpu, self.atlas.size) / faces).max(1);
         for part in drawn.chunks(most as usize) {
             self.atlas.reserve(self.gpu, part.len() as u32 * faces);
-            self.record_part(&mut enc, plan, links, part);
+            self.record_part(&mut enc, plan, links, part)?;
         }
         Ok(self.gpu.queue.submit([enc.finish()]))
     }
@@ -1290,8 +1295,12 @@ impl<'a> GpuSolver<'a> {
         plan: &ShotPlan,
         links: &Links,
         drawn: &[usize],
-    ) {
+    ) -> Result<(), GpuError> {
         let (shots, faces, views) = self.shot_records(plan, links, drawn);
+        let queries = match &mut self.timers {
+            Some(t) => Some(t.next_batch(self.gpu)?),
+            None => None,
+        };
         let dev = &self.gpu.device;
         let uniform = |label: &str, data: &[u8]| {
             dev.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -1345,7 +1354,7 @@ impl<'a> GpuSolver<'a> {
                     }),
                     stencil_ops: None,
                 }),
-                timestamp_writes: None,
+                timestamp_writes: queries.as_ref().map(|q| q.maps()),
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
@@ -1372,12 +1381,38 @@ impl<'a> GpuSolver<'a> {
         }
         let receivers = self.culled.1;
         self.receiver_threads += u64::from(receivers) * drawn.len() as u64;
-        let mut pass = enc.begin_compute_pass(&Default::default());
+        let mut pass = enc.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("receive"),
+            timestamp_writes: queries.as_ref().map(|q| q.receive()),
+        });
         pass.set_pipeline(&self.pipelines.receive);
         pass.set_bind_group(0, &self.shared, &[]);
         for k in 0..drawn.len() as u64 {
             pass.set_bind_group(1, &shot_bind, &[(k * SHOT_STRIDE) as u32]);
             dispatch_groups(&mut pass, receivers.div_ceil(64));
+        }
+        Ok(())
+    }
+
+    /// Times each batch's visibility and receive passes by the GPU's own clock from now
+    /// on ([`GpuSolver::gpu_pass_seconds`]). False (and nothing timed) where the device
+    /// has no timestamp queries.
+    pub fn time_passes(&mut self) -> bool {
+        if self.timers.is_none() {
+            self.timers = timers::PassTimers::new(self.gpu);
+        }
+        self.timers.is_some()
+    }
+
+    /// The GPU's seconds in the timed passes so far (`None` unless
+    /// [`GpuSolver::time_passes`] holds): waits for the GPU.
+    pub fn gpu_pass_seconds(&mut self) -> Result<Option<GpuPassSeconds>, GpuError> {
+        match &mut self.timers {
+            Some(t) => {
+                t.read_back(self.gpu)?;
+                Ok(Some(t.seconds))
+            }
+            None => Ok(None),
         }
     }
 
