@@ -330,11 +330,7 @@ fn warn_translucent_in_volumes(
     shadows: &crate::render::ShadowSettings,
     solved: bool,
 ) {
-    let translucent = scene.meshes.iter().any(|m| {
-        scene.materials.get(m.material).is_some_and(|mat| {
-            crate::radiosity::transmission::is_translucent(mat.diffuse_transmittance)
-        })
-    });
+    let translucent = crate::scene::back_faces::has_translucent_surfaces(scene);
     if translucent && !solved && shadows.technique == crate::shadow::ShadowTechnique::Volumes {
         eprintln!(
             "warning: {}: stencil shadow volumes cannot light a translucent surface from \

@@ -12,17 +12,26 @@ pub fn is_translucent(t: glam::Vec3) -> bool {
     t.max_element() > 0.0
 }
 
+/// Whether mesh `m` of `scene` has a translucent material.
+fn is_translucent_mesh(scene: &Scene, m: &SceneMesh) -> bool {
+    scene
+        .materials
+        .get(m.material)
+        .is_some_and(|mat| is_translucent(mat.diffuse_transmittance))
+}
+
+/// Whether some surface of `scene` is translucent (its material has a diffuse
+/// transmittance).
+pub fn has_translucent_surfaces(scene: &Scene) -> bool {
+    scene.meshes.iter().any(|m| is_translucent_mesh(scene, m))
+}
+
 /// `scene` with a back face for every triangle of a translucent material, appended after
 /// its meshes (a luminaire housing's back faces are part of the housing); `scene` itself
 /// when nothing is translucent.
 pub fn with_back_faces(scene: &Scene) -> Cow<'_, Scene> {
-    let translucent = |m: &SceneMesh| {
-        scene
-            .materials
-            .get(m.material)
-            .is_some_and(|mat| is_translucent(mat.diffuse_transmittance))
-    };
-    if !scene.meshes.iter().any(translucent) {
+    let translucent = |m: &SceneMesh| is_translucent_mesh(scene, m);
+    if !has_translucent_surfaces(scene) {
         return Cow::Borrowed(scene);
     }
     let mut out = scene.clone();
