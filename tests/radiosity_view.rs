@@ -208,18 +208,19 @@ fn receivers_that_wait_are_given_the_shots_they_missed() {
     };
     let (_, r, initial) = boxes_room(&gpu);
     let settings = SolverSettings::default();
-    let gpu_settings = GpuSettings::default();
+    // Maps of 64² texels: a store of 256 MiB keeps every missed cell's (about 50 MiB:
+    // grown twice from its first 16 MiB, the kept maps copied over each time).
+    let gpu_settings = GpuSettings {
+        map_size: 64,
+        ..GpuSettings::default()
+    };
     let mut all = GpuSolver::new(&gpu, &r, &initial, settings, gpu_settings);
-    let mut waiting = GpuSolver::new(&gpu, &r, &initial, settings, gpu_settings);
     // Batches by count, not by each solver's clock.
     all.fix_batch(16);
-    waiting.fix_batch(16);
     // Every other chart waits; the shots are from triangles of charts that receive (so
     // both solvers shoot the same light).
     let el = &r.elements;
     let receiving: Vec<bool> = (0..el.charts.len()).map(|c| c % 2 == 0).collect();
-    waiting.set_receiving(&receiving).unwrap();
-    assert!(waiting.waiting_charts() > 3);
     let shooters: Vec<usize> = (0..all.shooters().len())
         .filter(|&k| {
             all.shooters()
@@ -232,44 +233,69 @@ fn receivers_that_wait_are_given_the_shots_they_missed() {
     assert_eq!(shooters.len(), 12);
     for &k in &shooters {
         all.shoot(k).unwrap();
-        waiting.shoot(k).unwrap();
     }
-    let before = waiting.radiosity().unwrap();
     let expected = all.radiosity().unwrap();
-    // Elements more than 1 % apart. (A missed shot is caught up in batches of its own,
-    // so a map's place in the atlas differs from the one the other solver drew, and a
-    // texel at a depth edge may flip: one element in a thousand may differ.)
-    let differ = |a: &[DVec3], b: &[DVec3]| {
+    // Elements more than `tolerance` apart.
+    let differ = |a: &[DVec3], b: &[DVec3], tolerance: f64| {
         (0..el.len())
-            .filter(|&e| (a[e] - b[e]).length() > 1e-2 * (1e-3 + b[e].length()))
+            .filter(|&e| (a[e] - b[e]).length() > tolerance * (1e-3 + b[e].length()))
             .count()
     };
-    let missed = differ(&before, &expected);
-    assert!(
-        missed > el.len() / 5,
-        "the waiting charts missed light: {missed}"
-    );
-    assert_eq!(waiting.missed_shots(), 12);
-    let given = waiting.set_receiving(&vec![true; el.charts.len()]).unwrap();
-    assert_eq!(given, 12);
-    assert_eq!(waiting.missed_shots(), 0);
-    let flipped = differ(&waiting.radiosity().unwrap(), &expected);
-    eprintln!(
-        "caught up: {flipped} of {} elements more than 1 % off",
-        el.len()
-    );
-    assert!(
-        flipped <= el.len() / 1000,
-        "{flipped} of {} elements differ",
-        el.len()
-    );
-    // And the light they have yet to shoot is the same.
-    let total = |v: &[DVec3]| v.iter().map(|b| b.x).sum::<f64>();
-    let (got, want) = (
-        total(&waiting.unshot().unwrap()),
-        total(&all.unshot().unwrap()),
-    );
-    assert!((got - want).abs() < 1e-4 * want, "{got} vs {want}");
+    // The missed cells' maps kept, then drawn again to catch up (the default).
+    assert_eq!(goniolight::radiosity::gpu::DEFAULT_MAP_STORE_BYTES, 0);
+    for store in [256 << 20, 0] {
+        let mut waiting = GpuSolver::new(&gpu, &r, &initial, settings, gpu_settings);
+        waiting.fix_batch(16);
+        waiting.set_map_store_bytes(store);
+        waiting.set_receiving(&receiving).unwrap();
+        assert!(waiting.waiting_charts() > 3);
+        for &k in &shooters {
+            waiting.shoot(k).unwrap();
+        }
+        let missed = differ(&waiting.radiosity().unwrap(), &expected, 1e-2);
+        assert!(
+            missed > el.len() / 5,
+            "the waiting charts missed light: {missed}"
+        );
+        assert_eq!(waiting.missed_shots(), 12);
+        let drawn = waiting.drawn;
+        eprintln!("{drawn} maps drawn, store {store} bytes");
+        let given = waiting.set_receiving(&vec![true; el.charts.len()]).unwrap();
+        assert_eq!(given, 12);
+        assert_eq!(waiting.missed_shots(), 0);
+        let caught_up = waiting.radiosity().unwrap();
+        if store > 0 {
+            // The very maps the shots were received through: nothing drawn, and every
+            // element gets what it would have had (to rounding).
+            assert_eq!(waiting.drawn, drawn, "a kept map was drawn again");
+            assert!(waiting.maps_reused() > 0);
+            let off = differ(&caught_up, &expected, 1e-5);
+            assert_eq!(off, 0, "{off} elements differ with kept maps");
+        } else {
+            // Drawn again in batches of their own, a map's place in the atlas differs
+            // from the one the other solver drew, and a texel at a depth edge may flip:
+            // one element in a thousand may differ by more than 1 %.
+            assert!(waiting.drawn > drawn);
+            assert_eq!(waiting.maps_reused(), 0);
+            let flipped = differ(&caught_up, &expected, 1e-2);
+            eprintln!(
+                "caught up by drawing: {flipped} of {} elements more than 1 % off",
+                el.len()
+            );
+            assert!(
+                flipped <= el.len() / 1000,
+                "{flipped} of {} elements differ",
+                el.len()
+            );
+        }
+        // And the light they have yet to shoot is the same.
+        let total = |v: &[DVec3]| v.iter().map(|b| b.x).sum::<f64>();
+        let (got, want) = (
+            total(&waiting.unshot().unwrap()),
+            total(&all.unshot().unwrap()),
+        );
+        assert!((got - want).abs() < 1e-4 * want, "{got} vs {want}");
+    }
 }
 
 #[test]
@@ -326,6 +352,8 @@ fn the_benchmark_measures_every_drive_through_the_command() {
             "0.1",
             "--rooms",
             "2",
+            "--map-store-mib",
+            "64",
         ],
         "",
     );
@@ -345,6 +373,9 @@ fn the_benchmark_measures_every_drive_through_the_command() {
         let shot = r["seconds_shot"].as_f64().expect("each drive reaches 10 %");
         assert!(r["importance_seconds"].as_f64().unwrap() <= shot, "{r}");
         assert!(r["seconds_shown"].as_f64().is_some(), "{r}");
+        // Only perspective-driven receivers wait, and their catch-up reuses kept maps.
+        let reused = r["maps_reused"].as_u64().unwrap();
+        assert_eq!(reused > 0, r["drive"] == "perspective", "{r}");
     }
     let (code, _, err) = common::run_cli(&["bench", "radiosity-view", "--rooms", "0"], "");
     assert_eq!(code, 2, "{err}");

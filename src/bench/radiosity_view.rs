@@ -37,6 +37,8 @@ pub struct ViewBenchRow {
     pub final_error: f64,
     /// Visibility maps drawn in the run.
     pub maps: usize,
+    /// Maps copied back from the kept maps for a catch-up (perspective-driven), not drawn.
+    pub maps_reused: usize,
     /// Shots in the run.
     pub shots: usize,
 }
@@ -83,6 +85,10 @@ pub struct ViewBenchPlan {
     /// Perspective-driven: the first area of interest's margin, degrees.
     #[cfg_attr(feature = "cli", arg(long, default_value_t = 10.0))]
     pub fov_margin: f64,
+    /// Perspective-driven: MiB of visibility maps kept for the receivers that wait, so
+    /// their catch-up copies rather than draws them (0: drawn again).
+    #[cfg_attr(feature = "cli", arg(long, default_value_t = crate::radiosity::gpu::DEFAULT_MAP_STORE_BYTES >> 20))]
+    pub map_store_mib: u64,
 }
 
 /// The view's error of `radiosity` against `reference`: Σ W |ΔL| / Σ W L over the
@@ -180,6 +186,7 @@ pub fn run(
     for drive in [Drive::Global, Drive::Importance, Drive::Perspective] {
         progress(drive.name());
         let mut solver = GpuSolver::new(gpu, &rscene, &initial, settings, gpu_settings);
+        solver.set_map_store_bytes(plan.map_store_mib << 20);
         // The clock runs only while the solver works (not while the bench reads back).
         let mut clock = 0.0;
         let driven = match drive {
@@ -202,6 +209,7 @@ pub fn run(
             shots_shot: None,
             final_error: f64::NAN,
             maps: 0,
+            maps_reused: 0,
             shots: 0,
         };
         loop {
@@ -239,6 +247,7 @@ pub fn run(
             }
         }
         row.maps = solver.drawn;
+        row.maps_reused = solver.maps_reused();
         row.shots = solver.shots;
         rows.push(row);
     }

@@ -676,8 +676,8 @@ fn run_radiosity_view(
         result.reference_seconds
     );
     let tol = 100.0 * result.tolerance;
-    println!("| drive | importance s | to {tol:.0} % shown s | to {tol:.0} % shot s | shots | × global (shot) | maps |");
-    println!("|---|---|---|---|---|---|---|");
+    println!("| drive | importance s | to {tol:.0} % shown s | to {tol:.0} % shot s | shots | × global (shot) | maps | maps reused |");
+    println!("|---|---|---|---|---|---|---|---|");
     let fmt = |v: Option<f64>| v.map_or("not reached".to_string(), |s| format!("{s:.2}"));
     let base = result.rows.first().and_then(|r| r.seconds_shot);
     for r in &result.rows {
@@ -686,13 +686,14 @@ fn run_radiosity_view(
             _ => "–".to_string(),
         };
         println!(
-            "| {} | {:.2} | {} | {} | {} | {ratio} | {} |",
+            "| {} | {:.2} | {} | {} | {} | {ratio} | {} | {} |",
             r.drive,
             r.importance_seconds,
             fmt(r.seconds_shown),
             fmt(r.seconds_shot),
             r.shots_shot.map_or("–".to_string(), |s| s.to_string()),
-            r.maps
+            r.maps,
+            r.maps_reused
         );
     }
     Ok(())

@@ -25,6 +25,8 @@ pub struct VisibilityAtlas {
     pub columns: u32,
     /// Rows.
     pub rows: u32,
+    /// The maps' texture.
+    pub texture: wgpu::Texture,
     /// The maps (sampled by the receive pass).
     pub view: wgpu::TextureView,
     /// Their depth.
@@ -35,31 +37,43 @@ impl VisibilityAtlas {
     /// An atlas of tiles of `size` holding at least `tiles` (within the GPU's limits).
     pub fn new(gpu: &Gpu, size: u32, tiles: u32) -> VisibilityAtlas {
         let (columns, rows) = layout(tiles, max_columns(gpu, size));
-        let texture = |label: &str, format| {
-            gpu.device
-                .create_texture(&wgpu::TextureDescriptor {
-                    label: Some(label),
-                    size: wgpu::Extent3d {
-                        width: columns * size,
-                        height: rows * size,
-                        depth_or_array_layers: 1,
-                    },
-                    mip_level_count: 1,
-                    sample_count: 1,
-                    dimension: wgpu::TextureDimension::D2,
-                    format,
-                    usage: wgpu::TextureUsages::RENDER_ATTACHMENT
-                        | wgpu::TextureUsages::TEXTURE_BINDING,
-                    view_formats: &[],
-                })
-                .create_view(&Default::default())
+        let texture = |label: &str, format, usage| {
+            gpu.device.create_texture(&wgpu::TextureDescriptor {
+                label: Some(label),
+                size: wgpu::Extent3d {
+                    width: columns * size,
+                    height: rows * size,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format,
+                usage: wgpu::TextureUsages::RENDER_ATTACHMENT | usage,
+                view_formats: &[],
+            })
         };
+        // The maps are sampled by the receive pass and copied to and from the kept maps
+        // (radiosity/gpu/map_store.rs).
+        let maps = texture(
+            "visibility maps",
+            MAP_FORMAT,
+            wgpu::TextureUsages::TEXTURE_BINDING
+                | wgpu::TextureUsages::COPY_SRC
+                | wgpu::TextureUsages::COPY_DST,
+        );
+        let depth = texture(
+            "visibility depth",
+            DEPTH_FORMAT,
+            wgpu::TextureUsages::empty(),
+        );
         VisibilityAtlas {
             size,
             columns,
             rows,
-            view: texture("visibility maps", MAP_FORMAT),
-            depth_view: texture("visibility depth", DEPTH_FORMAT),
+            view: maps.create_view(&Default::default()),
+            depth_view: depth.create_view(&Default::default()),
+            texture: maps,
         }
     }
 

@@ -25,11 +25,13 @@ use crate::render::layouts::{buffer_binding, entry};
 
 mod chunks;
 mod deferred;
+mod map_store;
 mod relight;
 mod timers;
 
 pub use chunks::{MeshChunks, TileView};
 pub use deferred::WIDEN_AT;
+pub use map_store::DEFAULT_MAP_STORE_BYTES;
 pub use timers::GpuPassSeconds;
 
 /// How a shooting patch sees what it can reach.
@@ -201,6 +203,18 @@ struct FaceGpu {
 const SHOT_STRIDE: u64 = 768;
 const FACE_STRIDE: u64 = 256;
 
+/// How a batch's cells get their visibility maps.
+#[derive(Clone, Copy)]
+enum CellMaps<'a> {
+    /// Drawn.
+    Draw,
+    /// Drawn, and kept for receivers that wait ([`map_store`]).
+    DrawAndKeep,
+    /// Copied back from the kept maps where a cell has a slot (one per cell), drawn
+    /// where not.
+    Restore(&'a [Option<u32>]),
+}
+
 /// The shooter the GPU chose.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Selection {
@@ -302,6 +316,8 @@ pub struct GpuSolver<'a> {
     pub plan_cache: PlanCache,
     /// The GPU's timestamps around each batch's passes ([`GpuSolver::time_passes`]).
     timers: Option<timers::PassTimers>,
+    /// The maps of the cells shot while receivers waited, for their catch-up.
+    map_store: map_store::MapStore,
 }
 
 fn storage(gpu: &Gpu, label: &str, data: &[u8], writable: bool) -> wgpu::Buffer {
@@ -754,6 +770,7 @@ impl<'a> GpuSolver<'a> {
             large_shooters,
             receiver_threads: 0,
             timers: None,
+            map_store: map_store::MapStore::new(DEFAULT_MAP_STORE_BYTES),
             receivers: ReceiverBoxes::new(scene),
             drawn: 0,
             skipped: 0,
@@ -1144,6 +1161,8 @@ impl<'a> GpuSolver<'a> {
         let (plan, links, delta) = self.plan(s)?;
         // The cells shot while some receiver in front of them waited.
         let mut missed = Vec::new();
+        // Where their maps were kept (per missed cell; `None`: drawn again to catch up).
+        let mut kept = Vec::new();
         // Top cells and their subtrees (depth first: a subtree runs to the next top).
         let tops: Vec<usize> = (0..plan.patches.len())
             .filter(|&k| plan.patches[k].parent == u32::MAX)
@@ -1169,10 +1188,16 @@ impl<'a> GpuSolver<'a> {
             let waiting = self.cull(&plan.patches[tops[from]..subtree_end(t - 1)]);
             lap(&mut self.times.cull, &mut clock);
             let clear = if from == 0 { 0..plan.shot } else { 0..0 };
-            let submitted = self.shoot_batch(s, &plan, &links, &drawn, clear)?;
+            let maps = if waiting {
+                CellMaps::DrawAndKeep
+            } else {
+                CellMaps::Draw
+            };
+            let (submitted, slots) = self.shoot_batch(s, &plan, &links, &drawn, clear, maps)?;
             lap(&mut self.times.record, &mut clock);
             if waiting {
                 missed.extend_from_slice(&drawn);
+                kept.extend(slots);
             }
             let cells: usize = (tops[from]..subtree_end(t - 1)).count();
             self.drawn += drawn.len();
@@ -1193,13 +1218,13 @@ impl<'a> GpuSolver<'a> {
                 if stop() {
                     self.restore(s, tops[t], plan.patches.len());
                     self.shots += 1;
-                    self.defer(s, plan, links, delta, missed);
+                    self.defer(s, plan, links, delta, missed, kept);
                     return Ok(false);
                 }
             }
         }
         self.shots += 1;
-        self.defer(s, plan, links, delta, missed);
+        self.defer(s, plan, links, delta, missed, kept);
         Ok(true)
     }
 
@@ -1262,7 +1287,8 @@ impl<'a> GpuSolver<'a> {
     /// Shoots the cells `drawn` of shooter `s`'s `plan`, first clearing the unshot
     /// radiosity of the elements `clear` (a range of the plan's order): their maps in
     /// one render pass (as many cells at a time as the atlas holds), then their receive
-    /// dispatches in one compute pass.
+    /// dispatches in one compute pass; `maps` says whether they are drawn, kept or
+    /// copied back (the slots of the kept ones are returned, one per cell).
     fn shoot_batch(
         &mut self,
         s: usize,
@@ -1270,7 +1296,12 @@ impl<'a> GpuSolver<'a> {
         links: &Links,
         drawn: &[usize],
         clear: std::ops::Range<u32>,
-    ) -> Result<wgpu::SubmissionIndex, GpuError> {
+        maps: CellMaps<'_>,
+    ) -> Result<(wgpu::SubmissionIndex, Vec<Option<u32>>), GpuError> {
+        let stored = match maps {
+            CellMaps::Restore(stored) => stored,
+            _ => &[],
+        };
         let first = self.shooters.first[s];
         let cells = plan.patches.len() as u32;
         self.write_params(s as u32, 0, cells, first + clear.start..first + clear.end);
@@ -1279,12 +1310,40 @@ impl<'a> GpuSolver<'a> {
             self.dispatch(&mut enc, &self.pipelines.clear, clear.len() as u32, 64);
         }
         let faces = faces_per_cell(self.gpu_settings.visibility);
-        let most = (VisibilityAtlas::max_tiles(self.gpu, self.atlas.size) / faces).max(1);
-        for part in drawn.chunks(most as usize) {
+        let most = (VisibilityAtlas::max_tiles(self.gpu, self.atlas.size) / faces).max(1) as usize;
+        let mut slots = Vec::new();
+        for (i, part) in drawn.chunks(most).enumerate() {
             self.atlas.reserve(self.gpu, part.len() as u32 * faces);
-            self.record_part(&mut enc, plan, links, part)?;
+            let part_stored = stored.get(i * most..(i * most + part.len()).min(stored.len()));
+            self.record_part(&mut enc, plan, links, part, part_stored.unwrap_or(&[]))?;
+            if matches!(maps, CellMaps::DrawAndKeep) {
+                for k in 0..part.len() as u32 {
+                    let slot = self
+                        .map_store
+                        .allocate(self.gpu, &mut enc, self.atlas.size, faces);
+                    if let Some(at) = slot {
+                        let cell = (k * faces, at, faces);
+                        self.map_store.copy_cell(&mut enc, &self.atlas, cell, true);
+                    }
+                    slots.push(slot);
+                }
+            }
         }
-        Ok(self.gpu.queue.submit([enc.finish()]))
+        Ok((self.gpu.queue.submit([enc.finish()]), slots))
+    }
+
+    /// Keeps this many bytes of maps at most for the catch-up of waiting receivers (0:
+    /// none; missed cells are then drawn again), dropping what is kept now.
+    pub fn set_map_store_bytes(&mut self, bytes: u64) {
+        self.map_store = map_store::MapStore::new(bytes);
+        if let Some(d) = &mut self.deferral {
+            d.forget_kept_maps();
+        }
+    }
+
+    /// Maps copied back from the kept maps for a catch-up so far (not drawn).
+    pub fn maps_reused(&self) -> usize {
+        self.map_store.reused
     }
 
     /// Records the maps of the cells `drawn` into the atlas (which holds them) and their
@@ -1295,8 +1354,22 @@ impl<'a> GpuSolver<'a> {
         plan: &ShotPlan,
         links: &Links,
         drawn: &[usize],
+        stored: &[Option<u32>],
     ) -> Result<(), GpuError> {
         let (shots, faces, views) = self.shot_records(plan, links, drawn);
+        let faces_per_cell = faces_per_cell(self.gpu_settings.visibility);
+        // Kept maps go back into their tiles; those tiles are not drawn.
+        let restored = |tile: u32| {
+            stored
+                .get((tile / faces_per_cell) as usize)
+                .is_some_and(|s| s.is_some())
+        };
+        for (k, slot) in stored.iter().enumerate() {
+            if let &Some(at) = slot {
+                let cell = (k as u32 * faces_per_cell, at, faces_per_cell);
+                self.map_store.copy_cell(enc, &self.atlas, cell, false);
+            }
+        }
         let queries = match &mut self.timers {
             Some(t) => Some(t.next_batch(self.gpu)?),
             None => None,
@@ -1364,6 +1437,9 @@ impl<'a> GpuSolver<'a> {
             let mut ranges = Vec::new();
             for (tile, view) in views.iter().enumerate() {
                 let tile = tile as u32;
+                if restored(tile) {
+                    continue;
+                }
                 let (x, y) = self.atlas.origin(tile);
                 pass.set_viewport(x as f32, y as f32, size as f32, size as f32, 0.0, 1.0);
                 pass.set_scissor_rect(x, y, size, size);

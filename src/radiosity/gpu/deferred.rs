@@ -17,8 +17,10 @@ pub(super) struct MissedShot {
     links: Links,
     /// Per cell of the plan, the rgb unshot radiosity it shot.
     delta: Vec<[f32; 4]>,
-    /// The cells whose maps were drawn while a receiver waited.
+    /// The cells whose maps were drawn while a receiver waited …
     cells: Vec<usize>,
+    /// … and where each one's maps were kept ([`super::map_store`]; `None`: not kept).
+    kept: Vec<Option<u32>>,
 }
 
 /// The area of interest's stages (perspective-driven radiosity), and where it stands.
@@ -87,8 +89,9 @@ impl GpuSolver<'_> {
         }
         let deferral = self.deferral.as_mut().expect("set above");
         if deferral.receiving.iter().all(|&r| r) {
-            // Nobody waits: nothing missed needs keeping.
+            // Nobody waits: nothing missed needs keeping, nor do its maps.
             deferral.missed_from.fill(0);
+            self.map_store.clear();
         } else {
             deferral.missed = missed;
         }
@@ -164,6 +167,7 @@ impl GpuSolver<'_> {
         links: Links,
         delta: Vec<[f32; 4]>,
         cells: Vec<usize>,
+        kept: Vec<Option<u32>>,
     ) {
         if cells.is_empty() {
             return;
@@ -175,6 +179,7 @@ impl GpuSolver<'_> {
                 links,
                 delta,
                 cells,
+                kept,
             });
         }
     }
@@ -193,12 +198,13 @@ impl GpuSolver<'_> {
             found.retain(|k| charts.binary_search(k).is_ok());
             found
         };
-        let cells: Vec<usize> = shot
+        let (cells, kept): (Vec<usize>, Vec<Option<u32>>) = shot
             .cells
             .iter()
-            .copied()
-            .filter(|&c| !joining(&cell_planes(&shot.plan.patches[c..=c])).is_empty())
-            .collect();
+            .zip(&shot.kept)
+            .filter(|(&c, _)| !joining(&cell_planes(&shot.plan.patches[c..=c])).is_empty())
+            .map(|(&c, &k)| (c, k))
+            .unzip();
         if cells.is_empty() {
             return Ok(false);
         }
@@ -208,8 +214,24 @@ impl GpuSolver<'_> {
             .collect();
         let receivers = joining(&cell_planes(&patches));
         self.set_receivers(&receivers);
-        self.shoot_batch(shot.shooter, &shot.plan, &shot.links, &cells, 0..0)?;
-        self.drawn += cells.len();
+        self.shoot_batch(
+            shot.shooter,
+            &shot.plan,
+            &shot.links,
+            &cells,
+            0..0,
+            super::CellMaps::Restore(&kept),
+        )?;
+        self.drawn += kept.iter().filter(|k| k.is_none()).count();
         Ok(true)
+    }
+}
+
+impl Deferral {
+    /// Forgets where the missed cells' maps were kept (they are drawn again).
+    pub(super) fn forget_kept_maps(&mut self) {
+        for shot in &mut self.missed {
+            shot.kept.fill(None);
+        }
     }
 }
