@@ -104,7 +104,7 @@ impl VisibilityAtlas {
 }
 
 /// Most tiles of `size` per row (and rows) the GPU's largest 2D texture holds.
-fn max_columns(gpu: &Gpu, size: u32) -> u32 {
+pub(crate) fn max_columns(gpu: &Gpu, size: u32) -> u32 {
     (gpu.device.limits().max_texture_dimension_2d / size.max(1)).max(1)
 }
 
@@ -119,7 +119,7 @@ fn layout(tiles: u32, max_columns: u32) -> (u32, u32) {
 
 /// Texel of the top-left corner of tile `tile` in rows of `columns` tiles of `size`
 /// (`visibility_lookup` in radiosity.wgsl does the same).
-fn tile_origin(tile: u32, columns: u32, size: u32) -> (u32, u32) {
+pub(crate) fn tile_origin(tile: u32, columns: u32, size: u32) -> (u32, u32) {
     ((tile % columns) * size, (tile / columns) * size)
 }
 

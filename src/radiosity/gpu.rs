@@ -1188,7 +1188,7 @@ impl<'a> GpuSolver<'a> {
             let waiting = self.cull(&plan.patches[tops[from]..subtree_end(t - 1)]);
             lap(&mut self.times.cull, &mut clock);
             let clear = if from == 0 { 0..plan.shot } else { 0..0 };
-            let maps = if waiting {
+            let maps = if waiting && self.map_store.is_enabled() {
                 CellMaps::DrawAndKeep
             } else {
                 CellMaps::Draw
@@ -1288,7 +1288,7 @@ impl<'a> GpuSolver<'a> {
     /// radiosity of the elements `clear` (a range of the plan's order): their maps in
     /// one render pass (as many cells at a time as the atlas holds), then their receive
     /// dispatches in one compute pass; `maps` says whether they are drawn, kept or
-    /// copied back (the slots of the kept ones are returned, one per cell).
+    /// copied back. Returns each cell's slot among the kept maps (`None`: not kept).
     fn shoot_batch(
         &mut self,
         s: usize,
@@ -1328,6 +1328,9 @@ impl<'a> GpuSolver<'a> {
                     slots.push(slot);
                 }
             }
+        }
+        if !matches!(maps, CellMaps::DrawAndKeep) {
+            slots = vec![None; drawn.len()];
         }
         Ok((self.gpu.queue.submit([enc.finish()]), slots))
     }

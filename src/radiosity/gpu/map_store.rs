@@ -7,7 +7,7 @@
 //! [`GpuSolver::set_map_store_bytes`]: super::GpuSolver::set_map_store_bytes
 
 use crate::gpu::Gpu;
-use crate::radiosity::atlas::{VisibilityAtlas, MAP_FORMAT};
+use crate::radiosity::atlas::{max_columns, tile_origin, VisibilityAtlas, MAP_FORMAT};
 
 /// Bytes of maps kept by default: none. On an H200 the copies cost more than drawing
 /// the maps again (eight furnished rooms, perspective-driven, to 5 % in view: 0.36–0.42 s
@@ -61,10 +61,9 @@ impl MapStore {
         tiles: u32,
     ) -> Option<u32> {
         if self.size == 0 {
-            let side = gpu.device.limits().max_texture_dimension_2d;
             let tile_bytes = (u64::from(size) * u64::from(size) * 4).max(1);
             self.size = size;
-            self.columns = (side / size.max(1)).max(1);
+            self.columns = max_columns(gpu, size);
             let fit = u64::from(self.columns) * u64::from(self.columns);
             self.most = (self.budget / tile_bytes).min(fit) as u32;
         }
@@ -77,6 +76,11 @@ impl MapStore {
         let first = self.next;
         self.next += tiles;
         Some(first)
+    }
+
+    /// Whether it may keep anything (a budget above zero).
+    pub fn is_enabled(&self) -> bool {
+        self.budget > 0
     }
 
     /// Frees every tile (nothing kept is needed any more).
@@ -112,10 +116,7 @@ impl MapStore {
     }
 
     fn origin(&self, tile: u32) -> (u32, u32) {
-        (
-            (tile % self.columns) * self.size,
-            (tile / self.columns) * self.size,
-        )
+        tile_origin(tile, self.columns, self.size)
     }
 
     /// Twice the rows (at first, [`FIRST_STORE_BYTES`] of them), the kept maps copied.
