@@ -3,7 +3,8 @@
 // local −Z (γ = 0, the lower map) and +Z (the upper map). The projection is not linear:
 // the casters are tessellated on the CPU, and each fragment stores the exact distance
 // along its own texel's direction to its triangle's plane (the plane from the screen
-// derivatives of the interpolated position, which is linear within a triangle).
+// derivatives of the interpolated position, which is linear within a triangle). Holes of
+// alpha-masked casters (cutout.wgsl, before this file) let light through.
 
 struct ParaboloidView {
     // xyz: the luminaire's position; w: 0 lower map, 1 upper map.
@@ -20,6 +21,8 @@ struct ParaboloidView {
 struct ParaboloidOut {
     @builtin(position) clip: vec4<f32>,
     @location(0) world: vec3<f32>,
+    @location(1) uv: vec2<f32>,
+    @location(2) @interpolate(flat) mask: u32,
 };
 
 // The local direction with z pointing into the map's hemisphere.
@@ -31,8 +34,10 @@ fn map_local(world: vec3<f32>) -> vec3<f32> {
 }
 
 @vertex
-fn vs_paraboloid(@location(0) p: vec3<f32>) -> ParaboloidOut {
+fn vs_paraboloid(@location(0) p: vec3<f32>, @location(1) uv: vec2<f32>, @location(2) mask: u32) -> ParaboloidOut {
     var out: ParaboloidOut;
+    out.uv = uv;
+    out.mask = mask;
     let local = map_local(p);
     let dist = max(length(local), 1e-6);
     let w = local / dist;
@@ -51,7 +56,7 @@ fn paraboloid_direction(m: vec2<f32>) -> vec3<f32> {
 fn fs_paraboloid(in: ParaboloidOut) -> @builtin(frag_depth) f32 {
     let local = map_local(in.world);
     let n = cross(dpdx(local), dpdy(local));
-    if (local.z < 0.0) {
+    if (local.z < 0.0 || in_cutout_hole(in.uv, in.mask)) {
         discard;
     }
     var dist = length(local);

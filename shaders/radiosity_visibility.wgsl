@@ -1,7 +1,7 @@
 // The visibility map of a shooting patch: the distance from the patch centre to the
 // nearest surface, per texel of a hemicube face (a 90° perspective view) or of the
 // stereographic projection of the hemisphere (Wallner §2.3: only vertices are projected,
-// so long edges bend wrongly; the hemicube is exact).
+// so long edges bend wrongly; the hemicube is exact). Needs cutout.wgsl before it.
 
 struct Face {
     view_proj: mat4x4<f32>,
@@ -20,10 +20,8 @@ struct VertexOut {
     @location(0) world: vec3<f32>,
 };
 
-@vertex
-fn vs_visibility(@location(0) position: vec3<f32>) -> VertexOut {
-    var out: VertexOut;
-    out.world = position;
+// The clip position of `position` in the face's projection.
+fn face_clip(position: vec3<f32>) -> vec4<f32> {
     if (face.eye.w > 0.5) {
         let v = position - face.eye.xyz;
         let dist = length(v);
@@ -32,20 +30,57 @@ fn vs_visibility(@location(0) position: vec3<f32>) -> VertexOut {
         // Behind the hemisphere: pushed outside the depth range (clipped).
         let depth = select(2.0, dist / far, local.z > -0.05);
         let xy = local.xy / max(1.0 + local.z, 1e-3);
-        out.clip = vec4<f32>(xy, depth, 1.0);
-    } else {
-        out.clip = face.view_proj * vec4<f32>(position, 1.0);
+        return vec4<f32>(xy, depth, 1.0);
     }
+    return face.view_proj * vec4<f32>(position, 1.0);
+}
+
+// The distance stored for a fragment at `world` (behind a stereographic map: none).
+fn face_distance(world: vec3<f32>) -> vec4<f32> {
+    let v = world - face.eye.xyz;
+    if (face.eye.w > 0.5 && dot(v, face.normal.xyz) < 0.0) {
+        discard;
+    }
+    return vec4<f32>(length(v), 0.0, 0.0, 0.0);
+}
+
+@vertex
+fn vs_visibility(@location(0) position: vec3<f32>) -> VertexOut {
+    var out: VertexOut;
+    out.world = position;
+    out.clip = face_clip(position);
     return out;
 }
 
 @fragment
 fn fs_visibility(in: VertexOut) -> @location(0) vec4<f32> {
-    let v = in.world - face.eye.xyz;
-    if (face.eye.w > 0.5 && dot(v, face.normal.xyz) < 0.0) {
+    return face_distance(in.world);
+}
+
+// Alpha-masked casters (cutout.wgsl, before this file): their holes block nothing.
+struct MaskedOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) world: vec3<f32>,
+    @location(1) uv: vec2<f32>,
+    @location(2) @interpolate(flat) mask: u32,
+};
+
+@vertex
+fn vs_visibility_masked(@location(0) position: vec3<f32>, @location(1) uv: vec2<f32>, @location(2) mask: u32) -> MaskedOut {
+    var out: MaskedOut;
+    out.world = position;
+    out.clip = face_clip(position);
+    out.uv = uv;
+    out.mask = mask;
+    return out;
+}
+
+@fragment
+fn fs_visibility_masked(in: MaskedOut) -> @location(0) vec4<f32> {
+    if (in_cutout_hole(in.uv, in.mask)) {
         discard;
     }
-    return vec4<f32>(length(v), 0.0, 0.0, 0.0);
+    return face_distance(in.world);
 }
 
 // A tile's clear: one triangle over its viewport at the far plane, nothing seen.

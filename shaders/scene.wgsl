@@ -22,7 +22,7 @@ struct MaterialParams {
     diffuse: vec4<f32>,
     // rgb: Ks; w: Ns.
     specular: vec4<f32>,
-    // x: 1 when a normal map is bound.
+    // x: 1 when a normal map is bound; y: 1 when the diffuse map's alpha cuts holes.
     flags: vec4<u32>,
     // rgb: the diffuse map's mean colour (linear; white without one). A solved light map
     // already holds it in its reflectance (radiosity/scene.rs).
@@ -74,13 +74,33 @@ fn vs_main(v: VertexIn) -> VertexOut {
 
 struct DepthOut {
     @builtin(position) @invariant clip: vec4<f32>,
+    @location(0) uv: vec2<f32>,
 };
 
 @vertex
 fn vs_depth(v: VertexIn) -> DepthOut {
     var out: DepthOut;
     out.clip = frame.view_proj * vec4<f32>(v.position, 1.0);
+    out.uv = v.uv;
     return out;
+}
+
+// Whether `uv` falls in a hole of the material's alpha mask: the texel under
+// floor(fract(uv) · size) has alpha below one half, the rule of scene/alpha.rs.
+fn in_hole(uv: vec2<f32>) -> bool {
+    if (material.flags.y == 0u) {
+        return false;
+    }
+    let size = textureDimensions(diffuse_map);
+    let texel = min(vec2<u32>(fract(uv) * vec2<f32>(size)), size - vec2<u32>(1u));
+    return textureLoad(diffuse_map, texel, 0).a < 0.5;
+}
+
+@fragment
+fn fs_depth(in: DepthOut) {
+    if (in_hole(in.uv)) {
+        discard;
+    }
 }
 
 // The shading normal: the interpolated normal, turned toward the viewer on back faces,
@@ -115,6 +135,9 @@ fn element_level(in: VertexOut) -> f32 {
 
 @fragment
 fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
+    if (in_hole(in.uv)) {
+        discard;
+    }
     let solved = frame.light_map != 0u;
     // Solved, a translucent surface has a back face of its own with its far side's light
     // (scene/back_faces.rs): each side is drawn from its front only.

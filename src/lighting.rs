@@ -11,7 +11,9 @@ use rayon::prelude::*;
 use crate::geometry::Mesh;
 use crate::photometry::Interp;
 use crate::scene::PlacedLuminaire;
-use crate::shadow::{raycast, IgnoredTriangles, Light, TriangleBvh};
+use std::sync::Arc;
+
+use crate::shadow::{raycast, Cutouts, IgnoredTriangles, Light, TriangleBvh};
 
 /// A malformed line in a list of points.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -43,26 +45,47 @@ pub fn illuminance_cpu(luminaires: &[PlacedLuminaire], p: &SurfacePoint, interp:
         .sum()
 }
 
+/// What casts shadows on points: a mesh, the holes of its alpha-masked triangles, and per
+/// luminaire the triangles it ignores (its housing; none where the slice is shorter).
+#[derive(Debug, Clone, Copy)]
+pub struct Occluders<'a> {
+    /// Every caster triangle.
+    pub mesh: &'a Mesh,
+    /// Holes in its masked triangles (light passes them).
+    pub cutouts: Option<&'a Arc<Cutouts>>,
+    /// Per luminaire, the triangles it ignores.
+    pub ignored: &'a [IgnoredTriangles],
+}
+
+impl<'a> Occluders<'a> {
+    /// `mesh` without holes, every triangle casting.
+    pub fn solid(mesh: &'a Mesh) -> Occluders<'a> {
+        Occluders {
+            mesh,
+            cutouts: None,
+            ignored: &[],
+        }
+    }
+}
+
 /// Which lights reach which points: `visible[light][point]`, by casting a ray from each
-/// point toward each light position against `casters`, leaving out the triangles
-/// `ignored[light]` (its housing; none where the slice is shorter), through a BVH built
-/// for the call. These are exact hard shadows: the CPU reference of every shadow technique, and what `volumes` means for
-/// point queries.
+/// point toward each light position against `casters`, through a BVH built for the call.
+/// These are exact hard shadows: the CPU reference of every shadow technique, and what
+/// `volumes` means for point queries.
 pub fn point_visibility(
-    casters: &Mesh,
+    casters: &Occluders,
     light_positions: &[DVec3],
-    ignored: &[IgnoredTriangles],
     points: &[SurfacePoint],
 ) -> Vec<Vec<bool>> {
-    let eps = raycast::self_hit_epsilon(casters);
-    let bvh = TriangleBvh::new(casters);
+    let eps = raycast::self_hit_epsilon(casters.mesh);
+    let bvh = TriangleBvh::new(casters.mesh).with_cutouts(casters.cutouts.cloned());
     let none = IgnoredTriangles::default();
     light_positions
         .iter()
         .enumerate()
         .map(|(k, &at)| {
             let light = Light(at.extend(1.0));
-            let ignored = ignored.get(k).unwrap_or(&none);
+            let ignored = casters.ignored.get(k).unwrap_or(&none);
             points
                 .par_iter()
                 .map(|p| !bvh.in_shadow(&light, p.position, eps, ignored))
@@ -71,17 +94,17 @@ pub fn point_visibility(
         .collect()
 }
 
-/// The CPU reference with shadows cast by `casters` (none when `None`), each luminaire
-/// ignoring its own triangles (`ignored`, in luminaire order): lux at `points`.
+/// The CPU reference with shadows cast by `casters` (none when `None`; the luminaires in
+/// order of `casters.ignored`): lux at `points`.
 pub fn illuminance_cpu_in_scene(
     luminaires: &[PlacedLuminaire],
-    casters: Option<(&Mesh, &[IgnoredTriangles])>,
+    casters: Option<&Occluders>,
     points: &[SurfacePoint],
     interp: Interp,
 ) -> Vec<f64> {
-    let visible = casters.map(|(mesh, ignored)| {
+    let visible = casters.map(|casters| {
         let positions: Vec<DVec3> = luminaires.iter().map(|l| l.position).collect();
-        point_visibility(mesh, &positions, ignored, points)
+        point_visibility(casters, &positions, points)
     });
     points
         .par_iter()

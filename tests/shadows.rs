@@ -17,7 +17,7 @@ use goniolight::geometry::Mesh;
 use goniolight::gpu::Gpu;
 use goniolight::photometry::{Interp, Luminaire};
 use goniolight::render::illuminance::{
-    illuminance_cpu_in_scene, point_visibility, IlluminanceProbe, SurfacePoint,
+    illuminance_cpu_in_scene, point_visibility, IlluminanceProbe, Occluders, SurfacePoint,
 };
 use goniolight::render::{
     LightModel, RenderSettings, Renderer, ShadowSettings, ShadowTechnique, VolumeTest,
@@ -462,13 +462,16 @@ fn downlight_under_a_ceiling_leaves_the_ceiling_unshadowed() {
     let ignored = s.ignored_per_luminaire();
     let got = illuminance_cpu_in_scene(
         &s.luminaires,
-        Some((&casters, &ignored)),
+        Some(&Occluders {
+            ignored: &ignored,
+            ..Occluders::solid(&casters)
+        }),
         &point,
         Interp::CatmullRom,
     );
     let blocked = illuminance_cpu_in_scene(
         &s.luminaires,
-        Some((&casters, &[])),
+        Some(&Occluders::solid(&casters)),
         &point,
         Interp::CatmullRom,
     );
@@ -559,12 +562,12 @@ fn illuminance_at_points_respects_shadows_on_gpu_and_cpu() {
     let plain = illuminance_cpu_in_scene(&s.luminaires, None, &points, Interp::CatmullRom);
     let want = illuminance_cpu_in_scene(
         &s.luminaires,
-        Some((&casters, &[])),
+        Some(&Occluders::solid(&casters)),
         &points,
         Interp::CatmullRom,
     );
     let positions: Vec<DVec3> = s.luminaires.iter().map(|l| l.position).collect();
-    let visible = point_visibility(&casters, &positions, &[], &points);
+    let visible = point_visibility(&Occluders::solid(&casters), &positions, &points);
     let band = grid_edge_band(&visible, n);
     let shadowed = (0..points.len())
         .filter(|&k| want[k] < 0.9 * plain[k] && want[k] > 0.05 * plain[k])

@@ -15,7 +15,7 @@
 use glam::DVec3;
 use serde::Serialize;
 
-use crate::lighting::{point_visibility, SurfacePoint};
+use crate::lighting::{point_visibility, Occluders, SurfacePoint};
 use crate::photometry::luminance::LuminousArea;
 use crate::photometry::ugr::{glare_term, guth_position_index, in_glare_field, ugr_of};
 use crate::photometry::{direction_to_angles, Interp};
@@ -68,12 +68,13 @@ pub fn observer_glare(
 ) -> Result<ObserverGlare, String> {
     let positions: Vec<DVec3> = scene.luminaires.iter().map(|l| l.position).collect();
     let eye = [background_point(observer)];
-    let visible = point_visibility(
-        &scene.caster_mesh(),
-        &positions,
-        &scene.ignored_per_luminaire(),
-        &eye,
-    );
+    let (mesh, cutouts) = (scene.caster_mesh(), scene.caster_cutouts());
+    let casters = Occluders {
+        mesh: &mesh,
+        cutouts: cutouts.as_ref(),
+        ignored: &scene.ignored_per_luminaire(),
+    };
+    let visible = point_visibility(&casters, &positions, &eye);
     let mut luminaires = Vec::new();
     for (i, l) in scene.luminaires.iter().enumerate() {
         let (t, h, r) = observer.relative(l.position);

@@ -210,7 +210,7 @@ pub fn render_to_files(
     settings.read_hdr = exr.is_some();
     let started = Instant::now();
     check_scene(gpu, scene, &mut settings.shadows)?;
-    warn_translucent_in_volumes(scene, &settings.shadows, light_map.is_some());
+    warn_what_volumes_miss(scene, &settings.shadows, light_map.is_some());
     let uploaded = match light_map {
         Some(map) => renderer.upload_solved(gpu, scene, map),
         None => renderer.upload(gpu, scene),
@@ -322,19 +322,23 @@ pub fn run_illuminance(args: IlluminanceArgs) -> Result<(), CliError> {
     Ok(())
 }
 
-/// Stencil shadow volumes start at a surface turned from the light, so a translucent
-/// surface lit from behind stays dark in a direct render with them: said once, with the
-/// choice that shows it (a solved light map holds the transmitted light either way).
-fn warn_translucent_in_volumes(
-    scene: &Scene,
-    shadows: &crate::render::ShadowSettings,
-    solved: bool,
-) {
+/// What stencil shadow volumes cannot show, said once with the choice that shows it: they
+/// start at a surface turned from the light, so a translucent surface lit from behind
+/// stays dark in a direct render (a solved light map holds the transmitted light either
+/// way); and they are built from whole triangles, so alpha-masked holes cast shadows.
+fn warn_what_volumes_miss(scene: &Scene, shadows: &crate::render::ShadowSettings, solved: bool) {
     let translucent = crate::scene::back_faces::has_translucent_surfaces(scene);
     if translucent && !solved && shadows.technique == crate::shadow::ShadowTechnique::Volumes {
         eprintln!(
             "warning: {}: stencil shadow volumes cannot light a translucent surface from \
              behind; it stays dark in this image (--shadows paraboloid shows it)",
+            scene.path.display()
+        );
+    }
+    let masked = scene.materials.iter().any(|m| m.alpha_mask.is_some());
+    if masked && shadows.technique == crate::shadow::ShadowTechnique::Volumes {
+        eprintln!(
+            "warning: {}: stencil shadow volumes cannot see the holes of alpha-masked              materials; they cast solid shadows in this image (--shadows paraboloid lets              light through them)",
             scene.path.display()
         );
     }

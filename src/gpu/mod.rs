@@ -297,15 +297,17 @@ impl Gpu {
             })
     }
 
-    /// A render pipeline drawing a bare position stream (`Float32x3`, 12-byte stride) with
-    /// a written depth test (less) into `depth`, from the entry points `vs` and `fs` of
+    /// A render pipeline drawing casters (`vertices`: position at location 0) with a
+    /// written depth test (less) into `depth`, from the entry points `vs` and `fs` of
     /// `module`: the paraboloid shadow maps and the radiosity visibility maps.
-    pub fn position_depth_pipeline(
+    #[allow(clippy::too_many_arguments)]
+    pub fn caster_depth_pipeline(
         &self,
         label: &str,
         layout: &wgpu::PipelineLayout,
         module: &wgpu::ShaderModule,
         (vs, fs): (&str, &str),
+        vertices: wgpu::VertexBufferLayout<'_>,
         depth: wgpu::TextureFormat,
         targets: &[Option<wgpu::ColorTargetState>],
     ) -> wgpu::RenderPipeline {
@@ -317,11 +319,7 @@ impl Gpu {
                     module,
                     entry_point: Some(vs),
                     compilation_options: Default::default(),
-                    buffers: &[Some(wgpu::VertexBufferLayout {
-                        array_stride: 12,
-                        step_mode: wgpu::VertexStepMode::Vertex,
-                        attributes: &wgpu::vertex_attr_array![0 => Float32x3],
-                    })],
+                    buffers: &[Some(vertices)],
                 },
                 primitive: wgpu::PrimitiveState::default(),
                 depth_stencil: Some(wgpu::DepthStencilState {
@@ -540,3 +538,10 @@ fn required_limits(adapter: &wgpu::Limits) -> wgpu::Limits {
         ..defaults
     }
 }
+
+/// The vertex layout of bare positions (`Float32x3`, 12-byte stride, location 0).
+pub const POSITION_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
+    array_stride: 12,
+    step_mode: wgpu::VertexStepMode::Vertex,
+    attributes: &wgpu::vertex_attr_array![0 => Float32x3],
+};

@@ -16,13 +16,15 @@ pub const ILLUMINANCE_POINTS: &str = include_str!("../../shaders/illuminance_poi
 pub const SHADOW: &str = include_str!("../../shaders/shadow.wgsl");
 /// Stencil shadow volumes, the shadow mask and their debug views.
 pub const SHADOW_VOLUME: &str = include_str!("../../shaders/shadow_volume.wgsl");
-/// Dual-paraboloid shadow maps.
+/// Dual-paraboloid shadow maps (needs [`CUTOUT`]).
 pub const PARABOLOID: &str = include_str!("../../shaders/paraboloid.wgsl");
+/// Holes of alpha-masked casters, read from mask bits.
+pub const CUTOUT: &str = include_str!("../../shaders/cutout.wgsl");
 /// The renderer's depth and shading passes (needs [`LDT`], [`LIGHTING`] and [`SHADOW`]).
 pub const SCENE: &str = include_str!("../../shaders/scene.wgsl");
 /// Progressive radiosity: shooter selection, patches, receivers.
 pub const RADIOSITY: &str = include_str!("../../shaders/radiosity.wgsl");
-/// Radiosity visibility maps (hemicube faces, stereographic).
+/// Radiosity visibility maps (hemicube faces, stereographic; needs [`CUTOUT`]).
 pub const RADIOSITY_VISIBILITY: &str = include_str!("../../shaders/radiosity_visibility.wgsl");
 /// Tone mapping, false colour and image statistics.
 pub const TONEMAP: &str = include_str!("../../shaders/tonemap.wgsl");
@@ -42,6 +44,16 @@ pub fn illuminance_points() -> String {
     format!("{LDT}\n{LIGHTING}\n{SHADOW}\n{ILLUMINANCE_POINTS}")
 }
 
+/// The paraboloid-map module.
+pub fn paraboloid() -> String {
+    format!("{CUTOUT}\n{PARABOLOID}")
+}
+
+/// The radiosity visibility-map module.
+pub fn radiosity_visibility() -> String {
+    format!("{CUTOUT}\n{RADIOSITY_VISIBILITY}")
+}
+
 /// The scene (depth + shading) module.
 pub fn scene() -> String {
     format!("{LDT}\n{LIGHTING}\n{SHADOW}\n{SCENE}")
@@ -56,9 +68,9 @@ pub fn modules() -> Vec<(&'static str, String)> {
         ("scene", scene()),
         ("tonemap", TONEMAP.to_string()),
         ("shadow_volume", SHADOW_VOLUME.to_string()),
-        ("paraboloid", PARABOLOID.to_string()),
+        ("paraboloid", paraboloid()),
         ("radiosity", RADIOSITY.to_string()),
-        ("radiosity_visibility", RADIOSITY_VISIBILITY.to_string()),
+        ("radiosity_visibility", radiosity_visibility()),
     ]
 }
 

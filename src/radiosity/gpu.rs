@@ -26,6 +26,7 @@ use crate::render::layouts::{buffer_binding, entry};
 mod chunks;
 mod deferred;
 mod map_store;
+mod masked;
 mod relight;
 mod timers;
 
@@ -242,6 +243,8 @@ struct Pipelines {
     clear_tile: wgpu::RenderPipeline,
     shot_layout: wgpu::BindGroupLayout,
     face_layout: wgpu::BindGroupLayout,
+    /// The visibility shader (the masked casters' pipeline is built from it).
+    vis_module: wgpu::ShaderModule,
 }
 
 /// A solution in progress on the GPU.
@@ -270,6 +273,8 @@ pub struct GpuSolver<'a> {
     index_count: u32,
     /// The visibility mesh's chunks, for culling per face.
     chunks: MeshChunks,
+    /// Its alpha-masked triangles, drawn whole into every map.
+    masked: Option<masked::MaskedCasters>,
     /// Visibility-mesh triangles drawn so far, over all faces of all maps.
     pub triangles_drawn: u64,
     /// The visibility maps of a batch.
@@ -412,18 +417,19 @@ impl Pipelines {
         };
         let vis_module = dev.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("radiosity visibility"),
-            source: wgpu::ShaderSource::Wgsl(crate::gpu::shaders::RADIOSITY_VISIBILITY.into()),
+            source: wgpu::ShaderSource::Wgsl(crate::gpu::shaders::radiosity_visibility().into()),
         });
         let vis_layout = dev.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("radiosity visibility"),
             bind_group_layouts: &[Some(&face_layout)],
             immediate_size: 0,
         });
-        let visibility = gpu.position_depth_pipeline(
+        let visibility = gpu.caster_depth_pipeline(
             "radiosity visibility",
             &vis_layout,
             &vis_module,
             ("vs_visibility", "fs_visibility"),
+            crate::gpu::POSITION_LAYOUT,
             super::atlas::DEPTH_FORMAT,
             &[Some(super::atlas::MAP_FORMAT.into())],
         );
@@ -466,6 +472,7 @@ impl Pipelines {
             visibility,
             shot_layout,
             face_layout,
+            vis_module,
         }
     }
 }
@@ -687,14 +694,24 @@ impl<'a> GpuSolver<'a> {
             .map_or(1.0, |(lo, hi)| (hi - lo).length());
         // The stereographic map projects only vertices, so a long edge bends wrongly
         // (Wallner Fig. 4.4): its mesh has no edge longer than a fraction of the scene.
+        let max_edge = match gpu_settings.visibility {
+            Visibility::Hemicube => f64::INFINITY,
+            Visibility::Stereographic => scene_size * STEREOGRAPHIC_EDGE_FRACTION,
+        };
+        // The alpha-masked triangles at the mesh's end are drawn on their own.
+        let masked = masked::MaskedCasters::new(
+            gpu,
+            scene,
+            &pipelines.vis_module,
+            &pipelines.face_layout,
+            max_edge,
+        );
+        let solid = masked::solid_visibility_mesh(scene);
         let split;
         let mesh = match gpu_settings.visibility {
-            Visibility::Hemicube => scene.visibility_mesh(),
+            Visibility::Hemicube => &*solid,
             Visibility::Stereographic => {
-                split = split_long_edges(
-                    scene.visibility_mesh(),
-                    scene_size * STEREOGRAPHIC_EDGE_FRACTION,
-                );
+                split = split_long_edges(&solid, max_edge);
                 &split
             }
         };
@@ -752,6 +769,7 @@ impl<'a> GpuSolver<'a> {
             vertex_indices,
             index_count: indices.len() as u32,
             chunks,
+            masked,
             triangles_drawn: 0,
             atlas,
             size: scene_size,
@@ -1455,6 +1473,11 @@ impl<'a> GpuSolver<'a> {
                 for &(first, count) in &ranges {
                     pass.draw_indexed(first..first + count, 0, 0..1);
                     self.triangles_drawn += u64::from(count / 3);
+                }
+                if let Some(masked) = &self.masked {
+                    masked.draw(&mut pass);
+                    self.triangles_drawn += u64::from(masked.triangle_count());
+                    pass.set_vertex_buffer(0, self.vertices.slice(..));
                 }
             }
         }

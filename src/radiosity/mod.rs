@@ -4,6 +4,7 @@
 pub mod atlas;
 pub mod bake;
 pub mod clusters;
+pub mod coverage;
 pub mod cpu;
 pub mod elements;
 pub mod export;

@@ -1,6 +1,8 @@
 //! What the solver works on: the scene's triangles as elements, their materials'
 //! reflectance (`Kd`) and luminous exitance (`Ke`, lm/m²), and the luminaires.
 
+use std::sync::Arc;
+
 use glam::DVec3;
 
 use super::clusters::PlanarClusters;
@@ -8,7 +10,7 @@ use super::elements::{ElementError, Elements, InputTriangle, MAX_ATLAS};
 use super::Hierarchy;
 use crate::geometry::Mesh;
 use crate::scene::{PlacedLuminaire, Scene};
-use crate::shadow::{IgnoredTriangles, TriangleBvh};
+use crate::shadow::{Cutouts, IgnoredTriangles, TriangleBvh};
 
 /// A scene prepared for radiosity.
 #[derive(Debug, Clone)]
@@ -33,8 +35,10 @@ pub struct RadiosityScene {
     pub casters: Mesh,
     /// The ray-cast hierarchy over `casters`, built on first use.
     caster_bvh: std::sync::OnceLock<TriangleBvh>,
+    /// The holes of `casters`' alpha-masked triangles.
+    pub cutouts: Option<Arc<Cutouts>>,
     /// `casters` with CAD fans merged back, and its ray-cast hierarchy, built on first use.
-    visibility: std::sync::OnceLock<(Mesh, TriangleBvh)>,
+    visibility: std::sync::OnceLock<VisibilityParts>,
     /// Seconds spent building the face clusters for the charts (0 without them).
     pub clustering_seconds: f64,
     /// The planar face clusters of `casters`, built on first use.
@@ -49,6 +53,16 @@ pub struct RadiosityScene {
     /// The area-weighted mean of what a surface sends back out, reflectance plus
     /// transmittance (luminance), for the ambient term.
     pub mean_reflectance: f64,
+}
+
+/// The visibility mesh, its hierarchy, how many of its triangles are solid (they come
+/// first) and the holes of the rest.
+#[derive(Debug, Clone)]
+struct VisibilityParts {
+    mesh: Mesh,
+    bvh: TriangleBvh,
+    solid: usize,
+    cutouts: Option<Arc<Cutouts>>,
 }
 
 impl RadiosityScene {
@@ -144,6 +158,7 @@ impl RadiosityScene {
             receiving_seconds: 0.0,
             casters,
             caster_bvh: std::sync::OnceLock::new(),
+            cutouts: scene.caster_cutouts(),
             visibility: std::sync::OnceLock::new(),
             planar,
             clustering_seconds,
@@ -152,6 +167,9 @@ impl RadiosityScene {
             total_area: 0.0,
             mean_reflectance: 0.0,
         };
+        if let Some(cutouts) = &scene.cutouts {
+            super::coverage::apply(&mut scene.elements, cutouts);
+        }
         let shading = std::time::Instant::now();
         scene.receiving_normals = super::shading::receiving_normals(source, &scene.elements);
         scene.receiving_seconds = shading.elapsed().as_secs_f64();
@@ -164,35 +182,79 @@ impl RadiosityScene {
         Ok(scene)
     }
 
-    /// The ray-cast hierarchy over [`Self::casters`] (built on the first call).
+    /// The ray-cast hierarchy over [`Self::casters`] (built on the first call), with
+    /// their holes.
     pub fn caster_bvh(&self) -> &TriangleBvh {
         self.caster_bvh
-            .get_or_init(|| TriangleBvh::new(&self.casters))
+            .get_or_init(|| TriangleBvh::new(&self.casters).with_cutouts(self.cutouts.clone()))
     }
 
     /// What blocks light between surfaces: [`Self::casters`] with CAD fans merged back
     /// into the triangles they fill ([`crate::geometry::simplify::merge_strips`]: the same
-    /// points, far fewer and better-shaped triangles), built on the first call. The GPU's
-    /// visibility maps draw it; rays between surfaces are cast against it. Its triangles
-    /// are not the casters' (a luminaire's ignored housing needs [`Self::caster_bvh`]).
+    /// points, far fewer and better-shaped triangles), then the alpha-masked triangles
+    /// as they are (after [`Self::visibility_solid_count`] triangles), built on the first
+    /// call. The GPU's visibility maps draw it; rays between surfaces are cast against it.
+    /// Its triangles are not the casters' (a luminaire's ignored housing needs
+    /// [`Self::caster_bvh`]).
     pub fn visibility_mesh(&self) -> &Mesh {
-        &self.visibility_parts().0
+        &self.visibility_parts().mesh
     }
 
-    /// The ray-cast hierarchy over [`Self::visibility_mesh`].
+    /// The ray-cast hierarchy over [`Self::visibility_mesh`], with its holes.
     pub fn visibility_bvh(&self) -> &TriangleBvh {
-        &self.visibility_parts().1
+        &self.visibility_parts().bvh
     }
 
-    fn visibility_parts(&self) -> &(Mesh, TriangleBvh) {
+    /// How many of [`Self::visibility_mesh`]'s triangles come first and are solid; the
+    /// rest have holes ([`Self::visibility_cutouts`]).
+    pub fn visibility_solid_count(&self) -> usize {
+        self.visibility_parts().solid
+    }
+
+    /// The holes of [`Self::visibility_mesh`]'s alpha-masked triangles.
+    pub fn visibility_cutouts(&self) -> Option<&Arc<Cutouts>> {
+        self.visibility_parts().cutouts.as_ref()
+    }
+
+    fn visibility_parts(&self) -> &VisibilityParts {
         self.visibility.get_or_init(|| {
             let size = self
                 .casters
                 .bounds()
                 .map_or(1.0, |(lo, hi)| (hi - lo).length());
-            let mesh = crate::geometry::simplify::merge_strips(&self.casters, 1e-6 * size);
-            let bvh = TriangleBvh::new(&mesh);
-            (mesh, bvh)
+            let cut = self.cutouts.as_deref();
+            let masked: Vec<usize> = (0..self.casters.triangles.len())
+                .filter(|&k| cut.is_some_and(|c| c.mask_of(k).is_some()))
+                .collect();
+            let mut solid_part = self.casters.clone();
+            if !masked.is_empty() {
+                let is_masked = |k: usize| masked.binary_search(&k).is_ok();
+                solid_part.triangles = (0..self.casters.triangles.len())
+                    .filter(|&k| !is_masked(k))
+                    .map(|k| self.casters.triangles[k])
+                    .collect();
+            }
+            let mut mesh = crate::geometry::simplify::merge_strips(&solid_part, 1e-6 * size);
+            let solid = mesh.triangles.len();
+            for &k in &masked {
+                let base = mesh.positions.len() as u32;
+                let corners = self.casters.triangles[k].map(|i| self.casters.positions[i as usize]);
+                mesh.positions.extend(corners);
+                mesh.triangles.push([base, base + 1, base + 2]);
+            }
+            let cutouts = cut.filter(|_| !masked.is_empty()).map(|c| {
+                let source = (0..solid)
+                    .map(|_| None)
+                    .chain(masked.iter().map(|&k| Some(k)));
+                Arc::new(c.remapped(source))
+            });
+            let bvh = TriangleBvh::new(&mesh).with_cutouts(cutouts.clone());
+            VisibilityParts {
+                mesh,
+                bvh,
+                solid,
+                cutouts,
+            }
         })
     }
 

@@ -218,6 +218,8 @@ pub struct GpuScene {
     pub triangle_count: usize,
     /// Every triangle as one mesh: the shadow casters.
     pub casters: Mesh,
+    /// The holes of its alpha-masked triangles.
+    pub cutouts: Option<Arc<crate::shadow::Cutouts>>,
     /// The object of each caster triangle ([`Scene::caster_objects`]).
     caster_objects: Vec<u32>,
     /// The luminaires as shadow-casting lights, in the order of `lights`.
@@ -332,6 +334,7 @@ impl GpuScene {
             lights: GpuLights::new(gpu, &scene.luminaires),
             triangle_count: scene.triangle_count(),
             casters: scene.caster_mesh(),
+            cutouts: scene.caster_cutouts(),
             caster_objects: scene.caster_objects(),
             shadow_lights: scene
                 .luminaires
@@ -379,9 +382,16 @@ impl GpuScene {
         match &*cache {
             Some((edge, casters)) if *edge == max_edge => casters.clone(),
             _ => {
-                let merged = super::paraboloid::merged_casters(&self.casters, &self.caster_objects);
-                let sources = self.casters.triangles.len();
-                let casters = Arc::new(ParaboloidCasters::new(gpu, &merged, sources, max_edge));
+                let cutouts = self.cutouts.as_deref();
+                let merged =
+                    super::paraboloid::merged_casters(&self.casters, &self.caster_objects, cutouts);
+                let casters = Arc::new(ParaboloidCasters::new(
+                    gpu,
+                    &merged,
+                    &self.casters,
+                    cutouts,
+                    max_edge,
+                ));
                 *cache = Some((max_edge, casters.clone()));
                 casters
             }
@@ -479,7 +489,12 @@ fn material_bind_group(gpu: &Gpu, layouts: &Layouts, m: &Material) -> wgpu::Bind
             m.diffuse_map.is_some() as u32 as f32,
         ],
         specular: [m.specular.x, m.specular.y, m.specular.z, m.shininess],
-        flags: [m.normal_map.is_some() as u32, 0, 0, 0],
+        flags: [
+            m.normal_map.is_some() as u32,
+            m.alpha_mask.is_some() as u32,
+            0,
+            0,
+        ],
         texture_mean: m.texture_mean().extend(1.0).to_array(),
         transmittance: m.diffuse_transmittance.extend(0.0).to_array(),
     };

@@ -15,7 +15,7 @@ use crate::scene::Scene;
 use crate::shadow::ShadowTechnique;
 
 pub use crate::lighting::{
-    illuminance_cpu, illuminance_cpu_in_scene, point_visibility, SurfacePoint,
+    illuminance_cpu, illuminance_cpu_in_scene, point_visibility, Occluders, SurfacePoint,
 };
 
 /// Direct illuminance (lux) at `points` in `scene` with the shadows of `technique`: on
@@ -29,11 +29,16 @@ pub fn scene_illuminance(
     technique: ShadowTechnique,
 ) -> Result<Vec<f64>, GpuError> {
     let Some(gpu) = gpu else {
-        let casters = (technique != ShadowTechnique::None)
-            .then(|| (scene.caster_mesh(), scene.ignored_per_luminaire()));
+        let (mesh, cutouts) = (scene.caster_mesh(), scene.caster_cutouts());
+        let ignored = scene.ignored_per_luminaire();
+        let casters = (technique != ShadowTechnique::None).then_some(Occluders {
+            mesh: &mesh,
+            cutouts: cutouts.as_ref(),
+            ignored: &ignored,
+        });
         return Ok(illuminance_cpu_in_scene(
             &scene.luminaires,
-            casters.as_ref().map(|(m, i)| (m, i.as_slice())),
+            casters.as_ref(),
             points,
             interp,
         ));

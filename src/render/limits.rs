@@ -10,11 +10,13 @@ use super::gpu_scene::Vertex;
 use super::paraboloid::tessellated_count;
 use super::shadows::ShadowSettings;
 
-/// Bytes per tessellated paraboloid caster triangle (three `f32` positions).
-const CASTER_TRIANGLE_BYTES: u64 = 36;
+/// Bytes per tessellated paraboloid caster triangle (three vertices: position, texture
+/// coordinate and mask).
+const CASTER_TRIANGLE_BYTES: u64 =
+    3 * std::mem::size_of::<super::cutout_gpu::CasterVertex>() as u64;
 /// Most bytes of tessellated casters (1.9 M triangles): beyond, the edges get coarser,
 /// so tessellation stays a fraction of a second and a few hundred MB at most.
-const MAX_CASTER_BYTES: u64 = 64 << 20;
+const MAX_CASTER_BYTES: u64 = 128 << 20;
 
 /// Checks `scene` drawn with `shadows` fits `gpu`: the vertex buffer, the shadow layers
 /// (two paraboloid maps or one mask layer per luminaire) and the paraboloid casters after
@@ -67,8 +69,13 @@ fn fit_tessellation(
     max_buffer: u64,
 ) -> Result<(), GpuError> {
     let budget = (max_buffer.min(MAX_CASTER_BYTES) / CASTER_TRIANGLE_BYTES) as usize;
-    let casters =
-        super::paraboloid::merged_casters(&scene.caster_mesh(), &scene.caster_objects()).mesh;
+    let cutouts = scene.caster_cutouts();
+    let casters = super::paraboloid::merged_casters(
+        &scene.caster_mesh(),
+        &scene.caster_objects(),
+        cutouts.as_deref(),
+    )
+    .mesh;
     let asked = shadows.tessellation_m;
     let mut edge = asked;
     while tessellated_count(&casters, edge, budget + 1) > budget {

@@ -3,6 +3,7 @@
 //! HDR target, image statistics, and tone mapping (exposure, Reinhard) or false-colour
 //! illuminance with a legend. Headless here; the viewer drives the same passes.
 
+pub mod cutout_gpu;
 pub mod gpu_scene;
 pub mod illuminance;
 pub mod layouts;

@@ -11,11 +11,12 @@
 use glam::{DMat3, DVec3};
 use wgpu::util::DeviceExt;
 
+use super::cutout_gpu::{piece_vertices, CasterVertex, MaskBuffers};
 use crate::geometry::simplify::{merge_strips_within, Merged};
 use crate::geometry::Mesh;
 use crate::gpu::{shaders, Gpu};
 use crate::photometry::texture::Hemisphere;
-use crate::shadow::IgnoredTriangles;
+use crate::shadow::{Cutouts, IgnoredTriangles};
 
 /// Where a luminaire is, how it is turned, where it emits and which triangles are its own
 /// housing: what its shadows need.
@@ -44,7 +45,11 @@ pub fn tessellate(mesh: &Mesh, max_edge: f64) -> Vec<[DVec3; 3]> {
 
 /// Calls `f(source triangle, piece)` for the pieces of every triangle of `mesh` after
 /// [`tessellate`], triangle after triangle in order; stops when `f` returns false.
-fn tessellate_each(mesh: &Mesh, max_edge: f64, mut f: impl FnMut(usize, [DVec3; 3]) -> bool) {
+pub(crate) fn tessellate_each(
+    mesh: &Mesh,
+    max_edge: f64,
+    mut f: impl FnMut(usize, [DVec3; 3]) -> bool,
+) {
     let limit = max_edge * max_edge;
     let mut stack: Vec<[DVec3; 3]> = Vec::new();
     for (k, t) in mesh.triangles.iter().enumerate() {
@@ -91,9 +96,24 @@ pub fn tessellated_count(mesh: &Mesh, max_edge: f64, stop_at: usize) -> usize {
 /// What paraboloid maps draw: the casters with CAD fans merged back into the triangles
 /// they fill (within each object, `objects` per triangle: a housing stays its own), so a
 /// face drawn as hundreds of slivers is tessellated once, not sliver by sliver. The same
-/// surfaces (within a millionth of the scene's size).
-pub fn merged_casters(mesh: &Mesh, objects: &[u32]) -> Merged {
+/// surfaces (within a millionth of the scene's size). Triangles with holes (`cutouts`)
+/// are never merged: each keeps its own texture coordinates.
+pub fn merged_casters(mesh: &Mesh, objects: &[u32], cutouts: Option<&Cutouts>) -> Merged {
     let size = mesh.bounds().map_or(1.0, |(lo, hi)| (hi - lo).length());
+    let groups: Vec<u32>;
+    let objects = match cutouts {
+        Some(cut) if !objects.is_empty() => {
+            let first_free = objects.iter().max().map_or(0, |&m| m + 1);
+            groups = (0..objects.len())
+                .map(|k| match cut.mask_of(k) {
+                    Some(_) => first_free + k as u32,
+                    None => objects[k],
+                })
+                .collect();
+            &groups
+        }
+        _ => objects,
+    };
     merge_strips_within(mesh, objects, 1e-6 * size)
 }
 
@@ -101,21 +121,30 @@ pub fn merged_casters(mesh: &Mesh, objects: &[u32]) -> Merged {
 /// the source triangles, so a light can leave out its own housing).
 pub struct ParaboloidCasters {
     vertices: wgpu::Buffer,
+    masks: MaskBuffers,
     vertex_count: u32,
     /// Source triangle k's pieces are vertices `first_vertex[k]..first_vertex[k + 1]`.
     first_vertex: Vec<u32>,
 }
 
 impl ParaboloidCasters {
-    /// Tessellates `casters` (merged from `sources` source triangles,
-    /// [`merged_casters`]) to `max_edge` metres and uploads them. A merged triangle's
-    /// pieces count as its first source triangle's.
-    pub fn new(gpu: &Gpu, casters: &Merged, sources: usize, max_edge: f64) -> ParaboloidCasters {
-        let mut data: Vec<[f32; 3]> = Vec::new();
-        let mut first_vertex = vec![0u32; sources + 1];
+    /// Tessellates `casters` (merged from the triangles of `source`,
+    /// [`merged_casters`]) to `max_edge` metres and uploads them, with the holes of
+    /// `cutouts` (of `source`). A merged triangle's pieces count as its first source
+    /// triangle's.
+    pub fn new(
+        gpu: &Gpu,
+        casters: &Merged,
+        source: &Mesh,
+        cutouts: Option<&Cutouts>,
+        max_edge: f64,
+    ) -> ParaboloidCasters {
+        let mut data: Vec<CasterVertex> = Vec::new();
+        let mut first_vertex = vec![0u32; source.triangles.len() + 1];
         tessellate_each(&casters.mesh, max_edge, |k, t| {
-            data.extend(t.map(|p| p.as_vec3().to_array()));
-            first_vertex[casters.origin[k] as usize + 1] = data.len() as u32;
+            let from = casters.origin[k] as usize;
+            data.extend(piece_vertices(source, cutouts, from, t));
+            first_vertex[from + 1] = data.len() as u32;
             true
         });
         // Triangles without pieces (none today) end where the previous one did.
@@ -124,7 +153,7 @@ impl ParaboloidCasters {
         }
         let vertex_count = data.len() as u32;
         if data.is_empty() {
-            data.push([0.0; 3]);
+            data.push(CasterVertex::solid(glam::Vec3::ZERO));
         }
         let vertices = gpu
             .device
@@ -135,6 +164,7 @@ impl ParaboloidCasters {
             });
         ParaboloidCasters {
             vertices,
+            masks: MaskBuffers::new(gpu, cutouts),
             vertex_count,
             first_vertex,
         }
@@ -186,6 +216,7 @@ pub const MAP_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 /// The pipeline that draws a map.
 pub struct ParaboloidPasses {
     layout: wgpu::BindGroupLayout,
+    mask_layout: wgpu::BindGroupLayout,
     pipeline: wgpu::RenderPipeline,
 }
 
@@ -195,7 +226,7 @@ impl ParaboloidPasses {
         let dev = &gpu.device;
         let module = dev.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("paraboloid"),
-            source: wgpu::ShaderSource::Wgsl(shaders::PARABOLOID.into()),
+            source: wgpu::ShaderSource::Wgsl(shaders::paraboloid().into()),
         });
         let layout = dev.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("paraboloid"),
@@ -210,20 +241,26 @@ impl ParaboloidPasses {
                 count: None,
             }],
         });
+        let mask_layout = MaskBuffers::layout(gpu);
         let pipeline_layout = dev.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("paraboloid"),
-            bind_group_layouts: &[Some(&layout)],
+            bind_group_layouts: &[Some(&layout), Some(&mask_layout)],
             immediate_size: 0,
         });
-        let pipeline = gpu.position_depth_pipeline(
+        let pipeline = gpu.caster_depth_pipeline(
             "paraboloid map",
             &pipeline_layout,
             &module,
             ("vs_paraboloid", "fs_paraboloid"),
+            CasterVertex::LAYOUT,
             MAP_FORMAT,
             &[],
         );
-        ParaboloidPasses { layout, pipeline }
+        ParaboloidPasses {
+            layout,
+            mask_layout,
+            pipeline,
+        }
     }
 
     /// Creates and records the maps of `lights` (`size` texels square; distances up to
@@ -238,6 +275,7 @@ impl ParaboloidPasses {
         far: f32,
     ) -> ParaboloidMaps {
         let layers = 2 * lights.len().max(1) as u32;
+        let masks = casters.masks.bind_group(gpu, &self.mask_layout);
         let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
             label: Some("paraboloid maps"),
             size: wgpu::Extent3d {
@@ -297,6 +335,7 @@ impl ParaboloidPasses {
             if let (Some(bind), Some(light)) = (bind, light) {
                 pass.set_pipeline(&self.pipeline);
                 pass.set_bind_group(0, &bind, &[]);
+                pass.set_bind_group(1, &masks, &[]);
                 pass.set_vertex_buffer(0, casters.vertices.slice(..));
                 for range in casters.drawn_by(&light.ignored) {
                     pass.draw(range, 0..1);

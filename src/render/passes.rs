@@ -101,7 +101,13 @@ impl ScenePasses {
                 primitive: wgpu::PrimitiveState::default(),
                 depth_stencil: Some(depth_state(gpu, true, wgpu::CompareFunction::Less)),
                 multisample: Default::default(),
-                fragment: None,
+                // Only to discard the holes of alpha-masked materials.
+                fragment: Some(wgpu::FragmentState {
+                    module: &module,
+                    entry_point: Some("fs_depth"),
+                    compilation_options: Default::default(),
+                    targets: &[],
+                }),
                 multiview_mask: None,
                 cache: None,
             });

@@ -7,7 +7,7 @@ use super::gpu_scene::GpuScene;
 use super::paraboloid::{ParaboloidMaps, ParaboloidPasses, MAP_FORMAT};
 use super::volumes::{LightVolume, VolumePasses, MASK_FORMAT};
 use crate::gpu::{Gpu, GpuError};
-use crate::lighting::{point_visibility, SurfacePoint};
+use crate::lighting::{point_visibility, Occluders, SurfacePoint};
 use crate::shadow::{Light, ShadowTechnique, SilhouetteMethod, VolumeTest};
 
 /// Shadow options.
@@ -298,7 +298,12 @@ impl ShadowPasses {
         }
         let positions: Vec<DVec3> = lights.iter().map(|l| l.position).collect();
         let ignored: Vec<_> = lights.iter().map(|l| l.ignored.clone()).collect();
-        let visible = point_visibility(&scene.casters, &positions, &ignored, points);
+        let casters = Occluders {
+            mesh: &scene.casters,
+            cutouts: scene.cutouts.as_ref(),
+            ignored: &ignored,
+        };
+        let visible = point_visibility(&casters, &positions, points);
         let rows = (points.len() as u32).div_ceil(POINT_MASK_WIDTH).max(1);
         let layer_len = (POINT_MASK_WIDTH * rows) as usize;
         let mut data = vec![0u8; layer_len * lights.len()];

@@ -4,6 +4,7 @@
 //! Frames: the world is right-handed with +Z up (metres). A luminaire's own frame has
 //! γ = 0 along −Z and C0 along +X; [`PlacedLuminaire::rotation`] maps it to the world.
 
+pub mod alpha;
 pub mod back_faces;
 pub mod bump;
 pub mod camera;
@@ -274,6 +275,43 @@ impl Scene {
             .iter()
             .flat_map(|m| std::iter::repeat_n(m.material, m.indices.len() / 3))
             .collect()
+    }
+
+    /// The holes of [`Scene::caster_mesh`]'s alpha-masked triangles, in its order; `None`
+    /// when no material has an alpha mask.
+    pub fn caster_cutouts(&self) -> Option<std::sync::Arc<crate::shadow::Cutouts>> {
+        let masked: Vec<_> = self
+            .materials
+            .iter()
+            .map(|m| m.alpha_mask.clone())
+            .collect();
+        if masked.iter().all(Option::is_none) {
+            return None;
+        }
+        let masks: Vec<_> = masked.iter().flatten().cloned().collect();
+        let mut slot = Vec::with_capacity(masked.len());
+        let mut next = 0u32;
+        for m in &masked {
+            slot.push(m.as_ref().map(|_| {
+                next += 1;
+                next - 1
+            }));
+        }
+        let mut triangles = Vec::with_capacity(self.triangle_count());
+        for m in &self.meshes {
+            let mask = slot.get(m.material).copied().flatten();
+            triangles.extend(m.indices.chunks_exact(3).map(|t| {
+                mask.map(|k| {
+                    (
+                        k,
+                        [0, 1, 2].map(|c| m.uvs.get(t[c] as usize).copied().unwrap_or_default()),
+                    )
+                })
+            }));
+        }
+        Some(std::sync::Arc::new(crate::shadow::Cutouts::new(
+            triangles, masks,
+        )))
     }
 
     /// The triangles of [`Scene::caster_mesh`] that luminaire `l` ignores: its housing.

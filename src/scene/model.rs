@@ -24,8 +24,12 @@ pub struct Material {
     pub shininess: f32,
     /// `Ke`: luminous exitance, lm/m² (for the radiosity solver).
     pub emission: Vec3,
-    /// `map_Kd`: diffuse colour texture (sRGB), multiplied with `Kd`.
+    /// `map_Kd`: diffuse colour texture (sRGB), multiplied with `Kd`; its alpha (with
+    /// MTL `map_d` folded in) cuts holes ([`super::alpha`]). Set it with
+    /// [`Material::set_diffuse_map`], which keeps [`Material::alpha_mask`] in step.
     pub diffuse_map: Option<Arc<image::RgbaImage>>,
+    /// The holes of `diffuse_map`'s alpha, `None` where it has none.
+    pub alpha_mask: Option<Arc<super::alpha::AlphaMask>>,
     /// `map_Bump` / `bump` / `norm`: tangent-space normal map.
     pub normal_map: Option<Arc<image::RgbaImage>>,
     /// How radiosity export bakes its surfaces, as the scene file says (`None`: chosen
@@ -46,6 +50,7 @@ impl Default for Material {
             shininess: 1.0,
             emission: Vec3::ZERO,
             diffuse_map: None,
+            alpha_mask: None,
             normal_map: None,
             bake: None,
             diffuse_transmittance: Vec3::ZERO,
@@ -54,8 +59,17 @@ impl Default for Material {
 }
 
 impl Material {
-    /// The mean colour of the diffuse texture in linear light (sRGB decoded; alpha
-    /// ignored), white without one.
+    /// Sets the diffuse texture and the alpha mask of its holes.
+    pub fn set_diffuse_map(&mut self, img: Option<Arc<image::RgbaImage>>) {
+        self.alpha_mask = img
+            .as_deref()
+            .and_then(super::alpha::AlphaMask::from_alpha)
+            .map(Arc::new);
+        self.diffuse_map = img;
+    }
+
+    /// The mean colour of the diffuse texture's solid texels in linear light (sRGB
+    /// decoded; holes left out), white without one.
     pub fn texture_mean(&self) -> Vec3 {
         let Some(img) = &self.diffuse_map else {
             return Vec3::ONE;
@@ -63,14 +77,19 @@ impl Material {
         let linear: Vec<f64> = (0..=255u8)
             .map(|c| super::palette::srgb_to_linear(c) as f64)
             .collect();
+        let masked = self.alpha_mask.is_some();
         let mut sum = [0.0f64; 3];
+        let mut count = 0.0f64;
         for p in img.pixels() {
+            if masked && p.0[3] < super::alpha::ALPHA_CUTOFF {
+                continue;
+            }
+            count += 1.0;
             for (s, &c) in sum.iter_mut().zip(&p.0[..3]) {
                 *s += linear[c as usize];
             }
         }
-        let count = (img.width() as f64 * img.height() as f64).max(1.0);
-        Vec3::from_array(sum.map(|s| (s / count) as f32))
+        Vec3::from_array(sum.map(|s| (s / count.max(1.0)) as f32))
     }
 
     /// The diffuse reflectance radiosity uses: `Kd` times the diffuse texture's mean
@@ -521,11 +540,17 @@ impl TextureCache {
             return Err(format!("Kd {diffuse} is a reflectance and cannot exceed 1"));
         }
         let shininess = m.shininess.unwrap_or(1.0).max(0.0) as f32;
-        let diffuse_map = m
+        let mut diffuse_map = m
             .diffuse_texture
             .as_deref()
             .map(|t| self.texture(t))
             .transpose()?;
+        // `map_d` cuts holes: it becomes the diffuse texture's alpha.
+        if let Some(map_d) = m.dissolve_texture.as_deref() {
+            let mask = self.texture(map_d)?;
+            let combined = super::alpha::with_dissolve_map(diffuse_map.as_deref(), &mask);
+            diffuse_map = Some(Arc::new(combined));
+        }
         // `norm` is a normal map; `bump` / `map_Bump` a height map when it is grey
         // (converted), a normal map otherwise.
         let normal_map = match (m.unknown_param.get("norm"), m.normal_texture.as_deref()) {
@@ -547,11 +572,13 @@ impl TextureCache {
             specular,
             shininess,
             emission,
-            diffuse_map,
+            diffuse_map: None,
+            alpha_mask: None,
             normal_map,
             bake: None,
             diffuse_transmittance: transmittance(m)?,
         };
+        material.set_diffuse_map(diffuse_map);
         // Exporters often keep Kd white on a see-through material: what it transmits is
         // capped at what it does not reflect.
         let room = (Vec3::ONE - material.diffuse_reflectance()).max(Vec3::ZERO);

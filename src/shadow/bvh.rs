@@ -24,7 +24,7 @@ use obvhs::ray::Ray;
 use obvhs::Boundable;
 
 use super::raycast::ray_triangle;
-use super::{IgnoredTriangles, Light};
+use super::{Cutouts, IgnoredTriangles, Light};
 use crate::geometry::Mesh;
 
 /// Relative widening of each triangle's box (of the scene's size, plus 1 m · this): f32
@@ -47,6 +47,8 @@ pub struct TriangleBvh {
     centre: DVec3,
     /// How far each box is widened, metres.
     pad: f64,
+    /// Holes in the mesh's alpha-masked triangles (rays pass through them).
+    cutouts: Option<std::sync::Arc<Cutouts>>,
 }
 
 /// The number of levels of `bvh` (1 for a lone leaf), without recursion.
@@ -103,6 +105,7 @@ impl TriangleBvh {
                 bounds: (DVec3::ZERO, DVec3::ZERO),
                 centre: DVec3::ZERO,
                 pad: 0.0,
+                cutouts: None,
             };
         };
         let pad = RELATIVE_PAD * (1.0 + (hi - lo).length());
@@ -139,7 +142,28 @@ impl TriangleBvh {
             bounds: (lo - pad, hi + pad),
             centre,
             pad,
+            cutouts: None,
         }
+    }
+
+    /// This hierarchy with holes where `cutouts` (of the same mesh) has them; nothing
+    /// changes when it is `None` or has no masked triangle.
+    pub fn with_cutouts(mut self, cutouts: Option<std::sync::Arc<Cutouts>>) -> TriangleBvh {
+        self.cutouts = cutouts.filter(|c| !c.is_empty());
+        self
+    }
+
+    /// The distance along the ray to the primitive in `slot`, where it hits it outside
+    /// a hole.
+    fn hit(&self, o: DVec3, dir: DVec3, slot: usize, tmin: f64, tmax: f64) -> Option<f64> {
+        let corners = self.corners[slot];
+        let d = ray_triangle(o, dir, corners, tmin, tmax)?;
+        let k = self.ids[slot] as usize;
+        let through = self
+            .cutouts
+            .as_ref()
+            .is_some_and(|c| c.passes(k, corners, o + dir * d));
+        (!through).then_some(d)
     }
 
     /// How many triangles it holds.
@@ -202,7 +226,7 @@ impl TriangleBvh {
         let mut best: Option<(f64, u32)> = None;
         let mut hit = obvhs::ray::RayHit::none();
         bvh.ray_traverse(ray, &mut hit, |_, slot| {
-            let Some(d) = ray_triangle(o, dir, self.corners[slot], tmin, f64::INFINITY) else {
+            let Some(d) = self.hit(o, dir, slot, tmin, f64::INFINITY) else {
                 return f32::INFINITY;
             };
             let k = self.ids[slot];
@@ -234,7 +258,7 @@ impl TriangleBvh {
             return false;
         };
         !bvh.ray_traverse_miss(ray, |_, slot| {
-            let hit = ray_triangle(o, dir, self.corners[slot], tmin, tmax).is_some()
+            let hit = self.hit(o, dir, slot, tmin, tmax).is_some()
                 && !ignored.contains(self.ids[slot] as usize);
             if hit {
                 0.0

@@ -2,6 +2,7 @@
 //! geometry, the z-pass/z-fail decision and a CPU ray-cast reference.
 
 pub mod bvh;
+pub mod cutout;
 pub mod hextree;
 pub mod raycast;
 pub mod silhouette;
@@ -11,6 +12,7 @@ pub mod volume;
 use glam::{DVec3, DVec4};
 
 pub use bvh::TriangleBvh;
+pub use cutout::Cutouts;
 pub use hextree::Hextree;
 pub use silhouette::{Silhouette, SilhouetteMesh};
 pub use technique::{ShadowTechnique, VolumeTest};

@@ -4,8 +4,13 @@
 
 use glam::DVec3;
 
-use super::{IgnoredTriangles, Light};
+use super::{Cutouts, IgnoredTriangles, Light};
 use crate::geometry::Mesh;
+
+/// How far outside a triangle's edges (in barycentric units) a ray still hits it: rounding
+/// must not let a ray through the edge two triangles share (a floor's diagonal leaked
+/// light to one point in a hundred along it).
+const EDGE_SLACK: f64 = 1e-9;
 
 /// Möller–Trumbore: distance along `dir` to triangle (`a`, `b`, `c`), if hit in (tmin, tmax).
 pub(crate) fn ray_triangle(
@@ -25,12 +30,12 @@ pub(crate) fn ray_triangle(
     let inv = 1.0 / det;
     let s = o - a;
     let u = s.dot(p) * inv;
-    if !(0.0..=1.0).contains(&u) {
+    if !(-EDGE_SLACK..=1.0 + EDGE_SLACK).contains(&u) {
         return None;
     }
     let q = s.cross(e1);
     let v = dir.dot(q) * inv;
-    if v < 0.0 || u + v > 1.0 {
+    if v < -EDGE_SLACK || u + v > 1.0 + EDGE_SLACK {
         return None;
     }
     let t = e2.dot(q) * inv;
@@ -75,9 +80,25 @@ pub fn in_shadow_ignoring(
     eps: f64,
     ignored: &IgnoredTriangles,
 ) -> bool {
+    in_shadow_through(mesh, None, light, p, eps, ignored)
+}
+
+/// [`in_shadow_ignoring`] where the masked triangles of `cutouts` let light through their
+/// holes.
+pub fn in_shadow_through(
+    mesh: &Mesh,
+    cutouts: Option<&Cutouts>,
+    light: &Light,
+    p: DVec3,
+    eps: f64,
+    ignored: &IgnoredTriangles,
+) -> bool {
     let (dir, tmax) = shadow_ray(light, p, eps);
     mesh.triangles.iter().enumerate().any(|(k, t)| {
-        ray_triangle(p, dir, corners(mesh, t), eps, tmax).is_some() && !ignored.contains(k)
+        let c = corners(mesh, t);
+        ray_triangle(p, dir, c, eps, tmax)
+            .is_some_and(|d| cutouts.is_none_or(|cut| !cut.passes(k, c, p + dir * d)))
+            && !ignored.contains(k)
     })
 }
 
