@@ -485,6 +485,37 @@ newmtl plenum
 Kd 0.5 0.5 0.5
 ";
 
+/// The perforated panel: white, its holes from `map_d` (the rest of the materials are
+/// [`ROOM_MTL`]'s).
+const PERFORATED_MTL: &str = "newmtl perforated
+Kd 0.7 0.7 0.7
+map_d textures/perforation.png
+";
+
+/// A 4 × 4 × 3 m room with a 1.2 × 1.2 m perforated panel hung at 1.6 m (facing down,
+/// one round hole per 0.15 m, half of it open) under the ceiling luminaire: the
+/// alpha-mask example (its shadow on the floor is a grid of light spots).
+fn perforated_panel() -> Obj {
+    let p = |x: f64, y: f64| DVec3::new(x, y, 1.6);
+    let mut o = Obj::default();
+    o.room(DVec3::new(4.0, 4.0, 3.0), "floor", "wall", "wall", "ceiling");
+    o.object("panel", "perforated");
+    o.quad([p(1.4, 2.6), p(2.6, 2.6), p(2.6, 1.4), p(1.4, 1.4)], 0.15);
+    o
+}
+
+/// The perforation: a round hole (black in the grey mask) half the texel area, in each
+/// 64 × 64 tile.
+fn perforation() -> image::RgbaImage {
+    // π r² = ½ · 64²
+    let r2 = 0.5 * 64.0 * 64.0 / std::f64::consts::PI;
+    image::RgbaImage::from_fn(64, 64, |x, y| {
+        let (dx, dy) = (x as f64 + 0.5 - 32.0, y as f64 + 0.5 - 32.0);
+        let v = if dx * dx + dy * dy < r2 { 0 } else { 255 };
+        image::Rgba([v, v, v, 255])
+    })
+}
+
 /// The furniture of the boxes room; the rest of its materials are [`ROOM_MTL`]'s.
 const FURNITURE_MTL: &str = "newmtl furniture
 Kd 0.4 0.4 0.4
@@ -736,6 +767,13 @@ fn main() -> anyhow::Result<()> {
         scenes.join("luminous_ceiling.mtl"),
         format!("{ROOM_MTL}{LUMINOUS_CEILING_MTL}"),
     )?;
+
+    perforated_panel().write(&scenes.join("perforated_panel.obj"), "perforated_panel.mtl")?;
+    std::fs::write(
+        scenes.join("perforated_panel.mtl"),
+        format!("{ROOM_MTL}{PERFORATED_MTL}"),
+    )?;
+    perforation().save(scenes.join("textures/perforation.png"))?;
 
     let mut cornell = Obj::default();
     cornell_box(&mut cornell);
