@@ -498,7 +498,13 @@ map_d textures/perforation.png
 fn perforated_panel() -> Obj {
     let p = |x: f64, y: f64| DVec3::new(x, y, 1.6);
     let mut o = Obj::default();
-    o.room(DVec3::new(4.0, 4.0, 3.0), "floor", "wall", "wall", "ceiling");
+    o.room(
+        DVec3::new(4.0, 4.0, 3.0),
+        "floor",
+        "wall",
+        "wall",
+        "ceiling",
+    );
     o.object("panel", "perforated");
     o.quad([p(1.4, 2.6), p(2.6, 2.6), p(2.6, 1.4), p(1.4, 1.4)], 0.15);
     o

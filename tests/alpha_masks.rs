@@ -4,7 +4,6 @@
 //! points and the rendered image with paraboloid shadow maps. The renderer also shows the
 //! floor through the holes (depth and shading passes), and MTL `map_d` becomes the mask.
 
-use std::path::PathBuf;
 use std::sync::Arc;
 
 use glam::{DVec3, Vec2, Vec3};
@@ -94,19 +93,13 @@ fn scene(panel: Panel) -> Scene {
             material: 1,
         });
     }
-    Scene {
-        path: PathBuf::from("perforated panel"),
+    Scene::in_code(
+        "perforated panel",
         meshes,
         materials,
-        luminaires: vec![light],
-        camera: Camera::top_down(DVec3::ZERO, 2.0, 1.0),
-        display: DisplayEntry::default(),
-        models: Vec::new(),
-        grids: Vec::new(),
-        calc: Default::default(),
-        observers: Vec::new(),
-        material_overrides: Vec::new(),
-    }
+        vec![light],
+        Camera::top_down(DVec3::ZERO, 2.0, 1.0),
+    )
 }
 
 /// Half the side of the floor window that the panel's central 6 × 6 cells shade.
@@ -331,17 +324,6 @@ fn the_renderer_shows_the_floor_through_the_holes() {
 #[test]
 fn mtl_map_d_cuts_holes_and_the_mean_colour_leaves_them_out() {
     let dir = tempfile::tempdir().unwrap();
-    std::fs::write(
-        dir.path().join("quad.obj"),
-        "mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n\
-         usemtl leaf\nf 1/1 2/2 3/3 4/4\n",
-    )
-    .unwrap();
-    std::fs::write(
-        dir.path().join("quad.mtl"),
-        "newmtl leaf\nKd 1 1 1\nmap_Kd colour.png\nmap_d mask.png\n",
-    )
-    .unwrap();
     // Left half white and solid, right half black and a hole (a grey mask).
     image::RgbaImage::from_fn(8, 8, |x, _| {
         image::Rgba(if x < 4 { [255; 4] } else { [0, 0, 0, 255] })
@@ -353,13 +335,11 @@ fn mtl_map_d_cuts_holes_and_the_mean_colour_leaves_them_out() {
     })
     .save(dir.path().join("mask.png"))
     .unwrap();
-    let p = dir.path().join("s.toml");
-    std::fs::write(
-        &p,
-        "[[model]]\npath = \"quad.obj\"\nup = \"z\"\n[camera]\nposition = [0.5, -1, 2]\nlook_at = [0.5, 0.5, 0]\n",
-    )
-    .unwrap();
-    let s = Scene::load(&p).unwrap();
+    let s = common::load_quad_scene(
+        dir.path(),
+        "usemtl leaf\nf 1/1 2/2 3/3 4/4\n",
+        "newmtl leaf\nKd 1 1 1\nmap_Kd colour.png\nmap_d mask.png\n",
+    );
     let leaf = s.materials.iter().find(|m| m.name == "leaf").unwrap();
     let mask = leaf.alpha_mask.as_ref().expect("map_d makes a mask");
     assert_eq!(mask.solid_fraction(), 0.5);
@@ -508,4 +488,63 @@ fn light_between_surfaces_passes_the_holes_in_the_gpu_visibility_maps() {
             (open[k] - perforated[k]) / open[k],
         );
     }
+}
+
+#[test]
+fn the_bundled_perforated_panel_through_the_command_line() {
+    let Some(_gpu) = gpu_common::gpu() else {
+        return;
+    };
+    let scene = common::root().join("assets/scenes/perforated_panel.toml");
+    let scene = scene.to_str().unwrap();
+    // Floor points under the panel's shadow (it spans about 2.6 m around the centre).
+    let n = 41;
+    let mut points = String::new();
+    for j in 0..n {
+        for i in 0..n {
+            let at = |k: usize| 1.2 + 1.6 * k as f64 / (n - 1) as f64;
+            points += &format!("{} {} 0 0 0 1\n", at(i), at(j));
+        }
+    }
+    let lux = |flags: &[&str]| -> Vec<f64> {
+        let mut args = vec!["illuminance", scene];
+        args.extend(flags);
+        let (code, out, err) = common::run_cli(&args, &points);
+        assert_eq!(code, 0, "{err}");
+        out.lines().map(|l| l.parse().unwrap()).collect()
+    };
+    let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
+    let open = mean(&lux(&["--shadows", "none"]));
+    let cpu = mean(&lux(&["--cpu"]));
+    let gpu = mean(&lux(&[]));
+    let exact = mean(&lux(&["--shadows", "volumes"]));
+    eprintln!("no shadows {open:.2} lx, CPU {cpu:.2}, GPU paraboloid {gpu:.2}, exact {exact:.2}");
+    // About half the light passes (round holes, half the area, sampled on a grid).
+    assert!((cpu / open - 0.5).abs() < 0.1, "{cpu} of {open}");
+    // Points with volumes: the exact ray casts' visibility, lit by the GPU's code.
+    assert!((exact / cpu - 1.0).abs() < 1e-3, "{exact} against {cpu}");
+    assert!(
+        (gpu / cpu - 1.0).abs() < 0.03,
+        "GPU {gpu} against CPU {cpu}"
+    );
+    // A rendered image with stencil volumes would cast solid shadows: said.
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("v.png");
+    let (code, _, err) = common::run_cli(
+        &[
+            "render",
+            scene,
+            "--shadows",
+            "volumes",
+            "--width",
+            "64",
+            "--height",
+            "36",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        "",
+    );
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("alpha-masked"), "{err}");
 }

@@ -318,7 +318,7 @@ fn a_density_that_cannot_fit_is_refused_before_clustering() {
 /// A 4 m floor of two triangles (material 1) and, above it, a wavy 0.4 m sheet of 800
 /// triangles 2 cm across (material 2), laid out at 10 texels per metre.
 fn floor_and_sheet() -> RadiosityScene {
-    use goniolight::scene::{Camera, DisplayEntry, Material, SceneMesh};
+    use goniolight::scene::{Camera, Material, SceneMesh};
     let v = |x: f64, y: f64, z: f64| glam::Vec3::new(x as f32, y as f32, z as f32);
     let floor = [
         [v(0.0, 0.0, 0.0), v(4.0, 0.0, 0.0), v(4.0, 4.0, 0.0)],
@@ -339,22 +339,16 @@ fn floor_and_sheet() -> RadiosityScene {
             sheet.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
         }
     }
-    let scene = Scene {
-        path: "floor and sheet".into(),
-        meshes: vec![
+    let scene = Scene::in_code(
+        "floor and sheet",
+        vec![
             SceneMesh::from_triangles("floor", &floor, 1),
             SceneMesh::from_triangles("sheet", &sheet, 2),
         ],
-        materials: vec![Material::default(); 3],
-        luminaires: Vec::new(),
-        camera: Camera::perspective(DVec3::ONE, DVec3::ZERO, 60.0),
-        display: DisplayEntry::default(),
-        models: Vec::new(),
-        grids: Vec::new(),
-        calc: Default::default(),
-        observers: Vec::new(),
-        material_overrides: Vec::new(),
-    };
+        vec![Material::default(); 3],
+        Vec::new(),
+        Camera::perspective(DVec3::ONE, DVec3::ZERO, 60.0),
+    );
     RadiosityScene::with_hierarchy(&scene, 10.0, 2, Hierarchy::Clusters).unwrap()
 }
 

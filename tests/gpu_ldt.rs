@@ -136,7 +136,7 @@ fn worst_gpu_lookup(
 ) -> Option<f64> {
     use goniolight::render::illuminance::{IlluminanceProbe, SurfacePoint};
     use goniolight::render::{Renderer, ShadowSettings};
-    use goniolight::scene::{Camera, DisplayEntry, Material, PlacedLuminaire, Scene};
+    use goniolight::scene::{Camera, Material, PlacedLuminaire, Scene};
     let gpu = gpu_common::gpu()?;
     let renderer = Renderer::new(&gpu);
     let mut worst_gpu: f64 = 0.0;
@@ -151,19 +151,13 @@ fn worst_gpu_lookup(
                 normal: -d,
             })
             .collect();
-        let scene = Scene {
-            path: "lookup test".into(),
-            meshes: Vec::new(),
-            materials: vec![Material::default()],
-            luminaires: vec![placed.clone()],
-            camera: Camera::perspective(DVec3::ONE, DVec3::ZERO, 60.0),
-            display: DisplayEntry::default(),
-            models: Vec::new(),
-            grids: Vec::new(),
-            calc: Default::default(),
-            observers: Vec::new(),
-            material_overrides: Vec::new(),
-        };
+        let scene = Scene::in_code(
+            "lookup test",
+            Vec::new(),
+            vec![Material::default()],
+            vec![placed.clone()],
+            Camera::perspective(DVec3::ONE, DVec3::ZERO, 60.0),
+        );
         let uploaded = renderer.upload(&gpu, &scene);
         let got = IlluminanceProbe::new(&gpu, model)
             .run_in_scene(&gpu, &uploaded, &points, &ShadowSettings::none())

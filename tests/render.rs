@@ -21,7 +21,7 @@ use goniolight::render::tonemap::linear_to_srgb;
 use goniolight::render::{LightModel, RenderSettings, RenderedFrame, Renderer, ShadowSettings};
 use goniolight::scene::placement::aim_frame;
 use goniolight::scene::{
-    Camera, DisplayEntry, Material, Mode, Palette, PlacedLuminaire, Scene, SceneMesh, Tonemap,
+    Camera, Material, Mode, Palette, PlacedLuminaire, Scene, SceneMesh, Tonemap,
 };
 
 /// Two luminaires, one asymmetric and tilted, one rotationally symmetric.
@@ -74,19 +74,13 @@ fn gpu_illuminance_at_points_equals_the_cpu_reference_within_half_a_percent() {
 
 /// A square floor of `size` metres at z = 0, seen from straight above.
 fn floor_scene(luminaires: Vec<PlacedLuminaire>, size: f32) -> Scene {
-    Scene {
-        path: PathBuf::from("floor"),
-        meshes: vec![uv_floor(size)],
-        materials: vec![Material::default()],
+    Scene::in_code(
+        "floor",
+        vec![uv_floor(size)],
+        vec![Material::default()],
         luminaires,
-        camera: Camera::top_down(DVec3::ZERO, size as f64, 10.0),
-        display: DisplayEntry::default(),
-        models: Vec::new(),
-        grids: Vec::new(),
-        calc: Default::default(),
-        observers: Vec::new(),
-        material_overrides: Vec::new(),
-    }
+        Camera::top_down(DVec3::ZERO, size as f64, 10.0),
+    )
 }
 
 fn render(gpu: &Gpu, scene: &Scene, settings: &RenderSettings) -> RenderedFrame {

@@ -633,17 +633,6 @@ fn the_cad_room_is_the_boxes_room_in_strips() {
 #[test]
 fn a_grey_bump_map_is_a_height_map_turned_into_a_normal_map_and_a_coloured_one_is_kept() {
     let dir = tempfile::tempdir().unwrap();
-    std::fs::write(
-        dir.path().join("quad.obj"),
-        "mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n\
-         usemtl height\nf 1/1 2/2 3/3\nusemtl normal\nf 1/1 3/3 4/4\n",
-    )
-    .unwrap();
-    std::fs::write(
-        dir.path().join("quad.mtl"),
-        "newmtl height\nKd 0.5 0.5 0.5\nbump -bm 2 ramp.png\nnewmtl normal\nKd 0.5 0.5 0.5\nmap_Bump tilted.png\n",
-    )
-    .unwrap();
     // Height rising 0.1 per texel along x; a normal map tilted toward +x.
     image::RgbaImage::from_fn(16, 4, |x, _| {
         let v = (x as f32 * 0.1 * 255.0).round() as u8;
@@ -655,13 +644,11 @@ fn a_grey_bump_map_is_a_height_map_turned_into_a_normal_map_and_a_coloured_one_i
     image::RgbaImage::from_pixel(4, 4, tilted)
         .save(dir.path().join("tilted.png"))
         .unwrap();
-    let p = dir.path().join("s.toml");
-    std::fs::write(
-        &p,
-        "[[model]]\npath = \"quad.obj\"\nup = \"z\"\n[camera]\nposition = [0.5, -1, 2]\nlook_at = [0.5, 0.5, 0]\n",
-    )
-    .unwrap();
-    let s = Scene::load(&p).unwrap();
+    let s = common::load_quad_scene(
+        dir.path(),
+        "usemtl height\nf 1/1 2/2 3/3\nusemtl normal\nf 1/1 3/3 4/4\n",
+        "newmtl height\nKd 0.5 0.5 0.5\nbump -bm 2 ramp.png\nnewmtl normal\nKd 0.5 0.5 0.5\nmap_Bump tilted.png\n",
+    );
     let map = |name: &str| {
         s.materials
             .iter()

@@ -9,8 +9,6 @@ mod common;
 #[path = "common/gpu.rs"]
 mod gpu_common;
 
-use std::path::PathBuf;
-
 use common::{luminaire, root};
 use glam::{DMat4, DVec3, DVec4, Vec3};
 use goniolight::geometry::Mesh;
@@ -85,23 +83,18 @@ fn sphere(center: DVec3, r: f64, rings: u32, segments: u32) -> Mesh {
 }
 
 fn scene(meshes: &[Mesh], luminaires: Vec<PlacedLuminaire>, camera: Camera) -> Scene {
-    Scene {
-        path: PathBuf::from("shadow test"),
-        meshes: meshes
-            .iter()
-            .enumerate()
-            .map(|(k, m)| mesh_to_scene_mesh(&format!("mesh {k}"), m))
-            .collect(),
-        materials: vec![Material::default()],
+    let meshes = meshes
+        .iter()
+        .enumerate()
+        .map(|(k, m)| mesh_to_scene_mesh(&format!("mesh {k}"), m))
+        .collect();
+    Scene::in_code(
+        "shadow test",
+        meshes,
+        vec![Material::default()],
         luminaires,
         camera,
-        display: DisplayEntry::default(),
-        models: Vec::new(),
-        grids: Vec::new(),
-        calc: Default::default(),
-        observers: Vec::new(),
-        material_overrides: Vec::new(),
-    }
+    )
 }
 
 fn downlight(position: DVec3) -> PlacedLuminaire {

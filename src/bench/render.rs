@@ -7,7 +7,6 @@
 //! frames per second are measured); the frame time is the median over rounds of the
 //! round's time divided by `frames`.
 
-use std::path::PathBuf;
 use std::time::Instant;
 
 use glam::{DVec3, Vec3};
@@ -20,7 +19,7 @@ use crate::render::passes::LightModel;
 use crate::render::targets::Targets;
 use crate::render::Renderer;
 use crate::scene::placement::aim_frame;
-use crate::scene::{Camera, DisplayEntry, Material, PlacedLuminaire, Scene, SceneMesh};
+use crate::scene::{Camera, Material, PlacedLuminaire, Scene, SceneMesh};
 
 /// Torus tessellations (major, minor) giving ≈ 100, 2 000, 15 000 and 115 000 triangles
 /// together with the 12 of the room.
@@ -141,26 +140,20 @@ pub fn bench_scene(major: u32, minor: u32, luminaires: &[PlacedLuminaire]) -> Sc
         .iter()
         .map(|tri| tri.map(|i| (t.positions[i as usize] + offset).as_vec3()))
         .collect();
-    Scene {
-        path: PathBuf::from(format!("bench room + torus {major}×{minor}")),
-        meshes: vec![
+    Scene::in_code(
+        &format!("bench room + torus {major}×{minor}"),
+        vec![
             SceneMesh::from_triangles("room", &room, 0),
             SceneMesh::from_triangles("torus", &tris, 0),
         ],
-        materials: vec![Material {
+        vec![Material {
             specular: Vec3::splat(0.1),
             shininess: 30.0,
             ..Material::default()
         }],
-        luminaires: luminaires.to_vec(),
-        camera: Camera::perspective(DVec3::new(0.3, 0.3, 1.7), DVec3::new(3.0, 2.0, 1.0), 70.0),
-        display: DisplayEntry::default(),
-        models: Vec::new(),
-        grids: Vec::new(),
-        calc: Default::default(),
-        observers: Vec::new(),
-        material_overrides: Vec::new(),
-    }
+        luminaires.to_vec(),
+        Camera::perspective(DVec3::new(0.3, 0.3, 1.7), DVec3::new(3.0, 2.0, 1.0), 70.0),
+    )
 }
 
 /// How long to measure.

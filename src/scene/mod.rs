@@ -243,6 +243,31 @@ impl Scene {
         self.meshes.iter().map(|m| m.indices.len() / 3).sum()
     }
 
+    /// A scene made in code (tests, benchmarks): `meshes` with `materials` under
+    /// `luminaires`, seen by `camera`, with the default display and no models, grids,
+    /// observers or material overrides. `name` stands for the file in messages.
+    pub fn in_code(
+        name: &str,
+        meshes: Vec<SceneMesh>,
+        materials: Vec<Material>,
+        luminaires: Vec<PlacedLuminaire>,
+        camera: Camera,
+    ) -> Scene {
+        Scene {
+            path: PathBuf::from(name),
+            meshes,
+            materials,
+            luminaires,
+            camera,
+            display: DisplayEntry::default(),
+            models: Vec::new(),
+            grids: Vec::new(),
+            calc: Default::default(),
+            observers: Vec::new(),
+            material_overrides: Vec::new(),
+        }
+    }
+
     /// Every triangle of the scene as one mesh: what casts shadows.
     pub fn caster_mesh(&self) -> crate::geometry::Mesh {
         let mut mesh = crate::geometry::Mesh::default();

@@ -261,3 +261,24 @@ pub fn calc_csv_rows(path: &Path) -> Vec<[f64; 4]> {
         })
         .collect()
 }
+
+/// Writes a unit quad (`quad.obj`, corners and texture coordinates 0..1, then `faces`:
+/// its `usemtl` and `f` lines), its `quad.mtl` (`mtl`) and a scene file into `dir`, and
+/// loads the scene. The textures the MTL names must be in `dir` before.
+pub fn load_quad_scene(dir: &Path, faces: &str, mtl: &str) -> goniolight::scene::Scene {
+    std::fs::write(
+        dir.join("quad.obj"),
+        format!(
+            "mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n{faces}"
+        ),
+    )
+    .unwrap();
+    std::fs::write(dir.join("quad.mtl"), mtl).unwrap();
+    let p = dir.join("s.toml");
+    std::fs::write(
+        &p,
+        "[[model]]\npath = \"quad.obj\"\nup = \"z\"\n[camera]\nposition = [0.5, -1, 2]\nlook_at = [0.5, 0.5, 0]\n",
+    )
+    .unwrap();
+    goniolight::scene::Scene::load(&p).unwrap()
+}

@@ -1,9 +1,7 @@
 //! Scenes made in code for the radiosity tests.
 
-use std::path::PathBuf;
-
 use glam::{DVec3, Vec2, Vec3};
-use goniolight::scene::{Camera, DisplayEntry, Material, Scene, SceneMesh};
+use goniolight::scene::{Camera, Material, Scene, SceneMesh};
 
 /// A grey diffuse material of `reflectance` with luminous exitance `emission` (lm/m²).
 pub fn material(reflectance: f32, emission: f32) -> Material {
@@ -16,19 +14,13 @@ pub fn material(reflectance: f32, emission: f32) -> Material {
 
 /// A scene of `meshes` and `materials` without luminaires, seen from (0.5, 0.5, 0.5).
 pub fn scene_of(meshes: Vec<SceneMesh>, materials: Vec<Material>) -> Scene {
-    Scene {
-        path: PathBuf::from("radiosity test"),
+    Scene::in_code(
+        "radiosity test",
         meshes,
         materials,
-        luminaires: Vec::new(),
-        camera: Camera::perspective(DVec3::new(0.5, 0.5, 0.5), DVec3::ZERO, 60.0),
-        display: DisplayEntry::default(),
-        models: Vec::new(),
-        grids: Vec::new(),
-        calc: Default::default(),
-        observers: Vec::new(),
-        material_overrides: Vec::new(),
-    }
+        Vec::new(),
+        Camera::perspective(DVec3::new(0.5, 0.5, 0.5), DVec3::ZERO, 60.0),
+    )
 }
 
 /// A square floor of `side` metres from `corner` (its lowest x and y) facing up, with
