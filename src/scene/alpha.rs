@@ -9,61 +9,7 @@
 //! when its alpha is at least [`ALPHA_CUTOFF`]. No filtering: the CPU reference and the GPU
 //! agree texel for texel.
 
-use glam::Vec2;
-
-/// Alpha values (0–255) at or above this are solid; below, a hole.
-pub const ALPHA_CUTOFF: u8 = 128;
-
-/// Which texels of a texture are solid.
-#[derive(Debug, Clone, PartialEq)]
-pub struct AlphaMask {
-    width: u32,
-    height: u32,
-    solid: Vec<bool>,
-    solid_fraction: f64,
-}
-
-impl AlphaMask {
-    /// The mask of `img`'s alpha channel; `None` when every texel is solid (no holes).
-    pub fn from_alpha(img: &image::RgbaImage) -> Option<AlphaMask> {
-        let solid: Vec<bool> = img.pixels().map(|p| p.0[3] >= ALPHA_CUTOFF).collect();
-        if solid.iter().all(|&s| s) {
-            return None;
-        }
-        let solid_fraction = solid.iter().filter(|&&s| s).count() as f64 / solid.len() as f64;
-        Some(AlphaMask {
-            width: img.width(),
-            height: img.height(),
-            solid,
-            solid_fraction,
-        })
-    }
-
-    /// Whether texture coordinate `uv` (wrapped, as the renderer's repeat sampler does)
-    /// falls on a solid texel.
-    pub fn solid_at(&self, uv: Vec2) -> bool {
-        let texel = |t: f32, size: u32| {
-            let f = t - t.floor();
-            ((f * size as f32) as u32).min(size - 1)
-        };
-        self.solid_texel(texel(uv.x, self.width), texel(uv.y, self.height))
-    }
-
-    /// Width and height, texels.
-    pub fn size(&self) -> (u32, u32) {
-        (self.width, self.height)
-    }
-
-    /// Whether texel (`x`, `y`) (row 0 the image's top) is solid.
-    pub fn solid_texel(&self, x: u32, y: u32) -> bool {
-        self.solid[(y * self.width + x) as usize]
-    }
-
-    /// The share of texels that are solid (0..1).
-    pub fn solid_fraction(&self) -> f64 {
-        self.solid_fraction
-    }
-}
+pub use crate::shadow::cutout::{AlphaMask, ALPHA_CUTOFF};
 
 /// `diffuse` (or a white texture when there is none) with `map_d`'s values as its alpha:
 /// `map_d`'s own alpha channel when it has one, else its first channel (a grey mask).
@@ -104,6 +50,7 @@ pub fn checker_texture(size: u32, cells: u32, colour: [u8; 3]) -> image::RgbaIma
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::Vec2;
 
     #[test]
     fn a_checker_is_half_solid_and_wraps_like_the_sampler() {

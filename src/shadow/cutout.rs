@@ -1,12 +1,67 @@
 //! Holes in shadow casters: the triangles of alpha-masked materials
 //! ([`crate::scene::alpha`]) let a ray through where it crosses a hole. Ray casts (the
 //! brute-force oracle and [`super::TriangleBvh`]) ask [`Cutouts::passes`] after every hit.
+//! [`AlphaMask`] holds the rule that decides a point, for the CPU and the shaders alike:
+//! the texel under `floor(fract(uv) · size)` (row 0 the image's top row, as the renderer
+//! samples) is solid when its alpha is at least [`ALPHA_CUTOFF`]; no filtering.
 
 use std::sync::Arc;
 
 use glam::{DVec3, Vec2};
 
-use crate::scene::alpha::AlphaMask;
+/// Alpha values (0–255) at or above this are solid; below, a hole.
+pub const ALPHA_CUTOFF: u8 = 128;
+
+/// Which texels of a texture are solid.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AlphaMask {
+    width: u32,
+    height: u32,
+    solid: Vec<bool>,
+    solid_fraction: f64,
+}
+
+impl AlphaMask {
+    /// The mask of `img`'s alpha channel; `None` when every texel is solid (no holes).
+    pub fn from_alpha(img: &image::RgbaImage) -> Option<AlphaMask> {
+        let solid: Vec<bool> = img.pixels().map(|p| p.0[3] >= ALPHA_CUTOFF).collect();
+        if solid.iter().all(|&s| s) {
+            return None;
+        }
+        let solid_fraction = solid.iter().filter(|&&s| s).count() as f64 / solid.len() as f64;
+        Some(AlphaMask {
+            width: img.width(),
+            height: img.height(),
+            solid,
+            solid_fraction,
+        })
+    }
+
+    /// Whether texture coordinate `uv` (wrapped, as the renderer's repeat sampler does)
+    /// falls on a solid texel.
+    pub fn solid_at(&self, uv: Vec2) -> bool {
+        let texel = |t: f32, size: u32| {
+            let f = t - t.floor();
+            ((f * size as f32) as u32).min(size - 1)
+        };
+        self.solid_texel(texel(uv.x, self.width), texel(uv.y, self.height))
+    }
+
+    /// Width and height, texels.
+    pub fn size(&self) -> (u32, u32) {
+        (self.width, self.height)
+    }
+
+    /// Whether texel (`x`, `y`) (row 0 the image's top) is solid.
+    pub fn solid_texel(&self, x: u32, y: u32) -> bool {
+        self.solid[(y * self.width + x) as usize]
+    }
+
+    /// The share of texels that are solid (0..1).
+    pub fn solid_fraction(&self) -> f64 {
+        self.solid_fraction
+    }
+}
 
 /// The masked triangles of a caster mesh: per triangle, its mask and its corners' texture
 /// coordinates.
@@ -102,7 +157,11 @@ mod tests {
 
     #[test]
     fn holes_pass_where_the_mask_is_open() {
-        let mask = AlphaMask::from_alpha(&crate::scene::alpha::checker_texture(4, 2, [0; 3]));
+        // 2 × 2 cells of 2 texels: solid where (x + y) / 2 is even.
+        let img = image::RgbaImage::from_fn(4, 4, |x, y| {
+            image::Rgba([0, 0, 0, if (x / 2 + y / 2) % 2 == 0 { 255 } else { 0 }])
+        });
+        let mask = AlphaMask::from_alpha(&img);
         let corners = [DVec3::ZERO, DVec3::X, DVec3::Y];
         let uv = [Vec2::ZERO, Vec2::X, Vec2::Y];
         let cut = Cutouts::new(vec![Some((0, uv)), None], vec![Arc::new(mask.unwrap())]);
