@@ -85,10 +85,14 @@ fn vs_depth(v: VertexIn) -> DepthOut {
     return out;
 }
 
+// Whether the pipeline tests alpha masks (those of masked materials): without, it has no
+// discard and keeps early depth tests.
+override ALPHA_TEST: bool = false;
+
 // Whether `uv` falls in a hole of the material's alpha mask: the texel under
-// floor(fract(uv) · size) has alpha below one half, the rule of scene/alpha.rs.
+// floor(fract(uv) · size) has alpha below one half, the rule of shadow/cutout.rs.
 fn in_hole(uv: vec2<f32>) -> bool {
-    if (material.flags.y == 0u) {
+    if (!ALPHA_TEST || material.flags.y == 0u) {
         return false;
     }
     let size = textureDimensions(diffuse_map);

@@ -212,6 +212,9 @@ pub struct GpuScene {
     pub draws: Vec<Draw>,
     /// One bind group per material (group 1).
     pub materials: Vec<wgpu::BindGroup>,
+    /// Per material, whether its diffuse map's alpha cuts holes (drawn by the pipelines
+    /// that test them; the others keep early depth tests).
+    pub masked: Vec<bool>,
     /// The luminaires.
     pub lights: GpuLights,
     /// Number of triangles.
@@ -331,6 +334,7 @@ impl GpuScene {
             indices: index_buffer,
             draws,
             materials,
+            masked: scene.materials.iter().map(|m| m.alpha_mask.is_some()).collect(),
             lights: GpuLights::new(gpu, &scene.luminaires),
             triangle_count: scene.triangle_count(),
             casters: scene.caster_mesh(),
@@ -414,11 +418,18 @@ impl GpuScene {
         (far * 1.05) as f32
     }
 
-    /// Records the draw calls (bind group 1 and the buffers are set here).
-    pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>) {
+    /// Records the draw calls (bind group 1 and the buffers are set here), each material
+    /// with `pipelines[0]`, or `pipelines[1]` where it is alpha-masked.
+    pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>, pipelines: [&wgpu::RenderPipeline; 2]) {
         pass.set_vertex_buffer(0, self.vertices.slice(..));
         pass.set_index_buffer(self.indices.slice(..), wgpu::IndexFormat::Uint32);
+        let mut bound = None;
         for d in &self.draws {
+            let masked = self.masked.get(d.material).copied().unwrap_or(false);
+            if bound != Some(masked) {
+                pass.set_pipeline(pipelines[usize::from(masked)]);
+                bound = Some(masked);
+            }
             pass.set_bind_group(1, &self.materials[d.material], &[]);
             pass.draw_indexed(d.first_index..d.first_index + d.index_count, 0, 0..1);
         }

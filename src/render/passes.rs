@@ -67,8 +67,10 @@ struct FrameGpu {
 pub struct ScenePasses {
     module: wgpu::ShaderModule,
     layout: wgpu::PipelineLayout,
-    depth: wgpu::RenderPipeline,
-    shade: Mutex<HashMap<LightModel, wgpu::RenderPipeline>>,
+    /// The depth pipelines of opaque and of alpha-masked materials.
+    depth: [wgpu::RenderPipeline; 2],
+    /// The shading pipelines by light model and whether they test alpha masks.
+    shade: Mutex<HashMap<(LightModel, bool), wgpu::RenderPipeline>>,
 }
 
 impl ScenePasses {
@@ -87,30 +89,37 @@ impl ScenePasses {
                 bind_group_layouts: &[Some(&layouts.frame), Some(&layouts.material)],
                 immediate_size: 0,
             });
-        let depth = gpu
-            .device
-            .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some("depth pre-pass"),
-                layout: Some(&layout),
-                vertex: wgpu::VertexState {
-                    module: &module,
-                    entry_point: Some("vs_depth"),
-                    compilation_options: Default::default(),
-                    buffers: &[Some(Vertex::LAYOUT)],
-                },
-                primitive: wgpu::PrimitiveState::default(),
-                depth_stencil: Some(depth_state(gpu, true, wgpu::CompareFunction::Less)),
-                multisample: Default::default(),
-                // Only to discard the holes of alpha-masked materials.
-                fragment: Some(wgpu::FragmentState {
-                    module: &module,
-                    entry_point: Some("fs_depth"),
-                    compilation_options: Default::default(),
-                    targets: &[],
-                }),
-                multiview_mask: None,
-                cache: None,
-            });
+        // Opaque materials draw depth without a fragment stage (early depth tests); the
+        // alpha-masked ones with one that discards their holes.
+        let depth_pipeline = |masked: bool| {
+            let constants = [("ALPHA_TEST", f64::from(u8::from(masked)))];
+            gpu.device
+                .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                    label: Some("depth pre-pass"),
+                    layout: Some(&layout),
+                    vertex: wgpu::VertexState {
+                        module: &module,
+                        entry_point: Some("vs_depth"),
+                        compilation_options: Default::default(),
+                        buffers: &[Some(Vertex::LAYOUT)],
+                    },
+                    primitive: wgpu::PrimitiveState::default(),
+                    depth_stencil: Some(depth_state(gpu, true, wgpu::CompareFunction::Less)),
+                    multisample: Default::default(),
+                    fragment: masked.then(|| wgpu::FragmentState {
+                        module: &module,
+                        entry_point: Some("fs_depth"),
+                        compilation_options: wgpu::PipelineCompilationOptions {
+                            constants: &constants,
+                            ..Default::default()
+                        },
+                        targets: &[],
+                    }),
+                    multiview_mask: None,
+                    cache: None,
+                })
+        };
+        let depth = [depth_pipeline(false), depth_pipeline(true)];
         ScenePasses {
             module,
             layout,
@@ -119,13 +128,18 @@ impl ScenePasses {
         }
     }
 
-    /// The shading pipeline of `model` (built on first use).
-    fn shade_pipeline(&self, gpu: &Gpu, model: LightModel) -> wgpu::RenderPipeline {
+    /// The shading pipeline of `model`, testing alpha masks when `masked` (built on first
+    /// use: a shader that can discard loses early depth tests, so opaque materials get
+    /// one that cannot).
+    fn shade_pipeline(&self, gpu: &Gpu, model: LightModel, masked: bool) -> wgpu::RenderPipeline {
         let mut cache = self.shade.lock().unwrap_or_else(|e| e.into_inner());
         cache
-            .entry(model)
+            .entry((model, masked))
             .or_insert_with(|| {
-                let constants = [("LIGHT_MODEL", model.code() as f64)];
+                let constants = [
+                    ("LIGHT_MODEL", model.code() as f64),
+                    ("ALPHA_TEST", f64::from(u8::from(masked))),
+                ];
                 let options = wgpu::PipelineCompilationOptions {
                     constants: &constants,
                     ..Default::default()
@@ -228,9 +242,8 @@ impl ScenePasses {
             depth_stencil_attachment: Some(depth_attachment(&targets.depth_view, true)),
             ..Default::default()
         });
-        pass.set_pipeline(&self.depth);
         pass.set_bind_group(0, frame, &[]);
-        scene.draw(&mut pass);
+        scene.draw(&mut pass, [&self.depth[0], &self.depth[1]]);
     }
 
     /// Records the shading pass into `enc` (after the depth pre-pass). The HDR target is
@@ -244,7 +257,7 @@ impl ScenePasses {
         targets: &Targets,
         model: LightModel,
     ) {
-        let shade = self.shade_pipeline(gpu, model);
+        let shade = [false, true].map(|masked| self.shade_pipeline(gpu, model, masked));
         let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("shade"),
             // a = −1 marks pixels that show no surface.
@@ -260,9 +273,8 @@ impl ScenePasses {
             depth_stencil_attachment: Some(depth_attachment(&targets.depth_view, false)),
             ..Default::default()
         });
-        pass.set_pipeline(&shade);
         pass.set_bind_group(0, frame, &[]);
-        scene.draw(&mut pass);
+        scene.draw(&mut pass, [&shade[0], &shade[1]]);
     }
 }
 
