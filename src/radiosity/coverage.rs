@@ -6,6 +6,7 @@
 //! texture coordinates of the chart triangle it falls in.
 
 use glam::DVec2;
+use rustc_hash::FxHashMap;
 
 use super::elements::Elements;
 use crate::shadow::Cutouts;
@@ -33,13 +34,32 @@ pub fn apply(elements: &mut Elements, cutouts: &Cutouts) -> usize {
     if !masked_chart.iter().any(|&m| m) {
         return 0;
     }
-    let mut changed = 0;
-    for e in 0..elements.len() {
-        let chart = elements.chart[e] as usize;
-        if !masked_chart[chart] {
+    // Per masked chart, the triangles whose atlas box touches each texel: an element
+    // tests only those (a CAD panel of thousands of triangles stays linear).
+    let mut by_texel: FxHashMap<[u32; 2], Vec<u32>> = FxHashMap::default();
+    for (c, chart) in elements.charts.iter().enumerate() {
+        if !masked_chart[c] {
             continue;
         }
-        let share = solid_share(elements, cutouts, chart, elements.texel[e]);
+        for &t in &chart.triangles {
+            let uv = elements.triangles[t as usize].atlas_uv;
+            let lo = uv[0].min(uv[1]).min(uv[2]).floor().max(DVec2::ZERO);
+            let hi = uv[0].max(uv[1]).max(uv[2]).ceil();
+            for y in lo.y as u32..(hi.y as u32).max(lo.y as u32 + 1) {
+                for x in lo.x as u32..(hi.x as u32).max(lo.x as u32 + 1) {
+                    by_texel.entry([x, y]).or_default().push(t);
+                }
+            }
+        }
+    }
+    let mut changed = 0;
+    for e in 0..elements.len() {
+        if !masked_chart[elements.chart[e] as usize] {
+            continue;
+        }
+        let texel = elements.texel[e];
+        let near = by_texel.get(&texel).map_or(&[][..], Vec::as_slice);
+        let share = solid_share(elements, cutouts, near, texel);
         if share < 1.0 {
             elements.area[e] *= share.max(MIN_SHARE);
             changed += 1;
@@ -53,11 +73,10 @@ pub fn apply(elements: &mut Elements, cutouts: &Cutouts) -> usize {
     changed
 }
 
-/// The solid share of the samples over `texel` that fall in a triangle of `chart` (1 when
-/// none does).
-fn solid_share(elements: &Elements, cutouts: &Cutouts, chart: usize, texel: [u32; 2]) -> f64 {
+/// The solid share of the samples over `texel` that fall in one of `triangles` (those of
+/// its chart near it; 1 when none does).
+fn solid_share(elements: &Elements, cutouts: &Cutouts, triangles: &[u32], texel: [u32; 2]) -> f64 {
     let (mut inside, mut solid) = (0u32, 0u32);
-    let triangles = &elements.charts[chart].triangles;
     for j in 0..SAMPLES {
         for i in 0..SAMPLES {
             let p = DVec2::new(

@@ -334,7 +334,11 @@ impl GpuScene {
             indices: index_buffer,
             draws,
             materials,
-            masked: scene.materials.iter().map(|m| m.alpha_mask.is_some()).collect(),
+            masked: scene
+                .materials
+                .iter()
+                .map(|m| m.alpha_mask.is_some())
+                .collect(),
             lights: GpuLights::new(gpu, &scene.luminaires),
             triangle_count: scene.triangle_count(),
             casters: scene.caster_mesh(),
