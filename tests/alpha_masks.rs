@@ -548,3 +548,47 @@ fn the_bundled_perforated_panel_through_the_command_line() {
     assert_eq!(code, 0, "{err}");
     assert!(err.contains("alpha-masked"), "{err}");
 }
+
+#[test]
+fn an_element_keeps_the_solid_share_of_its_own_texel() {
+    // The perforated cube's panel with a mask whose left half (u < ½, x < 1 m) is a hole
+    // and right half solid, against the same panel unmasked (the same elements): those
+    // wholly left of the seam keep (almost) nothing, those wholly right all their area.
+    let half = image::RgbaImage::from_fn(64, 64, |x, _| {
+        image::Rgba([0, 0, 0, if x < 32 { 0 } else { 255 }])
+    });
+    let elements = |mask: Option<image::RgbaImage>| {
+        let mut s = emitting_ceiling_over(Panel::Perforated);
+        s.materials[2].set_diffuse_map(mask.map(Arc::new));
+        RadiosityScene::with_hierarchy(&s, 4.0, 1, Hierarchy::Clusters)
+            .unwrap()
+            .elements
+    };
+    let (masked, solid) = (elements(Some(half)), elements(None));
+    assert_eq!(masked.len(), solid.len());
+    let panel: Vec<usize> = (0..solid.len())
+        .filter(|&e| (solid.position[e].z - 1.0).abs() < 1e-9)
+        .collect();
+    // A 0.25 m texel reaches at most 0.18 m from its centre, however the chart turns.
+    let (mut left, mut right) = (0, 0);
+    for &e in &panel {
+        let x = solid.position[e].x;
+        if x < 0.8 {
+            assert!(masked.area[e] <= 1e-3 * solid.area[e], "x {x}");
+            left += 1;
+        } else if x > 1.2 {
+            assert_eq!(masked.area[e], solid.area[e], "x {x}");
+            right += 1;
+        }
+    }
+    assert!(left >= 16 && right >= 16, "{left} left, {right} right");
+    let sum = |el: &goniolight::radiosity::elements::Elements| -> f64 {
+        panel.iter().map(|&e| el.area[e]).sum()
+    };
+    assert!((sum(&solid) - 4.0).abs() < 1e-9);
+    assert!(
+        (sum(&masked) / 2.0 - 1.0).abs() < 0.005,
+        "solid half: {} m²",
+        sum(&masked)
+    );
+}
