@@ -226,14 +226,19 @@ impl RadiosityScene {
             let masked: Vec<usize> = (0..self.casters.triangles.len())
                 .filter(|&k| cut.is_some_and(|c| c.mask_of(k).is_some()))
                 .collect();
-            let mut solid_part = self.casters.clone();
-            if !masked.is_empty() {
+            // Without masks the casters are merged as they are (no copy).
+            let solid_part = if masked.is_empty() {
+                std::borrow::Cow::Borrowed(&self.casters)
+            } else {
                 let is_masked = |k: usize| masked.binary_search(&k).is_ok();
-                solid_part.triangles = (0..self.casters.triangles.len())
-                    .filter(|&k| !is_masked(k))
-                    .map(|k| self.casters.triangles[k])
-                    .collect();
-            }
+                std::borrow::Cow::Owned(Mesh {
+                    positions: self.casters.positions.clone(),
+                    triangles: (0..self.casters.triangles.len())
+                        .filter(|&k| !is_masked(k))
+                        .map(|k| self.casters.triangles[k])
+                        .collect(),
+                })
+            };
             let mut mesh = crate::geometry::simplify::merge_strips(&solid_part, 1e-6 * size);
             let solid = mesh.triangles.len();
             for &k in &masked {

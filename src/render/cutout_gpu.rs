@@ -50,17 +50,18 @@ pub fn piece_vertices(
     k: usize,
     piece: [DVec3; 3],
 ) -> [CasterVertex; 3] {
+    // Solid triangles (nearly all of them) need no corners and no texture coordinates.
+    let Some((cut, mask)) = cutouts.and_then(|c| Some((c, c.mask_of(k)?))) else {
+        return piece.map(|p| CasterVertex::solid(p.as_vec3()));
+    };
     let corners = mesh.triangles[k].map(|i| mesh.positions[i as usize]);
-    piece.map(|p| {
-        let masked = cutouts.and_then(|c| Some((c.mask_of(k)?, c.uv_at(k, corners, p)?)));
-        match masked {
-            Some((mask, uv)) => CasterVertex {
-                position: p.as_vec3().to_array(),
-                uv: uv.to_array(),
-                mask,
-            },
-            None => CasterVertex::solid(p.as_vec3()),
-        }
+    piece.map(|p| match cut.uv_at(k, corners, p) {
+        Some(uv) => CasterVertex {
+            position: p.as_vec3().to_array(),
+            uv: uv.to_array(),
+            mask,
+        },
+        None => CasterVertex::solid(p.as_vec3()),
     })
 }
 
