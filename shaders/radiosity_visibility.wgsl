@@ -1,17 +1,8 @@
 // The visibility map of a shooting patch: the distance from the patch centre to the
 // nearest surface, per texel of a hemicube face (a 90° perspective view) or of the
 // stereographic projection of the hemisphere (Wallner §2.3: only vertices are projected,
-// so long edges bend wrongly; the hemicube is exact). Needs cutout.wgsl before it.
-
-struct Face {
-    view_proj: mat4x4<f32>,
-    // xyz eye; w 1 for the stereographic projection.
-    eye: vec4<f32>,
-    // Stereographic frame: tangent, bitangent, normal; near and far in normal.w / tangent.w.
-    tangent: vec4<f32>,
-    bitangent: vec4<f32>,
-    normal: vec4<f32>,
-};
+// so long edges bend wrongly; the hemicube is exact). Needs cutout.wgsl and
+// radiosity_face.wgsl before it.
 
 @group(0) @binding(0) var<uniform> face: Face;
 
@@ -22,26 +13,15 @@ struct VertexOut {
 
 // The clip position of `position` in the face's projection.
 fn face_clip(position: vec3<f32>) -> vec4<f32> {
-    if (face.eye.w > 0.5) {
-        let v = position - face.eye.xyz;
-        let dist = length(v);
-        let local = vec3<f32>(dot(v, face.tangent.xyz), dot(v, face.bitangent.xyz), dot(v, face.normal.xyz)) / max(dist, 1e-20);
-        let far = face.normal.w;
-        // Behind the hemisphere: pushed outside the depth range (clipped).
-        let depth = select(2.0, dist / far, local.z > -0.05);
-        let xy = local.xy / max(1.0 + local.z, 1e-3);
-        return vec4<f32>(xy, depth, 1.0);
-    }
-    return face.view_proj * vec4<f32>(position, 1.0);
+    return face_clip_of(face, position);
 }
 
 // The distance stored for a fragment at `world` (behind a stereographic map: none).
 fn face_distance(world: vec3<f32>) -> vec4<f32> {
-    let v = world - face.eye.xyz;
-    if (face.eye.w > 0.5 && dot(v, face.normal.xyz) < 0.0) {
+    if (behind_stereographic(face, world)) {
         discard;
     }
-    return vec4<f32>(length(v), 0.0, 0.0, 0.0);
+    return vec4<f32>(distance(world, face.eye.xyz), 0.0, 0.0, 0.0);
 }
 
 @vertex

@@ -6,7 +6,7 @@
 use std::sync::atomic::AtomicBool;
 
 use crate::gpu::Gpu;
-use crate::radiosity::gpu::{GpuSettings, GpuSolver, Visibility};
+use crate::radiosity::gpu::{GpuSettings, GpuSolver, Raster, Visibility};
 use crate::radiosity::initial::{InitialState, LuminaireLight};
 use crate::radiosity::scene::RadiosityScene;
 use crate::radiosity::shooters::{Hierarchy, Shooters};
@@ -33,6 +33,8 @@ pub struct RadiosityBenchRow {
     pub maps: usize,
     /// Whether each face drew only the mesh chunks it can see.
     pub chunk_culling: bool,
+    /// How the maps were drawn: "hardware" (the render pipeline) or "compute".
+    pub raster: String,
     /// Visibility-mesh triangles drawn per map (over its faces).
     pub triangles_per_map: f64,
     /// Triangles of the visibility mesh.
@@ -125,6 +127,8 @@ pub struct RadiosityBenchConfig {
     /// Each visibility face draws only the mesh chunks it can see
     /// ([`GpuSettings::chunk_culling`]).
     pub chunk_culling: bool,
+    /// How the maps are drawn ([`GpuSettings::raster`]).
+    pub raster: Raster,
 }
 
 /// Solves `scene` with about `plan.elements` elements once per entry of `configs`, to 99 %
@@ -162,6 +166,7 @@ pub fn run(
             ambient,
             cell_power,
             chunk_culling,
+            raster,
         } = *config;
         if !prepared.iter().any(|p| p.0 == hierarchy) {
             let rscene = RadiosityScene::with_hierarchy(scene, density, level, hierarchy)?;
@@ -179,8 +184,12 @@ pub fn run(
             map_size,
             cell_power,
             chunk_culling,
+            raster,
             ..GpuSettings::default()
         };
+        if let Some(why) = raster.refusal(rscene.has_masked_casters()) {
+            anyhow::bail!("{why}");
+        }
         let settings = SolverSettings {
             ambient,
             ..defaults
@@ -212,6 +221,7 @@ pub fn run(
             map_size,
             maps: solver.drawn,
             chunk_culling,
+            raster: solver.raster().name().to_string(),
             triangles_per_map: solver.triangles_drawn as f64 / solver.drawn.max(1) as f64,
             visibility_triangles: solver.visibility_triangles(),
             shooters: shooter_count,

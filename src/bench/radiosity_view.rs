@@ -89,6 +89,10 @@ pub struct ViewBenchPlan {
     /// their catch-up copies rather than draws them (0: drawn again).
     #[cfg_attr(feature = "cli", arg(long, default_value_t = crate::radiosity::gpu::DEFAULT_MAP_STORE_BYTES >> 20))]
     pub map_store_mib: u64,
+    /// How the visibility maps are drawn (`auto`, `hardware`, `compute`; see
+    /// `radiosity --raster`).
+    #[cfg_attr(feature = "cli", arg(long, value_enum, default_value = "auto"))]
+    pub raster: crate::radiosity::gpu::Raster,
 }
 
 /// The view's error of `radiosity` against `reference`: Σ W |ΔL| / Σ W L over the
@@ -165,8 +169,12 @@ pub fn run(
     let initial = InitialState::from_luminaires_gpu(gpu, &light, &rscene, &shadows)?;
     let gpu_settings = GpuSettings {
         hierarchy: plan.hierarchy,
+        raster: plan.raster,
         ..GpuSettings::default()
     };
+    if let Some(why) = plan.raster.refusal(rscene.has_masked_casters()) {
+        anyhow::bail!("{why}");
+    }
     let weights = view::view_weights(&rscene, point);
     let elements_seen = weights.iter().filter(|&&w| w > 0.0).count();
     anyhow::ensure!(elements_seen > 0, "the camera sees no surface of the scene");

@@ -188,6 +188,10 @@ pub enum BenchCommand {
         /// compare (comma-separated: `on`, `off`; the same maps either way).
         #[arg(long, value_enum, value_delimiter = ',', default_value = "on")]
         chunk_culling: Vec<Switch>,
+        /// How the maps are drawn, to compare (comma-separated: `auto`, `hardware` (the
+        /// render pipeline), `compute` (compute shaders on all of the GPU's units)).
+        #[arg(long, value_enum, value_delimiter = ',', default_value = "auto")]
+        raster: Vec<crate::radiosity::gpu::Raster>,
         /// The scene (default: the bundled assets/scenes/cornell_box.toml).
         #[arg(long)]
         scene: Option<std::path::PathBuf>,
@@ -271,6 +275,7 @@ pub fn run(cmd: BenchCommand) -> Result<(), CliError> {
             map_size,
             cell_power,
             chunk_culling,
+            raster,
             scene,
         } => {
             let plan = crate::bench::radiosity::RadiosityBenchPlan {
@@ -299,7 +304,10 @@ pub fn run(cmd: BenchCommand) -> Result<(), CliError> {
                 )));
             }
             let mut configs = Vec::new();
-            for &culling in &chunk_culling {
+            for (&culling, &raster) in chunk_culling
+                .iter()
+                .flat_map(|c| raster.iter().map(move |r| (c, r)))
+            {
                 for &a in &ambient {
                     for &v in &visibility {
                         for &h in &hierarchy {
@@ -317,6 +325,7 @@ pub fn run(cmd: BenchCommand) -> Result<(), CliError> {
                                         ambient: a,
                                         cell_power: p,
                                         chunk_culling: culling == Switch::On,
+                                        raster,
                                     }
                                 }));
                             }
@@ -332,9 +341,10 @@ pub fn run(cmd: BenchCommand) -> Result<(), CliError> {
 /// A radiosity benchmark row's settings, for the lines under the table.
 fn row_label(r: &crate::bench::radiosity::RadiosityBenchRow) -> String {
     format!(
-        "{}{} / {} / {} / link error {} / cell power {}",
+        "{}{}, {} raster / {} / {} / link error {} / cell power {}",
         r.visibility,
         if r.chunk_culling { "" } else { ", whole mesh" },
+        r.raster,
         r.ambient,
         r.hierarchy,
         r.link_error,
@@ -451,7 +461,7 @@ fn run_radiosity(
         first.triangles,
         first.texel_density,
     );
-    println!("| visibility | ambient | hierarchy | link error | cell power | elements | patches | shooters (built in) | maps drawn | triangles per map | shots to 90 % | s to 90 % | shots to 99 % | s to 99 % | ms/shot | time to 90 % / first row |");
+    println!("| visibility, raster | ambient | hierarchy | link error | cell power | elements | patches | shooters (built in) | maps drawn | triangles per map | shots to 90 % | s to 90 % | shots to 99 % | s to 99 % | ms/shot | time to 90 % / first row |");
     println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     let opt = |v: Option<f64>| v.map_or("—".to_string(), |v| format!("{v:.2}"));
     let shots = |v: Option<usize>| v.map_or("—".to_string(), |v| v.to_string());
@@ -468,9 +478,10 @@ fn run_radiosity(
             (r.link_error.to_string(), r.cell_power.to_string())
         };
         println!(
-            "| {}{} | {} | {} | {link} | {cell} | {} | {} | {} ({:.2} s) | {} | {:.0} | {} | {} | {} | {} | {:.1} | {ratio} |",
+            "| {}{}, {} | {} | {} | {link} | {cell} | {} | {} | {} ({:.2} s) | {} | {:.0} | {} | {} | {} | {} | {:.1} | {ratio} |",
             r.visibility,
             if r.chunk_culling { "" } else { ", whole mesh" },
+            r.raster,
             r.ambient,
             r.hierarchy,
             r.elements,

@@ -17,7 +17,7 @@ use crate::lighting::read_points;
 use crate::lighting::SurfacePoint;
 use crate::radiosity::bake::{self, BakeChoice, BakePlan};
 use crate::radiosity::gather;
-use crate::radiosity::gpu::{GpuSettings, GpuSolver, Visibility};
+use crate::radiosity::gpu::{GpuSettings, GpuSolver, Raster, Visibility};
 use crate::radiosity::initial::{InitialState, LuminaireLight};
 use crate::radiosity::links::DEFAULT_LINK_ERROR;
 use crate::radiosity::scene::{luminance, RadiosityScene};
@@ -54,6 +54,12 @@ pub struct SolverArgs {
     /// Side of a hemicube face or of the stereographic map, texels.
     #[arg(long, default_value_t = 256)]
     pub map_size: u32,
+    /// How the visibility maps are drawn: by the GPU's render pipeline (`hardware`), or
+    /// by compute shaders on all of its units (`compute`: a data-centre GPU has only a
+    /// few units that do graphics); `auto` takes compute on a GPU and the render
+    /// pipeline on a software driver (lavapipe) or with alpha-masked casters.
+    #[arg(long, value_enum, default_value = "auto")]
+    pub raster: Raster,
     /// Who shoots: every triangle from its own patches (`none`, the flat solver), or the
     /// flat face clusters of Edström's hierarchy as a whole (`clusters`): a surface drawn
     /// as thousands of triangles is one shooter.
@@ -431,8 +437,12 @@ impl Prepared<'_> {
             hierarchy: args.hierarchy,
             cell_power: args.cell_power,
             link_error: args.link_error,
+            raster: args.raster,
             ..GpuSettings::default()
         };
+        if let Some(why) = args.raster.refusal(rscene.has_masked_casters()) {
+            return Err(CliError::input(anyhow!("{}: {why}", self.label.display())));
+        }
         let shooters = Shooters::build(rscene, args.hierarchy);
         let shooter_count = shooters.len();
         let settings = SolverSettings {
@@ -450,7 +460,7 @@ impl Prepared<'_> {
         );
         let cancel = super::interrupt_flag();
         eprintln!(
-            "{}: {} elements in {} charts, {} patches, atlas {}×{}; {shooter_count} shooters{}; visibility maps draw {} triangles; shooting (Ctrl-C stops and writes the solution so far)",
+            "{}: {} elements in {} charts, {} patches, atlas {}×{}; {shooter_count} shooters{}; visibility maps draw {} triangles ({} raster); shooting (Ctrl-C stops and writes the solution so far)",
             self.label.display(),
             rscene.elements.len(),
             rscene.elements.charts.len(),
@@ -465,6 +475,7 @@ impl Prepared<'_> {
                 }
             },
             solver.visibility_triangles(),
+            solver.raster().name(),
         );
         let mut stop_at = args.stop();
         let driven = match &self.view {

@@ -24,8 +24,13 @@ pub const CUTOUT: &str = include_str!("../../shaders/cutout.wgsl");
 pub const SCENE: &str = include_str!("../../shaders/scene.wgsl");
 /// Progressive radiosity: shooter selection, patches, receivers.
 pub const RADIOSITY: &str = include_str!("../../shaders/radiosity.wgsl");
-/// Radiosity visibility maps (hemicube faces, stereographic; needs [`CUTOUT`]).
+/// A visibility map's face, shared by the hardware and the compute rasterizer.
+pub const RADIOSITY_FACE: &str = include_str!("../../shaders/radiosity_face.wgsl");
+/// Radiosity visibility maps (hemicube faces, stereographic; needs [`CUTOUT`] and
+/// [`RADIOSITY_FACE`]).
 pub const RADIOSITY_VISIBILITY: &str = include_str!("../../shaders/radiosity_visibility.wgsl");
+/// Visibility maps rasterized by compute shaders (needs [`RADIOSITY_FACE`]).
+pub const RADIOSITY_RASTER: &str = include_str!("../../shaders/radiosity_raster.wgsl");
 /// Tone mapping, false colour and image statistics.
 pub const TONEMAP: &str = include_str!("../../shaders/tonemap.wgsl");
 
@@ -51,7 +56,12 @@ pub fn paraboloid() -> String {
 
 /// The radiosity visibility-map module.
 pub fn radiosity_visibility() -> String {
-    format!("{CUTOUT}\n{RADIOSITY_VISIBILITY}")
+    format!("{CUTOUT}\n{RADIOSITY_FACE}\n{RADIOSITY_VISIBILITY}")
+}
+
+/// The compute rasterizer's module.
+pub fn radiosity_raster() -> String {
+    format!("{RADIOSITY_FACE}\n{RADIOSITY_RASTER}")
 }
 
 /// The scene (depth + shading) module.
@@ -71,6 +81,7 @@ pub fn modules() -> Vec<(&'static str, String)> {
         ("paraboloid", paraboloid()),
         ("radiosity", RADIOSITY.to_string()),
         ("radiosity_visibility", radiosity_visibility()),
+        ("radiosity_raster", radiosity_raster()),
     ]
 }
 

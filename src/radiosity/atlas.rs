@@ -53,14 +53,16 @@ impl VisibilityAtlas {
                 view_formats: &[],
             })
         };
-        // The maps are sampled by the receive pass and copied to and from the kept maps
-        // (radiosity/gpu/map_store.rs).
+        // The maps are sampled by the receive pass, copied to and from the kept maps
+        // (radiosity/gpu/map_store.rs) and written by the compute rasterizer
+        // (radiosity/gpu/raster.rs).
         let maps = texture(
             "visibility maps",
             MAP_FORMAT,
             wgpu::TextureUsages::TEXTURE_BINDING
                 | wgpu::TextureUsages::COPY_SRC
-                | wgpu::TextureUsages::COPY_DST,
+                | wgpu::TextureUsages::COPY_DST
+                | wgpu::TextureUsages::STORAGE_BINDING,
         );
         let depth = texture(
             "visibility depth",

@@ -27,12 +27,14 @@ mod chunks;
 mod deferred;
 mod map_store;
 mod masked;
+mod raster;
 mod relight;
 mod timers;
 
 pub use chunks::{MeshChunks, TileView};
 pub use deferred::WIDEN_AT;
 pub use map_store::DEFAULT_MAP_STORE_BYTES;
+pub use raster::Raster;
 pub use timers::GpuPassSeconds;
 
 /// How a shooting patch sees what it can reach.
@@ -70,6 +72,9 @@ pub struct GpuSettings {
     /// ([`MeshChunks`]; the same maps); false draws the whole mesh every time (the
     /// reference).
     pub chunk_culling: bool,
+    /// How the maps are drawn: the render pipeline, or compute shaders on every unit of
+    /// the GPU ([`Raster`]).
+    pub raster: Raster,
 }
 
 impl Default for GpuSettings {
@@ -82,6 +87,7 @@ impl Default for GpuSettings {
             cell_power: DEFAULT_CELL_POWER,
             link_error: DEFAULT_LINK_ERROR,
             chunk_culling: true,
+            raster: Raster::Auto,
         }
     }
 }
@@ -275,6 +281,8 @@ pub struct GpuSolver<'a> {
     chunks: MeshChunks,
     /// Its alpha-masked triangles, drawn whole into every map.
     masked: Option<masked::MaskedCasters>,
+    /// The compute rasterizer, where the maps are drawn by compute shaders.
+    compute_raster: Option<raster::ComputeRaster>,
     /// Visibility-mesh triangles drawn so far, over all faces of all maps.
     pub triangles_drawn: u64,
     /// The visibility maps of a batch.
@@ -733,16 +741,20 @@ impl<'a> GpuSolver<'a> {
                     usage,
                 })
         };
+        // Read as storage by the compute rasterizer.
         let vertices = buffer(
             "radiosity vertices",
             bytemuck::cast_slice(&positions),
-            wgpu::BufferUsages::VERTEX,
+            wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::STORAGE,
         );
         let vertex_indices = buffer(
             "radiosity vertex indices",
             bytemuck::cast_slice(&indices),
-            wgpu::BufferUsages::INDEX,
+            wgpu::BufferUsages::INDEX | wgpu::BufferUsages::STORAGE,
         );
+        gpu_settings.raster = gpu_settings.raster.resolve(gpu, masked.is_some());
+        let compute_raster =
+            (gpu_settings.raster == Raster::Compute).then(|| raster::ComputeRaster::new(gpu));
         let atlas = VisibilityAtlas::new(
             gpu,
             gpu_settings.map_size,
@@ -770,6 +782,7 @@ impl<'a> GpuSolver<'a> {
             index_count: indices.len() as u32,
             chunks,
             masked,
+            compute_raster,
             triangles_drawn: 0,
             atlas,
             size: scene_size,
@@ -932,6 +945,12 @@ impl<'a> GpuSolver<'a> {
     /// Triangles each visibility map draws (the casters with CAD fans merged).
     pub fn visibility_triangles(&self) -> usize {
         self.index_count as usize / 3
+    }
+
+    /// How its maps are drawn ([`GpuSettings::raster`] as resolved for this GPU and
+    /// scene: never [`Raster::Auto`]).
+    pub fn raster(&self) -> Raster {
+        self.gpu_settings.raster
     }
 
     /// The shooters: triangles, or flat face clusters ([`GpuSettings::hierarchy`]).
@@ -1385,26 +1404,21 @@ impl<'a> GpuSolver<'a> {
                 .get((tile / faces_per_cell) as usize)
                 .is_some_and(|s| s.is_some())
         };
-        for (k, slot) in stored.iter().enumerate() {
-            if let &Some(at) = slot {
-                let cell = (k as u32 * faces_per_cell, at, faces_per_cell);
-                self.map_store.copy_cell(enc, &self.atlas, cell, false);
-            }
-        }
         let queries = match &mut self.timers {
             Some(t) => Some(t.next_batch(self.gpu)?),
             None => None,
         };
         let dev = &self.gpu.device;
-        let uniform = |label: &str, data: &[u8]| {
+        let uniform = |label: &str, data: &[u8], usage| {
             dev.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some(label),
                 contents: data,
-                usage: wgpu::BufferUsages::UNIFORM,
+                usage: wgpu::BufferUsages::UNIFORM | usage,
             })
         };
-        let shot_buf = uniform("shots", &shots);
-        let face_buf = uniform("faces", &faces);
+        let shot_buf = uniform("shots", &shots, wgpu::BufferUsages::empty());
+        // The compute rasterizer reads the faces as storage.
+        let face_buf = uniform("faces", &faces, wgpu::BufferUsages::STORAGE);
         fn binding(buffer: &wgpu::Buffer, size: usize) -> wgpu::BindingResource<'_> {
             wgpu::BindingResource::Buffer(wgpu::BufferBinding {
                 buffer,
@@ -1420,12 +1434,37 @@ impl<'a> GpuSolver<'a> {
                 (1, wgpu::BindingResource::TextureView(&self.atlas.view)),
             ],
         );
-        let face_bind = self.gpu.bind_group(
-            "faces",
-            &self.pipelines.face_layout,
-            &[(0, binding(&face_buf, std::mem::size_of::<FaceGpu>()))],
-        );
-        {
+        let mut ranges = Vec::new();
+        if let Some(compute) = &mut self.compute_raster {
+            let mut work = raster::RasterWork::new();
+            for (tile, view) in views.iter().enumerate() {
+                let tile = tile as u32;
+                if restored(tile) {
+                    continue;
+                }
+                self.chunks
+                    .visible(view, self.gpu_settings.chunk_culling, &mut ranges);
+                for &(first, count) in &ranges {
+                    work.push(tile, first, count);
+                    self.triangles_drawn += u64::from(count / 3);
+                }
+            }
+            compute.record(
+                self.gpu,
+                enc,
+                &self.atlas,
+                (&self.vertices, &self.vertex_indices),
+                &face_buf,
+                &work,
+                views.len() as u32,
+                queries.as_ref().map(|q| q.maps_compute()),
+            );
+        } else {
+            let face_bind = self.gpu.bind_group(
+                "faces",
+                &self.pipelines.face_layout,
+                &[(0, binding(&face_buf, std::mem::size_of::<FaceGpu>()))],
+            );
             // Kept, not cleared: each tile is cleared by its own draw (and a discarded
             // depth would be cleared whole by wgpu before the next load).
             let kept = wgpu::Operations {
@@ -1455,7 +1494,6 @@ impl<'a> GpuSolver<'a> {
             pass.set_vertex_buffer(0, self.vertices.slice(..));
             pass.set_index_buffer(self.vertex_indices.slice(..), wgpu::IndexFormat::Uint32);
             let size = self.atlas.size;
-            let mut ranges = Vec::new();
             for (tile, view) in views.iter().enumerate() {
                 let tile = tile as u32;
                 if restored(tile) {
@@ -1479,6 +1517,13 @@ impl<'a> GpuSolver<'a> {
                     self.triangles_drawn += u64::from(masked.triangle_count());
                     pass.set_vertex_buffer(0, self.vertices.slice(..));
                 }
+            }
+        }
+        // After the maps: the compute rasterizer writes every tile of the batch.
+        for (k, slot) in stored.iter().enumerate() {
+            if let &Some(at) = slot {
+                let cell = (k as u32 * faces_per_cell, at, faces_per_cell);
+                self.map_store.copy_cell(enc, &self.atlas, cell, false);
             }
         }
         let receivers = self.culled.1;

@@ -211,6 +211,11 @@ impl RadiosityScene {
         self.visibility_parts().solid
     }
 
+    /// Whether some of [`Self::visibility_mesh`]'s triangles have holes.
+    pub fn has_masked_casters(&self) -> bool {
+        self.visibility_solid_count() < self.visibility_mesh().triangles.len()
+    }
+
     /// The holes of [`Self::visibility_mesh`]'s alpha-masked triangles.
     pub fn visibility_cutouts(&self) -> Option<&Arc<Cutouts>> {
         self.visibility_parts().cutouts.as_ref()

@@ -114,6 +114,16 @@ impl<'a> BatchQueries<'a> {
         }
     }
 
+    /// The visibility pass's timestamp writes where the maps are drawn by compute
+    /// shaders ([`super::Raster::Compute`]).
+    pub fn maps_compute(&self) -> wgpu::ComputePassTimestampWrites<'a> {
+        wgpu::ComputePassTimestampWrites {
+            query_set: self.set,
+            beginning_of_pass_write_index: Some(self.first),
+            end_of_pass_write_index: Some(self.first + 1),
+        }
+    }
+
     /// The receive compute pass's timestamp writes.
     pub fn receive(&self) -> wgpu::ComputePassTimestampWrites<'a> {
         wgpu::ComputePassTimestampWrites {

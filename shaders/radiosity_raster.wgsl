@@ -1,0 +1,263 @@
+// Visibility maps rasterized by compute shaders (radiosity/gpu/raster.rs): every GPU unit
+// draws, where a render pass runs on the few units that do graphics (an H100 or H200 has
+// only a handful). Each texel keeps the distance to the nearest surface, as the render
+// pass's depth test and distance target do; atomics take the nearest of all triangles.
+//
+// A pixel's ray is tested against a triangle in clip space (homogeneous rasterization,
+// Olano and Greer 1997): the barycentric coordinates of the point of the triangle that
+// projects to the pixel centre solve a 3 × 3 system, so no triangle needs clipping at the
+// eye's plane and no projected coordinate is divided by a small w. The point is kept
+// where its barycentrics are all ≥ 0, it lies in front of the eye and within the depth
+// range, and (stereographic) in front of the map's plane. For the stereographic map
+// (w = 1) this is the hardware's linear rasterization of the projected vertices.
+//
+// Small triangles are drawn by one thread each; a triangle whose box holds more than
+// SMALL_PIXELS texels is listed and drawn by a workgroup (the texels strided over its
+// threads), its dispatch sized on the GPU.
+
+struct FaceSlot {
+    face: Face,
+    // The hardware pipeline reads the same records at 256-byte dynamic offsets.
+    pad: array<vec4<f32>, 8>,
+};
+
+struct RasterParams {
+    // Work items (tile, first triangle, triangles, first thread) and their threads.
+    item_count: u32,
+    thread_count: u32,
+    // Side of a tile, texels; tiles of the batch; tiles per row of the atlas.
+    size: u32,
+    tiles: u32,
+    columns: u32,
+    // Room in the list of large triangles.
+    large_capacity: u32,
+    _pad0: u32,
+    _pad1: u32,
+};
+
+@group(0) @binding(0) var<uniform> rp: RasterParams;
+@group(0) @binding(1) var<storage, read> positions: array<f32>;
+@group(0) @binding(2) var<storage, read> indices: array<u32>;
+@group(0) @binding(3) var<storage, read> faces: array<FaceSlot>;
+@group(0) @binding(4) var<storage, read> items: array<vec4<u32>>;
+// Per texel of the batch's tiles (tile after tile): 0xffffffff − the bits of the nearest
+// distance (positive floats order as their bits), 0 where nothing was drawn.
+@group(0) @binding(5) var<storage, read_write> nearest: array<atomic<u32>>;
+@group(0) @binding(6) var<storage, read_write> large: array<vec2<u32>>;
+// [0]: large triangles listed.
+@group(0) @binding(7) var<storage, read_write> control: array<atomic<u32>, 4>;
+@group(0) @binding(8) var maps: texture_storage_2d<r32float, write>;
+// The large pass's dispatch (x, y, z): its own group, since the large pass reads it as an
+// indirect dispatch and a pass may not also bind it for writing.
+@group(1) @binding(0) var<storage, read_write> large_dispatch: array<u32, 3>;
+
+const SMALL_PIXELS: i32 = 64;
+const LARGE_GROUP: u32 = 64u;
+const MAX_GROUPS_X: u32 = 65535u;
+// What an empty texel holds in the maps (the render pass's clear).
+const NOTHING: f32 = 1e30;
+
+// A triangle as one tile sees it: clip positions, world positions, the texels to test.
+struct Setup {
+    c0: vec4<f32>,
+    c1: vec4<f32>,
+    c2: vec4<f32>,
+    v0: vec3<f32>,
+    v1: vec3<f32>,
+    v2: vec3<f32>,
+    lo: vec2<i32>,
+    hi: vec2<i32>,
+    // False when the tile sees none of it.
+    seen: bool,
+};
+
+fn vertex(i: u32) -> vec3<f32> {
+    return vec3<f32>(positions[3u * i], positions[3u * i + 1u], positions[3u * i + 2u]);
+}
+
+// The texel (x right, y down) where clip position `c` (w > 0) projects.
+fn to_texel(c: vec4<f32>) -> vec2<f32> {
+    let ndc = c.xy / c.w;
+    return vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5) * f32(rp.size);
+}
+
+fn setup(tile: u32, triangle: u32) -> Setup {
+    let f = faces[tile].face;
+    var s: Setup;
+    s.v0 = vertex(indices[3u * triangle]);
+    s.v1 = vertex(indices[3u * triangle + 1u]);
+    s.v2 = vertex(indices[3u * triangle + 2u]);
+    s.c0 = face_clip_of(f, s.v0);
+    s.c1 = face_clip_of(f, s.v1);
+    s.c2 = face_clip_of(f, s.v2);
+    s.seen = false;
+    var c = array<vec4<f32>, 3>(s.c0, s.c1, s.c2);
+    // Wholly outside one plane of the view volume (x, y within ±w; 0 ≤ z ≤ w).
+    var out = vec4<u32>(0u);
+    var beyond = vec2<u32>(0u);
+    for (var k = 0; k < 3; k++) {
+        let p = c[k];
+        out += select(vec4<u32>(0u), vec4<u32>(1u), vec4<bool>((p.x > p.w), (p.x < -p.w), (p.y > p.w), (p.y < -p.w)));
+        beyond += select(vec2<u32>(0u), vec2<u32>(1u), vec2<bool>((p.z < 0.0), (p.z > p.w)));
+    }
+    if (any(out == vec4<u32>(3u)) || any(beyond == vec2<u32>(3u))) {
+        return s;
+    }
+    // The box of its part in front of the near plane (z ≥ 0, where w > 0), one texel
+    // wider each way: the texels themselves are tested exactly.
+    var lo = vec2<f32>(1e30);
+    var hi = vec2<f32>(-1e30);
+    for (var k = 0; k < 3; k++) {
+        let a = c[k];
+        let b = c[(k + 1) % 3];
+        if (a.z >= 0.0) {
+            let t = to_texel(a);
+            lo = min(lo, t);
+            hi = max(hi, t);
+        }
+        if ((a.z >= 0.0) != (b.z >= 0.0)) {
+            let cut = mix(a, b, a.z / (a.z - b.z));
+            if (cut.w > 0.0) {
+                let t = to_texel(cut);
+                lo = min(lo, t);
+                hi = max(hi, t);
+            }
+        }
+    }
+    let last = f32(rp.size - 1u);
+    let first = clamp(floor(lo - 1.0), vec2<f32>(0.0), vec2<f32>(last));
+    let end = clamp(ceil(hi), vec2<f32>(0.0), vec2<f32>(last));
+    s.lo = vec2<i32>(first);
+    s.hi = vec2<i32>(end);
+    s.seen = lo.x <= hi.x && lo.x < f32(rp.size) + 1.0 && lo.y < f32(rp.size) + 1.0 && hi.x > -1.0 && hi.y > -1.0;
+    return s;
+}
+
+// Texels in `s`'s box.
+fn box_texels(s: Setup) -> i32 {
+    let d = s.hi - s.lo + vec2<i32>(1);
+    return d.x * d.y;
+}
+
+// Tests texel `q` of tile `tile` against `s` and keeps the nearer distance.
+fn draw_texel(s: Setup, tile: u32, q: vec2<i32>) {
+    let size = f32(rp.size);
+    let x = (f32(q.x) + 0.5) / size * 2.0 - 1.0;
+    let y = 1.0 - (f32(q.y) + 0.5) / size * 2.0;
+    // The clip-space point Σ β c_k on the pixel's ray: β ⟂ (x w − X) and (y w − Y).
+    let a = vec3<f32>(s.c0.x - x * s.c0.w, s.c1.x - x * s.c1.w, s.c2.x - x * s.c2.w);
+    let b = vec3<f32>(s.c0.y - y * s.c0.w, s.c1.y - y * s.c1.w, s.c2.y - y * s.c2.w);
+    let k = cross(a, b);
+    let sum = k.x + k.y + k.z;
+    if (sum == 0.0) {
+        return;
+    }
+    let beta = k / sum;
+    if (any(beta < vec3<f32>(0.0))) {
+        return;
+    }
+    let w = dot(beta, vec3<f32>(s.c0.w, s.c1.w, s.c2.w));
+    let z = dot(beta, vec3<f32>(s.c0.z, s.c1.z, s.c2.z));
+    if (w <= 0.0 || z < 0.0 || z > w) {
+        return;
+    }
+    let f = faces[tile].face;
+    let world = beta.x * s.v0 + beta.y * s.v1 + beta.z * s.v2;
+    if (behind_stereographic(f, world)) {
+        return;
+    }
+    let d = distance(world, f.eye.xyz);
+    let at = tile * rp.size * rp.size + u32(q.y) * rp.size + u32(q.x);
+    atomicMax(&nearest[at], 0xffffffffu - bitcast<u32>(d));
+}
+
+fn linear_index(id: vec3<u32>, nw: vec3<u32>, size: u32) -> u32 {
+    return id.y * nw.x * size + id.x;
+}
+
+// The work item of thread `t`: the last whose first thread is at most `t`.
+fn item_of(t: u32) -> u32 {
+    var lo = 0u;
+    var hi = rp.item_count;
+    while (hi - lo > 1u) {
+        let mid = (lo + hi) / 2u;
+        if (items[mid].w <= t) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    return lo;
+}
+
+// One thread per (tile, triangle): small triangles drawn here, large ones listed.
+@compute @workgroup_size(64)
+fn raster_small(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) nw: vec3<u32>) {
+    let t = linear_index(id, nw, 64u);
+    if (t >= rp.thread_count) {
+        return;
+    }
+    let item = items[item_of(t)];
+    let tile = item.x;
+    let triangle = item.y + (t - item.w);
+    let s = setup(tile, triangle);
+    if (!s.seen) {
+        return;
+    }
+    if (box_texels(s) > SMALL_PIXELS) {
+        let slot = atomicAdd(&control[0], 1u);
+        if (slot < rp.large_capacity) {
+            large[slot] = vec2<u32>(tile, triangle);
+            return;
+        }
+        // The list is full: drawn here, slowly but drawn.
+    }
+    for (var y = s.lo.y; y <= s.hi.y; y++) {
+        for (var x = s.lo.x; x <= s.hi.x; x++) {
+            draw_texel(s, tile, vec2<i32>(x, y));
+        }
+    }
+}
+
+// Sizes the large pass: one workgroup per listed triangle, in rows of MAX_GROUPS_X.
+@compute @workgroup_size(1)
+fn raster_args() {
+    let n = min(atomicLoad(&control[0]), rp.large_capacity);
+    let x = min(n, MAX_GROUPS_X);
+    large_dispatch[0] = x;
+    large_dispatch[1] = select(0u, (n + x - 1u) / max(x, 1u), n > 0u);
+    large_dispatch[2] = 1u;
+}
+
+// One workgroup per large triangle, its threads striding over its box.
+@compute @workgroup_size(64)
+fn raster_large(@builtin(workgroup_id) wid: vec3<u32>, @builtin(num_workgroups) nw: vec3<u32>, @builtin(local_invocation_index) lane: u32) {
+    let index = wid.y * nw.x + wid.x;
+    if (index >= min(atomicLoad(&control[0]), rp.large_capacity)) {
+        return;
+    }
+    let entry = large[index];
+    let s = setup(entry.x, entry.y);
+    let width = s.hi.x - s.lo.x + 1;
+    let count = box_texels(s);
+    for (var i = i32(lane); i < count; i += i32(LARGE_GROUP)) {
+        draw_texel(s, entry.x, s.lo + vec2<i32>(i % width, i / width));
+    }
+}
+
+// Writes the batch's tiles into the atlas the receive pass reads.
+@compute @workgroup_size(64)
+fn raster_resolve(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) nw: vec3<u32>) {
+    let t = linear_index(id, nw, 64u);
+    let per_tile = rp.size * rp.size;
+    if (t >= rp.tiles * per_tile) {
+        return;
+    }
+    let tile = t / per_tile;
+    let local = t % per_tile;
+    let origin = vec2<u32>(tile % rp.columns, tile / rp.columns) * rp.size;
+    let texel = origin + vec2<u32>(local % rp.size, local / rp.size);
+    let v = atomicLoad(&nearest[t]);
+    let d = select(bitcast<f32>(0xffffffffu - v), NOTHING, v == 0u);
+    textureStore(maps, vec2<i32>(texel), vec4<f32>(d, 0.0, 0.0, 0.0));
+}
