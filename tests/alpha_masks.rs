@@ -11,7 +11,7 @@ use goniolight::geometry::generate::XorShift;
 use goniolight::geometry::Mesh;
 use goniolight::photometry::{Interp, Luminaire};
 use goniolight::radiosity::cpu::CpuSolver;
-use goniolight::radiosity::gpu::{GpuSettings, Visibility};
+use goniolight::radiosity::gpu::{GpuSettings, Raster, Visibility};
 use goniolight::radiosity::scene::RadiosityScene;
 use goniolight::radiosity::shooters::Hierarchy;
 use goniolight::radiosity::SolverSettings;
@@ -415,8 +415,8 @@ fn emitting_ceiling_over(panel: Panel) -> Scene {
 }
 
 /// The flux (lm) the floor of [`emitting_ceiling_over`] receives, solved on the CPU and,
-/// with `gpu`, on the GPU (hemicube and stereographic maps).
-fn floor_flux(panel: Panel, gpu: Option<&goniolight::gpu::Gpu>) -> Vec<f64> {
+/// with `gpu`, on the GPU (hemicube and stereographic maps, drawn by `raster`).
+fn floor_flux(panel: Panel, gpu: Option<(&goniolight::gpu::Gpu, Raster)>) -> Vec<f64> {
     let s = emitting_ceiling_over(panel);
     let r = RadiosityScene::with_hierarchy(&s, 4.0, 1, Hierarchy::Clusters).unwrap();
     let el = &r.elements;
@@ -426,10 +426,11 @@ fn floor_flux(panel: Panel, gpu: Option<&goniolight::gpu::Gpu>) -> Vec<f64> {
     let initial = cpu.state();
     cpu.solve(0.999, 5_000);
     let mut out = vec![flux(&cpu.illuminance)];
-    if let Some(gpu) = gpu {
+    if let Some((gpu, raster)) = gpu {
         for visibility in [Visibility::Hemicube, Visibility::Stereographic] {
             let settings = GpuSettings {
                 visibility,
+                raster,
                 ..GpuSettings::default()
             };
             out.push(flux(
@@ -471,9 +472,10 @@ fn light_between_surfaces_passes_the_holes_on_the_cpu() {
 #[test]
 fn light_between_surfaces_passes_the_holes_in_the_gpu_visibility_maps() {
     let Some(gpu) = gpu_common::gpu() else { return };
-    let open = floor_flux(Panel::None, Some(&gpu));
-    let perforated = floor_flux(Panel::Perforated, Some(&gpu));
-    let solid = floor_flux(Panel::Solid, Some(&gpu));
+    let gpu = Some((&gpu, Raster::Auto));
+    let open = floor_flux(Panel::None, gpu);
+    let perforated = floor_flux(Panel::Perforated, gpu);
+    let solid = floor_flux(Panel::Solid, gpu);
     for (k, name) in ["CPU", "GPU hemicube", "GPU stereographic"]
         .iter()
         .enumerate()
@@ -488,6 +490,45 @@ fn light_between_surfaces_passes_the_holes_in_the_gpu_visibility_maps() {
             (open[k] - perforated[k]) / open[k],
         );
     }
+}
+
+/// Nothing passes a solid panel wall to wall in the maps of either rasterizer: the render
+/// pipeline's and the compute shaders' (its corners' edge functions evaluated in one order
+/// for every triangle that shares the edge, so no texel falls between two triangles).
+#[test]
+fn nothing_passes_a_solid_panel_in_either_rasterizers_maps() {
+    let Some(gpu) = gpu_common::gpu() else { return };
+    let r = RadiosityScene::with_hierarchy(
+        &emitting_ceiling_over(Panel::Solid),
+        4.0,
+        1,
+        Hierarchy::Clusters,
+    )
+    .unwrap();
+    assert!(
+        !r.has_masked_casters(),
+        "drawn by compute shaders, not the render pass"
+    );
+    let mut failures = Vec::new();
+    for raster in [Raster::Hardware, Raster::Compute] {
+        let open = floor_flux(Panel::None, Some((&gpu, raster)));
+        let solid = floor_flux(Panel::Solid, Some((&gpu, raster)));
+        for (k, name) in ["hemicube", "stereographic"].iter().enumerate() {
+            eprintln!(
+                "{raster:?} {name}: {:.4} lm on the floor through a solid panel, {:.4} without",
+                solid[k + 1],
+                open[k + 1]
+            );
+            if !(open[k + 1] > 50.0 && solid[k + 1] <= 1e-3 * open[k + 1]) {
+                failures.push(format!(
+                    "{raster:?} {name}: {} of {}",
+                    solid[k + 1],
+                    open[k + 1]
+                ));
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{failures:?}");
 }
 
 #[test]

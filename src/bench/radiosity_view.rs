@@ -24,8 +24,10 @@ use crate::scene::Scene;
 pub struct ViewBenchRow {
     /// "global", "importance" or "perspective".
     pub drive: String,
-    /// Seconds of the importance solve (counted in the times below).
+    /// Seconds of the importance solve (counted in the times below) …
     pub importance_seconds: f64,
+    /// … of which its solver's setup.
+    pub importance_setup_seconds: f64,
     /// Seconds until the displayed image (with the drive's ambient term) is within the
     /// tolerance; `None`: not within the time limit.
     pub seconds_shown: Option<f64>,
@@ -33,6 +35,8 @@ pub struct ViewBenchRow {
     pub seconds_shot: Option<f64>,
     /// Shots until the shot light alone is within the tolerance.
     pub shots_shot: Option<usize>,
+    /// Where the shots' time went until then, by phase.
+    pub phase_seconds: crate::radiosity::gpu::ShotTimes,
     /// The displayed image's error when the run ended.
     pub final_error: f64,
     /// Visibility maps drawn in the run.
@@ -212,9 +216,11 @@ pub fn run(
         let mut row = ViewBenchRow {
             drive: drive.name().to_string(),
             importance_seconds,
+            importance_setup_seconds: driven.as_ref().map_or(0.0, |d| d.importance_setup_seconds),
             seconds_shown: None,
             seconds_shot: None,
             shots_shot: None,
+            phase_seconds: Default::default(),
             final_error: f64::NAN,
             maps: 0,
             maps_reused: 0,
@@ -236,6 +242,7 @@ pub fn run(
             if error_shot <= plan.tolerance && row.seconds_shot.is_none() {
                 row.seconds_shot = Some(clock);
                 row.shots_shot = Some(solver.shots);
+                row.phase_seconds = solver.times;
             }
             row.final_error = error_shown;
             if row.seconds_shot.is_some() && row.seconds_shown.is_some() || clock > plan.time_limit

@@ -501,16 +501,9 @@ fn run_radiosity(
     for r in &rows {
         let t = &r.phase_seconds;
         println!(
-            "{}: select {:.2}, piece powers {:.2}, plan {:.2}, gather {:.2}, links {:.2}, cull {:.2}, record {:.2}, batch wait {:.2}; the rest {:.2}; cells from the plan cache {:.0} %",
+            "{}: {}; the rest {:.2}; cells from the plan cache {:.0} %",
             row_label(r),
-            t.select,
-            t.piece_powers,
-            t.plan,
-            t.gather,
-            t.links,
-            t.cull,
-            t.record,
-            t.batch_wait,
+            phase_list(t, 2),
             (r.seconds - t.total()).max(0.0),
             100.0 * r.plan_cache_hits,
         );
@@ -707,5 +700,35 @@ fn run_radiosity_view(
             r.maps_reused
         );
     }
+    println!("Where the shots' time went until the shot light was within {tol:.0} % (s):");
+    for r in &result.rows {
+        println!(
+            "{}: importance {:.3} (its solver's setup {:.3}); {}",
+            r.drive,
+            r.importance_seconds,
+            r.importance_setup_seconds,
+            phase_list(&r.phase_seconds, 3)
+        );
+    }
     Ok(())
+}
+
+/// A solver's phases for people: "select 0.12, piece powers 0.01, …", seconds with
+/// `digits` decimals.
+fn phase_list(t: &crate::radiosity::gpu::ShotTimes, digits: usize) -> String {
+    [
+        ("select", t.select),
+        ("piece powers", t.piece_powers),
+        ("plan", t.plan),
+        ("gather", t.gather),
+        ("links", t.links),
+        ("cull", t.cull),
+        ("record", t.record),
+        ("batch wait", t.batch_wait),
+        ("catch-up", t.catch_up),
+    ]
+    .iter()
+    .map(|(name, s)| format!("{name} {s:.digits$}"))
+    .collect::<Vec<_>>()
+    .join(", ")
 }

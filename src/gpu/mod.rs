@@ -103,7 +103,13 @@ pub struct Gpu {
     pub device: wgpu::Device,
     /// Its queue.
     pub queue: wgpu::Queue,
+    /// Objects built once per device and shared by whoever asks again ([`Gpu::cached`]).
+    cache: std::sync::Arc<std::sync::Mutex<DeviceCache>>,
 }
+
+/// [`Gpu::cached`]'s objects, one per type.
+type DeviceCache =
+    std::collections::HashMap<std::any::TypeId, std::sync::Arc<dyn std::any::Any + Send + Sync>>;
 
 impl Gpu {
     /// Creates a headless context. `WGPU_BACKEND` limits the backends, `WGPU_ADAPTER_NAME`
@@ -176,7 +182,25 @@ impl Gpu {
             adapter,
             device,
             queue,
+            cache: Default::default(),
         })
+    }
+
+    /// The one `T` of this device, made by `make` the first time it is asked for: pipelines
+    /// that every solver of a process would otherwise compile again (about 20 ms each time
+    /// for the radiosity solver's).
+    pub fn cached<T: std::any::Any + Send + Sync>(
+        &self,
+        make: impl FnOnce() -> T,
+    ) -> std::sync::Arc<T> {
+        let key = std::any::TypeId::of::<T>();
+        let mut cache = self.cache.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(found) = cache.get(&key).and_then(|v| v.clone().downcast::<T>().ok()) {
+            return found;
+        }
+        let made = std::sync::Arc::new(make());
+        cache.insert(key, made.clone());
+        made
     }
 
     /// The depth-stencil format of the renderer's targets: 32-bit float depth with an

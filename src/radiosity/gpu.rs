@@ -126,6 +126,9 @@ pub struct ShotTimes {
     pub record: f64,
     /// Waiting for a batch before the next (so a shot can stop between batches).
     pub batch_wait: f64,
+    /// Perspective-driven radiosity: giving the charts that join the area of interest
+    /// the shots they missed (their culls, maps and receive passes).
+    pub catch_up: f64,
 }
 
 impl ShotTimes {
@@ -139,6 +142,7 @@ impl ShotTimes {
             + self.cull
             + self.record
             + self.batch_wait
+            + self.catch_up
     }
 }
 
@@ -259,7 +263,8 @@ pub struct GpuSolver<'a> {
     scene: &'a RadiosityScene,
     settings: SolverSettings,
     gpu_settings: GpuSettings,
-    pipelines: Pipelines,
+    /// Built once per device ([`Gpu::cached`]).
+    pipelines: std::sync::Arc<Pipelines>,
     params: wgpu::Buffer,
     radiosity: wgpu::Buffer,
     unshot: wgpu::Buffer,
@@ -618,7 +623,7 @@ impl<'a> GpuSolver<'a> {
             gpu_settings.link_error = 0.0;
             max_patches = shooters.max_cells(scene, 0);
         }
-        let pipelines = Pipelines::new(gpu);
+        let pipelines = gpu.cached(|| Pipelines::new(gpu));
         let bytes = |v: &[[f32; 4]]| bytemuck::cast_slice::<[f32; 4], u8>(v).to_vec();
         let params = gpu.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("radiosity params"),
@@ -752,9 +757,10 @@ impl<'a> GpuSolver<'a> {
             bytemuck::cast_slice(&indices),
             wgpu::BufferUsages::INDEX | wgpu::BufferUsages::STORAGE,
         );
-        gpu_settings.raster = gpu_settings.raster.resolve(gpu, masked.is_some());
-        let compute_raster =
-            (gpu_settings.raster == Raster::Compute).then(|| raster::ComputeRaster::new(gpu));
+        gpu_settings.raster = gpu_settings.raster.resolve(masked.is_some());
+        let compute_raster = (gpu_settings.raster == Raster::Compute).then(|| {
+            raster::ComputeRaster::new(gpu, gpu.cached(|| raster::RasterPipelines::new(gpu)))
+        });
         let atlas = VisibilityAtlas::new(
             gpu,
             gpu_settings.map_size,

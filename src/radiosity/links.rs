@@ -128,19 +128,43 @@ impl ReceiverBoxes {
         ReceiverBoxes::from_boxes(boxes, ranges)
     }
 
+    /// The hierarchy over `charts` alone (indices, see [`ReceiverBoxes::range`]): its
+    /// chart `k` is `charts[k]` here. Queries about a few charts among many (the charts
+    /// that join perspective-driven radiosity's area of interest) then cost what those
+    /// few do.
+    /// Its tolerances are the whole hierarchy's, so it finds exactly the charts of
+    /// `charts` that the whole one finds.
+    pub fn subset(&self, charts: &[usize]) -> ReceiverBoxes {
+        ReceiverBoxes::build(
+            charts.iter().map(|&k| self.boxes[k]).collect(),
+            charts.iter().map(|&k| self.ranges[k]).collect(),
+            Some(self.size),
+        )
+    }
+
     /// The hierarchy over chart boxes (lowest, highest corner) holding the elements
     /// `ranges` (first, count).
     fn from_boxes(boxes: Vec<(DVec3, DVec3)>, ranges: Vec<(u32, u32)>) -> ReceiverBoxes {
+        ReceiverBoxes::build(boxes, ranges, None)
+    }
+
+    /// [`ReceiverBoxes::from_boxes`] with the tolerances of a scene of `size` metres
+    /// (default: the boxes' own extent).
+    fn build(
+        boxes: Vec<(DVec3, DVec3)>,
+        ranges: Vec<(u32, u32)>,
+        size: Option<f64>,
+    ) -> ReceiverBoxes {
         let lo = boxes.iter().map(|b| b.0).fold(DVec3::INFINITY, DVec3::min);
         let hi = boxes
             .iter()
             .map(|b| b.1)
             .fold(DVec3::NEG_INFINITY, DVec3::max);
-        let size = if boxes.is_empty() {
+        let size = size.unwrap_or(if boxes.is_empty() {
             1.0
         } else {
             (hi - lo).length()
-        };
+        });
         let centre = if boxes.is_empty() {
             DVec3::ZERO
         } else {
@@ -716,6 +740,18 @@ mod tests {
             let mut exact_sorted = exact.clone();
             exact_sorted.sort_unstable();
             assert_eq!(one, exact_sorted, "{count}: group 1 is exact");
+            // A subset's hierarchy finds exactly the subset's charts the whole one does.
+            let some: Vec<usize> = (0..boxes.len()).filter(|k| k % 7 < 2).collect();
+            let sub = receivers.subset(&some);
+            let mut from_sub: Vec<usize> = sub
+                .charts_in_front_of_any(&planes)
+                .into_iter()
+                .map(|k| some[k])
+                .collect();
+            from_sub.sort_unstable();
+            let mut want_sub = exact_sorted.clone();
+            want_sub.retain(|k| k % 7 < 2);
+            assert_eq!(from_sub, want_sub, "{count}: the subset");
             assert!(!got.is_empty(), "{count} planes");
             if count <= 3 {
                 assert!(got.len() < boxes.len(), "{count}: {}", got.len());

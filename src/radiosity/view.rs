@@ -175,37 +175,59 @@ pub fn view_weights(scene: &RadiosityScene, view: &ViewPoint) -> Vec<f64> {
         .collect()
 }
 
-/// Per chart of the scene's elements, whether the eye sees one of its elements within
-/// `half_angle_deg` of the view direction; from 180° every chart (also those hidden).
-pub fn charts_in_cone(scene: &RadiosityScene, view: &ViewPoint, half_angle_deg: f64) -> Vec<bool> {
+/// Per chart, the largest cosine between the view direction and the direction to one of
+/// its elements that the eye sees, among those within `widest_deg` of the view direction
+/// (`None`: none). Elements are tried nearest the axis first, so a chart in view costs one
+/// ray and one that is hidden a ray per element within the cone, once for every stage.
+fn charts_seen_cosine(
+    scene: &RadiosityScene,
+    view: &ViewPoint,
+    widest_deg: f64,
+) -> Vec<Option<f64>> {
     let el = &scene.elements;
-    if half_angle_deg >= 180.0 {
-        return vec![true; el.charts.len()];
-    }
-    let cos_limit = half_angle_deg.to_radians().cos();
+    let cos_widest = widest_deg.to_radians().cos();
     let eps = ray_offset(scene);
     el.charts
         .par_iter()
         .map(|c| {
-            (c.first..c.first + c.count).any(|e| {
-                let e = e as usize;
-                let p = el.position[e];
-                let d = (p - view.eye).normalize_or_zero();
-                d.dot(view.forward) >= cos_limit && view.sees(scene, p, el.normal(e), eps)
-            })
+            let mut near: Vec<(f64, usize)> = (c.first..c.first + c.count)
+                .map(|e| {
+                    let d = (el.position[e as usize] - view.eye).normalize_or_zero();
+                    (d.dot(view.forward), e as usize)
+                })
+                .filter(|&(cos, _)| cos >= cos_widest)
+                .collect();
+            near.sort_unstable_by(|a, b| b.0.total_cmp(&a.0));
+            near.into_iter()
+                .find(|&(_, e)| view.sees(scene, el.position[e], el.normal(e), eps))
+                .map(|(cos, _)| cos)
         })
         .collect()
 }
 
-/// The stages of the area of interest, narrowest first: the image's cone widened by
-/// `margin_deg`, then by [`STAGE_STEP_DEG`] more each, and last every chart.
+/// The stages of the area of interest, narrowest first: the charts the eye sees within the
+/// image's cone widened by `margin_deg`, then by [`STAGE_STEP_DEG`] more each, and last
+/// every chart.
 pub fn area_stages(scene: &RadiosityScene, view: &ViewPoint, margin_deg: f64) -> Vec<Vec<bool>> {
-    let mut stages = Vec::new();
+    let mut angles = Vec::new();
     let mut angle = view.half_diagonal_deg() + margin_deg.max(0.0);
     while angle < 180.0 {
-        stages.push(charts_in_cone(scene, view, angle));
+        angles.push(angle);
         angle += STAGE_STEP_DEG;
     }
+    let seen = match angles.last() {
+        Some(&widest) => charts_seen_cosine(scene, view, widest),
+        None => Vec::new(),
+    };
+    let mut stages: Vec<Vec<bool>> = angles
+        .iter()
+        .map(|a| {
+            let cos_limit = a.to_radians().cos();
+            seen.iter()
+                .map(|c| c.is_some_and(|c| c >= cos_limit))
+                .collect()
+        })
+        .collect();
     stages.push(vec![true; scene.elements.charts.len()]);
     stages.dedup();
     stages
@@ -214,7 +236,7 @@ pub fn area_stages(scene: &RadiosityScene, view: &ViewPoint, margin_deg: f64) ->
 /// The importance H per element (see the module's notes): a radiosity solution of the
 /// scene without luminaires whose emission is reflectance × `view` weight, solved on the
 /// GPU to [`IMPORTANCE_CONVERGE`] (or `time_budget`), read back as each element's received
-/// irradiance (luminance).
+/// irradiance (luminance); and the seconds its solver took to set up.
 pub fn importance(
     gpu: &Gpu,
     scene: &RadiosityScene,
@@ -222,7 +244,7 @@ pub fn importance(
     gpu_settings: GpuSettings,
     view: &[f64],
     time_budget: Option<std::time::Duration>,
-) -> Result<Vec<f64>, GpuError> {
+) -> Result<(Vec<f64>, f64), GpuError> {
     let radiosity = (0..scene.elements.len())
         .map(|e| scene.element_reflectance(e) * view[e])
         .collect();
@@ -239,7 +261,9 @@ pub fn importance(
         map_size: (gpu_settings.map_size / IMPORTANCE_MAP_DIVISOR).max(32),
         ..gpu_settings
     };
+    let started = std::time::Instant::now();
     let mut solver = GpuSolver::new(gpu, scene, &initial, settings, gpu_settings);
+    let setup_seconds = started.elapsed().as_secs_f64();
     let stop = StopAt {
         converge: IMPORTANCE_CONVERGE,
         max_shots: None,
@@ -247,7 +271,7 @@ pub fn importance(
     };
     let cancel = std::sync::atomic::AtomicBool::new(false);
     solver.solve(&stop, &cancel, |_| {})?;
-    Ok(solver.radiosity_and_illuminance()?.1)
+    Ok((solver.radiosity_and_illuminance()?.1, setup_seconds))
 }
 
 /// Per shooter, its weight in the selection: its elements' area-weighted mean
@@ -326,8 +350,10 @@ pub struct ViewDriven {
     pub view: Vec<f64>,
     /// Per element, the importance H ([`importance`]).
     pub importance: Vec<f64>,
-    /// Seconds the importance solve took.
+    /// Seconds the importance solve took …
     pub importance_seconds: f64,
+    /// … of which setting up its solver (shooters, receivers, mesh chunks, pipelines).
+    pub importance_setup_seconds: f64,
 }
 
 impl ViewDriven {
@@ -342,11 +368,13 @@ impl ViewDriven {
         time_budget: Option<std::time::Duration>,
     ) -> Result<ViewDriven, GpuError> {
         let started = std::time::Instant::now();
-        let importance = importance(gpu, scene, settings, gpu_settings, &view, time_budget)?;
+        let (importance, importance_setup_seconds) =
+            importance(gpu, scene, settings, gpu_settings, &view, time_budget)?;
         Ok(ViewDriven {
             view,
             importance,
             importance_seconds: started.elapsed().as_secs_f64(),
+            importance_setup_seconds,
         })
     }
 

@@ -5,9 +5,9 @@
 //! it missed are shot again at it alone, in order, so its light is what it would have
 //! been had it received all along.
 
-use super::super::links::Links;
+use super::super::links::{Links, ReceiverBoxes};
 use super::super::shooters::ShotPlan;
-use super::{cell_planes, GpuSolver};
+use super::{cell_planes, GpuSolver, ShotTimes};
 use crate::gpu::GpuError;
 
 /// A shot some waiting receiver missed.
@@ -80,13 +80,21 @@ impl GpuSolver<'_> {
         deferral.receiving = wanted;
         let mut given = 0;
         let missed = std::mem::take(&mut deferral.missed);
+        let started = std::time::Instant::now();
+        // The shots' own phases are not counted twice.
+        let before = self.times;
         for (from, charts) in &joining {
+            let boxes = self.receivers.subset(charts);
             for shot in &missed[*from..] {
-                if self.shoot_again(shot, charts)? {
+                if self.shoot_again(shot, (&boxes, charts))? {
                     given += 1;
                 }
             }
         }
+        self.times = ShotTimes {
+            catch_up: before.catch_up + started.elapsed().as_secs_f64(),
+            ..before
+        };
         let deferral = self.deferral.as_mut().expect("set above");
         if deferral.receiving.iter().all(|&r| r) {
             // Nobody waits: nothing missed needs keeping, nor do its maps.
@@ -184,19 +192,23 @@ impl GpuSolver<'_> {
         }
     }
 
-    /// Shoots `shot` again at the receiver charts `charts` (sorted) only (nothing is
-    /// cleared: its shooter's unshot radiosity was taken when it was first shot). False
-    /// when none of them is in front of its cells (nothing to shoot).
-    fn shoot_again(&mut self, shot: &MissedShot, charts: &[usize]) -> Result<bool, GpuError> {
+    /// Shoots `shot` again at the receiver charts `charts` only (their hierarchy `boxes`,
+    /// [`super::ReceiverBoxes::subset`]; nothing is cleared: its shooter's unshot radiosity
+    /// was taken when it was first shot). False when none of them is in front of its
+    /// cells (nothing to shoot).
+    fn shoot_again(
+        &mut self,
+        shot: &MissedShot,
+        (boxes, charts): (&ReceiverBoxes, &[usize]),
+    ) -> Result<bool, GpuError> {
         self.gpu
             .queue
             .write_buffer(&self.patch_delta, 0, bytemuck::cast_slice(&shot.delta));
         // Only the cells with one of `charts` in front of them are drawn again, and only
         // those charts receive (as when it was first shot: the culling's own test).
-        let joining = |planes: &[(glam::DVec3, glam::DVec3, f64)]| {
-            let mut found = self.receivers.charts_in_front_of_any(planes);
-            found.retain(|k| charts.binary_search(k).is_ok());
-            found
+        let joining = |planes: &[(glam::DVec3, glam::DVec3, f64)]| -> Vec<usize> {
+            let found = boxes.charts_in_front_of_any(planes);
+            found.into_iter().map(|k| charts[k]).collect()
         };
         let (cells, kept): (Vec<usize>, Vec<Option<u32>>) = shot
             .cells
