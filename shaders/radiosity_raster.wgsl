@@ -15,12 +15,6 @@
 // SMALL_PIXELS texels is listed and drawn by a workgroup (the texels strided over its
 // threads). The large pass has a fixed number of workgroups that take the list's entries
 // in turn, so no dispatch is sized on the GPU.
-//
-// Known defect: on an NVIDIA H200 (not on lavapipe) these maps let light through a solid
-// panel wall to wall (2.1 of 80 lm with the hemicube, 4.5 with the stereographic map;
-// tests/alpha_masks.rs, nothing_passes_a_solid_panel_in_either_rasterizers_maps). It does
-// not depend on the batch, the chunk culling or the large pass, and grows at lower map
-// sizes; its cause is not found. The compute rasterizer is opt-in until it is.
 
 struct FaceSlot {
     face: Face,

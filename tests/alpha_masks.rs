@@ -493,8 +493,10 @@ fn light_between_surfaces_passes_the_holes_in_the_gpu_visibility_maps() {
 }
 
 /// Nothing passes a solid panel wall to wall in the maps of either rasterizer: the render
-/// pipeline's and the compute shaders' (its corners' edge functions evaluated in one order
-/// for every triangle that shares the edge, so no texel falls between two triangles).
+/// pipeline's and the compute shaders' (a texel within the rounding of an edge function is
+/// inside, so none falls between two triangles: without it, on an H200, whose compiler
+/// fuses multiply-adds, 2.13 of 80 lm reached the floor with the hemicube and 4.48 with
+/// the stereographic map).
 #[test]
 fn nothing_passes_a_solid_panel_in_either_rasterizers_maps() {
     let Some(gpu) = gpu_common::gpu() else { return };

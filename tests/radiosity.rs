@@ -1023,17 +1023,24 @@ fn faces_that_draw_only_the_chunks_they_can_see_give_the_same_solution() {
 /// edges: the same shooters shot on the room with 144 boxes (shadows, grazing boxes, faces
 /// crossing the eye's plane) deliver the same power within 0.1 %, and all but one element
 /// in 200 the same radiosity within 0.1 % of the largest, for both map kinds (on lavapipe
-/// and on an H200; but see tests/alpha_masks.rs); and `auto` is the render pipeline.
+/// and on an H200); and `auto` is compute on a GPU, the render pipeline on a software
+/// driver and with alpha masks.
 #[test]
 fn the_compute_rasterizer_gives_the_render_pipelines_solution() {
     let Some(gpu) = gpu_common::gpu() else { return };
     let r = RadiosityScene::new(&room_with_many_boxes(), 8.0, 1).unwrap();
     let settings = SolverSettings::default();
     let start = CpuSolver::new(&r, settings).state();
-    // Compute is opt-in (its maps leak on an H200: tests/alpha_masks.rs).
-    assert_eq!(Raster::Auto.resolve(false), Raster::Hardware);
-    assert_eq!(Raster::Compute.resolve(false), Raster::Compute);
-    assert_eq!(Raster::Compute.resolve(true), Raster::Hardware);
+    let software = gpu.adapter.get_info().device_type == wgpu::DeviceType::Cpu;
+    let auto = if software {
+        Raster::Hardware
+    } else {
+        Raster::Compute
+    };
+    assert_eq!(Raster::Auto.resolve(&gpu, false), auto);
+    assert_eq!(Raster::Compute.resolve(&gpu, false), Raster::Compute);
+    assert_eq!(Raster::Compute.resolve(&gpu, true), Raster::Hardware);
+    assert_eq!(Raster::Auto.resolve(&gpu, true), Raster::Hardware);
     for visibility in [Visibility::Hemicube, Visibility::Stereographic] {
         let solve = |raster: Raster, first: Option<usize>| {
             let gpu_settings = GpuSettings {

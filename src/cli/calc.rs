@@ -134,12 +134,6 @@ pub fn run(args: CalcArgs) -> Result<(), CliError> {
             args.solver.drive.name()
         )));
     }
-    if args.solver.raster == crate::radiosity::gpu::Raster::Compute {
-        // Lux handed over must not come from maps with a known leak.
-        return Err(CliError::input(anyhow!(
-            "--raster compute: calc's interreflected light is solved with the render pipeline's visibility maps (the compute rasterizer lets light through thin surfaces on some GPUs); leave out --raster"
-        )));
-    }
     let mut names = std::collections::HashSet::new();
     for g in &scene.grids {
         if !names.insert(csv_name(&g.entry.name)) {

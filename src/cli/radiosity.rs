@@ -443,9 +443,6 @@ impl Prepared<'_> {
         if let Some(why) = args.raster.refusal(rscene.has_masked_casters()) {
             return Err(CliError::input(anyhow!("{}: {why}", self.label.display())));
         }
-        if let Some(warning) = args.raster.warning(&self.gpu) {
-            eprintln!("warning: {}: {warning}", self.label.display());
-        }
         let shooters = Shooters::build(rscene, args.hierarchy);
         let shooter_count = shooters.len();
         let settings = SolverSettings {

@@ -757,7 +757,7 @@ impl<'a> GpuSolver<'a> {
             bytemuck::cast_slice(&indices),
             wgpu::BufferUsages::INDEX | wgpu::BufferUsages::STORAGE,
         );
-        gpu_settings.raster = gpu_settings.raster.resolve(masked.is_some());
+        gpu_settings.raster = gpu_settings.raster.resolve(gpu, masked.is_some());
         let compute_raster = (gpu_settings.raster == Raster::Compute).then(|| {
             raster::ComputeRaster::new(gpu, gpu.cached(|| raster::RasterPipelines::new(gpu)))
         });

@@ -8,15 +8,11 @@
 //! whose box holds more than 64 texels goes to a list whose entries the workgroups of a
 //! second pass take in turn. A last pass writes the batch's tiles into the atlas, so the
 //! receive pass, the kept maps and everything after them read the same texture either
-//! way. On lavapipe the maps are the render pass's to within a texel along edges (its
-//! fill rule leaves out texels whose centre lies exactly on an edge; this one keeps them).
-//!
-//! **Opt-in**: on an NVIDIA H200 these maps let light through a solid panel wall to wall
-//! (2.1 of 80 lm reach the floor with the hemicube, 4.5 with the stereographic map, none
-//! with the render pipeline; `tests/alpha_masks.rs`), whatever the batch, the chunk
-//! culling or the large pass, and more at lower map sizes. Until that is found,
-//! [`Raster::Auto`] is the render pipeline everywhere, `calc` refuses compute maps and
-//! `radiosity --raster compute` warns.
+//! way. The maps are the render pass's to within a texel along edges (its fill rule
+//! leaves out texels whose centre lies exactly on an edge; this one keeps them, and those
+//! within the rounding of an edge function: on an H200, whose compiler fuses
+//! multiply-adds, exact ties left cracks along shared edges, and 2.1 of 80 lm passed a
+//! solid panel; `tests/alpha_masks.rs`).
 
 use wgpu::util::DeviceExt;
 
@@ -30,24 +26,25 @@ use crate::render::layouts::{buffer_binding, entry};
 #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum Raster {
-    /// The render pipeline, until the compute rasterizer's leak on real GPUs is found (see
-    /// the module); then compute on a GPU of its own.
+    /// Compute on a GPU of its own, the render pipeline on a CPU adapter (lavapipe, whose
+    /// rasterizer is the faster there) and wherever alpha-masked casters are drawn.
     #[default]
     Auto,
     /// The render pipeline: the GPU's rasterizer, depth test and a distance target.
     Hardware,
-    /// Compute shaders on every unit of the GPU (not with alpha-masked casters; opt-in,
-    /// see the module).
+    /// Compute shaders on every unit of the GPU (not with alpha-masked casters).
     Compute,
 }
 
 impl Raster {
-    /// What `self` means for a scene with or without alpha-masked casters: never
-    /// [`Raster::Auto`]. An explicit [`Raster::Compute`] with masked casters is the
+    /// What `self` means on `gpu` for a scene with or without alpha-masked casters:
+    /// never [`Raster::Auto`]. An explicit [`Raster::Compute`] with masked casters is the
     /// caller's to refuse ([`Raster::refusal`]); here it falls back to the render pass.
-    pub fn resolve(self, masked: bool) -> Raster {
+    pub fn resolve(self, gpu: &Gpu, masked: bool) -> Raster {
+        let software = gpu.adapter.get_info().device_type == wgpu::DeviceType::Cpu;
         match self {
             Raster::Compute if !masked => Raster::Compute,
+            Raster::Auto if !masked && !software => Raster::Compute,
             _ => Raster::Hardware,
         }
     }
@@ -57,17 +54,6 @@ impl Raster {
         (self == Raster::Compute && masked).then_some(
             "--raster compute does not draw alpha-masked casters (their holes need the \
              render pass); use --raster auto or hardware",
-        )
-    }
-
-    /// What to tell a user who asked for `self` on `gpu`, if anything: the compute
-    /// rasterizer's known leak on a real GPU.
-    pub fn warning(self, gpu: &Gpu) -> Option<&'static str> {
-        let real = gpu.adapter.get_info().device_type != wgpu::DeviceType::Cpu;
-        (self == Raster::Compute && real).then_some(
-            "--raster compute is opt-in: on an NVIDIA H200 its maps let light through a solid \
-             panel wall to wall (2-5 % of the light under it reached the floor); use it to \
-             compare timings, not for lux",
         )
     }
 
