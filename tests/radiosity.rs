@@ -955,6 +955,23 @@ fn room_with_many_boxes() -> Scene {
     lit_room(DVec3::new(6.0, 6.0, 3.0), boxes)
 }
 
+/// Shoots `first` (or else the first shooter selected), then every 9th shooter, twelve
+/// of them, in batches of 16 cells: two solvers shot so place their maps alike and shoot
+/// the same shooters in the same order (the selection breaks ties between equal shooters
+/// either way: the two ceiling triangles). Returns the first.
+fn shoot_the_same_shooters(solver: &mut GpuSolver, first: Option<usize>) -> usize {
+    // Batches by count, not by the clock.
+    solver.fix_batch(16);
+    let chosen = solver.select().unwrap().shooter.unwrap();
+    let first = first.unwrap_or(chosen);
+    solver.shoot(first).unwrap();
+    for s in (0..solver.shooters().len()).step_by(9).take(12) {
+        solver.select().unwrap();
+        solver.shoot(s).unwrap();
+    }
+    first
+}
+
 #[test]
 fn faces_that_draw_only_the_chunks_they_can_see_give_the_same_solution() {
     let Some(gpu) = gpu_common::gpu() else { return };
@@ -962,9 +979,6 @@ fn faces_that_draw_only_the_chunks_they_can_see_give_the_same_solution() {
     let settings = SolverSettings::default();
     let start = CpuSolver::new(&r, settings).state();
     for visibility in [Visibility::Hemicube, Visibility::Stereographic] {
-        // Shoots the same shooters in the same order in both runs (the selection breaks
-        // ties between equal shooters either way): the first selected (a ceiling
-        // triangle: the two tie), then every 9th.
         let solve = |chunk_culling: bool, first: Option<usize>| {
             let gpu_settings = GpuSettings {
                 visibility,
@@ -972,15 +986,7 @@ fn faces_that_draw_only_the_chunks_they_can_see_give_the_same_solution() {
                 ..GpuSettings::default()
             };
             let mut solver = GpuSolver::new(&gpu, &r, &start, settings, gpu_settings);
-            // Batches by count, not by the clock: both runs place their maps alike.
-            solver.fix_batch(16);
-            let chosen = solver.select().unwrap().shooter.unwrap();
-            let first = first.unwrap_or(chosen);
-            solver.shoot(first).unwrap();
-            for s in (0..solver.shooters().len()).step_by(9).take(12) {
-                solver.select().unwrap();
-                solver.shoot(s).unwrap();
-            }
+            let first = shoot_the_same_shooters(&mut solver, first);
             let maps = solver.drawn as u64;
             let per_map = solver.triangles_drawn as f64 / maps as f64;
             let mesh = solver.visibility_triangles();
@@ -1050,14 +1056,7 @@ fn the_compute_rasterizer_gives_the_render_pipelines_solution() {
             };
             let mut solver = GpuSolver::new(&gpu, &r, &start, settings, gpu_settings);
             assert_eq!(solver.raster(), raster);
-            solver.fix_batch(16);
-            let chosen = solver.select().unwrap().shooter.unwrap();
-            let first = first.unwrap_or(chosen);
-            solver.shoot(first).unwrap();
-            for s in (0..solver.shooters().len()).step_by(9).take(12) {
-                solver.select().unwrap();
-                solver.shoot(s).unwrap();
-            }
+            let first = shoot_the_same_shooters(&mut solver, first);
             (solver.radiosity().unwrap(), first)
         };
         let (hardware, first) = solve(Raster::Hardware, None);
