@@ -738,21 +738,13 @@ impl<'a> GpuSolver<'a> {
         let mut triangles = mesh.triangles.clone();
         let chunks = MeshChunks::new(&mesh.positions, &mut triangles);
         let indices: Vec<u32> = triangles.iter().flatten().copied().collect();
-        let buffer = |label: &str, contents: &[u8], usage| {
-            gpu.device
-                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some(label),
-                    contents,
-                    usage,
-                })
-        };
         // Read as storage by the compute rasterizer.
-        let vertices = buffer(
+        let vertices = gpu.buffer_with(
             "radiosity vertices",
             bytemuck::cast_slice(&positions),
             wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::STORAGE,
         );
-        let vertex_indices = buffer(
+        let vertex_indices = gpu.buffer_with(
             "radiosity vertex indices",
             bytemuck::cast_slice(&indices),
             wgpu::BufferUsages::INDEX | wgpu::BufferUsages::STORAGE,
@@ -1414,17 +1406,12 @@ impl<'a> GpuSolver<'a> {
             Some(t) => Some(t.next_batch(self.gpu)?),
             None => None,
         };
-        let dev = &self.gpu.device;
-        let uniform = |label: &str, data: &[u8], usage| {
-            dev.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some(label),
-                contents: data,
-                usage: wgpu::BufferUsages::UNIFORM | usage,
-            })
-        };
-        let shot_buf = uniform("shots", &shots, wgpu::BufferUsages::empty());
+        use wgpu::BufferUsages as U;
+        let shot_buf = self.gpu.buffer_with("shots", &shots, U::UNIFORM);
         // The compute rasterizer reads the faces as storage.
-        let face_buf = uniform("faces", &faces, wgpu::BufferUsages::STORAGE);
+        let face_buf = self
+            .gpu
+            .buffer_with("faces", &faces, U::UNIFORM | U::STORAGE);
         fn binding(buffer: &wgpu::Buffer, size: usize) -> wgpu::BindingResource<'_> {
             wgpu::BindingResource::Buffer(wgpu::BufferBinding {
                 buffer,

@@ -14,8 +14,6 @@
 //! multiply-adds, exact ties left cracks along shared edges, and 2.1 of 80 lm passed a
 //! solid panel; `tests/alpha_masks.rs`).
 
-use wgpu::util::DeviceExt;
-
 use super::super::atlas::VisibilityAtlas;
 use super::{dispatch_groups, FACE_STRIDE};
 use crate::gpu::Gpu;
@@ -259,31 +257,18 @@ impl ComputeRaster {
             large_capacity: LARGE_CAPACITY,
             _pad: [0; 2],
         };
-        let dev = &gpu.device;
-        let init = |label: &str, contents: &[u8], usage| {
-            dev.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some(label),
-                contents,
-                usage,
-            })
-        };
-        let params_buf = init(
-            "raster params",
-            bytemuck::bytes_of(&params),
-            wgpu::BufferUsages::UNIFORM,
-        );
+        let params_buf = gpu.uniform_buffer("raster params", &params);
         // One unused item where there is no work (a binding is never empty).
         let items: &[[u32; 4]] = if work.items.is_empty() {
             &[[0; 4]]
         } else {
             &work.items
         };
-        let items_buf = init(
+        let items_buf = gpu.buffer_with(
             "raster items",
             bytemuck::cast_slice(items),
             wgpu::BufferUsages::STORAGE,
         );
-        let map_view = atlas.texture.create_view(&Default::default());
         let bind = gpu.bind_group(
             "radiosity raster",
             &self.pipelines.layout,
@@ -296,7 +281,7 @@ impl ComputeRaster {
                 (5, nearest.as_entire_binding()),
                 (6, self.large.as_entire_binding()),
                 (7, self.control.as_entire_binding()),
-                (8, wgpu::BindingResource::TextureView(&map_view)),
+                (8, wgpu::BindingResource::TextureView(&atlas.view)),
             ],
         );
         enc.clear_buffer(nearest, 0, Some(4 * texels * u64::from(tiles)));
