@@ -1,6 +1,7 @@
 //! Benchmarks behind `goniolight bench …`: each measures goniolight against a peer or a goal
 //! side by side in one run and returns rows that the command prints as a table or JSON.
 
+pub mod adaptive;
 pub mod clusters;
 pub mod profile;
 pub mod radiosity;

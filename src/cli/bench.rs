@@ -135,6 +135,9 @@ pub enum BenchCommand {
         #[arg(long, default_value_t = 1)]
         rooms: usize,
     },
+    /// Uniform against adaptive elements (Wallner Table 2.1), with and without normal
+    /// maps: elements, preprocessing, solve time and shots.
+    Adaptive(super::bench_adaptive::AdaptiveBenchArgs),
     /// GPU radiosity on a Cornell-box-like scene (Wallner Table 4.1, "Cornell box high":
     /// ~127 000 elements): time to 90 % and 99 % convergence, hemicube vs stereographic,
     /// flat vs face-cluster shooters.
@@ -238,6 +241,7 @@ pub fn run(cmd: BenchCommand) -> Result<(), CliError> {
             scale,
         } => run_raycast(json, rays, brute_rays, scale),
         BenchCommand::Clusters { json, shared } => run_clusters(json, shared),
+        BenchCommand::Adaptive(args) => super::bench_adaptive::run(args),
         BenchCommand::RadiosityView {
             json,
             scene,

@@ -3,6 +3,7 @@
 
 mod batch;
 mod bench;
+mod bench_adaptive;
 mod calc;
 mod calc_report;
 mod demo;

@@ -16,6 +16,7 @@ use crate::io::write_atomic;
 use crate::lighting::read_points;
 use crate::lighting::SurfacePoint;
 use crate::radiosity::bake::{self, BakeChoice, BakePlan};
+use crate::radiosity::elements::{Elements, Subdivision};
 use crate::radiosity::gather;
 use crate::radiosity::gpu::{GpuSettings, GpuSolver, Raster, Visibility};
 use crate::radiosity::initial::{InitialState, LuminaireLight};
@@ -48,6 +49,20 @@ pub struct SolverArgs {
     /// Shooting patches are 2^LEVEL × 2^LEVEL texels (substructuring; 0: every texel).
     #[arg(long, default_value_t = 2)]
     pub level: u32,
+    /// Adaptive subdivision (Wallner §2.4): split elements of 1 / --texel-density up to
+    /// LEVELS times (each halving their side) where a luminaire's shadow or beam edge
+    /// crosses them; the light map's texels are the finest elements. 0: uniform elements.
+    #[arg(long, value_name = "LEVELS", default_value_t = 0)]
+    pub adaptive: u32,
+    /// With --adaptive: split a block only where the share of its points a luminaire
+    /// lights lies in LOWER,UPPER (Wallner's b_l, b_u; none and all never split).
+    #[arg(
+        long,
+        value_name = "LOWER,UPPER",
+        value_delimiter = ',',
+        default_values_t = [0.0, 1.0]
+    )]
+    pub adaptive_share: Vec<f64>,
     /// Visibility maps of the shooting patches.
     #[arg(long, value_enum, default_value = "hemicube")]
     pub visibility: Visibility,
@@ -113,6 +128,20 @@ impl SolverArgs {
         if self.level > 6 {
             return bad(format!("--level {} is not in 0..=6", self.level));
         }
+        if self.adaptive > 4 {
+            return bad(format!("--adaptive {} is not in 0..=4", self.adaptive));
+        }
+        let share_ok = match self.adaptive_share[..] {
+            [lower, upper] => (0.0..=1.0).contains(&lower) && (lower..=1.0).contains(&upper),
+            _ => false,
+        };
+        if !share_ok {
+            let given: Vec<String> = self.adaptive_share.iter().map(f64::to_string).collect();
+            return bad(format!(
+                "--adaptive-share {}: give LOWER,UPPER with 0 ≤ LOWER ≤ UPPER ≤ 1",
+                given.join(",")
+            ));
+        }
         if !(self.cell_power.is_finite() && self.cell_power > 0.0 && self.cell_power <= 1.0) {
             return bad(format!("--cell-power {} is not in (0, 1]", self.cell_power));
         }
@@ -136,6 +165,19 @@ impl SolverArgs {
             }
         }
         Ok(())
+    }
+
+    /// The adaptive subdivision asked for.
+    pub fn subdivision(&self) -> Subdivision {
+        let (lower, upper) = match self.adaptive_share[..] {
+            [lower, upper] => (lower, upper),
+            _ => (0.0, 1.0),
+        };
+        Subdivision {
+            levels: self.adaptive,
+            lower,
+            upper,
+        }
     }
 
     fn stop(&self) -> StopAt {
@@ -346,9 +388,17 @@ pub fn prepare<'s>(
         Hierarchy::None => "elements and atlas",
         Hierarchy::Clusters => "face clusters, charts, elements and atlas",
     })?;
-    let rscene =
-        RadiosityScene::with_hierarchy(scene, solver.texel_density, solver.level, solver.hierarchy)
-            .map_err(|e| CliError::input(anyhow!("{}: {e}", label.display())))?;
+    let rscene = RadiosityScene::with_subdivision(
+        scene,
+        solver.texel_density,
+        solver.level,
+        solver.hierarchy,
+        solver.subdivision(),
+    )
+    .map_err(|e| CliError::input(anyhow!("{}: {e}", label.display())))?;
+    if solver.adaptive > 0 {
+        eprintln!("{}", adaptive_summary(&rscene.elements));
+    }
     let elements_s = started.elapsed().as_secs_f64() - load_s;
     let interp = settings.light_model.interp();
     let gpu = Gpu::shared()?;
@@ -679,6 +729,28 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
 }
 
 /// What the export's representation costs (Edström §5.3, §7.6).
+/// What adaptive subdivision made: elements by size against one per texel.
+fn adaptive_summary(el: &Elements) -> String {
+    let levels = el.subdivision.levels;
+    let mut by_side = vec![0usize; levels as usize + 1];
+    for &s in &el.span {
+        by_side[s.trailing_zeros() as usize] += 1;
+    }
+    let texels: u64 = el.span.iter().map(|&s| u64::from(s) * u64::from(s)).sum();
+    let sizes: Vec<String> = by_side
+        .iter()
+        .enumerate()
+        .rev()
+        .map(|(k, n)| format!("{n} of {0}×{0}", 1u32 << k))
+        .collect();
+    format!(
+        "adaptive subdivision: {} elements ({} texels), split at the luminaires' shadow and beam edges: {}",
+        el.len(),
+        texels,
+        sizes.join(", ")
+    )
+}
+
 fn bake_summary(plan: &BakePlan, map: &LightMap) -> String {
     format!(
         "bake: {} surfaces ({} triangles) light-mapped, {} ({} triangles) vertex-lit with {} triangles introduced (budget {}): the exported mesh draws {:+.1} % triangles over the model; light map {}×{} texels",

@@ -57,9 +57,18 @@ pub fn apply(elements: &mut Elements, cutouts: &Cutouts) -> usize {
         if !masked_chart[elements.chart[e] as usize] {
             continue;
         }
-        let texel = elements.texel[e];
-        let near = by_texel.get(&texel).map_or(&[][..], Vec::as_slice);
-        let share = solid_share(elements, cutouts, near, texel);
+        let (lo, side) = elements.atlas_square(e);
+        let [tx, ty] = elements.texel[e];
+        let span = elements.span[e];
+        let mut near: Vec<u32> = (ty..ty + span)
+            .flat_map(|y| (tx..tx + span).map(move |x| [x, y]))
+            .filter_map(|texel| by_texel.get(&texel))
+            .flatten()
+            .copied()
+            .collect();
+        near.sort_unstable();
+        near.dedup();
+        let share = solid_share(elements, cutouts, &near, lo, side);
         if share < 1.0 {
             elements.area[e] *= share.max(MIN_SHARE);
             changed += 1;
@@ -73,16 +82,21 @@ pub fn apply(elements: &mut Elements, cutouts: &Cutouts) -> usize {
     changed
 }
 
-/// The solid share of the samples over `texel` that fall in one of `triangles` (those of
-/// its chart near it; 1 when none does).
-fn solid_share(elements: &Elements, cutouts: &Cutouts, triangles: &[u32], texel: [u32; 2]) -> f64 {
+/// The solid share of the samples over an element's square (top-left corner `lo`, side
+/// `side` texels) that fall in one of `triangles` (those of its chart near it; 1 when
+/// none does).
+fn solid_share(
+    elements: &Elements,
+    cutouts: &Cutouts,
+    triangles: &[u32],
+    lo: DVec2,
+    side: f64,
+) -> f64 {
     let (mut inside, mut solid) = (0u32, 0u32);
-    for j in 0..SAMPLES {
-        for i in 0..SAMPLES {
-            let p = DVec2::new(
-                texel[0] as f64 + (i as f64 + 0.5) / SAMPLES as f64,
-                texel[1] as f64 + (j as f64 + 0.5) / SAMPLES as f64,
-            );
+    let n = SAMPLES * side as u32;
+    for j in 0..n {
+        for i in 0..n {
+            let p = lo + DVec2::new(i as f64 + 0.5, j as f64 + 0.5) * (side / n as f64);
             let hit = triangles.iter().find_map(|&t| {
                 let b = barycentric_2d(elements.triangles[t as usize].atlas_uv, p)?;
                 Some((t as usize, b))

@@ -166,7 +166,7 @@ impl DirectSamples {
         let mut first = Vec::with_capacity(el.len() + 1);
         let mut scales = Vec::with_capacity(el.len());
         let grid = |e: usize| {
-            let texel_m = el.charts[el.chart[e] as usize].texel_m;
+            let texel_m = el.side_m(e);
             let nearest = positions
                 .iter()
                 .map(|p| p.distance(el.position[e]))

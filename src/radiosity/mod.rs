@@ -17,6 +17,7 @@ mod polygon;
 pub mod refine;
 pub mod scene;
 pub mod shading;
+pub mod shadow_edges;
 pub mod shooters;
 pub mod solve;
 pub mod transmission;

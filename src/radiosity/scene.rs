@@ -6,7 +6,10 @@ use std::sync::Arc;
 use glam::DVec3;
 
 use super::clusters::PlanarClusters;
-use super::elements::{ElementError, Elements, InputTriangle, MAX_ATLAS};
+use super::elements::{
+    ElementError, Elements, InputTriangle, NeverSplit, SplitTest, Subdivision, MAX_ATLAS,
+};
+use super::shadow_edges::LuminaireShadowEdges;
 use super::Hierarchy;
 use crate::geometry::Mesh;
 use crate::scene::{PlacedLuminaire, Scene};
@@ -80,10 +83,24 @@ impl RadiosityScene {
         level: u32,
         hierarchy: Hierarchy,
     ) -> Result<Self, ElementError> {
+        Self::with_subdivision(scene, texel_density, level, hierarchy, Subdivision::NONE)
+    }
+
+    /// [`RadiosityScene::with_hierarchy`] with adaptive subdivision: elements of
+    /// `1 / texel_density` metres are split (2^`subdivision.levels` times at most, the
+    /// light map's texels being the finest elements) where a luminaire's shadow or beam
+    /// edge crosses them ([`super::shadow_edges`]).
+    pub fn with_subdivision(
+        scene: &Scene,
+        texel_density: f64,
+        level: u32,
+        hierarchy: Hierarchy,
+        subdivision: Subdivision,
+    ) -> Result<Self, ElementError> {
         // Translucent surfaces get back faces of their own (appended after the scene's).
         let twinned = super::transmission::with_back_faces(scene);
         let scene = &*twinned;
-        let texel_m = 1.0 / texel_density;
+        let texel_m = 1.0 / texel_density / f64::from(subdivision.block());
         let mut triangles = Vec::with_capacity(scene.triangle_count());
         for m in &scene.meshes {
             for t in m.indices.chunks_exact(3) {
@@ -95,11 +112,32 @@ impl RadiosityScene {
             }
         }
         let casters = scene.caster_mesh();
+        let self_hit_epsilon = crate::shadow::raycast::self_hit_epsilon(&casters);
+        let ignored = scene.ignored_per_luminaire();
+        let cutouts = scene.caster_cutouts();
+        let caster_bvh = std::sync::OnceLock::new();
+        let edges;
+        let split: &dyn SplitTest = if subdivision.levels == 0 {
+            &NeverSplit
+        } else {
+            edges = LuminaireShadowEdges {
+                luminaires: &scene.luminaires,
+                bvh: caster_bvh
+                    .get_or_init(|| TriangleBvh::new(&casters).with_cutouts(cutouts.clone())),
+                ignored: &ignored,
+                eps: self_hit_epsilon,
+                subdivision,
+            };
+            &edges
+        };
         let planar = std::sync::OnceLock::new();
         let clustering = std::time::Instant::now();
         let mut clustering_seconds = 0.0;
         let elements = match hierarchy {
-            Hierarchy::None => Elements::build(&triangles, level)?,
+            Hierarchy::None => {
+                let ids: Vec<u32> = (0..triangles.len() as u32).collect();
+                Elements::build_subdivided(&triangles, &ids, level, subdivision, split)?
+            }
             Hierarchy::Clusters => {
                 if !(texel_m.is_finite() && texel_m > 0.0) {
                     return Err(ElementError::TexelSize(texel_m));
@@ -120,13 +158,17 @@ impl RadiosityScene {
                 let clusters =
                     PlanarClusters::new(&casters, &materials, &vec![texel_m; triangles.len()]);
                 clustering_seconds = clustering.elapsed().as_secs_f64();
-                let elements =
-                    Elements::build_charts(&triangles, &clusters.cluster_of_triangle(), level)?;
+                let elements = Elements::build_subdivided(
+                    &triangles,
+                    &clusters.cluster_of_triangle(),
+                    level,
+                    subdivision,
+                    split,
+                )?;
                 let _ = planar.set(clusters);
                 elements
             }
         };
-        let self_hit_epsilon = crate::shadow::raycast::self_hit_epsilon(&casters);
         let source = scene;
         let mut scene = RadiosityScene {
             elements,
@@ -157,12 +199,12 @@ impl RadiosityScene {
             receiving_normals: Vec::new(),
             receiving_seconds: 0.0,
             casters,
-            caster_bvh: std::sync::OnceLock::new(),
-            cutouts: scene.caster_cutouts(),
+            caster_bvh,
+            cutouts,
             visibility: std::sync::OnceLock::new(),
             planar,
             clustering_seconds,
-            ignored: scene.ignored_per_luminaire(),
+            ignored,
             self_hit_epsilon,
             total_area: 0.0,
             mean_reflectance: 0.0,

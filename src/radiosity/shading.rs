@@ -108,10 +108,10 @@ fn chart_element_normal(
     map: Option<&NormalMap>,
     e: usize,
 ) -> DVec3 {
-    let [tx, ty] = elements.texel[e];
-    let lo = DVec2::new(tx as f64, ty as f64);
-    let n = if map.is_some() { NORMAL_MAP_SAMPLES } else { 1 };
-    let step = 1.0 / n as f64;
+    let (lo, side) = elements.atlas_square(e);
+    let per_texel = if map.is_some() { NORMAL_MAP_SAMPLES } else { 1 };
+    let n = per_texel * side as u32;
+    let step = side / n as f64;
     let mut sum = DVec3::ZERO;
     let mut count = 0;
     for j in 0..n {
@@ -125,7 +125,7 @@ fn chart_element_normal(
     }
     if count == 0 {
         // A texel only an edge of the chart crosses: the nearest triangle's nearest point.
-        let (t, b) = locator.nearest(elements, lo + DVec2::splat(0.5));
+        let (t, b) = locator.nearest(elements, lo + DVec2::splat(0.5 * side));
         return sources.normal_at(t, b, chart, map, 1.0);
     }
     sum / count as f64

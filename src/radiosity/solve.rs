@@ -233,20 +233,14 @@ pub fn with_ambient(
 }
 
 /// The light-map atlas of a solution: each texel shows its element (gutters their
-/// neighbour's), rgb radiosity and a illuminance.
+/// neighbour's; an unsplit block of adaptive subdivision blends with its neighbours:
+/// [`super::elements::Elements::display_texels`]), rgb radiosity and a illuminance.
 pub fn light_map(scene: &RadiosityScene, radiosity: &[DVec3], illuminance: &[f64]) -> LightMap {
     let el = &scene.elements;
-    let texels = el
-        .display_source
-        .iter()
-        .map(|&e| match e {
-            u32::MAX => [0.0; 4],
-            e => {
-                let b = radiosity[e as usize].as_vec3();
-                [b.x, b.y, b.z, illuminance[e as usize] as f32]
-            }
-        })
-        .collect();
+    let texels = el.display_texels(|e| {
+        let b = radiosity[e].as_vec3();
+        [b.x, b.y, b.z, illuminance[e] as f32]
+    });
     let size = glam::DVec2::new(el.atlas_width as f64, el.atlas_height as f64);
     LightMap {
         width: el.atlas_width,

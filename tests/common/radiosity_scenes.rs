@@ -1,4 +1,5 @@
 //! Scenes made in code for the radiosity tests.
+#![allow(dead_code)]
 
 use glam::{DVec3, Vec2, Vec3};
 use goniolight::scene::{Camera, Material, Scene, SceneMesh};

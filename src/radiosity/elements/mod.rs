@@ -8,13 +8,20 @@
 //! Elements are grouped into shooting patches of 2^level × 2^level texels (substructuring:
 //! a coarser mip level shoots, the fine elements receive). Texels around the covered ones
 //! get a display source (gutter fill) so bilinear filtering never reads an empty texel.
+//! With adaptive subdivision ([`Subdivision`]) an element is a block of 2^k × 2^k texels,
+//! split where it straddles a shadow boundary.
 
 use glam::{DVec2, DVec3};
+use rayon::prelude::*;
 
+mod display;
 mod plan;
+mod subdivide;
 
 pub use plan::InputTriangle;
 use plan::{group, pack, ChartPlan};
+use subdivide::{lay_out, LaidPatch};
+pub use subdivide::{NeverSplit, SplitTest, Subdivision};
 
 /// A shooting patch: a block of a chart's texels (one texel of a coarser mip level).
 #[derive(Debug, Clone)]
@@ -101,8 +108,10 @@ pub struct Elements {
     pub position: Vec<DVec3>,
     /// Element areas, m².
     pub area: Vec<f64>,
-    /// Element atlas texels.
+    /// Element atlas texels: the top-left texel of its block of [`Self::span`] texels.
     pub texel: Vec<[u32; 2]>,
+    /// Side of each element's block of texels (1 without adaptive subdivision).
+    pub span: Vec<u32>,
     /// Element → chart.
     pub chart: Vec<u32>,
     /// The charts, in the order of their first triangle.
@@ -111,8 +120,11 @@ pub struct Elements {
     pub triangles: Vec<TriangleElements>,
     /// Shooting patches, in chart order.
     pub patches: Vec<Patch>,
-    /// Substructuring level: patches are 2^level texels square.
+    /// Substructuring level: patches are 2^level texels square (with adaptive
+    /// subdivision, the levels of [`Self::subdivision`] included).
     pub level: u32,
+    /// How elements were subdivided ([`Subdivision::NONE`]: one per texel).
+    pub subdivision: Subdivision,
     /// Per atlas texel (row-major): the element whose value it shows, `u32::MAX` for none.
     pub display_source: Vec<u32>,
 }
@@ -170,6 +182,19 @@ impl Elements {
         chart_of: &[u32],
         level: u32,
     ) -> Result<Elements, ElementError> {
+        Elements::build_subdivided(triangles, chart_of, level, Subdivision::NONE, &NeverSplit)
+    }
+
+    /// [`Elements::build_charts`] with adaptive subdivision: the triangles' texels are the
+    /// finest elements, an element is a block of 2^`subdivision.levels` of them unless
+    /// `test` splits it (recursively), and patches are 2^`level` unsplit elements square.
+    pub fn build_subdivided(
+        triangles: &[InputTriangle],
+        chart_of: &[u32],
+        level: u32,
+        subdivision: Subdivision,
+        test: &dyn SplitTest,
+    ) -> Result<Elements, ElementError> {
         if chart_of.len() != triangles.len() {
             return Err(ElementError::ChartIds {
                 given: chart_of.len(),
@@ -183,7 +208,7 @@ impl Elements {
         }
         let plans: Vec<ChartPlan> = group(triangles, chart_of)
             .iter()
-            .map(|members| ChartPlan::new(triangles, members))
+            .map(|members| ChartPlan::new(triangles, members, subdivision.block()))
             .collect();
         // Count the texels (with gutters) before laying any out: a density that cannot
         // fit is refused in milliseconds, not after gigabytes of elements. Shelf packing
@@ -214,10 +239,17 @@ impl Elements {
         if height > MAX_ATLAS {
             return Err(ElementError::TooLarge(total));
         }
+        let level = level + subdivision.levels;
+        let patch = 1u32 << level;
+        let laid: Vec<Vec<LaidPatch>> = plans
+            .par_iter()
+            .map(|plan| lay_out(plan, patch, subdivision.block(), test))
+            .collect();
         let mut out = Elements {
             atlas_width: width,
             atlas_height: height.max(1),
             level,
+            subdivision,
             display_source: vec![u32::MAX; width as usize * height.max(1) as usize],
             triangles: triangles
                 .iter()
@@ -231,9 +263,8 @@ impl Elements {
                 .collect(),
             ..Default::default()
         };
-        let block = 1u32 << level;
-        for (plan, origin) in plans.iter().zip(origins) {
-            out.push_chart(triangles, plan, origin, block);
+        for ((plan, origin), patches) in plans.iter().zip(origins).zip(laid) {
+            out.push_chart(triangles, plan, origin, patch, patches);
         }
         out.fill_gutters();
         Ok(out)
@@ -245,46 +276,47 @@ impl Elements {
         plan: &ChartPlan,
         origin: [u32; 2],
         block: u32,
+        patches: Vec<LaidPatch>,
     ) {
         let s = plan.texel_m;
         let first = self.position.len() as u32;
         let first_patch = self.patches.len() as u32;
         let chart = self.charts.len() as u32;
-        // Patch by patch, so each patch's elements are contiguous.
-        let mut order = plan.elements();
-        order.sort_by_key(|e| (e.1 / block, e.0 / block, e.1, e.0));
         let bins = plan.triangles_by_block(block);
-        let mut current: Option<(u32, u32)> = None;
-        for &(i, j, area, centroid) in &order {
-            let key = (i / block, j / block);
-            if current != Some(key) {
-                current = Some(key);
-                let lo = plan.lo + DVec2::new(key.0 as f64, key.1 as f64) * s * block as f64;
-                let touching = bins.get(&key).map_or(&[][..], Vec::as_slice);
-                let poly = plan.block_polygon(lo, s * block as f64, touching);
-                self.patches.push(Patch {
-                    first: self.position.len() as u32,
-                    count: 0,
-                    polygon: poly.iter().map(|&p| plan.to_world(p)).collect(),
-                    centroid: DVec3::ZERO,
-                    area: 0.0,
-                });
+        for laid in patches {
+            let key = laid.key;
+            let lo = plan.lo + DVec2::new(key.0 as f64, key.1 as f64) * s * block as f64;
+            let touching = bins.get(&key).map_or(&[][..], Vec::as_slice);
+            let poly = plan.block_polygon(lo, s * block as f64, touching);
+            let mut patch = Patch {
+                first: self.position.len() as u32,
+                count: laid.elements.len() as u32,
+                polygon: poly.iter().map(|&p| plan.to_world(p)).collect(),
+                centroid: DVec3::ZERO,
+                area: 0.0,
+            };
+            for b in &laid.elements {
+                patch.area += b.area;
+                patch.centroid += plan.to_world(b.centroid) * b.area;
+                // Atlas rows run down, plane rows up: the block's top-left texel.
+                let texel = [
+                    origin[0] + 1 + b.column,
+                    origin[1] + 1 + plan.rows - b.row - b.side,
+                ];
+                let element = self.position.len() as u32;
+                for y in texel[1]..texel[1] + b.side {
+                    for x in texel[0]..texel[0] + b.side {
+                        self.display_source[(y * self.atlas_width + x) as usize] = element;
+                    }
+                }
+                self.position.push(plan.to_world(b.centroid));
+                self.area.push(b.area);
+                self.texel.push(texel);
+                self.span.push(b.side);
+                self.chart.push(chart);
             }
-            if let Some(p) = self.patches.last_mut() {
-                p.count += 1;
-                p.area += area;
-                p.centroid += plan.to_world(centroid) * area;
-            }
-            let texel = [origin[0] + 1 + i, origin[1] + 1 + plan.rows - 1 - j];
-            let slot = (texel[1] * self.atlas_width + texel[0]) as usize;
-            self.display_source[slot] = self.position.len() as u32;
-            self.position.push(plan.to_world(centroid));
-            self.area.push(area);
-            self.texel.push(texel);
-            self.chart.push(chart);
-        }
-        for p in &mut self.patches[first_patch as usize..] {
-            p.centroid /= p.area.max(1e-300);
+            patch.centroid /= patch.area.max(1e-300);
+            self.patches.push(patch);
         }
         // Atlas coordinates of the corners: x right with u, y down against v.
         for &(t, c, _) in &plan.triangles {
@@ -368,7 +400,18 @@ impl Elements {
         self.charts[self.chart[e] as usize].normal
     }
 
-    /// Points of an `n` × `n` grid over element `e`'s texel that lie on its chart's
+    /// Element `e`'s square in the atlas: its top-left corner and side, texels.
+    pub fn atlas_square(&self, e: usize) -> (DVec2, f64) {
+        let [tx, ty] = self.texel[e];
+        (DVec2::new(tx as f64, ty as f64), self.span[e] as f64)
+    }
+
+    /// Element `e`'s side, metres.
+    pub fn side_m(&self, e: usize) -> f64 {
+        self.charts[self.chart[e] as usize].texel_m * self.span[e] as f64
+    }
+
+    /// Points of an `n` × `n` grid over element `e`'s texels that lie on its chart's
     /// triangles; the element's centroid when `n` ≤ 1 or no grid point does. Averages over
     /// these integrate steep gradients (a luminaire close to a surface) that one sample at
     /// the centroid would miss.
@@ -377,11 +420,8 @@ impl Elements {
             return vec![self.position[e]];
         }
         let chart = &self.charts[self.chart[e] as usize];
-        let [tx, ty] = self.texel[e];
-        let (lo, hi) = (
-            DVec2::new(tx as f64, ty as f64),
-            DVec2::new(tx as f64 + 1.0, ty as f64 + 1.0),
-        );
+        let (lo, side) = self.atlas_square(e);
+        let hi = lo + DVec2::splat(side);
         let touching: Vec<[DVec2; 3]> = chart
             .triangles
             .iter()
@@ -398,7 +438,7 @@ impl Elements {
             let (u, v) = (d.perp_dot(v1) / det, v0.perp_dot(d) / det);
             det.abs() >= 1e-12 && u >= 0.0 && v >= 0.0 && u + v <= 1.0
         };
-        let step = 1.0 / n as f64;
+        let step = side / n as f64;
         let mut out = Vec::with_capacity((n * n) as usize);
         for j in 0..n {
             for i in 0..n {
@@ -598,6 +638,109 @@ mod tests {
             Elements::build_charts(&t, &[0; 3], 0),
             Err(ElementError::ChartIds { .. })
         ));
+    }
+
+    /// Splits blocks with points on both sides of x = 0.37.
+    struct SplitAtX;
+
+    impl SplitTest for SplitAtX {
+        fn split(&self, points: &[DVec3], _: DVec3) -> bool {
+            points.iter().any(|p| p.x < 0.37) && points.iter().any(|p| p.x >= 0.37)
+        }
+    }
+
+    #[test]
+    fn adaptive_blocks_split_only_at_the_edge_and_still_tile_the_triangle() {
+        let t = [tri(
+            [
+                DVec3::ZERO,
+                DVec3::new(1.0, 0.0, 0.0),
+                DVec3::new(0.1, 0.9, 0.0),
+            ],
+            0.025,
+        )];
+        let sub = Subdivision::levels(2);
+        let el = Elements::build_subdivided(&t, &[0], 1, sub, &SplitAtX).unwrap();
+        let uniform = Elements::build_subdivided(&t, &[0], 1, sub, &NeverSplit).unwrap();
+        let fine = Elements::build(&t, 0).unwrap();
+        assert_eq!((el.level, el.subdivision), (3, sub));
+        let area: f64 = el.area.iter().sum();
+        assert!((area - 0.45).abs() < 1e-12, "{area}");
+        // Unsplit: 4 × 4 texels everywhere; split: single texels along x = 0.37 only.
+        assert!(uniform.span.iter().all(|&s| s == 4));
+        assert!(el.span.contains(&1) && el.span.contains(&2) && el.span.contains(&4));
+        assert!(el.len() < fine.len() / 3, "{} of {}", el.len(), fine.len());
+        let mut texels = std::collections::HashSet::new();
+        for e in 0..el.len() {
+            let (lo, side) = el.atlas_square(e);
+            let points = el.texel_samples(e, 4 * el.span[e]);
+            let straddles = points.iter().any(|p| p.x < 0.37) && points.iter().any(|p| p.x >= 0.37);
+            if el.span[e] > 1 {
+                // A block left whole holds no edge among its finest elements' centroids.
+                assert!(!straddles || (el.position[e].x - 0.37).abs() < 0.05, "{e}");
+            }
+            // Every texel of the block shows it, and no texel belongs to two elements.
+            for y in 0..el.span[e] {
+                for x in 0..el.span[e] {
+                    let (tx, ty) = (lo.x as u32 + x, lo.y as u32 + y);
+                    assert!(texels.insert((tx, ty)));
+                    let slot = (ty * el.atlas_width + tx) as usize;
+                    assert_eq!(el.display_source[slot], e as u32);
+                }
+            }
+            assert_eq!(side, el.span[e] as f64);
+            // The centroid lies within its block, on the triangle.
+            for p in &points {
+                assert!(p.distance(el.position[e]) <= 0.025 * side * 1.5);
+            }
+        }
+        // The patches still tile the chart and hold their elements contiguously.
+        let patch_area: f64 = el.patches.iter().map(|p| p.area).sum();
+        assert!((patch_area - 0.45).abs() < 1e-12);
+        let mut next = 0;
+        for p in &el.patches {
+            assert_eq!(p.first, next);
+            next += p.count;
+        }
+        assert_eq!(next as usize, el.len());
+    }
+
+    #[test]
+    fn a_whole_blocks_texels_blend_with_its_unsplit_neighbours_only() {
+        let t = [tri(
+            [
+                DVec3::ZERO,
+                DVec3::new(1.0, 0.0, 0.0),
+                DVec3::new(0.0, 1.0, 0.0),
+            ],
+            0.05,
+        )];
+        let el =
+            Elements::build_subdivided(&t, &[0], 0, Subdivision::levels(1), &SplitAtX).unwrap();
+        // A linear field shown through blocks: blended texels follow it within a block's
+        // slope, where flat blocks would be off by half a block's.
+        let shown = el.display_texels(|e| [el.position[e].y as f32; 4]);
+        let chart = &el.charts[0];
+        let mut worst: f64 = 0.0;
+        for e in 0..el.len() {
+            if el.span[e] != 2 || el.area[e] < 0.01 || el.position[e].x > 0.3 {
+                continue;
+            }
+            let (lo, _) = el.atlas_square(e);
+            for (dx, dy) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+                let (x, y) = (lo.x as u32 + dx, lo.y as u32 + dy);
+                let centre = chart.atlas_to_world(DVec2::new(x as f64 + 0.5, y as f64 + 0.5));
+                if centre.x + centre.y > 0.85 || centre.x < 0.1 || centre.y < 0.1 {
+                    continue;
+                }
+                let got = shown[(y * el.atlas_width + x) as usize][0] as f64;
+                worst = worst.max((got - centre.y).abs());
+            }
+        }
+        assert!(
+            worst < 0.01,
+            "{worst} m off a linear field (flat blocks: 0.025)"
+        );
     }
 
     #[test]

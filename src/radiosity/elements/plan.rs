@@ -61,8 +61,9 @@ fn counter_clockwise(mut corners: [DVec2; 3]) -> [DVec2; 3] {
 }
 
 impl ChartPlan {
-    /// The plan of the triangles `members` (one material, one texel size).
-    pub(super) fn new(triangles: &[InputTriangle], members: &[u32]) -> ChartPlan {
+    /// The plan of the triangles `members` (one material, one texel size), its grid's
+    /// columns and rows a multiple of `multiple` (the side of an unsplit element).
+    pub(super) fn new(triangles: &[InputTriangle], members: &[u32], multiple: u32) -> ChartPlan {
         let first = &triangles[members[0] as usize];
         let with_area: Vec<(u32, DVec3)> = members
             .iter()
@@ -120,10 +121,14 @@ impl ChartPlan {
         let (cols, rows) = if laid.is_empty() {
             (0, 0)
         } else {
-            (
-                (((hi.x - lo.x) / s).ceil() as u32).max(1),
-                (((hi.y - lo.y) / s).ceil() as u32).max(1),
-            )
+            let side = |extent: f64| {
+                ((extent / s).ceil() as u32)
+                    .max(1)
+                    .saturating_add(multiple.max(1) - 1)
+                    / multiple.max(1)
+                    * multiple.max(1)
+            };
+            (side(hi.x - lo.x), side(hi.y - lo.y))
         };
         ChartPlan {
             material: first.material,
@@ -342,7 +347,7 @@ mod tests {
             material: 0,
             texel_m: 1.0,
         };
-        let plan = ChartPlan::new(&[t], &[0]);
+        let plan = ChartPlan::new(&[t], &[0], 1);
         assert_eq!((plan.cols, plan.rows), (3, 3));
         // A box starting on the grid's far edge (rounding in a sliver's corners) and one
         // past it: both clamp to the last texel instead of an empty or inverted range.
@@ -385,7 +390,7 @@ mod tests {
             })
             .collect();
         let members: Vec<u32> = (0..input.len() as u32).collect();
-        let plan = ChartPlan::new(&input, &members);
+        let plan = ChartPlan::new(&input, &members, 1);
         assert_eq!(
             plan.coverage.len(),
             2,

@@ -1,0 +1,130 @@
+//! `goniolight bench adaptive`: Wallner's Table 2.1 — uniform against adaptive elements,
+//! with and without normal maps: triangles, elements, the preprocessing (elements and
+//! atlas, the subdivision inside it), the solve to a convergence and its shots, side by
+//! side in one run.
+
+use std::sync::atomic::AtomicBool;
+use std::time::Instant;
+
+use crate::gpu::Gpu;
+use crate::radiosity::elements::Subdivision;
+use crate::radiosity::gpu::{GpuSettings, GpuSolver};
+use crate::radiosity::initial::{InitialState, LuminaireLight};
+use crate::radiosity::scene::RadiosityScene;
+use crate::radiosity::shooters::Hierarchy;
+use crate::radiosity::solve::StopAt;
+use crate::radiosity::SolverSettings;
+use crate::scene::Scene;
+
+/// One measured meshing.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct AdaptiveBenchRow {
+    /// "uniform" or "adaptive".
+    pub meshing: String,
+    /// Whether the materials' normal maps were used.
+    pub normal_maps: bool,
+    /// Elements per metre where unsplit.
+    pub texel_density: f64,
+    /// Subdivision levels (0: uniform).
+    pub levels: u32,
+    /// Triangles (n_t).
+    pub triangles: usize,
+    /// Elements (n_e).
+    pub elements: usize,
+    /// Light-map texels covered by elements.
+    pub texels: u64,
+    /// Seconds to lay the elements and the atlas, the subdivision's tests included.
+    pub elements_seconds: f64,
+    /// Seconds for the receiving normals (normal maps, vertex normals).
+    pub normals_seconds: f64,
+    /// Seconds for the luminaires' direct light (on the GPU).
+    pub direct_seconds: f64,
+    /// Seconds of shooting to the convergence asked for (or the limits).
+    pub solve_seconds: f64,
+    /// Shots (Wallner's iterations: a shooter's patches each).
+    pub shots: usize,
+    /// Convergence reached.
+    pub convergence: f64,
+}
+
+/// One meshing to measure: texel density and subdivision levels.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Meshing {
+    /// Elements per metre where unsplit.
+    pub texel_density: f64,
+    /// Subdivision levels (0: uniform).
+    pub levels: u32,
+}
+
+/// Solves `scene` once per meshing, with and without its normal maps when it has any,
+/// to `stop`.
+pub fn run(
+    gpu: &Gpu,
+    scene: &Scene,
+    meshings: &[Meshing],
+    level: u32,
+    stop: &StopAt,
+    mut progress: impl FnMut(&str),
+) -> anyhow::Result<Vec<AdaptiveBenchRow>> {
+    let mut flat = scene.clone();
+    for m in &mut flat.materials {
+        m.normal_map = None;
+    }
+    let with_maps = scene.materials.iter().any(|m| m.normal_map.is_some());
+    let variants: Vec<(&Scene, bool)> = if with_maps {
+        vec![(&flat, false), (scene, true)]
+    } else {
+        vec![(scene, false)]
+    };
+    let mut shadows = crate::render::ShadowSettings::default();
+    crate::render::limits::check_scene(gpu, scene, &mut shadows)?;
+    let defaults = SolverSettings::default();
+    let light = LuminaireLight::new(gpu, scene, defaults.interp);
+    let mut rows = Vec::new();
+    for (variant, normal_maps) in variants {
+        for m in meshings {
+            progress(&format!(
+                "{} at {} /m{}",
+                if m.levels == 0 { "uniform" } else { "adaptive" },
+                m.texel_density,
+                if normal_maps { ", normal maps" } else { "" }
+            ));
+            let started = Instant::now();
+            let rscene = RadiosityScene::with_subdivision(
+                variant,
+                m.texel_density,
+                level,
+                Hierarchy::Clusters,
+                Subdivision::levels(m.levels),
+            )?;
+            let prepared = started.elapsed().as_secs_f64();
+            crate::render::limits::check_radiosity(gpu, rscene.elements.len())?;
+            let started = Instant::now();
+            let initial = InitialState::from_luminaires_gpu(gpu, &light, &rscene, &shadows)?;
+            let direct_seconds = started.elapsed().as_secs_f64();
+            let gpu_settings = GpuSettings {
+                hierarchy: Hierarchy::Clusters,
+                ..GpuSettings::default()
+            };
+            let mut solver = GpuSolver::new(gpu, &rscene, &initial, defaults, gpu_settings);
+            let (_, log) = solver.solve(stop, &AtomicBool::new(false), |_| {})?;
+            let el = &rscene.elements;
+            rows.push(AdaptiveBenchRow {
+                meshing: if m.levels == 0 { "uniform" } else { "adaptive" }.into(),
+                normal_maps,
+                texel_density: m.texel_density,
+                levels: m.levels,
+                triangles: el.triangles.len(),
+                elements: el.len(),
+                texels: el.span.iter().map(|&s| u64::from(s) * u64::from(s)).sum(),
+                elements_seconds: prepared - rscene.receiving_seconds,
+                normals_seconds: rscene.receiving_seconds,
+                direct_seconds,
+                solve_seconds: log.last().map_or(0.0, |p| p.seconds),
+                shots: solver.shots,
+                convergence: log.last().map_or(0.0, |p| p.convergence),
+            });
+        }
+    }
+    Ok(rows)
+}

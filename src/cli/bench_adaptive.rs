@@ -1,0 +1,117 @@
+//! `goniolight bench adaptive` (Wallner Table 2.1): uniform against adaptive elements.
+
+use clap::Args;
+use serde_json::json;
+
+use super::CliError;
+use crate::bench::adaptive::{self, Meshing};
+use crate::gpu::Gpu;
+use crate::radiosity::solve::StopAt;
+
+/// Options of `bench adaptive`.
+#[derive(Debug, Args)]
+pub struct AdaptiveBenchArgs {
+    /// Print JSON {"rows": [...]}.
+    #[arg(long)]
+    json: bool,
+    /// The scene (default: the bundled assets/scenes/furnished_room.toml, whose brick
+    /// wall has a normal map: measured with and without it).
+    #[arg(long)]
+    scene: Option<std::path::PathBuf>,
+    /// Elements per metre where unsplit.
+    #[arg(long, default_value_t = 5.0)]
+    texel_density: f64,
+    /// Subdivision levels of the adaptive rows; a uniform row at the finest elements'
+    /// density is measured beside them.
+    #[arg(long, default_value_t = 2)]
+    levels: u32,
+    /// Patch level (patches of 2^level unsplit elements).
+    #[arg(long, default_value_t = 1)]
+    level: u32,
+    /// Shoot until this convergence.
+    #[arg(long, default_value_t = 0.95)]
+    converge: f64,
+    /// Give up after this many seconds per solution.
+    #[arg(long, default_value_t = 120.0)]
+    time_limit: f64,
+}
+
+/// Runs `bench adaptive`.
+pub fn run(args: AdaptiveBenchArgs) -> Result<(), CliError> {
+    let ok = args.texel_density.is_finite()
+        && args.texel_density > 0.0
+        && (1..=4).contains(&args.levels)
+        && args.level <= 6
+        && (0.0..=1.0).contains(&args.converge)
+        && args.time_limit.is_finite()
+        && args.time_limit > 0.0;
+    if !ok {
+        return Err(CliError::input(anyhow::anyhow!(
+            "--texel-density > 0, --levels in 1..=4, --level in 0..=6, --converge in 0..=1, --time-limit > 0"
+        )));
+    }
+    let path = args
+        .scene
+        .unwrap_or_else(|| crate::io::data_root().join("assets/scenes/furnished_room.toml"));
+    let scene = crate::scene::Scene::load(&path)?;
+    let gpu = Gpu::shared()?;
+    eprintln!("GPU: {}", gpu.describe());
+    let d = args.texel_density;
+    let meshings = [
+        Meshing {
+            texel_density: d,
+            levels: 0,
+        },
+        Meshing {
+            texel_density: d,
+            levels: args.levels,
+        },
+        Meshing {
+            texel_density: d * f64::from(1u32 << args.levels),
+            levels: 0,
+        },
+    ];
+    let stop = StopAt {
+        converge: args.converge,
+        max_shots: None,
+        time_budget: Some(std::time::Duration::from_secs_f64(args.time_limit)),
+    };
+    let rows = adaptive::run(&gpu, &scene, &meshings, args.level, &stop, |what| {
+        eprintln!("solving {what} …")
+    })
+    .map_err(CliError::failure)?;
+    if args.json {
+        println!("{}", json!({ "scene": path, "rows": rows }));
+        return Ok(());
+    }
+    println!(
+        "Uniform vs adaptive elements (Wallner Table 2.1), {}, to {:.0} %",
+        path.display(),
+        100.0 * args.converge
+    );
+    println!("| meshing | normal maps | elements /m | n_t | n_e | texels | elements s (subdivision incl.) | normals s | direct s | solve s | shots | reached |");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|");
+    for r in rows {
+        println!(
+            "| {}{} | {} | {} | {} | {} | {} | {:.2} | {:.2} | {:.2} | {:.2} | {} | {:.1} % |",
+            r.meshing,
+            if r.levels > 0 {
+                format!(" ({} levels)", r.levels)
+            } else {
+                String::new()
+            },
+            if r.normal_maps { "yes" } else { "no" },
+            r.texel_density,
+            r.triangles,
+            r.elements,
+            r.texels,
+            r.elements_seconds,
+            r.normals_seconds,
+            r.direct_seconds,
+            r.solve_seconds,
+            r.shots,
+            100.0 * r.convergence
+        );
+    }
+    Ok(())
+}
