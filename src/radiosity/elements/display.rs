@@ -3,9 +3,11 @@
 //! subdivision left whole ([`super::Subdivision`]) is interpolated bilinearly between the
 //! block's value at its centre and its neighbours' at theirs, as the texels of uniform
 //! elements of the block's size would be, so an unsplit block does not show as a flat
-//! square. A neighbour that was split (it holds a shadow edge) or lies outside the chart
-//! gives nothing (the weights of the rest are renormalised): interpolating across the
-//! edge would smear the shadow into the block.
+//! square. A split neighbour gives its element nearest the texel. A neighbour outside the
+//! chart gives nothing (the weights of the rest are renormalised), and so does one more
+//! than twice as bright or dark as the block: blending across a shadow's edge would smear
+//! the shadow into the block, while along a steep but smooth gradient (the rim of a
+//! ceiling's light spot) the blend keeps unsplit blocks from showing as steps.
 
 use glam::DVec2;
 use rayon::prelude::*;
@@ -44,6 +46,7 @@ impl Elements {
         let d = (q - (lo + DVec2::splat(0.5 * side))) / side;
         let step = DVec2::new(d.x.signum(), d.y.signum());
         let chart = self.chart[e];
+        let own = value(e);
         let mut sum = [0.0f64; 4];
         let mut weight = 0.0;
         for (ox, oy) in [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0)] {
@@ -62,14 +65,16 @@ impl Elements {
                 continue;
             }
             let cell = lo + DVec2::new(step.x * ox, step.y * oy) * side;
-            // A neighbour split finer holds an edge: its values are not a smooth field's.
-            let Some(n) = self
-                .source_near(cell, side, q, chart)
-                .filter(|&n| self.span[n] >= self.span[e])
-            else {
+            let Some(n) = self.source_near(cell, side, q, chart) else {
                 continue;
             };
-            for (s, v) in sum.iter_mut().zip(value(n)) {
+            let theirs = value(n);
+            // The neighbour's element next to this block is taken only where the light
+            // runs on smoothly (within a factor of two), not across a shadow's edge.
+            if !smooth(&own, &theirs) {
+                continue;
+            }
+            for (s, v) in sum.iter_mut().zip(theirs) {
                 *s += w * f64::from(v);
             }
             weight += w;
@@ -91,4 +96,11 @@ impl Elements {
         let s = self.display_source[(ty * self.atlas_width + tx) as usize];
         (s != u32::MAX && self.chart[s as usize] == chart).then_some(s as usize)
     }
+}
+
+/// Whether two texel values differ by at most a factor of two in every channel.
+fn smooth(a: &[f32; 4], b: &[f32; 4]) -> bool {
+    a.iter()
+        .zip(b)
+        .all(|(&x, &y)| x.max(y) <= 2.0 * x.min(y) || x.max(y) <= f32::MIN_POSITIVE)
 }

@@ -706,7 +706,7 @@ mod tests {
     }
 
     #[test]
-    fn a_whole_blocks_texels_blend_with_its_unsplit_neighbours_only() {
+    fn a_whole_blocks_texels_follow_a_smooth_field_and_stop_at_an_edge() {
         let t = [tri(
             [
                 DVec3::ZERO,
@@ -719,7 +719,7 @@ mod tests {
             Elements::build_subdivided(&t, &[0], 0, Subdivision::levels(1), &SplitAtX).unwrap();
         // A linear field shown through blocks: blended texels follow it within a block's
         // slope, where flat blocks would be off by half a block's.
-        let shown = el.display_texels(|e| [el.position[e].y as f32; 4]);
+        let shown = el.display_texels(|e| [1.0 + el.position[e].y as f32; 4]);
         let chart = &el.charts[0];
         let mut worst: f64 = 0.0;
         for e in 0..el.len() {
@@ -734,13 +734,27 @@ mod tests {
                     continue;
                 }
                 let got = shown[(y * el.atlas_width + x) as usize][0] as f64;
-                worst = worst.max((got - centre.y).abs());
+                worst = worst.max((got - 1.0 - centre.y).abs());
             }
         }
         assert!(
             worst < 0.01,
             "{worst} m off a linear field (flat blocks: 0.025)"
         );
+        // A step at x = 0.37, where the blocks were split: whole blocks on either side
+        // show their own side's value, not a blend across the step.
+        let step = |e: usize| if el.position[e].x < 0.37 { 0.1 } else { 1.0 };
+        let shown = el.display_texels(|e| [step(e); 4]);
+        for e in 0..el.len() {
+            if el.span[e] != 2 {
+                continue;
+            }
+            let (lo, _) = el.atlas_square(e);
+            for (dx, dy) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+                let slot = ((lo.y as u32 + dy) * el.atlas_width + lo.x as u32 + dx) as usize;
+                assert_eq!(shown[slot][0], step(e), "element {e}");
+            }
+        }
     }
 
     #[test]
