@@ -140,7 +140,7 @@ pub enum ElementError {
     TexelSize(f64),
     /// Too many texels for the largest atlas.
     #[error(
-        "{} texels do not fit in an {MAX_ATLAS} × {MAX_ATLAS} atlas: lower the texel density",
+        "{} texels do not fit in an {MAX_ATLAS} × {MAX_ATLAS} atlas: lower the texel density (or the adaptive subdivision's levels: each quadruples the texels)",
         texel_count(*.0)
     )]
     TooLarge(u64),
