@@ -451,6 +451,42 @@ fn radiosity_runs_in_the_background_pauses_and_converges() {
     assert!(h.state().radiosity.worker.is_none());
 }
 
+#[test]
+fn radiosity_splits_elements_at_shadow_edges_from_the_panel() {
+    let Some(gpu) = gpu_common::gpu() else { return };
+    let mut a = app("boxes_room.toml");
+    a.gpu = Some(Arc::new(gpu));
+    a.radiosity.settings.texel_density = 4.0;
+    a.radiosity.settings.converge = 0.9;
+    a.radiosity.settings.update_every_s = 0.0;
+    let mut h = harness(a);
+    h.get_by_label("Radiosity").click();
+    h.run();
+    // The panel's slider sets the levels (the arrow key steps it by one).
+    let slider = h.get_by_role_and_label(
+        egui::accesskit::Role::Slider,
+        "Split at shadow edges (levels)",
+    );
+    slider.focus();
+    h.run();
+    for _ in 0..2 {
+        h.key_press(egui::Key::ArrowRight);
+        h.run();
+    }
+    assert_eq!(h.state().radiosity.settings.adaptive, 2);
+    h.get_by_label("Start").click();
+    h.step();
+    run_until(&mut h, converged);
+    // The light map holds the finest texels: 16 per element of 1/4 m where unsplit.
+    let area = goniolight::bench::radiosity::surface_area(&h.state().scene);
+    let map = h.state().radiosity.light_map.clone().expect("a light map");
+    let covered = map.texels.iter().filter(|t| t[3] > 0.0).count() as f64;
+    assert!(
+        covered > 0.8 * area * 16.0 * 16.0,
+        "{covered} lit texels for {area} m²"
+    );
+}
+
 /// Whether the solver says it has converged (and waits for changes).
 fn converged(a: &ViewerApp) -> bool {
     a.radiosity.status.starts_with("done: converged")

@@ -14,6 +14,7 @@ use std::time::{Duration, Instant};
 use super::jobs::{JobControl, Worker};
 use crate::gpu::Gpu;
 use crate::photometry::Interp;
+use crate::radiosity::elements::Subdivision;
 use crate::radiosity::gpu::{GpuSettings, GpuSolver};
 use crate::radiosity::initial::{InitialState, LuminaireLight};
 use crate::radiosity::scene::RadiosityScene;
@@ -35,6 +36,11 @@ pub struct RadiositySettings {
     pub texel_density: f64,
     /// Shooting patches of 2^level texels.
     pub level: u32,
+    /// Adaptive subdivision's levels: elements split up to this many times at the
+    /// luminaires' shadow and beam edges (0: uniform; the splits follow the luminaires
+    /// where the run started: one moved later keeps them, and its new edges are as fine
+    /// as the elements there).
+    pub adaptive: u32,
     /// Stop at this converged fraction of the initial unshot power (0: shoot nothing,
     /// show the luminaires' first bounce and the ambient term).
     pub converge: f64,
@@ -57,6 +63,7 @@ impl Default for RadiositySettings {
         RadiositySettings {
             texel_density: 10.0,
             level: 2,
+            adaptive: 0,
             converge: 0.99,
             solver: SolverSettings::default(),
             gpu: GpuSettings {
@@ -282,9 +289,14 @@ impl Job<'_> {
         inbox: &Receiver<RadiosityCommand>,
     ) -> Result<(), String> {
         let s = self.settings;
-        let rscene =
-            RadiosityScene::with_hierarchy(scene, s.texel_density, s.level, s.gpu.hierarchy)
-                .map_err(|e| err(&e))?;
+        let rscene = RadiosityScene::with_subdivision(
+            scene,
+            s.texel_density,
+            s.level,
+            s.gpu.hierarchy,
+            Subdivision::levels(s.adaptive),
+        )
+        .map_err(|e| err(&e))?;
         let mut start = self.first_shot(scene, s.solver.interp, &rscene)?;
         let mut solver = GpuSolver::new(self.gpu, &rscene, &start, s.solver, s.gpu);
         if s.frame_budget_ms > 0.0 {

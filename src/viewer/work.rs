@@ -204,6 +204,14 @@ impl ViewerApp {
                     ui.add(egui::Slider::new(&mut st.level, 0..=6))
                         .labelled_by(label.id);
                     ui.end_row();
+                    let label = ui.label("Split at shadow edges (levels)");
+                    ui.add(egui::Slider::new(&mut st.adaptive, 0..=3))
+                        .labelled_by(label.id)
+                        .on_hover_text(
+                            "Adaptive subdivision: elements split up to this many times \
+                             where a luminaire's shadow or beam edge crosses them",
+                        );
+                    ui.end_row();
                     let label = ui.label("Converge to");
                     ui.add(egui::Slider::new(&mut st.converge, 0.5..=0.999).fixed_decimals(3))
                         .labelled_by(label.id);
