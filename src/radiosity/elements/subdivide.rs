@@ -103,6 +103,9 @@ pub(super) fn lay_out(
     test: &dyn SplitTest,
 ) -> Vec<LaidPatch> {
     let laid = plan.elements();
+    if coarse == 1 {
+        return one_texel_each(&laid, patch);
+    }
     let mut grid = vec![u32::MAX; plan.cols as usize * plan.rows as usize];
     for (k, &(i, j, ..)) in laid.iter().enumerate() {
         grid[j as usize * plan.cols as usize + i as usize] = k as u32;
@@ -132,6 +135,32 @@ pub(super) fn lay_out(
             }
         })
         .collect()
+}
+
+/// Uniform elements, one per texel, patch by patch (no grid of the chart's texels).
+fn one_texel_each(laid: &[Laid], patch: u32) -> Vec<LaidPatch> {
+    let mut order: Vec<&Laid> = laid.iter().collect();
+    order.sort_by_key(|e| (e.1 / patch, e.0 / patch, e.1, e.0));
+    let mut out: Vec<LaidPatch> = Vec::new();
+    for &(column, row, area, centroid) in order {
+        let key = (column / patch, row / patch);
+        if out.last().is_none_or(|p| p.key != key) {
+            out.push(LaidPatch {
+                key,
+                elements: Vec::new(),
+            });
+        }
+        if let Some(p) = out.last_mut() {
+            p.elements.push(Block {
+                column,
+                row,
+                side: 1,
+                area,
+                centroid,
+            });
+        }
+    }
+    out
 }
 
 struct Splitter<'a> {
