@@ -8,6 +8,7 @@ use glam::DVec3;
 use super::clusters::PlanarClusters;
 use super::elements::{
     ElementError, Elements, InputTriangle, NeverSplit, SplitTest, Subdivision, MAX_ATLAS,
+    MAX_SUBDIVISION,
 };
 use super::shadow_edges::LuminaireShadowEdges;
 use super::Hierarchy;
@@ -97,6 +98,9 @@ impl RadiosityScene {
         hierarchy: Hierarchy,
         subdivision: Subdivision,
     ) -> Result<Self, ElementError> {
+        if subdivision.levels > MAX_SUBDIVISION {
+            return Err(ElementError::Subdivision(subdivision.levels));
+        }
         // Translucent surfaces get back faces of their own (appended after the scene's).
         let twinned = super::transmission::with_back_faces(scene);
         let scene = &*twinned;

@@ -132,6 +132,9 @@ pub struct Elements {
 /// Largest atlas side.
 pub const MAX_ATLAS: u32 = 8192;
 
+/// Most levels of adaptive subdivision (an unsplit element of 2^6 × 2^6 texels).
+pub const MAX_SUBDIVISION: u32 = 6;
+
 /// Why elements cannot be built.
 #[derive(Debug, thiserror::Error, PartialEq)]
 pub enum ElementError {
@@ -147,6 +150,9 @@ pub enum ElementError {
     /// No triangle with an area.
     #[error("the scene has no triangle with an area")]
     Empty,
+    /// More subdivision levels than [`MAX_SUBDIVISION`].
+    #[error("{0} adaptive subdivision levels: at most {MAX_SUBDIVISION}")]
+    Subdivision(u32),
     /// A chart id list of the wrong length.
     #[error("{given} chart ids for {triangles} triangles")]
     ChartIds {
@@ -200,6 +206,9 @@ impl Elements {
                 given: chart_of.len(),
                 triangles: triangles.len(),
             });
+        }
+        if subdivision.levels > MAX_SUBDIVISION {
+            return Err(ElementError::Subdivision(subdivision.levels));
         }
         for t in triangles {
             if !(t.texel_m.is_finite() && t.texel_m > 0.0) {
@@ -776,5 +785,16 @@ mod tests {
             ),
             Err(ElementError::TooLarge(_))
         ));
+        assert_eq!(
+            Elements::build_subdivided(
+                &[tri(ok, 0.1)],
+                &[0],
+                0,
+                Subdivision::levels(40),
+                &NeverSplit
+            )
+            .unwrap_err(),
+            ElementError::Subdivision(40)
+        );
     }
 }

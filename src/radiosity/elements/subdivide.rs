@@ -45,9 +45,10 @@ impl Subdivision {
         }
     }
 
-    /// The side of an unsplit element, texels.
+    /// The side of an unsplit element, texels (saturating: levels beyond
+    /// [`super::MAX_SUBDIVISION`] are refused when elements are built).
     pub fn block(&self) -> u32 {
-        1 << self.levels
+        1u32.checked_shl(self.levels).unwrap_or(u32::MAX)
     }
 
     /// Whether `reached` of `facing` sample points being lit calls for a split: some but
