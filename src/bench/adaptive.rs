@@ -35,6 +35,8 @@ pub struct AdaptiveBenchRow {
     pub texels: u64,
     /// Seconds to lay the elements and the atlas, the subdivision's tests included.
     pub elements_seconds: f64,
+    /// CPU seconds of the subdivision's tests (summed over threads).
+    pub subdivision_seconds: f64,
     /// Seconds for the receiving normals (normal maps, vertex normals).
     pub normals_seconds: f64,
     /// Seconds for the luminaires' direct light (on the GPU).
@@ -118,6 +120,7 @@ pub fn run(
                 elements: el.len(),
                 texels: el.span.iter().map(|&s| u64::from(s) * u64::from(s)).sum(),
                 elements_seconds: prepared - rscene.receiving_seconds,
+                subdivision_seconds: rscene.subdivision_seconds,
                 normals_seconds: rscene.receiving_seconds,
                 direct_seconds,
                 solve_seconds: log.last().map_or(0.0, |p| p.seconds),

@@ -89,11 +89,11 @@ pub fn run(args: AdaptiveBenchArgs) -> Result<(), CliError> {
         path.display(),
         100.0 * args.converge
     );
-    println!("| meshing | normal maps | elements /m | n_t | n_e | texels | elements s (subdivision incl.) | normals s | direct s | solve s | shots | reached |");
-    println!("|---|---|---|---|---|---|---|---|---|---|---|---|");
+    println!("| meshing | normal maps | elements /m | n_t | n_e | texels | elements s (subdivision incl.) | subdivision CPU s | normals s | direct s | solve s | shots | reached |");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     for r in rows {
         println!(
-            "| {}{} | {} | {} | {} | {} | {} | {:.2} | {:.2} | {:.2} | {:.2} | {} | {:.1} % |",
+            "| {}{} | {} | {} | {} | {} | {} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {} | {:.1} % |",
             r.meshing,
             if r.levels > 0 {
                 format!(" ({} levels)", r.levels)
@@ -106,6 +106,7 @@ pub fn run(args: AdaptiveBenchArgs) -> Result<(), CliError> {
             r.elements,
             r.texels,
             r.elements_seconds,
+            r.subdivision_seconds,
             r.normals_seconds,
             r.direct_seconds,
             r.solve_seconds,

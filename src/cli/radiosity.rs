@@ -397,7 +397,11 @@ pub fn prepare<'s>(
     )
     .map_err(|e| CliError::input(anyhow!("{}: {e}", label.display())))?;
     if solver.adaptive > 0 {
-        eprintln!("{}", adaptive_summary(&rscene.elements));
+        eprintln!(
+            "{} (the splits decided in {:.2} s of CPU)",
+            adaptive_summary(&rscene.elements),
+            rscene.subdivision_seconds
+        );
     }
     let elements_s = started.elapsed().as_secs_f64() - load_s;
     let interp = settings.light_model.interp();

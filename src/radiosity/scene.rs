@@ -45,6 +45,9 @@ pub struct RadiosityScene {
     visibility: std::sync::OnceLock<VisibilityParts>,
     /// Seconds spent building the face clusters for the charts (0 without them).
     pub clustering_seconds: f64,
+    /// CPU seconds (summed over threads) spent deciding adaptive subdivision's splits
+    /// (0 without it).
+    pub subdivision_seconds: f64,
     /// The planar face clusters of `casters`, built on first use.
     planar: std::sync::OnceLock<PlanarClusters>,
     /// Per luminaire, the caster triangles of its housing (they never shadow its light).
@@ -120,19 +123,18 @@ impl RadiosityScene {
         let ignored = scene.ignored_per_luminaire();
         let cutouts = scene.caster_cutouts();
         let caster_bvh = std::sync::OnceLock::new();
-        let edges;
-        let split: &dyn SplitTest = if subdivision.levels == 0 {
-            &NeverSplit
-        } else {
-            edges = LuminaireShadowEdges {
-                luminaires: &scene.luminaires,
-                bvh: caster_bvh
-                    .get_or_init(|| TriangleBvh::new(&casters).with_cutouts(cutouts.clone())),
-                ignored: &ignored,
-                eps: self_hit_epsilon,
-                subdivision,
-            };
-            &edges
+        let edges = (subdivision.levels > 0).then(|| LuminaireShadowEdges {
+            luminaires: &scene.luminaires,
+            bvh: caster_bvh
+                .get_or_init(|| TriangleBvh::new(&casters).with_cutouts(cutouts.clone())),
+            ignored: &ignored,
+            eps: self_hit_epsilon,
+            subdivision,
+            nanos: Default::default(),
+        });
+        let split: &dyn SplitTest = match &edges {
+            Some(edges) => edges,
+            None => &NeverSplit,
         };
         let planar = std::sync::OnceLock::new();
         let clustering = std::time::Instant::now();
@@ -173,6 +175,8 @@ impl RadiosityScene {
                 elements
             }
         };
+        let subdivision_seconds = edges.as_ref().map_or(0.0, LuminaireShadowEdges::seconds);
+        drop(edges);
         let source = scene;
         let mut scene = RadiosityScene {
             elements,
@@ -208,6 +212,7 @@ impl RadiosityScene {
             visibility: std::sync::OnceLock::new(),
             planar,
             clustering_seconds,
+            subdivision_seconds,
             ignored,
             self_hit_epsilon,
             total_area: 0.0,

@@ -11,6 +11,8 @@
 //! the brightest point's illuminance in the block, so the edge of a beam (a downlight's
 //! cut-off) splits as a shadow's edge does.
 
+use std::sync::atomic::{AtomicU64, Ordering};
+
 use glam::DVec3;
 
 use super::elements::{SplitTest, Subdivision};
@@ -34,10 +36,27 @@ pub struct LuminaireShadowEdges<'a> {
     pub eps: f64,
     /// The bounds on the lit share.
     pub subdivision: Subdivision,
+    /// Nanoseconds spent in [`SplitTest::split`], summed over the threads.
+    pub nanos: AtomicU64,
 }
 
 impl SplitTest for LuminaireShadowEdges<'_> {
     fn split(&self, points: &[DVec3], normal: DVec3) -> bool {
+        let started = std::time::Instant::now();
+        let split = self.any_luminaire_edge(points, normal);
+        let nanos = started.elapsed().as_nanos().min(u128::from(u64::MAX)) as u64;
+        self.nanos.fetch_add(nanos, Ordering::Relaxed);
+        split
+    }
+}
+
+impl LuminaireShadowEdges<'_> {
+    /// CPU seconds spent deciding splits so far.
+    pub fn seconds(&self) -> f64 {
+        self.nanos.load(Ordering::Relaxed) as f64 * 1e-9
+    }
+
+    fn any_luminaire_edge(&self, points: &[DVec3], normal: DVec3) -> bool {
         let none = IgnoredTriangles::default();
         self.luminaires.iter().enumerate().any(|(k, l)| {
             let lux: Vec<f64> = points
