@@ -176,7 +176,6 @@ impl RadiosityScene {
             }
         };
         let subdivision_seconds = edges.as_ref().map_or(0.0, LuminaireShadowEdges::seconds);
-        drop(edges);
         let source = scene;
         let mut scene = RadiosityScene {
             elements,
