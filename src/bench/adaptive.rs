@@ -68,15 +68,18 @@ pub fn run(
     stop: &StopAt,
     mut progress: impl FnMut(&str),
 ) -> anyhow::Result<Vec<AdaptiveBenchRow>> {
-    let mut flat = scene.clone();
-    for m in &mut flat.materials {
-        m.normal_map = None;
-    }
+    // With normal maps, the scene without them first (one copy, only then).
     let with_maps = scene.materials.iter().any(|m| m.normal_map.is_some());
-    let variants: Vec<(&Scene, bool)> = if with_maps {
-        vec![(&flat, false), (scene, true)]
-    } else {
-        vec![(scene, false)]
+    let flat = with_maps.then(|| {
+        let mut flat = scene.clone();
+        for m in &mut flat.materials {
+            m.normal_map = None;
+        }
+        flat
+    });
+    let variants: Vec<(&Scene, bool)> = match &flat {
+        Some(flat) => vec![(flat, false), (scene, true)],
+        None => vec![(scene, false)],
     };
     let mut shadows = crate::render::ShadowSettings::default();
     crate::render::limits::check_scene(gpu, scene, &mut shadows)?;

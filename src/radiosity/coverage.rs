@@ -60,14 +60,23 @@ pub fn apply(elements: &mut Elements, cutouts: &Cutouts) -> usize {
         let (lo, side) = elements.atlas_square(e);
         let [tx, ty] = elements.texel[e];
         let span = elements.span[e];
-        let mut near: Vec<u32> = (ty..ty + span)
-            .flat_map(|y| (tx..tx + span).map(move |x| [x, y]))
-            .filter_map(|texel| by_texel.get(&texel))
-            .flatten()
-            .copied()
-            .collect();
-        near.sort_unstable();
-        near.dedup();
+        // A one-texel element borrows its texel's list; a block gathers its texels'.
+        let near: std::borrow::Cow<[u32]> = if span == 1 {
+            by_texel
+                .get(&[tx, ty])
+                .map_or(&[][..], Vec::as_slice)
+                .into()
+        } else {
+            let mut all: Vec<u32> = (ty..ty + span)
+                .flat_map(|y| (tx..tx + span).map(move |x| [x, y]))
+                .filter_map(|texel| by_texel.get(&texel))
+                .flatten()
+                .copied()
+                .collect();
+            all.sort_unstable();
+            all.dedup();
+            all.into()
+        };
         let share = solid_share(elements, cutouts, &near, lo, side);
         if share < 1.0 {
             elements.area[e] *= share.max(MIN_SHARE);
