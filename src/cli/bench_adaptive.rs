@@ -96,7 +96,11 @@ pub fn run(args: AdaptiveBenchArgs) -> Result<(), CliError> {
             "| {}{} | {} | {} | {} | {} | {} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {} | {:.1} % |",
             r.meshing,
             if r.levels > 0 {
-                format!(" ({} levels)", r.levels)
+                format!(
+                    " ({} level{})",
+                    r.levels,
+                    if r.levels == 1 { "" } else { "s" }
+                )
             } else {
                 String::new()
             },
