@@ -331,7 +331,7 @@ fn material_overrides_and_mtl_transparency_set_the_transmittance() {
         (
             "name = \"wall\"\nspecular_reflectance = 0.9",
             "material[0].specular_reflectance",
-            "not modelled yet",
+            "CPU reference",
         ),
         (
             "name = \"wall\"\nopacity = 0.9",

@@ -1,7 +1,9 @@
 //! The CPU reference solver: progressive refinement (Cohen et al. 1988) over the same
 //! elements and patches as the GPU solver, with exact visibility (a ray from the patch
 //! centre to each receiver, brute force over the triangles). Slow, simple and exact
-//! enough to check the GPU on small scenes.
+//! enough to check the GPU on small scenes. It also transfers light through mirrors and
+//! clear glass ([`super::specular`]): the luminaires' and every patch's virtual shooters,
+//! with ray-cast legs.
 
 use glam::DVec3;
 
@@ -10,6 +12,7 @@ use super::gather;
 use super::initial::{DirectSamples, InitialState};
 use super::scene::{luminance, RadiosityScene};
 use super::solve;
+use super::specular::SpecularPath;
 use super::{Ambient, SolverSettings};
 use crate::lighting::SurfacePoint;
 use crate::shadow::{IgnoredTriangles, Light};
@@ -30,6 +33,8 @@ pub struct CpuSolver<'a> {
     /// Shots from triangles so far.
     pub shots: usize,
     eps: f64,
+    /// Per luminaire, its reflection tree through the specular windows.
+    luminaire_paths: Vec<Vec<SpecularPath>>,
 }
 
 impl<'a> CpuSolver<'a> {
@@ -47,6 +52,11 @@ impl<'a> CpuSolver<'a> {
             initial_unshot: 0.0,
             shots: 0,
             eps: scene.self_hit_epsilon,
+            luminaire_paths: scene
+                .luminaires
+                .iter()
+                .map(|l| scene.specular.paths(l.position, None))
+                .collect(),
         };
         s.shoot_luminaires();
         s.initial_unshot = s.unshot_power();
@@ -60,8 +70,52 @@ impl<'a> CpuSolver<'a> {
         !bvh.in_shadow(&light, to + to_n * self.eps, self.eps, &none)
     }
 
-    /// Direct illuminance (lux, RGB) from the luminaires at `p` with unit normal `n`.
+    /// Direct illuminance (lux, RGB) from the luminaires at `p` with unit normal `n`,
+    /// straight and by way of mirrors and clear glass.
     pub fn direct(&self, p: DVec3, n: DVec3) -> DVec3 {
+        self.direct_straight(p, n) + self.direct_specular(p, n)
+    }
+
+    /// The luminaires' light at `p` (unit normal `n`) through the specular windows: each
+    /// path's virtual luminaire sends what the real one sends toward the first window,
+    /// times the path's coefficients, over the unfolded distance.
+    fn direct_specular(&self, p: DVec3, n: DVec3) -> DVec3 {
+        let none = IgnoredTriangles::default();
+        let q = p + n * self.eps;
+        let mut sum = DVec3::ZERO;
+        for (k, (l, paths)) in self
+            .scene
+            .luminaires
+            .iter()
+            .zip(&self.luminaire_paths)
+            .enumerate()
+        {
+            let ignored = self.scene.ignored.get(k).unwrap_or(&none);
+            for path in paths {
+                let to = path.virtual_source() - p;
+                let d2 = to.length_squared();
+                let cos = n.dot(to) / d2.sqrt();
+                if cos <= 0.0 || d2 <= 0.0 {
+                    continue;
+                }
+                let bvh = self.scene.caster_bvh();
+                let Some(m) = self
+                    .scene
+                    .specular
+                    .trace(bvh, l.position, path, q, self.eps, ignored)
+                else {
+                    continue;
+                };
+                let out = (m - l.position).normalize_or_zero();
+                let intensity = l.intensity_toward(out, self.settings.interp);
+                sum += path.weight * l.color_toward(out) * intensity * cos / d2;
+            }
+        }
+        sum
+    }
+
+    /// Direct illuminance (lux, RGB) from the luminaires straight to `p` (unit normal `n`).
+    fn direct_straight(&self, p: DVec3, n: DVec3) -> DVec3 {
         let none = IgnoredTriangles::default();
         self.scene
             .luminaires
@@ -167,10 +221,22 @@ impl<'a> CpuSolver<'a> {
         let el = &self.scene.elements;
         let te = &el.charts[t];
         let nt = te.normal;
-        for p in &el.patches[te.first_patch as usize..][..te.patch_count as usize] {
-            let range = p.first as usize..(p.first + p.count) as usize;
-            let power: DVec3 = range.map(|e| (self.unshot[e] + extra) * el.area[e]).sum();
-            let delta = power / p.area.max(1e-300);
+        let patches = &el.patches[te.first_patch as usize..][..te.patch_count as usize];
+        // What each patch shoots, taken before any is shot: through a mirror a chart
+        // lights itself.
+        let deltas: Vec<DVec3> = patches
+            .iter()
+            .map(|p| {
+                let range = p.first as usize..(p.first + p.count) as usize;
+                let power: DVec3 = range.map(|e| (self.unshot[e] + extra) * el.area[e]).sum();
+                power / p.area.max(1e-300)
+            })
+            .collect();
+        for e in te.first as usize..(te.first + te.count) as usize {
+            self.unshot[e] = -extra;
+        }
+        for (p, &delta) in patches.iter().zip(&deltas) {
+            self.shoot_specular(t, p, delta);
             for i in 0..el.len() {
                 if el.chart[i] as usize == t {
                     continue;
@@ -198,10 +264,66 @@ impl<'a> CpuSolver<'a> {
                 }
             }
         }
-        for e in te.first as usize..(te.first + te.count) as usize {
-            self.unshot[e] = -extra;
-        }
         self.shots += 1;
+    }
+
+    /// Patch `p` of chart `t` shoots `delta` through the specular windows: each path's
+    /// virtual shooter (the patch's polygon imaged through the windows) gives every
+    /// element it reaches its form factor times the path's coefficients.
+    fn shoot_specular(&mut self, t: usize, p: &super::elements::Patch, delta: DVec3) {
+        let scene = self.scene;
+        let nt = scene.elements.charts[t].normal;
+        let source = p.centroid + nt * self.eps;
+        let none = IgnoredTriangles::default();
+        let el = &scene.elements;
+        // Unlike a straight shot, a chart may take light from itself (its mirror image).
+        for path in scene.specular.paths(p.centroid, Some(nt)) {
+            let image = |mut q: DVec3, direction: bool| {
+                for &w in &path.windows {
+                    let w = &scene.specular.windows[w];
+                    q = if direction {
+                        w.image_direction(q)
+                    } else {
+                        w.image(q)
+                    };
+                }
+                q
+            };
+            let polygon: Vec<DVec3> = p.polygon.iter().map(|&q| image(q, false)).collect();
+            let (centre, normal) = (path.virtual_source(), image(nt, true));
+            for i in 0..el.len() {
+                let (pi, ni) = (el.position[i], el.normal(i));
+                let form_factor = |n: DVec3| match self.settings.form_factor {
+                    FormFactorKind::Disc => form_factor::disc(pi, n, centre, normal, p.area),
+                    FormFactorKind::Polygon => form_factor::polygon(pi, n, &polygon, normal),
+                };
+                let bvh = scene.caster_bvh();
+                let reaches = |side: DVec3| {
+                    let q = pi + side * self.eps;
+                    scene
+                        .specular
+                        .trace(bvh, source, &path, q, self.eps, &none)
+                        .is_some()
+                };
+                let f = scene.element_receives(i, centre - pi, form_factor);
+                if f > 0.0 && reaches(ni) {
+                    let arriving = path.weight * delta * f;
+                    let gained = scene.element_reflectance(i) * arriving;
+                    self.radiosity[i] += gained;
+                    self.unshot[i] += gained;
+                    self.illuminance[i] += luminance(arriving);
+                }
+                let tau = scene.element_transmittance(i);
+                if tau != DVec3::ZERO {
+                    let f = form_factor(-ni);
+                    if f > 0.0 && reaches(-ni) {
+                        let gained = tau * path.weight * delta * f;
+                        self.radiosity[i] += gained;
+                        self.unshot[i] += gained;
+                    }
+                }
+            }
+        }
     }
 
     /// One shot; false when nothing is left to shoot.

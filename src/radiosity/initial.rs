@@ -71,6 +71,13 @@ impl InitialState {
         radiosity_scene: &RadiosityScene,
         shadows: &ShadowSettings,
     ) -> Result<InitialState, GpuError> {
+        if !radiosity_scene.specular.is_empty() {
+            return Err(GpuError::Unsupported(
+                "mirrors and clear glass are transferred only by the CPU reference solver so \
+                 far (radiosity::cpu); the GPU solver would treat them as opaque"
+                    .into(),
+            ));
+        }
         if light.scene.lights.count == 0 {
             return Ok(InitialState::emission(radiosity_scene));
         }

@@ -20,6 +20,7 @@ pub mod shading;
 pub mod shadow_edges;
 pub mod shooters;
 pub mod solve;
+pub mod specular;
 pub mod transmission;
 pub mod view;
 

@@ -11,6 +11,7 @@ use super::elements::{
     MAX_SUBDIVISION,
 };
 use super::shadow_edges::LuminaireShadowEdges;
+use super::specular::SpecularSurfaces;
 use super::Hierarchy;
 use crate::geometry::Mesh;
 use crate::scene::{PlacedLuminaire, Scene};
@@ -55,6 +56,9 @@ pub struct RadiosityScene {
     /// How far rays between surfaces start off them, metres
     /// ([`crate::shadow::raycast::self_hit_epsilon`] of `casters`).
     pub self_hit_epsilon: f64,
+    /// The mirrors and clear glass ([`super::specular`]); only the CPU reference
+    /// solver transfers light through them so far.
+    pub specular: SpecularSurfaces,
     /// Total surface area, m².
     pub total_area: f64,
     /// The area-weighted mean of what a surface sends back out, reflectance plus
@@ -176,6 +180,13 @@ impl RadiosityScene {
             }
         };
         let subdivision_seconds = edges.as_ref().map_or(0.0, LuminaireShadowEdges::seconds);
+        let specular = SpecularSurfaces::new(&casters, &scene.caster_materials(), &scene.materials);
+        // What specular surfaces send on counts in the ambient term's mean reflectance.
+        let specular_share: Vec<f64> = scene
+            .materials
+            .iter()
+            .map(|m| luminance((m.specular_reflectance + m.specular_transmittance).as_dvec3()))
+            .collect();
         let source = scene;
         let mut scene = RadiosityScene {
             elements,
@@ -214,6 +225,7 @@ impl RadiosityScene {
             subdivision_seconds,
             ignored,
             self_hit_epsilon,
+            specular,
             total_area: 0.0,
             mean_reflectance: 0.0,
         };
@@ -226,7 +238,10 @@ impl RadiosityScene {
         let e = &scene.elements;
         scene.total_area = e.area.iter().sum();
         let reflected: f64 = (0..e.len())
-            .map(|k| luminance(scene.element_reemittance(k)) * e.area[k])
+            .map(|k| {
+                let share = specular_share[scene.element_material(k)];
+                (luminance(scene.element_reemittance(k)) + share) * e.area[k]
+            })
             .sum();
         scene.mean_reflectance = (reflected / scene.total_area.max(1e-300)).min(0.999);
         Ok(scene)

@@ -11,10 +11,13 @@
 //! ```
 //!
 //! Values are linear RGB or one number for all three, each in 0..=1, and a material's
-//! reflectance plus transmittance may not exceed 1 in any channel. The keys
+//! reflectances plus transmittances may not exceed 1 in any channel. The keys
 //! `specular_reflectance` (mirrors) and `specular_transmittance` (clear glass) are part of
-//! the format, but goniolight does not model specular transfer yet and refuses them
-//! rather than treat the surface as opaque.
+//! the format and set [`Material::specular_reflectance`] and
+//! [`Material::specular_transmittance`], which the CPU reference solver transfers
+//! ([`crate::radiosity::specular`]); the GPU solver, the renderer and `calc` do not yet,
+//! so a scene file refuses them ([`refuse_specular`]) rather than treat the surface as
+//! opaque.
 
 use glam::Vec3;
 
@@ -22,35 +25,23 @@ use super::file::{MaterialEntry, Rgb};
 use super::model::Material;
 
 /// Applies `entries` to `materials` (those of the scene's models). The error is the key
-/// and the message: an unknown name, a value out of range, reflectance plus transmittance
-/// above 1, or a specular key.
+/// and the message: an unknown name, a value out of range, or reflectances plus
+/// transmittances above 1.
 pub fn apply(
     entries: &[MaterialEntry],
     materials: &mut [Material],
 ) -> Result<(), (String, String)> {
     for (i, entry) in entries.iter().enumerate() {
         let key = format!("material[{i}]");
-        for (field, value) in [
-            ("specular_reflectance", entry.specular_reflectance),
-            ("specular_transmittance", entry.specular_transmittance),
-        ] {
-            if value.is_some() {
-                return Err((
-                    format!("{key}.{field}"),
-                    "mirrors and clear glass (specular transfer) are not modelled yet; \
-                     remove the key, or use diffuse_transmittance for a translucent surface"
-                        .into(),
-                ));
-            }
-        }
-        let reflectance = entry
-            .diffuse_reflectance
-            .map(|v| checked(v, &format!("{key}.diffuse_reflectance")))
-            .transpose()?;
-        let transmittance = entry
-            .diffuse_transmittance
-            .map(|v| checked(v, &format!("{key}.diffuse_transmittance")))
-            .transpose()?;
+        let colour = |value: Option<Rgb>, field: &str| {
+            value
+                .map(|v| checked(v, &format!("{key}.{field}")))
+                .transpose()
+        };
+        let reflectance = colour(entry.diffuse_reflectance, "diffuse_reflectance")?;
+        let transmittance = colour(entry.diffuse_transmittance, "diffuse_transmittance")?;
+        let mirror = colour(entry.specular_reflectance, "specular_reflectance")?;
+        let glass = colour(entry.specular_transmittance, "specular_transmittance")?;
         let mut found = false;
         for m in materials.iter_mut().filter(|m| m.name == entry.name) {
             found = true;
@@ -70,15 +61,27 @@ pub fn apply(
             if let Some(t) = transmittance {
                 m.diffuse_transmittance = t;
             }
-            let sum = m.diffuse_reflectance() + m.diffuse_transmittance;
+            if let Some(r) = mirror {
+                m.specular_reflectance = r;
+            }
+            if let Some(t) = glass {
+                m.specular_transmittance = t;
+            }
+            let sum = m.diffuse_reflectance()
+                + m.diffuse_transmittance
+                + m.specular_reflectance
+                + m.specular_transmittance;
             if sum.max_element() > 1.0 + 1e-6 {
                 return Err((
                     key.clone(),
                     format!(
-                        "material {:?} would reflect {} and transmit {}: more than it receives",
+                        "material {:?} would reflect {} and transmit {} diffusely and reflect \
+                         {} and transmit {} specularly: more than it receives",
                         entry.name,
                         m.diffuse_reflectance(),
-                        m.diffuse_transmittance
+                        m.diffuse_transmittance,
+                        m.specular_reflectance,
+                        m.specular_transmittance
                     ),
                 ));
             }
@@ -94,6 +97,30 @@ pub fn apply(
                     entry.name
                 ),
             ));
+        }
+    }
+    Ok(())
+}
+
+/// The first specular key of `entries`, refused by a scene file: only the CPU reference
+/// solver ([`crate::radiosity::cpu`]) transfers light specularly so far; the GPU solver,
+/// the renderer and `calc` would treat the surface as opaque and print wrong lux.
+pub fn refuse_specular(entries: &[MaterialEntry]) -> Result<(), (String, String)> {
+    for (i, entry) in entries.iter().enumerate() {
+        for (field, value) in [
+            ("specular_reflectance", entry.specular_reflectance),
+            ("specular_transmittance", entry.specular_transmittance),
+        ] {
+            if value.is_some() {
+                return Err((
+                    format!("material[{i}].{field}"),
+                    "mirrors and clear glass (specular transfer) are solved only by the CPU \
+                     reference solver so far; the GPU solver, the renderer and calc would \
+                     treat the surface as opaque, so goniolight refuses the key (use \
+                     diffuse_transmittance for a translucent surface)"
+                        .into(),
+                ));
+            }
         }
     }
     Ok(())
@@ -165,12 +192,27 @@ mod tests {
         let (key, _) = apply(&[out_of_range], &mut opal()).unwrap_err();
         assert_eq!(key, "material[0].diffuse_transmittance");
 
-        let mirror = MaterialEntry {
-            specular_reflectance: Some(Rgb::Grey(0.9)),
+        // Specular keys set the material; with the diffuse part they may not exceed 1.
+        let mut m = opal();
+        let glass = MaterialEntry {
+            diffuse_reflectance: Some(Rgb::Grey(0.0)),
+            specular_reflectance: Some(Rgb::Grey(0.08)),
+            specular_transmittance: Some(Rgb::Colour([0.9, 0.88, 0.85])),
             ..entry("opal")
         };
-        let (key, message) = apply(&[mirror], &mut opal()).unwrap_err();
+        apply(std::slice::from_ref(&glass), &mut m).unwrap();
+        assert_eq!(m[1].specular_reflectance, Vec3::splat(0.08));
+        assert_eq!(m[1].specular_transmittance, Vec3::new(0.9, 0.88, 0.85));
+        assert!(m[1].is_specular() && !m[0].is_specular());
+        let too_clear = MaterialEntry {
+            specular_transmittance: Some(Rgb::Grey(0.9)),
+            ..entry("opal")
+        };
+        let (key, message) = apply(&[too_clear], &mut opal()).unwrap_err();
+        assert_eq!(key, "material[0]");
+        assert!(message.contains("specularly"), "{message}");
+        let (key, message) = refuse_specular(&[glass]).unwrap_err();
         assert_eq!(key, "material[0].specular_reflectance");
-        assert!(message.contains("not modelled yet"), "{message}");
+        assert!(message.contains("CPU reference"), "{message}");
     }
 }

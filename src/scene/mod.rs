@@ -167,6 +167,7 @@ impl Scene {
             meshes.extend(model::load_model(path, &key, &dir, entry, &mut materials)?);
         }
         materials::apply(&parsed.material, &mut materials)
+            .and_then(|()| materials::refuse_specular(&parsed.material))
             .map_err(|(key, message)| SceneError::new(path, key, message))?;
         if parsed.luminaire.len() > MAX_LUMINAIRES {
             return Err(SceneError::new(

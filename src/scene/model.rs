@@ -39,6 +39,13 @@ pub struct Material {
     /// that the other side emits diffusely (MTL `d`/`Tr` with `Tf`, or `[[material]]`;
     /// [`super::materials`]).
     pub diffuse_transmittance: Vec3,
+    /// Specular reflectance (linear RGB): a mirror, reflecting on the side its normal
+    /// faces, or on both sides of clear glass (`[[material]]` `specular_reflectance`;
+    /// [`crate::radiosity::specular`]).
+    pub specular_reflectance: Vec3,
+    /// Specular transmittance (linear RGB): clear glass, light passing undeviated
+    /// (`[[material]]` `specular_transmittance`).
+    pub specular_transmittance: Vec3,
 }
 
 impl Default for Material {
@@ -54,6 +61,8 @@ impl Default for Material {
             normal_map: None,
             bake: None,
             diffuse_transmittance: Vec3::ZERO,
+            specular_reflectance: Vec3::ZERO,
+            specular_transmittance: Vec3::ZERO,
         }
     }
 }
@@ -96,6 +105,12 @@ impl Material {
     /// colour (Wallner §2.3.3), so a textured wall bleeds its own colour.
     pub fn diffuse_reflectance(&self) -> Vec3 {
         self.diffuse * self.texture_mean()
+    }
+
+    /// Whether it reflects or transmits specularly (a mirror or clear glass).
+    pub fn is_specular(&self) -> bool {
+        self.specular_reflectance.max_element() > 0.0
+            || self.specular_transmittance.max_element() > 0.0
     }
 }
 
@@ -577,6 +592,8 @@ impl TextureCache {
             normal_map,
             bake: None,
             diffuse_transmittance: transmittance(m)?,
+            specular_reflectance: Vec3::ZERO,
+            specular_transmittance: Vec3::ZERO,
         };
         material.set_diffuse_map(diffuse_map);
         // Exporters often keep Kd white on a see-through material: what it transmits is

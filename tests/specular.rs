@@ -1,0 +1,315 @@
+//! Mirrors and clear glass in the CPU reference solver ([`goniolight::radiosity::specular`])
+//! against exact cases:
+//! - the specular furnace: a closed box whose walls emit E and reflect ρ, one wall a
+//!   mirror of ρ_s = ρ (emitting E) and a lossless pane of glass across it (τ_s + ρ_s = 1),
+//!   keeps the uniform field: every surface receives E / (1 − ρ);
+//! - a pane passes exactly τ_s of a luminaire's light where the straight line crosses it;
+//! - a mirror gives a receiver ρ_s times what the shooter's mirror image, built as real
+//!   geometry without the mirror, gives it;
+//! - a luminaire over a mirror floor lights a surface facing down by its image (the law
+//!   of reflection worked out by hand).
+
+use glam::{DVec3, Vec3};
+use goniolight::photometry::{Interp, Luminaire};
+use goniolight::radiosity::cpu::CpuSolver;
+use goniolight::radiosity::scene::RadiosityScene;
+use goniolight::radiosity::{Ambient, SolverSettings};
+use goniolight::scene::{Material, PlacedLuminaire, Scene, SceneMesh};
+
+mod common;
+#[path = "common/furnace.rs"]
+mod furnace;
+#[path = "common/radiosity_scenes.rs"]
+mod radiosity_scenes;
+
+use radiosity_scenes::{material, scene_of};
+
+const ROOM: DVec3 = DVec3::new(2.0, 1.5, 1.0);
+
+fn specular(diffuse: f32, emission: f32, reflect: f32, transmit: f32) -> Material {
+    Material {
+        specular_reflectance: Vec3::splat(reflect),
+        specular_transmittance: Vec3::splat(transmit),
+        ..material(diffuse, emission)
+    }
+}
+
+/// A quad's two triangles, corners in order.
+fn quad(q: [DVec3; 4]) -> Vec<[Vec3; 3]> {
+    let v = q.map(|p| p.as_vec3());
+    vec![[v[0], v[1], v[2]], [v[0], v[2], v[3]]]
+}
+
+fn settings() -> SolverSettings {
+    SolverSettings {
+        ambient: Ambient::None,
+        ..SolverSettings::default()
+    }
+}
+
+/// The furnace box: walls (material 0) with the y = 0 wall a mirror (material 1), and a
+/// pane (material 2) across the middle at x = 1, facing +x. The box is built as its two
+/// halves (without their faces at x = 1), so no wall's patch straddles the pane.
+fn specular_furnace(pane: Material) -> Scene {
+    let mut walls = Vec::new();
+    let mut mirror = Vec::new();
+    for (lo, hi) in [(0.0, 1.0), (1.0, 2.0)] {
+        let half = furnace::inward_box(DVec3::new(lo, 0.0, 0.0), DVec3::new(hi, ROOM.y, ROOM.z));
+        for t in half {
+            if t.iter().all(|p| p.x == 1.0) {
+                continue;
+            }
+            if t.iter().all(|p| p.y == 0.0) {
+                mirror.push(t);
+            } else {
+                walls.push(t);
+            }
+        }
+    }
+    let (h, d) = (ROOM.z, ROOM.y);
+    let pane_quad = quad([
+        DVec3::new(1.0, 0.0, 0.0),
+        DVec3::new(1.0, d, 0.0),
+        DVec3::new(1.0, d, h),
+        DVec3::new(1.0, 0.0, h),
+    ]);
+    scene_of(
+        vec![
+            SceneMesh::from_triangles("walls", &walls, 0),
+            SceneMesh::from_triangles("mirror", &mirror, 1),
+            SceneMesh::from_triangles("pane", &pane_quad, 2),
+        ],
+        vec![material(0.5, 100.0), specular(0.0, 100.0, 0.5, 0.0), pane],
+    )
+}
+
+#[test]
+fn the_specular_furnace_keeps_the_uniform_field() {
+    let scene = specular_furnace(specular(0.0, 0.0, 0.4, 0.6));
+    let r = RadiosityScene::new(&scene, 4.0, 1).unwrap();
+    assert_eq!(
+        r.specular.windows.len(),
+        4,
+        "mirror, pane ±x reflections, pane"
+    );
+    let mut solver = CpuSolver::new(&r, settings());
+    solver.solve(0.9995, 5000);
+    let el = &r.elements;
+    let pane = |e: usize| (el.position[e].x - 1.0).abs() < 1e-9;
+    // Every surface but the pane receives E / (1 − ρ) = 200 lux; the walls reflect half.
+    let (mut received, mut area, mut worst) = (0.0, 0.0, 0.0f64);
+    for e in (0..el.len()).filter(|&e| !pane(e)) {
+        received += solver.illuminance[e] * el.area[e];
+        area += el.area[e];
+        worst = worst.max((solver.illuminance[e] / 200.0 - 1.0).abs());
+    }
+    let mean = received / area / 200.0 - 1.0;
+    eprintln!(
+        "specular furnace: {} shots, convergence {:.5}, mean {:+.3} %, worst {:.3} %",
+        solver.shots,
+        solver.convergence(),
+        100.0 * mean,
+        100.0 * worst
+    );
+    // What is still unshot has not arrived anywhere yet.
+    assert!(mean.abs() < 0.005, "energy off by {:.3} %", 100.0 * mean);
+    assert!(worst < 0.01, "worst element off by {:.3} %", 100.0 * worst);
+
+    // Without the specular transfer (the pane and mirror opaque black) it would be far off.
+    let mut opaque = specular_furnace(material(0.0, 0.0));
+    opaque.materials[1] = material(0.0, 100.0);
+    let r = RadiosityScene::new(&opaque, 4.0, 1).unwrap();
+    assert!(r.specular.is_empty());
+    let mut solver = CpuSolver::new(&r, settings());
+    solver.solve(0.9995, 5000);
+    let el = &r.elements;
+    let received: f64 = (0..el.len())
+        .filter(|&e| (el.position[e].x - 1.0).abs() > 1e-9)
+        .map(|e| solver.illuminance[e] * el.area[e])
+        .sum();
+    assert!(received / area / 200.0 < 0.9, "the check can fail");
+}
+
+fn placed_luminaire(at: DVec3) -> PlacedLuminaire {
+    let path = common::luminaire("eulumdat-analysis/sample_18.ldt");
+    let l = Luminaire::load(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    PlacedLuminaire::new("downlight", l, at)
+}
+
+/// A 6 × 6 m floor at z = 0 with a pane (material 1) standing across it at x = 0.
+fn glass_scene(pane: Material) -> Scene {
+    let floor = quad([
+        DVec3::new(-3.0, -3.0, 0.0),
+        DVec3::new(3.0, -3.0, 0.0),
+        DVec3::new(3.0, 3.0, 0.0),
+        DVec3::new(-3.0, 3.0, 0.0),
+    ]);
+    let pane_quad = quad([
+        DVec3::new(0.0, -1.0, 0.5),
+        DVec3::new(0.0, 1.0, 0.5),
+        DVec3::new(0.0, 1.0, 2.5),
+        DVec3::new(0.0, -1.0, 2.5),
+    ]);
+    let mut s = scene_of(
+        vec![
+            SceneMesh::from_triangles("floor", &floor, 0),
+            SceneMesh::from_triangles("pane", &pane_quad, 1),
+        ],
+        vec![material(0.3, 0.0), pane],
+    );
+    s.luminaires = vec![placed_luminaire(DVec3::new(-1.0, 0.0, 2.0))];
+    s
+}
+
+#[test]
+fn a_pane_passes_its_transmittance_of_a_luminaires_light() {
+    let glass = RadiosityScene::new(&glass_scene(specular(0.0, 0.0, 0.0, 0.85)), 2.0, 0).unwrap();
+    let mut open = glass_scene(material(0.0, 0.0));
+    open.meshes.truncate(1);
+    let open = RadiosityScene::new(&open, 2.0, 0).unwrap();
+    let (g, o) = (
+        CpuSolver::new(&glass, settings()),
+        CpuSolver::new(&open, settings()),
+    );
+    let (mut through, mut beside) = (0, 0);
+    for k in 0..40 {
+        let p = DVec3::new(0.05 + 0.07 * k as f64, -2.0 + 0.1 * k as f64, 0.0);
+        let (eg, eo) = (g.direct(p, DVec3::Z), o.direct(p, DVec3::Z));
+        assert!(eo.x > 0.0, "lit without the pane at {p}");
+        // The straight line from the luminaire crosses the pane's plane at x = 0.
+        let l = DVec3::new(-1.0, 0.0, 2.0);
+        let cross = l + (p - l) * (1.0 / (p.x + 1.0));
+        let inside = cross.y.abs() < 1.0 && cross.z > 0.5 && cross.z < 2.5;
+        let expected = if inside { 0.85 } else { 1.0 };
+        let ratio = eg.x / eo.x;
+        assert!(
+            (ratio - expected).abs() < 1e-5,
+            "at {p} (crossing {cross}): {ratio} instead of {expected}"
+        );
+        if inside {
+            through += 1;
+        } else {
+            beside += 1;
+        }
+    }
+    assert!(
+        through > 10 && beside > 5,
+        "{through} through, {beside} beside"
+    );
+}
+
+#[test]
+fn a_mirror_gives_what_the_shooters_image_gives_times_its_reflectance() {
+    // An emitting 1 × 1 m quad at z = 1 facing down over x = 0..1, a black floor beside it
+    // (x = −1..0) and a mirror wall at x = 2 facing −x. What the mirror adds on the floor
+    // must be ρ_s times what the emitter's image (x = 3..4), built as real geometry in a
+    // scene without the mirror, gives it.
+    let emitter = |x0: f64| {
+        quad([
+            DVec3::new(x0, 0.0, 1.0),
+            DVec3::new(x0, 1.0, 1.0),
+            DVec3::new(x0 + 1.0, 1.0, 1.0),
+            DVec3::new(x0 + 1.0, 0.0, 1.0),
+        ])
+    };
+    let floor = SceneMesh::from_triangles(
+        "floor",
+        &quad([
+            DVec3::new(-1.0, 0.0, 0.0),
+            DVec3::new(0.0, 0.0, 0.0),
+            DVec3::new(0.0, 1.0, 0.0),
+            DVec3::new(-1.0, 1.0, 0.0),
+        ]),
+        0,
+    );
+    let mirror = quad([
+        DVec3::new(2.0, -2.0, -1.0),
+        DVec3::new(2.0, -2.0, 3.0),
+        DVec3::new(2.0, 3.0, 3.0),
+        DVec3::new(2.0, 3.0, -1.0),
+    ]);
+    let materials = vec![
+        material(0.0, 0.0),
+        material(0.0, 1000.0),
+        specular(0.0, 0.0, 0.7, 0.0),
+    ];
+    let scene = |meshes: Vec<SceneMesh>| scene_of(meshes, materials.clone());
+    let with_mirror = scene(vec![
+        floor.clone(),
+        SceneMesh::from_triangles("emitter", &emitter(0.0), 1),
+        SceneMesh::from_triangles("mirror", &mirror, 2),
+    ]);
+    let plain = scene(vec![
+        floor.clone(),
+        SceneMesh::from_triangles("emitter", &emitter(0.0), 1),
+    ]);
+    let imaged = scene(vec![
+        floor,
+        SceneMesh::from_triangles("emitter", &emitter(3.0), 1),
+    ]);
+    // Only the emitter has anything to shoot: one solve shoots it whole.
+    let on_floor = |s: &Scene| {
+        let r = RadiosityScene::new(s, 4.0, 1).unwrap();
+        assert_eq!(r.specular.windows.len(), usize::from(s.meshes.len() == 3));
+        let mut solver = CpuSolver::new(&r, settings());
+        solver.solve(1.0, 100);
+        assert_eq!(solver.convergence(), 1.0);
+        let el = &r.elements;
+        (0..el.len())
+            .filter(|&e| el.position[e].z.abs() < 1e-9)
+            .map(|e| (el.position[e], solver.illuminance[e]))
+            .collect::<Vec<_>>()
+    };
+    let (m, p, i) = (on_floor(&with_mirror), on_floor(&plain), on_floor(&imaged));
+    assert!(m.len() >= 16 && m.len() == p.len() && p.len() == i.len());
+    for ((m, p), i) in m.iter().zip(&p).zip(&i) {
+        assert!((m.0 - i.0).length() < 1e-9 && (m.0 - p.0).length() < 1e-9);
+        assert!(i.1 > 0.1, "the image lights the floor at {}", i.0);
+        let ratio = (m.1 - p.1) / i.1;
+        assert!(
+            (ratio - 0.7).abs() < 1e-6,
+            "at {}: {ratio} instead of 0.7",
+            m.0
+        );
+    }
+}
+
+#[test]
+fn a_luminaire_over_a_mirror_floor_lights_the_ceiling_by_its_image() {
+    let floor = quad([
+        DVec3::new(-5.0, -5.0, 0.0),
+        DVec3::new(5.0, -5.0, 0.0),
+        DVec3::new(5.0, 5.0, 0.0),
+        DVec3::new(-5.0, 5.0, 0.0),
+    ]);
+    let mut s = scene_of(
+        vec![SceneMesh::from_triangles("floor", &floor, 0)],
+        vec![specular(0.0, 0.0, 0.8, 0.0)],
+    );
+    s.luminaires = vec![placed_luminaire(DVec3::new(0.0, 0.0, 2.0))];
+    let r = RadiosityScene::new(&s, 1.0, 0).unwrap();
+    let solver = CpuSolver::new(&r, settings());
+    let l = &r.luminaires[0];
+    // A point at (1, 0, 1) facing down sees nothing straight (the luminaire is above it);
+    // reflected, the light leaves toward (2/3, 0, 0) where the angle of incidence equals
+    // the angle of reflection, and travels √10 m in all.
+    let p = DVec3::new(1.0, 0.0, 1.0);
+    let m = DVec3::new(2.0 / 3.0, 0.0, 0.0);
+    let out = (m - l.position).normalize();
+    let length = (m - l.position).length() + (p - m).length();
+    assert!((length - 10f64.sqrt()).abs() < 1e-12);
+    let cos = (m - p).normalize().dot(-DVec3::Z);
+    let expected = 0.8 * l.intensity_toward(out, Interp::CatmullRom) * cos / (length * length);
+    let got = solver.direct(p, -DVec3::Z);
+    assert!(expected > 1.0);
+    assert!(
+        (got.x - expected).abs() < 1e-5 * expected,
+        "{} lux instead of {expected}",
+        got.x
+    );
+    // Beyond the mirror's edge there is no reflection.
+    assert_eq!(
+        solver.direct(DVec3::new(12.0, 0.0, 1.0), -DVec3::Z),
+        DVec3::ZERO
+    );
+}
