@@ -166,8 +166,8 @@ impl Scene {
             let key = format!("model[{i}]");
             meshes.extend(model::load_model(path, &key, &dir, entry, &mut materials)?);
         }
-        materials::apply(&parsed.material, &mut materials)
-            .and_then(|()| materials::refuse_specular(&parsed.material))
+        materials::refuse_specular(&parsed.material)
+            .and_then(|()| materials::apply(&parsed.material, &mut materials))
             .map_err(|(key, message)| SceneError::new(path, key, message))?;
         if parsed.luminaire.len() > MAX_LUMINAIRES {
             return Err(SceneError::new(
