@@ -319,11 +319,26 @@ struct Shot {
     // The pieces it shoots (first, end): their elements do not receive from it; its
     // first tile in the atlas of visibility maps, and the atlas's tiles per row.
     pieces: vec4<u32>,
+    // Mirrors and clear glass (radiosity/specular.rs): rgb the product of the windows'
+    // coefficients its light has passed (1 for a real cell).
+    tint: vec4<f32>,
+    // A virtual cell's window plane, oriented to where its light goes: it lights only
+    // where dot(plane.xyz, p) + plane.w > 0.
+    plane: vec4<f32>,
+    // Its window's triangles (first, count) in window_corners (count 0: a real cell); the
+    // record of the cell it images (its parent in the reflection tree).
+    window: vec4<u32>,
+    // Up to the records' 768-byte stride.
+    pad: array<vec4<f32>, 5>,
 };
 
 @group(1) @binding(0) var<uniform> shot: Shot;
 // The batch's visibility maps, square tiles of info.w texels (radiosity/atlas.rs).
 @group(1) @binding(1) var visibility: texture_2d<f32>;
+// The batch's records (the same as `shot`'s), for a virtual cell's parents.
+@group(1) @binding(2) var<storage, read> records: array<Shot>;
+// The specular windows' triangles, three corners each.
+@group(1) @binding(3) var<storage, read> window_corners: array<vec4<f32>>;
 
 const PI = 3.14159265358979;
 
@@ -387,50 +402,139 @@ fn form_factor(p: vec3<f32>, n: vec3<f32>) -> f32 {
     return disc_form_factor(p, n);
 }
 
+// The hemicube face a direction (x, y, z in the cell's frame) falls on.
+fn hemicube_layer(x: f32, y: f32, z: f32) -> i32 {
+    if (z >= max(abs(x), abs(y))) {
+        return 0;
+    } else if (abs(x) >= abs(y)) {
+        return select(2, 1, x > 0.0);
+    }
+    return select(4, 3, y > 0.0);
+}
+
+// The texel of map coordinates `uv` (−1..1) in a tile of `size` texels.
+fn map_texel(uv: vec2<f32>, size: i32) -> vec2<i32> {
+    let texel = vec2<i32>(floor((vec2<f32>(uv.x, -uv.y) * 0.5 + 0.5) * f32(size)));
+    return clamp(texel, vec2<i32>(0), vec2<i32>(size - 1));
+}
+
+// Stereographic map coordinates of direction `v` in the frame (x, y, z).
+fn stereographic_uv(x: f32, y: f32, z: f32, v: vec3<f32>) -> vec2<f32> {
+    let u = vec3<f32>(x, y, z) / length(v);
+    return u.xy / (1.0 + u.z);
+}
+
 // Map texel and face of direction `v` (world, from the patch centroid to `p`).
 fn visibility_lookup(p: vec3<f32>, v: vec3<f32>) -> vec3<i32> {
-    let size = i32(shot.info.w);
     let x = dot(v, shot.tangent.xyz);
     let y = dot(v, shot.bitangent.xyz);
     let z = dot(v, shot.normal.xyz);
-    var uv: vec2<f32>;
-    var layer = 0;
     if (shot.extra.w > 0.5) {
-        // Stereographic: the unit direction projected from the lower pole onto the disc.
-        let u = vec3<f32>(x, y, z) / length(v);
-        uv = u.xy / (1.0 + u.z);
-    } else {
-        if (z >= max(abs(x), abs(y))) {
-            layer = 0;
-        } else if (abs(x) >= abs(y)) {
-            layer = select(2, 1, x > 0.0);
-        } else {
-            layer = select(4, 3, y > 0.0);
-        }
-        let clip = shot.faces[layer] * vec4<f32>(p, 1.0);
-        uv = clip.xy / clip.w;
+        return vec3<i32>(map_texel(stereographic_uv(x, y, z, v), i32(shot.info.w)), 0);
     }
-    let texel = vec2<i32>(floor((vec2<f32>(uv.x, -uv.y) * 0.5 + 0.5) * f32(size)));
-    return vec3<i32>(clamp(texel, vec2<i32>(0), vec2<i32>(size - 1)), layer);
+    let layer = hemicube_layer(x, y, z);
+    let clip = shot.faces[layer] * vec4<f32>(p, 1.0);
+    return vec3<i32>(map_texel(clip.xy / clip.w, i32(shot.info.w)), layer);
 }
 
-// Visible when the map holds something at least as far as `p` (less a tolerance) at its
-// texel or one of the 8 around it (Wallner Fig. 2.3).
-fn visible_from_patch(p: vec3<f32>) -> bool {
-    let v = p - shot.centroid.xyz;
-    let dist = length(v);
-    let at = visibility_lookup(p, v);
-    let size = i32(shot.info.w);
-    let limit = dist * (1.0 - shot.extra.y) - shot.extra.z;
-    let tile = shot.pieces.z + u32(at.z);
-    let origin = vec2<i32>(vec2<u32>(tile % shot.pieces.w, tile / shot.pieces.w)) * size;
+// Whether the map of `size` texels in atlas tile `tile` (of `columns` per row) holds
+// something at least as far as `limit` at texel `at` or one of the 8 around it (Wallner
+// Fig. 2.3).
+fn map_reaches(tile: u32, columns: u32, size: i32, at: vec2<i32>, limit: f32) -> bool {
+    let origin = vec2<i32>(vec2<u32>(tile % columns, tile / columns)) * size;
     for (var dy = -1; dy <= 1; dy++) {
         for (var dx = -1; dx <= 1; dx++) {
-            let q = clamp(at.xy + vec2<i32>(dx, dy), vec2<i32>(0), vec2<i32>(size - 1));
+            let q = clamp(at + vec2<i32>(dx, dy), vec2<i32>(0), vec2<i32>(size - 1));
             if (textureLoad(visibility, origin + q, 0).r >= limit) {
                 return true;
             }
         }
+    }
+    return false;
+}
+
+// Visible when the map holds something at least as far as `p` (less a tolerance).
+fn visible_from_patch(p: vec3<f32>) -> bool {
+    let v = p - shot.centroid.xyz;
+    let at = visibility_lookup(p, v);
+    let limit = length(v) * (1.0 - shot.extra.y) - shot.extra.z;
+    return map_reaches(shot.pieces.z + u32(at.z), shot.pieces.w, i32(shot.info.w), at.xy, limit);
+}
+
+// `visible_from_patch` for the batch's record `r`.
+fn record_sees(r: u32, p: vec3<f32>) -> bool {
+    let c = records[r].centroid.xyz;
+    let v = p - c;
+    let x = dot(v, records[r].tangent.xyz);
+    let y = dot(v, records[r].bitangent.xyz);
+    let z = dot(v, records[r].normal.xyz);
+    let size = i32(records[r].info.w);
+    var uv: vec2<f32>;
+    var layer = 0;
+    if (records[r].extra.w > 0.5) {
+        uv = stereographic_uv(x, y, z, v);
+    } else {
+        layer = hemicube_layer(x, y, z);
+        let clip = records[r].faces[layer] * vec4<f32>(p, 1.0);
+        uv = clip.xy / clip.w;
+    }
+    let limit = length(v) * (1.0 - records[r].extra.y) - records[r].extra.z;
+    let tile = records[r].pieces.z + u32(layer);
+    return map_reaches(tile, records[r].pieces.w, size, map_texel(uv, size), limit);
+}
+
+// Whether `m`, a point of a window's plane with normal `n`, lies within one of its
+// triangles window_corners[first..][..count].
+fn in_window(first: u32, count: u32, m: vec3<f32>, n: vec3<f32>) -> bool {
+    for (var k = 0u; k < count; k++) {
+        let a = window_corners[3u * (first + k)].xyz;
+        let b = window_corners[3u * (first + k) + 1u].xyz;
+        let c = window_corners[3u * (first + k) + 2u].xyz;
+        let area = dot(cross(b - a, c - a), n);
+        let tolerance = -1e-5 * abs(area);
+        let wa = dot(cross(c - b, m - b), n) * sign(area);
+        let wb = dot(cross(a - c, m - c), n) * sign(area);
+        let wc = dot(cross(b - a, m - a), n) * sign(area);
+        if (wa >= tolerance && wb >= tolerance && wc >= tolerance) {
+            return true;
+        }
+    }
+    return false;
+}
+
+// Whether this virtual cell's light reaches `p` (radiosity/specular.rs, trace): the
+// straight line from each image in turn meets its window inside the outline, and the cell
+// it images sees that point in its own map, down to the real cell. The last leg (to `p`)
+// is this cell's own map.
+fn through_windows(p: vec3<f32>) -> bool {
+    if (dot(shot.plane.xyz, p) + shot.plane.w <= shot.extra.z) {
+        return false;
+    }
+    var y = p;
+    var eye = shot.centroid.xyz;
+    var plane = shot.plane;
+    var window = shot.window;
+    for (var depth = 0u; depth < 8u; depth++) {
+        let dv = dot(plane.xyz, eye) + plane.w;
+        let dy = dot(plane.xyz, y) + plane.w;
+        if (dv >= 0.0 || dy <= 0.0) {
+            return false;
+        }
+        let m = eye + (y - eye) * (dv / (dv - dy));
+        if (!in_window(window.x, window.y, m, plane.xyz)) {
+            return false;
+        }
+        let parent = window.z;
+        if (!record_sees(parent, m)) {
+            return false;
+        }
+        if (records[parent].window.y == 0u) {
+            return true;
+        }
+        y = m;
+        eye = records[parent].centroid.xyz;
+        plane = records[parent].plane;
+        window = records[parent].window;
     }
     return false;
 }
@@ -532,7 +636,10 @@ fn receive(
     if ((f <= 0.0 && back <= 0.0) || !visible_from_patch(p)) {
         return;
     }
-    let delta = patch_delta[shot.info.x].rgb * shot.link.z;
+    if (shot.window.y > 0u && !through_windows(p)) {
+        return;
+    }
+    let delta = patch_delta[shot.info.x].rgb * shot.link.z * shot.tint.rgb;
     let incident = delta * f;
     let gained = info.reflectance_area.rgb * incident + info.transmittance.rgb * delta * back;
     radiosity[i] += vec4<f32>(gained, dot(incident, LUMA));

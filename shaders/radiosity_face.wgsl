@@ -10,6 +10,10 @@ struct Face {
     tangent: vec4<f32>,
     bitangent: vec4<f32>,
     normal: vec4<f32>,
+    // A virtual shooter's clip plane (radiosity/specular.rs): only what lies where
+    // dot(clip.xyz, p) + clip.w >= 0 is drawn (what is behind its mirror or pane is not
+    // seen through it); (0, 0, 0, 1) for a real shooter.
+    clip: vec4<f32>,
 };
 
 // The clip position of `position` in face `f`'s projection.
@@ -27,8 +31,9 @@ fn face_clip_of(f: Face, position: vec3<f32>) -> vec4<f32> {
     return f.view_proj * vec4<f32>(position, 1.0);
 }
 
-// Whether a surface point at `world` lies behind a stereographic map's plane (it stores
-// nothing there).
-fn behind_stereographic(f: Face, world: vec3<f32>) -> bool {
-    return f.eye.w > 0.5 && dot(world - f.eye.xyz, f.normal.xyz) < 0.0;
+// Whether face `f` stores nothing for a surface point at `world`: behind a stereographic
+// map's plane, or clipped away for a virtual shooter.
+fn face_skips(f: Face, world: vec3<f32>) -> bool {
+    let behind = f.eye.w > 0.5 && dot(world - f.eye.xyz, f.normal.xyz) < 0.0;
+    return behind || dot(f.clip.xyz, world) + f.clip.w < 0.0;
 }

@@ -19,7 +19,7 @@
 struct FaceSlot {
     face: Face,
     // The hardware pipeline reads the same records at 256-byte dynamic offsets.
-    pad: array<vec4<f32>, 8>,
+    pad: array<vec4<f32>, 7>,
 };
 
 struct RasterParams {
@@ -201,7 +201,7 @@ fn draw_texel(s: Setup, tile: u32, q: vec2<i32>) {
     }
     let f = faces[tile].face;
     let world = beta.x * s.v0 + beta.y * s.v1 + beta.z * s.v2;
-    if (behind_stereographic(f, world)) {
+    if (face_skips(f, world)) {
         return;
     }
     let d = distance(world, f.eye.xyz);

@@ -16,9 +16,9 @@ fn face_clip(position: vec3<f32>) -> vec4<f32> {
     return face_clip_of(face, position);
 }
 
-// The distance stored for a fragment at `world` (behind a stereographic map: none).
+// The distance stored for a fragment at `world` (none where the face skips it).
 fn face_distance(world: vec3<f32>) -> vec4<f32> {
-    if (behind_stereographic(face, world)) {
+    if (face_skips(face, world)) {
         discard;
     }
     return vec4<f32>(distance(world, face.eye.xyz), 0.0, 0.0, 0.0);

@@ -9,7 +9,7 @@ use glam::DVec3;
 
 use super::form_factor::{self, FormFactorKind};
 use super::gather;
-use super::initial::{DirectSamples, InitialState};
+use super::initial::{luminaire_paths, specular_direct, DirectSamples, InitialState};
 use super::scene::{luminance, RadiosityScene};
 use super::solve;
 use super::specular::SpecularPath;
@@ -52,11 +52,7 @@ impl<'a> CpuSolver<'a> {
             initial_unshot: 0.0,
             shots: 0,
             eps: scene.self_hit_epsilon,
-            luminaire_paths: scene
-                .luminaires
-                .iter()
-                .map(|l| scene.specular.paths(l.position, None))
-                .collect(),
+            luminaire_paths: luminaire_paths(scene),
         };
         s.shoot_luminaires();
         s.initial_unshot = s.unshot_power();
@@ -76,42 +72,16 @@ impl<'a> CpuSolver<'a> {
         self.direct_straight(p, n) + self.direct_specular(p, n)
     }
 
-    /// The luminaires' light at `p` (unit normal `n`) through the specular windows: each
-    /// path's virtual luminaire sends what the real one sends toward the first window,
-    /// times the path's coefficients, over the unfolded distance.
+    /// The luminaires' light at `p` (unit normal `n`) through the specular windows
+    /// ([`specular_direct`]).
     fn direct_specular(&self, p: DVec3, n: DVec3) -> DVec3 {
-        let none = IgnoredTriangles::default();
-        let q = p + n * self.eps;
-        let mut sum = DVec3::ZERO;
-        for (k, (l, paths)) in self
-            .scene
-            .luminaires
-            .iter()
-            .zip(&self.luminaire_paths)
-            .enumerate()
-        {
-            let ignored = self.scene.ignored.get(k).unwrap_or(&none);
-            for path in paths {
-                let to = path.virtual_source() - p;
-                let d2 = to.length_squared();
-                let cos = n.dot(to) / d2.sqrt();
-                if cos <= 0.0 || d2 <= 0.0 {
-                    continue;
-                }
-                let bvh = self.scene.caster_bvh();
-                let Some(m) = self
-                    .scene
-                    .specular
-                    .trace(bvh, l.position, path, q, self.eps, ignored)
-                else {
-                    continue;
-                };
-                let out = (m - l.position).normalize_or_zero();
-                let intensity = l.intensity_toward(out, self.settings.interp);
-                sum += path.weight * l.color_toward(out) * intensity * cos / d2;
-            }
-        }
-        sum
+        specular_direct(
+            self.scene,
+            &self.luminaire_paths,
+            p,
+            n,
+            self.settings.interp,
+        )
     }
 
     /// Direct illuminance (lux, RGB) from the luminaires straight to `p` (unit normal `n`).

@@ -30,6 +30,7 @@ mod masked;
 mod raster;
 mod relight;
 mod timers;
+mod virtual_cells;
 
 pub use chunks::{MeshChunks, TileView};
 pub use deferred::WIDEN_AT;
@@ -199,6 +200,10 @@ struct ShotGpu {
     ancestors: [[f32; 4]; LINK_LEVELS as usize],
     link: [f32; 4],
     pieces: [u32; 4],
+    tint: [f32; 4],
+    plane: [f32; 4],
+    window: [u32; 4],
+    pad: [[f32; 4]; 5],
 }
 
 #[repr(C)]
@@ -209,9 +214,12 @@ struct FaceGpu {
     tangent: [f32; 4],
     bitangent: [f32; 4],
     normal: [f32; 4],
+    clip: [f32; 4],
 }
 
 const SHOT_STRIDE: u64 = 768;
+// The receive pass reads the batch's records as an array too (a virtual cell's parents).
+const _: () = assert!(std::mem::size_of::<ShotGpu>() as u64 == SHOT_STRIDE);
 const FACE_STRIDE: u64 = 256;
 
 /// How a batch's cells get their visibility maps.
@@ -224,6 +232,15 @@ enum CellMaps<'a> {
     /// Copied back from the kept maps where a cell has a slot (one per cell), drawn
     /// where not.
     Restore(&'a [Option<u32>]),
+}
+
+/// A cell a batch draws: one of the plan's patches, or a virtual cell of one.
+#[derive(Clone, Copy)]
+struct BatchCell<'c> {
+    /// The plan's patch (a virtual cell's real cell: it shoots that cell's power).
+    patch: usize,
+    /// A virtual cell ([`virtual_cells`]) and the batch record of the cell it images.
+    image: Option<(&'c virtual_cells::VirtualCell, u32)>,
 }
 
 /// The shooter the GPU chose.
@@ -336,6 +353,12 @@ pub struct GpuSolver<'a> {
     timers: Option<timers::PassTimers>,
     /// The maps of the cells shot while receivers waited, for their catch-up.
     map_store: map_store::MapStore,
+    /// The specular windows' triangles ([`virtual_cells::window_corners`]).
+    window_corners: wgpu::Buffer,
+    /// Per window, its first triangle and count there.
+    window_ranges: Vec<[u32; 2]>,
+    /// Virtual cells' visibility maps drawn so far (mirrors and clear glass).
+    pub virtual_drawn: usize,
 }
 
 fn storage(gpu: &Gpu, label: &str, data: &[u8], writable: bool) -> wgpu::Buffer {
@@ -393,6 +416,16 @@ impl Pipelines {
                         view_dimension: wgpu::TextureViewDimension::D2,
                         multisampled: false,
                     },
+                ),
+                entry(
+                    2,
+                    compute,
+                    buffer_binding(B::Storage { read_only: true }, false),
+                ),
+                entry(
+                    3,
+                    compute,
+                    buffer_binding(B::Storage { read_only: true }, false),
                 ),
             ],
         });
@@ -518,6 +551,36 @@ const MAX_GROUPS_X: u32 = 65_535;
 
 /// Dispatches `groups` workgroups (at least one), in rows of at most [`MAX_GROUPS_X`]: the
 /// shaders number them row by row (`linear_group`, `linear_thread` in radiosity.wgsl).
+/// A batch's drawn cells in parts the atlas holds: consecutive cells whose own and
+/// virtual maps (`images`, one list per cell) number at most `most`.
+fn batch_parts(
+    images: &[Vec<virtual_cells::VirtualCell>],
+    most: usize,
+) -> Result<Vec<std::ops::Range<usize>>, GpuError> {
+    let mut parts = Vec::new();
+    let (mut start, mut held) = (0, 0);
+    for (k, list) in images.iter().enumerate() {
+        let need = 1 + list.len();
+        if need > most {
+            return Err(GpuError::Limit(format!(
+                "a cell and its {} mirror and glass images need {need} visibility maps at \
+                 once; the atlas holds {most} (fewer specular surfaces facing each other, \
+                 or a smaller --map-size)",
+                list.len()
+            )));
+        }
+        if held + need > most {
+            parts.push(start..k);
+            (start, held) = (k, 0);
+        }
+        held += need;
+    }
+    if start < images.len() {
+        parts.push(start..images.len());
+    }
+    Ok(parts)
+}
+
 fn dispatch_groups(pass: &mut wgpu::ComputePass<'_>, groups: u32) {
     let groups = groups.max(1);
     let rows = groups.div_ceil(MAX_GROUPS_X);
@@ -618,6 +681,11 @@ impl<'a> GpuSolver<'a> {
             .max_storage_buffer_binding_size
             .min(gpu.device.limits().max_buffer_size);
         let mut gpu_settings = gpu_settings;
+        // Virtual cells shoot to every receiver their window shows: no links (a cell a
+        // link leaves undrawn could light receivers through a mirror).
+        if !scene.specular.is_empty() {
+            gpu_settings.link_error = 0.0;
+        }
         let mut max_patches = shooters.max_cells(scene, LINK_LEVELS);
         if 16 * max_patches as u64 > max_binding {
             gpu_settings.link_error = 0.0;
@@ -758,6 +826,8 @@ impl<'a> GpuSolver<'a> {
             gpu_settings.map_size,
             FIRST_BATCH as u32 * faces_per_cell(gpu_settings.visibility),
         );
+        let (corners, window_ranges) = virtual_cells::window_corners(&scene.specular);
+        let window_corners = storage(gpu, "window corners", bytemuck::cast_slice(&corners), false);
         let solver = GpuSolver {
             gpu,
             scene,
@@ -805,6 +875,9 @@ impl<'a> GpuSolver<'a> {
             skipped: 0,
             times: ShotTimes::default(),
             plan_cache: PlanCache::new(DEFAULT_PLAN_CACHE_BYTES),
+            window_corners,
+            window_ranges,
+            virtual_drawn: 0,
         };
         solver.write_params(u32::MAX, 0, 0, 0..0);
         solver
@@ -963,24 +1036,28 @@ impl<'a> GpuSolver<'a> {
         (m, far)
     }
 
-    /// The shooting records of `plan`'s patches `drawn` (indices), each facing its own
-    /// normal, with their links, and their visibility faces: those of the `k`-th are the
-    /// atlas's tiles from `k` × faces per cell.
+    /// The shooting records of a batch's `cells` (the plan's patches and their virtual
+    /// cells), each facing its own normal, with their links, and their visibility faces:
+    /// those of the `k`-th are the atlas's tiles from `k` × faces per cell.
     fn shot_records(
         &self,
         plan: &ShotPlan,
         links: &Links,
-        drawn: &[usize],
+        cells: &[BatchCell<'_>],
     ) -> (Vec<u8>, Vec<u8>, Vec<TileView>) {
         let faces_per_patch = faces_per_cell(self.gpu_settings.visibility) as usize;
         let (projection, far) = self.projection();
         let tolerance = self.receivers.plane_tolerance() as f32;
         let finite = |r: f64| r.min(f64::from(f32::MAX)) as f32;
-        let mut shots = vec![0u8; drawn.len() * SHOT_STRIDE as usize];
-        let mut faces = vec![0u8; drawn.len() * faces_per_patch * FACE_STRIDE as usize];
-        let mut views = Vec::with_capacity(drawn.len() * faces_per_patch);
-        for (k, &patch) in drawn.iter().enumerate() {
-            let p = &plan.patches[patch];
+        let mut shots = vec![0u8; cells.len() * SHOT_STRIDE as usize];
+        let mut faces = vec![0u8; cells.len() * faces_per_patch * FACE_STRIDE as usize];
+        let mut views = Vec::with_capacity(cells.len() * faces_per_patch);
+        for (k, cell) in cells.iter().enumerate() {
+            let patch = cell.patch;
+            let p = match cell.image {
+                Some((v, _)) => &v.planned,
+                None => &plan.patches[patch],
+            };
             let n = p.normal;
             let (tangent, bitangent) = frame(n);
             let eye = (p.centroid + n * 1e-6 * self.size).as_vec3();
@@ -1007,6 +1084,20 @@ impl<'a> GpuSolver<'a> {
             // it is scaled to its elements' area.
             let scale = p.power_scale();
             let stereographic = self.gpu_settings.visibility == Visibility::Stereographic;
+            // A virtual cell: its path's coefficients, window and parent; its maps see
+            // only what lies beyond its window's plane.
+            let (tint, plane, window, reach) = match cell.image {
+                Some((v, parent)) => {
+                    let [first, count] = self.window_ranges[v.window];
+                    let plane = v.plane.as_vec4().to_array();
+                    (v4(v.tint, 0.0), plane, [first, count, parent, 0], 0.0)
+                }
+                None => ([1.0; 4], [0.0, 0.0, 0.0, 1.0], [0; 4], links.reach[patch]),
+            };
+            let mut clip = plane;
+            if cell.image.is_some() {
+                clip[3] -= (1e-4 * self.size) as f32;
+            }
             let record = ShotGpu {
                 faces: matrices.map(|m| m.to_cols_array()),
                 tangent: v4(tangent, 0.0),
@@ -1028,7 +1119,7 @@ impl<'a> GpuSolver<'a> {
                 ],
                 ancestors,
                 link: [
-                    finite(links.reach[patch]),
+                    finite(reach),
                     tolerance,
                     scale as f32,
                     if p.parent == u32::MAX { 1.0 } else { 0.0 },
@@ -1039,6 +1130,10 @@ impl<'a> GpuSolver<'a> {
                     (k * faces_per_patch) as u32,
                     self.atlas.columns,
                 ],
+                tint,
+                plane,
+                window,
+                pad: [[0.0; 4]; 5],
             };
             let at = k * SHOT_STRIDE as usize;
             shots[at..at + std::mem::size_of::<ShotGpu>()]
@@ -1050,6 +1145,7 @@ impl<'a> GpuSolver<'a> {
                     tangent: v4(tangent, 0.0),
                     bitangent: v4(bitangent, 0.0),
                     normal: v4(n, far),
+                    clip,
                 };
                 let at = (k * faces_per_patch + f) * FACE_STRIDE as usize;
                 faces[at..at + std::mem::size_of::<FaceGpu>()]
@@ -1220,7 +1316,13 @@ impl<'a> GpuSolver<'a> {
                 t += 1;
             }
             let mut clock = std::time::Instant::now();
-            let waiting = self.cull(&plan.patches[tops[from]..subtree_end(t - 1)]);
+            let images: Vec<Vec<virtual_cells::VirtualCell>> = drawn
+                .iter()
+                .map(|&k| self.virtual_cells(&plan.patches[k]))
+                .collect();
+            let imaged: Vec<PlannedPatch> =
+                images.iter().flatten().map(|v| v.planned.clone()).collect();
+            let waiting = self.cull(&plan.patches[tops[from]..subtree_end(t - 1)], &imaged);
             lap(&mut self.times.cull, &mut clock);
             let clear = if from == 0 { 0..plan.shot } else { 0..0 };
             let maps = if waiting && self.map_store.is_enabled() {
@@ -1228,7 +1330,8 @@ impl<'a> GpuSolver<'a> {
             } else {
                 CellMaps::Draw
             };
-            let (submitted, slots) = self.shoot_batch(s, &plan, &links, &drawn, clear, maps)?;
+            let batch = (drawn.as_slice(), images.as_slice());
+            let (submitted, slots) = self.shoot_batch(s, &plan, &links, batch, clear, maps)?;
             lap(&mut self.times.record, &mut clock);
             if waiting {
                 missed.extend_from_slice(&drawn);
@@ -1236,6 +1339,7 @@ impl<'a> GpuSolver<'a> {
             }
             let cells: usize = (tops[from]..subtree_end(t - 1)).count();
             self.drawn += drawn.len();
+            self.virtual_drawn += imaged.len();
             self.skipped += cells - drawn.len();
             if t < tops.len() {
                 if let Some(index) = previous.replace(submitted) {
@@ -1263,11 +1367,19 @@ impl<'a> GpuSolver<'a> {
         Ok(true)
     }
 
-    /// Receiver culling for the cells `patches`: only the charts in front of one of their
-    /// planes receive (their element ranges follow the cells in the patch buffer), and
-    /// of those only the ones not waiting ([`GpuSolver::set_receiving`]). True when some
-    /// chart in front waits.
-    fn cull(&mut self, patches: &[PlannedPatch]) -> bool {
+    /// The virtual cells of `cell` ([`virtual_cells`]): none without specular windows.
+    fn virtual_cells(&self, cell: &PlannedPatch) -> Vec<virtual_cells::VirtualCell> {
+        if self.scene.specular.is_empty() {
+            return Vec::new();
+        }
+        virtual_cells::virtual_cells(&self.scene.specular, cell)
+    }
+
+    /// Receiver culling for the cells `patches` and their virtual cells `imaged`: only the
+    /// charts in front of one of their planes receive (their element ranges follow the
+    /// cells in the patch buffer), and of those only the ones not waiting
+    /// ([`GpuSolver::set_receiving`]). True when some chart in front waits.
+    fn cull(&mut self, patches: &[PlannedPatch], imaged: &[PlannedPatch]) -> bool {
         // Exact where receivers wait (perspective-driven: what is skipped is caught up
         // later), else by groups of charts: a superset, far cheaper on many tiny charts.
         let group = if self.deferral.is_some() {
@@ -1275,9 +1387,11 @@ impl<'a> GpuSolver<'a> {
         } else {
             RECEIVER_GROUP
         };
+        let mut planes = cell_planes(patches);
+        planes.extend(cell_planes(imaged));
         let mut charts = self
             .receivers
-            .charts_roughly_in_front_of_any(&cell_planes(patches), group);
+            .charts_roughly_in_front_of_any(&planes, group);
         let in_front = charts.len();
         if let Some(d) = &self.deferral {
             charts.retain(|&k| d.receiving[k]);
@@ -1319,17 +1433,18 @@ impl<'a> GpuSolver<'a> {
         self.gpu.queue.submit([enc.finish()]);
     }
 
-    /// Shoots the cells `drawn` of shooter `s`'s `plan`, first clearing the unshot
-    /// radiosity of the elements `clear` (a range of the plan's order): their maps in
-    /// one render pass (as many cells at a time as the atlas holds), then their receive
+    /// Shoots the cells `drawn` of shooter `s`'s `plan` with their virtual cells (one
+    /// list per drawn cell), first clearing the unshot radiosity of the elements `clear`
+    /// (a range of the plan's order): their maps in one render pass (as many cells at a
+    /// time as the atlas holds, each with its virtual cells), then their receive
     /// dispatches in one compute pass; `maps` says whether they are drawn, kept or
-    /// copied back. Returns each cell's slot among the kept maps (`None`: not kept).
+    /// copied back. Returns each drawn cell's slot among the kept maps (`None`: not kept).
     fn shoot_batch(
         &mut self,
         s: usize,
         plan: &ShotPlan,
         links: &Links,
-        drawn: &[usize],
+        (drawn, images): (&[usize], &[Vec<virtual_cells::VirtualCell>]),
         clear: std::ops::Range<u32>,
         maps: CellMaps<'_>,
     ) -> Result<(wgpu::SubmissionIndex, Vec<Option<u32>>), GpuError> {
@@ -1347,10 +1462,14 @@ impl<'a> GpuSolver<'a> {
         let faces = faces_per_cell(self.gpu_settings.visibility);
         let most = (VisibilityAtlas::max_tiles(self.gpu, self.atlas.size) / faces).max(1) as usize;
         let mut slots = Vec::new();
-        for (i, part) in drawn.chunks(most).enumerate() {
-            self.atlas.reserve(self.gpu, part.len() as u32 * faces);
-            let part_stored = stored.get(i * most..(i * most + part.len()).min(stored.len()));
-            self.record_part(&mut enc, plan, links, part, part_stored.unwrap_or(&[]))?;
+        for range in batch_parts(images, most)? {
+            let part = &drawn[range.clone()];
+            let cells = part.len() + images[range.clone()].iter().map(Vec::len).sum::<usize>();
+            self.atlas.reserve(self.gpu, cells as u32 * faces);
+            let part_stored = stored.get(range.start..range.end.min(stored.len()));
+            let part_images = &images[range];
+            let batch = (part, part_images);
+            self.record_part(&mut enc, plan, links, batch, part_stored.unwrap_or(&[]))?;
             if matches!(maps, CellMaps::DrawAndKeep) {
                 for k in 0..part.len() as u32 {
                     let slot = self
@@ -1384,17 +1503,35 @@ impl<'a> GpuSolver<'a> {
         self.map_store.reused
     }
 
-    /// Records the maps of the cells `drawn` into the atlas (which holds them) and their
-    /// receive dispatches.
+    /// Records the maps of the cells `drawn` and their virtual cells into the atlas (which
+    /// holds them; the virtual cells' after all drawn cells') and their receive
+    /// dispatches.
     fn record_part(
         &mut self,
         enc: &mut wgpu::CommandEncoder,
         plan: &ShotPlan,
         links: &Links,
-        drawn: &[usize],
+        (drawn, images): (&[usize], &[Vec<virtual_cells::VirtualCell>]),
         stored: &[Option<u32>],
     ) -> Result<(), GpuError> {
-        let (shots, faces, views) = self.shot_records(plan, links, drawn);
+        let mut cells: Vec<BatchCell<'_>> = drawn
+            .iter()
+            .map(|&patch| BatchCell { patch, image: None })
+            .collect();
+        for (k, (&patch, list)) in drawn.iter().zip(images).enumerate() {
+            let first = cells.len();
+            for v in list {
+                let parent = match v.parent {
+                    0 => k,
+                    j => first + j - 1,
+                };
+                cells.push(BatchCell {
+                    patch,
+                    image: Some((v, parent as u32)),
+                });
+            }
+        }
+        let (shots, faces, views) = self.shot_records(plan, links, &cells);
         let faces_per_cell = faces_per_cell(self.gpu_settings.visibility);
         // Kept maps go back into their tiles; those tiles are not drawn.
         let restored = |tile: u32| {
@@ -1407,7 +1544,9 @@ impl<'a> GpuSolver<'a> {
             None => None,
         };
         use wgpu::BufferUsages as U;
-        let shot_buf = self.gpu.buffer_with("shots", &shots, U::UNIFORM);
+        let shot_buf = self
+            .gpu
+            .buffer_with("shots", &shots, U::UNIFORM | U::STORAGE);
         // The compute rasterizer reads the faces as storage.
         let face_buf = self
             .gpu
@@ -1425,6 +1564,8 @@ impl<'a> GpuSolver<'a> {
             &[
                 (0, binding(&shot_buf, std::mem::size_of::<ShotGpu>())),
                 (1, wgpu::BindingResource::TextureView(&self.atlas.view)),
+                (2, shot_buf.as_entire_binding()),
+                (3, self.window_corners.as_entire_binding()),
             ],
         );
         let mut ranges = Vec::new();
@@ -1520,14 +1661,14 @@ impl<'a> GpuSolver<'a> {
             }
         }
         let receivers = self.culled.1;
-        self.receiver_threads += u64::from(receivers) * drawn.len() as u64;
+        self.receiver_threads += u64::from(receivers) * cells.len() as u64;
         let mut pass = enc.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("receive"),
             timestamp_writes: queries.as_ref().map(|q| q.receive()),
         });
         pass.set_pipeline(&self.pipelines.receive);
         pass.set_bind_group(0, &self.shared, &[]);
-        for k in 0..drawn.len() as u64 {
+        for k in 0..cells.len() as u64 {
             pass.set_bind_group(1, &shot_bind, &[(k * SHOT_STRIDE) as u32]);
             dispatch_groups(&mut pass, receivers.div_ceil(64));
         }

@@ -51,7 +51,16 @@ impl GpuSolver<'_> {
     /// `elements.charts` order); the others wait. A chart that starts receiving is first
     /// given the shots it missed. Returns how many shots were shot again (those with a
     /// joining chart in front of them).
+    /// Refused for a scene with mirrors or clear glass: their virtual cells are not kept
+    /// for a catch-up.
     pub fn set_receiving(&mut self, receiving: &[bool]) -> Result<usize, GpuError> {
+        if !self.scene.specular.is_empty() {
+            return Err(GpuError::Unsupported(
+                "perspective-driven radiosity (receivers that wait) does not handle mirrors \
+                 and clear glass yet; use --drive global or importance"
+                    .into(),
+            ));
+        }
         let el = &self.scene.elements;
         assert_eq!(receiving.len(), el.charts.len());
         let wanted: Vec<bool> = (0..self.receivers.len())
@@ -226,11 +235,13 @@ impl GpuSolver<'_> {
             .collect();
         let receivers = joining(&cell_planes(&patches));
         self.set_receivers(&receivers);
+        // Specular scenes never defer ([`GpuSolver::set_receiving`]): no images.
+        let images = vec![Vec::new(); cells.len()];
         self.shoot_batch(
             shot.shooter,
             &shot.plan,
             &shot.links,
-            &cells,
+            (&cells, &images),
             0..0,
             super::CellMaps::Restore(&kept),
         )?;
