@@ -485,6 +485,81 @@ newmtl plenum
 Kd 0.5 0.5 0.5
 ";
 
+/// The mirror room's mirror: no diffuse part (its reflectance is set in its scene file).
+const MIRROR_MTL: &str = "newmtl mirror
+Kd 0 0 0
+";
+
+/// The glass partition's pane: no diffuse part (its transmittance is set in its scene
+/// file).
+const GLASS_MTL: &str = "newmtl glass
+Kd 0 0 0
+";
+
+/// A 6 × 4 × 3 m room split at x = 3 by a pane of clear glass, wall to wall and floor to
+/// ceiling: each half's floor, ceiling and walls are surfaces of their own, so no chart
+/// spans the pane's plane. The glass-partition validation room.
+fn glass_partition() -> Obj {
+    let (x, y, z, pane) = (6.0, 4.0, 3.0, 3.0);
+    let p = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
+    let mut o = Obj::default();
+    for (lo, hi) in [(0.0, pane), (pane, x)] {
+        o.object("floor", "floor");
+        o.quad(
+            [
+                p(lo, 0.0, 0.0),
+                p(hi, 0.0, 0.0),
+                p(hi, y, 0.0),
+                p(lo, y, 0.0),
+            ],
+            1.0,
+        );
+        o.object("ceiling", "ceiling");
+        o.quad(
+            [p(lo, y, z), p(hi, y, z), p(hi, 0.0, z), p(lo, 0.0, z)],
+            1.0,
+        );
+        o.object("walls", "wall");
+        o.quad(
+            [
+                p(hi, 0.0, 0.0),
+                p(lo, 0.0, 0.0),
+                p(lo, 0.0, z),
+                p(hi, 0.0, z),
+            ],
+            1.0,
+        );
+        o.quad(
+            [p(lo, y, 0.0), p(hi, y, 0.0), p(hi, y, z), p(lo, y, z)],
+            1.0,
+        );
+    }
+    o.quad(
+        [
+            p(0.0, 0.0, 0.0),
+            p(0.0, y, 0.0),
+            p(0.0, y, z),
+            p(0.0, 0.0, z),
+        ],
+        1.0,
+    );
+    o.quad(
+        [p(x, y, 0.0), p(x, 0.0, 0.0), p(x, 0.0, z), p(x, y, z)],
+        1.0,
+    );
+    o.object("pane", "glass");
+    o.quad(
+        [
+            p(pane, 0.0, 0.0),
+            p(pane, y, 0.0),
+            p(pane, y, z),
+            p(pane, 0.0, z),
+        ],
+        1.0,
+    );
+    o
+}
+
 /// The perforated panel: white, its holes from `map_d` (the rest of the materials are
 /// [`ROOM_MTL`]'s).
 const PERFORATED_MTL: &str = "newmtl perforated
@@ -758,6 +833,20 @@ fn main() -> anyhow::Result<()> {
     )?;
     let scene = goniolight::scene::Scene::load(&scenes.join("boxes_room.toml"))?;
     write_fanned(&scene, 50, &scenes.join("cad_room.obj"), "boxes_room.mtl")?;
+
+    // The box room with its back wall a mirror (the specular validation rooms).
+    let mut mirror_room = Obj::default();
+    mirror_room.room(size, "floor", "wall", "mirror", "ceiling");
+    mirror_room.write(&scenes.join("mirror_room.obj"), "mirror_room.mtl")?;
+    std::fs::write(
+        scenes.join("mirror_room.mtl"),
+        format!("{ROOM_MTL}{MIRROR_MTL}"),
+    )?;
+    glass_partition().write(&scenes.join("glass_partition.obj"), "glass_partition.mtl")?;
+    std::fs::write(
+        scenes.join("glass_partition.mtl"),
+        format!("{ROOM_MTL}{GLASS_MTL}"),
+    )?;
 
     let mut stage = Obj::default();
     stage.room(size, "floor", "wall", "wall", "ceiling");

@@ -8,7 +8,11 @@ same luminaire (the LDT converted to IES by `goniolight ldt convert`, then to Ra
 0.8 m. `--scene box_room` (default): the 6 x 4 x 3 m box room, reflectances 0.2 floor /
 0.5 walls / 0.7 ceiling. `--scene luminous_ceiling`: a 4 x 4 x 3 m room under a
 translucent panel (reflectance 0.4, diffuse transmittance 0.3) lit from the plenum, where
-every lux on the work plane has come through the panel:
+every lux on the work plane has come through the panel. `--scene mirror_room`: the box
+room with its back wall a mirror (specular reflectance 0.9, Radiance's `mirror`).
+`--scene glass_partition`: a 6 x 4 x 3 m room split by clear glass (specular
+transmittance 0.85, Radiance's `trans` with all its transmission specular) with the
+luminaire on one side:
 
   direct: Radiance `rtrace -I -ab 0`  vs  `goniolight illuminance`
   total:  a converged Radiance run    vs  `goniolight radiosity --points`
@@ -81,6 +85,17 @@ def obj_polygons(obj):
     return faces, mtllib
 
 
+def grey(value):
+    """A scene-file colour (one number or three) as three numbers."""
+    return value if isinstance(value, list) else [value] * 3
+
+
+def specular_of(overrides):
+    """Per material name its (specular reflectance, specular transmittance)."""
+    return {o["name"]: (grey(o.get("specular_reflectance", 0.0)),
+                        grey(o.get("specular_transmittance", 0.0))) for o in overrides}
+
+
 def materials(mtl, overrides):
     """Per material name (Kd, diffuse transmittance) from the MTL and the scene's
     `[[material]]` overrides."""
@@ -101,13 +116,25 @@ def materials(mtl, overrides):
 
 def room_rad(scene, lum_rad, position):
     """The scene's model in Radiance's scene language: `plastic` for opaque materials,
-    `trans` (two-sided; C (1 - t) reflected, C t transmitted diffusely) for translucent."""
+    `trans` (two-sided; C (1 - t) reflected, C t transmitted diffusely) for translucent,
+    `mirror` for a mirror, and `trans` with C = the transmittance, t = 1 and all of it
+    specular for clear glass (no diffuse part: goniolight's constant, Fresnel-free
+    glass)."""
     model = scene["model"][0]
     faces, mtllib = obj_polygons(SCENE.parent / model["path"])
     mats = materials(SCENE.parent / mtllib, scene.get("material", []))
+    specular = specular_of(scene.get("material", []))
     out = []
     for name, (rho, tau) in mats.items():
-        if max(tau) > 0:
+        mirror, glass = specular.get(name, ([0.0] * 3, [0.0] * 3))
+        if max(mirror) > 0 or max(glass) > 0:
+            if max(rho) > 0 or max(tau) > 0 or (max(mirror) > 0 and max(glass) > 0):
+                sys.exit(f"error: material {name}: only a pure mirror or pure glass is compared")
+            if max(mirror) > 0:
+                out.append(f"void mirror {name}\n0\n0\n3 {mirror[0]} {mirror[1]} {mirror[2]}\n")
+            else:
+                out.append(f"void trans {name}\n0\n0\n7 {glass[0]} {glass[1]} {glass[2]} 0 0 1 1\n")
+        elif max(tau) > 0:
             c = [r + t for r, t in zip(rho, tau)]
             t = sum(tau) / sum(c)
             out.append(f"void trans {name}\n0\n0\n7 {c[0]} {c[1]} {c[2]} 0 0 {t} 0\n")
@@ -169,7 +196,7 @@ def worst(values, reference):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--scene", default="box_room",
-                    choices=["box_room", "luminous_ceiling"])
+                    choices=["box_room", "luminous_ceiling", "mirror_room", "glass_partition"])
     ap.add_argument("--goniolight", type=Path, default=ROOT / "target/release/goniolight")
     ap.add_argument("--out", type=Path, default=Path("radiance-compare"))
     ap.add_argument("--radiance-csv", type=Path,

@@ -208,6 +208,20 @@ fn luminous_ceiling_agrees_with_radiance() {
     agrees_with_radiance("luminous_ceiling");
 }
 
+/// The box room with its back wall a mirror (Radiance `mirror`, its virtual light
+/// sources for the direct light).
+#[test]
+fn mirror_room_agrees_with_radiance() {
+    agrees_with_radiance("mirror_room");
+}
+
+/// A room split by clear glass with the luminaire on one side (Radiance `trans`, all its
+/// transmission specular): half the work plane is lit only through the glass.
+#[test]
+fn glass_partition_agrees_with_radiance() {
+    agrees_with_radiance("glass_partition");
+}
+
 /// Radiance's work plane in scene `name` (scripts/compare_radiance.py --scene NAME:
 /// rtrace -ab 0 and a converged run) is stored; goniolight must match direct within 1 %
 /// at every point (within 0.01 lx where Radiance has none) and the total within 3 % mean

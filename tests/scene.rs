@@ -293,8 +293,8 @@ fn bake_keys_set_the_models_materials() {
 }
 
 /// `[[material]]` overrides an MTL material by name (and is saved back); a wrong name, a
-/// value out of range, reflectance plus transmittance above 1 or a specular key is an
-/// error naming the key. MTL `d`/`Tr`/`Tf` give the diffuse transmittance, except for
+/// value out of range or reflectances plus transmittances above 1 is an error naming the
+/// key; the specular keys make a mirror or clear glass. MTL `d`/`Tr`/`Tf` give the diffuse transmittance, except for
 /// glass (`illum` 4, 6, 7, 9), which stays opaque.
 #[test]
 fn material_overrides_and_mtl_transparency_set_the_transmittance() {
@@ -305,6 +305,19 @@ fn material_overrides_and_mtl_transparency_set_the_transmittance() {
     let s = r.unwrap();
     let wall = s.materials.iter().find(|m| m.name == "wall").unwrap();
     assert_eq!(wall.diffuse_transmittance, Vec3::new(0.1, 0.2, 0.3));
+    assert!(s.specular_material().is_none());
+    let (_dir, r) = load_text(&format!(
+        "{model}{camera}[[material]]\nname = \"wall\"\ndiffuse_reflectance = 0\n\
+         specular_reflectance = 0.9\n"
+    ));
+    let mirrored = r.unwrap();
+    let mirror = mirrored.specular_material().expect("the wall is a mirror");
+    assert_eq!(
+        (mirror.name.as_str(), mirror.specular_reflectance),
+        ("wall", Vec3::splat(0.9))
+    );
+    let saved = mirrored.to_toml(&mirrored.path).unwrap();
+    assert!(saved.contains("specular_reflectance = 0.9"), "{saved}");
     let floor = s.materials.iter().find(|m| m.name == "floor").unwrap();
     assert_eq!(floor.diffuse_transmittance, Vec3::ZERO);
     let saved = s.to_toml(&s.path).unwrap();
@@ -330,8 +343,8 @@ fn material_overrides_and_mtl_transparency_set_the_transmittance() {
         ),
         (
             "name = \"wall\"\nspecular_reflectance = 0.9",
-            "material[0].specular_reflectance",
-            "CPU reference",
+            "material[0]",
+            "more than it receives",
         ),
         (
             "name = \"wall\"\nopacity = 0.9",
@@ -381,7 +394,7 @@ fn material_overrides_and_mtl_transparency_set_the_transmittance() {
     assert_eq!(
         t("glass"),
         Vec3::ZERO,
-        "glass is specular: not modelled, opaque"
+        "glass is specular: set in the scene file, not from the MTL"
     );
     // Kd 0.9 leaves room for 0.1 only.
     assert!(

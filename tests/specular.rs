@@ -507,3 +507,50 @@ fn a_luminaire_over_a_mirror_floor_lights_the_ceiling_by_its_image() {
         DVec3::ZERO
     );
 }
+
+/// The commands with the bundled mirror room: the rendered image says what it leaves out,
+/// a direct-light illuminance image is refused, and so is a view-driven solve.
+#[test]
+fn commands_say_what_they_do_with_mirrors() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = common::root().join("assets/scenes/mirror_room.toml");
+    let scene = scene.to_str().unwrap();
+    let png = dir.path().join("room.png");
+    let png = png.to_str().unwrap();
+    let small = ["--width", "64", "--height", "48"];
+    let mut shaded = vec!["render", scene, "--out", png, "--mode", "shaded"];
+    shaded.extend(small);
+    let (code, _, stderr) = common::run_cli(&shaded, "");
+    assert_eq!(code, 0, "{stderr}");
+    assert!(
+        stderr.contains("\"mirror\" is a mirror or clear glass") && stderr.contains("diffuse part"),
+        "{stderr}"
+    );
+    std::fs::remove_file(png).unwrap();
+    let mut lux = vec!["render", scene, "--out", png, "--mode", "illuminance"];
+    lux.extend(small);
+    let (code, _, stderr) = common::run_cli(&lux, "");
+    assert_ne!(code, 0);
+    assert!(
+        stderr.contains("would leave out the light it passes on"),
+        "{stderr}"
+    );
+    assert!(!std::path::Path::new(png).exists(), "no image written");
+    let (code, _, stderr) = common::run_cli(
+        &[
+            "radiosity",
+            scene,
+            "--drive",
+            "perspective",
+            "--max-shots",
+            "2",
+            "--out-dir",
+        ]
+        .into_iter()
+        .chain([dir.path().join("out").to_str().unwrap()])
+        .collect::<Vec<_>>(),
+        "",
+    );
+    assert_ne!(code, 0);
+    assert!(stderr.contains("does not handle mirrors"), "{stderr}");
+}

@@ -679,9 +679,21 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
     let solved = prepared.solve()?;
     if !points.is_empty() {
         let gathered = Instant::now();
-        let direct = prepared
+        let mut direct = prepared
             .light
             .lux(&prepared.gpu, &points, &settings.shadows)?;
+        // What mirrors and clear glass pass on (the probe draws straight light only).
+        let at: Vec<_> = points
+            .iter()
+            .map(|p| (p.position, p.normal.normalize_or_zero()))
+            .collect();
+        let interp = settings.light_model.interp();
+        for (d, l) in direct
+            .iter_mut()
+            .zip(prepared.rscene.specular_light().at_points(&at, interp))
+        {
+            *d += luminance(l);
+        }
         let (indirect, patches) = solved.interreflected_lux(&points)?;
         let mut out = String::with_capacity(points.len() * 12);
         for (d, i) in direct.iter().zip(&indirect) {

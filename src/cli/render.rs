@@ -211,6 +211,7 @@ pub fn render_to_files(
     let started = Instant::now();
     check_scene(gpu, scene, &mut settings.shadows)?;
     warn_what_volumes_miss(scene, &settings.shadows, light_map.is_some());
+    check_specular(scene, settings.mode, light_map.is_some())?;
     let uploaded = match light_map {
         Some(map) => renderer.upload_solved(gpu, scene, map),
         None => renderer.upload(gpu, scene),
@@ -319,6 +320,38 @@ pub fn run_illuminance(args: IlluminanceArgs) -> Result<(), CliError> {
         out = serde_json::to_string_pretty(&json).map_err(CliError::failure)? + "\n";
     }
     print!("{out}");
+    Ok(())
+}
+
+/// What the renderer does with mirrors and clear glass, said plainly: it draws them by
+/// their diffuse part (no planar mirror pass), and its direct light stops at glass. A
+/// direct-light illuminance image would print lux without what they pass on: refused
+/// (a solved light map holds it, as do `calc`, `illuminance` and `radiosity --points`).
+fn check_specular(scene: &Scene, mode: Mode, solved: bool) -> Result<(), CliError> {
+    let Some(m) = scene.specular_material() else {
+        return Ok(());
+    };
+    if mode == Mode::Illuminance && !solved {
+        return Err(CliError::input(anyhow!(
+            "{}: material {:?} is a mirror or clear glass: this direct-light illuminance image \
+             would leave out the light it passes on; use --indirect radiosity (its light map \
+             holds it), or `calc`, `illuminance` or `radiosity --points` for lux",
+            scene.path.display(),
+            m.name
+        )));
+    }
+    eprintln!(
+        "warning: {}: material {:?} is a mirror or clear glass: the image draws it by its \
+         diffuse part (no mirror reflection pass){}; lux from calc, illuminance and \
+         radiosity include the light it passes on",
+        scene.path.display(),
+        m.name,
+        if solved {
+            ""
+        } else {
+            ", and its direct light stops at the glass"
+        }
+    );
     Ok(())
 }
 

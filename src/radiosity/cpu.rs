@@ -9,10 +9,10 @@ use glam::DVec3;
 
 use super::form_factor::{self, FormFactorKind};
 use super::gather;
-use super::initial::{luminaire_paths, specular_direct, DirectSamples, InitialState};
+use super::initial::{DirectSamples, InitialState};
 use super::scene::{luminance, RadiosityScene};
 use super::solve;
-use super::specular::SpecularPath;
+use super::specular::SpecularLight;
 use super::{Ambient, SolverSettings};
 use crate::lighting::SurfacePoint;
 use crate::shadow::{IgnoredTriangles, Light};
@@ -33,8 +33,8 @@ pub struct CpuSolver<'a> {
     /// Shots from triangles so far.
     pub shots: usize,
     eps: f64,
-    /// Per luminaire, its reflection tree through the specular windows.
-    luminaire_paths: Vec<Vec<SpecularPath>>,
+    /// The luminaires' light through the specular windows.
+    specular_light: SpecularLight<'a>,
 }
 
 impl<'a> CpuSolver<'a> {
@@ -52,7 +52,7 @@ impl<'a> CpuSolver<'a> {
             initial_unshot: 0.0,
             shots: 0,
             eps: scene.self_hit_epsilon,
-            luminaire_paths: luminaire_paths(scene),
+            specular_light: scene.specular_light(),
         };
         s.shoot_luminaires();
         s.initial_unshot = s.unshot_power();
@@ -73,15 +73,9 @@ impl<'a> CpuSolver<'a> {
     }
 
     /// The luminaires' light at `p` (unit normal `n`) through the specular windows
-    /// ([`specular_direct`]).
+    /// ([`SpecularLight`]).
     fn direct_specular(&self, p: DVec3, n: DVec3) -> DVec3 {
-        specular_direct(
-            self.scene,
-            &self.luminaire_paths,
-            p,
-            n,
-            self.settings.interp,
-        )
+        self.specular_light.at(p, n, self.settings.interp)
     }
 
     /// Direct illuminance (lux, RGB) from the luminaires straight to `p` (unit normal `n`).
@@ -247,20 +241,8 @@ impl<'a> CpuSolver<'a> {
         let none = IgnoredTriangles::default();
         let el = &scene.elements;
         // Unlike a straight shot, a chart may take light from itself (its mirror image).
-        for path in scene.specular.paths(p.centroid, Some(nt)) {
-            let image = |mut q: DVec3, direction: bool| {
-                for &w in &path.windows {
-                    let w = &scene.specular.windows[w];
-                    q = if direction {
-                        w.image_direction(q)
-                    } else {
-                        w.image(q)
-                    };
-                }
-                q
-            };
-            let polygon: Vec<DVec3> = p.polygon.iter().map(|&q| image(q, false)).collect();
-            let (centre, normal) = (path.virtual_source(), image(nt, true));
+        for (path, polygon, normal) in scene.specular.images(&p.polygon, p.centroid, nt) {
+            let centre = path.virtual_source();
             for i in 0..el.len() {
                 let (pi, ni) = (el.position[i], el.normal(i));
                 let form_factor = |n: DVec3| match self.settings.form_factor {

@@ -4,6 +4,8 @@
 //! that are not on a surface (a work plane). The patches are the shooters' finest ones:
 //! each triangle's patches without a hierarchy, each flat cluster's finest cells with one
 //! (a floor of 500 strips is a few hundred cells, not thousands of strip patches).
+//! Through mirrors and clear glass each patch also lights a point from its images
+//! ([`super::specular`]), the legs ray-cast as in the CPU reference solver.
 
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
@@ -13,6 +15,7 @@ use rayon::prelude::*;
 use super::form_factor::{self, FormFactorKind};
 use super::scene::RadiosityScene;
 use super::shooters::Shooters;
+use super::specular::SpecularPath;
 use crate::lighting::SurfacePoint;
 use crate::shadow::{IgnoredTriangles, Light};
 
@@ -29,6 +32,8 @@ pub struct GatherPatch {
     pub area: f64,
     /// Its elements' mean radiosity, lm/m² (RGB).
     pub radiosity: DVec3,
+    /// Its images through the specular windows: path, imaged polygon and normal.
+    pub images: Vec<(SpecularPath, Vec<DVec3>, DVec3)>,
 }
 
 /// The finest patches of every shooter with the element `radiosity` (lm/m², RGB).
@@ -52,6 +57,7 @@ pub fn patches(
                         .sum();
                     GatherPatch {
                         radiosity: power / p.element_area.max(1e-300) * p.power_scale(),
+                        images: scene.specular.images(&p.polygon, p.centroid, p.normal),
                         polygon: p.polygon,
                         centroid: p.centroid,
                         normal: p.normal,
@@ -73,18 +79,30 @@ pub fn from_patches(
     let (p, n) = (point.position, point.normal.normalize_or_zero());
     let eps = scene.self_hit_epsilon;
     let (bvh, none) = (scene.visibility_bvh(), IgnoredTriangles::default());
+    let form_factor = |centroid: DVec3, polygon: &[DVec3], normal: DVec3, area: f64| match kind {
+        FormFactorKind::Disc => form_factor::disc(p, n, centroid, normal, area),
+        FormFactorKind::Polygon => form_factor::polygon(p, n, polygon, normal),
+    };
     let mut e = DVec3::ZERO;
     for patch in patches {
-        let f = match kind {
-            FormFactorKind::Disc => {
-                form_factor::disc(p, n, patch.centroid, patch.normal, patch.area)
+        let source = patch.centroid + patch.normal * eps;
+        for (path, polygon, normal) in &patch.images {
+            let f = form_factor(path.virtual_source(), polygon, *normal, patch.area);
+            let caster = scene.caster_bvh();
+            if f > 0.0
+                && scene
+                    .specular
+                    .trace(caster, source, path, p + n * eps, eps, &none)
+                    .is_some()
+            {
+                e += path.weight * patch.radiosity * f;
             }
-            FormFactorKind::Polygon => form_factor::polygon(p, n, &patch.polygon, patch.normal),
-        };
+        }
+        let f = form_factor(patch.centroid, &patch.polygon, patch.normal, patch.area);
         if f <= 0.0 {
             continue;
         }
-        let light = Light((patch.centroid + patch.normal * eps).extend(1.0));
+        let light = Light(source.extend(1.0));
         if bvh.in_shadow(&light, p + n * eps, eps, &none) {
             continue;
         }

@@ -6,7 +6,6 @@
 use glam::DVec3;
 
 use super::scene::{luminance, RadiosityScene};
-use super::specular::SpecularPath;
 use crate::gpu::{Gpu, GpuError};
 use crate::lighting::SurfacePoint;
 use crate::photometry::Interp;
@@ -85,54 +84,9 @@ impl InitialState {
     }
 }
 
-/// The luminaires' reflection trees through the scene's specular windows, one per
-/// luminaire ([`super::specular`]).
-pub fn luminaire_paths(scene: &RadiosityScene) -> Vec<Vec<SpecularPath>> {
-    scene
-        .luminaires
-        .iter()
-        .map(|l| scene.specular.paths(l.position, None))
-        .collect()
-}
-
-/// The luminaires' direct light (RGB lux) at `p` (unit normal `n`) by way of mirrors and
-/// clear glass, ray-cast: each path (`paths`, per luminaire) is a virtual luminaire that
-/// sends what the real one sends toward the path's first window, times the windows'
-/// coefficients, over the unfolded distance.
-pub fn specular_direct(
-    scene: &RadiosityScene,
-    paths: &[Vec<SpecularPath>],
-    p: DVec3,
-    n: DVec3,
-    interp: Interp,
-) -> DVec3 {
-    let none = crate::shadow::IgnoredTriangles::default();
-    let eps = scene.self_hit_epsilon;
-    let q = p + n * eps;
-    let mut sum = DVec3::ZERO;
-    for (k, (l, paths)) in scene.luminaires.iter().zip(paths).enumerate() {
-        let ignored = scene.ignored.get(k).unwrap_or(&none);
-        for path in paths {
-            let to = path.virtual_source() - p;
-            let d2 = to.length_squared();
-            if d2 <= 0.0 || n.dot(to) <= 0.0 {
-                continue;
-            }
-            let cos = n.dot(to) / d2.sqrt();
-            let bvh = scene.caster_bvh();
-            let Some(m) = scene.specular.trace(bvh, l.position, path, q, eps, ignored) else {
-                continue;
-            };
-            let out = (m - l.position).normalize_or_zero();
-            sum += path.weight * l.color_toward(out) * l.intensity_toward(out, interp) * cos / d2;
-        }
-    }
-    sum
-}
-
 /// Adds to `direct` (one per point) the luminaires' light at `points` by way of mirrors
-/// and clear glass ([`specular_direct`], on the CPU's threads): the GPU's first shot draws
-/// only their straight light.
+/// and clear glass ([`super::specular::SpecularLight`], on the CPU's threads): the GPU's
+/// first shot draws only their straight light.
 pub fn add_specular_direct(
     scene: &RadiosityScene,
     points: &[SurfacePoint],
@@ -142,12 +96,14 @@ pub fn add_specular_direct(
     if scene.specular.is_empty() {
         return;
     }
-    use rayon::prelude::*;
-    let paths = luminaire_paths(scene);
-    direct.par_iter_mut().zip(points).for_each(|(d, point)| {
-        let n = point.normal.normalize_or_zero();
-        *d += specular_direct(scene, &paths, point.position, n, interp);
-    });
+    let at: Vec<(DVec3, DVec3)> = points
+        .iter()
+        .map(|p| (p.position, p.normal.normalize_or_zero()))
+        .collect();
+    let light = scene.specular_light().at_points(&at, interp);
+    for (d, l) in direct.iter_mut().zip(light) {
+        *d += l;
+    }
 }
 
 /// A scene's luminaires on the GPU with the renderer's point probe: their direct light at

@@ -247,6 +247,17 @@ impl RadiosityScene {
         Ok(scene)
     }
 
+    /// The luminaires' light through the mirrors and clear glass ([`super::specular`]).
+    pub fn specular_light(&self) -> super::specular::SpecularLight<'_> {
+        super::specular::SpecularLight::new(
+            &self.specular,
+            self.caster_bvh(),
+            &self.luminaires,
+            &self.ignored,
+            self.self_hit_epsilon,
+        )
+    }
+
     /// The ray-cast hierarchy over [`Self::casters`] (built on the first call), with
     /// their holes.
     pub fn caster_bvh(&self) -> &TriangleBvh {

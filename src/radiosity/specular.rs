@@ -25,7 +25,8 @@
 use glam::DVec3;
 
 use crate::geometry::Mesh;
-use crate::scene::Material;
+use crate::photometry::Interp;
+use crate::scene::{Material, PlacedLuminaire, Scene};
 use crate::shadow::{IgnoredTriangles, TriangleBvh};
 
 /// Paths through more windows than this are not followed.
@@ -201,6 +202,42 @@ impl SpecularSurfaces {
         self.windows.is_empty()
     }
 
+    /// Point `q` as seen through `path`'s windows (imaged by each in turn).
+    pub fn image_through(&self, path: &SpecularPath, q: DVec3) -> DVec3 {
+        path.windows
+            .iter()
+            .fold(q, |q, &w| self.windows[w].image(q))
+    }
+
+    /// Direction `d` as seen through `path`'s windows.
+    pub fn image_direction_through(&self, path: &SpecularPath, d: DVec3) -> DVec3 {
+        path.windows
+            .iter()
+            .fold(d, |d, &w| self.windows[w].image_direction(d))
+    }
+
+    /// A surface's images for a receiver: per path of the reflection tree of a polygon
+    /// facing `normal` seen from `centroid`, the path, the imaged polygon and the imaged
+    /// normal.
+    pub fn images(
+        &self,
+        polygon: &[DVec3],
+        centroid: DVec3,
+        normal: DVec3,
+    ) -> Vec<(SpecularPath, Vec<DVec3>, DVec3)> {
+        self.paths(centroid, Some(normal))
+            .into_iter()
+            .map(|path| {
+                let imaged = polygon
+                    .iter()
+                    .map(|&q| self.image_through(&path, q))
+                    .collect();
+                let n = self.image_direction_through(&path, normal);
+                (path, imaged, n)
+            })
+            .collect()
+    }
+
     /// The reflection tree of a source at `source` (facing `facing`, a unit normal, when
     /// it is a surface; `None` for a point source shining every way): every path whose
     /// windows could pass its light on, one after the other.
@@ -296,6 +333,129 @@ impl SpecularSurfaces {
         let mut skip = ignored.clone();
         skip.0.extend(beyond_ranges(beyond));
         (!segment_blocked(bvh, source, y, eps, &skip)).then_some(y)
+    }
+}
+
+/// The luminaires' direct light by way of mirrors and clear glass, ray-cast: each path of
+/// a luminaire's reflection tree is a virtual luminaire that sends what the real one
+/// sends toward the path's first window, times the windows' coefficients, over the
+/// unfolded distance. The GPU's first shot and the renderer's illuminance probe draw only
+/// the straight light; this is added to theirs.
+#[derive(Debug, Clone)]
+pub struct SpecularLight<'a> {
+    surfaces: &'a SpecularSurfaces,
+    bvh: &'a TriangleBvh,
+    luminaires: &'a [PlacedLuminaire],
+    ignored: &'a [IgnoredTriangles],
+    eps: f64,
+    /// Per luminaire, its reflection tree.
+    paths: Vec<Vec<SpecularPath>>,
+}
+
+impl<'a> SpecularLight<'a> {
+    /// The light of `luminaires` through `surfaces`' windows, the legs' rays cast in `bvh`
+    /// (over the caster mesh; `ignored[k]` are luminaire `k`'s housing, `eps` how far
+    /// rays start off surfaces).
+    pub fn new(
+        surfaces: &'a SpecularSurfaces,
+        bvh: &'a TriangleBvh,
+        luminaires: &'a [PlacedLuminaire],
+        ignored: &'a [IgnoredTriangles],
+        eps: f64,
+    ) -> SpecularLight<'a> {
+        let paths = luminaires
+            .iter()
+            .map(|l| surfaces.paths(l.position, None))
+            .collect();
+        SpecularLight {
+            surfaces,
+            bvh,
+            luminaires,
+            ignored,
+            eps,
+            paths,
+        }
+    }
+
+    /// Whether no light comes this way (no windows).
+    pub fn is_empty(&self) -> bool {
+        self.surfaces.is_empty()
+    }
+
+    /// The illuminance (RGB lux) at `p` on a surface with unit normal `n`.
+    pub fn at(&self, p: DVec3, n: DVec3, interp: Interp) -> DVec3 {
+        let none = IgnoredTriangles::default();
+        let q = p + n * self.eps;
+        let mut sum = DVec3::ZERO;
+        for (k, (l, paths)) in self.luminaires.iter().zip(&self.paths).enumerate() {
+            let ignored = self.ignored.get(k).unwrap_or(&none);
+            for path in paths {
+                let to = path.virtual_source() - p;
+                let d2 = to.length_squared();
+                if d2 <= 0.0 || n.dot(to) <= 0.0 {
+                    continue;
+                }
+                let cos = n.dot(to) / d2.sqrt();
+                let traced = self
+                    .surfaces
+                    .trace(self.bvh, l.position, path, q, self.eps, ignored);
+                let Some(m) = traced else {
+                    continue;
+                };
+                let out = (m - l.position).normalize_or_zero();
+                let intensity = l.intensity_toward(out, interp);
+                sum += path.weight * l.color_toward(out) * intensity * cos / d2;
+            }
+        }
+        sum
+    }
+
+    /// [`SpecularLight::at`] at every point (`(position, unit normal)`), on the CPU's
+    /// threads.
+    pub fn at_points(&self, points: &[(DVec3, DVec3)], interp: Interp) -> Vec<DVec3> {
+        use rayon::prelude::*;
+        points
+            .par_iter()
+            .map(|&(p, n)| self.at(p, n, interp))
+            .collect()
+    }
+}
+
+/// What [`SpecularLight`] needs of a [`Scene`], built from it: its windows, the ray-cast
+/// hierarchy over its casters and its luminaires' housings.
+#[derive(Debug, Clone)]
+pub struct SceneWindows {
+    surfaces: SpecularSurfaces,
+    bvh: TriangleBvh,
+    ignored: Vec<IgnoredTriangles>,
+    eps: f64,
+}
+
+impl SceneWindows {
+    /// `None` when `scene` has no mirror or clear glass.
+    pub fn new(scene: &Scene) -> Option<SceneWindows> {
+        if !scene.materials.iter().any(Material::is_specular) {
+            return None;
+        }
+        let casters = scene.caster_mesh();
+        let surfaces = SpecularSurfaces::new(&casters, &scene.caster_materials(), &scene.materials);
+        Some(SceneWindows {
+            surfaces,
+            bvh: TriangleBvh::new(&casters).with_cutouts(scene.caster_cutouts()),
+            ignored: scene.ignored_per_luminaire(),
+            eps: crate::shadow::raycast::self_hit_epsilon(&casters),
+        })
+    }
+
+    /// The light of `luminaires` (the scene's) through the windows.
+    pub fn light<'a>(&'a self, luminaires: &'a [PlacedLuminaire]) -> SpecularLight<'a> {
+        SpecularLight::new(
+            &self.surfaces,
+            &self.bvh,
+            luminaires,
+            &self.ignored,
+            self.eps,
+        )
     }
 }
 

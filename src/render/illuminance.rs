@@ -11,6 +11,7 @@ use super::passes::LightModel;
 use super::shadows::{ShadowFrame, ShadowPasses, ShadowSettings};
 use crate::gpu::{shaders, Gpu, GpuError};
 use crate::photometry::Interp;
+use crate::radiosity::specular::SceneWindows;
 use crate::scene::Scene;
 use crate::shadow::ShadowTechnique;
 
@@ -20,8 +21,34 @@ pub use crate::lighting::{
 
 /// Direct illuminance (lux) at `points` in `scene` with the shadows of `technique`: on
 /// `gpu` with the renderer's own lighting code, or by the CPU twin when `gpu` is `None`
-/// (ray-cast shadows unless `none`).
+/// (ray-cast shadows unless `none`); with shadows, plus the light mirrors and clear glass
+/// pass on (ray-cast, [`SceneWindows`]).
 pub fn scene_illuminance(
+    gpu: Option<&Gpu>,
+    scene: &Scene,
+    points: &[SurfacePoint],
+    interp: Interp,
+    technique: ShadowTechnique,
+) -> Result<Vec<f64>, GpuError> {
+    let mut lux = straight_illuminance(gpu, scene, points, interp, technique)?;
+    // Mirrors and clear glass pass light on where shadows are drawn ([`SceneWindows`]).
+    if technique != ShadowTechnique::None {
+        if let Some(windows) = SceneWindows::new(scene) {
+            let at: Vec<(DVec3, DVec3)> = points
+                .iter()
+                .map(|p| (p.position, p.normal.normalize_or_zero()))
+                .collect();
+            let light = windows.light(&scene.luminaires).at_points(&at, interp);
+            for (v, l) in lux.iter_mut().zip(light) {
+                *v += crate::radiosity::scene::luminance(l);
+            }
+        }
+    }
+    Ok(lux)
+}
+
+/// [`scene_illuminance`] without what mirrors and glass pass on.
+fn straight_illuminance(
     gpu: Option<&Gpu>,
     scene: &Scene,
     points: &[SurfacePoint],

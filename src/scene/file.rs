@@ -119,10 +119,11 @@ pub struct MaterialEntry {
     /// The share of the light arriving on one side that the other side emits diffusely.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub diffuse_transmittance: Option<Rgb>,
-    /// A mirror's reflectance (refused: not modelled yet).
+    /// Specular reflectance: a mirror (on the side its surface faces; both sides of
+    /// clear glass).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub specular_reflectance: Option<Rgb>,
-    /// Clear glass's transmittance (refused: not modelled yet).
+    /// Specular transmittance: clear glass (light passes undeviated).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub specular_transmittance: Option<Rgb>,
 }

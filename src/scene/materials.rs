@@ -14,10 +14,9 @@
 //! reflectances plus transmittances may not exceed 1 in any channel. The keys
 //! `specular_reflectance` (mirrors) and `specular_transmittance` (clear glass) are part of
 //! the format and set [`Material::specular_reflectance`] and
-//! [`Material::specular_transmittance`], which the CPU reference solver transfers
-//! ([`crate::radiosity::specular`]); the GPU solver, the renderer and `calc` do not yet,
-//! so a scene file refuses them ([`refuse_specular`]) rather than treat the surface as
-//! opaque.
+//! [`Material::specular_transmittance`]: mirrors and clear glass, which radiosity and the
+//! direct light of `calc` and `illuminance` pass light through
+//! ([`crate::radiosity::specular`]; the rendered image draws them by their diffuse part).
 
 use glam::Vec3;
 
@@ -97,30 +96,6 @@ pub fn apply(
                     entry.name
                 ),
             ));
-        }
-    }
-    Ok(())
-}
-
-/// The first specular key of `entries`, refused by a scene file: only the CPU reference
-/// solver ([`crate::radiosity::cpu`]) transfers light specularly so far; the GPU solver,
-/// the renderer and `calc` would treat the surface as opaque and print wrong lux.
-pub fn refuse_specular(entries: &[MaterialEntry]) -> Result<(), (String, String)> {
-    for (i, entry) in entries.iter().enumerate() {
-        for (field, value) in [
-            ("specular_reflectance", entry.specular_reflectance),
-            ("specular_transmittance", entry.specular_transmittance),
-        ] {
-            if value.is_some() {
-                return Err((
-                    format!("material[{i}].{field}"),
-                    "mirrors and clear glass (specular transfer) are solved only by the CPU \
-                     reference solver so far; the GPU solver, the renderer and calc would \
-                     treat the surface as opaque, so goniolight refuses the key (use \
-                     diffuse_transmittance for a translucent surface)"
-                        .into(),
-                ));
-            }
         }
     }
     Ok(())
@@ -211,8 +186,5 @@ mod tests {
         let (key, message) = apply(&[too_clear], &mut opal()).unwrap_err();
         assert_eq!(key, "material[0]");
         assert!(message.contains("specularly"), "{message}");
-        let (key, message) = refuse_specular(&[glass]).unwrap_err();
-        assert_eq!(key, "material[0].specular_reflectance");
-        assert!(message.contains("CPU reference"), "{message}");
     }
 }

@@ -166,8 +166,7 @@ impl Scene {
             let key = format!("model[{i}]");
             meshes.extend(model::load_model(path, &key, &dir, entry, &mut materials)?);
         }
-        materials::refuse_specular(&parsed.material)
-            .and_then(|()| materials::apply(&parsed.material, &mut materials))
+        materials::apply(&parsed.material, &mut materials)
             .map_err(|(key, message)| SceneError::new(path, key, message))?;
         if parsed.luminaire.len() > MAX_LUMINAIRES {
             return Err(SceneError::new(
@@ -293,6 +292,15 @@ impl Scene {
             .enumerate()
             .flat_map(|(k, m)| std::iter::repeat_n(k as u32, m.indices.len() / 3))
             .collect()
+    }
+
+    /// The first mirror or clear glass among the materials its meshes use, if any
+    /// ([`Material::is_specular`]).
+    pub fn specular_material(&self) -> Option<&Material> {
+        self.meshes
+            .iter()
+            .map(|m| &self.materials[m.material])
+            .find(|m| m.is_specular())
     }
 
     /// The material of each triangle of [`Scene::caster_mesh`], in its order.

@@ -493,8 +493,9 @@ fn transmittance(m: &tobj::Material) -> Result<Vec3, String> {
 
 /// The diffuse transmittance an MTL material states: `(1 − d) × Tf` (`Tr` = 1 − `d` when
 /// `d` is absent; `Tf` white when absent) for the illumination models without
-/// refraction; nothing for `illum` 4, 6, 7 and 9 (glass: specular transmission, not
-/// modelled yet) and for opaque materials (`d` 1, the usual `Tf 1 1 1` alone).
+/// refraction; nothing for `illum` 4, 6, 7 and 9 (glass: specular transmission, which
+/// the scene file's `specular_transmittance` sets) and for opaque materials (`d` 1, the
+/// usual `Tf 1 1 1` alone).
 pub fn mtl_transmittance(
     dissolve: Option<f64>,
     tr: Option<f64>,

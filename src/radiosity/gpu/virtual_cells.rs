@@ -45,16 +45,7 @@ pub fn virtual_cells(specular: &SpecularSurfaces, cell: &PlannedPatch) -> Vec<Vi
                 1 => 0,
                 _ => index_of(&path.windows[..depth - 1], &paths).map_or(0, |k| k + 1),
             };
-            let image = |q: DVec3| {
-                path.windows
-                    .iter()
-                    .fold(q, |q, &w| specular.windows[w].image(q))
-            };
-            let direction = |d: DVec3| {
-                path.windows
-                    .iter()
-                    .fold(d, |d, &w| specular.windows[w].image_direction(d))
-            };
+            let image = |q: DVec3| specular.image_through(path, q);
             let last = path.windows[depth - 1];
             let w = &specular.windows[last];
             // The side the light leaves to: a mirror's front; beyond glass, away from the
@@ -66,7 +57,9 @@ pub fn virtual_cells(specular: &SpecularSurfaces, cell: &PlannedPatch) -> Vec<Vi
             let mut planned = cell.clone();
             planned.polygon = cell.polygon.iter().map(|&q| image(q)).collect();
             planned.centroid = image(cell.centroid);
-            planned.normal = direction(cell.normal).normalize();
+            planned.normal = specular
+                .image_direction_through(path, cell.normal)
+                .normalize();
             planned.parent = u32::MAX;
             planned.pieces = [0, 0];
             VirtualCell {
