@@ -86,31 +86,18 @@ impl Obj {
         self.object("ceiling", ceiling);
         self.level(x, y, z, false);
         self.object("walls", wall);
-        self.quad(
-            [
-                p(x, 0.0, 0.0),
-                p(0.0, 0.0, 0.0),
-                p(0.0, 0.0, z),
-                p(x, 0.0, z),
-            ],
-            1.0,
-        );
-        self.quad(
-            [
-                p(0.0, 0.0, 0.0),
-                p(0.0, y, 0.0),
-                p(0.0, y, z),
-                p(0.0, 0.0, z),
-            ],
-            1.0,
-        );
-        self.quad(
-            [p(x, y, 0.0), p(x, 0.0, 0.0), p(x, 0.0, z), p(x, y, z)],
-            1.0,
-        );
+        self.wall((x, 0.0), (0.0, 0.0), z);
+        self.wall((0.0, 0.0), (0.0, y), z);
+        self.wall((x, y), (x, 0.0), z);
         self.object("back_wall", feature_wall);
+        self.wall((0.0, y), (x, y), z);
+    }
+
+    /// A vertical wall from plan point `a` to `b`, floor to `z`, facing left of a → b.
+    fn wall(&mut self, (ax, ay): (f64, f64), (bx, by): (f64, f64), z: f64) {
+        let p = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
         self.quad(
-            [p(0.0, y, 0.0), p(x, y, 0.0), p(x, y, z), p(0.0, y, z)],
+            [p(ax, ay, 0.0), p(bx, by, 0.0), p(bx, by, z), p(ax, ay, z)],
             1.0,
         );
     }
@@ -520,33 +507,11 @@ fn glass_partition() -> Obj {
             1.0,
         );
         o.object("walls", "wall");
-        o.quad(
-            [
-                p(hi, 0.0, 0.0),
-                p(lo, 0.0, 0.0),
-                p(lo, 0.0, z),
-                p(hi, 0.0, z),
-            ],
-            1.0,
-        );
-        o.quad(
-            [p(lo, y, 0.0), p(hi, y, 0.0), p(hi, y, z), p(lo, y, z)],
-            1.0,
-        );
+        o.wall((hi, 0.0), (lo, 0.0), z);
+        o.wall((lo, y), (hi, y), z);
     }
-    o.quad(
-        [
-            p(0.0, 0.0, 0.0),
-            p(0.0, y, 0.0),
-            p(0.0, y, z),
-            p(0.0, 0.0, z),
-        ],
-        1.0,
-    );
-    o.quad(
-        [p(x, y, 0.0), p(x, 0.0, 0.0), p(x, 0.0, z), p(x, y, z)],
-        1.0,
-    );
+    o.wall((0.0, 0.0), (0.0, y), z);
+    o.wall((x, y), (x, 0.0), z);
     o.object("pane", "glass");
     o.quad(
         [

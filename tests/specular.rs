@@ -215,37 +215,69 @@ fn the_gpus_virtual_cells_keep_the_specular_furnace_uniform() {
 /// the mirror to the floor but in the way of the light from the emitter to the mirror:
 /// the first leg, which the GPU checks in the real cell's map, blocked for some paths.
 fn screened_mirror() -> Scene {
-    let emitter = quad([
-        DVec3::new(0.0, 0.0, 1.0),
-        DVec3::new(0.0, 1.0, 1.0),
-        DVec3::new(1.0, 1.0, 1.0),
-        DVec3::new(1.0, 0.0, 1.0),
-    ]);
-    let floor = quad([
-        DVec3::new(-1.0, 0.0, 0.0),
-        DVec3::new(0.0, 0.0, 0.0),
-        DVec3::new(0.0, 1.0, 0.0),
-        DVec3::new(-1.0, 1.0, 0.0),
-    ]);
-    let mirror = quad([
-        DVec3::new(2.0, -2.0, -1.0),
-        DVec3::new(2.0, -2.0, 3.0),
-        DVec3::new(2.0, 3.0, 3.0),
-        DVec3::new(2.0, 3.0, -1.0),
-    ]);
     let screen = quad([
         DVec3::new(1.2, -1.0, 0.55),
         DVec3::new(1.2, -1.0, 1.2),
         DVec3::new(1.2, 0.5, 1.2),
         DVec3::new(1.2, 0.5, 0.55),
     ]);
+    let mut s = mirror_scene(&[
+        MirrorPart::Floor,
+        MirrorPart::Emitter(0.0),
+        MirrorPart::Mirror,
+    ]);
+    s.meshes
+        .push(SceneMesh::from_triangles("screen", &screen, 0));
+    s
+}
+
+/// The parts of the mirror scenes: an emitting 1 × 1 m quad at z = 1 facing down over
+/// x = x0..x0 + 1 (material 1, 1 000 lm/m²), a black floor beside it (x = −1..0, material
+/// 0) and a mirror wall at x = 2 facing −x (material 2, ρ_s 0.7).
+enum MirrorPart {
+    Floor,
+    Emitter(f64),
+    Mirror,
+}
+
+fn mirror_scene(parts: &[MirrorPart]) -> Scene {
+    let meshes = parts
+        .iter()
+        .map(|part| match *part {
+            MirrorPart::Floor => SceneMesh::from_triangles(
+                "floor",
+                &quad([
+                    DVec3::new(-1.0, 0.0, 0.0),
+                    DVec3::new(0.0, 0.0, 0.0),
+                    DVec3::new(0.0, 1.0, 0.0),
+                    DVec3::new(-1.0, 1.0, 0.0),
+                ]),
+                0,
+            ),
+            MirrorPart::Emitter(x0) => SceneMesh::from_triangles(
+                "emitter",
+                &quad([
+                    DVec3::new(x0, 0.0, 1.0),
+                    DVec3::new(x0, 1.0, 1.0),
+                    DVec3::new(x0 + 1.0, 1.0, 1.0),
+                    DVec3::new(x0 + 1.0, 0.0, 1.0),
+                ]),
+                1,
+            ),
+            MirrorPart::Mirror => SceneMesh::from_triangles(
+                "mirror",
+                &quad([
+                    DVec3::new(2.0, -2.0, -1.0),
+                    DVec3::new(2.0, -2.0, 3.0),
+                    DVec3::new(2.0, 3.0, 3.0),
+                    DVec3::new(2.0, 3.0, -1.0),
+                ]),
+                2,
+            ),
+        })
+        .collect();
     scene_of(
-        vec![
-            SceneMesh::from_triangles("floor", &floor, 0),
-            SceneMesh::from_triangles("emitter", &emitter, 1),
-            SceneMesh::from_triangles("mirror", &mirror, 2),
-            SceneMesh::from_triangles("screen", &screen, 0),
-        ],
+        meshes,
         vec![
             material(0.0, 0.0),
             material(0.0, 1000.0),
@@ -394,53 +426,12 @@ fn a_pane_passes_its_transmittance_of_a_luminaires_light() {
 
 #[test]
 fn a_mirror_gives_what_the_shooters_image_gives_times_its_reflectance() {
-    // An emitting 1 × 1 m quad at z = 1 facing down over x = 0..1, a black floor beside it
-    // (x = −1..0) and a mirror wall at x = 2 facing −x. What the mirror adds on the floor
-    // must be ρ_s times what the emitter's image (x = 3..4), built as real geometry in a
-    // scene without the mirror, gives it.
-    let emitter = |x0: f64| {
-        quad([
-            DVec3::new(x0, 0.0, 1.0),
-            DVec3::new(x0, 1.0, 1.0),
-            DVec3::new(x0 + 1.0, 1.0, 1.0),
-            DVec3::new(x0 + 1.0, 0.0, 1.0),
-        ])
-    };
-    let floor = SceneMesh::from_triangles(
-        "floor",
-        &quad([
-            DVec3::new(-1.0, 0.0, 0.0),
-            DVec3::new(0.0, 0.0, 0.0),
-            DVec3::new(0.0, 1.0, 0.0),
-            DVec3::new(-1.0, 1.0, 0.0),
-        ]),
-        0,
-    );
-    let mirror = quad([
-        DVec3::new(2.0, -2.0, -1.0),
-        DVec3::new(2.0, -2.0, 3.0),
-        DVec3::new(2.0, 3.0, 3.0),
-        DVec3::new(2.0, 3.0, -1.0),
-    ]);
-    let materials = vec![
-        material(0.0, 0.0),
-        material(0.0, 1000.0),
-        specular(0.0, 0.0, 0.7, 0.0),
-    ];
-    let scene = |meshes: Vec<SceneMesh>| scene_of(meshes, materials.clone());
-    let with_mirror = scene(vec![
-        floor.clone(),
-        SceneMesh::from_triangles("emitter", &emitter(0.0), 1),
-        SceneMesh::from_triangles("mirror", &mirror, 2),
-    ]);
-    let plain = scene(vec![
-        floor.clone(),
-        SceneMesh::from_triangles("emitter", &emitter(0.0), 1),
-    ]);
-    let imaged = scene(vec![
-        floor,
-        SceneMesh::from_triangles("emitter", &emitter(3.0), 1),
-    ]);
+    // What the mirror adds on the floor must be ρ_s times what the emitter's image
+    // (x = 3..4), built as real geometry in a scene without the mirror, gives it.
+    use MirrorPart::{Emitter, Floor, Mirror};
+    let with_mirror = mirror_scene(&[Floor, Emitter(0.0), Mirror]);
+    let plain = mirror_scene(&[Floor, Emitter(0.0)]);
+    let imaged = mirror_scene(&[Floor, Emitter(3.0)]);
     // Only the emitter has anything to shoot: one solve shoots it whole.
     let on_floor = |s: &Scene| {
         let r = RadiosityScene::new(s, 4.0, 1).unwrap();
