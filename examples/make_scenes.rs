@@ -79,7 +79,6 @@ impl Obj {
 
     /// The inside of a room `size` (floor at z = 0), faces pointing inward.
     fn room(&mut self, size: DVec3, floor: &str, wall: &str, feature_wall: &str, ceiling: &str) {
-        let p = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
         let (x, y, z) = (size.x, size.y, size.z);
         self.object("floor", floor);
         self.level(x, y, 0.0, true);
