@@ -367,6 +367,26 @@ fn background_jobs_without_a_gpu_say_so() {
     assert!(a.last_error().unwrap().contains("no GPU"));
 }
 
+/// A scene with a mirror says, in the status bar, what the view does with it; one
+/// without says nothing of the kind, and a loaded mirror scene says it too.
+#[test]
+fn a_mirror_scene_says_how_the_view_draws_it() {
+    let says = |a: &ViewerApp| {
+        a.messages
+            .iter()
+            .any(|m| m.text.contains("mirror or clear glass"))
+    };
+    let mut plain = app("box_room.toml");
+    assert!(!says(&plain));
+    assert!(says(&app("mirror_room.toml")));
+    let glass = scene_path("glass_partition.toml");
+    plain.replace_scene(Scene::load(&glass).unwrap(), Some(glass));
+    assert!(says(&plain));
+    let mut h = harness(plain);
+    h.run();
+    h.get_by_label_contains("\"glass\" is a mirror or clear glass");
+}
+
 /// Runs frames until `done` holds (at most two minutes).
 fn run_until(h: &mut Harness<'_, ViewerApp>, done: impl Fn(&ViewerApp) -> bool) {
     let start = std::time::Instant::now();

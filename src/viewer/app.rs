@@ -271,7 +271,23 @@ impl ViewerApp {
         if let Some(p) = &app.scene_path {
             app.recent.add(p);
         }
+        app.say_what_mirrors_show();
         app
+    }
+
+    /// Says once per scene what the view does with mirrors and clear glass: it draws them
+    /// by their diffuse part, and its direct light (and the lux under the cursor) leaves
+    /// out what they pass on until radiosity has solved.
+    fn say_what_mirrors_show(&mut self) {
+        if let Some(m) = self.scene.specular_material() {
+            let text = format!(
+                "material {:?} is a mirror or clear glass: the view draws it by its diffuse \
+                 part, and its direct light leaves out what it passes on (radiosity and \
+                 calc include it)",
+                m.name
+            );
+            self.info(text);
+        }
     }
 
     /// Adds an info line.
@@ -429,6 +445,7 @@ impl ViewerApp {
         }
         self.scene_path = path;
         self.revision += 1;
+        self.say_what_mirrors_show();
     }
 
     /// Copies the camera and display choices into the scene (before saving).
