@@ -576,15 +576,20 @@ impl Prepared<'_> {
         }
         let last = log.last().copied();
         eprintln!(
-            "{}: {} shots, {:.2} % converged ({stop}) in {solve_s:.2} s (+{:.2} s to prepare); {} visibility maps drawn, {} cells skipped (no receiver takes light from them); receivers culled to {:.0} % of the elements per map{}",
+            "{}: {} shots, {:.2} % converged ({stop}) in {solve_s:.2} s (+{:.2} s to prepare); {} visibility maps drawn{}, {} cells skipped (no receiver takes light from them); receivers culled to {:.0} % of the elements per map{}",
             self.label.display(),
             solver.shots,
             100.0 * last.map_or(1.0, |p| p.convergence),
             self.prepared_s,
-            solver.drawn,
+            solver.drawn + solver.virtual_drawn,
+            match solver.virtual_drawn {
+                0 => String::new(),
+                n => format!(" ({n} of them cells' images through mirrors and glass)"),
+            },
             solver.skipped,
             100.0 * solver.receiver_threads as f64
-                / (solver.drawn.max(1) as f64 * rscene.elements.len().max(1) as f64),
+                / ((solver.drawn + solver.virtual_drawn).max(1) as f64
+                    * rscene.elements.len().max(1) as f64),
             crate::io::peak_memory_mb().map_or(String::new(), |mb| format!("; peak memory {mb} MB")),
         );
         Ok(Solved {
