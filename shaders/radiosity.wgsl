@@ -589,26 +589,36 @@ fn shooter_of_piece(piece: u32) -> u32 {
     return lo;
 }
 
-@compute @workgroup_size(64)
-fn receive(
-    @builtin(global_invocation_id) id: vec3<u32>,
-    @builtin(num_workgroups) nw: vec3<u32>,
-) {
-    let thread = linear_thread(id, nw, 64u);
+// What a receive thread's element takes from the shot before visibility: its element,
+// position, form factors to the front and back, and its reflectance and transmittance.
+struct Receiving {
+    i: u32,
+    p: vec3<f32>,
+    f: f32,
+    back: f32,
+    reflectance: vec3<f32>,
+    transmittance: vec3<f32>,
+};
+
+// The receiving of thread `thread`, or none (the element is not the shot's to light).
+fn receiving(thread: u32) -> Receiving {
+    var none: Receiving;
+    none.f = 0.0;
+    none.back = 0.0;
     if (thread >= params.range_total) {
-        return;
+        return none;
     }
     let i = receiver_element(thread);
     let normal_piece = element_normals[i];
     let piece = bitcast<u32>(normal_piece.w);
     if (piece >= shot.pieces.x && piece < shot.pieces.y) {
-        return;
+        return none;
     }
     let p = element_points[i].xyz;
     let geometric = normal_piece.xyz;
     var n = geometric;
     if (!takes_light(p)) {
-        return;
+        return none;
     }
     let info = shooters[shooter_of_piece(piece)];
     // A translucent receiver sends on what arrives on its back (radiosity/transmission.rs).
@@ -633,15 +643,41 @@ fn receive(
     if (front) {
         f = form_factor(p, n) * scale;
     }
-    if ((f <= 0.0 && back <= 0.0) || !visible_from_patch(p)) {
+    return Receiving(i, p, f, back, info.reflectance_area.rgb, info.transmittance.rgb);
+}
+
+// Adds what `r` takes of the shot's power times `tint`.
+fn deliver(r: Receiving, tint: vec3<f32>) {
+    let delta = patch_delta[shot.info.x].rgb * shot.link.z * tint;
+    let incident = delta * r.f;
+    let gained = r.reflectance * incident + r.transmittance * delta * r.back;
+    radiosity[r.i] += vec4<f32>(gained, dot(incident, LUMA));
+    unshot[r.i] += vec4<f32>(gained, 0.0);
+}
+
+// A real cell's shot.
+@compute @workgroup_size(64)
+fn receive(
+    @builtin(global_invocation_id) id: vec3<u32>,
+    @builtin(num_workgroups) nw: vec3<u32>,
+) {
+    let r = receiving(linear_thread(id, nw, 64u));
+    if ((r.f <= 0.0 && r.back <= 0.0) || !visible_from_patch(r.p)) {
         return;
     }
-    if (shot.window.y > 0u && !through_windows(p)) {
+    deliver(r, vec3<f32>(1.0));
+}
+
+// A virtual cell's shot (radiosity/gpu/virtual_cells.rs): through its windows, its
+// power times their coefficients.
+@compute @workgroup_size(64)
+fn receive_through_windows(
+    @builtin(global_invocation_id) id: vec3<u32>,
+    @builtin(num_workgroups) nw: vec3<u32>,
+) {
+    let r = receiving(linear_thread(id, nw, 64u));
+    if ((r.f <= 0.0 && r.back <= 0.0) || !visible_from_patch(r.p) || !through_windows(r.p)) {
         return;
     }
-    let delta = patch_delta[shot.info.x].rgb * shot.link.z * shot.tint.rgb;
-    let incident = delta * f;
-    let gained = info.reflectance_area.rgb * incident + info.transmittance.rgb * delta * back;
-    radiosity[i] += vec4<f32>(gained, dot(incident, LUMA));
-    unshot[i] += vec4<f32>(gained, 0.0);
+    deliver(r, shot.tint.rgb);
 }

@@ -31,9 +31,19 @@ fn face_clip_of(f: Face, position: vec3<f32>) -> vec4<f32> {
     return f.view_proj * vec4<f32>(position, 1.0);
 }
 
+// Whether a surface point at `world` lies behind a stereographic map's plane (it stores
+// nothing there).
+fn behind_stereographic(f: Face, world: vec3<f32>) -> bool {
+    return f.eye.w > 0.5 && dot(world - f.eye.xyz, f.normal.xyz) < 0.0;
+}
+
+// Whether a virtual shooter's face clips a surface point at `world` away.
+fn clipped_away(f: Face, world: vec3<f32>) -> bool {
+    return dot(f.clip.xyz, world) + f.clip.w < 0.0;
+}
+
 // Whether face `f` stores nothing for a surface point at `world`: behind a stereographic
-// map's plane, or clipped away for a virtual shooter.
+// map's plane, or clipped away.
 fn face_skips(f: Face, world: vec3<f32>) -> bool {
-    let behind = f.eye.w > 0.5 && dot(world - f.eye.xyz, f.normal.xyz) < 0.0;
-    return behind || dot(f.clip.xyz, world) + f.clip.w < 0.0;
+    return behind_stereographic(f, world) || clipped_away(f, world);
 }

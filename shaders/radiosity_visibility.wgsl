@@ -16,9 +16,9 @@ fn face_clip(position: vec3<f32>) -> vec4<f32> {
     return face_clip_of(face, position);
 }
 
-// The distance stored for a fragment at `world` (none where the face skips it).
+// The distance stored for a fragment at `world` (behind a stereographic map: none).
 fn face_distance(world: vec3<f32>) -> vec4<f32> {
-    if (face_skips(face, world)) {
+    if (behind_stereographic(face, world)) {
         discard;
     }
     return vec4<f32>(distance(world, face.eye.xyz), 0.0, 0.0, 0.0);
@@ -34,6 +34,16 @@ fn vs_visibility(@location(0) position: vec3<f32>) -> VertexOut {
 
 @fragment
 fn fs_visibility(in: VertexOut) -> @location(0) vec4<f32> {
+    return face_distance(in.world);
+}
+
+// A virtual shooter's face (radiosity/gpu/virtual_cells.rs): nothing beyond its clip
+// plane. An entry of its own, so a real shooter's fragments pay nothing for it.
+@fragment
+fn fs_visibility_clipped(in: VertexOut) -> @location(0) vec4<f32> {
+    if (clipped_away(face, in.world)) {
+        discard;
+    }
     return face_distance(in.world);
 }
 
@@ -58,6 +68,14 @@ fn vs_visibility_masked(@location(0) position: vec3<f32>, @location(1) uv: vec2<
 @fragment
 fn fs_visibility_masked(in: MaskedOut) -> @location(0) vec4<f32> {
     if (in_cutout_hole(in.uv, in.mask)) {
+        discard;
+    }
+    return face_distance(in.world);
+}
+
+@fragment
+fn fs_visibility_masked_clipped(in: MaskedOut) -> @location(0) vec4<f32> {
+    if (in_cutout_hole(in.uv, in.mask) || clipped_away(face, in.world)) {
         discard;
     }
     return face_distance(in.world);

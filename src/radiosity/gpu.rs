@@ -265,7 +265,11 @@ struct Pipelines {
     clear: wgpu::ComputePipeline,
     restore: wgpu::ComputePipeline,
     receive: wgpu::ComputePipeline,
+    /// A virtual cell's receive: through its windows ([`virtual_cells`]).
+    receive_through_windows: wgpu::ComputePipeline,
     visibility: wgpu::RenderPipeline,
+    /// A virtual cell's: nothing beyond its clip plane ([`virtual_cells`]).
+    visibility_clipped: wgpu::RenderPipeline,
     /// Clears one tile of the atlas (depth and distance), drawn in its viewport.
     clear_tile: wgpu::RenderPipeline,
     shot_layout: wgpu::BindGroupLayout,
@@ -470,15 +474,19 @@ impl Pipelines {
             bind_group_layouts: &[Some(&face_layout)],
             immediate_size: 0,
         });
-        let visibility = gpu.caster_depth_pipeline(
-            "radiosity visibility",
-            &vis_layout,
-            &vis_module,
-            ("vs_visibility", "fs_visibility"),
-            crate::gpu::POSITION_LAYOUT,
-            super::atlas::DEPTH_FORMAT,
-            &[Some(super::atlas::MAP_FORMAT.into())],
-        );
+        let visibility_pipeline = |fragment: &str| {
+            gpu.caster_depth_pipeline(
+                "radiosity visibility",
+                &vis_layout,
+                &vis_module,
+                ("vs_visibility", fragment),
+                crate::gpu::POSITION_LAYOUT,
+                super::atlas::DEPTH_FORMAT,
+                &[Some(super::atlas::MAP_FORMAT.into())],
+            )
+        };
+        let visibility = visibility_pipeline("fs_visibility");
+        let visibility_clipped = visibility_pipeline("fs_visibility_clipped");
         let clear_tile = dev.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some("visibility tile clear"),
             layout: Some(&vis_layout),
@@ -515,7 +523,9 @@ impl Pipelines {
             clear: compute_pipeline("clear_shooter", &shared_only),
             restore: compute_pipeline("restore_unshot", &shared_only),
             receive: compute_pipeline("receive", &with_shot),
+            receive_through_windows: compute_pipeline("receive_through_windows", &with_shot),
             visibility,
+            visibility_clipped,
             shot_layout,
             face_layout,
             vis_module,
@@ -1639,7 +1649,13 @@ impl<'a> GpuSolver<'a> {
                 pass.set_bind_group(0, &face_bind, &[(u64::from(tile) * FACE_STRIDE) as u32]);
                 pass.set_pipeline(&self.pipelines.clear_tile);
                 pass.draw(0..3, 0..1);
-                pass.set_pipeline(&self.pipelines.visibility);
+                // A virtual cell's tiles follow the real cells'.
+                let clipped = tile / faces_per_cell >= drawn.len() as u32;
+                pass.set_pipeline(if clipped {
+                    &self.pipelines.visibility_clipped
+                } else {
+                    &self.pipelines.visibility
+                });
                 self.chunks
                     .visible(view, self.gpu_settings.chunk_culling, &mut ranges);
                 for &(first, count) in &ranges {
@@ -1647,7 +1663,7 @@ impl<'a> GpuSolver<'a> {
                     self.triangles_drawn += u64::from(count / 3);
                 }
                 if let Some(masked) = &self.masked {
-                    masked.draw(&mut pass);
+                    masked.draw(&mut pass, clipped);
                     self.triangles_drawn += u64::from(masked.triangle_count());
                     pass.set_vertex_buffer(0, self.vertices.slice(..));
                 }
@@ -1669,6 +1685,10 @@ impl<'a> GpuSolver<'a> {
         pass.set_pipeline(&self.pipelines.receive);
         pass.set_bind_group(0, &self.shared, &[]);
         for k in 0..cells.len() as u64 {
+            // The real cells first, then their virtual cells.
+            if k == drawn.len() as u64 {
+                pass.set_pipeline(&self.pipelines.receive_through_windows);
+            }
             pass.set_bind_group(1, &shot_bind, &[(k * SHOT_STRIDE) as u32]);
             dispatch_groups(&mut pass, receivers.div_ceil(64));
         }

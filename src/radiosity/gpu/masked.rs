@@ -15,6 +15,8 @@ use crate::render::paraboloid::tessellate_each;
 /// The masked casters on the GPU, with the pipeline that draws them.
 pub(super) struct MaskedCasters {
     pipeline: wgpu::RenderPipeline,
+    /// The same for a virtual cell's tiles: with its clip plane.
+    clipped: wgpu::RenderPipeline,
     masks: wgpu::BindGroup,
     vertices: wgpu::Buffer,
     vertex_count: u32,
@@ -61,28 +63,39 @@ impl MaskedCasters {
                 bind_group_layouts: &[Some(faces), Some(&mask_layout)],
                 immediate_size: 0,
             });
-        let pipeline = gpu.caster_depth_pipeline(
-            "radiosity visibility, masked",
-            &layout,
-            module,
-            ("vs_visibility_masked", "fs_visibility_masked"),
-            CasterVertex::LAYOUT,
-            super::super::atlas::DEPTH_FORMAT,
-            &[Some(super::super::atlas::MAP_FORMAT.into())],
+        let pipeline = |fragment: &str| {
+            gpu.caster_depth_pipeline(
+                "radiosity visibility, masked",
+                &layout,
+                module,
+                ("vs_visibility_masked", fragment),
+                CasterVertex::LAYOUT,
+                super::super::atlas::DEPTH_FORMAT,
+                &[Some(super::super::atlas::MAP_FORMAT.into())],
+            )
+        };
+        let (pipeline, clipped) = (
+            pipeline("fs_visibility_masked"),
+            pipeline("fs_visibility_masked_clipped"),
         );
         let masks = MaskBuffers::new(gpu, Some(cutouts)).bind_group(gpu, &mask_layout);
         Some(MaskedCasters {
             pipeline,
+            clipped,
             masks,
             vertices,
             vertex_count: data.len() as u32,
         })
     }
 
-    /// Draws them into the tile `pass` is set up for (its face bind group set); leaves
-    /// the pass with this pipeline.
-    pub(super) fn draw(&self, pass: &mut wgpu::RenderPass<'_>) {
-        pass.set_pipeline(&self.pipeline);
+    /// Draws them into the tile `pass` is set up for (its face bind group set; `clipped`:
+    /// a virtual cell's, with its clip plane); leaves the pass with this pipeline.
+    pub(super) fn draw(&self, pass: &mut wgpu::RenderPass<'_>, clipped: bool) {
+        pass.set_pipeline(if clipped {
+            &self.clipped
+        } else {
+            &self.pipeline
+        });
         pass.set_bind_group(1, &self.masks, &[]);
         pass.set_vertex_buffer(0, self.vertices.slice(..));
         pass.draw(0..self.vertex_count, 0..1);
