@@ -319,7 +319,7 @@ struct Shot {
     // The pieces it shoots (first, end): their elements do not receive from it; its
     // first tile in the atlas of visibility maps, and the atlas's tiles per row.
     pieces: vec4<u32>,
-    // Mirrors and clear glass (radiosity/specular.rs): rgb the product of the windows'
+    // Mirrors and clear glass (lighting/specular.rs): rgb the product of the windows'
     // coefficients its light has passed (1 for a real cell).
     tint: vec4<f32>,
     // A virtual cell's window plane, oriented to where its light goes: it lights only
@@ -502,7 +502,7 @@ fn in_window(first: u32, count: u32, m: vec3<f32>, n: vec3<f32>) -> bool {
     return false;
 }
 
-// Whether this virtual cell's light reaches `p` (radiosity/specular.rs, trace): the
+// Whether this virtual cell's light reaches `p` (lighting/specular.rs, trace): the
 // straight line from each image in turn meets its window inside the outline, and the cell
 // it images sees that point in its own map, down to the real cell. The last leg (to `p`)
 // is this cell's own map.

@@ -10,7 +10,7 @@ struct Face {
     tangent: vec4<f32>,
     bitangent: vec4<f32>,
     normal: vec4<f32>,
-    // A virtual shooter's clip plane (radiosity/specular.rs): only what lies where
+    // A virtual shooter's clip plane (lighting/specular.rs): only what lies where
     // dot(clip.xyz, p) + clip.w >= 0 is drawn (what is behind its mirror or pane is not
     // seen through it); (0, 0, 0, 1) for a real shooter.
     clip: vec4<f32>,

@@ -3,6 +3,8 @@
 //! ("x y z nx ny nz" lines). The GPU code in `render` is checked against it, and the CPU
 //! radiosity solver uses it without touching the GPU.
 
+pub mod specular;
+
 use std::io::BufRead;
 
 use glam::DVec3;

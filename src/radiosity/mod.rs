@@ -20,7 +20,8 @@ pub mod shading;
 pub mod shadow_edges;
 pub mod shooters;
 pub mod solve;
-pub mod specular;
+/// Mirrors and clear glass ([`crate::lighting::specular`]).
+pub use crate::lighting::specular;
 pub mod transmission;
 pub mod view;
 

@@ -10,8 +10,8 @@ use super::layouts::Layouts;
 use super::passes::LightModel;
 use super::shadows::{ShadowFrame, ShadowPasses, ShadowSettings};
 use crate::gpu::{shaders, Gpu, GpuError};
+use crate::lighting::specular::SceneWindows;
 use crate::photometry::Interp;
-use crate::radiosity::specular::SceneWindows;
 use crate::scene::Scene;
 use crate::shadow::ShadowTechnique;
 
@@ -40,7 +40,7 @@ pub fn scene_illuminance(
                 .collect();
             let light = windows.light(&scene.luminaires).at_points(&at, interp);
             for (v, l) in lux.iter_mut().zip(light) {
-                *v += crate::radiosity::scene::luminance(l);
+                *v += l.dot(crate::scene::placement::LUMINANCE_WEIGHTS);
             }
         }
     }

@@ -16,7 +16,7 @@
 //! the format and set [`Material::specular_reflectance`] and
 //! [`Material::specular_transmittance`]: mirrors and clear glass, which radiosity and the
 //! direct light of `calc` and `illuminance` pass light through
-//! ([`crate::radiosity::specular`]; the rendered image draws them by their diffuse part).
+//! ([`crate::lighting::specular`]; the rendered image draws them by their diffuse part).
 
 use glam::Vec3;
 

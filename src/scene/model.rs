@@ -41,7 +41,7 @@ pub struct Material {
     pub diffuse_transmittance: Vec3,
     /// Specular reflectance (linear RGB): a mirror, reflecting on the side its normal
     /// faces, or on both sides of clear glass (`[[material]]` `specular_reflectance`;
-    /// [`crate::radiosity::specular`]).
+    /// [`crate::lighting::specular`]).
     pub specular_reflectance: Vec3,
     /// Specular transmittance (linear RGB): clear glass, light passing undeviated
     /// (`[[material]]` `specular_transmittance`).
