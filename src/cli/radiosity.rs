@@ -688,17 +688,9 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
             .light
             .lux(&prepared.gpu, &points, &settings.shadows)?;
         // What mirrors and clear glass pass on (the probe draws straight light only).
-        let at: Vec<_> = points
-            .iter()
-            .map(|p| (p.position, p.normal.normalize_or_zero()))
-            .collect();
         let interp = settings.light_model.interp();
-        for (d, l) in direct
-            .iter_mut()
-            .zip(prepared.rscene.specular_light().at_points(&at, interp))
-        {
-            *d += luminance(l);
-        }
+        let specular = prepared.rscene.specular_light();
+        specular.add_lux_at_points(&points, &mut direct, interp);
         let (indirect, patches) = solved.interreflected_lux(&points)?;
         let mut out = String::with_capacity(points.len() * 12);
         for (d, i) in direct.iter().zip(&indirect) {

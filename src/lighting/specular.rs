@@ -24,6 +24,7 @@
 
 use glam::DVec3;
 
+use super::SurfacePoint;
 use crate::geometry::Mesh;
 use crate::photometry::Interp;
 use crate::scene::{Material, PlacedLuminaire, Scene};
@@ -410,14 +411,28 @@ impl<'a> SpecularLight<'a> {
         sum
     }
 
-    /// [`SpecularLight::at`] at every point (`(position, unit normal)`), on the CPU's
-    /// threads.
-    pub fn at_points(&self, points: &[(DVec3, DVec3)], interp: Interp) -> Vec<DVec3> {
+    /// Adds [`SpecularLight::at`] to `rgb` (one per point, RGB lux) at every point, on
+    /// the CPU's threads; nothing without windows.
+    pub fn add_at_points(&self, points: &[SurfacePoint], rgb: &mut [DVec3], interp: Interp) {
         use rayon::prelude::*;
-        points
-            .par_iter()
-            .map(|&(p, n)| self.at(p, n, interp))
-            .collect()
+        if self.is_empty() {
+            return;
+        }
+        rgb.par_iter_mut().zip(points).for_each(|(v, p)| {
+            *v += self.at(p.position, p.normal.normalize_or_zero(), interp);
+        });
+    }
+
+    /// [`SpecularLight::add_at_points`] for illuminance (lux, luminance).
+    pub fn add_lux_at_points(&self, points: &[SurfacePoint], lux: &mut [f64], interp: Interp) {
+        use rayon::prelude::*;
+        if self.is_empty() {
+            return;
+        }
+        lux.par_iter_mut().zip(points).for_each(|(v, p)| {
+            let rgb = self.at(p.position, p.normal.normalize_or_zero(), interp);
+            *v += rgb.dot(crate::scene::placement::LUMINANCE_WEIGHTS);
+        });
     }
 }
 

@@ -93,16 +93,8 @@ pub fn add_specular_direct(
     direct: &mut [DVec3],
     interp: Interp,
 ) {
-    if scene.specular.is_empty() {
-        return;
-    }
-    let at: Vec<(DVec3, DVec3)> = points
-        .iter()
-        .map(|p| (p.position, p.normal.normalize_or_zero()))
-        .collect();
-    let light = scene.specular_light().at_points(&at, interp);
-    for (d, l) in direct.iter_mut().zip(light) {
-        *d += l;
+    if !scene.specular.is_empty() {
+        scene.specular_light().add_at_points(points, direct, interp);
     }
 }
 

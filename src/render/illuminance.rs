@@ -34,14 +34,8 @@ pub fn scene_illuminance(
     // Mirrors and clear glass pass light on where shadows are drawn ([`SceneWindows`]).
     if technique != ShadowTechnique::None {
         if let Some(windows) = SceneWindows::new(scene) {
-            let at: Vec<(DVec3, DVec3)> = points
-                .iter()
-                .map(|p| (p.position, p.normal.normalize_or_zero()))
-                .collect();
-            let light = windows.light(&scene.luminaires).at_points(&at, interp);
-            for (v, l) in lux.iter_mut().zip(light) {
-                *v += l.dot(crate::scene::placement::LUMINANCE_WEIGHTS);
-            }
+            let light = windows.light(&scene.luminaires);
+            light.add_lux_at_points(points, &mut lux, interp);
         }
     }
     Ok(lux)

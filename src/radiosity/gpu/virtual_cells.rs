@@ -14,7 +14,7 @@
 use glam::{DVec3, DVec4};
 
 use crate::radiosity::shooters::PlannedPatch;
-use crate::radiosity::specular::{Passage, SpecularPath, SpecularSurfaces};
+use crate::radiosity::specular::{Passage, SpecularSurfaces};
 
 /// One virtual cell of a drawn cell.
 #[derive(Debug, Clone)]
@@ -33,19 +33,17 @@ pub struct VirtualCell {
 
 /// The virtual cells of `cell` (parents before children).
 pub fn virtual_cells(specular: &SpecularSurfaces, cell: &PlannedPatch) -> Vec<VirtualCell> {
-    let mut paths = specular.paths(cell.centroid, Some(cell.normal));
-    paths.sort_by_key(|p| p.windows.len());
-    let index_of =
-        |windows: &[usize], paths: &[SpecularPath]| paths.iter().position(|p| p.windows == windows);
-    paths
+    let mut images = specular.images(&cell.polygon, cell.centroid, cell.normal);
+    images.sort_by_key(|(path, _, _)| path.windows.len());
+    let index_of = |windows: &[usize]| images.iter().position(|(p, _, _)| p.windows == windows);
+    images
         .iter()
-        .map(|path| {
+        .map(|(path, polygon, normal)| {
             let depth = path.windows.len();
             let parent = match depth {
                 1 => 0,
-                _ => index_of(&path.windows[..depth - 1], &paths).map_or(0, |k| k + 1),
+                _ => index_of(&path.windows[..depth - 1]).map_or(0, |k| k + 1),
             };
-            let image = |q: DVec3| specular.image_through(path, q);
             let last = path.windows[depth - 1];
             let w = &specular.windows[last];
             // The side the light leaves to: a mirror's front; beyond glass, away from the
@@ -55,11 +53,9 @@ pub fn virtual_cells(specular: &SpecularSurfaces, cell: &PlannedPatch) -> Vec<Vi
                 Passage::Transmit => -w.distance(path.virtual_source()).signum(),
             };
             let mut planned = cell.clone();
-            planned.polygon = cell.polygon.iter().map(|&q| image(q)).collect();
-            planned.centroid = image(cell.centroid);
-            planned.normal = specular
-                .image_direction_through(path, cell.normal)
-                .normalize();
+            planned.polygon.clone_from(polygon);
+            planned.centroid = path.virtual_source();
+            planned.normal = normal.normalize();
             planned.parent = u32::MAX;
             planned.pieces = [0, 0];
             VirtualCell {
