@@ -20,8 +20,9 @@ struct SolveParams {
     clear_first: u32,
     clear_count: u32,
     // The shot's receivers (receiver culling): patches[range_first..][..range_count] hold
-    // per chart in front of the shooter its first element and first thread (range.xy);
-    // range_total threads in all.
+    // per chart in front of the shooter its first element and first thread (range.xy),
+    // and 1 in `top` where it holds what it receives (held_back); range_total threads in
+    // all.
     range_count: u32,
     range_total: u32,
     range_first: u32,
@@ -83,6 +84,10 @@ struct PatchInfo {
 // Per element (when params.receiving_normals is 1): xyz the normal it receives with (not
 // unit: a normal map's relief shortens it), w 1 where that is not its chart's normal.
 @group(0) @binding(11) var<storage, read> element_receiving: array<vec4<f32>>;
+// Per element (one unused record until some chart holds): what a chart that holds
+// (perspective-driven radiosity, radiosity/gpu/deferred.rs) received and has not been
+// given yet: rgb radiosity, w illuminance (lux).
+@group(0) @binding(12) var<storage, read_write> held_back: array<vec4<f32>>;
 
 const LUMA = vec3<f32>(0.2126, 0.7152, 0.0722);
 // Shooters of at most this many elements are summed by one thread (SMALL_SHOOTER in gpu.rs).
@@ -558,8 +563,9 @@ fn takes_light(p: vec3<f32>) -> bool {
     return true;
 }
 
-// The element of receive thread `t`: the last range starting at or before it.
-fn receiver_element(t: u32) -> u32 {
+// The receive thread `t`'s element (x) and whether its chart holds (y): the last range
+// starting at or before it.
+fn receiver_element(t: u32) -> vec2<u32> {
     var lo = 0u;
     var hi = params.range_count;
     while (hi - lo > 1u) {
@@ -570,8 +576,8 @@ fn receiver_element(t: u32) -> u32 {
             hi = mid;
         }
     }
-    let r = patches[params.range_first + lo].range;
-    return r.x + (t - r.y);
+    let record = patches[params.range_first + lo];
+    return vec2<u32>(record.range.x + (t - record.range.y), record.top);
 }
 
 // The shooter holding `piece`: the last whose first piece (range.w) is at most it.
@@ -593,6 +599,8 @@ fn shooter_of_piece(piece: u32) -> u32 {
 // position, form factors to the front and back, and its reflectance and transmittance.
 struct Receiving {
     i: u32,
+    // Its chart holds what it receives (held_back).
+    hold: bool,
     p: vec3<f32>,
     f: f32,
     back: f32,
@@ -608,7 +616,8 @@ fn receiving(thread: u32) -> Receiving {
     if (thread >= params.range_total) {
         return none;
     }
-    let i = receiver_element(thread);
+    let element = receiver_element(thread);
+    let i = element.x;
     let normal_piece = element_normals[i];
     let piece = bitcast<u32>(normal_piece.w);
     if (piece >= shot.pieces.x && piece < shot.pieces.y) {
@@ -643,7 +652,7 @@ fn receiving(thread: u32) -> Receiving {
     if (front) {
         f = form_factor(p, n) * scale;
     }
-    return Receiving(i, p, f, back, info.reflectance_area.rgb, info.transmittance.rgb);
+    return Receiving(i, element.y != 0u, p, f, back, info.reflectance_area.rgb, info.transmittance.rgb);
 }
 
 // Adds what `r` takes of the shot's power times `tint`.
@@ -651,8 +660,30 @@ fn deliver(r: Receiving, tint: vec3<f32>) {
     let delta = patch_delta[shot.info.x].rgb * shot.link.z * tint;
     let incident = delta * r.f;
     let gained = r.reflectance * incident + r.transmittance * delta * r.back;
+    if (r.hold) {
+        held_back[r.i] += vec4<f32>(gained, dot(incident, LUMA));
+        return;
+    }
     radiosity[r.i] += vec4<f32>(gained, dot(incident, LUMA));
     unshot[r.i] += vec4<f32>(gained, 0.0);
+}
+
+// The charts of the receiver ranges (none holding) are given what they held back: it
+// joins their radiosity, illuminance and unshot radiosity.
+@compute @workgroup_size(64)
+fn release_held_back(
+    @builtin(global_invocation_id) id: vec3<u32>,
+    @builtin(num_workgroups) nw: vec3<u32>,
+) {
+    let t = linear_thread(id, nw, 64u);
+    if (t >= params.range_total) {
+        return;
+    }
+    let i = receiver_element(t).x;
+    let h = held_back[i];
+    radiosity[i] += h;
+    unshot[i] += vec4<f32>(h.rgb, 0.0);
+    held_back[i] = vec4<f32>(0.0);
 }
 
 // A real cell's shot.

@@ -1,6 +1,6 @@
 //! View-driven radiosity (Bozalina 2011): importance-driven and perspective-driven
-//! solutions against the global one, receivers that wait and are caught up, and the
-//! command's refusals.
+//! solutions against the global one, receivers that hold or wait and are caught up, and
+//! the command's refusals.
 
 mod common;
 #[path = "common/furnace.rs"]
@@ -12,7 +12,7 @@ use std::sync::atomic::AtomicBool;
 
 use glam::{DVec3, Vec3};
 use goniolight::bench::radiosity_view::view_error;
-use goniolight::radiosity::gpu::{GpuSettings, GpuSolver};
+use goniolight::radiosity::gpu::{GpuSettings, GpuSolver, Reception};
 use goniolight::radiosity::initial::{InitialState, LuminaireLight};
 use goniolight::radiosity::scene::RadiosityScene;
 use goniolight::radiosity::shooters::Hierarchy;
@@ -82,6 +82,7 @@ fn importance_and_perspective_driven_solutions_converge_to_the_global_one_in_vie
         assert_eq!(reason, solve::StopReason::Converged, "{drive:?}");
         assert!(solver.area_is_whole(), "{drive:?}");
         assert_eq!(solver.waiting_charts(), 0);
+        assert_eq!(solver.holding_charts(), 0);
         let (radiosity, illuminance) = solver.radiosity_and_illuminance().unwrap();
         let unshot = solver.unshot().unwrap();
         let ambient = match drive {
@@ -169,9 +170,10 @@ fn perspective_driven_radiosity_leaves_what_lies_outside_the_area_of_interest_al
                 elements.iter().all(|&e| in_room_b(e as usize))
             })
             .count();
-        (solver.area_stage(), changed, shooters_in_b)
+        let kept_out = (solver.holding_charts(), solver.waiting_charts());
+        (solver.area_stage(), changed, shooters_in_b, kept_out)
     };
-    let (stage, changed, shooters_in_b) = run(Drive::Perspective);
+    let (stage, changed, shooters_in_b, (holding, waiting)) = run(Drive::Perspective);
     assert_eq!(
         stage.map(|s| s.0),
         Some(0),
@@ -189,9 +191,20 @@ fn perspective_driven_radiosity_leaves_what_lies_outside_the_area_of_interest_al
     assert_eq!(updated_outside, 0);
     assert_eq!(shooters_in_b, 0);
     assert!(updated_inside > 100, "{updated_inside}");
+    // Room A's charts the area will take in as it widens hold their light; room B's,
+    // which it takes in only with the whole scene, wait.
+    let charts_outside = |in_b: bool| {
+        (0..r.elements.charts.len())
+            .filter(|&c| !area[c])
+            .filter(|&c| in_room_b(r.elements.charts[c].first as usize) == in_b)
+            .count()
+    };
+    assert_eq!(waiting, charts_outside(true));
+    assert_eq!(holding, charts_outside(false));
+    assert!(holding > 0 && waiting > 0, "{holding} hold, {waiting} wait");
     // The same count fails for the global solver: it shoots room B (brighter) first and
     // updates everything in front of its shooters.
-    let (_, changed, shooters_in_b) = run(Drive::Global);
+    let (_, changed, shooters_in_b, _) = run(Drive::Global);
     let updated_outside = (0..r.elements.len())
         .filter(|&e| !area[chart(e)] && changed[e])
         .count();
@@ -199,6 +212,129 @@ fn perspective_driven_radiosity_leaves_what_lies_outside_the_area_of_interest_al
         updated_outside > 100 && shooters_in_b > 0,
         "{updated_outside}, {shooters_in_b}"
     );
+}
+
+#[test]
+fn receivers_that_hold_are_given_what_they_held_back() {
+    let Some(gpu) = gpu_common::gpu() else {
+        return;
+    };
+    let (_, r, initial) = boxes_room(&gpu);
+    let settings = SolverSettings::default();
+    let gpu_settings = GpuSettings {
+        map_size: 64,
+        ..GpuSettings::default()
+    };
+    let el = &r.elements;
+    // Every other chart keeps out; the shots are from triangles of charts that receive.
+    let out = |c: usize| c % 2 == 1;
+    let new_solver = || {
+        let mut s = GpuSolver::new(&gpu, &r, &initial, settings, gpu_settings);
+        s.fix_batch(16);
+        s
+    };
+    let mut all = new_solver();
+    let shooters: Vec<usize> = (0..all.shooters().len())
+        .filter(|&k| {
+            all.shooters()
+                .elements_of(k)
+                .iter()
+                .all(|&e| !out(el.chart[e as usize] as usize))
+        })
+        .take(12)
+        .collect();
+    assert_eq!(shooters.len(), 12);
+    for &k in &shooters {
+        all.shoot(k).unwrap();
+    }
+    let (expected, expected_lux) = all.radiosity_and_illuminance().unwrap();
+    let expected_unshot = all.unshot().unwrap();
+    let differ = |a: &[DVec3], b: &[DVec3], tolerance: f64| {
+        (0..el.len())
+            .filter(|&e| (a[e] - b[e]).length() > tolerance * (1e-3 + b[e].length()))
+            .count()
+    };
+    let total = |v: &[DVec3]| v.iter().map(|b| b.x).sum::<f64>();
+    let everyone = vec![Reception::Receives; el.charts.len()];
+    let holding: Vec<Reception> = (0..el.charts.len())
+        .map(|c| {
+            if out(c) {
+                Reception::Holds
+            } else {
+                Reception::Receives
+            }
+        })
+        .collect();
+
+    // They hold through every shot: nothing of theirs changes, nothing is kept to shoot
+    // again, and joining draws no map.
+    let mut held = new_solver();
+    held.set_reception(&holding).unwrap();
+    let holders = held.holding_charts();
+    assert!(holders > 3);
+    assert_eq!(held.waiting_charts(), 0);
+    for &k in &shooters {
+        held.shoot(k).unwrap();
+    }
+    let before = held.radiosity().unwrap();
+    let changed_outside = (0..el.len())
+        .filter(|&e| out(el.chart[e] as usize))
+        .filter(|&e| {
+            (before[e] - initial.radiosity[e]).length() > 1e-6 * initial.radiosity[e].length()
+        })
+        .count();
+    assert_eq!(changed_outside, 0, "a chart that holds showed new light");
+    let missed = differ(&before, &expected, 1e-2);
+    assert!(missed > el.len() / 5, "they held light back: {missed}");
+    assert_eq!(held.missed_shots(), 0);
+    let drawn = held.drawn;
+    assert_eq!(held.set_reception(&everyone).unwrap(), 0);
+    assert_eq!(held.drawn, drawn, "a chart that held had a map drawn again");
+    assert_eq!(held.holding_charts(), 0);
+    // The same maps, the sums in another order: every element to rounding, illuminance
+    // and the light left to shoot too.
+    let (got, got_lux) = held.radiosity_and_illuminance().unwrap();
+    assert_eq!(differ(&got, &expected, 1e-5), 0);
+    let lux_off = (0..el.len())
+        .filter(|&e| (got_lux[e] - expected_lux[e]).abs() > 1e-5 * (1e-3 + expected_lux[e]))
+        .count();
+    assert_eq!(lux_off, 0, "{lux_off} elements' illuminance differs");
+    let (got, want) = (total(&held.unshot().unwrap()), total(&expected_unshot));
+    assert!((got - want).abs() < 1e-5 * want, "{got} vs {want}");
+
+    // Held for the first half, waiting for the second: on joining they get both, what they
+    // held (released) and the shots they missed (drawn again).
+    let waiting: Vec<Reception> = holding
+        .iter()
+        .map(|&h| {
+            if h == Reception::Holds {
+                Reception::Waits
+            } else {
+                h
+            }
+        })
+        .collect();
+    let mut mixed = new_solver();
+    mixed.set_reception(&holding).unwrap();
+    for &k in &shooters[..6] {
+        mixed.shoot(k).unwrap();
+    }
+    mixed.set_reception(&waiting).unwrap();
+    assert_eq!(mixed.waiting_charts(), holders);
+    assert_eq!(mixed.holding_charts(), 0);
+    // Asked to hold again, a chart that waits keeps waiting (its missed shots are kept).
+    mixed.set_reception(&holding).unwrap();
+    assert_eq!(mixed.holding_charts(), 0);
+    for &k in &shooters[6..] {
+        mixed.shoot(k).unwrap();
+    }
+    assert_eq!(mixed.missed_shots(), 6);
+    assert_eq!(mixed.set_reception(&everyone).unwrap(), 6);
+    let got = mixed.radiosity().unwrap();
+    let flipped = differ(&got, &expected, 1e-2);
+    assert!(flipped <= el.len() / 1000, "{flipped} of {}", el.len());
+    let (got, want) = (total(&mixed.unshot().unwrap()), total(&expected_unshot));
+    assert!((got - want).abs() < 1e-4 * want, "{got} vs {want}");
 }
 
 #[test]

@@ -567,9 +567,10 @@ impl Prepared<'_> {
         );
         if let Some((stage, stages)) = solver.area_stage() {
             eprintln!(
-                "{}: area of interest at stage {} of {stages}; {} charts still wait, {} shots kept for them",
+                "{}: area of interest at stage {} of {stages}; {} charts hold their light back, {} wait, {} shots kept for them",
                 self.label.display(),
                 stage + 1,
+                solver.holding_charts(),
                 solver.waiting_charts(),
                 solver.missed_shots(),
             );

@@ -33,7 +33,7 @@ mod timers;
 mod virtual_cells;
 
 pub use chunks::{MeshChunks, TileView};
-pub use deferred::WIDEN_AT;
+pub use deferred::{Reception, WIDEN_AT};
 pub use map_store::DEFAULT_MAP_STORE_BYTES;
 pub use raster::Raster;
 pub use timers::GpuPassSeconds;
@@ -264,6 +264,8 @@ struct Pipelines {
     gather: wgpu::ComputePipeline,
     clear: wgpu::ComputePipeline,
     restore: wgpu::ComputePipeline,
+    /// Gives charts that held ([`deferred`]) what they held back.
+    release_held_back: wgpu::ComputePipeline,
     receive: wgpu::ComputePipeline,
     /// A virtual cell's receive: through its windows ([`virtual_cells`]).
     receive_through_windows: wgpu::ComputePipeline,
@@ -294,6 +296,9 @@ pub struct GpuSolver<'a> {
     shooter_elements: wgpu::Buffer,
     patches: wgpu::Buffer,
     shared: wgpu::BindGroup,
+    /// The buffers `shared` binds, binding by binding (it is bound again when the
+    /// held-back buffer grows: [`deferred`]).
+    shared_buffers: Vec<wgpu::Buffer>,
     shooters: Shooters,
     /// The first selection's total unshot power, lm (the oracle's scale).
     initial_power: Option<f64>,
@@ -365,6 +370,24 @@ pub struct GpuSolver<'a> {
     pub virtual_drawn: usize,
 }
 
+/// The solver's bind group 0: `buffers` at bindings 0, 1, … (radiosity.wgsl).
+fn shared_bind_group(
+    gpu: &Gpu,
+    pipelines: &Pipelines,
+    buffers: &[wgpu::Buffer],
+) -> wgpu::BindGroup {
+    let entries: Vec<(u32, wgpu::BindingResource<'_>)> = buffers
+        .iter()
+        .enumerate()
+        .map(|(k, b)| (k as u32, b.as_entire_binding()))
+        .collect();
+    gpu.bind_group(
+        "radiosity",
+        &pipelines.shooter_sums.get_bind_group_layout(0),
+        &entries,
+    )
+}
+
 fn storage(gpu: &Gpu, label: &str, data: &[u8], writable: bool) -> wgpu::Buffer {
     use wgpu::BufferUsages as U;
     let usage = if writable {
@@ -398,6 +421,7 @@ impl Pipelines {
             B::Storage { read_only: true },
             B::Storage { read_only: false },
             B::Storage { read_only: true },
+            B::Storage { read_only: false },
         ];
         let entries: Vec<_> = kinds
             .iter()
@@ -522,6 +546,7 @@ impl Pipelines {
             gather: compute_pipeline("gather_patches", &shared_only),
             clear: compute_pipeline("clear_shooter", &shared_only),
             restore: compute_pipeline("restore_unshot", &shared_only),
+            release_held_back: compute_pipeline("release_held_back", &shared_only),
             receive: compute_pipeline("receive", &with_shot),
             receive_through_windows: compute_pipeline("receive_through_windows", &with_shot),
             visibility,
@@ -559,8 +584,6 @@ type ShooterRecord = [u32; 12];
 /// Most workgroups along one dimension of a dispatch (WebGPU's limit).
 const MAX_GROUPS_X: u32 = 65_535;
 
-/// Dispatches `groups` workgroups (at least one), in rows of at most [`MAX_GROUPS_X`]: the
-/// shaders number them row by row (`linear_group`, `linear_thread` in radiosity.wgsl).
 /// A batch's drawn cells in parts the atlas holds: consecutive cells whose own and
 /// virtual maps (`images`, one list per cell) number at most `most`.
 fn batch_parts(
@@ -591,6 +614,8 @@ fn batch_parts(
     Ok(parts)
 }
 
+/// Dispatches `groups` workgroups (at least one), in rows of at most [`MAX_GROUPS_X`]: the
+/// shaders number them row by row (`linear_group`, `linear_thread` in radiosity.wgsl).
 fn dispatch_groups(pass: &mut wgpu::ComputePass<'_>, groups: u32) {
     let groups = groups.max(1);
     let rows = groups.div_ceil(MAX_GROUPS_X);
@@ -759,24 +784,25 @@ impl<'a> GpuSolver<'a> {
             &vec![0u8; 16 * shooters.max_elements()],
             true,
         );
-        let shared = gpu.bind_group(
-            "radiosity",
-            &pipelines.shooter_sums.get_bind_group_layout(0),
-            &[
-                (0, params.as_entire_binding()),
-                (1, element_points.as_entire_binding()),
-                (2, shooter_elements.as_entire_binding()),
-                (3, radiosity.as_entire_binding()),
-                (4, unshot.as_entire_binding()),
-                (5, shooter_buf.as_entire_binding()),
-                (6, shooter_power.as_entire_binding()),
-                (7, patch_buf.as_entire_binding()),
-                (8, patch_delta.as_entire_binding()),
-                (9, element_normals.as_entire_binding()),
-                (10, held.as_entire_binding()),
-                (11, element_receiving.as_entire_binding()),
-            ],
-        );
+        // What charts that hold keep back: one unused record until one holds (at
+        // `deferred::HELD_BACK_BINDING`).
+        let held_back = storage(gpu, "held back", &[0u8; 16], true);
+        let shared_buffers = vec![
+            params.clone(),
+            element_points,
+            shooter_elements.clone(),
+            radiosity.clone(),
+            unshot.clone(),
+            shooter_buf.clone(),
+            shooter_power.clone(),
+            patch_buf.clone(),
+            patch_delta.clone(),
+            element_normals,
+            held,
+            element_receiving,
+            held_back,
+        ];
+        let shared = shared_bind_group(gpu, &pipelines, &shared_buffers);
         // Visibility needs only the surfaces, not their tessellation: a CAD fan's strips
         // are drawn as the triangle they fill (the same points, far fewer triangles).
         let scene_size = scene
@@ -852,6 +878,7 @@ impl<'a> GpuSolver<'a> {
             shooter_elements,
             patches: patch_buf,
             shared,
+            shared_buffers,
             shooters,
             initial_power: None,
             last_power: 0.0,
@@ -1228,7 +1255,8 @@ impl<'a> GpuSolver<'a> {
         // Read back for the links' oracle, and to be shot again later when receivers
         // wait (perspective-driven radiosity).
         let coarse = plan.patches.iter().any(|p| p.level > 0);
-        let delta: Vec<[f32; 4]> = if coarse || self.deferral.is_some() {
+        let waiting = self.deferral.as_ref().is_some_and(|d| d.any_waiting());
+        let delta: Vec<[f32; 4]> = if coarse || waiting {
             let d = self
                 .gpu
                 .read_f32_prefix(&self.patch_delta, 16 * cells as u64)?;
@@ -1387,12 +1415,15 @@ impl<'a> GpuSolver<'a> {
 
     /// Receiver culling for the cells `patches` and their virtual cells `imaged`: only the
     /// charts in front of one of their planes receive (their element ranges follow the
-    /// cells in the patch buffer), and of those only the ones not waiting
-    /// ([`GpuSolver::set_receiving`]). True when some chart in front waits.
+    /// cells in the patch buffer), and of those only the ones not waiting, the ones that
+    /// hold into the held-back buffer ([`GpuSolver::set_reception`]). True when some
+    /// chart in front waits.
     fn cull(&mut self, patches: &[PlannedPatch], imaged: &[PlannedPatch]) -> bool {
-        // Exact where receivers wait (perspective-driven: what is skipped is caught up
-        // later), else by groups of charts: a superset, far cheaper on many tiny charts.
-        let group = if self.deferral.is_some() {
+        let deferral = self.deferral.as_ref().filter(|d| d.any_not_receiving());
+        // Exact where receivers wait or hold (perspective-driven: what is skipped is
+        // caught up later), else by groups of charts: a superset, far cheaper on many
+        // tiny charts.
+        let group = if deferral.is_some() {
             1
         } else {
             RECEIVER_GROUP
@@ -1403,22 +1434,33 @@ impl<'a> GpuSolver<'a> {
             .receivers
             .charts_roughly_in_front_of_any(&planes, group);
         let in_front = charts.len();
-        if let Some(d) = &self.deferral {
-            charts.retain(|&k| d.receiving[k]);
+        let mut holding = Vec::new();
+        if let Some(d) = deferral {
+            charts.retain(|&k| d.reception[k] != Reception::Waits);
+            (charts, holding) = charts
+                .into_iter()
+                .partition(|&k| d.reception[k] == Reception::Receives);
         }
-        self.set_receivers(&charts);
-        charts.len() < in_front
+        let taking = charts.len() + holding.len();
+        self.set_receivers(&charts, &holding);
+        taking < in_front
     }
 
-    /// The receivers of the next batch: the elements of `charts` (receiver indices), as
+    /// The receivers of the next batch: the elements of `charts` and of `holding` (which
+    /// keep what they receive back: [`Reception::Holds`]), receiver indices, as
     /// [`ReceiverBoxes::merged_ranges`].
-    fn set_receivers(&mut self, charts: &[usize]) {
-        let ranges = self.receivers.merged_ranges(charts);
+    fn set_receivers(&mut self, charts: &[usize], holding: &[usize]) {
         let mut threads = 0u32;
-        let records: Vec<[u32; 4]> = ranges
-            .iter()
-            .map(|&(first, count)| {
-                let r = [first, threads, 0, 0];
+        let records: Vec<[u32; 4]> = [(charts, 0), (holding, 1)]
+            .into_iter()
+            .flat_map(|(charts, hold)| {
+                self.receivers
+                    .merged_ranges(charts)
+                    .into_iter()
+                    .map(move |range| (range, hold))
+            })
+            .map(|((first, count), hold)| {
+                let r = [first, threads, 0, hold];
                 threads += count;
                 r
             })

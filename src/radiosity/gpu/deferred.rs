@@ -1,9 +1,19 @@
-//! Receivers that wait (perspective-driven radiosity, Bozalina §5.2): while a chart lies
-//! outside the area of interest it receives nothing, and each shot it misses is kept —
-//! the shooter's cells, their links and the unshot radiosity they shot — instead of
-//! Bozalina's N × N table of stored radiosity. When the chart joins the area, the shots
-//! it missed are shot again at it alone, in order, so its light is what it would have
-//! been had it received all along.
+//! Receivers outside the area of interest (perspective-driven radiosity, Bozalina §5.2)
+//! take no part in the solution: they show nothing new and shoot nothing. Each does so in
+//! one of two ways ([`Reception`]):
+//!
+//! - It **holds**: it receives as usual, but into a buffer of its own (`held_back`,
+//!   Bozalina's table of stored radiosity, one record per element instead of N × N); when
+//!   it joins, one pass adds what it holds to its radiosity and unshot radiosity. Joining
+//!   costs nothing but that pass; waiting costs its receive passes. For the charts that
+//!   join as the area widens around the view.
+//! - It **waits**: it receives nothing, and each shot it misses is kept — the shooter's
+//!   cells, their links and the unshot radiosity they shot. When it joins, the shots it
+//!   missed are shot again at it alone, in order (their maps drawn again). Waiting costs
+//!   nothing; joining costs the missed cells' maps. For the charts that join only with
+//!   the whole scene, once the view's light has settled.
+//!
+//! Either way its light on joining is what it would have been had it received all along.
 
 use super::super::links::{Links, ReceiverBoxes};
 use super::super::shooters::ShotPlan;
@@ -23,24 +33,42 @@ pub(super) struct MissedShot {
     kept: Vec<Option<u32>>,
 }
 
+/// How a chart outside the area of interest keeps out of the solution (see the module's
+/// notes), or that it takes part.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Reception {
+    /// It receives, shows and shoots its light.
+    Receives,
+    /// It receives into the held-back buffer, given to it when it joins.
+    Holds,
+    /// It receives nothing; the shots it misses are shot at it again when it joins.
+    Waits,
+}
+
 /// The area of interest's stages (perspective-driven radiosity), and where it stands.
 pub(super) struct Stages {
-    /// Per stage, per chart of the elements, whether it receives; the last: every chart.
-    stages: Vec<Vec<bool>>,
+    /// Per stage, per chart of the elements, how it receives; the last: every chart
+    /// receives.
+    stages: Vec<Vec<Reception>>,
     at: usize,
     /// The weighted unshot power when the stage began.
     start: Option<f64>,
 }
+
+/// The held-back buffer's binding in the solver's bind group 0 (radiosity.wgsl).
+pub(super) const HELD_BACK_BINDING: usize = 12;
 
 /// The area of interest widens when the weighted unshot power has fallen to this share
 /// of what it was when its stage began ("a pre-determined amount of processing",
 /// Bozalina §5.1).
 pub const WIDEN_AT: f64 = 0.25;
 
-/// Which receivers wait, and what they missed.
+/// Which receivers hold or wait, and what the waiting ones missed.
 pub(super) struct Deferral {
-    /// Per receiver chart ([`super::ReceiverBoxes::range`]), whether it receives now.
-    pub(super) receiving: Vec<bool>,
+    /// Per receiver chart ([`super::ReceiverBoxes::range`]), how it receives now.
+    pub(super) reception: Vec<Reception>,
+    /// Whether the held-back buffer has a record per element (some chart has held).
+    held_back: bool,
     /// Per waiting chart, the first shot of `missed` it has not had.
     missed_from: Vec<usize>,
     missed: Vec<MissedShot>,
@@ -48,12 +76,29 @@ pub(super) struct Deferral {
 
 impl GpuSolver<'_> {
     /// Which charts receive (`receiving`, one per chart of the scene's elements,
-    /// `elements.charts` order); the others wait. A chart that starts receiving is first
-    /// given the shots it missed. Returns how many shots were shot again (those with a
+    /// `elements.charts` order); the others wait ([`GpuSolver::set_reception`]).
+    pub fn set_receiving(&mut self, receiving: &[bool]) -> Result<usize, GpuError> {
+        let reception: Vec<Reception> = receiving
+            .iter()
+            .map(|&r| {
+                if r {
+                    Reception::Receives
+                } else {
+                    Reception::Waits
+                }
+            })
+            .collect();
+        self.set_reception(&reception)
+    }
+
+    /// How each chart receives (`reception`, one per chart of the scene's elements,
+    /// `elements.charts` order). A chart that starts receiving is first given what it held
+    /// back and the shots it missed; a chart that waits keeps waiting until it receives
+    /// (asked to hold, it waits). Returns how many shots were shot again (those with a
     /// joining chart in front of them).
     /// Refused for a scene with mirrors or clear glass: their virtual cells are not kept
     /// for a catch-up.
-    pub fn set_receiving(&mut self, receiving: &[bool]) -> Result<usize, GpuError> {
+    pub fn set_reception(&mut self, reception: &[Reception]) -> Result<usize, GpuError> {
         if !self.scene.specular.is_empty() {
             return Err(GpuError::Unsupported(
                 "perspective-driven radiosity (receivers that wait) does not handle mirrors \
@@ -62,34 +107,52 @@ impl GpuSolver<'_> {
             ));
         }
         let el = &self.scene.elements;
-        assert_eq!(receiving.len(), el.charts.len());
-        let wanted: Vec<bool> = (0..self.receivers.len())
-            .map(|k| receiving[el.chart[self.receivers.range(k).0 as usize] as usize])
+        assert_eq!(reception.len(), el.charts.len());
+        let wanted: Vec<Reception> = (0..self.receivers.len())
+            .map(|k| reception[el.chart[self.receivers.range(k).0 as usize] as usize])
             .collect();
         let deferral = self.deferral.get_or_insert_with(|| Deferral {
-            receiving: vec![true; wanted.len()],
+            reception: vec![Reception::Receives; wanted.len()],
+            held_back: false,
             missed_from: vec![0; wanted.len()],
             missed: Vec::new(),
         });
         // Charts grouped by the first shot they missed (most join together).
         let mut joining: Vec<(usize, Vec<usize>)> = Vec::new();
+        // Charts that receive again after holding (or waiting: it may have held before).
+        let mut released = Vec::new();
         for (k, &now) in wanted.iter().enumerate() {
-            match (deferral.receiving[k], now) {
-                (true, false) => deferral.missed_from[k] = deferral.missed.len(),
-                (false, true) => {
+            let was = deferral.reception[k];
+            let now = match (was, now) {
+                (Reception::Waits, Reception::Holds) => Reception::Waits,
+                _ => now,
+            };
+            match (was, now) {
+                (Reception::Receives | Reception::Holds, Reception::Waits) => {
+                    deferral.missed_from[k] = deferral.missed.len();
+                }
+                (Reception::Waits, Reception::Receives) => {
                     let from = deferral.missed_from[k];
                     match joining.iter_mut().find(|(f, _)| *f == from) {
                         Some((_, charts)) => charts.push(k),
                         None => joining.push((from, vec![k])),
                     }
+                    released.push(k);
                 }
+                (Reception::Holds, Reception::Receives) => released.push(k),
                 _ => {}
             }
+            deferral.reception[k] = now;
         }
-        deferral.receiving = wanted;
+        let holds = wanted.contains(&Reception::Holds);
+        let started = std::time::Instant::now();
+        if holds {
+            self.allocate_held_back();
+        }
+        self.release_held_back(&released);
+        let deferral = self.deferral.as_mut().expect("set above");
         let mut given = 0;
         let missed = std::mem::take(&mut deferral.missed);
-        let started = std::time::Instant::now();
         // The shots' own phases are not counted twice.
         let before = self.times;
         for (from, charts) in &joining {
@@ -105,7 +168,7 @@ impl GpuSolver<'_> {
             ..before
         };
         let deferral = self.deferral.as_mut().expect("set above");
-        if deferral.receiving.iter().all(|&r| r) {
+        if !deferral.any_waiting() {
             // Nobody waits: nothing missed needs keeping, nor do its maps.
             deferral.missed_from.fill(0);
             self.map_store.clear();
@@ -115,12 +178,69 @@ impl GpuSolver<'_> {
         Ok(given)
     }
 
+    /// Gives the held-back buffer a record per element (zero), once.
+    fn allocate_held_back(&mut self) {
+        let deferral = self.deferral.as_mut().expect("receivers deferred");
+        if deferral.held_back {
+            return;
+        }
+        deferral.held_back = true;
+        let size = 16 * self.scene.elements.len().max(1) as u64;
+        self.shared_buffers[HELD_BACK_BINDING] =
+            self.gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("held back"),
+                size,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            });
+        self.shared = super::shared_bind_group(self.gpu, &self.pipelines, &self.shared_buffers);
+    }
+
+    /// Adds what the receiver charts `charts` held back to their radiosity and unshot
+    /// radiosity, and clears it.
+    fn release_held_back(&mut self, charts: &[usize]) {
+        let allocated = self.deferral.as_ref().is_some_and(|d| d.held_back);
+        if !allocated || charts.is_empty() {
+            return;
+        }
+        self.set_receivers(charts, &[]);
+        self.write_params(u32::MAX, 0, 0, 0..0);
+        let mut enc = self.gpu.device.create_command_encoder(&Default::default());
+        self.dispatch(
+            &mut enc,
+            &self.pipelines.release_held_back,
+            self.culled.1,
+            64,
+        );
+        self.gpu.queue.submit([enc.finish()]);
+    }
+
     /// Limits the receivers to an area of interest that widens stage by stage (per
     /// stage, per chart of the elements, whether it receives; narrowest first, the last
-    /// stage every chart): see [`GpuSolver::widen_if_due`].
+    /// stage every chart): see [`GpuSolver::widen_if_due`]. A chart outside the stage
+    /// holds when a stage before the last has it (it joins as the area widens), and
+    /// waits when only the last has it.
     pub fn set_area_of_interest(&mut self, stages: Vec<Vec<bool>>) -> Result<(), GpuError> {
         assert!(stages.last().is_some_and(|s| s.iter().all(|&r| r)));
-        self.set_receiving(&stages[0])?;
+        let last = stages.len() - 1;
+        let joins_early: Vec<bool> = (0..stages[last].len())
+            .map(|k| stages[..last].iter().any(|s| s[k]))
+            .collect();
+        let stages: Vec<Vec<Reception>> = stages
+            .iter()
+            .map(|stage| {
+                stage
+                    .iter()
+                    .zip(&joins_early)
+                    .map(|(&receives, &early)| match (receives, early) {
+                        (true, _) => Reception::Receives,
+                        (false, true) => Reception::Holds,
+                        (false, false) => Reception::Waits,
+                    })
+                    .collect()
+            })
+            .collect();
+        self.set_reception(&stages[0])?;
         self.stages = Some(Stages {
             stages,
             at: 0,
@@ -147,7 +267,7 @@ impl GpuSolver<'_> {
         stages.at += 1;
         stages.start = None;
         let next = stages.stages[stages.at].clone();
-        self.set_receiving(&next)?;
+        self.set_reception(&next)?;
         Ok(true)
     }
 
@@ -165,9 +285,18 @@ impl GpuSolver<'_> {
 
     /// Receiver charts that wait now.
     pub fn waiting_charts(&self) -> usize {
-        self.deferral
-            .as_ref()
-            .map_or(0, |d| d.receiving.iter().filter(|&&r| !r).count())
+        self.charts_that(Reception::Waits)
+    }
+
+    /// Receiver charts that hold now.
+    pub fn holding_charts(&self) -> usize {
+        self.charts_that(Reception::Holds)
+    }
+
+    fn charts_that(&self, reception: Reception) -> usize {
+        self.deferral.as_ref().map_or(0, |d| {
+            d.reception.iter().filter(|&&r| r == reception).count()
+        })
     }
 
     /// Shots kept for waiting receivers.
@@ -234,7 +363,7 @@ impl GpuSolver<'_> {
             .map(|&c| shot.plan.patches[c].clone())
             .collect();
         let receivers = joining(&cell_planes(&patches));
-        self.set_receivers(&receivers);
+        self.set_receivers(&receivers, &[]);
         // Specular scenes never defer ([`GpuSolver::set_receiving`]): no images.
         let images = vec![Vec::new(); cells.len()];
         self.shoot_batch(
@@ -251,6 +380,16 @@ impl GpuSolver<'_> {
 }
 
 impl Deferral {
+    /// Whether some chart waits.
+    pub(super) fn any_waiting(&self) -> bool {
+        self.reception.contains(&Reception::Waits)
+    }
+
+    /// Whether some chart holds or waits.
+    pub(super) fn any_not_receiving(&self) -> bool {
+        self.reception.iter().any(|&r| r != Reception::Receives)
+    }
+
     /// Forgets where the missed cells' maps were kept (they are drawn again).
     pub(super) fn forget_kept_maps(&mut self) {
         for shot in &mut self.missed {
