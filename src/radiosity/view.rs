@@ -36,8 +36,9 @@ pub enum Drive {
     /// The shooter with the most unshot power × importance from the camera.
     Importance,
     /// Importance-driven shooters, and receivers limited to the area of interest (the
-    /// view's frustum plus a margin, widened as the view's light settles); the shots a
-    /// receiver outside it missed are shot at it when it joins.
+    /// view's frustum plus a margin, widened as the view's light settles); a receiver
+    /// outside it holds back what it receives (one hidden from the eye: waits, and the
+    /// shots it missed are shot at it) until it joins.
     Perspective,
 }
 
