@@ -214,6 +214,37 @@ fn perspective_driven_radiosity_leaves_what_lies_outside_the_area_of_interest_al
     );
 }
 
+/// The keeping-out tests' solver settings: maps of 64² texels (a store of 256 MiB keeps
+/// every missed cell's: about 50 MiB, grown twice from its first 16 MiB, the kept maps
+/// copied over each time).
+fn small_maps() -> GpuSettings {
+    GpuSettings {
+        map_size: 64,
+        ..GpuSettings::default()
+    }
+}
+
+/// Twelve shooters whose elements are all on charts `receives` (so a solver whose other
+/// charts keep out shoots the same light as one where all receive).
+fn shooters_on(
+    solver: &GpuSolver,
+    r: &RadiosityScene,
+    receives: impl Fn(usize) -> bool,
+) -> Vec<usize> {
+    let shooters: Vec<usize> = (0..solver.shooters().len())
+        .filter(|&k| {
+            solver
+                .shooters()
+                .elements_of(k)
+                .iter()
+                .all(|&e| receives(r.elements.chart[e as usize] as usize))
+        })
+        .take(12)
+        .collect();
+    assert_eq!(shooters.len(), 12);
+    shooters
+}
+
 #[test]
 fn receivers_that_hold_are_given_what_they_held_back() {
     let Some(gpu) = gpu_common::gpu() else {
@@ -221,10 +252,7 @@ fn receivers_that_hold_are_given_what_they_held_back() {
     };
     let (_, r, initial) = boxes_room(&gpu);
     let settings = SolverSettings::default();
-    let gpu_settings = GpuSettings {
-        map_size: 64,
-        ..GpuSettings::default()
-    };
+    let gpu_settings = small_maps();
     let el = &r.elements;
     // Every other chart keeps out; the shots are from triangles of charts that receive.
     let out = |c: usize| c % 2 == 1;
@@ -234,16 +262,7 @@ fn receivers_that_hold_are_given_what_they_held_back() {
         s
     };
     let mut all = new_solver();
-    let shooters: Vec<usize> = (0..all.shooters().len())
-        .filter(|&k| {
-            all.shooters()
-                .elements_of(k)
-                .iter()
-                .all(|&e| !out(el.chart[e as usize] as usize))
-        })
-        .take(12)
-        .collect();
-    assert_eq!(shooters.len(), 12);
+    let shooters = shooters_on(&all, &r, |c| !out(c));
     for &k in &shooters {
         all.shoot(k).unwrap();
     }
@@ -344,12 +363,7 @@ fn receivers_that_wait_are_given_the_shots_they_missed() {
     };
     let (_, r, initial) = boxes_room(&gpu);
     let settings = SolverSettings::default();
-    // Maps of 64² texels: a store of 256 MiB keeps every missed cell's (about 50 MiB:
-    // grown twice from its first 16 MiB, the kept maps copied over each time).
-    let gpu_settings = GpuSettings {
-        map_size: 64,
-        ..GpuSettings::default()
-    };
+    let gpu_settings = small_maps();
     let mut all = GpuSolver::new(&gpu, &r, &initial, settings, gpu_settings);
     // Batches by count, not by each solver's clock.
     all.fix_batch(16);
@@ -357,16 +371,7 @@ fn receivers_that_wait_are_given_the_shots_they_missed() {
     // both solvers shoot the same light).
     let el = &r.elements;
     let receiving: Vec<bool> = (0..el.charts.len()).map(|c| c % 2 == 0).collect();
-    let shooters: Vec<usize> = (0..all.shooters().len())
-        .filter(|&k| {
-            all.shooters()
-                .elements_of(k)
-                .iter()
-                .all(|&e| receiving[el.chart[e as usize] as usize])
-        })
-        .take(12)
-        .collect();
-    assert_eq!(shooters.len(), 12);
+    let shooters = shooters_on(&all, &r, |c| receiving[c]);
     for &k in &shooters {
         all.shoot(k).unwrap();
     }
