@@ -5,7 +5,7 @@
 //! - It **holds**: it receives as usual, but into a buffer of its own (`held_back`,
 //!   Bozalina's table of stored radiosity, one record per element instead of N × N); when
 //!   it joins, one pass adds what it holds to its radiosity and unshot radiosity. Joining
-//!   costs nothing but that pass; waiting costs its receive passes. For the charts that
+//!   costs nothing but that pass; holding costs its receive passes. For the charts that
 //!   join as the area widens around the view.
 //! - It **waits**: it receives nothing, and each shot it misses is kept — the shooter's
 //!   cells, their links and the unshot radiosity they shot. When it joins, the shots it
@@ -144,7 +144,7 @@ impl GpuSolver<'_> {
             }
             deferral.reception[k] = now;
         }
-        let holds = wanted.contains(&Reception::Holds);
+        let holds = deferral.reception.contains(&Reception::Holds);
         let started = std::time::Instant::now();
         if holds {
             self.allocate_held_back();
