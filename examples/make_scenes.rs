@@ -107,6 +107,12 @@ impl Obj {
         );
         std::fs::write(path, header + &self.text)
     }
+
+    /// Writes `dir/name.obj` and its materials, `materials`, as `dir/name.mtl`.
+    fn write_with_mtl(&self, dir: &Path, name: &str, materials: &str) -> std::io::Result<()> {
+        self.write(&dir.join(format!("{name}.obj")), &format!("{name}.mtl"))?;
+        std::fs::write(dir.join(format!("{name}.mtl")), materials)
+    }
 }
 
 /// The six faces of an axis-aligned box, counter-clockwise from outside: top, bottom,
@@ -255,11 +261,7 @@ fn write_fanned(
 /// boxes fanned into `strips` strips each.
 fn cad_office(root: &Path, dir: &Path, strips: u32) -> anyhow::Result<()> {
     std::fs::create_dir_all(dir)?;
-    office().write(&dir.join("cad_office.obj"), "cad_office.mtl")?;
-    std::fs::write(
-        dir.join("cad_office.mtl"),
-        format!("{ROOM_MTL}{FURNITURE_MTL}"),
-    )?;
+    office().write_with_mtl(dir, "cad_office", &format!("{ROOM_MTL}{FURNITURE_MTL}"))?;
     std::fs::write(dir.join("cad_office.toml"), office_toml(root))?;
     let scene = goniolight::scene::Scene::load(&dir.join("cad_office.toml"))?;
     let (coarse, fine) = write_fanned(
@@ -778,22 +780,20 @@ fn main() -> anyhow::Result<()> {
 
     let mut room = Obj::default();
     room.room(size, "floor", "wall", "wall", "ceiling");
-    room.write(&scenes.join("box_room.obj"), "box_room.mtl")?;
-    std::fs::write(scenes.join("box_room.mtl"), ROOM_MTL)?;
+    room.write_with_mtl(&scenes, "box_room", ROOM_MTL)?;
 
     let mut furnished = Obj::default();
     furnished.room(size, "floor_wood", "wall", "plaster_bricks", "ceiling");
     furniture(&mut furnished);
-    furnished.write(&scenes.join("furnished_room.obj"), "furnished_room.mtl")?;
-    std::fs::write(scenes.join("furnished_room.mtl"), FURNISHED_MTL)?;
+    furnished.write_with_mtl(&scenes, "furnished_room", FURNISHED_MTL)?;
     wood().save(scenes.join("textures/wood.png"))?;
     bricks_normal().save(scenes.join("textures/bricks_normal.png"))?;
 
     // The 52-triangle room and the same geometry as 2 600 CAD-like strips.
-    boxes_room(size).write(&scenes.join("boxes_room.obj"), "boxes_room.mtl")?;
-    std::fs::write(
-        scenes.join("boxes_room.mtl"),
-        format!("{ROOM_MTL}{FURNITURE_MTL}"),
+    boxes_room(size).write_with_mtl(
+        &scenes,
+        "boxes_room",
+        &format!("{ROOM_MTL}{FURNITURE_MTL}"),
     )?;
     let scene = goniolight::scene::Scene::load(&scenes.join("boxes_room.toml"))?;
     write_fanned(&scene, 50, &scenes.join("cad_room.obj"), "boxes_room.mtl")?;
@@ -801,15 +801,11 @@ fn main() -> anyhow::Result<()> {
     // The box room with its back wall a mirror (the specular validation rooms).
     let mut mirror_room = Obj::default();
     mirror_room.room(size, "floor", "wall", "mirror", "ceiling");
-    mirror_room.write(&scenes.join("mirror_room.obj"), "mirror_room.mtl")?;
-    std::fs::write(
-        scenes.join("mirror_room.mtl"),
-        format!("{ROOM_MTL}{MIRROR_MTL}"),
-    )?;
-    glass_partition().write(&scenes.join("glass_partition.obj"), "glass_partition.mtl")?;
-    std::fs::write(
-        scenes.join("glass_partition.mtl"),
-        format!("{ROOM_MTL}{GLASS_MTL}"),
+    mirror_room.write_with_mtl(&scenes, "mirror_room", &format!("{ROOM_MTL}{MIRROR_MTL}"))?;
+    glass_partition().write_with_mtl(
+        &scenes,
+        "glass_partition",
+        &format!("{ROOM_MTL}{GLASS_MTL}"),
     )?;
 
     let mut stage = Obj::default();
@@ -818,26 +814,24 @@ fn main() -> anyhow::Result<()> {
     stage.cuboid(DVec3::new(2.9, 1.9, 2.15), DVec3::new(3.1, 2.1, 2.35));
     stage.object("rod", "mirror_ball");
     stage.cuboid(DVec3::new(2.99, 1.99, 2.35), DVec3::new(3.01, 2.01, 3.0));
-    stage.write(&scenes.join("effect_stage.obj"), "effect_stage.mtl")?;
-    std::fs::write(scenes.join("effect_stage.mtl"), STAGE_MTL)?;
+    stage.write_with_mtl(&scenes, "effect_stage", STAGE_MTL)?;
 
-    luminous_ceiling().write(&scenes.join("luminous_ceiling.obj"), "luminous_ceiling.mtl")?;
-    std::fs::write(
-        scenes.join("luminous_ceiling.mtl"),
-        format!("{ROOM_MTL}{LUMINOUS_CEILING_MTL}"),
+    luminous_ceiling().write_with_mtl(
+        &scenes,
+        "luminous_ceiling",
+        &format!("{ROOM_MTL}{LUMINOUS_CEILING_MTL}"),
     )?;
 
-    perforated_panel().write(&scenes.join("perforated_panel.obj"), "perforated_panel.mtl")?;
-    std::fs::write(
-        scenes.join("perforated_panel.mtl"),
-        format!("{ROOM_MTL}{PERFORATED_MTL}"),
+    perforated_panel().write_with_mtl(
+        &scenes,
+        "perforated_panel",
+        &format!("{ROOM_MTL}{PERFORATED_MTL}"),
     )?;
     perforation().save(scenes.join("textures/perforation.png"))?;
 
     let mut cornell = Obj::default();
     cornell_box(&mut cornell);
-    cornell.write(&scenes.join("cornell_box.obj"), "cornell_box.mtl")?;
-    std::fs::write(scenes.join("cornell_box.mtl"), CORNELL_MTL)?;
+    cornell.write_with_mtl(&scenes, "cornell_box", CORNELL_MTL)?;
 
     let ldt = disco();
     std::fs::write(
