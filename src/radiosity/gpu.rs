@@ -1241,10 +1241,15 @@ impl<'a> GpuSolver<'a> {
         let in_front = charts.len();
         let mut holding = Vec::new();
         if let Some(d) = deferral {
-            charts.retain(|&k| d.reception[k] != Reception::Waits);
-            (charts, holding) = charts
-                .into_iter()
-                .partition(|&k| d.reception[k] == Reception::Receives);
+            let mut receiving = Vec::with_capacity(charts.len());
+            for k in charts {
+                match d.reception[k] {
+                    Reception::Receives => receiving.push(k),
+                    Reception::Holds => holding.push(k),
+                    Reception::Waits => {}
+                }
+            }
+            charts = receiving;
         }
         let taking = charts.len() + holding.len();
         self.set_receivers(&charts, &holding);
