@@ -372,7 +372,7 @@ impl GpuSolver<'_> {
             &shot.links,
             (&cells, &images),
             0..0,
-            super::CellMaps::Restore(&kept),
+            super::shot::CellMaps::Restore(&kept),
         )?;
         self.drawn += kept.iter().filter(|k| k.is_none()).count();
         Ok(true)

@@ -14,13 +14,13 @@ pub(super) struct Pipelines {
     pub(super) gather: wgpu::ComputePipeline,
     pub(super) clear: wgpu::ComputePipeline,
     pub(super) restore: wgpu::ComputePipeline,
-    /// Gives charts that held ([`deferred`]) what they held back.
+    /// Gives charts that held ([`super::deferred`]) what they held back.
     pub(super) release_held_back: wgpu::ComputePipeline,
     pub(super) receive: wgpu::ComputePipeline,
-    /// A virtual cell's receive: through its windows ([`virtual_cells`]).
+    /// A virtual cell's receive: through its windows ([`super::virtual_cells`]).
     pub(super) receive_through_windows: wgpu::ComputePipeline,
     pub(super) visibility: wgpu::RenderPipeline,
-    /// A virtual cell's: nothing beyond its clip plane ([`virtual_cells`]).
+    /// A virtual cell's: nothing beyond its clip plane ([`super::virtual_cells`]).
     pub(super) visibility_clipped: wgpu::RenderPipeline,
     /// Clears one tile of the atlas (depth and distance), drawn in its viewport.
     pub(super) clear_tile: wgpu::RenderPipeline,

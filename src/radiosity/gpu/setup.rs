@@ -1,0 +1,321 @@
+//! Building a [`GpuSolver`]: the scene's elements, shooters and settings uploaded into
+//! storage buffers, the visibility mesh, atlas and pipelines.
+
+use wgpu::util::DeviceExt;
+
+use super::pipelines::{shared_bind_group, Pipelines};
+use super::{
+    faces_per_cell, map_store, masked, raster, v4, virtual_cells, ElementRecord, GpuSettings,
+    GpuSolver, MeshChunks, Raster, ShooterRecord, ShotTimes, SolveParams, Visibility,
+    BATCH_SECONDS, DEFAULT_MAP_STORE_BYTES, FIRST_BATCH, SMALL_SHOOTER,
+    STEREOGRAPHIC_EDGE_FRACTION,
+};
+use crate::geometry::split::split_long_edges;
+use crate::gpu::Gpu;
+use crate::radiosity::atlas::VisibilityAtlas;
+use crate::radiosity::initial::InitialState;
+use crate::radiosity::links::{ReceiverBoxes, LINK_LEVELS};
+use crate::radiosity::scene::RadiosityScene;
+use crate::radiosity::shooters::{PlanCache, Shooters, DEFAULT_PLAN_CACHE_BYTES};
+use crate::radiosity::SolverSettings;
+
+fn storage(gpu: &Gpu, label: &str, data: &[u8], writable: bool) -> wgpu::Buffer {
+    use wgpu::BufferUsages as U;
+    let usage = if writable {
+        U::STORAGE | U::COPY_SRC | U::COPY_DST
+    } else {
+        U::STORAGE
+    };
+    gpu.device
+        .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some(label),
+            contents: data,
+            usage,
+        })
+}
+
+impl<'a> GpuSolver<'a> {
+    /// Uploads `scene` with the `initial` radiosity (= unshot radiosity) and illuminance
+    /// per element: the emission plus the reflected direct light of the luminaires.
+    pub fn new(
+        gpu: &'a Gpu,
+        scene: &'a RadiosityScene,
+        initial: &InitialState,
+        settings: SolverSettings,
+        gpu_settings: GpuSettings,
+    ) -> GpuSolver<'a> {
+        let shooters = Shooters::build(scene, gpu_settings.hierarchy);
+        GpuSolver::with_shooters(gpu, scene, initial, settings, gpu_settings, shooters)
+    }
+
+    /// [`GpuSolver::new`] with shooters built by the caller (`Shooters::build(scene,
+    /// gpu_settings.hierarchy)`, timed on its own).
+    pub fn with_shooters(
+        gpu: &'a Gpu,
+        scene: &'a RadiosityScene,
+        initial: &InitialState,
+        settings: SolverSettings,
+        gpu_settings: GpuSettings,
+        shooters: Shooters,
+    ) -> GpuSolver<'a> {
+        let el = &scene.elements;
+        let n = el.len();
+        debug_assert!((0..n).all(|e| {
+            let k = shooters.element_shooter[e] as usize;
+            scene.reflectance[shooters.material[k]] == scene.element_reflectance(e)
+        }));
+        let points: Vec<ElementRecord> = (0..n)
+            .map(|e| v4(el.position[e], el.area[e] as f32))
+            .collect();
+        let normals: Vec<ElementRecord> = (0..n)
+            .map(|e| v4(el.normal(e), f32::from_bits(shooters.element_piece[e])))
+            .collect();
+        let start: Vec<[f32; 4]> = initial.radiosity.iter().map(|b| v4(*b, 0.0)).collect();
+        let start_lit: Vec<[f32; 4]> = (0..n)
+            .map(|e| v4(initial.radiosity[e], initial.illuminance[e] as f32))
+            .collect();
+        let mut shooter_info: Vec<ShooterRecord> = (0..shooters.len())
+            .map(|k| {
+                let r = scene.reflectance[shooters.material[k]].as_vec3();
+                let t = scene.transmittance[shooters.material[k]].as_vec3();
+                [
+                    shooters.first[k],
+                    shooters.count[k],
+                    // The shooter's weight in the selection (1: its power alone).
+                    1f32.to_bits(),
+                    shooters.first_piece[k],
+                    r.x.to_bits(),
+                    r.y.to_bits(),
+                    r.z.to_bits(),
+                    (shooters.area[k] as f32).to_bits(),
+                    t.x.to_bits(),
+                    t.y.to_bits(),
+                    t.z.to_bits(),
+                    0,
+                ]
+            })
+            .collect();
+        // Shooters of more than SMALL_SHOOTER elements are summed by a workgroup each:
+        // listed after the shooters (range.z: the shooter).
+        let large: Vec<ShooterRecord> = (0..shooters.len())
+            .filter(|&k| shooters.count[k] > SMALL_SHOOTER)
+            .map(|k| {
+                let mut record = shooter_info[k];
+                record[2] = k as u32;
+                record
+            })
+            .collect();
+        let large_shooters = large.len() as u32;
+        shooter_info.extend(large);
+        // Room for the largest plan; links are left out where its cells would not fit
+        // one binding (a cluster of millions of elements).
+        let max_binding = gpu
+            .device
+            .limits()
+            .max_storage_buffer_binding_size
+            .min(gpu.device.limits().max_buffer_size);
+        let mut gpu_settings = gpu_settings;
+        // Virtual cells shoot to every receiver their window shows: no links (a cell a
+        // link leaves undrawn could light receivers through a mirror).
+        if !scene.specular.is_empty() {
+            gpu_settings.link_error = 0.0;
+        }
+        let mut max_patches = shooters.max_cells(scene, LINK_LEVELS);
+        if 16 * max_patches as u64 > max_binding {
+            gpu_settings.link_error = 0.0;
+            max_patches = shooters.max_cells(scene, 0);
+        }
+        let pipelines = gpu.cached(|| Pipelines::new(gpu));
+        let bytes = |v: &[[f32; 4]]| bytemuck::cast_slice::<[f32; 4], u8>(v).to_vec();
+        let params = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("radiosity params"),
+            size: std::mem::size_of::<SolveParams>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let element_points = storage(gpu, "element points", &bytes(&points), false);
+        let element_normals = storage(gpu, "element normals", &bytes(&normals), false);
+        // Receiving normals (w 1 where not the chart's) only where some element has its
+        // own; otherwise one unused record.
+        let receiving: Vec<ElementRecord> = if scene.receiving_normals.is_empty() {
+            vec![[0.0; 4]]
+        } else {
+            (0..n)
+                .map(|e| {
+                    let r = scene.element_receiving_normal(e);
+                    v4(r, f32::from(u8::from(r != el.normal(e))))
+                })
+                .collect()
+        };
+        let element_receiving =
+            storage(gpu, "element receiving normals", &bytes(&receiving), false);
+        let shooter_elements = storage(
+            gpu,
+            "shooter elements",
+            bytemuck::cast_slice(&shooters.elements),
+            true,
+        );
+        let radiosity = storage(gpu, "radiosity", &bytes(&start_lit), true);
+        let unshot = storage(gpu, "unshot", &bytes(&start), true);
+        // Writable: the selection's weights change (view-driven shooting).
+        let shooter_buf = storage(gpu, "shooters", bytemuck::cast_slice(&shooter_info), true);
+        shooter_info.truncate(shooters.len());
+        // The selection record follows the shooters' sums.
+        let shooter_power = storage(
+            gpu,
+            "shooter power",
+            &vec![0u8; 16 * (shooters.len() + 3)],
+            true,
+        );
+        let selection = storage(gpu, "selection", &[0u8; 48], true);
+        // The shot's cells, then per chart in front of the shooter its receivers' range.
+        let patch_buf = storage(
+            gpu,
+            "patches",
+            &vec![0u8; 16 * (max_patches + el.charts.len().max(1))],
+            true,
+        );
+        let patch_delta = storage(gpu, "patch delta", &vec![0u8; 16 * max_patches], true);
+        // The shot's elements' unshot radiosity as cleared, for a shot stopped early.
+        let held = storage(
+            gpu,
+            "held unshot",
+            &vec![0u8; 16 * shooters.max_elements()],
+            true,
+        );
+        // What charts that hold keep back: one unused record until one holds (at
+        // `deferred::HELD_BACK_BINDING`).
+        let held_back = storage(gpu, "held back", &[0u8; 16], true);
+        let shared_buffers = vec![
+            params.clone(),
+            element_points,
+            shooter_elements.clone(),
+            radiosity.clone(),
+            unshot.clone(),
+            shooter_buf.clone(),
+            shooter_power.clone(),
+            patch_buf.clone(),
+            patch_delta.clone(),
+            element_normals,
+            held,
+            element_receiving,
+            held_back,
+        ];
+        let shared = shared_bind_group(gpu, &pipelines, &shared_buffers);
+        // Visibility needs only the surfaces, not their tessellation: a CAD fan's strips
+        // are drawn as the triangle they fill (the same points, far fewer triangles).
+        let scene_size = scene
+            .casters
+            .bounds()
+            .map_or(1.0, |(lo, hi)| (hi - lo).length());
+        // The stereographic map projects only vertices, so a long edge bends wrongly
+        // (Wallner Fig. 4.4): its mesh has no edge longer than a fraction of the scene.
+        let max_edge = match gpu_settings.visibility {
+            Visibility::Hemicube => f64::INFINITY,
+            Visibility::Stereographic => scene_size * STEREOGRAPHIC_EDGE_FRACTION,
+        };
+        // The alpha-masked triangles at the mesh's end are drawn on their own.
+        let masked = masked::MaskedCasters::new(
+            gpu,
+            scene,
+            &pipelines.vis_module,
+            &pipelines.face_layout,
+            max_edge,
+        );
+        let solid = masked::solid_visibility_mesh(scene);
+        let split;
+        let mesh = match gpu_settings.visibility {
+            Visibility::Hemicube => &*solid,
+            Visibility::Stereographic => {
+                split = split_long_edges(&solid, max_edge);
+                &split
+            }
+        };
+        // Indexed: a vertex shared by six triangles is transformed about once per face
+        // drawn, not six times.
+        let positions: Vec<[f32; 3]> = mesh
+            .positions
+            .iter()
+            .map(|p| p.as_vec3().to_array())
+            .collect();
+        let mut triangles = mesh.triangles.clone();
+        let chunks = MeshChunks::new(&mesh.positions, &mut triangles);
+        let indices: Vec<u32> = triangles.iter().flatten().copied().collect();
+        // Read as storage by the compute rasterizer.
+        let vertices = gpu.buffer_with(
+            "radiosity vertices",
+            bytemuck::cast_slice(&positions),
+            wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::STORAGE,
+        );
+        let vertex_indices = gpu.buffer_with(
+            "radiosity vertex indices",
+            bytemuck::cast_slice(&indices),
+            wgpu::BufferUsages::INDEX | wgpu::BufferUsages::STORAGE,
+        );
+        gpu_settings.raster = gpu_settings.raster.resolve(gpu, masked.is_some());
+        let compute_raster = (gpu_settings.raster == Raster::Compute).then(|| {
+            raster::ComputeRaster::new(gpu, gpu.cached(|| raster::RasterPipelines::new(gpu)))
+        });
+        let atlas = VisibilityAtlas::new(
+            gpu,
+            gpu_settings.map_size,
+            FIRST_BATCH as u32 * faces_per_cell(gpu_settings.visibility),
+        );
+        let (corners, window_ranges) = virtual_cells::window_corners(&scene.specular);
+        let window_corners = storage(gpu, "window corners", bytemuck::cast_slice(&corners), false);
+        let solver = GpuSolver {
+            gpu,
+            scene,
+            settings,
+            gpu_settings,
+            pipelines,
+            params,
+            radiosity,
+            unshot,
+            selection,
+            shooter_power,
+            shooter_elements,
+            patches: patch_buf,
+            shared,
+            shared_buffers,
+            shooters,
+            initial_power: None,
+            last_power: 0.0,
+            vertices,
+            vertex_indices,
+            index_count: indices.len() as u32,
+            chunks,
+            masked,
+            compute_raster,
+            triangles_drawn: 0,
+            atlas,
+            size: scene_size,
+            shots: 0,
+            shooter_info,
+            shooter_buf,
+            weighted: false,
+            deferral: None,
+            stages: None,
+            batch: FIRST_BATCH,
+            batch_seconds: BATCH_SECONDS,
+            fixed_batch: false,
+            patch_delta,
+            max_patches,
+            culled: (0, 0),
+            large_shooters,
+            receiver_threads: 0,
+            timers: None,
+            map_store: map_store::MapStore::new(DEFAULT_MAP_STORE_BYTES),
+            receivers: ReceiverBoxes::new(scene),
+            drawn: 0,
+            skipped: 0,
+            times: ShotTimes::default(),
+            plan_cache: PlanCache::new(DEFAULT_PLAN_CACHE_BYTES),
+            window_corners,
+            window_ranges,
+            virtual_drawn: 0,
+        };
+        solver.write_params(u32::MAX, 0, 0, 0..0);
+        solver
+    }
+}
