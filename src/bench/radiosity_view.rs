@@ -24,7 +24,10 @@ use crate::scene::Scene;
 pub struct ViewBenchRow {
     /// "global", "importance" or "perspective".
     pub drive: String,
-    /// Seconds of the importance solve (counted in the times below) …
+    /// Seconds the view's weights took ([`view::view_weights`]: a ray to the eye per
+    /// element; counted in the times below for the driven drives, 0 for global) …
+    pub view_weights_seconds: f64,
+    /// … seconds of the importance solve and of setting the drive up (counted too) …
     pub importance_seconds: f64,
     /// … of which its solver's setup.
     pub importance_setup_seconds: f64,
@@ -179,7 +182,10 @@ pub fn run(
     if let Some(why) = plan.raster.refusal(rscene.has_masked_casters()) {
         anyhow::bail!("{why}");
     }
+    // Driving by the view starts from its weights: timed, and charged to the driven drives.
+    let started = Instant::now();
     let weights = view::view_weights(&rscene, point);
+    let view_weights_seconds = started.elapsed().as_secs_f64();
     let elements_seen = weights.iter().filter(|&&w| w > 0.0).count();
     anyhow::ensure!(elements_seen > 0, "the camera sees no surface of the scene");
 
@@ -201,20 +207,22 @@ pub fn run(
         solver.set_map_store_bytes(plan.map_store_mib << 20);
         // The clock runs only while the solver works (not while the bench reads back).
         let mut clock = 0.0;
-        let driven = match drive {
-            Drive::Global => None,
+        let (driven, weights_seconds) = match drive {
+            Drive::Global => (None, 0.0),
             _ => {
                 let d =
                     ViewDriven::new(gpu, &rscene, settings, gpu_settings, weights.clone(), None)?;
                 let t = Instant::now();
                 d.drive(&mut solver, drive, point, plan.fov_margin)?;
                 clock += d.importance_seconds + t.elapsed().as_secs_f64();
-                Some(d)
+                (Some(d), view_weights_seconds)
             }
         };
         let importance_seconds = clock;
+        clock += weights_seconds;
         let mut row = ViewBenchRow {
             drive: drive.name().to_string(),
+            view_weights_seconds: weights_seconds,
             importance_seconds,
             importance_setup_seconds: driven.as_ref().map_or(0.0, |d| d.importance_setup_seconds),
             seconds_shown: None,

@@ -684,8 +684,8 @@ fn run_radiosity_view(
         result.reference_seconds
     );
     let tol = 100.0 * result.tolerance;
-    println!("| drive | importance s | to {tol:.0} % shown s | to {tol:.0} % shot s | shots | × global (shot) | maps | maps reused |");
-    println!("|---|---|---|---|---|---|---|---|");
+    println!("| drive | view weights s | importance s | to {tol:.0} % shown s | to {tol:.0} % shot s | shots | × global (shot) | maps | maps reused |");
+    println!("|---|---|---|---|---|---|---|---|---|");
     let fmt = |v: Option<f64>| v.map_or("not reached".to_string(), |s| format!("{s:.2}"));
     let base = result.rows.first().and_then(|r| r.seconds_shot);
     for r in &result.rows {
@@ -694,8 +694,9 @@ fn run_radiosity_view(
             _ => "–".to_string(),
         };
         println!(
-            "| {} | {:.2} | {} | {} | {} | {ratio} | {} | {} |",
+            "| {} | {:.3} | {:.2} | {} | {} | {} | {ratio} | {} | {} |",
             r.drive,
+            r.view_weights_seconds,
             r.importance_seconds,
             fmt(r.seconds_shown),
             fmt(r.seconds_shot),
@@ -707,8 +708,9 @@ fn run_radiosity_view(
     println!("Where the shots' time went until the shot light was within {tol:.0} % (s):");
     for r in &result.rows {
         println!(
-            "{}: importance {:.3} (its solver's setup {:.3}); {}",
+            "{}: view weights {:.3}, importance {:.3} (its solver's setup {:.3}); {}",
             r.drive,
+            r.view_weights_seconds,
             r.importance_seconds,
             r.importance_setup_seconds,
             phase_list(&r.phase_seconds, 3)
