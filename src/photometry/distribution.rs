@@ -6,7 +6,7 @@ use super::eulumdat::Eulumdat;
 use super::flux::integrate_flux;
 use super::grid::{Grid, Interp};
 use super::symmetry::Symmetry;
-use super::text::show;
+use super::text::show_rounded;
 
 /// Intensities over the whole sphere: C ∈ [0°, 360°), γ ∈ [0°, 180°], in cd/klm, plus
 /// the lamp flux that turns them into candela.
@@ -66,9 +66,9 @@ impl Distribution {
                 }
                 warnings.push(format!(
                     "C planes disagree at γ = {pole}° ({} to {} cd/klm) although all meet there: their mean {} is used for sampling (the stored values are kept)",
-                    show(lo),
-                    show(hi),
-                    show(mean)
+                    show_rounded(lo),
+                    show_rounded(hi),
+                    show_rounded(mean)
                 ));
             }
         }

@@ -7,7 +7,9 @@ use super::error::ParseError;
 use super::eulumdat::{Dimensions, Eulumdat, LampSet, Parsed};
 use super::grid::angle_eq;
 use super::symmetry::Symmetry;
-use super::text::{check_increasing, decode_text, exact, show, NumberStream, SourceText};
+use super::text::{
+    check_increasing, decode_text, exact, show, show_rounded, NumberStream, SourceText,
+};
 use super::type_b;
 
 /// Largest luminaire or opening size accepted, metres (100 km: anything larger is a
@@ -437,7 +439,7 @@ impl IesFile {
                 warnings.push(format!(
                     "line {}: the C360 plane differs from C0 by up to {} cd: C0 is used",
                     h_tok[h_tok.len() - 1].line,
-                    show(diff)
+                    show_rounded(diff)
                 ));
             }
         }

@@ -159,6 +159,26 @@ pub fn show(v: f64) -> String {
     }
 }
 
+/// A computed number for a message (a mean, a difference: not a value the file holds,
+/// which [`show`] echoes whole), to four significant digits: 15.29, 0.6792, 1170; in
+/// exponent form where [`show`] uses it.
+pub fn show_rounded(v: f64) -> String {
+    let a = v.abs();
+    if a == 0.0 || !v.is_finite() {
+        return format!("{v}");
+    }
+    if !(1e-6..1e12).contains(&a) {
+        return format!("{v:.3e}");
+    }
+    let decimals = (3 - a.log10().floor() as i32).max(0) as usize;
+    let text = format!("{v:.decimals$}");
+    if text.contains('.') {
+        text.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        text
+    }
+}
+
 /// The shortest decimal text that reads back as exactly `v`, in exponent form outside
 /// 1e-5…1e15 so that no value needs hundreds of digits (what the writers print).
 pub fn exact(v: f64) -> String {
@@ -405,6 +425,24 @@ pub fn check_increasing(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn computed_numbers_in_messages_have_four_significant_digits() {
+        let cases = [
+            (15.293770556118483, "15.29"),
+            (1170.2902442075372, "1170"),
+            (0.6791824957591521, "0.6792"),
+            (4.039627764049243, "4.04"),
+            (9.99996, "10"),
+            (-2.5, "-2.5"),
+            (0.0, "0"),
+            (123456.7, "123457"),
+            (1.5e-9, "1.500e-9"),
+        ];
+        for (v, text) in cases {
+            assert_eq!(show_rounded(v), text, "{v}");
+        }
+    }
 
     #[test]
     fn numbers_with_comma_and_rejects() {
