@@ -12,7 +12,7 @@ use std::sync::atomic::AtomicBool;
 
 use glam::{DVec3, Vec3};
 use goniolight::bench::radiosity_view::view_error;
-use goniolight::radiosity::gpu::{GpuSettings, GpuSolver, Reception};
+use goniolight::radiosity::gpu::{GpuSettings, GpuSolver, Reception, Visibility};
 use goniolight::radiosity::initial::{InitialState, LuminaireLight};
 use goniolight::radiosity::scene::RadiosityScene;
 use goniolight::radiosity::shooters::Hierarchy;
@@ -67,7 +67,8 @@ fn importance_and_perspective_driven_solutions_converge_to_the_global_one_in_vie
         .unwrap();
     let reference = reference.radiosity().unwrap();
 
-    let driven = ViewDriven::new(&gpu, &r, settings, gpu_settings, weights.clone(), None).unwrap();
+    let light = GpuSolver::new(&gpu, &r, &initial, settings, gpu_settings);
+    let driven = ViewDriven::new(&light, settings, gpu_settings, weights.clone(), None).unwrap();
     // Importance reaches surfaces the camera does not see (through interreflection).
     let unseen_with_importance = (0..r.elements.len())
         .filter(|&e| weights[e] == 0.0 && driven.importance[e] > 0.0)
@@ -104,6 +105,69 @@ fn importance_and_perspective_driven_solutions_converge_to_the_global_one_in_vie
     }
 }
 
+/// A sibling solver (the importance solve's: it shares the light solver's shooters,
+/// element records, visibility mesh and receivers' boxes) solves as one built afresh, for
+/// other light and other cells and maps; so does one whose visibility differs (built
+/// afresh: the mesh is split otherwise); and the solver it came from is left as it was.
+#[test]
+fn a_sibling_solver_solves_as_one_built_afresh() {
+    let Some(gpu) = gpu_common::gpu() else {
+        return;
+    };
+    let r = RadiosityScene::with_hierarchy(&two_rooms(), 8.0, 1, Hierarchy::Clusters).unwrap();
+    let settings = SolverSettings::default();
+    let gpu_settings = GpuSettings {
+        hierarchy: Hierarchy::Clusters,
+        ..GpuSettings::default()
+    };
+    let light = GpuSolver::new(
+        &gpu,
+        &r,
+        &InitialState::emission(&r),
+        settings,
+        gpu_settings,
+    );
+    // Other light: the emission of room A's walls only, three times as bright.
+    let mut initial = InitialState::emission(&r);
+    for (e, b) in initial.radiosity.iter_mut().enumerate() {
+        *b *= if r.elements.position[e].x < 5.0 {
+            3.0
+        } else {
+            0.0
+        };
+    }
+    for visibility in [Visibility::Hemicube, Visibility::Stereographic] {
+        let other = GpuSettings {
+            cell_power: 4.0 * gpu_settings.cell_power,
+            map_size: gpu_settings.map_size / 2,
+            visibility,
+            ..gpu_settings
+        };
+        let solve = |mut solver: GpuSolver| {
+            solver.fix_batch(4);
+            solver.solve(&stop(1.0, 8), &no_cancel(), |_| {}).unwrap();
+            (solver.radiosity().unwrap(), solver.drawn)
+        };
+        let (sibling, drawn) = solve(light.sibling(&initial, settings, other));
+        let (fresh, fresh_drawn) = solve(GpuSolver::new(&gpu, &r, &initial, settings, other));
+        assert_eq!(drawn, fresh_drawn, "{visibility:?}");
+        assert!(drawn > 0);
+        let worst = sibling
+            .iter()
+            .zip(&fresh)
+            .map(|(a, b)| (*a - *b).length() / b.length().max(1e-9))
+            .fold(0.0, f64::max);
+        assert!(worst < 1e-6, "{visibility:?}: {worst}");
+    }
+    let emission = InitialState::emission(&r).radiosity;
+    let untouched = light.radiosity().unwrap();
+    assert!(untouched
+        .iter()
+        .zip(&emission)
+        .all(|(a, b)| (*a - *b).length() <= 1e-6 * b.length()));
+    assert_eq!(light.shots, 0);
+}
+
 /// Two closed 2 × 1.5 × 1 m rooms 10 m apart, every wall emitting and reflecting (no
 /// luminaires), room B's walls brighter so a global solve shoots them first.
 fn two_rooms() -> Scene {
@@ -135,7 +199,8 @@ fn perspective_driven_radiosity_leaves_what_lies_outside_the_area_of_interest_al
     let weights = view::view_weights(&r, &point);
     let in_room_b = |e: usize| r.elements.position[e].x > 5.0;
     assert!((0..r.elements.len()).all(|e| weights[e] == 0.0 || !in_room_b(e)));
-    let driven = ViewDriven::new(&gpu, &r, settings, gpu_settings, weights, None).unwrap();
+    let light = GpuSolver::new(&gpu, &r, &initial, settings, gpu_settings);
+    let driven = ViewDriven::new(&light, settings, gpu_settings, weights, None).unwrap();
     let area = &view::area_stages(&r, &point, 10.0)[0];
     let chart = |e: usize| r.elements.chart[e] as usize;
     let outside = (0..r.elements.len()).filter(|&e| !area[chart(e)]).count();

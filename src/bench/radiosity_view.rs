@@ -210,8 +210,7 @@ pub fn run(
         let (driven, weights_seconds) = match drive {
             Drive::Global => (None, 0.0),
             _ => {
-                let d =
-                    ViewDriven::new(gpu, &rscene, settings, gpu_settings, weights.clone(), None)?;
+                let d = ViewDriven::new(&solver, settings, gpu_settings, weights.clone(), None)?;
                 let t = Instant::now();
                 d.drive(&mut solver, drive, point, plan.fov_margin)?;
                 clock += d.importance_seconds + t.elapsed().as_secs_f64();

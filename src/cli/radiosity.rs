@@ -449,6 +449,7 @@ impl Prepared<'_> {
     /// `time_budget`); an error when the camera sees no surface.
     fn drive(
         &self,
+        light: &GpuSolver,
         point: &ViewPoint,
         settings: SolverSettings,
         gpu_settings: GpuSettings,
@@ -464,8 +465,7 @@ impl Prepared<'_> {
             )));
         }
         let driven = ViewDriven::new(
-            &self.gpu,
-            &self.rscene,
+            light,
             settings,
             gpu_settings,
             weights,
@@ -534,7 +534,7 @@ impl Prepared<'_> {
         let mut stop_at = args.stop();
         let driven = match &self.view {
             Some(point) => {
-                let d = self.drive(point, settings, gpu_settings, stop_at.time_budget)?;
+                let d = self.drive(&solver, point, settings, gpu_settings, stop_at.time_budget)?;
                 d.drive(&mut solver, args.drive, point, args.fov_margin)?;
                 // The importance solve's time is the solve's.
                 stop_at.time_budget = stop_at

@@ -8,7 +8,7 @@
 use glam::{DVec3, Vec3};
 
 use super::atlas::VisibilityAtlas;
-use super::links::{ReceiverBoxes, DEFAULT_LINK_ERROR};
+use super::links::DEFAULT_LINK_ERROR;
 use super::scene::RadiosityScene;
 use super::shooters::{cell_planes, Hierarchy, PlanCache, Shooters, DEFAULT_CELL_POWER};
 use super::{Ambient, SolverSettings};
@@ -215,26 +215,19 @@ pub struct GpuSolver<'a> {
     /// The buffers `shared` binds, binding by binding (it is bound again when the
     /// held-back buffer grows: [`deferred`]).
     shared_buffers: Vec<wgpu::Buffer>,
-    shooters: Shooters,
+    /// What solvers of this scene share: shooters, element records, visibility mesh,
+    /// receivers' boxes ([`GpuSolver::sibling`]).
+    upload: setup::SceneUpload,
     /// The first selection's total unshot power, lm (the oracle's scale).
     initial_power: Option<f64>,
     /// The last selection's shooter power, lm.
     last_power: f64,
-    vertices: wgpu::Buffer,
-    /// The visibility mesh's triangles (three vertex indices each).
-    vertex_indices: wgpu::Buffer,
-    index_count: u32,
-    /// The visibility mesh's chunks, for culling per face.
-    chunks: MeshChunks,
-    /// Its alpha-masked triangles, drawn whole into every map.
-    masked: Option<masked::MaskedCasters>,
     /// The compute rasterizer, where the maps are drawn by compute shaders.
     compute_raster: Option<raster::ComputeRaster>,
     /// Visibility-mesh triangles drawn so far, over all faces of all maps.
     pub triangles_drawn: u64,
     /// The visibility maps of a batch.
     atlas: VisibilityAtlas,
-    size: f64,
     /// Shots so far.
     pub shots: usize,
     /// The shooters' records as uploaded (their weights in `[2]`).
@@ -255,16 +248,12 @@ pub struct GpuSolver<'a> {
     fixed_batch: bool,
     /// Per cell of the shot: rgb unshot radiosity it shoots.
     patch_delta: wgpu::Buffer,
-    /// Entries of the patch buffer for cells; the receiver ranges follow.
-    max_patches: usize,
     /// The shot's receiver ranges and threads (every element of them).
     culled: (u32, u32),
     /// Shooters of more than [`SMALL_SHOOTER`] elements (a workgroup sums each).
     large_shooters: u32,
     /// Receiver threads dispatched so far (elements in front of the shooters, per map).
     pub receiver_threads: u64,
-    /// The receivers' boxes, for the links.
-    receivers: ReceiverBoxes,
     /// Visibility maps drawn so far (one per drawn cell or patch).
     pub drawn: usize,
     /// Cells or patches whose visibility map was skipped so far: no receiver takes light
@@ -278,10 +267,6 @@ pub struct GpuSolver<'a> {
     timers: Option<timers::PassTimers>,
     /// The maps of the cells shot while receivers waited, for their catch-up.
     map_store: map_store::MapStore,
-    /// The specular windows' triangles ([`virtual_cells::window_corners`]).
-    window_corners: wgpu::Buffer,
-    /// Per window, its first triangle and count there.
-    window_ranges: Vec<[u32; 2]>,
     /// Virtual cells' visibility maps drawn so far (mirrors and clear glass).
     pub virtual_drawn: usize,
 }
@@ -344,7 +329,7 @@ impl<'a> GpuSolver<'a> {
         let el = &self.scene.elements;
         let p = SolveParams {
             element_count: el.len() as u32,
-            shooter_count: self.shooters.len() as u32,
+            shooter_count: self.upload.shooters.len() as u32,
             shooter,
             overshoot: u32::from(self.settings.ambient == Ambient::Overshoot),
             patch_first,
@@ -355,7 +340,7 @@ impl<'a> GpuSolver<'a> {
             clear_count: clear.len() as u32,
             range_count: self.culled.0,
             range_total: self.culled.1,
-            range_first: self.max_patches as u32,
+            range_first: self.upload.max_patches as u32,
             large_shooters: self.large_shooters,
             receiving_normals: u32::from(!self.scene.receiving_normals.is_empty()),
             _pad: 0,
@@ -385,7 +370,7 @@ impl<'a> GpuSolver<'a> {
         let mut clock = std::time::Instant::now();
         self.write_params(u32::MAX, 0, 0, 0..0);
         let mut enc = self.gpu.device.create_command_encoder(&Default::default());
-        let shooters = self.shooters.len() as u32;
+        let shooters = self.upload.shooters.len() as u32;
         self.dispatch(&mut enc, &self.pipelines.shooter_sums, shooters, 64);
         self.dispatch(
             &mut enc,
@@ -424,7 +409,7 @@ impl<'a> GpuSolver<'a> {
     /// Weighs each shooter's unshot power by `weights` (one per shooter, ≥ 0) in the
     /// selection and in [`Selection::weighted_power`]: importance-driven shooting.
     pub fn set_shooter_weights(&mut self, weights: &[f64]) {
-        assert_eq!(weights.len(), self.shooters.len());
+        assert_eq!(weights.len(), self.upload.shooters.len());
         for (record, w) in self.shooter_info.iter_mut().zip(weights) {
             record[2] = (w.max(0.0) as f32).to_bits();
         }
@@ -466,7 +451,7 @@ impl<'a> GpuSolver<'a> {
 
     /// Triangles each visibility map draws (the casters with CAD fans merged).
     pub fn visibility_triangles(&self) -> usize {
-        self.index_count as usize / 3
+        self.upload.index_count as usize / 3
     }
 
     /// How its maps are drawn ([`GpuSettings::raster`] as resolved for this GPU and
@@ -477,7 +462,7 @@ impl<'a> GpuSolver<'a> {
 
     /// The shooters: triangles, or flat face clusters ([`GpuSettings::hierarchy`]).
     pub fn shooters(&self) -> &Shooters {
-        &self.shooters
+        &self.upload.shooters
     }
 
     /// Keeps this many bytes of maps at most for the catch-up of waiting receivers (0:

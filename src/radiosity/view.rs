@@ -20,7 +20,7 @@ use super::scene::{luminance, RadiosityScene};
 use super::shooters::Shooters;
 use super::solve::StopAt;
 use super::{Ambient, SolverSettings};
-use crate::gpu::{Gpu, GpuError};
+use crate::gpu::GpuError;
 use crate::scene::camera::{Camera, Projection};
 use crate::shadow::IgnoredTriangles;
 
@@ -237,15 +237,16 @@ pub fn area_stages(scene: &RadiosityScene, view: &ViewPoint, margin_deg: f64) ->
 /// The importance H per element (see the module's notes): a radiosity solution of the
 /// scene without luminaires whose emission is reflectance × `view` weight, solved on the
 /// GPU to [`IMPORTANCE_CONVERGE`] (or `time_budget`), read back as each element's received
-/// irradiance (luminance); and the seconds its solver took to set up.
+/// irradiance (luminance); and the seconds its solver took to set up (a sibling of the
+/// scene's `light` solver: [`GpuSolver::sibling`]).
 pub fn importance(
-    gpu: &Gpu,
-    scene: &RadiosityScene,
+    light: &GpuSolver,
     settings: SolverSettings,
     gpu_settings: GpuSettings,
     view: &[f64],
     time_budget: Option<std::time::Duration>,
 ) -> Result<(Vec<f64>, f64), GpuError> {
+    let scene = light.scene();
     let radiosity = (0..scene.elements.len())
         .map(|e| scene.element_reflectance(e) * view[e])
         .collect();
@@ -263,7 +264,7 @@ pub fn importance(
         ..gpu_settings
     };
     let started = std::time::Instant::now();
-    let mut solver = GpuSolver::new(gpu, scene, &initial, settings, gpu_settings);
+    let mut solver = light.sibling(&initial, settings, gpu_settings);
     let setup_seconds = started.elapsed().as_secs_f64();
     let stop = StopAt {
         converge: IMPORTANCE_CONVERGE,
@@ -353,16 +354,16 @@ pub struct ViewDriven {
     pub importance: Vec<f64>,
     /// Seconds the importance solve took …
     pub importance_seconds: f64,
-    /// … of which setting up its solver (shooters, receivers, mesh chunks, pipelines).
+    /// … of which setting up its solver (its buffers; the shooters, element records,
+    /// visibility mesh and receivers' boxes are the light solver's: [`GpuSolver::sibling`]).
     pub importance_setup_seconds: f64,
 }
 
 impl ViewDriven {
     /// Solves the importance of the view whose [`view_weights`] are `view` (an importance
-    /// solve of at most `time_budget`).
+    /// solve of at most `time_budget`) for the scene of the `light` solver it will drive.
     pub fn new(
-        gpu: &Gpu,
-        scene: &RadiosityScene,
+        light: &GpuSolver,
         settings: SolverSettings,
         gpu_settings: GpuSettings,
         view: Vec<f64>,
@@ -370,7 +371,7 @@ impl ViewDriven {
     ) -> Result<ViewDriven, GpuError> {
         let started = std::time::Instant::now();
         let (importance, importance_setup_seconds) =
-            importance(gpu, scene, settings, gpu_settings, &view, time_budget)?;
+            importance(light, settings, gpu_settings, &view, time_budget)?;
         Ok(ViewDriven {
             view,
             importance,

@@ -250,8 +250,8 @@ impl Job<'_> {
             return Ok(None);
         }
         let budget = Some(Duration::from_secs_f64(IMPORTANCE_SECONDS));
-        let driven = ViewDriven::new(self.gpu, solver.scene(), s.solver, s.gpu, weights, budget)
-            .map_err(|e| err(&e))?;
+        let driven =
+            ViewDriven::new(solver, s.solver, s.gpu, weights, budget).map_err(|e| err(&e))?;
         driven
             .drive(solver, s.drive, &point, s.fov_margin_deg)
             .map_err(|e| err(&e))?;

@@ -108,8 +108,8 @@ impl GpuSolver<'_> {
         }
         let el = &self.scene.elements;
         assert_eq!(reception.len(), el.charts.len());
-        let wanted: Vec<Reception> = (0..self.receivers.len())
-            .map(|k| reception[el.chart[self.receivers.range(k).0 as usize] as usize])
+        let wanted: Vec<Reception> = (0..self.upload.receivers.len())
+            .map(|k| reception[el.chart[self.upload.receivers.range(k).0 as usize] as usize])
             .collect();
         let deferral = self.deferral.get_or_insert_with(|| Deferral {
             reception: vec![Reception::Receives; wanted.len()],
@@ -156,7 +156,7 @@ impl GpuSolver<'_> {
         // The shots' own phases are not counted twice.
         let before = self.times;
         for (from, charts) in &joining {
-            let boxes = self.receivers.subset(charts);
+            let boxes = self.upload.receivers.subset(charts);
             for shot in &missed[*from..] {
                 if self.shoot_again(shot, (&boxes, charts))? {
                     given += 1;

@@ -59,7 +59,10 @@ pub(super) struct BatchCell<'c> {
 impl<'a> GpuSolver<'a> {
     /// The visibility faces' projection, and its far plane: around the scene's size.
     fn projection(&self) -> (Mat4, f32) {
-        let (near, far) = ((1e-4 * self.size) as f32, (2.0 * self.size) as f32);
+        let (near, far) = (
+            (1e-4 * self.upload.size) as f32,
+            (2.0 * self.upload.size) as f32,
+        );
         let m = Mat4::perspective_rh(std::f32::consts::FRAC_PI_2, 1.0, near, far);
         (m, far)
     }
@@ -75,7 +78,7 @@ impl<'a> GpuSolver<'a> {
     ) -> (Vec<u8>, Vec<u8>, Vec<TileView>) {
         let faces_per_patch = faces_per_cell(self.gpu_settings.visibility) as usize;
         let (projection, far) = self.projection();
-        let tolerance = self.receivers.plane_tolerance() as f32;
+        let tolerance = self.upload.receivers.plane_tolerance() as f32;
         let finite = |r: f64| r.min(f64::from(f32::MAX)) as f32;
         let mut shots = vec![0u8; cells.len() * SHOT_STRIDE as usize];
         let mut faces = vec![0u8; cells.len() * faces_per_patch * FACE_STRIDE as usize];
@@ -88,7 +91,7 @@ impl<'a> GpuSolver<'a> {
             };
             let n = p.normal;
             let (tangent, bitangent) = frame(n);
-            let eye = (p.centroid + n * 1e-6 * self.size).as_vec3();
+            let eye = (p.centroid + n * 1e-6 * self.upload.size).as_vec3();
             let (t3, b3, n3) = (tangent.as_vec3(), bitangent.as_vec3(), n.as_vec3());
             let looks = [(n3, t3), (t3, n3), (-t3, n3), (b3, n3), (-b3, n3)];
             let matrices = looks.map(|(dir, up)| projection * Mat4::look_to_rh(eye, dir, up));
@@ -116,7 +119,7 @@ impl<'a> GpuSolver<'a> {
             // only what lies beyond its window's plane.
             let (tint, plane, window, reach) = match cell.image {
                 Some((v, parent)) => {
-                    let [first, count] = self.window_ranges[v.window];
+                    let [first, count] = self.upload.window_ranges[v.window];
                     let plane = v.plane.as_vec4().to_array();
                     (v4(v.tint, 0.0), plane, [first, count, parent, 0], 0.0)
                 }
@@ -124,7 +127,7 @@ impl<'a> GpuSolver<'a> {
             };
             let mut clip = plane;
             if cell.image.is_some() {
-                clip[3] -= (1e-4 * self.size) as f32;
+                clip[3] -= (1e-4 * self.upload.size) as f32;
             }
             let record = ShotGpu {
                 faces: matrices.map(|m| m.to_cols_array()),
@@ -142,7 +145,7 @@ impl<'a> GpuSolver<'a> {
                 extra: [
                     p.area as f32,
                     self.gpu_settings.tolerance,
-                    (1e-4 * self.size) as f32,
+                    (1e-4 * self.upload.size) as f32,
                     if stereographic { 1.0 } else { 0.0 },
                 ],
                 ancestors,
@@ -253,7 +256,7 @@ impl<'a> GpuSolver<'a> {
                 (0, binding(&shot_buf, std::mem::size_of::<ShotGpu>())),
                 (1, wgpu::BindingResource::TextureView(&self.atlas.view)),
                 (2, shot_buf.as_entire_binding()),
-                (3, self.window_corners.as_entire_binding()),
+                (3, self.upload.window_corners.as_entire_binding()),
             ],
         );
         let mut ranges = Vec::new();
@@ -264,7 +267,8 @@ impl<'a> GpuSolver<'a> {
                 if restored(tile) {
                     continue;
                 }
-                self.chunks
+                self.upload
+                    .chunks
                     .visible(view, self.gpu_settings.chunk_culling, &mut ranges);
                 for &(first, count) in &ranges {
                     work.push(tile, first, count);
@@ -275,7 +279,7 @@ impl<'a> GpuSolver<'a> {
                 self.gpu,
                 enc,
                 &self.atlas,
-                (&self.vertices, &self.vertex_indices),
+                (&self.upload.vertices, &self.upload.vertex_indices),
                 &face_buf,
                 &work,
                 views.len() as u32,
@@ -313,8 +317,11 @@ impl<'a> GpuSolver<'a> {
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
-            pass.set_vertex_buffer(0, self.vertices.slice(..));
-            pass.set_index_buffer(self.vertex_indices.slice(..), wgpu::IndexFormat::Uint32);
+            pass.set_vertex_buffer(0, self.upload.vertices.slice(..));
+            pass.set_index_buffer(
+                self.upload.vertex_indices.slice(..),
+                wgpu::IndexFormat::Uint32,
+            );
             let size = self.atlas.size;
             for (tile, view) in views.iter().enumerate() {
                 let tile = tile as u32;
@@ -334,16 +341,17 @@ impl<'a> GpuSolver<'a> {
                 } else {
                     &self.pipelines.visibility
                 });
-                self.chunks
+                self.upload
+                    .chunks
                     .visible(view, self.gpu_settings.chunk_culling, &mut ranges);
                 for &(first, count) in &ranges {
                     pass.draw_indexed(first..first + count, 0, 0..1);
                     self.triangles_drawn += u64::from(count / 3);
                 }
-                if let Some(masked) = &self.masked {
+                if let Some(masked) = &self.upload.masked {
                     masked.draw(&mut pass, clipped);
                     self.triangles_drawn += u64::from(masked.triangle_count());
-                    pass.set_vertex_buffer(0, self.vertices.slice(..));
+                    pass.set_vertex_buffer(0, self.upload.vertices.slice(..));
                 }
             }
         }

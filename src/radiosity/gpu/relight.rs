@@ -56,7 +56,7 @@ impl GpuSolver<'_> {
     /// [`GpuSolver::start_scale`]'s two measures: (all of it, weighted).
     pub fn start_power(&self, radiosity: &[DVec3]) -> (f64, f64) {
         let el = &self.scene.elements;
-        let shooter_of = &self.shooters.element_shooter;
+        let shooter_of = &self.upload.shooters.element_shooter;
         (0..el.len()).fold((0.0, 0.0), |(plain, weighted), e| {
             let p = luminance(radiosity[e]).abs() * el.area[e];
             let w = f32::from_bits(self.shooter_info[shooter_of[e] as usize][2]) as f64;

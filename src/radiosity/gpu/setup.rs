@@ -17,7 +17,8 @@ use crate::radiosity::initial::InitialState;
 use crate::radiosity::links::{ReceiverBoxes, LINK_LEVELS};
 use crate::radiosity::scene::RadiosityScene;
 use crate::radiosity::shooters::{PlanCache, Shooters, DEFAULT_PLAN_CACHE_BYTES};
-use crate::radiosity::SolverSettings;
+use crate::radiosity::{Hierarchy, SolverSettings};
+use std::sync::Arc;
 
 fn storage(gpu: &Gpu, label: &str, data: &[u8], writable: bool) -> wgpu::Buffer {
     use wgpu::BufferUsages as U;
@@ -32,6 +33,161 @@ fn storage(gpu: &Gpu, label: &str, data: &[u8], writable: bool) -> wgpu::Buffer 
             contents: data,
             usage,
         })
+}
+
+/// What the solvers of one scene with the same shooters and visibility share, built once:
+/// the shooters, the elements' records on the GPU, the visibility mesh and its chunks,
+/// the receivers' boxes and the specular windows. A second solver of the scene (the
+/// importance solve of a view-driven one) takes it from the first ([`GpuSolver::sibling`])
+/// instead of building it again.
+#[derive(Clone)]
+pub(super) struct SceneUpload {
+    /// The hierarchy the shooters were built with …
+    hierarchy: Hierarchy,
+    /// … and the visibility the mesh was split for.
+    visibility: Visibility,
+    pub(super) shooters: Arc<Shooters>,
+    /// Per element: centre and area; normal and piece; receiving normal (bindings of group 0).
+    elements: [wgpu::Buffer; 3],
+    /// Entries of the patch buffer for cells (the largest plan); the receiver ranges follow.
+    pub(super) max_patches: usize,
+    /// Whether the largest plan with its links fits one binding (else links are off).
+    links_fit: bool,
+    pub(super) vertices: wgpu::Buffer,
+    /// The visibility mesh's triangles (three vertex indices each).
+    pub(super) vertex_indices: wgpu::Buffer,
+    pub(super) index_count: u32,
+    /// The visibility mesh's chunks, for culling per face.
+    pub(super) chunks: Arc<MeshChunks>,
+    /// Its alpha-masked triangles, drawn whole into every map.
+    pub(super) masked: Option<Arc<masked::MaskedCasters>>,
+    /// The receivers' boxes, for the links and the cull.
+    pub(super) receivers: Arc<ReceiverBoxes>,
+    /// The specular windows' triangles ([`virtual_cells::window_corners`]).
+    pub(super) window_corners: wgpu::Buffer,
+    /// Per window, its first triangle and count there.
+    pub(super) window_ranges: Vec<[u32; 2]>,
+    /// The scene's diagonal, metres.
+    pub(super) size: f64,
+}
+
+impl SceneUpload {
+    /// `shooters` are [`Shooters::build`] of `scene` with `hierarchy`.
+    fn new(
+        gpu: &Gpu,
+        scene: &RadiosityScene,
+        shooters: Shooters,
+        (hierarchy, visibility): (Hierarchy, Visibility),
+    ) -> Self {
+        let el = &scene.elements;
+        let n = el.len();
+        let bytes = |v: &[ElementRecord]| bytemuck::cast_slice::<ElementRecord, u8>(v).to_vec();
+        let points: Vec<ElementRecord> = (0..n)
+            .map(|e| v4(el.position[e], el.area[e] as f32))
+            .collect();
+        let normals: Vec<ElementRecord> = (0..n)
+            .map(|e| v4(el.normal(e), f32::from_bits(shooters.element_piece[e])))
+            .collect();
+        // Receiving normals (w 1 where not the chart's) only where some element has its
+        // own; otherwise one unused record.
+        let receiving: Vec<ElementRecord> = if scene.receiving_normals.is_empty() {
+            vec![[0.0; 4]]
+        } else {
+            (0..n)
+                .map(|e| {
+                    let r = scene.element_receiving_normal(e);
+                    v4(r, f32::from(u8::from(r != el.normal(e))))
+                })
+                .collect()
+        };
+        let elements = [
+            storage(gpu, "element points", &bytes(&points), false),
+            storage(gpu, "element normals", &bytes(&normals), false),
+            storage(gpu, "element receiving normals", &bytes(&receiving), false),
+        ];
+        // Room for the largest plan; links are left out where its cells would not fit
+        // one binding (a cluster of millions of elements).
+        let max_binding = gpu
+            .device
+            .limits()
+            .max_storage_buffer_binding_size
+            .min(gpu.device.limits().max_buffer_size);
+        let mut max_patches = shooters.max_cells(scene, LINK_LEVELS);
+        let links_fit = 16 * max_patches as u64 <= max_binding;
+        if !links_fit {
+            max_patches = shooters.max_cells(scene, 0);
+        }
+        let pipelines = gpu.cached(|| Pipelines::new(gpu));
+        // Visibility needs only the surfaces, not their tessellation: a CAD fan's strips
+        // are drawn as the triangle they fill (the same points, far fewer triangles).
+        let size = scene
+            .casters
+            .bounds()
+            .map_or(1.0, |(lo, hi)| (hi - lo).length());
+        // The stereographic map projects only vertices, so a long edge bends wrongly
+        // (Wallner Fig. 4.4): its mesh has no edge longer than a fraction of the scene.
+        let max_edge = match visibility {
+            Visibility::Hemicube => f64::INFINITY,
+            Visibility::Stereographic => size * STEREOGRAPHIC_EDGE_FRACTION,
+        };
+        // The alpha-masked triangles at the mesh's end are drawn on their own.
+        let masked = masked::MaskedCasters::new(
+            gpu,
+            scene,
+            &pipelines.vis_module,
+            &pipelines.face_layout,
+            max_edge,
+        );
+        let solid = masked::solid_visibility_mesh(scene);
+        let split;
+        let mesh = match visibility {
+            Visibility::Hemicube => &*solid,
+            Visibility::Stereographic => {
+                split = split_long_edges(&solid, max_edge);
+                &split
+            }
+        };
+        // Indexed: a vertex shared by six triangles is transformed about once per face
+        // drawn, not six times.
+        let positions: Vec<[f32; 3]> = mesh
+            .positions
+            .iter()
+            .map(|p| p.as_vec3().to_array())
+            .collect();
+        let mut triangles = mesh.triangles.clone();
+        let chunks = MeshChunks::new(&mesh.positions, &mut triangles);
+        let indices: Vec<u32> = triangles.iter().flatten().copied().collect();
+        // Read as storage by the compute rasterizer.
+        let vertices = gpu.buffer_with(
+            "radiosity vertices",
+            bytemuck::cast_slice(&positions),
+            wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::STORAGE,
+        );
+        let vertex_indices = gpu.buffer_with(
+            "radiosity vertex indices",
+            bytemuck::cast_slice(&indices),
+            wgpu::BufferUsages::INDEX | wgpu::BufferUsages::STORAGE,
+        );
+        let (corners, window_ranges) = virtual_cells::window_corners(&scene.specular);
+        let window_corners = storage(gpu, "window corners", bytemuck::cast_slice(&corners), false);
+        SceneUpload {
+            hierarchy,
+            visibility,
+            shooters: Arc::new(shooters),
+            elements,
+            max_patches,
+            links_fit,
+            vertices,
+            vertex_indices,
+            index_count: indices.len() as u32,
+            chunks: Arc::new(chunks),
+            masked: masked.map(Arc::new),
+            receivers: Arc::new(ReceiverBoxes::new(scene)),
+            window_corners,
+            window_ranges,
+            size,
+        }
+    }
 }
 
 impl<'a> GpuSolver<'a> {
@@ -58,18 +214,60 @@ impl<'a> GpuSolver<'a> {
         gpu_settings: GpuSettings,
         shooters: Shooters,
     ) -> GpuSolver<'a> {
+        let upload = SceneUpload::new(
+            gpu,
+            scene,
+            shooters,
+            (gpu_settings.hierarchy, gpu_settings.visibility),
+        );
+        GpuSolver::with_upload(gpu, scene, upload, initial, settings, gpu_settings)
+    }
+
+    /// A solver of the same scene for other light (`initial`) and settings: the
+    /// importance solve of a view-driven one ([`crate::radiosity::view::importance`]).
+    /// With the same hierarchy and visibility it shares this one's shooters, element
+    /// records, visibility mesh and receivers' boxes instead of building them again
+    /// (most of a solver's setup); its solution, settings and maps are its own.
+    pub fn sibling(
+        &self,
+        initial: &InitialState,
+        settings: SolverSettings,
+        gpu_settings: GpuSettings,
+    ) -> GpuSolver<'a> {
+        let upload = &self.upload;
+        if upload.hierarchy == gpu_settings.hierarchy
+            && upload.visibility == gpu_settings.visibility
+        {
+            let upload = upload.clone();
+            GpuSolver::with_upload(
+                self.gpu,
+                self.scene,
+                upload,
+                initial,
+                settings,
+                gpu_settings,
+            )
+        } else {
+            GpuSolver::new(self.gpu, self.scene, initial, settings, gpu_settings)
+        }
+    }
+
+    /// A solver over `upload` (of `scene`) starting from `initial`.
+    fn with_upload(
+        gpu: &'a Gpu,
+        scene: &'a RadiosityScene,
+        upload: SceneUpload,
+        initial: &InitialState,
+        settings: SolverSettings,
+        gpu_settings: GpuSettings,
+    ) -> GpuSolver<'a> {
+        let shooters = &upload.shooters;
         let el = &scene.elements;
         let n = el.len();
         debug_assert!((0..n).all(|e| {
             let k = shooters.element_shooter[e] as usize;
             scene.reflectance[shooters.material[k]] == scene.element_reflectance(e)
         }));
-        let points: Vec<ElementRecord> = (0..n)
-            .map(|e| v4(el.position[e], el.area[e] as f32))
-            .collect();
-        let normals: Vec<ElementRecord> = (0..n)
-            .map(|e| v4(el.normal(e), f32::from_bits(shooters.element_piece[e])))
-            .collect();
         let start: Vec<[f32; 4]> = initial.radiosity.iter().map(|b| v4(*b, 0.0)).collect();
         let start_lit: Vec<[f32; 4]> = (0..n)
             .map(|e| v4(initial.radiosity[e], initial.illuminance[e] as f32))
@@ -107,24 +305,13 @@ impl<'a> GpuSolver<'a> {
             .collect();
         let large_shooters = large.len() as u32;
         shooter_info.extend(large);
-        // Room for the largest plan; links are left out where its cells would not fit
-        // one binding (a cluster of millions of elements).
-        let max_binding = gpu
-            .device
-            .limits()
-            .max_storage_buffer_binding_size
-            .min(gpu.device.limits().max_buffer_size);
         let mut gpu_settings = gpu_settings;
         // Virtual cells shoot to every receiver their window shows: no links (a cell a
         // link leaves undrawn could light receivers through a mirror).
-        if !scene.specular.is_empty() {
+        if !scene.specular.is_empty() || !upload.links_fit {
             gpu_settings.link_error = 0.0;
         }
-        let mut max_patches = shooters.max_cells(scene, LINK_LEVELS);
-        if 16 * max_patches as u64 > max_binding {
-            gpu_settings.link_error = 0.0;
-            max_patches = shooters.max_cells(scene, 0);
-        }
+        let max_patches = upload.max_patches;
         let pipelines = gpu.cached(|| Pipelines::new(gpu));
         let bytes = |v: &[[f32; 4]]| bytemuck::cast_slice::<[f32; 4], u8>(v).to_vec();
         let params = gpu.device.create_buffer(&wgpu::BufferDescriptor {
@@ -133,22 +320,6 @@ impl<'a> GpuSolver<'a> {
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let element_points = storage(gpu, "element points", &bytes(&points), false);
-        let element_normals = storage(gpu, "element normals", &bytes(&normals), false);
-        // Receiving normals (w 1 where not the chart's) only where some element has its
-        // own; otherwise one unused record.
-        let receiving: Vec<ElementRecord> = if scene.receiving_normals.is_empty() {
-            vec![[0.0; 4]]
-        } else {
-            (0..n)
-                .map(|e| {
-                    let r = scene.element_receiving_normal(e);
-                    v4(r, f32::from(u8::from(r != el.normal(e))))
-                })
-                .collect()
-        };
-        let element_receiving =
-            storage(gpu, "element receiving normals", &bytes(&receiving), false);
         let shooter_elements = storage(
             gpu,
             "shooter elements",
@@ -186,6 +357,7 @@ impl<'a> GpuSolver<'a> {
         // What charts that hold keep back: one unused record until one holds (at
         // `deferred::HELD_BACK_BINDING`).
         let held_back = storage(gpu, "held back", &[0u8; 16], true);
+        let [element_points, element_normals, element_receiving] = upload.elements.clone();
         let shared_buffers = vec![
             params.clone(),
             element_points,
@@ -202,57 +374,7 @@ impl<'a> GpuSolver<'a> {
             held_back,
         ];
         let shared = shared_bind_group(gpu, &pipelines, &shared_buffers);
-        // Visibility needs only the surfaces, not their tessellation: a CAD fan's strips
-        // are drawn as the triangle they fill (the same points, far fewer triangles).
-        let scene_size = scene
-            .casters
-            .bounds()
-            .map_or(1.0, |(lo, hi)| (hi - lo).length());
-        // The stereographic map projects only vertices, so a long edge bends wrongly
-        // (Wallner Fig. 4.4): its mesh has no edge longer than a fraction of the scene.
-        let max_edge = match gpu_settings.visibility {
-            Visibility::Hemicube => f64::INFINITY,
-            Visibility::Stereographic => scene_size * STEREOGRAPHIC_EDGE_FRACTION,
-        };
-        // The alpha-masked triangles at the mesh's end are drawn on their own.
-        let masked = masked::MaskedCasters::new(
-            gpu,
-            scene,
-            &pipelines.vis_module,
-            &pipelines.face_layout,
-            max_edge,
-        );
-        let solid = masked::solid_visibility_mesh(scene);
-        let split;
-        let mesh = match gpu_settings.visibility {
-            Visibility::Hemicube => &*solid,
-            Visibility::Stereographic => {
-                split = split_long_edges(&solid, max_edge);
-                &split
-            }
-        };
-        // Indexed: a vertex shared by six triangles is transformed about once per face
-        // drawn, not six times.
-        let positions: Vec<[f32; 3]> = mesh
-            .positions
-            .iter()
-            .map(|p| p.as_vec3().to_array())
-            .collect();
-        let mut triangles = mesh.triangles.clone();
-        let chunks = MeshChunks::new(&mesh.positions, &mut triangles);
-        let indices: Vec<u32> = triangles.iter().flatten().copied().collect();
-        // Read as storage by the compute rasterizer.
-        let vertices = gpu.buffer_with(
-            "radiosity vertices",
-            bytemuck::cast_slice(&positions),
-            wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::STORAGE,
-        );
-        let vertex_indices = gpu.buffer_with(
-            "radiosity vertex indices",
-            bytemuck::cast_slice(&indices),
-            wgpu::BufferUsages::INDEX | wgpu::BufferUsages::STORAGE,
-        );
-        gpu_settings.raster = gpu_settings.raster.resolve(gpu, masked.is_some());
+        gpu_settings.raster = gpu_settings.raster.resolve(gpu, upload.masked.is_some());
         let compute_raster = (gpu_settings.raster == Raster::Compute).then(|| {
             raster::ComputeRaster::new(gpu, gpu.cached(|| raster::RasterPipelines::new(gpu)))
         });
@@ -261,8 +383,6 @@ impl<'a> GpuSolver<'a> {
             gpu_settings.map_size,
             FIRST_BATCH as u32 * faces_per_cell(gpu_settings.visibility),
         );
-        let (corners, window_ranges) = virtual_cells::window_corners(&scene.specular);
-        let window_corners = storage(gpu, "window corners", bytemuck::cast_slice(&corners), false);
         let solver = GpuSolver {
             gpu,
             scene,
@@ -278,18 +398,12 @@ impl<'a> GpuSolver<'a> {
             patches: patch_buf,
             shared,
             shared_buffers,
-            shooters,
+            upload,
             initial_power: None,
             last_power: 0.0,
-            vertices,
-            vertex_indices,
-            index_count: indices.len() as u32,
-            chunks,
-            masked,
             compute_raster,
             triangles_drawn: 0,
             atlas,
-            size: scene_size,
             shots: 0,
             shooter_info,
             shooter_buf,
@@ -300,19 +414,15 @@ impl<'a> GpuSolver<'a> {
             batch_seconds: BATCH_SECONDS,
             fixed_batch: false,
             patch_delta,
-            max_patches,
             culled: (0, 0),
             large_shooters,
             receiver_threads: 0,
             timers: None,
             map_store: map_store::MapStore::new(DEFAULT_MAP_STORE_BYTES),
-            receivers: ReceiverBoxes::new(scene),
             drawn: 0,
             skipped: 0,
             times: ShotTimes::default(),
             plan_cache: PlanCache::new(DEFAULT_PLAN_CACHE_BYTES),
-            window_corners,
-            window_ranges,
             virtual_drawn: 0,
         };
         solver.write_params(u32::MAX, 0, 0, 0..0);

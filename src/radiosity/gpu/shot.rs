@@ -76,11 +76,16 @@ impl<'a> GpuSolver<'a> {
         let mut clock = std::time::Instant::now();
         let power = self.piece_powers(s)?;
         lap(&mut self.times.piece_powers, &mut clock);
-        let plan =
-            self.shooters
-                .plan_shot(self.scene, s, &power, budget, levels, &mut self.plan_cache);
+        let plan = self.upload.shooters.plan_shot(
+            self.scene,
+            s,
+            &power,
+            budget,
+            levels,
+            &mut self.plan_cache,
+        );
         lap(&mut self.times.plan, &mut clock);
-        let first = self.shooters.first[s];
+        let first = self.upload.shooters.first[s];
         self.gpu.queue.write_buffer(
             &self.shooter_elements,
             4 * first as u64,
@@ -127,7 +132,8 @@ impl<'a> GpuSolver<'a> {
         };
         lap(&mut self.times.gather, &mut clock);
         let epsilon = self.gpu_settings.link_error * initial / self.scene.total_area.max(1e-300);
-        let links = crate::radiosity::links::link(&plan, &radiosity, &self.receivers, epsilon);
+        let links =
+            crate::radiosity::links::link(&plan, &radiosity, &self.upload.receivers, epsilon);
         lap(&mut self.times.links, &mut clock);
         Ok((plan, links, delta))
     }
@@ -136,20 +142,20 @@ impl<'a> GpuSolver<'a> {
     /// GPU over the pieces' elements (laid out piece after piece again first) and read
     /// back. A lone piece's is the selection's.
     fn piece_powers(&mut self, s: usize) -> Result<Vec<f64>, GpuError> {
-        let pieces = self.shooters.pieces_of(s);
+        let pieces = self.upload.shooters.pieces_of(s);
         if pieces.len() == 1 {
             return Ok(vec![self.last_power]);
         }
-        let first = self.shooters.first[s];
+        let first = self.upload.shooters.first[s];
         self.gpu.queue.write_buffer(
             &self.shooter_elements,
             4 * first as u64,
-            bytemuck::cast_slice(self.shooters.elements_of(s)),
+            bytemuck::cast_slice(self.upload.shooters.elements_of(s)),
         );
         let records: Vec<[u32; 4]> = pieces
             .clone()
             .map(|p| {
-                let piece = &self.shooters.pieces[p];
+                let piece = &self.upload.shooters.pieces[p];
                 [piece.first, piece.count, 1f32.to_bits(), 0]
             })
             .collect();
@@ -285,6 +291,7 @@ impl<'a> GpuSolver<'a> {
         let mut planes = cell_planes(patches);
         planes.extend(cell_planes(imaged));
         let mut charts = self
+            .upload
             .receivers
             .charts_roughly_in_front_of_any(&planes, group);
         let in_front = charts.len();
@@ -313,7 +320,8 @@ impl<'a> GpuSolver<'a> {
         let records: Vec<[u32; 4]> = [(charts, 0), (holding, 1)]
             .into_iter()
             .flat_map(|(charts, hold)| {
-                self.receivers
+                self.upload
+                    .receivers
                     .merged_ranges(charts)
                     .into_iter()
                     .map(move |range| (range, hold))
@@ -327,7 +335,7 @@ impl<'a> GpuSolver<'a> {
         if !records.is_empty() {
             self.gpu.queue.write_buffer(
                 &self.patches,
-                16 * self.max_patches as u64,
+                16 * self.upload.max_patches as u64,
                 bytemuck::cast_slice(&records),
             );
         }
@@ -363,7 +371,7 @@ impl<'a> GpuSolver<'a> {
             CellMaps::Restore(stored) => stored,
             _ => &[],
         };
-        let first = self.shooters.first[s];
+        let first = self.upload.shooters.first[s];
         let cells = plan.patches.len() as u32;
         self.write_params(s as u32, 0, cells, first + clear.start..first + clear.end);
         let mut enc = self.gpu.device.create_command_encoder(&Default::default());
