@@ -65,7 +65,7 @@ pub const WIDEN_AT: f64 = 0.25;
 
 /// Which receivers hold or wait, and what the waiting ones missed.
 pub(super) struct Deferral {
-    /// Per receiver chart ([`super::ReceiverBoxes::range`]), how it receives now.
+    /// Per receiver chart ([`ReceiverBoxes::range`](crate::radiosity::links::ReceiverBoxes::range)), how it receives now.
     pub(super) reception: Vec<Reception>,
     /// Whether the held-back buffer has a record per element (some chart has held).
     held_back: bool,
@@ -331,7 +331,7 @@ impl GpuSolver<'_> {
     }
 
     /// Shoots `shot` again at the receiver charts `charts` only (their hierarchy `boxes`,
-    /// [`super::ReceiverBoxes::subset`]; nothing is cleared: its shooter's unshot radiosity
+    /// [`ReceiverBoxes::subset`](crate::radiosity::links::ReceiverBoxes::subset); nothing is cleared: its shooter's unshot radiosity
     /// was taken when it was first shot). False when none of them is in front of its
     /// cells (nothing to shoot).
     fn shoot_again(
