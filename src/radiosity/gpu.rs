@@ -151,7 +151,7 @@ fn lap(phase: &mut f64, since: &mut std::time::Instant) {
 }
 
 /// Receiver culling takes a subtree of at most this many charts whole where its box is
-/// in front of a cell ([`ReceiverBoxes::charts_roughly_in_front_of_any`]).
+/// in front of a cell ([`ReceiverBoxes::charts_roughly_in_front_of_any`](super::links::ReceiverBoxes::charts_roughly_in_front_of_any)).
 const RECEIVER_GROUP: u32 = 16;
 
 /// Most patches shot per GPU submission; the solver may stop between batches.
