@@ -294,6 +294,11 @@ const SMALL_SHOOTER: u32 = 1024;
 /// and a pad.
 type ShooterRecord = [u32; 12];
 
+/// Bytes between the visibility faces' records of a batch (`FaceGpu` in record.rs): the
+/// render passes bind each at a dynamic offset, the compute rasterizer reads them as an
+/// array.
+const FACE_STRIDE: u64 = 256;
+
 /// Most workgroups along one dimension of a dispatch (WebGPU's limit).
 const MAX_GROUPS_X: u32 = 65_535;
 

@@ -15,8 +15,7 @@
 //! solid panel; `tests/alpha_masks.rs`).
 
 use super::super::atlas::VisibilityAtlas;
-use super::dispatch_groups;
-use super::record::FACE_STRIDE;
+use super::{dispatch_groups, FACE_STRIDE};
 use crate::gpu::Gpu;
 use crate::render::layouts::{buffer_binding, entry};
 

@@ -4,7 +4,9 @@
 use glam::Mat4;
 
 use super::Visibility;
-use super::{dispatch_groups, faces_per_cell, raster, v4, virtual_cells, GpuSolver, TileView};
+use super::{
+    dispatch_groups, faces_per_cell, raster, v4, virtual_cells, GpuSolver, TileView, FACE_STRIDE,
+};
 use crate::gpu::GpuError;
 use crate::radiosity::form_factor::FormFactorKind;
 use crate::radiosity::links::{Links, LINK_LEVELS};
@@ -45,7 +47,6 @@ struct FaceGpu {
 const SHOT_STRIDE: u64 = 768;
 // The receive pass reads the batch's records as an array too (a virtual cell's parents).
 const _: () = assert!(std::mem::size_of::<ShotGpu>() as u64 == SHOT_STRIDE);
-pub(super) const FACE_STRIDE: u64 = 256;
 
 /// A cell a batch draws: one of the plan's patches, or a virtual cell of one.
 #[derive(Clone, Copy)]
