@@ -1,5 +1,6 @@
-//! Building a [`GpuSolver`]: the scene's elements, shooters and settings uploaded into
-//! storage buffers, the visibility mesh, atlas and pipelines.
+//! Building a [`GpuSolver`]: what its scene shares with every solver of it
+//! ([`SceneUpload`]: shooters, element records, visibility mesh, receivers' boxes), then
+//! the solver's own solution buffers, shooter records, atlas and bind group.
 
 use wgpu::util::DeviceExt;
 
@@ -46,6 +47,7 @@ pub(super) struct SceneUpload {
     hierarchy: Hierarchy,
     /// … and the visibility the mesh was split for.
     visibility: Visibility,
+    /// The shooters (triangles or flat face clusters) and their elements' order.
     pub(super) shooters: Arc<Shooters>,
     /// Per element: centre and area; normal and piece; receiving normal (bindings of group 0).
     elements: [wgpu::Buffer; 3],
@@ -53,6 +55,7 @@ pub(super) struct SceneUpload {
     pub(super) max_patches: usize,
     /// Whether the largest plan with its links fits one binding (else links are off).
     links_fit: bool,
+    /// The visibility mesh's vertices (CAD fans merged, split for the stereographic map).
     pub(super) vertices: wgpu::Buffer,
     /// The visibility mesh's triangles (three vertex indices each).
     pub(super) vertex_indices: wgpu::Buffer,
