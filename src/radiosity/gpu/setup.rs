@@ -84,7 +84,6 @@ impl SceneUpload {
     ) -> Self {
         let el = &scene.elements;
         let n = el.len();
-        let bytes = |v: &[ElementRecord]| bytemuck::cast_slice::<ElementRecord, u8>(v).to_vec();
         let points: Vec<ElementRecord> = (0..n)
             .map(|e| v4(el.position[e], el.area[e] as f32))
             .collect();
@@ -104,9 +103,19 @@ impl SceneUpload {
                 .collect()
         };
         let elements = [
-            storage(gpu, "element points", &bytes(&points), false),
-            storage(gpu, "element normals", &bytes(&normals), false),
-            storage(gpu, "element receiving normals", &bytes(&receiving), false),
+            storage(gpu, "element points", bytemuck::cast_slice(&points), false),
+            storage(
+                gpu,
+                "element normals",
+                bytemuck::cast_slice(&normals),
+                false,
+            ),
+            storage(
+                gpu,
+                "element receiving normals",
+                bytemuck::cast_slice(&receiving),
+                false,
+            ),
         ];
         // Room for the largest plan; links are left out where its cells would not fit
         // one binding (a cluster of millions of elements).
@@ -316,7 +325,6 @@ impl<'a> GpuSolver<'a> {
         }
         let max_patches = upload.max_patches;
         let pipelines = gpu.cached(|| Pipelines::new(gpu));
-        let bytes = |v: &[[f32; 4]]| bytemuck::cast_slice::<[f32; 4], u8>(v).to_vec();
         let params = gpu.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("radiosity params"),
             size: std::mem::size_of::<SolveParams>() as u64,
@@ -329,8 +337,8 @@ impl<'a> GpuSolver<'a> {
             bytemuck::cast_slice(&shooters.elements),
             true,
         );
-        let radiosity = storage(gpu, "radiosity", &bytes(&start_lit), true);
-        let unshot = storage(gpu, "unshot", &bytes(&start), true);
+        let radiosity = storage(gpu, "radiosity", bytemuck::cast_slice(&start_lit), true);
+        let unshot = storage(gpu, "unshot", bytemuck::cast_slice(&start), true);
         // Writable: the selection's weights change (view-driven shooting).
         let shooter_buf = storage(gpu, "shooters", bytemuck::cast_slice(&shooter_info), true);
         shooter_info.truncate(shooters.len());
