@@ -442,15 +442,23 @@ fn visibility_lookup(p: vec3<f32>, v: vec3<f32>) -> vec3<i32> {
     return vec3<i32>(map_texel(clip.xy / clip.w, i32(shot.info.w)), layer);
 }
 
+// What a map holds where nothing was drawn (the render pass's clear, the compute
+// rasterizer's empty texel).
+const NOTHING_DRAWN: f32 = 1e30;
+
 // Whether the map of `size` texels in atlas tile `tile` (of `columns` per row) holds
 // something at least as far as `limit` at texel `at` or one of the 8 around it (Wallner
-// Fig. 2.3).
-fn map_reaches(tile: u32, columns: u32, size: i32, at: vec2<i32>, limit: f32) -> bool {
+// Fig. 2.3). With `empty_blocks` (a stereographic map) a texel where nothing was drawn
+// counts as nothing reached: every receiver is a surface drawn into the map, and such a
+// map's empty texels inside the disc are the slivers between the chords it draws and the
+// arcs the edges project to, beyond which lies what the edges' walls hide.
+fn map_reaches(tile: u32, columns: u32, size: i32, at: vec2<i32>, limit: f32, empty_blocks: bool) -> bool {
     let origin = vec2<i32>(vec2<u32>(tile % columns, tile / columns)) * size;
     for (var dy = -1; dy <= 1; dy++) {
         for (var dx = -1; dx <= 1; dx++) {
             let q = clamp(at + vec2<i32>(dx, dy), vec2<i32>(0), vec2<i32>(size - 1));
-            if (textureLoad(visibility, origin + q, 0).r >= limit) {
+            let d = textureLoad(visibility, origin + q, 0).r;
+            if (d >= limit && !(empty_blocks && d >= NOTHING_DRAWN)) {
                 return true;
             }
         }
@@ -463,7 +471,7 @@ fn visible_from_patch(p: vec3<f32>) -> bool {
     let v = p - shot.centroid.xyz;
     let at = visibility_lookup(p, v);
     let limit = length(v) * (1.0 - shot.extra.y) - shot.extra.z;
-    return map_reaches(shot.pieces.z + u32(at.z), shot.pieces.w, i32(shot.info.w), at.xy, limit);
+    return map_reaches(shot.pieces.z + u32(at.z), shot.pieces.w, i32(shot.info.w), at.xy, limit, shot.extra.w > 0.5);
 }
 
 // `visible_from_patch` for the batch's record `r`.
@@ -485,7 +493,7 @@ fn record_sees(r: u32, p: vec3<f32>) -> bool {
     }
     let limit = length(v) * (1.0 - records[r].extra.y) - records[r].extra.z;
     let tile = records[r].pieces.z + u32(layer);
-    return map_reaches(tile, records[r].pieces.w, size, map_texel(uv, size), limit);
+    return map_reaches(tile, records[r].pieces.w, size, map_texel(uv, size), limit, records[r].extra.w > 0.5);
 }
 
 // Whether `m`, a point of a window's plane with normal `n`, lies within one of its

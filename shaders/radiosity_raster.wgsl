@@ -8,8 +8,14 @@
 // projects to the pixel centre solve a 3 × 3 system, so no triangle needs clipping at the
 // eye's plane and no projected coordinate is divided by a small w. The point is kept
 // where its barycentrics are all ≥ 0, it lies in front of the eye and within the depth
-// range, and (stereographic) in front of the map's plane. For the stereographic map
-// (w = 1) this is the hardware's linear rasterization of the projected vertices.
+// range, and (stereographic) in front of the map's plane.
+//
+// The stereographic map is drawn exactly: a texel's ray is the direction whose projection
+// is the texel's centre, tested against the triangle in 3-D (edge functions are triple
+// products), and the box of texels to test is that of the triangle's projection, whose
+// edges are circle arcs. The render pipeline draws the chords between the projected
+// vertices instead; where an edge lies in the map's plane (a wall's foot seen from a floor
+// cell), the sliver between chord and rim lets through what lies beyond the wall.
 //
 // Small triangles are drawn by one thread each; a triangle whose box holds more than
 // SMALL_PIXELS texels is listed and drawn by a workgroup (the texels strided over its
@@ -66,6 +72,8 @@ struct Setup {
     hi: vec2<i32>,
     // False when the tile sees none of it.
     seen: bool,
+    // A stereographic map's triangle, tested by rays (see `draw_texel_on_rays`).
+    stereographic: bool,
 };
 
 fn vertex(i: u32) -> vec3<f32> {
@@ -104,20 +112,27 @@ fn setup(tile: u32, triangle: u32) -> Setup {
     // wider each way: the texels themselves are tested exactly.
     var lo = vec2<f32>(1e30);
     var hi = vec2<f32>(-1e30);
-    for (var k = 0; k < 3; k++) {
-        let a = c[k];
-        let b = c[(k + 1) % 3];
-        if (a.z >= 0.0) {
-            let t = to_texel(a);
-            lo = min(lo, t);
-            hi = max(hi, t);
-        }
-        if ((a.z >= 0.0) != (b.z >= 0.0)) {
-            let cut = mix(a, b, a.z / (a.z - b.z));
-            if (cut.w > 0.0) {
-                let t = to_texel(cut);
+    s.stereographic = f.eye.w > 0.5;
+    if (s.stereographic) {
+        let front = stereographic_box(f, s);
+        lo = to_texel(vec4<f32>(front.x, front.w, 0.0, 1.0));
+        hi = to_texel(vec4<f32>(front.z, front.y, 0.0, 1.0));
+    } else {
+        for (var k = 0; k < 3; k++) {
+            let a = c[k];
+            let b = c[(k + 1) % 3];
+            if (a.z >= 0.0) {
+                let t = to_texel(a);
                 lo = min(lo, t);
                 hi = max(hi, t);
+            }
+            if ((a.z >= 0.0) != (b.z >= 0.0)) {
+                let cut = mix(a, b, a.z / (a.z - b.z));
+                if (cut.w > 0.0) {
+                    let t = to_texel(cut);
+                    lo = min(lo, t);
+                    hi = max(hi, t);
+                }
             }
         }
     }
@@ -128,6 +143,94 @@ fn setup(tile: u32, triangle: u32) -> Setup {
     s.hi = vec2<i32>(end);
     s.seen = lo.x <= hi.x && lo.x < f32(rp.size) + 1.0 && lo.y < f32(rp.size) + 1.0 && hi.x > -1.0 && hi.y > -1.0;
     return s;
+}
+
+// Direction `v` (the map's frame, z ≥ 0) in map coordinates: inside the unit disc.
+fn stereographic_point(v: vec3<f32>) -> vec2<f32> {
+    return v.xy / (length(v) + v.z);
+}
+
+// The box (min x, min y, max x, max y) in map coordinates of the projection of the
+// segment from `a` to `b` (eye-relative, the map's frame, both at or in front of its
+// plane). The segment's directions run along a great circle, whose projection is the circle
+// of centre (m.x, m.y) / m.z and radius 1 / |m.z| for the circle's unit normal m (a line
+// through the centre where m.z = 0): the box of its ends, and of the circle's extreme points
+// on the arc between them (the side of the chord where the segment's middle projects).
+fn arc_box(a: vec3<f32>, b: vec3<f32>) -> vec4<f32> {
+    let pa = stereographic_point(a);
+    let pb = stereographic_point(b);
+    var box = vec4<f32>(min(pa, pb), max(pa, pb));
+    let m = cross(a, b);
+    let n = m / max(length(m), 1e-30);
+    // A great circle through the axis projects to a line; nearly so, the arc strays from
+    // its chord by at most |m.z| / 2 (here under a ten-thousandth of the map's radius).
+    if (abs(n.z) < 2e-4 || length(m) <= 1e-7 * length(a) * length(b)) {
+        return box;
+    }
+    // Ends nearly opposite (the segment passes by the eye): the arc could be either half.
+    let halfway = normalize(a) + normalize(b);
+    if (length(halfway) < 1e-3) {
+        return vec4<f32>(-1.0, -1.0, 1.0, 1.0);
+    }
+    let centre = n.xy / n.z;
+    let radius = 1.0 / abs(n.z);
+    let middle = stereographic_point(halfway);
+    let chord = pb - pa;
+    let side = chord.x * (middle.y - pa.y) - chord.y * (middle.x - pa.x);
+    // The arc nearly straight (its sagitta, R − √(R² − c²/4), under a thousandth of the
+    // map's radius, and its middle as near the chord): the ends' box, widened by it. (The
+    // side of the chord its middle is on would be rounding there.)
+    let half_chord_squared = 0.25 * dot(chord, chord);
+    let sagitta = half_chord_squared / (radius + sqrt(max(radius * radius - half_chord_squared, 0.0)));
+    let off_chord = abs(side) / max(length(chord), 1e-30);
+    if (sagitta < 1e-3 && off_chord <= 2.0 * sagitta + 1e-4) {
+        return box + vec4<f32>(-sagitta, -sagitta, sagitta, sagitta);
+    }
+    let extremes = array<vec2<f32>, 4>(vec2<f32>(radius, 0.0), vec2<f32>(-radius, 0.0), vec2<f32>(0.0, radius), vec2<f32>(0.0, -radius));
+    for (var k = 0; k < 4; k++) {
+        let q = centre + extremes[k];
+        let here = chord.x * (q.y - pa.y) - chord.y * (q.x - pa.x);
+        if (here * side >= 0.0) {
+            box = vec4<f32>(min(box.xy, q), max(box.zw, q));
+        }
+    }
+    return box;
+}
+
+// The box in map coordinates of the part of `s` in front of stereographic face `f`'s
+// plane (its corners in the map's frame, clipped at the plane), within the unit disc's box.
+fn stereographic_box(f: Face, s: Setup) -> vec4<f32> {
+    let frame = transpose(mat3x3<f32>(f.tangent.xyz, f.bitangent.xyz, f.normal.xyz));
+    let corners = array<vec3<f32>, 3>(frame * (s.v0 - f.eye.xyz), frame * (s.v1 - f.eye.xyz), frame * (s.v2 - f.eye.xyz));
+    // The clipped polygon: at most four corners.
+    var front = array<vec3<f32>, 4>(vec3<f32>(0.0), vec3<f32>(0.0), vec3<f32>(0.0), vec3<f32>(0.0));
+    var count = 0;
+    for (var k = 0; k < 3; k++) {
+        let a = corners[k];
+        let b = corners[(k + 1) % 3];
+        if (a.z >= 0.0) {
+            front[count] = a;
+            count++;
+        }
+        if ((a.z >= 0.0) != (b.z >= 0.0)) {
+            front[count] = mix(a, b, a.z / (a.z - b.z));
+            front[count].z = 0.0;
+            count++;
+        }
+    }
+    let disc = vec4<f32>(-1.0, -1.0, 1.0, 1.0);
+    var box = vec4<f32>(1e30, 1e30, -1e30, -1e30);
+    for (var k = 0; k < count; k++) {
+        let a = front[k];
+        let b = front[(k + 1) % count];
+        // A corner at the eye: every direction may see it.
+        if (length(a) < 1e-20 || length(b) < 1e-20) {
+            return disc;
+        }
+        let arc = arc_box(a, b);
+        box = vec4<f32>(min(box.xy, arc.xy), max(box.zw, arc.zw));
+    }
+    return vec4<f32>(max(box.xy, disc.xy), min(box.zw, disc.zw));
 }
 
 // Texels in `s`'s box.
@@ -170,11 +273,67 @@ fn row(c: vec4<f32>, x: f32, y: f32) -> vec2<f32> {
     return vec2<f32>(c.x - x * c.w, c.y - y * c.w);
 }
 
+// Keeps distance `d` at texel `q` of tile `tile` where it is the nearest.
+fn keep_nearest(tile: u32, q: vec2<i32>, d: f32) {
+    let at = tile * rp.size * rp.size + u32(q.y) * rp.size + u32(q.x);
+    atomicMax(&nearest[at], 0xffffffffu - bitcast<u32>(d));
+}
+
+// The edge function of the edge from corner `i` to corner `j` (eye-relative `ai`, `aj`, at
+// `pi`, `pj`) for the ray `d`: the triple product (ai × aj) · d, the cross product always
+// taken from the corner that comes first, and (y) a bound on its rounding error, as `edge`.
+fn ray_edge(ai: vec3<f32>, pi: vec3<f32>, aj: vec3<f32>, pj: vec3<f32>, d: vec3<f32>) -> vec2<f32> {
+    let terms = abs(ai.yzx * aj.zxy) + abs(ai.zxy * aj.yzx);
+    let bound = 1.0e-6 * dot(terms, abs(d));
+    if (before(pi, pj)) {
+        return vec2<f32>(dot(cross(ai, aj), d), bound);
+    }
+    return vec2<f32>(-dot(cross(aj, ai), d), bound);
+}
+
+// Tests the ray of texel `q` of stereographic tile `tile` against `s` in 3-D (exact where
+// the projection bends the triangle's edges) and keeps the nearer distance.
+fn draw_texel_on_rays(s: Setup, tile: u32, q: vec2<i32>, x: f32, y: f32) {
+    let f = faces[tile].face;
+    let d = 2.0 * x * f.tangent.xyz + 2.0 * y * f.bitangent.xyz + (1.0 - x * x - y * y) * f.normal.xyz;
+    let a0 = s.v0 - f.eye.xyz;
+    let a1 = s.v1 - f.eye.xyz;
+    let a2 = s.v2 - f.eye.xyz;
+    let e0 = ray_edge(a1, s.v1, a2, s.v2, d);
+    let e1 = ray_edge(a2, s.v2, a0, s.v0, d);
+    let e2 = ray_edge(a0, s.v0, a1, s.v1, d);
+    let k = vec3<f32>(e0.x, e1.x, e2.x);
+    let sum = k.x + k.y + k.z;
+    if (sum == 0.0) {
+        return;
+    }
+    let side = k * sign(sum);
+    if (any(side < -vec3<f32>(e0.y, e1.y, e2.y))) {
+        return;
+    }
+    let beta = k / sum;
+    // The point of the triangle's plane on the ray's line: in front of the eye, not past
+    // the far plane.
+    let p = beta.x * a0 + beta.y * a1 + beta.z * a2;
+    let dist = length(p);
+    if (dot(p, d) <= 0.0 || dist > f.normal.w) {
+        return;
+    }
+    if (face_skips(f, f.eye.xyz + p)) {
+        return;
+    }
+    keep_nearest(tile, q, dist);
+}
+
 // Tests texel `q` of tile `tile` against `s` and keeps the nearer distance.
 fn draw_texel(s: Setup, tile: u32, q: vec2<i32>) {
     let size = f32(rp.size);
     let x = (f32(q.x) + 0.5) / size * 2.0 - 1.0;
     let y = 1.0 - (f32(q.y) + 0.5) / size * 2.0;
+    if (s.stereographic) {
+        draw_texel_on_rays(s, tile, q, x, y);
+        return;
+    }
     // The clip-space point Σ β c_k on the pixel's ray: β ⟂ (X − x w) and (Y − y w) (the
     // columns of the corners' rows), that is β ∝ their cross product, taken edge by edge.
     let r0 = row(s.c0, x, y);
@@ -204,9 +363,7 @@ fn draw_texel(s: Setup, tile: u32, q: vec2<i32>) {
     if (face_skips(f, world)) {
         return;
     }
-    let d = distance(world, f.eye.xyz);
-    let at = tile * rp.size * rp.size + u32(q.y) * rp.size + u32(q.x);
-    atomicMax(&nearest[at], 0xffffffffu - bitcast<u32>(d));
+    keep_nearest(tile, q, distance(world, f.eye.xyz));
 }
 
 fn linear_index(id: vec3<u32>, nw: vec3<u32>, size: u32) -> u32 {

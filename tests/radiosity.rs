@@ -1025,12 +1025,16 @@ fn faces_that_draw_only_the_chunks_they_can_see_give_the_same_solution() {
     }
 }
 
-/// The compute rasterizer draws the maps the render pipeline draws, to within a texel along
-/// edges: the same shooters shot on the room with 144 boxes (shadows, grazing boxes, faces
-/// crossing the eye's plane) deliver the same power within 0.1 %, and all but one element
-/// in 200 the same radiosity within 0.1 % of the largest, for both map kinds (on lavapipe
-/// and on an H200); and `auto` is compute on a GPU, the render pipeline on a software
-/// driver and with alpha masks.
+/// The compute rasterizer draws the hemicube's maps the render pipeline draws, to within a
+/// texel along edges: the same shooters shot on the room with 144 boxes (shadows, grazing
+/// boxes, faces crossing the eye's plane) deliver the same power within 0.1 %, and all but
+/// one element in 200 the same radiosity within 0.1 % of the largest (on lavapipe and on an
+/// H200). Its stereographic maps follow the arcs the edges project to, where the render
+/// pipeline draws chords: the same power within 0.5 % (0.16 % on lavapipe), while 15 % of
+/// the elements differ by more than 0.1 % (against the CPU's rays the two are alike:
+/// [`one_gpu_shot_equals_the_cpu_reference_shot`]; through closed walls:
+/// [`light_stays_in_its_closed_room_with_either_map`]). And `auto` is compute on a GPU, the
+/// render pipeline on a software driver and with alpha masks.
 #[test]
 fn the_compute_rasterizer_gives_the_render_pipelines_solution() {
     let Some(gpu) = gpu_common::gpu() else { return };
@@ -1089,11 +1093,94 @@ fn the_compute_rasterizer_gives_the_render_pipelines_solution() {
         // render pipeline's: where a receiver sees that edge at a grazing angle its 3 × 3
         // test may flip (as between two batchings of the same shots, GpuSolver::fix_batch).
         assert!(largest > 0.0);
+        if visibility == Visibility::Stereographic {
+            assert!((ratio - 1.0).abs() < 5e-3, "{visibility:?}: {ratio}");
+            continue;
+        }
         assert!((ratio - 1.0).abs() < 1e-3, "{visibility:?}: {ratio}");
         assert!(worst < 0.05, "{visibility:?}: worst {worst}");
         assert!(
             differ * 200 < hardware.len(),
             "{visibility:?}: {differ} elements differ"
+        );
+    }
+}
+
+/// Two closed 2 × 1.5 × 1 m rooms 10 m apart: room A's walls emit, room B's do not, and
+/// no light may reach room B through room A's walls. The hemicube is exact, and so is the
+/// stereographic map drawn by compute shaders (texels tested by their rays, arcs for edges).
+/// The render pipeline draws the chords between projected vertices: where an edge lies in
+/// a shooting cell's plane (a wall's foot seen from a floor cell) the sliver between chord
+/// and rim shows what lies beyond the wall, and room B's feet just above the floor's plane
+/// were seen through it. Its empty texels no longer count as seen (2.1e-5 of the power
+/// leaked before at 128², 1.7e-6 now, whatever the map's size: room B drawn in the sliver).
+#[test]
+fn light_stays_in_its_closed_room_with_either_map() {
+    let Some(gpu) = gpu_common::gpu() else { return };
+    let room_a = SceneMesh::from_triangles(
+        "room a",
+        &inward_box(DVec3::ZERO, DVec3::new(2.0, 1.5, 1.0)),
+        0,
+    );
+    let room_b = SceneMesh::from_triangles(
+        "room b",
+        &inward_box(DVec3::new(10.0, 0.0, 0.0), DVec3::new(12.0, 1.5, 1.0)),
+        1,
+    );
+    let scene = scene_of(
+        vec![room_a, room_b],
+        vec![material(0.5, 10.0), material(0.5, 0.0)],
+    );
+    let r = RadiosityScene::new(&scene, 8.0, 1).unwrap();
+    let settings = SolverSettings::default();
+    let start = CpuSolver::new(&r, settings).state();
+    let in_b = |e: usize| r.elements.position[e].x > 5.0;
+    let power = |b: &[DVec3], e: usize| b[e].x * r.elements.area[e];
+    let emitted: f64 = (0..r.elements.len())
+        .map(|e| power(&start.radiosity, e))
+        .sum();
+    let (s, h) = (Visibility::Stereographic, Visibility::Hemicube);
+    let (chords, exact) = (Raster::Hardware, Raster::Compute);
+    for (visibility, raster, map_size, allowed) in [
+        (s, exact, 128, 0.0),
+        (s, exact, 256, 0.0),
+        (h, exact, 128, 0.0),
+        (h, chords, 128, 0.0),
+        (s, chords, 128, 2.5e-6),
+        (s, chords, 256, 2.5e-6),
+    ] {
+        let gpu_settings = GpuSettings {
+            visibility,
+            raster,
+            map_size,
+            ..GpuSettings::default()
+        };
+        let mut solver = GpuSolver::new(&gpu, &r, &start, settings, gpu_settings);
+        let stop = solve::StopAt {
+            converge: 1.0,
+            max_shots: Some(24),
+            time_budget: None,
+        };
+        solver
+            .solve(&stop, &std::sync::atomic::AtomicBool::new(false), |_| {})
+            .unwrap();
+        assert_eq!(solver.shots, 24);
+        let b = solver.radiosity().unwrap();
+        let leaked = (0..r.elements.len())
+            .filter(|&e| in_b(e))
+            .map(|e| power(&b, e))
+            .sum::<f64>()
+            / emitted;
+        let kept: f64 = (0..r.elements.len())
+            .filter(|&e| !in_b(e))
+            .map(|e| power(&b, e))
+            .sum();
+        eprintln!("{visibility:?} {raster:?} {map_size}²: room B holds {leaked:.3e} of the power");
+        // Room A took the light in (B = E / (1 − ρ) once solved: twice the emission).
+        assert!(kept > 1.5 * emitted, "{kept} of {emitted}");
+        assert!(
+            leaked <= allowed,
+            "{visibility:?} {raster:?} {map_size}: {leaked}"
         );
     }
 }

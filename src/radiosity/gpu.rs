@@ -43,7 +43,9 @@ pub enum Visibility {
     #[default]
     Hemicube,
     /// The stereographic projection of the hemisphere (Wallner §2.3; Coombe et al.): one
-    /// render, but only vertices are projected, so long edges bend.
+    /// map. Drawn by compute shaders it is exact (each texel's ray tested in 3-D); the
+    /// render pipeline projects only vertices, so it draws chords where edges project to
+    /// arcs ([`Raster`]).
     Stereographic,
 }
 
