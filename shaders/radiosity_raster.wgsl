@@ -291,6 +291,22 @@ fn ray_edge(ai: vec3<f32>, pi: vec3<f32>, aj: vec3<f32>, pj: vec3<f32>, d: vec3<
     return vec2<f32>(-dot(cross(aj, ai), d), bound);
 }
 
+// The barycentric coordinates the edge functions `e0`, `e1`, `e2` (x: the value, y: its
+// rounding bound) give, with w 1 where the texel is inside: every edge function on the side
+// of their sum, or within its rounding of 0. All 0 outside.
+fn barycentrics(e0: vec2<f32>, e1: vec2<f32>, e2: vec2<f32>) -> vec4<f32> {
+    let k = vec3<f32>(e0.x, e1.x, e2.x);
+    let sum = k.x + k.y + k.z;
+    if (sum == 0.0) {
+        return vec4<f32>(0.0);
+    }
+    let side = k * sign(sum);
+    if (any(side < -vec3<f32>(e0.y, e1.y, e2.y))) {
+        return vec4<f32>(0.0);
+    }
+    return vec4<f32>(k / sum, 1.0);
+}
+
 // Tests the ray of texel `q` of stereographic tile `tile` against `s` in 3-D (exact where
 // the projection bends the triangle's edges) and keeps the nearer distance.
 fn draw_texel_on_rays(s: Setup, tile: u32, q: vec2<i32>, x: f32, y: f32) {
@@ -302,16 +318,11 @@ fn draw_texel_on_rays(s: Setup, tile: u32, q: vec2<i32>, x: f32, y: f32) {
     let e0 = ray_edge(a1, s.v1, a2, s.v2, d);
     let e1 = ray_edge(a2, s.v2, a0, s.v0, d);
     let e2 = ray_edge(a0, s.v0, a1, s.v1, d);
-    let k = vec3<f32>(e0.x, e1.x, e2.x);
-    let sum = k.x + k.y + k.z;
-    if (sum == 0.0) {
+    let inside = barycentrics(e0, e1, e2);
+    if (inside.w == 0.0) {
         return;
     }
-    let side = k * sign(sum);
-    if (any(side < -vec3<f32>(e0.y, e1.y, e2.y))) {
-        return;
-    }
-    let beta = k / sum;
+    let beta = inside.xyz;
     // The point of the triangle's plane on the ray's line: in front of the eye, not past
     // the far plane.
     let p = beta.x * a0 + beta.y * a1 + beta.z * a2;
@@ -342,17 +353,11 @@ fn draw_texel(s: Setup, tile: u32, q: vec2<i32>) {
     let e0 = edge(r1, s.v1, r2, s.v2);
     let e1 = edge(r2, s.v2, r0, s.v0);
     let e2 = edge(r0, s.v0, r1, s.v1);
-    let k = vec3<f32>(e0.x, e1.x, e2.x);
-    let sum = k.x + k.y + k.z;
-    if (sum == 0.0) {
+    let inside = barycentrics(e0, e1, e2);
+    if (inside.w == 0.0) {
         return;
     }
-    // Inside: every edge function on the side of the sum, or within its rounding of 0.
-    let side = k * sign(sum);
-    if (any(side < -vec3<f32>(e0.y, e1.y, e2.y))) {
-        return;
-    }
-    let beta = k / sum;
+    let beta = inside.xyz;
     let w = dot(beta, vec3<f32>(s.c0.w, s.c1.w, s.c2.w));
     let z = dot(beta, vec3<f32>(s.c0.z, s.c1.z, s.c2.z));
     if (w <= 0.0 || z < 0.0 || z > w) {
