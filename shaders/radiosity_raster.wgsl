@@ -72,7 +72,8 @@ struct Setup {
     hi: vec2<i32>,
     // False when the tile sees none of it.
     seen: bool,
-    // A stereographic map's triangle, tested by rays (see `draw_texel_on_rays`).
+    // A stereographic map's triangle, tested by rays (see `draw_texel_on_rays`): c0, c1, c2
+    // then hold its corners relative to the eye in the map's frame (w 1).
     stereographic: bool,
 };
 
@@ -114,7 +115,11 @@ fn setup(tile: u32, triangle: u32) -> Setup {
     var hi = vec2<f32>(-1e30);
     s.stereographic = f.eye.w > 0.5;
     if (s.stereographic) {
-        let front = stereographic_box(f, s);
+        let frame = transpose(mat3x3<f32>(f.tangent.xyz, f.bitangent.xyz, f.normal.xyz));
+        s.c0 = vec4<f32>(frame * (s.v0 - f.eye.xyz), 1.0);
+        s.c1 = vec4<f32>(frame * (s.v1 - f.eye.xyz), 1.0);
+        s.c2 = vec4<f32>(frame * (s.v2 - f.eye.xyz), 1.0);
+        let front = stereographic_box(array<vec3<f32>, 3>(s.c0.xyz, s.c1.xyz, s.c2.xyz));
         lo = to_texel(vec4<f32>(front.x, front.w, 0.0, 1.0));
         hi = to_texel(vec4<f32>(front.z, front.y, 0.0, 1.0));
     } else {
@@ -197,11 +202,10 @@ fn arc_box(a: vec3<f32>, b: vec3<f32>) -> vec4<f32> {
     return box;
 }
 
-// The box in map coordinates of the part of `s` in front of stereographic face `f`'s
-// plane (its corners in the map's frame, clipped at the plane), within the unit disc's box.
-fn stereographic_box(f: Face, s: Setup) -> vec4<f32> {
-    let frame = transpose(mat3x3<f32>(f.tangent.xyz, f.bitangent.xyz, f.normal.xyz));
-    let corners = array<vec3<f32>, 3>(frame * (s.v0 - f.eye.xyz), frame * (s.v1 - f.eye.xyz), frame * (s.v2 - f.eye.xyz));
+// The box in map coordinates of the part of the triangle of `corners` (eye-relative, in a
+// stereographic map's frame) in front of the map's plane (clipped at it), within the unit
+// disc's box.
+fn stereographic_box(corners: array<vec3<f32>, 3>) -> vec4<f32> {
     // The clipped polygon: at most four corners.
     var front = array<vec3<f32>, 4>(vec3<f32>(0.0), vec3<f32>(0.0), vec3<f32>(0.0), vec3<f32>(0.0));
     var count = 0;
@@ -310,11 +314,11 @@ fn barycentrics(e0: vec2<f32>, e1: vec2<f32>, e2: vec2<f32>) -> vec4<f32> {
 // Tests the ray of texel `q` of stereographic tile `tile` against `s` in 3-D (exact where
 // the projection bends the triangle's edges) and keeps the nearer distance.
 fn draw_texel_on_rays(s: Setup, tile: u32, q: vec2<i32>, x: f32, y: f32) {
-    let f = faces[tile].face;
-    let d = 2.0 * x * f.tangent.xyz + 2.0 * y * f.bitangent.xyz + (1.0 - x * x - y * y) * f.normal.xyz;
-    let a0 = s.v0 - f.eye.xyz;
-    let a1 = s.v1 - f.eye.xyz;
-    let a2 = s.v2 - f.eye.xyz;
+    // In the map's frame: the corners set up once per triangle, the ray from the texel.
+    let d = vec3<f32>(2.0 * x, 2.0 * y, 1.0 - x * x - y * y);
+    let a0 = s.c0.xyz;
+    let a1 = s.c1.xyz;
+    let a2 = s.c2.xyz;
     let e0 = ray_edge(a1, s.v1, a2, s.v2, d);
     let e1 = ray_edge(a2, s.v2, a0, s.v0, d);
     let e2 = ray_edge(a0, s.v0, a1, s.v1, d);
@@ -327,10 +331,12 @@ fn draw_texel_on_rays(s: Setup, tile: u32, q: vec2<i32>, x: f32, y: f32) {
     // the far plane.
     let p = beta.x * a0 + beta.y * a1 + beta.z * a2;
     let dist = length(p);
+    let f = faces[tile].face;
     if (dot(p, d) <= 0.0 || dist > f.normal.w) {
         return;
     }
-    if (face_skips(f, f.eye.xyz + p)) {
+    let world = f.eye.xyz + p.x * f.tangent.xyz + p.y * f.bitangent.xyz + p.z * f.normal.xyz;
+    if (face_skips(f, world)) {
         return;
     }
     keep_nearest(tile, q, dist);
