@@ -9,6 +9,8 @@
 struct VertexOut {
     @builtin(position) clip: vec4<f32>,
     @location(0) world: vec3<f32>,
+    // The map coordinates (clip.xy): at a fragment, its pixel centre's.
+    @location(1) map: vec2<f32>,
 };
 
 // The clip position of `position` in the face's projection.
@@ -16,12 +18,33 @@ fn face_clip(position: vec3<f32>) -> vec4<f32> {
     return face_clip_of(face, position);
 }
 
-// The distance stored for a fragment at `world` (behind a stereographic map: none).
-fn face_distance(world: vec3<f32>) -> vec4<f32> {
+// The distance stored for a fragment at `world` (behind a stereographic map: none), at
+// map coordinates `map` on a triangle with normal `normal` (any length). A hemicube face
+// interpolates `world` with perspective, so it lies on the pixel centre's ray; a
+// stereographic map interpolates it linearly across the chords it draws, so it lies on
+// the triangle beside that ray: the distance is taken where the ray meets the triangle's
+// plane, as the compute rasterizer stores it and the receive pass expects it.
+fn face_distance(world: vec3<f32>, map: vec2<f32>, normal: vec3<f32>) -> vec4<f32> {
     if (behind_stereographic(face, world)) {
         discard;
     }
-    return vec4<f32>(distance(world, face.eye.xyz), 0.0, 0.0, 0.0);
+    var d = distance(world, face.eye.xyz);
+    if (face.eye.w > 0.5) {
+        let local = vec3<f32>(2.0 * map, 1.0 - dot(map, map));
+        let ray = local.x * face.tangent.xyz + local.y * face.bitangent.xyz + local.z * face.normal.xyz;
+        let along = dot(normal, ray);
+        let t = dot(normal, world - face.eye.xyz) / along;
+        if (t > 0.0 && abs(along) > 1e-6 * length(normal) * length(ray)) {
+            d = t * length(ray);
+        }
+    }
+    return vec4<f32>(d, 0.0, 0.0, 0.0);
+}
+
+// A fragment's triangle's normal (unnormalised), from how `world` changes across pixels;
+// taken before anything is discarded (derivatives need the whole quad).
+fn triangle_normal(world: vec3<f32>) -> vec3<f32> {
+    return cross(dpdx(world), dpdy(world));
 }
 
 @vertex
@@ -29,22 +52,24 @@ fn vs_visibility(@location(0) position: vec3<f32>) -> VertexOut {
     var out: VertexOut;
     out.world = position;
     out.clip = face_clip(position);
+    out.map = out.clip.xy;
     return out;
 }
 
 @fragment
 fn fs_visibility(in: VertexOut) -> @location(0) vec4<f32> {
-    return face_distance(in.world);
+    return face_distance(in.world, in.map, triangle_normal(in.world));
 }
 
 // A virtual shooter's face (radiosity/gpu/virtual_cells.rs): nothing beyond its clip
 // plane. An entry of its own, so a real shooter's fragments pay nothing for it.
 @fragment
 fn fs_visibility_clipped(in: VertexOut) -> @location(0) vec4<f32> {
+    let normal = triangle_normal(in.world);
     if (clipped_away(face, in.world)) {
         discard;
     }
-    return face_distance(in.world);
+    return face_distance(in.world, in.map, normal);
 }
 
 // Alpha-masked casters (cutout.wgsl, before this file): their holes block nothing.
@@ -53,6 +78,7 @@ struct MaskedOut {
     @location(0) world: vec3<f32>,
     @location(1) uv: vec2<f32>,
     @location(2) @interpolate(flat) mask: u32,
+    @location(3) map: vec2<f32>,
 };
 
 @vertex
@@ -62,23 +88,26 @@ fn vs_visibility_masked(@location(0) position: vec3<f32>, @location(1) uv: vec2<
     out.clip = face_clip(position);
     out.uv = uv;
     out.mask = mask;
+    out.map = out.clip.xy;
     return out;
 }
 
 @fragment
 fn fs_visibility_masked(in: MaskedOut) -> @location(0) vec4<f32> {
+    let normal = triangle_normal(in.world);
     if (in_cutout_hole(in.uv, in.mask)) {
         discard;
     }
-    return face_distance(in.world);
+    return face_distance(in.world, in.map, normal);
 }
 
 @fragment
 fn fs_visibility_masked_clipped(in: MaskedOut) -> @location(0) vec4<f32> {
+    let normal = triangle_normal(in.world);
     if (in_cutout_hole(in.uv, in.mask) || clipped_away(face, in.world)) {
         discard;
     }
-    return face_distance(in.world);
+    return face_distance(in.world, in.map, normal);
 }
 
 // A tile's clear: one triangle over its viewport at the far plane, nothing seen.

@@ -255,9 +255,9 @@ fn one_gpu_shot_equals_the_cpu_reference_shot() {
     let r = RadiosityScene::new(&room_with_box(), 6.0, 1).unwrap();
     // The stereographic map at 512² (262 k texels, about the hemicube's 197 k at 256: a
     // 256² front and four half faces): its mesh split so no edge bends wrongly, it loses
-    // nothing systematically (before the split 4.6 % of the power at 256²; now +0.67 % at
-    // 256², +0.32 % at 512², +0.16 % at 1024², the neighbour tolerance's share as the
-    // hemicube's +0.26, +0.12, +0.07 %).
+    // nothing systematically (before the split 4.6 % of the power at 256²; then +0.32 %
+    // at 512², the hemicube +0.26 %, both Wallner's neighbour tolerance; measured now
+    // −0.07 % and −0.02 %, 99.5 % and 99.6 % of the elements within 5 %).
     for (visibility, kind, map_size, goal) in [
         (
             Visibility::Hemicube,
@@ -355,7 +355,7 @@ fn one_gpu_shot_against_the_cpu(
         100.0 * within5
     );
     // Per element the two differ in penumbrae: the CPU casts one ray per patch, the
-    // GPU reads a map with Wallner's neighbour tolerance.
+    // GPU reads the texel of a map its centre falls in.
     assert!(
         (ratio - 1.0).abs() <= power_tolerance,
         "{visibility:?} {kind:?} {raster:?}: {ratio}"
@@ -895,7 +895,7 @@ fn elements_past_one_binding_of_the_old_records_receive_their_light() {
     );
     assert!((received / shot - 1.0).abs() < 0.01, "{received} vs {shot}");
     let patches = &el.patches[chart.first_patch as usize..][..chart.patch_count as usize];
-    let (mut worst, mut lit) = (0.0f64, 0);
+    let (mut worst, mut lit, mut off) = (0.0f64, 0, 0);
     for e in old_limit..el.len() {
         if el.chart[e] as usize == t {
             continue;
@@ -911,14 +911,23 @@ fn elements_past_one_binding_of_the_old_records_receive_their_light() {
         // the 100 lm/m² the elements start from).
         let d = (gain(e) - want).abs() / want.max(0.01);
         worst = worst.max(d);
+        off += (d > 0.01) as usize;
         lit += (want > 1e-3) as usize;
     }
     eprintln!(
-        "past the old limit: {lit} lit elements, worst {:.4} %",
+        "past the old limit: {lit} lit elements, {off} more than 1 % off, worst {:.4} %",
         100.0 * worst
     );
     assert!(lit > 10_000, "{lit}");
-    assert!(worst < 0.01, "worst relative difference {worst}");
+    // Every element within 1 % but those (measured: 159 of 1 664 330) less than a
+    // millimetre from a corner, a hundredth of a texel's width away at 256²: there the
+    // texel shows the other wall, seen at a grazing angle, and the plane that wall's
+    // texels fit may miss by more than the element's distance (measured: 5.1 % low).
+    assert!(
+        off * 5_000 < lit,
+        "{off} of {lit} elements more than 1 % off"
+    );
+    assert!(worst < 0.06, "worst relative difference {worst}");
 }
 
 /// One element more than a binding holds is refused with what to do, before any buffer is
@@ -1182,5 +1191,30 @@ fn light_stays_in_its_closed_room_with_either_map() {
             leaked <= allowed,
             "{visibility:?} {raster:?} {map_size}: {leaked}"
         );
+    }
+}
+
+/// One shot in a room with 144 boxes on its floor (1 964 elements in shadow) against the
+/// CPU's rays: the same power within 0.5 % and nine elements in ten within 5 %, with
+/// either map and either rasterizer. Wallner's lookup (a receiver seen if one of the
+/// nine texels around its own is at least as far) lit every receiver within a texel and
+/// a half of a box's outline: +5.7 % of the power with the hemicube at 256², +6.5 % with
+/// the stereographic map at 512², three elements in four within 5 %.
+#[test]
+fn one_gpu_shot_in_a_cluttered_room_equals_the_cpu_reference_shot() {
+    let Some(gpu) = gpu_common::gpu() else { return };
+    let r = RadiosityScene::new(&room_with_many_boxes(), 6.0, 1).unwrap();
+    for (visibility, map_size) in [
+        (Visibility::Hemicube, 256),
+        (Visibility::Stereographic, 512),
+    ] {
+        for raster in [Raster::Hardware, Raster::Compute] {
+            one_gpu_shot_against_the_cpu(
+                &gpu,
+                &r,
+                (visibility, FormFactorKind::Polygon, map_size, raster),
+                (0.005, 0.9),
+            );
+        }
     }
 }

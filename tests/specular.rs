@@ -202,10 +202,12 @@ fn the_gpus_virtual_cells_keep_the_specular_furnace_uniform() {
             100.0 * mean
         );
         // Slivers of elements a centimetre from the pane take light through it: the
-        // maps' depth tolerance, as behind any thin wall on the GPU.
+        // maps' depth tolerance, as behind any thin wall on the GPU (10.6 % over; 36 %
+        // with Wallner's nine-texel lookup).
         assert!(
-            off * 100 <= walls.len(),
-            "{raster:?}: {off} elements off by more than 3 %"
+            off * 100 <= walls.len() && worst < 0.2,
+            "{raster:?}: {off} elements off by more than 3 %, worst {:.2} %",
+            100.0 * worst
         );
     }
 }
@@ -341,14 +343,15 @@ fn the_gpus_virtual_cells_match_the_cpu_with_a_screen_before_the_mirror() {
             100.0 * worst,
             100.0 * sum
         );
-        // The maps' 3 × 3 texel test lets a little more past the screen's edge.
+        // Wallner's nine-texel lookup let more past the screen's edge (+1.75 %, 89.7 %
+        // within 10 %); one texel: +0.14 %, 98.7 %.
         assert!(
-            sum.abs() < 0.03,
+            sum.abs() < 0.01,
             "{raster:?}: {:.2} % off in all",
             100.0 * sum
         );
         assert!(
-            share > 0.85,
+            share > 0.95,
             "{raster:?}: {:.1} % within 10 %",
             100.0 * share
         );

@@ -130,11 +130,12 @@ fn furnace_with_a_translucent_panel_conserves_energy_on_the_gpu() {
     let texel = 1.0 / 6.0;
     let r = RadiosityScene::new(&scene, 6.0, 1).unwrap();
     let el = &r.elements;
-    // The GPU's visibility maps take a receiver as seen when a map texel around it shows
-    // something as far (Wallner Fig. 2.3): within a texel of a junction, light leaks
-    // through the panel. It does so as much with two opaque faces back to back (24.9 %
-    // at worst here), so it is the visibility's, not the transmission's: the elements
-    // that far from the panel's edge are checked on their own, the rest exactly.
+    // Within a texel of a junction light leaks through the panel on the GPU: its maps'
+    // depth tolerance (1 % of the distance) lets a face that close in front of a receiver
+    // pass. It does so as much with two opaque faces back to back, so it is the
+    // visibility's, not the transmission's: the elements that far from the panel's edge
+    // are checked on their own (up to 14.3 % over; 24.9 % with Wallner's nine-texel
+    // lookup), the rest exactly.
     let near_junction = |e: usize| {
         let p = el.position[e];
         if r.element_transmittance(e) != DVec3::ZERO {
@@ -168,6 +169,10 @@ fn furnace_with_a_translucent_panel_conserves_energy_on_the_gpu() {
         assert!(
             worst <= 0.005,
             "{hierarchy:?}: worst relative error {worst}"
+        );
+        assert!(
+            leak < 0.2,
+            "{hierarchy:?}: {leak} over next to the junctions"
         );
         let panel = far
             .iter()

@@ -120,7 +120,7 @@ fn layout(tiles: u32, max_columns: u32) -> (u32, u32) {
 }
 
 /// Texel of the top-left corner of tile `tile` in rows of `columns` tiles of `size`
-/// (`visibility_lookup` in radiosity.wgsl does the same).
+/// (`map_reaches` in radiosity.wgsl does the same).
 pub(crate) fn tile_origin(tile: u32, columns: u32, size: u32) -> (u32, u32) {
     ((tile % columns) * size, (tile / columns) * size)
 }

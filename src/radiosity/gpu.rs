@@ -56,7 +56,8 @@ pub struct GpuSettings {
     pub visibility: Visibility,
     /// Side of a hemicube face or of the stereographic map, texels.
     pub map_size: u32,
-    /// Relative depth tolerance of the visibility test.
+    /// Relative depth tolerance of the visibility test: an occluder nearer than the
+    /// receiver by less than this share of its distance does not shadow it.
     pub tolerance: f32,
     /// Who shoots: triangles, or flat face clusters.
     pub hierarchy: Hierarchy,
