@@ -431,7 +431,9 @@ struct MapView {
     tangent: vec3<f32>,
     bitangent: vec3<f32>,
     normal: vec3<f32>,
-    faces: array<mat4x4<f32>, 5>,
+    // The batch's record the map is (its hemicube faces' view-projections are read from
+    // there, not copied), or SHOT_MAP for `shot`.
+    record: u32,
     stereographic: bool,
     // Texels per side, its first tile, the atlas's tiles per row.
     size: i32,
@@ -442,17 +444,28 @@ struct MapView {
     absolute: f32,
 };
 
+// MapView.record of the shot's own map.
+const SHOT_MAP = 0xffffffffu;
+
+// The view-projection of `m`'s hemicube face `layer`.
+fn map_face(m: MapView, layer: i32) -> mat4x4<f32> {
+    if (m.record == SHOT_MAP) {
+        return shot.faces[layer];
+    }
+    return records[m.record].faces[layer];
+}
+
 // The map of this shot's cell.
 fn shot_view() -> MapView {
     return MapView(shot.centroid.xyz, shot.tangent.xyz, shot.bitangent.xyz, shot.normal.xyz,
-        shot.faces, shot.extra.w > 0.5, i32(shot.info.w), shot.pieces.z, shot.pieces.w,
+        SHOT_MAP, shot.extra.w > 0.5, i32(shot.info.w), shot.pieces.z, shot.pieces.w,
         shot.extra.y, shot.extra.z);
 }
 
 // The map of the batch's record `r`.
 fn record_view(r: u32) -> MapView {
     return MapView(records[r].centroid.xyz, records[r].tangent.xyz, records[r].bitangent.xyz,
-        records[r].normal.xyz, records[r].faces, records[r].extra.w > 0.5, i32(records[r].info.w),
+        records[r].normal.xyz, r, records[r].extra.w > 0.5, i32(records[r].info.w),
         records[r].pieces.z, records[r].pieces.w, records[r].extra.y, records[r].extra.z);
 }
 
@@ -478,7 +491,7 @@ fn map_lookup(m: MapView, p: vec3<f32>) -> vec3<i32> {
         return vec3<i32>(map_texel(stereographic_uv(x, y, z, v), m.size), 0);
     }
     let layer = hemicube_layer(x, y, z);
-    let clip = m.faces[layer] * vec4<f32>(p, 1.0);
+    let clip = map_face(m, layer) * vec4<f32>(p, 1.0);
     return vec3<i32>(map_texel(clip.xy / clip.w, m.size), layer);
 }
 
@@ -492,7 +505,7 @@ fn texel_ray(m: MapView, layer: i32, at: vec2<i32>) -> vec3<f32> {
     }
     // The ray is where the planes clip.x = u clip.w and clip.y = v clip.w through the eye
     // meet; w grows along it.
-    let f = m.faces[layer];
+    let f = map_face(m, layer);
     let x = vec3<f32>(f[0].x, f[1].x, f[2].x);
     let y = vec3<f32>(f[0].y, f[1].y, f[2].y);
     let w = vec3<f32>(f[0].w, f[1].w, f[2].w);
