@@ -469,12 +469,6 @@ fn record_view(r: u32) -> MapView {
         records[r].pieces.z, records[r].pieces.w, records[r].extra.y, records[r].extra.z);
 }
 
-// Stereographic map coordinates of direction `v` in the frame (x, y, z).
-fn stereographic_uv(x: f32, y: f32, z: f32, v: vec3<f32>) -> vec2<f32> {
-    let u = vec3<f32>(x, y, z) / length(v);
-    return u.xy / (1.0 + u.z);
-}
-
 // Map coordinates (−1..1) of texel `at`'s centre in a tile of `size` texels.
 fn texel_centre(at: vec2<i32>, size: i32) -> vec2<f32> {
     let uv = (vec2<f32>(at) + 0.5) / f32(size) * 2.0 - 1.0;
@@ -488,7 +482,7 @@ fn map_lookup(m: MapView, p: vec3<f32>) -> vec3<i32> {
     let y = dot(v, m.bitangent);
     let z = dot(v, m.normal);
     if (m.stereographic) {
-        return vec3<i32>(map_texel(stereographic_uv(x, y, z, v), m.size), 0);
+        return vec3<i32>(map_texel(stereographic_project(vec3<f32>(x, y, z) / length(v)), m.size), 0);
     }
     let layer = hemicube_layer(x, y, z);
     let clip = map_face(m, layer) * vec4<f32>(p, 1.0);
@@ -499,8 +493,7 @@ fn map_lookup(m: MapView, p: vec3<f32>) -> vec3<i32> {
 fn texel_ray(m: MapView, layer: i32, at: vec2<i32>) -> vec3<f32> {
     let uv = texel_centre(at, m.size);
     if (m.stereographic) {
-        // The direction that projects to uv, in the map's frame (radiosity_raster.wgsl).
-        let d = vec3<f32>(2.0 * uv, 1.0 - dot(uv, uv));
+        let d = stereographic_ray(uv);
         return normalize(d.x * m.tangent + d.y * m.bitangent + d.z * m.normal);
     }
     // The ray is where the planes clip.x = u clip.w and clip.y = v clip.w through the eye

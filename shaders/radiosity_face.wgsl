@@ -25,8 +25,7 @@ fn face_clip_of(f: Face, position: vec3<f32>) -> vec4<f32> {
         let far = f.normal.w;
         // Behind the hemisphere: pushed outside the depth range (clipped).
         let depth = select(2.0, dist / far, local.z > -0.05);
-        let xy = local.xy / max(1.0 + local.z, 1e-3);
-        return vec4<f32>(xy, depth, 1.0);
+        return vec4<f32>(stereographic_project(local), depth, 1.0);
     }
     return f.view_proj * vec4<f32>(position, 1.0);
 }

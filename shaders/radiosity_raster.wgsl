@@ -315,7 +315,7 @@ fn barycentrics(e0: vec2<f32>, e1: vec2<f32>, e2: vec2<f32>) -> vec4<f32> {
 // the projection bends the triangle's edges) and keeps the nearer distance.
 fn draw_texel_on_rays(s: Setup, tile: u32, q: vec2<i32>, x: f32, y: f32) {
     // In the map's frame: the corners set up once per triangle, the ray from the texel.
-    let d = vec3<f32>(2.0 * x, 2.0 * y, 1.0 - x * x - y * y);
+    let d = stereographic_ray(vec2<f32>(x, y));
     let a0 = s.c0.xyz;
     let a1 = s.c1.xyz;
     let a2 = s.c2.xyz;

@@ -30,7 +30,7 @@ fn face_distance(world: vec3<f32>, map: vec2<f32>, normal: vec3<f32>) -> vec4<f3
     }
     var d = distance(world, face.eye.xyz);
     if (face.eye.w > 0.5) {
-        let local = vec3<f32>(2.0 * map, 1.0 - dot(map, map));
+        let local = stereographic_ray(map);
         let ray = local.x * face.tangent.xyz + local.y * face.bitangent.xyz + local.z * face.normal.xyz;
         let along = dot(normal, ray);
         let t = dot(normal, world - face.eye.xyz) / along;

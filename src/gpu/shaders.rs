@@ -22,9 +22,12 @@ pub const PARABOLOID: &str = include_str!("../../shaders/paraboloid.wgsl");
 pub const CUTOUT: &str = include_str!("../../shaders/cutout.wgsl");
 /// The renderer's depth and shading passes (needs [`LDT`], [`LIGHTING`] and [`SHADOW`]).
 pub const SCENE: &str = include_str!("../../shaders/scene.wgsl");
-/// Progressive radiosity: shooter selection, patches, receivers.
+/// The stereographic projection of a visibility map and its inverse.
+pub const STEREOGRAPHIC: &str = include_str!("../../shaders/stereographic.wgsl");
+/// Progressive radiosity: shooter selection, patches, receivers (needs [`STEREOGRAPHIC`]).
 pub const RADIOSITY: &str = include_str!("../../shaders/radiosity.wgsl");
-/// A visibility map's face, shared by the hardware and the compute rasterizer.
+/// A visibility map's face, shared by the hardware and the compute rasterizer (needs
+/// [`STEREOGRAPHIC`]).
 pub const RADIOSITY_FACE: &str = include_str!("../../shaders/radiosity_face.wgsl");
 /// Radiosity visibility maps (hemicube faces, stereographic; needs [`CUTOUT`] and
 /// [`RADIOSITY_FACE`]).
@@ -54,14 +57,19 @@ pub fn paraboloid() -> String {
     format!("{CUTOUT}\n{PARABOLOID}")
 }
 
+/// The radiosity module (shooting and receiving).
+pub fn radiosity() -> String {
+    format!("{STEREOGRAPHIC}\n{RADIOSITY}")
+}
+
 /// The radiosity visibility-map module.
 pub fn radiosity_visibility() -> String {
-    format!("{CUTOUT}\n{RADIOSITY_FACE}\n{RADIOSITY_VISIBILITY}")
+    format!("{CUTOUT}\n{STEREOGRAPHIC}\n{RADIOSITY_FACE}\n{RADIOSITY_VISIBILITY}")
 }
 
 /// The compute rasterizer's module.
 pub fn radiosity_raster() -> String {
-    format!("{RADIOSITY_FACE}\n{RADIOSITY_RASTER}")
+    format!("{STEREOGRAPHIC}\n{RADIOSITY_FACE}\n{RADIOSITY_RASTER}")
 }
 
 /// The scene (depth + shading) module.
@@ -79,7 +87,7 @@ pub fn modules() -> Vec<(&'static str, String)> {
         ("tonemap", TONEMAP.to_string()),
         ("shadow_volume", SHADOW_VOLUME.to_string()),
         ("paraboloid", paraboloid()),
-        ("radiosity", RADIOSITY.to_string()),
+        ("radiosity", radiosity()),
         ("radiosity_visibility", radiosity_visibility()),
         ("radiosity_raster", radiosity_raster()),
     ]

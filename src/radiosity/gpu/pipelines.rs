@@ -112,7 +112,7 @@ impl Pipelines {
         });
         let module = dev.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("radiosity"),
-            source: wgpu::ShaderSource::Wgsl(crate::gpu::shaders::RADIOSITY.into()),
+            source: wgpu::ShaderSource::Wgsl(crate::gpu::shaders::radiosity().into()),
         });
         let shared_only = dev.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("radiosity"),
