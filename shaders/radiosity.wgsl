@@ -489,8 +489,9 @@ fn map_lookup(m: MapView, p: vec3<f32>) -> vec3<i32> {
     return vec3<i32>(map_texel(clip.xy / clip.w, m.size), layer);
 }
 
-// The unit direction from `m`'s centre through the centre of texel `at` of face `layer`.
-fn texel_ray(m: MapView, layer: i32, at: vec2<i32>) -> vec3<f32> {
+// The unit direction from `m`'s centre through the centre of texel `at` of the hemicube
+// face whose view-projection is `face` (map_face; unused for a stereographic map).
+fn texel_ray(m: MapView, face: mat4x4<f32>, at: vec2<i32>) -> vec3<f32> {
     let uv = texel_centre(at, m.size);
     if (m.stereographic) {
         let d = stereographic_ray(uv);
@@ -498,10 +499,9 @@ fn texel_ray(m: MapView, layer: i32, at: vec2<i32>) -> vec3<f32> {
     }
     // The ray is where the planes clip.x = u clip.w and clip.y = v clip.w through the eye
     // meet; w grows along it.
-    let f = map_face(m, layer);
-    let x = vec3<f32>(f[0].x, f[1].x, f[2].x);
-    let y = vec3<f32>(f[0].y, f[1].y, f[2].y);
-    let w = vec3<f32>(f[0].w, f[1].w, f[2].w);
+    let x = vec3<f32>(face[0].x, face[1].x, face[2].x);
+    let y = vec3<f32>(face[0].y, face[1].y, face[2].y);
+    let w = vec3<f32>(face[0].w, face[1].w, face[2].w);
     let d = normalize(cross(x - uv.x * w, y - uv.y * w));
     return select(d, -d, dot(d, w) < 0.0);
 }
@@ -543,7 +543,9 @@ fn map_reaches(m: MapView, p: vec3<f32>, n: vec3<f32>, size: f32) -> bool {
         return false;
     }
     let own = distance(p, m.centre);
-    let ray = texel_ray(m, at.z, at.xy);
+    // The face's view-projection, read once for the rays of its texels.
+    let face = map_face(m, at.z);
+    let ray = texel_ray(m, face, at.xy);
     let along = dot(n, ray);
     let t = dot(n, p - m.centre) / along;
     // A texel's footprint at p's distance (its width in radians is at most 4 / size).
@@ -560,8 +562,8 @@ fn map_reaches(m: MapView, p: vec3<f32>, n: vec3<f32>, size: f32) -> bool {
     if (size <= 0.0 || distance(hit, p) > REACH * stretch) {
         return false;
     }
-    let across = surface_step(m, at, origin, hit, d, vec2<i32>(1, 0));
-    let down = surface_step(m, at, origin, hit, d, vec2<i32>(0, 1));
+    let across = surface_step(m, face, at, origin, hit, d, vec2<i32>(1, 0));
+    let down = surface_step(m, face, at, origin, hit, d, vec2<i32>(0, 1));
     let normal = cross(across, down);
     let scale = length(normal);
     if (scale <= 0.0) {
@@ -575,7 +577,7 @@ fn map_reaches(m: MapView, p: vec3<f32>, n: vec3<f32>, size: f32) -> bool {
 // surface at a neighbour along `axis`: of the two, the one whose next texel continues it
 // best (the other may lie across a crease or an outline); zero where neither holds
 // anything.
-fn surface_step(m: MapView, at: vec3<i32>, origin: vec2<i32>, hit: vec3<f32>, d: f32, axis: vec2<i32>) -> vec3<f32> {
+fn surface_step(m: MapView, face: mat4x4<f32>, at: vec3<i32>, origin: vec2<i32>, hit: vec3<f32>, d: f32, axis: vec2<i32>) -> vec3<f32> {
     var step = vec3<f32>(0.0);
     var best = NOTHING_DRAWN;
     for (var k = -1; k <= 1; k += 2) {
@@ -587,13 +589,13 @@ fn surface_step(m: MapView, at: vec3<i32>, origin: vec2<i32>, hit: vec3<f32>, d:
         if (dq >= NOTHING_DRAWN) {
             continue;
         }
-        let hq = m.centre + texel_ray(m, at.z, q) * dq;
+        let hq = m.centre + texel_ray(m, face, q) * dq;
         var bend = abs(dq - d);
         let q2 = q + axis * k;
         if (all(q2 >= vec2<i32>(0)) && all(q2 < vec2<i32>(m.size))) {
             let d2 = textureLoad(visibility, origin + q2, 0).r;
             if (d2 < NOTHING_DRAWN) {
-                let h2 = m.centre + texel_ray(m, at.z, q2) * d2;
+                let h2 = m.centre + texel_ray(m, face, q2) * d2;
                 bend = length(h2 - 2.0 * hq + hit);
             }
         }
