@@ -475,18 +475,25 @@ fn texel_centre(at: vec2<i32>, size: i32) -> vec2<f32> {
     return vec2<f32>(uv.x, -uv.y);
 }
 
-// The face (z) and texel (xy) of `m`'s map that `p` projects to.
-fn map_lookup(m: MapView, p: vec3<f32>) -> vec3<i32> {
-    let v = p - m.centre;
-    let x = dot(v, m.tangent);
-    let y = dot(v, m.bitangent);
-    let z = dot(v, m.normal);
+// The face of `m`'s map that `p` projects to (0 for a stereographic map).
+fn map_layer(m: MapView, p: vec3<f32>) -> i32 {
     if (m.stereographic) {
-        return vec3<i32>(map_texel(stereographic_project(vec3<f32>(x, y, z) / length(v)), m.size), 0);
+        return 0;
     }
-    let layer = hemicube_layer(x, y, z);
-    let clip = map_face(m, layer) * vec4<f32>(p, 1.0);
-    return vec3<i32>(map_texel(clip.xy / clip.w, m.size), layer);
+    let v = p - m.centre;
+    return hemicube_layer(dot(v, m.tangent), dot(v, m.bitangent), dot(v, m.normal));
+}
+
+// The texel of `m`'s map that `p` projects to, on the hemicube face whose view-projection
+// is `face` (map_face; unused for a stereographic map).
+fn map_texel_of(m: MapView, face: mat4x4<f32>, p: vec3<f32>) -> vec2<i32> {
+    if (m.stereographic) {
+        let v = p - m.centre;
+        let u = vec3<f32>(dot(v, m.tangent), dot(v, m.bitangent), dot(v, m.normal)) / length(v);
+        return map_texel(stereographic_project(u), m.size);
+    }
+    let clip = face * vec4<f32>(p, 1.0);
+    return map_texel(clip.xy / clip.w, m.size);
 }
 
 // The unit direction from `m`'s centre through the centre of texel `at` of the hemicube
@@ -535,7 +542,10 @@ const REACH = 5.0;
 // are the slivers between the chords the render pipeline draws and the arcs the edges
 // project to, beyond which lies what the edges' walls hide.
 fn map_reaches(m: MapView, p: vec3<f32>, n: vec3<f32>, size: f32) -> bool {
-    let at = map_lookup(m, p);
+    // The face's view-projection, read once for the texel and the rays of its texels.
+    let layer = map_layer(m, p);
+    let face = map_face(m, layer);
+    let at = vec3<i32>(map_texel_of(m, face, p), layer);
     let tile = m.tile + u32(at.z);
     let origin = vec2<i32>(vec2<u32>(tile % m.columns, tile / m.columns)) * m.size;
     let d = textureLoad(visibility, origin + at.xy, 0).r;
@@ -543,8 +553,6 @@ fn map_reaches(m: MapView, p: vec3<f32>, n: vec3<f32>, size: f32) -> bool {
         return false;
     }
     let own = distance(p, m.centre);
-    // The face's view-projection, read once for the rays of its texels.
-    let face = map_face(m, at.z);
     let ray = texel_ray(m, face, at.xy);
     let along = dot(n, ray);
     let t = dot(n, p - m.centre) / along;
