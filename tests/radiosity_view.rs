@@ -33,10 +33,14 @@ fn no_cancel() -> AtomicBool {
     AtomicBool::new(false)
 }
 
-/// The bundled box room with four boxes (52 triangles), lit by its luminaire.
-fn boxes_room(gpu: &goniolight::gpu::Gpu) -> (Scene, RadiosityScene, InitialState) {
+/// The bundled box room with four boxes (52 triangles), lit by its luminaire, its elements
+/// laid out for `hierarchy`.
+fn boxes_room(
+    gpu: &goniolight::gpu::Gpu,
+    hierarchy: Hierarchy,
+) -> (Scene, RadiosityScene, InitialState) {
     let scene = Scene::load(&common::root().join("assets/scenes/boxes_room.toml")).unwrap();
-    let r = RadiosityScene::with_hierarchy(&scene, 6.0, 1, Hierarchy::None).unwrap();
+    let r = RadiosityScene::with_hierarchy(&scene, 6.0, 1, hierarchy).unwrap();
     let settings = SolverSettings::default();
     let light = LuminaireLight::new(gpu, &scene, settings.interp);
     let shadows = goniolight::render::ShadowSettings::default();
@@ -49,9 +53,14 @@ fn importance_and_perspective_driven_solutions_converge_to_the_global_one_in_vie
     let Some(gpu) = gpu_common::gpu() else {
         return;
     };
-    let (scene, r, initial) = boxes_room(&gpu);
+    // Face clusters, the command's default (the flat solver takes 111-116 shots to 99 %
+    // here, against 21, for the same errors).
+    let (scene, r, initial) = boxes_room(&gpu, Hierarchy::Clusters);
     let settings = SolverSettings::default();
-    let gpu_settings = GpuSettings::default();
+    let gpu_settings = GpuSettings {
+        hierarchy: Hierarchy::Clusters,
+        ..GpuSettings::default()
+    };
     let point = ViewPoint::new(&scene.camera, 16.0 / 9.0).unwrap();
     let weights = view::view_weights(&r, &point);
     let seen = weights.iter().filter(|&&w| w > 0.0).count();
@@ -315,7 +324,7 @@ fn receivers_that_hold_are_given_what_they_held_back() {
     let Some(gpu) = gpu_common::gpu() else {
         return;
     };
-    let (_, r, initial) = boxes_room(&gpu);
+    let (_, r, initial) = boxes_room(&gpu, Hierarchy::None);
     let settings = SolverSettings::default();
     let gpu_settings = small_maps();
     let el = &r.elements;
@@ -426,7 +435,7 @@ fn receivers_that_wait_are_given_the_shots_they_missed() {
     let Some(gpu) = gpu_common::gpu() else {
         return;
     };
-    let (_, r, initial) = boxes_room(&gpu);
+    let (_, r, initial) = boxes_room(&gpu, Hierarchy::None);
     let settings = SolverSettings::default();
     let gpu_settings = small_maps();
     let mut all = GpuSolver::new(&gpu, &r, &initial, settings, gpu_settings);
