@@ -521,9 +521,13 @@ const NOTHING_DRAWN: f32 = 1e30;
 // may lie and still be tested as an occluder by its plane.
 const REACH = 5.0;
 
+// map_reaches's receiver size for a point of a window's plane: it is no surface of its own,
+// so only the texel's depth decides (rule 2 below is left out).
+const WINDOW_POINT: f32 = 0.0;
+
 // Whether `m`'s light reaches a receiver at `p` with plane normal `n` and size `size` (m;
-// 0 for a point of a window, which the surface-plane test below leaves out). The texel
-// `p` projects to is read, once:
+// WINDOW_POINT for a point of a window, which the surface-plane test below leaves out).
+// The texel `p` projects to is read, once:
 // 1. Seen when the map holds something at least as far (less the tolerances) as the
 //    receiver's plane along that texel's ray (where that ray meets the plane within a
 //    stretched footprint of `p`, else as `p`): a grazing receiver does not shadow itself
@@ -567,7 +571,7 @@ fn map_reaches(m: MapView, p: vec3<f32>, n: vec3<f32>, size: f32) -> bool {
         return true;
     }
     let hit = m.centre + ray * d;
-    if (size <= 0.0 || distance(hit, p) > REACH * stretch) {
+    if (size <= WINDOW_POINT || distance(hit, p) > REACH * stretch) {
         return false;
     }
     let across = surface_step(m, face, at, origin, hit, d, vec2<i32>(1, 0));
@@ -658,7 +662,7 @@ fn through_windows(p: vec3<f32>) -> bool {
             return false;
         }
         let parent = window.z;
-        if (!map_reaches(record_view(parent), m, plane.xyz, 0.0)) {
+        if (!map_reaches(record_view(parent), m, plane.xyz, WINDOW_POINT)) {
             return false;
         }
         if (records[parent].window.y == 0u) {
