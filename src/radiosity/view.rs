@@ -72,6 +72,12 @@ pub const IMPORTANCE_CELL_POWER: f64 = 0.25;
 pub const IMPORTANCE_MAP_DIVISOR: u32 = 4;
 /// How much wider each stage of the area of interest is, degrees of half-angle.
 pub const STAGE_STEP_DEG: f64 = 30.0;
+/// A chart the eye does not see joins the area of interest with its widest cone (and holds
+/// its light until then) when its mean importance is at least this share of the seen
+/// charts': light it sends on reaches the view. The others wait for the last stage. In
+/// the furnished room 112 of the 169 charts the eye does not see pass (the rest are
+/// below 10⁻², 23 have none); in two such rooms side by side, none of the second room's.
+pub const IMPORTANCE_REACHED: f64 = 1e-2;
 
 /// The camera as the solver sees it: a perspective view.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -234,11 +240,35 @@ pub fn area_stages(scene: &RadiosityScene, view: &ViewPoint, margin_deg: f64) ->
     stages
 }
 
+/// `stages` ([`area_stages`]) with the charts `reached` by the importance in its widest
+/// cone (the stage before the last; with only the last, nothing changes).
+pub fn with_charts_reached(mut stages: Vec<Vec<bool>>, reached: &[bool]) -> Vec<Vec<bool>> {
+    if stages.len() >= 2 {
+        let widest = stages.len() - 2;
+        for (k, r) in stages[widest].iter_mut().enumerate() {
+            *r |= reached[k];
+        }
+        stages.dedup();
+    }
+    stages
+}
+
 /// The importance H per element (see the module's notes): a radiosity solution of the
 /// scene without luminaires whose emission is reflectance × `view` weight, solved on the
 /// GPU to [`IMPORTANCE_CONVERGE`] (or `time_budget`), read back as each element's received
-/// irradiance (luminance); and the seconds its solver took to set up (a sibling of the
-/// scene's `light` solver: [`GpuSolver::sibling`]).
+/// irradiance (luminance) and divided by the convergence c it reached; and the seconds
+/// its solver took to set up (a sibling of the scene's `light` solver:
+/// [`GpuSolver::sibling`]).
+///
+/// Why 1 / c: with a mean reflectance ρ, all the importance ever shot is U₀ / (1 − ρ) and
+/// what the unshot (1 − c) U₀ will still shoot is (1 − c) U₀ / (1 − ρ), so what has been
+/// shot, and received, is the share c of the whole. Scaling by 1 / c estimates the
+/// converged H where the received H lies — within the rooms the importance reached, unlike
+/// an ambient term spread over the scene — and leaves the shooters' ranking unchanged.
+/// The view's ambient term ([`view_ambient`]) needs the whole H: with H at half its
+/// value it showed half the missing light (the CAD office seen at a desk, lavapipe: the
+/// image as shown within 5 % after 14.3 s importance-driven, 4.8 s with the scaling;
+/// global, 3.9–4.8 s).
 pub fn importance(
     light: &GpuSolver,
     settings: SolverSettings,
@@ -272,8 +302,18 @@ pub fn importance(
         time_budget,
     };
     let cancel = std::sync::atomic::AtomicBool::new(false);
-    solver.solve(&stop, &cancel, |_| {})?;
-    Ok((solver.radiosity_and_illuminance()?.1, setup_seconds))
+    let (_, log) = solver.solve(&stop, &cancel, |_| {})?;
+    let converged = log.last().map_or(1.0, |p| p.convergence);
+    let scale = if converged > 0.0 {
+        1.0 / converged
+    } else {
+        1.0
+    };
+    let received = solver.radiosity_and_illuminance()?.1;
+    Ok((
+        received.into_iter().map(|h| h * scale).collect(),
+        setup_seconds,
+    ))
 }
 
 /// Per shooter, its weight in the selection: its elements' area-weighted mean
@@ -397,9 +437,40 @@ impl ViewDriven {
         solver.set_shooter_weights(&weights);
         if drive == Drive::Perspective {
             let stages = area_stages(solver.scene(), point, margin_deg);
-            solver.set_area_of_interest(stages)?;
+            let reached = self.charts_reached(solver.scene(), &stages);
+            solver.set_area_of_interest(with_charts_reached(stages, &reached))?;
         }
         Ok(())
+    }
+
+    /// Per chart, whether the importance reaches it: its area-weighted mean importance is
+    /// at least [`IMPORTANCE_REACHED`] × that of the charts the eye sees (those a stage
+    /// before the last of `stages` has).
+    pub fn charts_reached(&self, scene: &RadiosityScene, stages: &[Vec<bool>]) -> Vec<bool> {
+        let el = &scene.elements;
+        let mean: Vec<f64> = el
+            .charts
+            .iter()
+            .map(|c| {
+                let range = c.first as usize..(c.first + c.count) as usize;
+                let (sum, area) = range.fold((0.0, 0.0), |(s, a), e| {
+                    (s + self.importance[e] * el.area[e], a + el.area[e])
+                });
+                if area > 0.0 {
+                    sum / area
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        let cones = &stages[..stages.len().saturating_sub(1)];
+        let (sum, area) = (0..mean.len())
+            .filter(|&k| cones.iter().any(|s| s[k]))
+            .fold((0.0, 0.0), |(s, a), k| {
+                (s + mean[k] * el.charts[k].area, a + el.charts[k].area)
+            });
+        let limit = IMPORTANCE_REACHED * sum / area.max(1e-300);
+        mean.iter().map(|&m| m > 0.0 && m >= limit).collect()
     }
 
     /// [`view_ambient`] of `unshot`.
