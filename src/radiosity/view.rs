@@ -37,8 +37,9 @@ pub enum Drive {
     Importance,
     /// Importance-driven shooters, and receivers limited to the area of interest (the
     /// view's frustum plus a margin, widened as the view's light settles); a receiver
-    /// outside it holds back what it receives (one hidden from the eye: waits, and the
-    /// shots it missed are shot at it) until it joins.
+    /// outside it holds back what it receives (one hidden from the eye that the view's
+    /// importance does not reach: waits until the view is 99 % converged, and the shots it
+    /// missed are shot at it) until it joins.
     Perspective,
 }
 
