@@ -59,6 +59,23 @@ fn boxes_rooms(
     (scene, r, initial)
 }
 
+/// The solver's settings for elements laid out for `hierarchy` (the same hierarchy as the
+/// scene's layout, [`boxes_rooms`]).
+fn settings_for(hierarchy: Hierarchy) -> (SolverSettings, GpuSettings) {
+    let gpu_settings = GpuSettings {
+        hierarchy,
+        ..GpuSettings::default()
+    };
+    (SolverSettings::default(), gpu_settings)
+}
+
+/// The scene's camera as the solver sees it (a 16:9 image) and the view's weights.
+fn camera_view(scene: &Scene, r: &RadiosityScene) -> (ViewPoint, Vec<f64>) {
+    let point = ViewPoint::new(&scene.camera, 16.0 / 9.0).unwrap();
+    let weights = view::view_weights(r, &point);
+    (point, weights)
+}
+
 #[test]
 fn importance_and_perspective_driven_solutions_converge_to_the_global_one_in_view() {
     let Some(gpu) = gpu_common::gpu() else {
@@ -67,13 +84,8 @@ fn importance_and_perspective_driven_solutions_converge_to_the_global_one_in_vie
     // Face clusters, the command's default (the flat solver takes 111-116 shots to 99 %
     // here, against 21, for the same errors).
     let (scene, r, initial) = boxes_room(&gpu, Hierarchy::Clusters);
-    let settings = SolverSettings::default();
-    let gpu_settings = GpuSettings {
-        hierarchy: Hierarchy::Clusters,
-        ..GpuSettings::default()
-    };
-    let point = ViewPoint::new(&scene.camera, 16.0 / 9.0).unwrap();
-    let weights = view::view_weights(&r, &point);
+    let (settings, gpu_settings) = settings_for(Hierarchy::Clusters);
+    let (point, weights) = camera_view(&scene, &r);
     let seen = weights.iter().filter(|&&w| w > 0.0).count();
     assert!(
         seen > 100 && seen < r.elements.len(),
@@ -138,13 +150,8 @@ fn the_importance_estimates_the_converged_one_and_says_which_hidden_charts_wait(
     };
     // Two box rooms side by side, the camera in the first.
     let (scene, r, initial) = boxes_rooms(&gpu, Hierarchy::Clusters, 2);
-    let settings = SolverSettings::default();
-    let gpu_settings = GpuSettings {
-        hierarchy: Hierarchy::Clusters,
-        ..GpuSettings::default()
-    };
-    let point = ViewPoint::new(&scene.camera, 16.0 / 9.0).unwrap();
-    let weights = view::view_weights(&r, &point);
+    let (settings, gpu_settings) = settings_for(Hierarchy::Clusters);
+    let (point, weights) = camera_view(&scene, &r);
     let light = GpuSolver::new(&gpu, &r, &initial, settings, gpu_settings);
     let driven = ViewDriven::new(&light, settings, gpu_settings, weights.clone(), None).unwrap();
 
