@@ -317,6 +317,20 @@ pub fn importance(
     ))
 }
 
+/// The area-weighted mean of `values` (one per element of `scene`) over `elements`; 0
+/// where they have no area.
+fn area_mean(scene: &RadiosityScene, values: &[f64], elements: impl Iterator<Item = usize>) -> f64 {
+    let area = &scene.elements.area;
+    let (sum, total) = elements.fold((0.0, 0.0), |(s, a), e| {
+        (s + values[e] * area[e], a + area[e])
+    });
+    if total > 0.0 {
+        sum / total
+    } else {
+        0.0
+    }
+}
+
 /// Per shooter, its weight in the selection: its elements' area-weighted mean
 /// importance, plus [`WEIGHT_FLOOR`] × the scene's.
 pub fn shooter_weights(
@@ -325,19 +339,11 @@ pub fn shooter_weights(
     importance: &[f64],
 ) -> Vec<f64> {
     let el = &scene.elements;
-    let mean_of = |elements: &[u32]| {
-        let (sum, area) = elements.iter().fold((0.0, 0.0), |(s, a), &e| {
-            let e = e as usize;
-            (s + importance[e] * el.area[e], a + el.area[e])
-        });
-        if area > 0.0 {
-            sum / area
-        } else {
-            0.0
-        }
-    };
     let means: Vec<f64> = (0..shooters.len())
-        .map(|k| mean_of(shooters.elements_of(k)))
+        .map(|k| {
+            let elements = shooters.elements_of(k).iter().map(|&e| e as usize);
+            area_mean(scene, importance, elements)
+        })
         .collect();
     let total: f64 = (0..el.len()).map(|e| importance[e] * el.area[e]).sum();
     let floor = WEIGHT_FLOOR * total / scene.total_area.max(1e-300);
@@ -454,14 +460,7 @@ impl ViewDriven {
             .iter()
             .map(|c| {
                 let range = c.first as usize..(c.first + c.count) as usize;
-                let (sum, area) = range.fold((0.0, 0.0), |(s, a), e| {
-                    (s + self.importance[e] * el.area[e], a + el.area[e])
-                });
-                if area > 0.0 {
-                    sum / area
-                } else {
-                    0.0
-                }
+                area_mean(scene, &self.importance, range)
             })
             .collect();
         let cones = &stages[..stages.len().saturating_sub(1)];
