@@ -489,6 +489,16 @@ fn receivers_that_hold_are_given_what_they_held_back() {
     let missed = differ(&before, &expected, 1e-2);
     assert!(missed > el.len() / 5, "they held light back: {missed}");
     assert_eq!(held.missed_shots(), 0);
+    // What they hold is light still to come (the view's ambient term's): with it, the
+    // light left to shoot is the one of a solver where nobody held; without, short of it.
+    let want = total(&expected_unshot);
+    let to_come = total(&held.unshot_to_come().unwrap());
+    assert!((to_come - want).abs() < 1e-5 * want, "{to_come} vs {want}");
+    let unshot = total(&held.unshot().unwrap());
+    assert!(
+        unshot < 0.95 * want,
+        "held light is not in the unshot: {unshot} vs {want}"
+    );
     let drawn = held.drawn;
     assert_eq!(held.set_reception(&everyone).unwrap(), 0);
     assert_eq!(held.drawn, drawn, "a chart that held had a map drawn again");
@@ -501,8 +511,13 @@ fn receivers_that_hold_are_given_what_they_held_back() {
         .filter(|&e| (got_lux[e] - expected_lux[e]).abs() > 1e-5 * (1e-3 + expected_lux[e]))
         .count();
     assert_eq!(lux_off, 0, "{lux_off} elements' illuminance differs");
-    let (got, want) = (total(&held.unshot().unwrap()), total(&expected_unshot));
+    let got = total(&held.unshot().unwrap());
     assert!((got - want).abs() < 1e-5 * want, "{got} vs {want}");
+    assert_eq!(
+        total(&held.unshot_to_come().unwrap()),
+        got,
+        "nothing held after joining"
+    );
 
     // Held for the first half, waiting for the second: on joining they get both, what they
     // held (released) and the shots they missed (drawn again).

@@ -235,7 +235,7 @@ pub fn run(
         };
         loop {
             let (radiosity, illuminance) = solver.radiosity_and_illuminance()?;
-            let unshot = solver.unshot()?;
+            let unshot = solver.unshot_to_come()?;
             let ambient = match &driven {
                 Some(d) => d.ambient(&rscene, &unshot),
                 None => solve::ambient_term(&rscene, &unshot),

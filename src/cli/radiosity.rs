@@ -556,7 +556,7 @@ impl Prepared<'_> {
         bar.finish_and_clear();
         let solve_s = log.last().map_or(0.0, |p| p.seconds);
         let (radiosity, illuminance) = solver.radiosity_and_illuminance()?;
-        let unshot = solver.unshot()?;
+        let unshot = solver.unshot_to_come()?;
         let (shown, shown_lux) = crate::radiosity::view::displayed(
             rscene,
             &radiosity,

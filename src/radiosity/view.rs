@@ -353,7 +353,9 @@ pub fn shooter_weights(
 /// The ambient term as the view sees it: the unshot power's expected gain in the view,
 /// Σⱼ ΔBⱼ Aⱼ Hⱼ, spread evenly over what the view shows (Σᵢ vᵢ Aᵢ ρᵢ), so that the
 /// image's mean is right where the global term ([`super::solve::ambient_term`]) spreads
-/// the unshot power over the whole scene. Zero when the view shows nothing.
+/// the unshot power over the whole scene. Zero when the view shows nothing. `unshot` is
+/// all the light still to come: with perspective-driven radiosity, what the charts that
+/// hold have received as well ([`GpuSolver::unshot_to_come`]).
 pub fn view_ambient(
     scene: &RadiosityScene,
     unshot: &[DVec3],

@@ -268,7 +268,7 @@ impl Job<'_> {
     ) -> Result<(), String> {
         let rscene = solver.scene();
         let (b, e) = solver.radiosity_and_illuminance().map_err(|e| err(&e))?;
-        let unshot = solver.unshot().map_err(|e| err(&e))?;
+        let unshot = solver.unshot_to_come().map_err(|e| err(&e))?;
         let driven = driver.as_ref().map(|d| &d.driven);
         let ambient = self.settings.solver.ambient;
         let (b, e) = view::displayed(rscene, &b, &e, &unshot, ambient, driven);

@@ -200,7 +200,9 @@ impl GpuSolver<'_> {
             self.gpu.device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("held back"),
                 size,
-                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+                usage: wgpu::BufferUsages::STORAGE
+                    | wgpu::BufferUsages::COPY_DST
+                    | wgpu::BufferUsages::COPY_SRC,
                 mapped_at_creation: false,
             });
         self.shared = super::shared_bind_group(self.gpu, &self.pipelines, &self.shared_buffers);
@@ -297,6 +299,22 @@ impl GpuSolver<'_> {
     /// The area of interest's stage (0: the narrowest) and how many there are.
     pub fn area_stage(&self) -> Option<(usize, usize)> {
         self.stages.as_ref().map(|s| (s.at, s.stages.len()))
+    }
+
+    /// Per element, the unshot radiosity (rgb, lm/m²) with what it holds back added: all
+    /// the light it will still shoot once every chart has joined ([`Reception::Holds`]:
+    /// a chart that holds adds what it received to its unshot radiosity on joining). The
+    /// view's ambient term stands for this light; [`GpuSolver::unshot`] alone leaves out
+    /// what the charts outside the area of interest received meanwhile.
+    pub fn unshot_to_come(&self) -> Result<Vec<glam::DVec3>, GpuError> {
+        let mut unshot = self.unshot()?;
+        if self.deferral.as_ref().is_some_and(|d| d.held_back) {
+            let held = self.read_rgb(&self.shared_buffers[HELD_BACK_BINDING])?;
+            for (u, h) in unshot.iter_mut().zip(held) {
+                *u += h;
+            }
+        }
+        Ok(unshot)
     }
 
     /// Receiver charts that wait now.
