@@ -306,9 +306,12 @@ impl GpuSolver<'_> {
     /// a chart that holds adds what it received to its unshot radiosity on joining). The
     /// view's ambient term stands for this light; [`GpuSolver::unshot`] alone leaves out
     /// what the charts outside the area of interest received meanwhile.
+    /// Once every chart receives, nothing is held (joining released it) and only the
+    /// unshot radiosity is read back.
     pub fn unshot_to_come(&self) -> Result<Vec<glam::DVec3>, GpuError> {
         let mut unshot = self.unshot()?;
-        if self.deferral.as_ref().is_some_and(|d| d.held_back) {
+        let holding = self.deferral.as_ref();
+        if holding.is_some_and(|d| d.held_back && d.any_not_receiving()) {
             let held = self.read_rgb(&self.shared_buffers[HELD_BACK_BINDING])?;
             for (u, h) in unshot.iter_mut().zip(held) {
                 *u += h;
