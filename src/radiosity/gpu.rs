@@ -238,6 +238,9 @@ pub struct GpuSolver<'a> {
     shooter_buf: wgpu::Buffer,
     /// Whether the selection weighs the shooters ([`GpuSolver::set_shooter_weights`]).
     weighted: bool,
+    /// Per piece of the shooters, the share of its unshot power the cells' oracle sizes
+    /// its cells by ([`GpuSolver::set_cell_weights`]; none: all of it).
+    cell_weights: Option<Vec<f64>>,
     /// Receivers that wait, and the shots they missed (perspective-driven radiosity).
     deferral: Option<deferred::Deferral>,
     /// The area of interest's stages (perspective-driven radiosity).
@@ -427,6 +430,14 @@ impl<'a> GpuSolver<'a> {
             bytemuck::cast_slice(&self.shooter_info),
         );
         self.weighted = true;
+    }
+
+    /// Sizes each piece's cells by `weights` (one per piece of the shooters, in (0, 1])
+    /// times its unshot power: importance-weighted refinement, coarser cells where the
+    /// light they shoot matters little to the view.
+    pub fn set_cell_weights(&mut self, weights: Vec<f64>) {
+        assert_eq!(weights.len(), self.upload.shooters.pieces.len());
+        self.cell_weights = Some(weights);
     }
 
     /// Sizes the batches of a shot to take about `seconds` each (default [`BATCH_SECONDS`],

@@ -419,6 +419,7 @@ impl<'a> GpuSolver<'a> {
             shooter_info,
             shooter_buf,
             weighted: false,
+            cell_weights: None,
             deferral: None,
             stages: None,
             batch: FIRST_BATCH,

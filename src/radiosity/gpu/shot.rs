@@ -74,7 +74,14 @@ impl<'a> GpuSolver<'a> {
             0
         };
         let mut clock = std::time::Instant::now();
-        let power = self.piece_powers(s)?;
+        let mut power = self.piece_powers(s)?;
+        // Importance-weighted refinement: the cells' oracle sees a piece's power times its
+        // weight.
+        if let Some(w) = &self.cell_weights {
+            for (p, k) in power.iter_mut().zip(self.upload.shooters.pieces_of(s)) {
+                *p *= w[k];
+            }
+        }
         lap(&mut self.times.piece_powers, &mut clock);
         let plan = self.upload.shooters.plan_shot(
             self.scene,
