@@ -88,6 +88,9 @@ struct PatchInfo {
 // (perspective-driven radiosity, radiosity/gpu/deferred.rs) received and has not been
 // given yet: rgb radiosity, w illuminance (lux).
 @group(0) @binding(12) var<storage, read_write> held_back: array<vec4<f32>>;
+// Per element, the factor on the reaches it sees (radiosity/links.rs, reach_for): the
+// square root of its share of the link error, 1 without a view driving.
+@group(0) @binding(13) var<storage, read> reach_scale: array<f32>;
 
 const LUMA = vec3<f32>(0.2126, 0.7152, 0.0722);
 // Shooters of at most this many elements are summed by one thread (SMALL_SHOOTER in gpu.rs).
@@ -676,19 +679,19 @@ fn through_windows(p: vec3<f32>) -> bool {
     return false;
 }
 
-// Whether a receiver at `p` takes its light from this cell (radiosity/links.rs,
-// takes_light_from): beyond its reach and within every ancestor's; receivers next to the
-// shooter's plane take it from top cells only.
-fn takes_light(p: vec3<f32>) -> bool {
+// Whether a receiver at `p` whose reaches are scaled by `scale` takes its light from this
+// cell (radiosity/links.rs, takes_light_from): beyond its reach and within every
+// ancestor's; receivers next to the shooter's plane take it from top cells only.
+fn takes_light(p: vec3<f32>, scale: f32) -> bool {
     if (dot(shot.normal.xyz, p - shot.centroid.xyz) <= shot.link.y) {
         return shot.link.w > 0.5;
     }
-    if (distance(p, shot.centroid.xyz) < shot.link.x) {
+    if (distance(p, shot.centroid.xyz) < shot.link.x * scale) {
         return false;
     }
     for (var a = 0u; a < 4u; a++) {
         let up = shot.ancestors[a];
-        if (up.w >= 0.0 && distance(p, up.xyz) >= up.w) {
+        if (up.w >= 0.0 && distance(p, up.xyz) >= up.w * scale) {
             return false;
         }
     }
@@ -761,7 +764,7 @@ fn receiving(thread: u32) -> Receiving {
     let p = element_points[i].xyz;
     let geometric = normal_piece.xyz;
     var n = geometric;
-    if (!takes_light(p)) {
+    if (!takes_light(p, reach_scale[i])) {
         return none;
     }
     let info = shooters[shooter_of_piece(piece)];

@@ -87,8 +87,23 @@ fn cells_nest_and_every_receiver_takes_each_part_of_a_shooter_once() {
         let receivers = ReceiverBoxes::new(&r);
         let tolerance = receivers.plane_tolerance();
         let el = &r.elements;
+        // Receivers whose link error follows a view's importance: a quarter of the reach
+        // on the far half (x beyond the middle), a varied scale elsewhere.
+        let middle = el.position.iter().map(|p| p.x).sum::<f64>() / el.len() as f64;
+        let scale: Vec<f64> = (0..el.len())
+            .map(|e| {
+                if el.position[e].x > middle {
+                    0.25
+                } else {
+                    0.5 + 0.5 * ((e * 7919) % 101) as f64 / 100.0
+                }
+            })
+            .collect();
+        let weighted = ReceiverBoxes::of_elements(&r, &scale);
+        let ones = vec![1.0; el.len()];
         let mut used = 0;
         let mut drawn = 0;
+        let mut drawn_weighted = 0;
         let mut cells = 0;
         for s in 0..shooters.len() {
             let piece = &shooters.pieces[shooters.first_piece[s] as usize];
@@ -155,50 +170,64 @@ fn cells_nest_and_every_receiver_takes_each_part_of_a_shooter_once() {
                         / c.element_area
                 })
                 .collect();
-            let l = links::link(&plan, &radiosity, &receivers, 0.5);
-            used += l
-                .reach
-                .iter()
-                .zip(p)
-                .filter(|(r, c)| c.level > 0 && r.is_finite())
-                .count();
-            drawn += l.drawn_count();
             cells += p.iter().filter(|c| c.level == 0).count();
-            // Every receiver takes light from exactly one cell on every fine cell's path
-            // to its top, and every cell a receiver in front takes light from is drawn.
-            for e in (0..el.len()).step_by(5) {
-                if shooters.element_shooter[e] == s as u32 {
-                    continue;
+            for (boxes, scale) in [(&receivers, &ones), (&weighted, &scale)] {
+                let l = links::link(&plan, &radiosity, boxes, 0.5);
+                if std::ptr::eq(boxes, &receivers) {
+                    used += l
+                        .reach
+                        .iter()
+                        .zip(p)
+                        .filter(|(r, c)| c.level > 0 && r.is_finite())
+                        .count();
+                    drawn += l.drawn_count();
+                } else {
+                    drawn_weighted += l.drawn_count();
                 }
-                let at = el.position[e];
-                let takes: Vec<bool> = (0..p.len())
-                    .map(|k| links::takes_light_from(&plan, &l, k, tolerance, at))
-                    .collect();
-                for (k, cell) in p.iter().enumerate() {
-                    if takes[k] && normal.dot(at - cell.centroid) > tolerance {
-                        assert!(
-                            l.drawn[k],
-                            "{name}: shooter {s} cell {k} is needed but not drawn"
-                        );
-                    }
-                    if cell.level != 0 {
+                // Every receiver takes light from exactly one cell on every fine cell's path
+                // to its top, and every cell a receiver in front takes light from is drawn.
+                for e in (0..el.len()).step_by(5) {
+                    if shooters.element_shooter[e] == s as u32 {
                         continue;
                     }
-                    let mut on_path = usize::from(takes[k]);
-                    let mut a = cell.parent;
-                    while a != u32::MAX {
-                        on_path += usize::from(takes[a as usize]);
-                        a = p[a as usize].parent;
+                    let at = (el.position[e], scale[e]);
+                    let takes: Vec<bool> = (0..p.len())
+                        .map(|k| links::takes_light_from(&plan, &l, k, tolerance, at))
+                        .collect();
+                    for (k, cell) in p.iter().enumerate() {
+                        if takes[k] && normal.dot(at.0 - cell.centroid) > tolerance {
+                            assert!(
+                                l.drawn[k],
+                                "{name}: shooter {s} cell {k} is needed but not drawn"
+                            );
+                        }
+                        if cell.level != 0 {
+                            continue;
+                        }
+                        let mut on_path = usize::from(takes[k]);
+                        let mut a = cell.parent;
+                        while a != u32::MAX {
+                            on_path += usize::from(takes[a as usize]);
+                            a = p[a as usize].parent;
+                        }
+                        assert_eq!(
+                            on_path, 1,
+                            "{name}: shooter {s}, element {e}, fine cell {k}"
+                        );
                     }
-                    assert_eq!(
-                        on_path, 1,
-                        "{name}: shooter {s}, element {e}, fine cell {k}"
-                    );
                 }
             }
         }
-        eprintln!("{name}: {used} coarse cells used, {drawn} drawn for {cells} fine cells");
+        eprintln!(
+            "{name}: {used} coarse cells used, {drawn} drawn for {cells} fine cells; \
+             {drawn_weighted} with the far half's receivers at a quarter of the reach"
+        );
         assert!(used > 0, "{name}: the links use no coarse cell");
+        // Receivers that accept more error take coarser cells' light: fewer maps.
+        assert!(
+            drawn_weighted < drawn,
+            "{name}: {drawn_weighted} maps with importance-scaled reaches, {drawn} without"
+        );
     }
 }
 
@@ -301,6 +330,71 @@ fn links_in_a_hall_draw_fewer_maps_for_the_same_light() {
         (linked_maps as f64) < 0.8 * fine_maps as f64,
         "links drew {linked_maps} maps, the finest cells {fine_maps}"
     );
+}
+
+#[test]
+fn receivers_that_matter_less_take_coarser_cells_light_within_their_share_of_the_error() {
+    let Some(gpu) = gpu_common::gpu() else { return };
+    let scene = hall(false);
+    let r = RadiosityScene::with_hierarchy(&scene, 2.0, 1, Hierarchy::Clusters).unwrap();
+    let settings = SolverSettings::default();
+    let light = LuminaireLight::new(&gpu, &scene, settings.interp);
+    let initial =
+        InitialState::from_luminaires_gpu(&gpu, &light, &r, &ShadowSettings::default()).unwrap();
+    let el = &r.elements;
+    // The far half of the hall (x > 12 m) takes 16 times the link error: a quarter of the
+    // reach.
+    let far: Vec<bool> = el.position.iter().map(|p| p.x > 12.0).collect();
+    let weights: Vec<f64> = far
+        .iter()
+        .map(|&f| if f { 1.0 / 16.0 } else { 1.0 })
+        .collect();
+    let gpu_settings = GpuSettings {
+        hierarchy: Hierarchy::Clusters,
+        link_error: links::DEFAULT_LINK_ERROR,
+        ..GpuSettings::default()
+    };
+    let fine = solve(&gpu, &r, &initial, 0.0, 0.99).0;
+    let even = solve_common::solve(&gpu, &r, &initial, gpu_settings, 0.99);
+    let weighted = solve_common::solve_with(&gpu, &r, &initial, gpu_settings, 0.99, |s| {
+        s.set_receiver_weights(&weights)
+    });
+    // The mean difference from the finest cells' light over the near or far half.
+    let off = |b: &[DVec3], half: bool| {
+        let (diff, mean) =
+            (0..el.len())
+                .filter(|&e| far[e] == half)
+                .fold((0.0, 0.0), |(d, m), e| {
+                    let a = el.area[e];
+                    let want = luminance(fine[e]);
+                    (d + (luminance(b[e]) - want).abs() * a, m + want * a)
+                });
+        diff / mean
+    };
+    let (near_even, far_even) = (off(&even.radiosity, false), off(&even.radiosity, true));
+    let (near, far_off) = (
+        off(&weighted.radiosity, false),
+        off(&weighted.radiosity, true),
+    );
+    eprintln!(
+        "hall: even link error {} maps, near {:.3} % far {:.3} % off; far half at 16 ε {} maps, near {:.3} % far {:.3} % off",
+        even.drawn,
+        100.0 * near_even,
+        100.0 * far_even,
+        weighted.drawn,
+        100.0 * near,
+        100.0 * far_off
+    );
+    assert!(
+        (weighted.drawn as f64) < 0.9 * even.drawn as f64,
+        "{} maps with the far half's error raised, {} without",
+        weighted.drawn,
+        even.drawn
+    );
+    // What matters stays as close to the finest cells' light as with an even error; what
+    // matters less is off by more, yet within a few per cent.
+    assert!(near <= 0.01, "the near half is {near} off");
+    assert!(far_off <= 0.05, "the far half is {far_off} off");
 }
 
 #[test]

@@ -156,6 +156,11 @@ fn lap(phase: &mut f64, since: &mut std::time::Instant) {
 /// Receiver culling takes a subtree of at most this many charts whole where its box is
 /// in front of a cell ([`ReceiverBoxes::charts_roughly_in_front_of_any`](super::links::ReceiverBoxes::charts_roughly_in_front_of_any)).
 const RECEIVER_GROUP: u32 = 16;
+/// The least receiver weight [`GpuSolver::set_receiver_weights`] takes: reaches at least
+/// a hundredth of what they are.
+pub const LEAST_RECEIVER_WEIGHT: f64 = 1e-4;
+/// The receivers' reach scales' binding in the solver's bind group 0 (radiosity.wgsl).
+const REACH_SCALE_BINDING: usize = 13;
 
 /// Most patches shot per GPU submission; the solver may stop between batches.
 pub const PATCHES_PER_BATCH: usize = 64;
@@ -241,6 +246,9 @@ pub struct GpuSolver<'a> {
     /// Per piece of the shooters, the share of its unshot power the cells' oracle sizes
     /// its cells by ([`GpuSolver::set_cell_weights`]; none: all of it).
     cell_weights: Option<Vec<f64>>,
+    /// The link search's receivers in boxes of a few elements with their reach scales
+    /// ([`GpuSolver::set_receiver_weights`]; none: the charts', every scale 1).
+    link_receivers: Option<crate::radiosity::links::ReceiverBoxes>,
     /// Receivers that wait, and the shots they missed (perspective-driven radiosity).
     deferral: Option<deferred::Deferral>,
     /// The area of interest's stages (perspective-driven radiosity).
@@ -438,6 +446,32 @@ impl<'a> GpuSolver<'a> {
     pub fn set_cell_weights(&mut self, weights: Vec<f64>) {
         assert_eq!(weights.len(), self.upload.shooters.pieces.len());
         self.cell_weights = Some(weights);
+    }
+
+    /// Gives each receiver its share of the link error, `weights` (one per element, in
+    /// (0, 1]; Smits, Arvo and Salesin's importance-driven link error on the receiving
+    /// side): a receiver of weight w (at least [`LEAST_RECEIVER_WEIGHT`]) takes a coarse
+    /// cell's light where its error is below ε / w, so its reaches are scaled by √w
+    /// ([`Links::reach_for`](crate::radiosity::links::Links::reach_for)), on the GPU and in
+    /// the link search, which then asks boxes of a few elements
+    /// ([`ReceiverBoxes::of_elements`](crate::radiosity::links::ReceiverBoxes::of_elements)).
+    pub fn set_receiver_weights(&mut self, weights: &[f64]) {
+        assert_eq!(weights.len(), self.scene.elements.len());
+        let scale: Vec<f64> = weights
+            .iter()
+            .map(|w| w.clamp(LEAST_RECEIVER_WEIGHT, 1.0).sqrt())
+            .collect();
+        let gpu_scale: Vec<f32> = scale.iter().map(|&s| s as f32).collect();
+        if !gpu_scale.is_empty() {
+            self.gpu.queue.write_buffer(
+                &self.shared_buffers[REACH_SCALE_BINDING],
+                0,
+                bytemuck::cast_slice(&gpu_scale),
+            );
+        }
+        self.link_receivers = Some(crate::radiosity::links::ReceiverBoxes::of_elements(
+            self.scene, &scale,
+        ));
     }
 
     /// Sizes the batches of a shot to take about `seconds` each (default [`BATCH_SECONDS`],

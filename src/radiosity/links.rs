@@ -16,6 +16,14 @@
 //! floor from a few coarse cells, a hot spot from the fine cells around it. Every receiver
 //! so takes the light of every part of the shooter exactly once.
 //!
+//! With a view driving, a receiver's share of the link error follows its importance
+//! (Smits, Arvo and Salesin 1992, on the receiving side): one whose light the view needs
+//! a share w of takes every reach times √w, the visibility sphere included
+//! ([`Links::reach_for`]); the search then asks boxes of a few elements
+//! ([`ReceiverBoxes::of_elements`]) with their least and most scale. Any per-receiver
+//! scale keeps "exactly once": the rule only moves where along the path a receiver takes
+//! the light.
+//!
 //! A cell is drawn (its visibility map rendered) only when some receiver in front of it
 //! takes light from it, and refined only when some receiver is within its reach: those
 //! questions go to a BVH over the charts' boxes of element centres ([`ReceiverBoxes`]),
@@ -38,7 +46,8 @@ pub const DEFAULT_LINK_ERROR: f64 = 0.05;
 /// Most levels of coarser cells above the finest (cells up to 16 times the side).
 pub const LINK_LEVELS: u32 = 4;
 /// A receiver takes light from a coarse cell only at least this many cell radii away
-/// (beyond the sphere around it: visibility is tested from its centre).
+/// (beyond the sphere around it: visibility is tested from its centre) — times its reach
+/// scale where a view weighs the receivers ([`Links::reach_for`]).
 pub const MIN_REACH: f64 = 1.0;
 /// Receivers closer to a shooter's plane than this share of the scene's size take light
 /// from its top cells only (their form factor is next to nothing).
@@ -66,7 +75,18 @@ pub struct ReceiverBoxes {
     depth_first: Vec<u32>,
     /// … and per node, the run of them under it (start, end).
     spans: Vec<(u32, u32)>,
+    /// Per box, the least and most reach scale of its receivers ([`ReachScale`]) …
+    scales: Vec<ReachScale>,
+    /// … and per node of the hierarchy, of the boxes under it.
+    node_scales: Vec<ReachScale>,
 }
+
+/// The least and most factor on the receivers' reaches in a box (importance-driven link
+/// error, [`ReceiverBoxes::of_elements`]): 1 and 1 without a view.
+pub type ReachScale = (f64, f64);
+
+/// Most elements per box of [`ReceiverBoxes::of_elements`].
+pub const ELEMENTS_PER_BOX: usize = 64;
 
 /// How [`ReceiverBoxes::visit`] walks.
 #[derive(Clone, Copy)]
@@ -128,6 +148,72 @@ impl ReceiverBoxes {
         ReceiverBoxes::from_boxes(boxes, ranges)
     }
 
+    /// The hierarchy over `scene`'s elements in boxes of at most [`ELEMENTS_PER_BOX`]
+    /// neighbours of one chart (a chart's elements sorted along a Morton curve and cut in
+    /// runs), each box with the least and most of its elements' `scale` (the factor on
+    /// their reaches, [`Links::reach_for`]): the link search's receivers when their link
+    /// error follows their importance, finer than charts so that the part of a floor the
+    /// eye sees does not make its every part as demanding. Only [`ReceiverBoxes::any`] and
+    /// [`ReceiverBoxes::any_scaled`] are meant for it (its boxes' ranges are their
+    /// charts').
+    pub fn of_elements(scene: &RadiosityScene, scale: &[f64]) -> ReceiverBoxes {
+        let el = &scene.elements;
+        assert_eq!(scale.len(), el.len());
+        let (lo, hi) = el
+            .position
+            .iter()
+            .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &p| {
+                (lo.min(p), hi.max(p))
+            });
+        let extent = (hi - lo).max(DVec3::splat(1e-30));
+        let mut boxes = Vec::new();
+        let mut ranges = Vec::new();
+        let mut scales = Vec::new();
+        for chart in el.charts.iter().filter(|c| c.count > 0) {
+            let mut members: Vec<(u64, usize)> = (chart.first..chart.first + chart.count)
+                .map(|e| {
+                    let q = (el.position[e as usize] - lo) / extent * 1023.0;
+                    let code = morton(q.x as u64, q.y as u64, q.z as u64);
+                    (code, e as usize)
+                })
+                .collect();
+            members.sort_unstable();
+            for run in members.chunks(ELEMENTS_PER_BOX) {
+                let points = run.iter().map(|&(_, e)| el.position[e]);
+                let (a, b) = points.fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(a, b), p| {
+                    (a.min(p), b.max(p))
+                });
+                boxes.push((a, b));
+                ranges.push((chart.first, chart.count));
+                scales.push(
+                    run.iter()
+                        .fold((f64::INFINITY, 0.0), |(least, most), &(_, e)| {
+                            (least.min(scale[e]), f64::max(most, scale[e]))
+                        }),
+                );
+            }
+        }
+        let mut boxes = ReceiverBoxes::build(boxes, ranges, None);
+        boxes.set_scales(scales);
+        boxes
+    }
+
+    /// Gives the boxes their reach scales (one per box) and each node those of its boxes.
+    fn set_scales(&mut self, scales: Vec<ReachScale>) {
+        let over = |run: &[u32]| {
+            run.iter().fold((f64::INFINITY, 0.0), |(least, most), &b| {
+                let (l, m) = scales[b as usize];
+                (f64::min(least, l), f64::max(most, m))
+            })
+        };
+        self.node_scales = self
+            .spans
+            .iter()
+            .map(|&(start, end)| over(&self.depth_first[start as usize..end as usize]))
+            .collect();
+        self.scales = scales;
+    }
+
     /// The hierarchy over `charts` alone (indices, see [`ReceiverBoxes::range`]): its
     /// chart `k` is `charts[k]` here. Queries about a few charts among many (the charts
     /// that join perspective-driven radiosity's area of interest) then cost what those
@@ -135,11 +221,13 @@ impl ReceiverBoxes {
     /// Its tolerances are the whole hierarchy's, so it finds exactly the charts of
     /// `charts` that the whole one finds.
     pub fn subset(&self, charts: &[usize]) -> ReceiverBoxes {
-        ReceiverBoxes::build(
+        let mut subset = ReceiverBoxes::build(
             charts.iter().map(|&k| self.boxes[k]).collect(),
             charts.iter().map(|&k| self.ranges[k]).collect(),
             Some(self.size),
-        )
+        );
+        subset.set_scales(charts.iter().map(|&k| self.scales[k]).collect());
+        subset
     }
 
     /// The hierarchy over chart boxes (lowest, highest corner) holding the elements
@@ -186,6 +274,8 @@ impl ReceiverBoxes {
         });
         let (depth_first, spans) = bvh.as_ref().map(depth_first).unwrap_or_default();
         ReceiverBoxes {
+            scales: vec![(1.0, 1.0); boxes.len()],
+            node_scales: vec![(1.0, 1.0); spans.len()],
             depth_first,
             spans,
             bvh,
@@ -200,7 +290,13 @@ impl ReceiverBoxes {
     /// Whether some chart's box satisfies `wanted`, which must hold for every box around
     /// one it holds for (so whole subtrees are skipped where a node's box fails it).
     pub fn any(&self, wanted: impl Fn(DVec3, DVec3) -> bool) -> bool {
-        self.visit(wanted, &|_, _| false, Visit::First, &mut |_| {})
+        self.any_scaled(|lo, hi, _| wanted(lo, hi))
+    }
+
+    /// [`ReceiverBoxes::any`] where `wanted` also sees the box's least and most reach
+    /// scale (of its receivers; of its boxes for a node).
+    pub fn any_scaled(&self, wanted: impl Fn(DVec3, DVec3, ReachScale) -> bool) -> bool {
+        self.visit(wanted, &|_, _, _| false, Visit::First, &mut |_| {})
     }
 
     /// The element ranges (first, count) of the charts that may lie in front of the plane
@@ -251,8 +347,8 @@ impl ReceiverBoxes {
         // A node wholly in front of one run's planes takes its whole subtree untested
         // (on a shot of many facings most of a model is).
         self.visit(
-            |lo, hi| runs.iter().any(|run| run.highest(lo, hi) > -slack),
-            &|lo, hi| runs.iter().any(|run| run.lowest(lo, hi) > -slack),
+            |lo, hi, _| runs.iter().any(|run| run.highest(lo, hi) > -slack),
+            &|lo, hi, _| runs.iter().any(|run| run.lowest(lo, hi) > -slack),
             Visit::All { group },
             &mut |k| charts.push(k),
         );
@@ -307,8 +403,8 @@ impl ReceiverBoxes {
     /// node of at most `group` charts whose box satisfies `wanted`.
     fn visit(
         &self,
-        wanted: impl Fn(DVec3, DVec3) -> bool,
-        whole: &dyn Fn(DVec3, DVec3) -> bool,
+        wanted: impl Fn(DVec3, DVec3, ReachScale) -> bool,
+        whole: &dyn Fn(DVec3, DVec3, ReachScale) -> bool,
         how: Visit,
         found: &mut dyn FnMut(usize),
     ) -> bool {
@@ -328,11 +424,12 @@ impl ReceiverBoxes {
             let lo = DVec3::new(aabb.min.x as f64, aabb.min.y as f64, aabb.min.z as f64);
             let hi = DVec3::new(aabb.max.x as f64, aabb.max.y as f64, aabb.max.z as f64);
             let (lo, hi) = (lo + self.centre - self.pad, hi + self.centre + self.pad);
-            if !wanted(lo, hi) {
+            let scale = self.node_scales[k];
+            if !wanted(lo, hi, scale) {
                 continue;
             }
             let (start, end) = self.spans[k];
-            if (group > 1 && end - start <= group) || whole(lo, hi) {
+            if (group > 1 && end - start <= group) || whole(lo, hi, scale) {
                 // Everything under the node, listed in one run (no walk down to it).
                 for &p in &self.depth_first[start as usize..end as usize] {
                     found(p as usize);
@@ -346,7 +443,7 @@ impl ReceiverBoxes {
             if node.is_leaf() {
                 for &p in &bvh.primitive_indices[child..][..node.prim_count as usize] {
                     let (a, b) = self.boxes[p as usize];
-                    if wanted(a, b) {
+                    if wanted(a, b, self.scales[p as usize]) {
                         found(p as usize);
                         if first {
                             return true;
@@ -379,6 +476,15 @@ pub struct Links {
 }
 
 impl Links {
+    /// How far a receiver whose reach scale is `scale` (the square root of its share of
+    /// the link error, in (0, 1]: [`ReceiverBoxes::of_elements`]) must be to take patch
+    /// `k`'s light from it: the patch's reach times `scale`, the [`MIN_REACH`] sphere
+    /// included — a receiver the view needs little of also accepts the error of seeing a
+    /// near cell from its centre.
+    pub fn reach_for(&self, k: usize, scale: f64) -> f64 {
+        self.reach[k] * scale
+    }
+
     /// How many patches are drawn.
     pub fn drawn_count(&self) -> usize {
         self.drawn.iter().filter(|&&d| d).count()
@@ -498,6 +604,19 @@ fn highest(lo: DVec3, hi: DVec3, normal: DVec3, at: DVec3) -> f64 {
         .fold(f64::NEG_INFINITY, f64::max)
 }
 
+/// The Morton code of a point's 10-bit grid coordinates.
+fn morton(x: u64, y: u64, z: u64) -> u64 {
+    // Spreads 10 bits to every third of 30.
+    let spread = |mut v: u64| {
+        v &= 0x3ff;
+        v = (v | (v << 16)) & 0x0300_00ff;
+        v = (v | (v << 8)) & 0x0300_f00f;
+        v = (v | (v << 4)) & 0x030c_30c3;
+        (v | (v << 2)) & 0x0924_9249
+    };
+    spread(x) | (spread(y) << 1) | (spread(z) << 2)
+}
+
 /// Nearest distance from `p` to the box [lo, hi].
 fn nearest(lo: DVec3, hi: DVec3, p: DVec3) -> f64 {
     p.clamp(lo, hi).distance(p)
@@ -567,16 +686,23 @@ impl Search<'_> {
         highest(lo, hi, cell.normal, cell.centroid) > tolerance
     }
 
-    /// Whether the box [lo, hi] may hold a receiver within the reach of used cell `k`.
-    fn within(&self, lo: DVec3, hi: DVec3, k: usize) -> bool {
-        let at = self.plan.patches[k].centroid;
-        nearest(lo, hi, at) < self.oracle[k] * (1.0 + SLACK) + self.slack
+    /// Cell `k`'s reach for a receiver whose reach scale is `scale` ([`Links::reach_for`]).
+    fn reach(&self, k: usize, scale: f64) -> f64 {
+        self.oracle[k] * scale
     }
 
-    /// Whether the box [lo, hi] may hold a receiver beyond the reach of cell `k`.
-    fn beyond(&self, lo: DVec3, hi: DVec3, k: usize) -> bool {
+    /// Whether the box [lo, hi] (its receivers' reach scales `scale`) may hold a receiver
+    /// within the reach of used cell `k`.
+    fn within(&self, lo: DVec3, hi: DVec3, scale: ReachScale, k: usize) -> bool {
         let at = self.plan.patches[k].centroid;
-        farthest(lo, hi, at) >= self.oracle[k] * (1.0 - SLACK) - self.slack
+        nearest(lo, hi, at) < self.reach(k, scale.1) * (1.0 + SLACK) + self.slack
+    }
+
+    /// Whether the box [lo, hi] (its receivers' reach scales `scale`) may hold a receiver
+    /// beyond the reach of cell `k`.
+    fn beyond(&self, lo: DVec3, hi: DVec3, scale: ReachScale, k: usize) -> bool {
+        let at = self.plan.patches[k].centroid;
+        farthest(lo, hi, at) >= self.reach(k, scale.0) * (1.0 - SLACK) - self.slack
     }
 
     /// Cell `k`'s subtree with nothing used or drawn (`k` last).
@@ -596,15 +722,15 @@ impl Search<'_> {
     /// give it: (cell, used, drawn).
     fn cheapest(&self, k: usize, used: &[usize]) -> (usize, Vec<(usize, bool, bool)>) {
         let level = self.plan.patches[k].level;
-        let some = |extra: &dyn Fn(DVec3, DVec3) -> bool| {
-            self.receivers.any(|lo, hi| {
+        let some = |extra: &dyn Fn(DVec3, DVec3, ReachScale) -> bool| {
+            self.receivers.any_scaled(|lo, hi, scale| {
                 self.in_front(lo, hi, k)
-                    && used.iter().all(|&a| self.within(lo, hi, a))
-                    && extra(lo, hi)
+                    && used.iter().all(|&a| self.within(lo, hi, scale, a))
+                    && extra(lo, hi, scale)
             })
         };
         if level == 0 {
-            let draw = some(&|_, _| true);
+            let draw = some(&|_, _, _| true);
             return (usize::from(draw), vec![(k, false, draw)]);
         }
         let subtree = |used: &[usize]| {
@@ -617,16 +743,16 @@ impl Search<'_> {
             }
             (cost, choice)
         };
-        if !some(&|_, _| true) {
+        if !some(&|_, _, _| true) {
             return (0, self.idle(k));
         }
         // Not used: every receiver looks further down.
         let (finer, mut finer_choice) = subtree(used);
         // Used: the receivers beyond its reach take its light, the rest look further down.
-        let draw = some(&|lo, hi| self.beyond(lo, hi, k));
+        let draw = some(&|lo, hi, scale| self.beyond(lo, hi, scale, k));
         let mut inner = used.to_vec();
         inner.push(k);
-        let (below, mut below_choice) = if some(&|lo, hi| self.within(lo, hi, k)) {
+        let (below, mut below_choice) = if some(&|lo, hi, scale| self.within(lo, hi, scale, k)) {
             subtree(&inner)
         } else {
             let mut none = self.idle(k);
@@ -644,28 +770,28 @@ impl Search<'_> {
     }
 }
 
-/// Whether a receiver at `p` takes light from cell `k` of `plan` — the GPU receive pass's
-/// rule, in f64: in front of the cell's plane (beyond `tolerance`),
-/// beyond the cell's reach and within every ancestor's; nearer the plane, from top cells
-/// only.
+/// Whether a receiver at `p` whose reach scale is `scale` ([`Links::reach_for`]; 1
+/// without a view) takes light from cell `k` of `plan` — the GPU receive pass's rule, in
+/// f64: in front of the cell's plane (beyond `tolerance`), beyond the cell's reach and
+/// within every ancestor's; nearer the plane, from top cells only.
 pub fn takes_light_from(
     plan: &ShotPlan,
     links: &Links,
     k: usize,
     tolerance: f64,
-    p: DVec3,
+    (p, scale): (DVec3, f64),
 ) -> bool {
     let cell = &plan.patches[k];
     if cell.normal.dot(p - cell.centroid) <= tolerance {
         return cell.parent == u32::MAX;
     }
-    if p.distance(cell.centroid) < links.reach[k] {
+    if p.distance(cell.centroid) < links.reach_for(k, scale) {
         return false;
     }
     let mut a = cell.parent;
     while a != u32::MAX {
         let up = &plan.patches[a as usize];
-        if p.distance(up.centroid) >= links.reach[a as usize] {
+        if p.distance(up.centroid) >= links.reach_for(a as usize, scale) {
             return false;
         }
         a = up.parent;

@@ -85,6 +85,9 @@ pub const IMPORTANCE_REACHED: f64 = 1e-2;
 /// refinement gives them. The open office seen at a desk draws the same maps with 1/256
 /// (its far walls and floor are one cell a piece either way).
 pub const CELL_WEIGHT_FLOOR: f64 = 1.0 / 16.0;
+/// The least share of the link error a receiver takes ([`receiver_weights`]): its reaches
+/// at least a quarter of what they are for what the eye sees.
+pub const RECEIVER_WEIGHT_FLOOR: f64 = 1.0 / 16.0;
 
 /// The camera as the solver sees it: a perspective view.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -389,6 +392,30 @@ pub fn cell_weights(
         .collect()
 }
 
+/// Per element, its share of the link error (importance-driven links on the receiving
+/// side, after Smits, Arvo and Salesin 1992): an irradiance error ΔE on element i changes
+/// the view by ΔE ρᵢ (vᵢ + Hᵢ) per m² — directly where the eye sees it, through the
+/// light it sends on elsewhere — so a receiver whose ρ (v + H) is a share w of that of
+/// the elements the view shows (area-weighted mean) accepts 1 / w times the link error:
+/// w between [`RECEIVER_WEIGHT_FLOOR`] and 1 (ρ: reflectance plus transmittance, by
+/// luminance). All 1 when the view shows nothing the importance reaches.
+pub fn receiver_weights(scene: &RadiosityScene, importance: &[f64], view: &[f64]) -> Vec<f64> {
+    let worth: Vec<f64> = (0..view.len())
+        .map(|e| luminance(scene.element_reemittance(e)) * (view[e] + importance[e]))
+        .collect();
+    let seen = area_mean(scene, &worth, (0..view.len()).filter(|&e| view[e] > 0.0));
+    worth
+        .iter()
+        .map(|&w| {
+            if seen > 0.0 {
+                (w / seen).clamp(RECEIVER_WEIGHT_FLOOR, 1.0)
+            } else {
+                1.0
+            }
+        })
+        .collect()
+}
+
 /// The ambient term as the view sees it: the unshot power's expected gain in the view,
 /// Σⱼ ΔBⱼ Aⱼ Hⱼ, spread evenly over what the view shows (Σᵢ vᵢ Aᵢ ρᵢ), so that the
 /// image's mean is right where the global term ([`super::solve::ambient_term`]) spreads
@@ -469,7 +496,8 @@ impl ViewDriven {
     }
 
     /// Sets `solver` to be driven by this view: the shooters weighed by importance, their
-    /// cells sized by the importance-weighted power ([`cell_weights`]), and
+    /// cells sized by the importance-weighted power ([`cell_weights`]), each receiver's
+    /// link error by its importance ([`receiver_weights`]), and
     /// for [`Drive::Perspective`] the receivers limited to the area of interest seen from
     /// `point` ([`area_stages`] with `margin_deg`). [`Drive::Global`] changes nothing.
     pub fn drive(
@@ -491,6 +519,8 @@ impl ViewDriven {
             &self.view,
         );
         solver.set_cell_weights(cells);
+        let receivers = receiver_weights(solver.scene(), &self.importance, &self.view);
+        solver.set_receiver_weights(&receivers);
         if drive == Drive::Perspective {
             let stages = area_stages(solver.scene(), point, margin_deg);
             let reached = self.charts_reached(solver.scene(), &stages);

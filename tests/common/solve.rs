@@ -30,7 +30,20 @@ pub fn solve(
     gpu_settings: GpuSettings,
     converge: f64,
 ) -> Solved {
+    solve_with(gpu, r, initial, gpu_settings, converge, |_| {})
+}
+
+/// [`solve`] with the solver first set up by `prepare`.
+pub fn solve_with(
+    gpu: &goniolight::gpu::Gpu,
+    r: &RadiosityScene,
+    initial: &InitialState,
+    gpu_settings: GpuSettings,
+    converge: f64,
+    prepare: impl FnOnce(&mut GpuSolver),
+) -> Solved {
     let mut solver = GpuSolver::new(gpu, r, initial, SolverSettings::default(), gpu_settings);
+    prepare(&mut solver);
     let stop = StopAt {
         converge,
         max_shots: Some(20_000),

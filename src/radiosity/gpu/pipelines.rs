@@ -67,6 +67,7 @@ impl Pipelines {
             B::Storage { read_only: false },
             B::Storage { read_only: true },
             B::Storage { read_only: false },
+            B::Storage { read_only: true },
         ];
         let entries: Vec<_> = kinds
             .iter()

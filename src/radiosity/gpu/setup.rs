@@ -368,6 +368,14 @@ impl<'a> GpuSolver<'a> {
         // What charts that hold keep back: one unused record until one holds (at
         // `deferred::HELD_BACK_BINDING`).
         let held_back = storage(gpu, "held back", &[0u8; 16], true);
+        // Every receiver's reaches as the link search gives them until a view scales them
+        // (`REACH_SCALE_BINDING`, [`GpuSolver::set_receiver_weights`]).
+        let reach_scale = storage(
+            gpu,
+            "reach scale",
+            bytemuck::cast_slice(&vec![1f32; el.len().max(1)]),
+            true,
+        );
         let [element_points, element_normals, element_receiving] = upload.elements.clone();
         let shared_buffers = vec![
             params.clone(),
@@ -383,6 +391,7 @@ impl<'a> GpuSolver<'a> {
             held,
             element_receiving,
             held_back,
+            reach_scale,
         ];
         let shared = shared_bind_group(gpu, &pipelines, &shared_buffers);
         gpu_settings.raster = gpu_settings.raster.resolve(gpu, upload.masked.is_some());
@@ -420,6 +429,7 @@ impl<'a> GpuSolver<'a> {
             shooter_buf,
             weighted: false,
             cell_weights: None,
+            link_receivers: None,
             deferral: None,
             stages: None,
             batch: FIRST_BATCH,

@@ -139,8 +139,11 @@ impl<'a> GpuSolver<'a> {
         };
         lap(&mut self.times.gather, &mut clock);
         let epsilon = self.gpu_settings.link_error * initial / self.scene.total_area.max(1e-300);
-        let links =
-            crate::radiosity::links::link(&plan, &radiosity, &self.upload.receivers, epsilon);
+        let receivers = self
+            .link_receivers
+            .as_ref()
+            .unwrap_or(&self.upload.receivers);
+        let links = crate::radiosity::links::link(&plan, &radiosity, receivers, epsilon);
         lap(&mut self.times.links, &mut clock);
         Ok((plan, links, delta))
     }
