@@ -392,7 +392,8 @@ fn receivers_that_matter_less_take_coarser_cells_light_within_their_share_of_the
         even.drawn
     );
     // What matters stays as close to the finest cells' light as with an even error; what
-    // matters less is off by more, yet within a few per cent.
+    // matters less is off by more, yet within a few per cent (lavapipe: 2 080 maps against
+    // 2 659; near half 0.38 % off against 0.32 %, far half 0.92 % against 0.26 %).
     assert!(near <= 0.01, "the near half is {near} off");
     assert!(far_off <= 0.05, "the far half is {far_off} off");
 }

@@ -176,11 +176,57 @@ fn pieces_that_matter_less_to_the_view_shoot_from_coarser_cells() {
     };
     let (plain, weighted) = (maps(false), maps(true));
     eprintln!("maps in 8 shots: {plain} by the power, {weighted} by the weighted power");
-    // 1 282 against 1 411 (lavapipe); the same without the weights.
+    // 1 211 against 1 315 (lavapipe; both with the receivers' weights, the next test).
     assert!(
         (weighted as f64) < 0.95 * plain as f64,
         "{weighted} vs {plain}"
     );
+}
+
+/// Importance-driven link error on the receiving side (`view::receiver_weights`): what
+/// the eye sees near the camera keeps the whole link error, receivers whose light the
+/// view needs less accept more, so the same shots draw fewer maps (the drives still
+/// converge to the global solution within 1 % in view: the test before the last).
+#[test]
+fn receivers_that_matter_less_to_the_view_take_coarser_cells_light() {
+    let Some(gpu) = gpu_common::gpu() else {
+        return;
+    };
+    let (scene, r, initial) = boxes_room(&gpu, Hierarchy::Clusters);
+    let (settings, gpu_settings) = settings_for(Hierarchy::Clusters);
+    let (point, weights) = camera_view(&scene, &r);
+    let light = GpuSolver::new(&gpu, &r, &initial, settings, gpu_settings);
+    let driven = ViewDriven::new(&light, settings, gpu_settings, weights.clone(), None).unwrap();
+    let receivers = view::receiver_weights(&r, &driven.importance, &weights);
+    assert_eq!(receivers.len(), r.elements.len());
+    assert!(receivers
+        .iter()
+        .all(|&w| (view::RECEIVER_WEIGHT_FLOOR..=1.0).contains(&w)));
+    let full = receivers.iter().filter(|&&w| w == 1.0).count();
+    let hidden_less = (0..receivers.len())
+        .filter(|&e| weights[e] == 0.0 && receivers[e] < 0.5)
+        .count();
+    assert!(
+        full > 0 && hidden_less > 0,
+        "{full} at 1, {hidden_less} hidden below 0.5"
+    );
+    let maps = |weighted: bool| {
+        let mut solver = GpuSolver::new(&gpu, &r, &initial, settings, gpu_settings);
+        driven
+            .drive(&mut solver, Drive::Importance, &point, 10.0)
+            .unwrap();
+        if !weighted {
+            solver.set_receiver_weights(&vec![1.0; receivers.len()]);
+        }
+        let (_, log) = solver.solve(&stop(1.0, 8), &no_cancel(), |_| {}).unwrap();
+        assert_eq!(log.len() - 1, 8);
+        solver.drawn
+    };
+    let (even, weighted) = (maps(false), maps(true));
+    eprintln!("maps in 8 shots: {even} with an even link error, {weighted} weighted");
+    // 1 211 against 1 282 (lavapipe): in one small room most receivers matter (the CAD
+    // office at a desk: 529 maps against 1 054 to 5 % in view, README).
+    assert!(weighted < even, "{weighted} vs {even}");
 }
 
 /// The importance is an estimate of the converged one: what its half-solved field has
