@@ -285,6 +285,16 @@ fn receiver_culling_keeps_every_element_in_front_of_a_shooter() {
     }
 }
 
+/// The hall (face clusters, 2 texels per metre) and its luminaire's direct light.
+fn lit_hall(gpu: &goniolight::gpu::Gpu) -> (RadiosityScene, InitialState) {
+    let scene = hall(false);
+    let r = RadiosityScene::with_hierarchy(&scene, 2.0, 1, Hierarchy::Clusters).unwrap();
+    let light = LuminaireLight::new(gpu, &scene, SolverSettings::default().interp);
+    let initial =
+        InitialState::from_luminaires_gpu(gpu, &light, &r, &ShadowSettings::default()).unwrap();
+    (r, initial)
+}
+
 /// Solves to `converge`: radiosity per element, shots, visibility maps drawn.
 fn solve(
     gpu: &goniolight::gpu::Gpu,
@@ -305,12 +315,7 @@ fn solve(
 #[test]
 fn links_in_a_hall_draw_fewer_maps_for_the_same_light() {
     let Some(gpu) = gpu_common::gpu() else { return };
-    let scene = hall(false);
-    let r = RadiosityScene::with_hierarchy(&scene, 2.0, 1, Hierarchy::Clusters).unwrap();
-    let settings = SolverSettings::default();
-    let light = LuminaireLight::new(&gpu, &scene, settings.interp);
-    let initial =
-        InitialState::from_luminaires_gpu(&gpu, &light, &r, &ShadowSettings::default()).unwrap();
+    let (r, initial) = lit_hall(&gpu);
     let (fine, fine_shots, fine_maps) = solve(&gpu, &r, &initial, 0.0, 0.99);
     let (linked, linked_shots, linked_maps) =
         solve(&gpu, &r, &initial, links::DEFAULT_LINK_ERROR, 0.99);
@@ -335,12 +340,7 @@ fn links_in_a_hall_draw_fewer_maps_for_the_same_light() {
 #[test]
 fn receivers_that_matter_less_take_coarser_cells_light_within_their_share_of_the_error() {
     let Some(gpu) = gpu_common::gpu() else { return };
-    let scene = hall(false);
-    let r = RadiosityScene::with_hierarchy(&scene, 2.0, 1, Hierarchy::Clusters).unwrap();
-    let settings = SolverSettings::default();
-    let light = LuminaireLight::new(&gpu, &scene, settings.interp);
-    let initial =
-        InitialState::from_luminaires_gpu(&gpu, &light, &r, &ShadowSettings::default()).unwrap();
+    let (r, initial) = lit_hall(&gpu);
     let el = &r.elements;
     // The far half of the hall (x > 12 m) takes 16 times the link error: a quarter of the
     // reach.

@@ -137,6 +137,52 @@ fn importance_and_perspective_driven_solutions_converge_to_the_global_one_in_vie
     }
 }
 
+/// The boxes room (face clusters) seen from its camera: its scene, initial light, view
+/// point, view weights and the view's importance.
+struct DrivenRoom {
+    r: RadiosityScene,
+    initial: InitialState,
+    point: ViewPoint,
+    weights: Vec<f64>,
+    driven: ViewDriven,
+}
+
+impl DrivenRoom {
+    fn new(gpu: &goniolight::gpu::Gpu) -> DrivenRoom {
+        let (scene, r, initial) = boxes_room(gpu, Hierarchy::Clusters);
+        let (settings, gpu_settings) = settings_for(Hierarchy::Clusters);
+        let (point, weights) = camera_view(&scene, &r);
+        let light = GpuSolver::new(gpu, &r, &initial, settings, gpu_settings);
+        let driven =
+            ViewDriven::new(&light, settings, gpu_settings, weights.clone(), None).unwrap();
+        DrivenRoom {
+            r,
+            initial,
+            point,
+            weights,
+            driven,
+        }
+    }
+
+    /// The visibility maps 8 importance-driven shots draw, `undo` applied after the
+    /// drive (what a test switches off).
+    fn maps_in_eight_shots(
+        &self,
+        gpu: &goniolight::gpu::Gpu,
+        undo: impl Fn(&mut GpuSolver),
+    ) -> usize {
+        let (settings, gpu_settings) = settings_for(Hierarchy::Clusters);
+        let mut solver = GpuSolver::new(gpu, &self.r, &self.initial, settings, gpu_settings);
+        self.driven
+            .drive(&mut solver, Drive::Importance, &self.point, 10.0)
+            .unwrap();
+        undo(&mut solver);
+        let (_, log) = solver.solve(&stop(1.0, 8), &no_cancel(), |_| {}).unwrap();
+        assert_eq!(log.len() - 1, 8);
+        solver.drawn
+    }
+}
+
 /// Importance-weighted refinement (`view::cell_weights`): with a view driving, a piece
 /// whose light matters less to the view than what the eye sees shoots from cells carrying
 /// more power each, so the same shots draw fewer visibility maps (the solutions still
@@ -146,12 +192,11 @@ fn pieces_that_matter_less_to_the_view_shoot_from_coarser_cells() {
     let Some(gpu) = gpu_common::gpu() else {
         return;
     };
-    let (scene, r, initial) = boxes_room(&gpu, Hierarchy::Clusters);
+    let room = DrivenRoom::new(&gpu);
+    let (r, weights) = (&room.r, &room.weights);
     let (settings, gpu_settings) = settings_for(Hierarchy::Clusters);
-    let (point, weights) = camera_view(&scene, &r);
-    let light = GpuSolver::new(&gpu, &r, &initial, settings, gpu_settings);
-    let driven = ViewDriven::new(&light, settings, gpu_settings, weights.clone(), None).unwrap();
-    let cells = view::cell_weights(&r, light.shooters(), &driven.importance, &weights);
+    let light = GpuSolver::new(&gpu, r, &room.initial, settings, gpu_settings);
+    let cells = view::cell_weights(r, light.shooters(), &room.driven.importance, weights);
     assert_eq!(cells.len(), light.shooters().pieces.len());
     assert!(cells
         .iter()
@@ -162,19 +207,8 @@ fn pieces_that_matter_less_to_the_view_shoot_from_coarser_cells() {
     let less = cells.iter().filter(|&&w| w < 0.6).count();
     assert!(full > 0 && less > 0, "{cells:?}");
     // The same drive, its cells sized by the power alone and by the weighted power.
-    let maps = |weighted: bool| {
-        let mut solver = GpuSolver::new(&gpu, &r, &initial, settings, gpu_settings);
-        driven
-            .drive(&mut solver, Drive::Importance, &point, 10.0)
-            .unwrap();
-        if !weighted {
-            solver.set_cell_weights(vec![1.0; cells.len()]);
-        }
-        let (_, log) = solver.solve(&stop(1.0, 8), &no_cancel(), |_| {}).unwrap();
-        assert_eq!(log.len() - 1, 8);
-        solver.drawn
-    };
-    let (plain, weighted) = (maps(false), maps(true));
+    let plain = room.maps_in_eight_shots(&gpu, |s| s.set_cell_weights(vec![1.0; cells.len()]));
+    let weighted = room.maps_in_eight_shots(&gpu, |_| {});
     eprintln!("maps in 8 shots: {plain} by the power, {weighted} by the weighted power");
     // 1 211 against 1 315 (lavapipe; both with the receivers' weights, the next test).
     assert!(
@@ -192,13 +226,10 @@ fn receivers_that_matter_less_to_the_view_take_coarser_cells_light() {
     let Some(gpu) = gpu_common::gpu() else {
         return;
     };
-    let (scene, r, initial) = boxes_room(&gpu, Hierarchy::Clusters);
-    let (settings, gpu_settings) = settings_for(Hierarchy::Clusters);
-    let (point, weights) = camera_view(&scene, &r);
-    let light = GpuSolver::new(&gpu, &r, &initial, settings, gpu_settings);
-    let driven = ViewDriven::new(&light, settings, gpu_settings, weights.clone(), None).unwrap();
-    let receivers = view::receiver_weights(&r, &driven.importance, &weights);
-    assert_eq!(receivers.len(), r.elements.len());
+    let room = DrivenRoom::new(&gpu);
+    let weights = &room.weights;
+    let receivers = view::receiver_weights(&room.r, &room.driven.importance, weights);
+    assert_eq!(receivers.len(), room.r.elements.len());
     assert!(receivers
         .iter()
         .all(|&w| (view::RECEIVER_WEIGHT_FLOOR..=1.0).contains(&w)));
@@ -210,19 +241,10 @@ fn receivers_that_matter_less_to_the_view_take_coarser_cells_light() {
         full > 0 && hidden_less > 0,
         "{full} at 1, {hidden_less} hidden below 0.5"
     );
-    let maps = |weighted: bool| {
-        let mut solver = GpuSolver::new(&gpu, &r, &initial, settings, gpu_settings);
-        driven
-            .drive(&mut solver, Drive::Importance, &point, 10.0)
-            .unwrap();
-        if !weighted {
-            solver.set_receiver_weights(&vec![1.0; receivers.len()]);
-        }
-        let (_, log) = solver.solve(&stop(1.0, 8), &no_cancel(), |_| {}).unwrap();
-        assert_eq!(log.len() - 1, 8);
-        solver.drawn
-    };
-    let (even, weighted) = (maps(false), maps(true));
+    let even = room.maps_in_eight_shots(&gpu, |s| {
+        s.set_receiver_weights(&vec![1.0; receivers.len()])
+    });
+    let weighted = room.maps_in_eight_shots(&gpu, |_| {});
     eprintln!("maps in 8 shots: {even} with an even link error, {weighted} weighted");
     // 1 211 against 1 282 (lavapipe): in one small room most receivers matter (the CAD
     // office at a desk: 529 maps against 1 054 to 5 % in view, README).
