@@ -137,11 +137,10 @@ impl ReceiverBoxes {
         let boxes: Vec<(DVec3, DVec3)> = charts
             .iter()
             .map(|c| {
-                let points = &el.position[c.first as usize..][..c.count as usize];
-                let lo = points.iter().copied().fold(DVec3::INFINITY, DVec3::min);
-                (
-                    lo,
-                    points.iter().copied().fold(DVec3::NEG_INFINITY, DVec3::max),
+                bounds(
+                    el.position[c.first as usize..][..c.count as usize]
+                        .iter()
+                        .copied(),
                 )
             })
             .collect();
@@ -159,12 +158,7 @@ impl ReceiverBoxes {
     pub fn of_elements(scene: &RadiosityScene, scale: &[f64]) -> ReceiverBoxes {
         let el = &scene.elements;
         assert_eq!(scale.len(), el.len());
-        let (lo, hi) = el
-            .position
-            .iter()
-            .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &p| {
-                (lo.min(p), hi.max(p))
-            });
+        let (lo, hi) = bounds(el.position.iter().copied());
         let extent = (hi - lo).max(DVec3::splat(1e-30));
         let mut boxes = Vec::new();
         let mut ranges = Vec::new();
@@ -179,18 +173,9 @@ impl ReceiverBoxes {
                 .collect();
             members.sort_unstable();
             for run in members.chunks(ELEMENTS_PER_BOX) {
-                let points = run.iter().map(|&(_, e)| el.position[e]);
-                let (a, b) = points.fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(a, b), p| {
-                    (a.min(p), b.max(p))
-                });
-                boxes.push((a, b));
+                boxes.push(bounds(run.iter().map(|&(_, e)| el.position[e])));
                 ranges.push((chart.first, chart.count));
-                scales.push(
-                    run.iter()
-                        .fold((f64::INFINITY, 0.0), |(least, most), &(_, e)| {
-                            (least.min(scale[e]), f64::max(most, scale[e]))
-                        }),
-                );
+                scales.push(widest(run.iter().map(|&(_, e)| (scale[e], scale[e]))));
             }
         }
         let mut boxes = ReceiverBoxes::build(boxes, ranges, None);
@@ -200,12 +185,7 @@ impl ReceiverBoxes {
 
     /// Gives the boxes their reach scales (one per box) and each node those of its boxes.
     fn set_scales(&mut self, scales: Vec<ReachScale>) {
-        let over = |run: &[u32]| {
-            run.iter().fold((f64::INFINITY, 0.0), |(least, most), &b| {
-                let (l, m) = scales[b as usize];
-                (f64::min(least, l), f64::max(most, m))
-            })
-        };
+        let over = |run: &[u32]| widest(run.iter().map(|&b| scales[b as usize]));
         self.node_scales = self
             .spans
             .iter()
@@ -602,6 +582,20 @@ fn highest(lo: DVec3, hi: DVec3, normal: DVec3, at: DVec3) -> f64 {
     corners(lo, hi)
         .map(|x| normal.dot(x - at))
         .fold(f64::NEG_INFINITY, f64::max)
+}
+
+/// The lowest and highest corner of `points`' box.
+fn bounds(points: impl Iterator<Item = DVec3>) -> (DVec3, DVec3) {
+    points.fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| {
+        (lo.min(p), hi.max(p))
+    })
+}
+
+/// The least and the most of `scales`.
+fn widest(scales: impl Iterator<Item = ReachScale>) -> ReachScale {
+    scales.fold((f64::INFINITY, 0.0), |(least, most), (l, m)| {
+        (least.min(l), f64::max(most, m))
+    })
 }
 
 /// The Morton code of a point's 10-bit grid coordinates.
