@@ -49,8 +49,19 @@ fn boxes_rooms(
     hierarchy: Hierarchy,
     rooms: usize,
 ) -> (Scene, RadiosityScene, InitialState) {
+    boxes_rooms_lit(gpu, hierarchy, rooms, rooms)
+}
+
+/// [`boxes_rooms`] with only the first `lit` rooms' luminaires.
+fn boxes_rooms_lit(
+    gpu: &goniolight::gpu::Gpu,
+    hierarchy: Hierarchy,
+    rooms: usize,
+    lit: usize,
+) -> (Scene, RadiosityScene, InitialState) {
     let one = Scene::load(&common::root().join("assets/scenes/boxes_room.toml")).unwrap();
-    let scene = goniolight::bench::radiosity_view::row_of_rooms(&one, rooms);
+    let mut scene = goniolight::bench::radiosity_view::row_of_rooms(&one, rooms);
+    scene.luminaires.truncate(one.luminaires.len() * lit);
     let r = RadiosityScene::with_hierarchy(&scene, 6.0, 1, hierarchy).unwrap();
     let settings = SolverSettings::default();
     let light = LuminaireLight::new(gpu, &scene, settings.interp);
@@ -76,16 +87,19 @@ fn camera_view(scene: &Scene, r: &RadiosityScene) -> (ViewPoint, Vec<f64>) {
     (point, weights)
 }
 
-#[test]
-fn importance_and_perspective_driven_solutions_converge_to_the_global_one_in_view() {
-    let Some(gpu) = gpu_common::gpu() else {
-        return;
-    };
-    // Face clusters, the command's default (the flat solver takes 111-116 shots to 99 %
-    // here, against 21, for the same errors).
-    let (scene, r, initial) = boxes_room(&gpu, Hierarchy::Clusters);
+/// Importance-driven and perspective-driven solutions of `scene` (laid out as `r`, lit as
+/// `initial`, face clusters) seen from its camera converge to the global one in view: at
+/// 99 %, within 1 % (mean over the elements in view) of the global solution at 99.95 %,
+/// with the view's ambient term bringing the image closer, and every chart receiving.
+/// Returns the charts that waited when the perspective drive began.
+fn converges_to_the_global_one_in_view(
+    gpu: &goniolight::gpu::Gpu,
+    scene: &Scene,
+    r: &RadiosityScene,
+    initial: &InitialState,
+) -> usize {
     let (settings, gpu_settings) = settings_for(Hierarchy::Clusters);
-    let (point, weights) = camera_view(&scene, &r);
+    let (point, weights) = camera_view(scene, r);
     let seen = weights.iter().filter(|&&w| w > 0.0).count();
     assert!(
         seen > 100 && seen < r.elements.len(),
@@ -93,22 +107,26 @@ fn importance_and_perspective_driven_solutions_converge_to_the_global_one_in_vie
         r.elements.len()
     );
 
-    let mut reference = GpuSolver::new(&gpu, &r, &initial, settings, gpu_settings);
+    let mut reference = GpuSolver::new(gpu, r, initial, settings, gpu_settings);
     reference
         .solve(&stop(0.9995, 50_000), &no_cancel(), |_| {})
         .unwrap();
     let reference = reference.radiosity().unwrap();
 
-    let light = GpuSolver::new(&gpu, &r, &initial, settings, gpu_settings);
+    let light = GpuSolver::new(gpu, r, initial, settings, gpu_settings);
     let driven = ViewDriven::new(&light, settings, gpu_settings, weights.clone(), None).unwrap();
     // Importance reaches surfaces the camera does not see (through interreflection).
     let unseen_with_importance = (0..r.elements.len())
         .filter(|&e| weights[e] == 0.0 && driven.importance[e] > 0.0)
         .count();
     assert!(unseen_with_importance > 100, "{unseen_with_importance}");
+    let mut waited = 0;
     for drive in [Drive::Global, Drive::Importance, Drive::Perspective] {
-        let mut solver = GpuSolver::new(&gpu, &r, &initial, settings, gpu_settings);
+        let mut solver = GpuSolver::new(gpu, r, initial, settings, gpu_settings);
         driven.drive(&mut solver, drive, &point, 10.0).unwrap();
+        if drive == Drive::Perspective {
+            waited = solver.waiting_charts();
+        }
         let (reason, log) = solver
             .solve(&stop(0.99, 20_000), &no_cancel(), |_| {})
             .unwrap();
@@ -119,15 +137,16 @@ fn importance_and_perspective_driven_solutions_converge_to_the_global_one_in_vie
         let (radiosity, illuminance) = solver.radiosity_and_illuminance().unwrap();
         let unshot = solver.unshot().unwrap();
         let ambient = match drive {
-            Drive::Global => solve::ambient_term(&r, &unshot),
-            _ => driven.ambient(&r, &unshot),
+            Drive::Global => solve::ambient_term(r, &unshot),
+            _ => driven.ambient(r, &unshot),
         };
-        let shown = solve::with_ambient(&r, &radiosity, &illuminance, ambient).0;
-        let error = view_error(&r, &weights, &shown, &reference);
-        let shot_only = view_error(&r, &weights, &radiosity, &reference);
+        let shown = solve::with_ambient(r, &radiosity, &illuminance, ambient).0;
+        let error = view_error(r, &weights, &shown, &reference);
+        let shot_only = view_error(r, &weights, &radiosity, &reference);
         eprintln!(
-            "{drive:?}: {} shots, view error {:.4} (shot light alone {:.4})",
+            "{drive:?}: {} shots, {} maps, view error {:.4} (shot light alone {:.4})",
             log.len() - 1,
+            solver.drawn,
             error,
             shot_only
         );
@@ -135,6 +154,38 @@ fn importance_and_perspective_driven_solutions_converge_to_the_global_one_in_vie
         // The view's ambient term brings the image closer, not further.
         assert!(error < shot_only, "{drive:?}: {error} vs {shot_only}");
     }
+    waited
+}
+
+#[test]
+fn importance_and_perspective_driven_solutions_converge_to_the_global_one_in_view() {
+    let Some(gpu) = gpu_common::gpu() else {
+        return;
+    };
+    // Face clusters, the command's default (the flat solver takes 111-116 shots to 99 %
+    // here, against 21, for the same errors).
+    let (scene, r, initial) = boxes_room(&gpu, Hierarchy::Clusters);
+    // In one room the importance reaches every chart: none waits.
+    assert_eq!(
+        converges_to_the_global_one_in_view(&gpu, &scene, &r, &initial),
+        0
+    );
+}
+
+/// Where the view's room is lit and the room beside it dark, so that the view sees more
+/// interreflected light than the scene's mean (2.9 times: what a link error measured
+/// against the view would scale by; tried, README), and the dark room's charts wait
+/// for the view to converge: the driven solutions still converge to the global one within
+/// 1 % in view (0.06 %; 0.12 % with the view-relative link error, lavapipe).
+#[test]
+fn a_lit_room_beside_a_dark_one_converges_to_the_global_one_in_view() {
+    let Some(gpu) = gpu_common::gpu() else {
+        return;
+    };
+    let (scene, r, initial) = boxes_rooms_lit(&gpu, Hierarchy::Clusters, 2, 1);
+    let waited = converges_to_the_global_one_in_view(&gpu, &scene, &r, &initial);
+    eprintln!("{waited} charts waited");
+    assert!(waited > 0);
 }
 
 /// The boxes room (face clusters) seen from its camera: its scene, initial light, view
