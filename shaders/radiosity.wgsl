@@ -336,8 +336,11 @@ struct Shot {
     // Its window's triangles (first, count) in window_corners (count 0: a real cell); the
     // record of the cell it images (its parent in the reflection tree).
     window: vec4<u32>,
+    // Its receive pass's records in cell_receivers (first, count) and its threads
+    // (radiosity/gpu/cell_receivers.rs: the receivers that may take its light).
+    receivers: vec4<u32>,
     // Up to the records' 768-byte stride.
-    pad: array<vec4<f32>, 5>,
+    pad: array<vec4<f32>, 4>,
 };
 
 @group(1) @binding(0) var<uniform> shot: Shot;
@@ -347,6 +350,15 @@ struct Shot {
 @group(1) @binding(2) var<storage, read> records: array<Shot>;
 // The specular windows' triangles, three corners each.
 @group(1) @binding(3) var<storage, read> window_corners: array<vec4<f32>>;
+// The batch's receive records: elements first..first + count are threads
+// before..before + count of a cell's pass; hold 1 where they keep what they receive back.
+struct ReceiverRun {
+    first: u32,
+    before: u32,
+    count: u32,
+    hold: u32,
+};
+@group(1) @binding(4) var<storage, read> cell_receivers: array<ReceiverRun>;
 
 const PI = 3.14159265358979;
 
@@ -715,6 +727,23 @@ fn receiver_element(t: u32) -> vec2<u32> {
     return vec2<u32>(record.range.x + (t - record.range.y), record.top);
 }
 
+// [`receiver_element`] of the cell's own receivers (Shot.receivers).
+fn cell_receiver(t: u32) -> vec2<u32> {
+    let first = shot.receivers.x;
+    var lo = 0u;
+    var hi = shot.receivers.y;
+    while (hi - lo > 1u) {
+        let mid = (lo + hi) / 2u;
+        if (cell_receivers[first + mid].before <= t) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let run = cell_receivers[first + lo];
+    return vec2<u32>(run.first + (t - run.before), run.hold);
+}
+
 // The shooter holding `piece`: the last whose first piece (range.w) is at most it.
 fn shooter_of_piece(piece: u32) -> u32 {
     var lo = 0u;
@@ -751,10 +780,10 @@ fn receiving(thread: u32) -> Receiving {
     var none: Receiving;
     none.f = 0.0;
     none.back = 0.0;
-    if (thread >= params.range_total) {
+    if (thread >= shot.receivers.z) {
         return none;
     }
-    let element = receiver_element(thread);
+    let element = cell_receiver(thread);
     let i = element.x;
     let normal_piece = element_normals[i];
     let piece = bitcast<u32>(normal_piece.w);

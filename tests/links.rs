@@ -10,6 +10,7 @@ use std::path::Path;
 
 use glam::{DVec3, Vec3};
 use goniolight::geometry::generate::cuboid;
+use goniolight::radiosity::cell_receivers::ReceiverGroups;
 use goniolight::radiosity::cpu::CpuSolver;
 use goniolight::radiosity::gpu::GpuSettings;
 use goniolight::radiosity::initial::{InitialState, LuminaireLight};
@@ -101,6 +102,12 @@ fn cells_nest_and_every_receiver_takes_each_part_of_a_shooter_once() {
             .collect();
         let weighted = ReceiverBoxes::of_elements(&r, &scale);
         let ones = vec![1.0; el.len()];
+        // Each drawn cell's own receivers (the receive pass's groups of a patch each).
+        let groups = ReceiverGroups::new(&r);
+        let mut weighted_groups = ReceiverGroups::new(&r);
+        weighted_groups.set_scales(&scale);
+        // (receiver, cell) pairs left out of a drawn cell's pass, and asked.
+        let (mut left_out, mut asked) = (0usize, 0usize);
         let mut used = 0;
         let mut drawn = 0;
         let mut drawn_weighted = 0;
@@ -171,7 +178,10 @@ fn cells_nest_and_every_receiver_takes_each_part_of_a_shooter_once() {
                 })
                 .collect();
             cells += p.iter().filter(|c| c.level == 0).count();
-            for (boxes, scale) in [(&receivers, &ones), (&weighted, &scale)] {
+            for (boxes, scale, groups) in [
+                (&receivers, &ones, &groups),
+                (&weighted, &scale, &weighted_groups),
+            ] {
                 let l = links::link(&plan, &radiosity, boxes, 0.5);
                 if std::ptr::eq(boxes, &receivers) {
                     used += l
@@ -194,12 +204,27 @@ fn cells_nest_and_every_receiver_takes_each_part_of_a_shooter_once() {
                     let takes: Vec<bool> = (0..p.len())
                         .map(|k| links::takes_light_from(&plan, &l, k, tolerance, at))
                         .collect();
+                    let g = groups
+                        .group_of(e as u32)
+                        .expect("every element has a group");
                     for (k, cell) in p.iter().enumerate() {
                         if takes[k] && normal.dot(at.0 - cell.centroid) > tolerance {
                             assert!(
                                 l.drawn[k],
                                 "{name}: shooter {s} cell {k} is needed but not drawn"
                             );
+                        }
+                        // A drawn cell's receive pass covers every receiver taking its
+                        // light.
+                        if l.drawn[k] {
+                            let dispatched = groups.may_take((&plan, &l), k, tolerance, g);
+                            assert!(
+                                dispatched || !takes[k],
+                                "{name}: shooter {s} cell {k} lights element {e}, \
+                                 left out of its receive pass"
+                            );
+                            asked += 1;
+                            left_out += usize::from(!dispatched);
                         }
                         if cell.level != 0 {
                             continue;
@@ -223,6 +248,15 @@ fn cells_nest_and_every_receiver_takes_each_part_of_a_shooter_once() {
              {drawn_weighted} with the far half's receivers at a quarter of the reach"
         );
         assert!(used > 0, "{name}: the links use no coarse cell");
+        // Receivers taking a drawn fine cell's light from one of its ancestors are left
+        // out of its pass (measured: hall 23 201 of 1 554 524 pairs, CAD room 3 657 of
+        // 26 444; most drawn cells
+        // there have no used ancestor, so their passes cover every receiver in front).
+        eprintln!("{name}: {left_out} of {asked} receivers left out of drawn cells' passes");
+        assert!(
+            left_out * 200 > asked,
+            "{name}: only {left_out} of {asked} receivers left out of drawn cells' passes"
+        );
         // Receivers that accept more error take coarser cells' light: fewer maps.
         assert!(
             drawn_weighted < drawn,

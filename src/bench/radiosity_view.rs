@@ -40,6 +40,12 @@ pub struct ViewBenchRow {
     pub shots_shot: Option<usize>,
     /// Where the shots' time went until then, by phase.
     pub phase_seconds: crate::radiosity::gpu::ShotTimes,
+    /// Receivers a drawn map's receive pass covered on average until then (the batch's
+    /// culled receivers, holding ones included).
+    pub receivers_per_map: f64,
+    /// The GPU's own clock in the maps' and receive passes until then (`None`: the
+    /// adapter has no timestamp queries).
+    pub gpu_pass_seconds: Option<crate::radiosity::gpu::GpuPassSeconds>,
     /// The displayed image's error when the run ended.
     pub final_error: f64,
     /// Visibility maps drawn in the run.
@@ -205,6 +211,7 @@ pub fn run(
         progress(drive.name());
         let mut solver = GpuSolver::new(gpu, &rscene, &initial, settings, gpu_settings);
         solver.set_map_store_bytes(plan.map_store_mib << 20);
+        solver.time_passes();
         // The clock runs only while the solver works (not while the bench reads back).
         let mut clock = 0.0;
         let (driven, weights_seconds) = match drive {
@@ -228,6 +235,8 @@ pub fn run(
             seconds_shot: None,
             shots_shot: None,
             phase_seconds: Default::default(),
+            receivers_per_map: 0.0,
+            gpu_pass_seconds: None,
             final_error: f64::NAN,
             maps: 0,
             maps_reused: 0,
@@ -250,6 +259,8 @@ pub fn run(
                 row.seconds_shot = Some(clock);
                 row.shots_shot = Some(solver.shots);
                 row.phase_seconds = solver.times;
+                row.receivers_per_map = solver.receiver_threads as f64 / solver.drawn.max(1) as f64;
+                row.gpu_pass_seconds = solver.gpu_pass_seconds()?;
             }
             row.final_error = error_shown;
             if row.seconds_shot.is_some() && row.seconds_shown.is_some() || clock > plan.time_limit

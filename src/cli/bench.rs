@@ -716,6 +716,16 @@ fn run_radiosity_view(
             phase_list(&r.phase_seconds, 3)
         );
     }
+    println!("The GPU's own clock until then (timestamps around each batch's passes; s):");
+    for r in &result.rows {
+        match &r.gpu_pass_seconds {
+            Some(g) => println!(
+                "{}: visibility maps {:.3}, receive {:.3} ({:.0} receivers a map), in {} batches",
+                r.drive, g.maps, g.receive, r.receivers_per_map, g.batches
+            ),
+            None => println!("{}: this adapter has no timestamp queries", r.drive),
+        }
+    }
     Ok(())
 }
 

@@ -262,8 +262,12 @@ pub struct GpuSolver<'a> {
     fixed_batch: bool,
     /// Per cell of the shot: rgb unshot radiosity it shoots.
     patch_delta: wgpu::Buffer,
-    /// The shot's receiver ranges and threads (every element of them).
+    /// The shot's receiver ranges and threads (every element of them) …
     culled: (u32, u32),
+    /// … and the ranges themselves (first element, count, 1 where they hold).
+    batch_ranges: Vec<(u32, u32, u32)>,
+    /// The receivers by patch, for each drawn cell's own receivers.
+    receiver_groups: crate::radiosity::cell_receivers::ReceiverGroups,
     /// Shooters of more than [`SMALL_SHOOTER`] elements (a workgroup sums each).
     large_shooters: u32,
     /// Receiver threads dispatched so far (elements in front of the shooters, per map).
@@ -461,6 +465,7 @@ impl<'a> GpuSolver<'a> {
             .iter()
             .map(|w| w.clamp(LEAST_RECEIVER_WEIGHT, 1.0).sqrt())
             .collect();
+        self.receiver_groups.set_scales(&scale);
         let gpu_scale: Vec<f32> = scale.iter().map(|&s| s as f32).collect();
         if !gpu_scale.is_empty() {
             self.gpu.queue.write_buffer(

@@ -3,6 +3,7 @@
 
 pub mod atlas;
 pub mod bake;
+pub mod cell_receivers;
 pub mod clusters;
 pub mod coverage;
 pub mod cpu;

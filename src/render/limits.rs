@@ -113,9 +113,9 @@ fn scene_refusal(scene: &Scene, message: String) -> GpuError {
 /// checks its records against this), so a binding of 128 MiB holds 8.4 M elements.
 pub const RADIOSITY_ELEMENT_BYTES: u64 = 16;
 
-/// Storage buffers the radiosity solver binds per compute stage (its receive passes: 12
-/// in bind group 0, 2 in group 1; `radiosity.wgsl`).
-pub const RADIOSITY_STORAGE_BUFFERS: u32 = 14;
+/// Storage buffers the radiosity solver binds per compute stage (its receive passes: 13
+/// in bind group 0, 3 in group 1; `radiosity.wgsl`).
+pub const RADIOSITY_STORAGE_BUFFERS: u32 = 16;
 
 /// Checks the radiosity solver's per-element buffers for `elements` fit `gpu`, and that it
 /// binds as many storage buffers as the solver needs.

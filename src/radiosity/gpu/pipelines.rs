@@ -101,6 +101,11 @@ impl Pipelines {
                     compute,
                     buffer_binding(B::Storage { read_only: true }, false),
                 ),
+                entry(
+                    4,
+                    compute,
+                    buffer_binding(B::Storage { read_only: true }, false),
+                ),
             ],
         });
         let face_layout = dev.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {

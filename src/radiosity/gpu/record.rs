@@ -8,6 +8,7 @@ use super::{
     dispatch_groups, faces_per_cell, raster, v4, virtual_cells, GpuSolver, TileView, FACE_STRIDE,
 };
 use crate::gpu::GpuError;
+use crate::radiosity::cell_receivers;
 use crate::radiosity::form_factor::FormFactorKind;
 use crate::radiosity::links::{Links, LINK_LEVELS};
 use crate::radiosity::polygon::frame;
@@ -30,7 +31,8 @@ struct ShotGpu {
     tint: [f32; 4],
     plane: [f32; 4],
     window: [u32; 4],
-    pad: [[f32; 4]; 5],
+    receivers: [u32; 4],
+    pad: [[f32; 4]; 4],
 }
 
 #[repr(C)]
@@ -70,12 +72,14 @@ impl<'a> GpuSolver<'a> {
 
     /// The shooting records of a batch's `cells` (the plan's patches and their virtual
     /// cells), each facing its own normal, with their links, and their visibility faces:
-    /// those of the `k`-th are the atlas's tiles from `k` × faces per cell.
+    /// those of the `k`-th are the atlas's tiles from `k` × faces per cell; `receivers`
+    /// per cell its receive pass's records (first, count) and threads.
     fn shot_records(
         &self,
         plan: &ShotPlan,
         links: &Links,
         cells: &[BatchCell<'_>],
+        receivers: &[[u32; 4]],
     ) -> (Vec<u8>, Vec<u8>, Vec<TileView>) {
         let faces_per_patch = faces_per_cell(self.gpu_settings.visibility) as usize;
         let (projection, far) = self.projection();
@@ -165,7 +169,8 @@ impl<'a> GpuSolver<'a> {
                 tint,
                 plane,
                 window,
-                pad: [[0.0; 4]; 5],
+                receivers: receivers[k],
+                pad: [[0.0; 4]; 4],
             };
             let at = k * SHOT_STRIDE as usize;
             shots[at..at + std::mem::size_of::<ShotGpu>()]
@@ -223,7 +228,8 @@ impl<'a> GpuSolver<'a> {
                 });
             }
         }
-        let (shots, faces, views) = self.shot_records(plan, links, &cells);
+        let (runs, receivers) = self.cell_receivers(plan, links, &cells);
+        let (shots, faces, views) = self.shot_records(plan, links, &cells, &receivers);
         let faces_per_cell = faces_per_cell(self.gpu_settings.visibility);
         // Kept maps go back into their tiles; those tiles are not drawn.
         let restored = |tile: u32| {
@@ -258,6 +264,7 @@ impl<'a> GpuSolver<'a> {
                 (1, wgpu::BindingResource::TextureView(&self.atlas.view)),
                 (2, shot_buf.as_entire_binding()),
                 (3, self.upload.window_corners.as_entire_binding()),
+                (4, runs.as_entire_binding()),
             ],
         );
         let mut ranges = Vec::new();
@@ -363,8 +370,6 @@ impl<'a> GpuSolver<'a> {
                 self.map_store.copy_cell(enc, &self.atlas, cell, false);
             }
         }
-        let receivers = self.culled.1;
-        self.receiver_threads += u64::from(receivers) * cells.len() as u64;
         let mut pass = enc.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("receive"),
             timestamp_writes: queries.as_ref().map(|q| q.receive()),
@@ -376,9 +381,59 @@ impl<'a> GpuSolver<'a> {
             if k == drawn.len() as u64 {
                 pass.set_pipeline(&self.pipelines.receive_through_windows);
             }
-            pass.set_bind_group(1, &shot_bind, &[(k * SHOT_STRIDE) as u32]);
-            dispatch_groups(&mut pass, receivers.div_ceil(64));
+            let threads = receivers[k as usize][2];
+            self.receiver_threads += u64::from(threads);
+            if threads > 0 {
+                pass.set_bind_group(1, &shot_bind, &[(k * SHOT_STRIDE) as u32]);
+                dispatch_groups(&mut pass, threads.div_ceil(64));
+            }
         }
         Ok(())
+    }
+
+    /// The receive passes' records of a batch's `cells` ([`cell_receivers`]) in one
+    /// buffer, and per cell its first record, record count and threads: a real cell's
+    /// receivers are those of the batch's ranges that may take its light, a virtual
+    /// cell's all of them.
+    fn cell_receivers(
+        &self,
+        plan: &ShotPlan,
+        links: &Links,
+        cells: &[BatchCell<'_>],
+    ) -> (wgpu::Buffer, Vec<[u32; 4]>) {
+        let tolerance = self.upload.receivers.plane_tolerance();
+        let mut runs: Vec<cell_receivers::ReceiverRecord> = Vec::new();
+        // The batch's ranges whole, for the virtual cells.
+        let mut threads = 0;
+        for &(first, count, hold) in &self.batch_ranges {
+            runs.push([first, threads, count, hold]);
+            threads += count;
+        }
+        let all = [0, runs.len() as u32, threads, 0];
+        let mut receivers = Vec::with_capacity(cells.len());
+        for cell in cells {
+            if cell.image.is_some() {
+                receivers.push(all);
+                continue;
+            }
+            let start = runs.len();
+            let threads = self.receiver_groups.cell_records(
+                (plan, links),
+                cell.patch,
+                tolerance,
+                &self.batch_ranges,
+                &mut runs,
+            );
+            receivers.push([start as u32, (runs.len() - start) as u32, threads, 0]);
+        }
+        if runs.is_empty() {
+            runs.push([0; 4]);
+        }
+        let buffer = self.gpu.buffer_with(
+            "cell receivers",
+            bytemuck::cast_slice(&runs),
+            wgpu::BufferUsages::STORAGE,
+        );
+        (buffer, receivers)
     }
 }

@@ -403,6 +403,7 @@ impl<'a> GpuSolver<'a> {
             gpu_settings.map_size,
             FIRST_BATCH as u32 * faces_per_cell(gpu_settings.visibility),
         );
+        let receiver_groups = crate::radiosity::cell_receivers::ReceiverGroups::new(scene);
         let solver = GpuSolver {
             gpu,
             scene,
@@ -437,6 +438,8 @@ impl<'a> GpuSolver<'a> {
             fixed_batch: false,
             patch_delta,
             culled: (0, 0),
+            batch_ranges: Vec::new(),
+            receiver_groups,
             large_shooters,
             receiver_threads: 0,
             timers: None,

@@ -327,6 +327,7 @@ impl<'a> GpuSolver<'a> {
     /// [`ReceiverBoxes::merged_ranges`](crate::radiosity::links::ReceiverBoxes::merged_ranges).
     pub(super) fn set_receivers(&mut self, charts: &[usize], holding: &[usize]) {
         let mut threads = 0u32;
+        self.batch_ranges.clear();
         let records: Vec<[u32; 4]> = [(charts, 0), (holding, 1)]
             .into_iter()
             .flat_map(|(charts, hold)| {
@@ -337,6 +338,7 @@ impl<'a> GpuSolver<'a> {
                     .map(move |range| (range, hold))
             })
             .map(|((first, count), hold)| {
+                self.batch_ranges.push((first, count, hold));
                 let r = [first, threads, 0, hold];
                 threads += count;
                 r
