@@ -114,8 +114,9 @@ impl ReceiverGroups {
 
     /// The records of cell `k`'s receivers among the batch's `ranges` (first element,
     /// count, hold): the groups that may hold a receiver taking its light, appended to
-    /// `out` (threads counted from 0). Returns its threads. A range not made of whole
-    /// groups is taken whole.
+    /// `out` (threads counted from 0). Returns its threads, or `None` (nothing appended)
+    /// for a top cell no reach limits: its receivers are the batch's ranges whole. A
+    /// range not made of whole groups is taken whole.
     pub fn cell_records(
         &self,
         (plan, links): (&ShotPlan, &Links),
@@ -123,8 +124,12 @@ impl ReceiverGroups {
         tolerance: f64,
         ranges: &[(u32, u32, u32)],
         out: &mut Vec<ReceiverRecord>,
-    ) -> u32 {
+    ) -> Option<u32> {
         let rule = CellRule::new(plan, links, k, tolerance, self.slack);
+        if rule.top && rule.reach <= 0.0 && rule.ancestors.is_empty() {
+            // Neither a reach nor its plane limits it: the batch's ranges whole.
+            return None;
+        }
         let mut threads = 0u32;
         let start = out.len();
         // Each record joins the one before where it continues it.
@@ -155,7 +160,7 @@ impl ReceiverGroups {
                 }
             }
         }
-        threads
+        Some(threads)
     }
 }
 

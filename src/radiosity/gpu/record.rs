@@ -417,14 +417,17 @@ impl<'a> GpuSolver<'a> {
                 continue;
             }
             let start = runs.len();
-            let threads = self.receiver_groups.cell_records(
+            let own = self.receiver_groups.cell_records(
                 (plan, links),
                 cell.patch,
                 tolerance,
                 &self.batch_ranges,
                 &mut runs,
             );
-            receivers.push([start as u32, (runs.len() - start) as u32, threads, 0]);
+            receivers.push(match own {
+                Some(threads) => [start as u32, (runs.len() - start) as u32, threads, 0],
+                None => all,
+            });
         }
         if runs.is_empty() {
             runs.push([0; 4]);
