@@ -16,7 +16,7 @@
 
 use glam::DVec3;
 
-use crate::radiosity::links::{Links, LINK_LEVELS};
+use crate::radiosity::links::{bounds, farthest, highest, nearest, Links, LINK_LEVELS};
 use crate::radiosity::scene::RadiosityScene;
 use crate::radiosity::shooters::ShotPlan;
 
@@ -49,10 +49,8 @@ impl ReceiverGroups {
         for p in el.patches.iter().filter(|p| p.count > 0) {
             first.push(p.first);
             count.push(p.count);
-            let points = (p.first..p.first + p.count).map(|e| el.position[e as usize]);
-            boxes.push(points.fold(
-                (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
-                |(lo, hi), q| (lo.min(q), hi.max(q)),
+            boxes.push(bounds(
+                (p.first..p.first + p.count).map(|e| el.position[e as usize]),
             ));
         }
         // Patches come in element order; sorted anyway, for the range searches below.
@@ -61,10 +59,7 @@ impl ReceiverGroups {
         let pick = |v: &[u32]| order.iter().map(|&k| v[k]).collect::<Vec<u32>>();
         let (first, count) = (pick(&first), pick(&count));
         let boxes: Vec<_> = order.iter().map(|&k| boxes[k]).collect();
-        let (lo, hi) = boxes.iter().fold(
-            (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
-            |(lo, hi), b| (lo.min(b.0), hi.max(b.1)),
-        );
+        let (lo, hi) = bounds(boxes.iter().flat_map(|b| [b.0, b.1]));
         let size = if boxes.is_empty() {
             0.0
         } else {
@@ -210,26 +205,20 @@ impl CellRule {
         let (grow, shrink) = (1.0 + RELATIVE_SLACK, 1.0 - RELATIVE_SLACK);
         // Next to or behind the plane a receiver takes a top cell's light whatever the
         // reaches, and no other cell's.
-        let n = self.normal;
-        let lowest = n.dot(DVec3::select(n.cmpge(DVec3::ZERO), lo, hi) - self.centroid);
+        let lowest = -highest(lo, hi, -self.normal, self.centroid);
         let wholly_in_front = lowest > self.tolerance + self.slack;
         if self.top && !wholly_in_front {
             return true;
         }
-        let highest = n.dot(DVec3::select(n.cmpge(DVec3::ZERO), hi, lo) - self.centroid);
-        if highest <= self.tolerance - self.slack {
+        if highest(lo, hi, self.normal, self.centroid) <= self.tolerance - self.slack {
             return false;
         }
-        let farthest = (self.centroid - lo)
-            .abs()
-            .max((hi - self.centroid).abs())
-            .length();
-        if self.reach > 0.0 && farthest < self.reach * least * shrink - self.slack {
+        let far = farthest(lo, hi, self.centroid);
+        if self.reach > 0.0 && far < self.reach * least * shrink - self.slack {
             return false;
         }
-        self.ancestors.iter().all(|&(at, reach)| {
-            let nearest = at.clamp(lo, hi).distance(at);
-            nearest < reach * most * grow + self.slack
-        })
+        self.ancestors
+            .iter()
+            .all(|&(at, reach)| nearest(lo, hi, at) < reach * most * grow + self.slack)
     }
 }

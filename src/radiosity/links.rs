@@ -578,14 +578,14 @@ fn corners(lo: DVec3, hi: DVec3) -> impl Iterator<Item = DVec3> {
 }
 
 /// The highest corner of the box [lo, hi] above the plane through `at` facing `normal`.
-fn highest(lo: DVec3, hi: DVec3, normal: DVec3, at: DVec3) -> f64 {
+pub(crate) fn highest(lo: DVec3, hi: DVec3, normal: DVec3, at: DVec3) -> f64 {
     corners(lo, hi)
         .map(|x| normal.dot(x - at))
         .fold(f64::NEG_INFINITY, f64::max)
 }
 
 /// The lowest and highest corner of `points`' box.
-fn bounds(points: impl Iterator<Item = DVec3>) -> (DVec3, DVec3) {
+pub(crate) fn bounds(points: impl Iterator<Item = DVec3>) -> (DVec3, DVec3) {
     points.fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| {
         (lo.min(p), hi.max(p))
     })
@@ -612,12 +612,12 @@ fn morton(x: u64, y: u64, z: u64) -> u64 {
 }
 
 /// Nearest distance from `p` to the box [lo, hi].
-fn nearest(lo: DVec3, hi: DVec3, p: DVec3) -> f64 {
+pub(crate) fn nearest(lo: DVec3, hi: DVec3, p: DVec3) -> f64 {
     p.clamp(lo, hi).distance(p)
 }
 
 /// Farthest distance from `p` to the box [lo, hi].
-fn farthest(lo: DVec3, hi: DVec3, p: DVec3) -> f64 {
+pub(crate) fn farthest(lo: DVec3, hi: DVec3, p: DVec3) -> f64 {
     (p - lo).abs().max((hi - p).abs()).length()
 }
 
