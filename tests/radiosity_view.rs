@@ -890,6 +890,23 @@ fn the_benchmark_measures_every_drive_through_the_command() {
         // maps back) before the view is within 10 %.
         assert_eq!(r["maps_reused"].as_u64(), Some(0), "{r}");
     }
-    let (code, _, err) = common::run_cli(&["bench", "radiosity-view", "--rooms", "0"], "");
-    assert_eq!(code, 2, "{err}");
+    // One round: it is the rows, and the summary's speed-ups are global's seconds over
+    // each drive's.
+    assert_eq!(bench["rounds"].as_array().unwrap().len(), 1);
+    assert_eq!(&bench["rounds"][0], &bench["rows"]);
+    let summary = bench["summary"].as_array().unwrap();
+    let global = rows[0]["seconds_shot"].as_f64().unwrap();
+    for (s, r) in summary.iter().zip(rows) {
+        assert_eq!(s["drive"], r["drive"]);
+        assert_eq!(s["rounds_reached"].as_u64(), Some(1));
+        let speedup = s["speedup"]["median"].as_f64().unwrap();
+        let expected = global / r["seconds_shot"].as_f64().unwrap();
+        assert!((speedup - expected).abs() <= 1e-12 * expected, "{s}");
+        assert_eq!(s["speedup"]["min"], s["speedup"]["max"]);
+    }
+    for bad in [["--rooms", "0"], ["--repeat", "0"], ["--repeat", "21"]] {
+        let (code, _, err) = common::run_cli(&["bench", "radiosity-view", bad[0], bad[1]], "");
+        assert_eq!(code, 2, "{bad:?}: {err}");
+        assert!(err.contains("--repeat in 1..=20"), "{err}");
+    }
 }

@@ -69,8 +69,80 @@ pub struct ViewBench {
     pub reference_convergence: f64,
     /// The tolerance, a share of the image's mean luminance.
     pub tolerance: f64,
-    /// One row per drive.
+    /// One row per drive (the first round).
     pub rows: Vec<ViewBenchRow>,
+    /// Every round's rows (`--repeat`; the first is `rows`): the drives run in turn,
+    /// round after round, against the one reference.
+    pub rounds: Vec<Vec<ViewBenchRow>>,
+    /// Per drive, its seconds to the tolerance (shot light) and its speed-up over global
+    /// across the rounds.
+    pub summary: Vec<DriveSummary>,
+}
+
+/// The least, median and greatest of some values.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Spread {
+    /// The least …
+    pub min: f64,
+    /// … the median (of an even count, the mean of the middle two) …
+    pub median: f64,
+    /// … and the greatest.
+    pub max: f64,
+}
+
+impl Spread {
+    /// The spread of `values`; `None` when there are none (or one is not a number).
+    pub fn of(values: &[f64]) -> Option<Spread> {
+        if values.is_empty() || values.iter().any(|v| v.is_nan()) {
+            return None;
+        }
+        let mut v = values.to_vec();
+        v.sort_by(f64::total_cmp);
+        let n = v.len();
+        Some(Spread {
+            min: v[0],
+            median: 0.5 * (v[(n - 1) / 2] + v[n / 2]),
+            max: v[n - 1],
+        })
+    }
+}
+
+/// One drive across the rounds.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct DriveSummary {
+    /// The drive.
+    pub drive: String,
+    /// Rounds in which it reached the tolerance (shot light) …
+    pub rounds_reached: usize,
+    /// … its seconds to it in those …
+    pub seconds_shot: Option<Spread>,
+    /// … and, per round in which both reached it, global's seconds over its own.
+    pub speedup: Option<Spread>,
+}
+
+/// Per drive of the first round, its [`DriveSummary`] over `rounds`.
+pub fn summarise(rounds: &[Vec<ViewBenchRow>]) -> Vec<DriveSummary> {
+    let Some(first) = rounds.first() else {
+        return Vec::new();
+    };
+    (0..first.len())
+        .map(|d| {
+            let seconds: Vec<f64> = rounds.iter().filter_map(|r| r[d].seconds_shot).collect();
+            let speedup: Vec<f64> = rounds
+                .iter()
+                .filter_map(|r| match (r[0].seconds_shot, r[d].seconds_shot) {
+                    (Some(g), Some(s)) if s > 0.0 => Some(g / s),
+                    _ => None,
+                })
+                .collect();
+            DriveSummary {
+                drive: first[d].drive.clone(),
+                rounds_reached: seconds.len(),
+                seconds_shot: Spread::of(&seconds),
+                speedup: Spread::of(&speedup),
+            }
+        })
+        .collect()
 }
 
 /// The benchmark's settings (`bench radiosity-view`'s options).
@@ -106,6 +178,10 @@ pub struct ViewBenchPlan {
     /// `radiosity --raster`).
     #[cfg_attr(feature = "cli", arg(long, value_enum, default_value = "auto"))]
     pub raster: crate::radiosity::gpu::Raster,
+    /// Rounds: the three drives run in turn this many times (one reference), and the
+    /// summary gives each drive's least, median and greatest time and speed-up.
+    #[cfg_attr(feature = "cli", arg(long, default_value_t = 1))]
+    pub repeat: usize,
 }
 
 /// The view's error of `radiosity` against `reference`: Σ W |ΔL| / Σ W L over the
@@ -206,10 +282,81 @@ pub fn run(
     let reference_seconds = started.elapsed().as_secs_f64();
     let reference = reference.radiosity()?;
 
-    let mut rows = Vec::new();
-    for drive in [Drive::Global, Drive::Importance, Drive::Perspective] {
-        progress(drive.name());
-        let mut solver = GpuSolver::new(gpu, &rscene, &initial, settings, gpu_settings);
+    let what = Drives {
+        gpu,
+        scene: &rscene,
+        initial: &initial,
+        settings,
+        gpu_settings,
+        plan,
+        point,
+        weights: &weights,
+        view_weights_seconds,
+        reference: &reference,
+    };
+    let mut rounds = Vec::new();
+    for round in 0..plan.repeat.max(1) {
+        let mut rows = Vec::new();
+        for drive in [Drive::Global, Drive::Importance, Drive::Perspective] {
+            if plan.repeat > 1 {
+                progress(&format!(
+                    "{} (round {} of {})",
+                    drive.name(),
+                    round + 1,
+                    plan.repeat
+                ));
+            } else {
+                progress(drive.name());
+            }
+            rows.push(what.run(drive)?);
+        }
+        rounds.push(rows);
+    }
+    Ok(ViewBench {
+        elements: rscene.elements.len(),
+        elements_seen,
+        reference_seconds,
+        reference_convergence: log.last().map_or(1.0, |p| p.convergence),
+        tolerance: plan.tolerance,
+        rows: rounds[0].clone(),
+        summary: summarise(&rounds),
+        rounds,
+    })
+}
+
+/// What every drive's run shares: the scene, its direct light, the view and the
+/// reference.
+#[derive(Clone, Copy)]
+struct Drives<'a> {
+    gpu: &'a Gpu,
+    scene: &'a RadiosityScene,
+    initial: &'a InitialState,
+    settings: SolverSettings,
+    gpu_settings: GpuSettings,
+    plan: ViewBenchPlan,
+    point: &'a ViewPoint,
+    weights: &'a [f64],
+    view_weights_seconds: f64,
+    reference: &'a [DVec3],
+}
+
+impl Drives<'_> {
+    /// One run of `drive` from the direct light until the shot light and the displayed
+    /// image are within the tolerance (or the time limit).
+    fn run(&self, drive: Drive) -> anyhow::Result<ViewBenchRow> {
+        let Drives {
+            gpu,
+            scene: rscene,
+            initial,
+            settings,
+            gpu_settings,
+            plan,
+            point,
+            weights,
+            view_weights_seconds,
+            reference,
+        } = *self;
+        let mut solver = GpuSolver::new(gpu, rscene, initial, settings, gpu_settings);
         solver.set_map_store_bytes(plan.map_store_mib << 20);
         solver.time_passes();
         // The clock runs only while the solver works (not while the bench reads back).
@@ -217,7 +364,7 @@ pub fn run(
         let (driven, weights_seconds) = match drive {
             Drive::Global => (None, 0.0),
             _ => {
-                let d = ViewDriven::new(&solver, settings, gpu_settings, weights.clone(), None)?;
+                let d = ViewDriven::new(&solver, settings, gpu_settings, weights.to_vec(), None)?;
                 let t = Instant::now();
                 d.drive(&mut solver, drive, point, plan.fov_margin)?;
                 clock += d.importance_seconds + t.elapsed().as_secs_f64();
@@ -246,12 +393,12 @@ pub fn run(
             let (radiosity, illuminance) = solver.radiosity_and_illuminance()?;
             let unshot = solver.unshot_to_come()?;
             let ambient = match &driven {
-                Some(d) => d.ambient(&rscene, &unshot),
-                None => solve::ambient_term(&rscene, &unshot),
+                Some(d) => d.ambient(rscene, &unshot),
+                None => solve::ambient_term(rscene, &unshot),
             };
-            let shown = solve::with_ambient(&rscene, &radiosity, &illuminance, ambient).0;
-            let error_shown = view_error(&rscene, &weights, &shown, &reference);
-            let error_shot = view_error(&rscene, &weights, &radiosity, &reference);
+            let shown = solve::with_ambient(rscene, &radiosity, &illuminance, ambient).0;
+            let error_shown = view_error(rscene, weights, &shown, reference);
+            let error_shot = view_error(rscene, weights, &radiosity, reference);
             if error_shown <= plan.tolerance && row.seconds_shown.is_none() {
                 row.seconds_shown = Some(clock);
             }
@@ -282,14 +429,64 @@ pub fn run(
         row.maps = solver.drawn;
         row.maps_reused = solver.maps_reused();
         row.shots = solver.shots;
-        rows.push(row);
+        Ok(row)
     }
-    Ok(ViewBench {
-        elements: rscene.elements.len(),
-        elements_seen,
-        reference_seconds,
-        reference_convergence: log.last().map_or(1.0, |p| p.convergence),
-        tolerance: plan.tolerance,
-        rows,
-    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn row(drive: &str, seconds_shot: Option<f64>) -> ViewBenchRow {
+        ViewBenchRow {
+            drive: drive.into(),
+            view_weights_seconds: 0.0,
+            importance_seconds: 0.0,
+            importance_setup_seconds: 0.0,
+            seconds_shown: None,
+            seconds_shot,
+            shots_shot: None,
+            phase_seconds: Default::default(),
+            receivers_per_map: 0.0,
+            gpu_pass_seconds: None,
+            final_error: 0.0,
+            maps: 0,
+            maps_reused: 0,
+            shots: 0,
+        }
+    }
+
+    #[test]
+    fn spread_is_the_least_median_and_greatest() {
+        let s = Spread::of(&[3.0, 1.0, 2.0]).unwrap();
+        assert_eq!((s.min, s.median, s.max), (1.0, 2.0, 3.0));
+        // An even count: the mean of the middle two.
+        let s = Spread::of(&[4.0, 1.0, 3.0, 2.0]).unwrap();
+        assert_eq!((s.min, s.median, s.max), (1.0, 2.5, 4.0));
+        assert_eq!(Spread::of(&[]), None);
+        assert_eq!(Spread::of(&[1.0, f64::NAN]), None);
+    }
+
+    #[test]
+    fn the_summary_takes_each_rounds_speedup_against_that_rounds_global() {
+        let rounds = vec![
+            vec![row("global", Some(20.0)), row("perspective", Some(4.0))],
+            vec![row("global", Some(30.0)), row("perspective", Some(5.0))],
+            vec![row("global", Some(18.0)), row("perspective", None)],
+        ];
+        let s = summarise(&rounds);
+        assert_eq!(s.len(), 2);
+        assert_eq!(s[0].drive, "global");
+        assert_eq!(s[0].rounds_reached, 3);
+        let g = s[0].speedup.unwrap();
+        assert_eq!((g.min, g.median, g.max), (1.0, 1.0, 1.0));
+        assert_eq!(s[0].seconds_shot.unwrap().median, 20.0);
+        // 20 / 4 and 30 / 5 (the third round's perspective did not reach it): not the
+        // ratio of the medians (20 / 4.5).
+        assert_eq!(s[1].rounds_reached, 2);
+        let p = s[1].speedup.unwrap();
+        assert_eq!((p.min, p.median, p.max), (5.0, 5.5, 6.0));
+        assert_eq!(s[1].seconds_shot.unwrap().median, 4.5);
+        assert!(summarise(&[]).is_empty());
+    }
 }

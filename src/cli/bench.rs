@@ -626,11 +626,12 @@ fn run_radiosity_view(
         && (0.0..=180.0).contains(&plan.fov_margin)
         && plan.level <= 6
         && (1..=64).contains(&rooms)
+        && (1..=20).contains(&plan.repeat)
         && eye
             .is_none_or(|(e, l, f)| e.is_finite() && l.is_finite() && e != l && ok(f, 0.0, 179.0)))
     {
         return Err(CliError::input(anyhow::anyhow!(
-            "--texel-density > 0, --tolerance and --reference in (0, 1], --time-limit > 0, --fov-margin in 0..=180, --level in 0..=6, --rooms in 1..=64, --fov in (0, 179), --eye ≠ --look-at"
+            "--texel-density > 0, --tolerance and --reference in (0, 1], --time-limit > 0, --fov-margin in 0..=180, --level in 0..=6, --rooms in 1..=64, --repeat in 1..=20, --fov in (0, 179), --eye ≠ --look-at"
         )));
     }
     let path =
@@ -726,7 +727,48 @@ fn run_radiosity_view(
             None => println!("{}: this adapter has no timestamp queries", r.drive),
         }
     }
+    if result.rounds.len() > 1 {
+        print_rounds(&result, tol);
+    }
     Ok(())
+}
+
+/// The rounds of `bench radiosity-view --repeat`: each drive's time to `tol` % (shot
+/// light) and speed-up over global, least, median and greatest, then round by round.
+fn print_rounds(result: &crate::bench::radiosity_view::ViewBench, tol: f64) {
+    let spread = |s: Option<crate::bench::radiosity_view::Spread>, unit: &str| {
+        s.map_or("–".to_string(), |s| {
+            format!(
+                "{:.2}{unit} ({:.2}{unit} – {:.2}{unit})",
+                s.median, s.min, s.max
+            )
+        })
+    };
+    let n = result.rounds.len();
+    println!("Over {n} rounds (the drives in turn, round after round; one reference):");
+    println!("| drive | rounds within {tol:.0} % | to {tol:.0} % shot s: median (least – most) | × global: median (least – most) |");
+    println!("|---|---|---|---|");
+    for d in &result.summary {
+        println!(
+            "| {} | {} of {n} | {} | {} |",
+            d.drive,
+            d.rounds_reached,
+            spread(d.seconds_shot, ""),
+            spread(d.speedup, "×")
+        );
+    }
+    let line = |r: &[crate::bench::radiosity_view::ViewBenchRow]| {
+        r.iter()
+            .map(|d| {
+                let s = d.seconds_shot.map_or("–".into(), |s| format!("{s:.2} s"));
+                format!("{} {s}", d.drive)
+            })
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    for (k, r) in result.rounds.iter().enumerate() {
+        println!("round {}: {}", k + 1, line(r));
+    }
 }
 
 /// A solver's phases for people: "select 0.12, piece powers 0.01, …", seconds with
