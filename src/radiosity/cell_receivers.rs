@@ -53,12 +53,11 @@ impl ReceiverGroups {
                 (p.first..p.first + p.count).map(|e| el.position[e as usize]),
             ));
         }
-        // Patches come in element order; sorted anyway, for the range searches below.
-        let mut order: Vec<usize> = (0..first.len()).collect();
-        order.sort_by_key(|&k| first[k]);
-        let pick = |v: &[u32]| order.iter().map(|&k| v[k]).collect::<Vec<u32>>();
-        let (first, count) = (pick(&first), pick(&count));
-        let boxes: Vec<_> = order.iter().map(|&k| boxes[k]).collect();
+        // Patches come in element order (the range searches below rely on it).
+        assert!(
+            first.windows(2).all(|w| w[0] < w[1]),
+            "patches in element order"
+        );
         let (lo, hi) = bounds(boxes.iter().flat_map(|b| [b.0, b.1]));
         let size = if boxes.is_empty() {
             0.0
