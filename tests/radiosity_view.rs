@@ -328,16 +328,14 @@ fn the_importance_estimates_the_converged_one_and_says_which_hidden_charts_wait(
             .collect(),
         illuminance: vec![0.0; n],
     };
-    let importance_settings = GpuSettings {
-        cell_power: view::IMPORTANCE_CELL_POWER.max(gpu_settings.cell_power),
-        map_size: (gpu_settings.map_size / view::IMPORTANCE_MAP_DIVISOR).max(32),
-        ..gpu_settings
-    };
     let no_ambient = SolverSettings {
         ambient: goniolight::radiosity::Ambient::None,
         ..settings
     };
-    let mut converged = light.sibling(&field, no_ambient, importance_settings);
+    // The converged importance with the light solve's own cells and maps: the view's
+    // ambient term needs H's magnitude, which the importance solve's coarser cells must
+    // not lose on the way (at IMPORTANCE_CELL_POWER 0.25 they kept 0.913 of it here, 0.997 at 0.05).
+    let mut converged = light.sibling(&field, no_ambient, gpu_settings);
     converged
         .solve(&stop(0.999, 20_000), &no_cancel(), |_| {})
         .unwrap();
@@ -345,7 +343,7 @@ fn the_importance_estimates_the_converged_one_and_says_which_hidden_charts_wait(
     let total = |h: &[f64]| (0..n).map(|e| h[e] * r.elements.area[e]).sum::<f64>();
     let ratio = total(&driven.importance) / total(&full);
     eprintln!("importance: {ratio:.3} of the converged one's total");
-    assert!((ratio - 1.0).abs() < 0.1, "{ratio}");
+    assert!((ratio - 1.0).abs() < 0.05, "{ratio}");
 
     let stages = view::area_stages(&r, &point, 10.0);
     let reached = driven.charts_reached(&r, &stages);

@@ -63,11 +63,16 @@ pub const WEIGHT_FLOOR: f64 = 1e-3;
 /// as soon or sooner).
 pub const IMPORTANCE_CONVERGE: f64 = 0.5;
 /// The importance solve's cells carry up to this share of its initial power: a surface
-/// the camera sees shoots its importance from a few cells. It only ranks shooters, and
-/// ranks them as well as cells of 4 × the light solve's share did (0.4 %: two furnished
-/// rooms, 21–23 shots to 5 % in view either way) with 10 maps instead of 530, 30× less
-/// time (README: "Time until the view is within 5 %").
-pub const IMPORTANCE_CELL_POWER: f64 = 0.25;
+/// the camera sees shoots its importance from a few cells. Cells of 4 × the light solve's
+/// share (0.4 %) and of 25 % ranked the shooters alike (two furnished rooms, 21–23 shots
+/// to 5 % in view either way; 25 %: 10 maps instead of 530), but at 25 % the cells lose
+/// importance on its way, and the view's ambient term ([`view_ambient`]), which needs
+/// H's magnitude, came out at half the missing light (furnished room after the first
+/// shot: 22.6 against the light cells' 42.8; the image as shown within 5 % after
+/// 6.6–6.8 s, global 4.5 s). At 5 % it is 41.8 and the image as shown is within 5 %
+/// after 2.8 s, for 0.14 s of importance solve instead of 0.05 s (lavapipe; README:
+/// "Why the driven drives' image as shown lagged").
+pub const IMPORTANCE_CELL_POWER: f64 = 0.05;
 /// The importance solve's visibility maps have this many times fewer texels per side
 /// (Bozalina keeps importance at half the radiosity's resolution).
 pub const IMPORTANCE_MAP_DIVISOR: u32 = 4;
