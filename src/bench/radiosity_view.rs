@@ -84,7 +84,7 @@ pub struct ViewBench {
 pub struct Spread {
     /// The least …
     pub min: f64,
-    /// … the median (of an even count, the mean of the middle two) …
+    /// … the median ([`super::median`]) …
     pub median: f64,
     /// … and the greatest.
     pub max: f64,
@@ -96,13 +96,10 @@ impl Spread {
         if values.is_empty() || values.iter().any(|v| v.is_nan()) {
             return None;
         }
-        let mut v = values.to_vec();
-        v.sort_by(f64::total_cmp);
-        let n = v.len();
         Some(Spread {
-            min: v[0],
-            median: 0.5 * (v[(n - 1) / 2] + v[n / 2]),
-            max: v[n - 1],
+            min: values.iter().copied().fold(f64::INFINITY, f64::min),
+            median: super::median(values.to_vec()),
+            max: values.iter().copied().fold(f64::NEG_INFINITY, f64::max),
         })
     }
 }
