@@ -76,3 +76,18 @@ fn sample_rejects_bad_stdin_without_partial_output() {
     assert_eq!(code, 2);
     assert!(out.is_empty());
 }
+
+#[test]
+fn a_command_that_refuses_its_flags_before_reading_its_input_still_reports_exit_2() {
+    // More input than a pipe holds: the command exits without reading it, so the write
+    // meets a closed pipe every time (the race that once failed a CI run).
+    let f = common::luminaire("eulumdat-plot/sample_02_isym4.ldt");
+    let input = "0 10\n".repeat(1 << 16);
+    let (code, out, err) = run_cli(
+        &["ldt", "sample", f.to_str().unwrap(), "--no-such-flag"],
+        &input,
+    );
+    assert_eq!(code, 2, "{err}");
+    assert!(out.is_empty(), "{out}");
+    assert!(err.contains("--no-such-flag"), "{err}");
+}
