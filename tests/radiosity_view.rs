@@ -901,6 +901,13 @@ fn the_benchmark_measures_every_drive_through_the_command() {
         let expected = global / r["seconds_shot"].as_f64().unwrap();
         assert!((speedup - expected).abs() <= 1e-12 * expected, "{s}");
         assert_eq!(s["speedup"]["min"], s["speedup"]["max"]);
+        // The same for the image as shown.
+        assert_eq!(s["rounds_reached_shown"].as_u64(), Some(1));
+        let shown = s["speedup_shown"]["median"].as_f64().unwrap();
+        let expected =
+            rows[0]["seconds_shown"].as_f64().unwrap() / r["seconds_shown"].as_f64().unwrap();
+        assert!((shown - expected).abs() <= 1e-12 * expected, "{s}");
+        assert_eq!(s["seconds_shown"]["median"], r["seconds_shown"]);
     }
     for bad in [["--rooms", "0"], ["--repeat", "0"], ["--repeat", "21"]] {
         let (code, _, err) = common::run_cli(&["bench", "radiosity-view", bad[0], bad[1]], "");

@@ -115,6 +115,31 @@ pub struct DriveSummary {
     pub seconds_shot: Option<Spread>,
     /// … and, per round in which both reached it, global's seconds over its own.
     pub speedup: Option<Spread>,
+    /// The same three for the image as shown (the shot light with the drive's ambient
+    /// term): rounds in which it reached the tolerance …
+    pub rounds_reached_shown: usize,
+    /// … its seconds to it …
+    pub seconds_shown: Option<Spread>,
+    /// … and global's seconds (as shown) over its own.
+    pub speedup_shown: Option<Spread>,
+}
+
+/// Drive `d`'s rounds that reached the tolerance by `seconds`, their seconds and
+/// per round global's seconds (`rounds[k][0]`) over its own.
+fn reached(
+    rounds: &[Vec<ViewBenchRow>],
+    d: usize,
+    seconds: fn(&ViewBenchRow) -> Option<f64>,
+) -> (usize, Option<Spread>, Option<Spread>) {
+    let own: Vec<f64> = rounds.iter().filter_map(|r| seconds(&r[d])).collect();
+    let speedup: Vec<f64> = rounds
+        .iter()
+        .filter_map(|r| match (seconds(&r[0]), seconds(&r[d])) {
+            (Some(g), Some(s)) if s > 0.0 => Some(g / s),
+            _ => None,
+        })
+        .collect();
+    (own.len(), Spread::of(&own), Spread::of(&speedup))
 }
 
 /// Per drive of the first round, its [`DriveSummary`] over `rounds`.
@@ -124,19 +149,17 @@ pub fn summarise(rounds: &[Vec<ViewBenchRow>]) -> Vec<DriveSummary> {
     };
     (0..first.len())
         .map(|d| {
-            let seconds: Vec<f64> = rounds.iter().filter_map(|r| r[d].seconds_shot).collect();
-            let speedup: Vec<f64> = rounds
-                .iter()
-                .filter_map(|r| match (r[0].seconds_shot, r[d].seconds_shot) {
-                    (Some(g), Some(s)) if s > 0.0 => Some(g / s),
-                    _ => None,
-                })
-                .collect();
+            let (rounds_reached, seconds_shot, speedup) = reached(rounds, d, |r| r.seconds_shot);
+            let (rounds_reached_shown, seconds_shown, speedup_shown) =
+                reached(rounds, d, |r| r.seconds_shown);
             DriveSummary {
                 drive: first[d].drive.clone(),
-                rounds_reached: seconds.len(),
-                seconds_shot: Spread::of(&seconds),
-                speedup: Spread::of(&speedup),
+                rounds_reached,
+                seconds_shot,
+                speedup,
+                rounds_reached_shown,
+                seconds_shown,
+                speedup_shown,
             }
         })
         .collect()
@@ -440,7 +463,8 @@ mod tests {
             view_weights_seconds: 0.0,
             importance_seconds: 0.0,
             importance_setup_seconds: 0.0,
-            seconds_shown: None,
+            // The image as shown gets there at half the shot light's time.
+            seconds_shown: seconds_shot.map(|s| s / 2.0),
             seconds_shot,
             shots_shot: None,
             phase_seconds: Default::default(),
@@ -484,6 +508,12 @@ mod tests {
         let p = s[1].speedup.unwrap();
         assert_eq!((p.min, p.median, p.max), (5.0, 5.5, 6.0));
         assert_eq!(s[1].seconds_shot.unwrap().median, 4.5);
+        // As shown: its own seconds and speed-ups, round by round the same way.
+        assert_eq!(s[1].rounds_reached_shown, 2);
+        assert_eq!(s[1].seconds_shown.unwrap().median, 2.25);
+        let p = s[1].speedup_shown.unwrap();
+        assert_eq!((p.min, p.median, p.max), (5.0, 5.5, 6.0));
+        assert_eq!(s[0].seconds_shown.unwrap().max, 15.0);
         assert!(summarise(&[]).is_empty());
     }
 }

@@ -734,7 +734,8 @@ fn run_radiosity_view(
 }
 
 /// The rounds of `bench radiosity-view --repeat`: each drive's time to `tol` % (shot
-/// light) and speed-up over global, least, median and greatest, then round by round.
+/// light, and the image as shown) and speed-up over global, least, median and greatest,
+/// then round by round.
 fn print_rounds(result: &crate::bench::radiosity_view::ViewBench, tol: f64) {
     let spread = |s: Option<crate::bench::radiosity_view::Spread>, unit: &str| {
         s.map_or("–".to_string(), |s| {
@@ -746,22 +747,32 @@ fn print_rounds(result: &crate::bench::radiosity_view::ViewBench, tol: f64) {
     };
     let n = result.rounds.len();
     println!("Over {n} rounds (the drives in turn, round after round; one reference):");
-    println!("| drive | rounds within {tol:.0} % | to {tol:.0} % shot s: median (least – most) | × global: median (least – most) |");
-    println!("|---|---|---|---|");
+    println!(
+        "| drive | rounds within {tol:.0} % (shot / shown) | to {tol:.0} % shot s: median (least – most) | × global (shot) | to {tol:.0} % shown s | × global (shown) |"
+    );
+    println!("|---|---|---|---|---|---|");
     for d in &result.summary {
         println!(
-            "| {} | {} of {n} | {} | {} |",
+            "| {} | {} / {} of {n} | {} | {} | {} | {} |",
             d.drive,
             d.rounds_reached,
+            d.rounds_reached_shown,
             spread(d.seconds_shot, ""),
-            spread(d.speedup, "×")
+            spread(d.speedup, "×"),
+            spread(d.seconds_shown, ""),
+            spread(d.speedup_shown, "×")
         );
     }
     let line = |r: &[crate::bench::radiosity_view::ViewBenchRow]| {
         r.iter()
             .map(|d| {
-                let s = d.seconds_shot.map_or("–".into(), |s| format!("{s:.2} s"));
-                format!("{} {s}", d.drive)
+                let s = |s: Option<f64>| s.map_or("–".into(), |s| format!("{s:.2} s"));
+                format!(
+                    "{} {} (shown {})",
+                    d.drive,
+                    s(d.seconds_shot),
+                    s(d.seconds_shown)
+                )
             })
             .collect::<Vec<_>>()
             .join(", ")
