@@ -763,10 +763,10 @@ fn print_rounds(result: &crate::bench::radiosity_view::ViewBench, tol: f64) {
             spread(d.speedup_shown, "×")
         );
     }
+    let s = |s: Option<f64>| s.map_or("–".into(), |s| format!("{s:.2} s"));
     let line = |r: &[crate::bench::radiosity_view::ViewBenchRow]| {
         r.iter()
             .map(|d| {
-                let s = |s: Option<f64>| s.map_or("–".into(), |s| format!("{s:.2} s"));
                 format!(
                     "{} {} (shown {})",
                     d.drive,

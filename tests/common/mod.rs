@@ -93,7 +93,6 @@ pub fn run_cli_env(
     set: &[(&str, &str)],
     unset: &[&str],
 ) -> (i32, String, String) {
-    use std::io::Write;
     use std::process::{Command, Stdio};
     let mut cmd = Command::new(env!("CARGO_BIN_EXE_goniolight"));
     cmd.args(args)
@@ -105,11 +104,7 @@ pub fn run_cli_env(
     }
     cmd.envs(set.iter().copied());
     let mut child = cmd.spawn().unwrap();
-    // A command that refuses its flags exits before it reads its input; the pipe is then
-    // closed under the write, which is not the test's failure (its exit code is checked).
-    if let Err(e) = child.stdin.take().unwrap().write_all(stdin.as_bytes()) {
-        assert_eq!(e.kind(), std::io::ErrorKind::BrokenPipe, "{args:?}: {e}");
-    }
+    feed(&mut child, stdin, args);
     let out = child.wait_with_output().unwrap();
     (
         out.status.code().unwrap_or(-1),
@@ -158,6 +153,17 @@ pub fn shared_dir() -> PathBuf {
     dir
 }
 
+/// Writes `stdin` to the started command `child` (run with `args`) and closes its input.
+/// A command that refuses its flags exits before it reads its input; the pipe is then
+/// closed under the write, which is not the test's failure (its exit code is checked):
+/// any other error is.
+fn feed(child: &mut std::process::Child, stdin: &str, args: &[&str]) {
+    use std::io::Write;
+    if let Err(e) = child.stdin.take().unwrap().write_all(stdin.as_bytes()) {
+        assert_eq!(e.kind(), std::io::ErrorKind::BrokenPipe, "{args:?}: {e}");
+    }
+}
+
 /// Runs the CLI in `dir` with `stdin`, killing it after `limit`: (exit code, stdout,
 /// stderr, timed out). A signal gives code −1.
 pub fn run_cli_in(
@@ -166,7 +172,7 @@ pub fn run_cli_in(
     stdin: &str,
     limit: std::time::Duration,
 ) -> (i32, String, String, bool) {
-    use std::io::{Read, Write};
+    use std::io::Read;
     use std::process::{Command, Stdio};
     let mut child = Command::new(env!("CARGO_BIN_EXE_goniolight"))
         .args(args)
@@ -176,7 +182,7 @@ pub fn run_cli_in(
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
-    let _ = child.stdin.take().unwrap().write_all(stdin.as_bytes());
+    feed(&mut child, stdin, args);
     let mut out_pipe = child.stdout.take().unwrap();
     let mut err_pipe = child.stderr.take().unwrap();
     let out_reader = std::thread::spawn(move || {
