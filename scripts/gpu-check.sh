@@ -7,8 +7,8 @@
 #  2. the same on eight furnished rooms with both map rasterizers;
 #  3. the viewer's frame times while it solves (headless: the same UI pass, render and
 #     painting as in a window; goal >= 10 frames/s), the furnished room and the office;
-#  4. the GPU test binaries that are there, one at a time (several at once on one GPU
-#     crashed a driver).
+#  4. the radiosity modules of the GPU test binary (tests/gpu/), one test at a time
+#     (several at once on one GPU crashed a driver).
 #
 # Build first, where the toolchain is (the GPU machine needs neither Rust nor the network):
 #   cargo build --release --bin goniolight --example make_scenes && cargo test --release --no-run
@@ -76,13 +76,14 @@ step "view --headless --indirect radiosity --drive perspective: CAD office" 180 
   view-cad-office.txt \
   "$bin" view "$office/cad_office.toml" --headless --indirect radiosity --drive perspective \
   --frames 2000
+gpu_tests=$(find target/release/deps -maxdepth 1 -type f -executable -name "gpu-*" \
+  -printf '%T@ %p\n' 2>/dev/null | sort -rn | head -n 1 | cut -d' ' -f2-)
 for test in radiosity_view radiosity radiosity_restart; do
-  exe=$(find target/release/deps -maxdepth 1 -type f -executable -name "$test-*" \
-    -printf '%T@ %p\n' 2>/dev/null | sort -rn | head -n 1 | cut -d' ' -f2-)
-  if [ -z "$exe" ]; then
+  if [ -z "$gpu_tests" ]; then
     echo "test $test: no release test binary (cargo test --release --no-run)" | tee -a "$summary"
     continue
   fi
-  step "test $test" 180 "test-$test.txt" "$exe" --test-threads 1
+  # tests/gpu/ is one binary; each file is a module there.
+  step "test $test" 180 "test-$test.txt" "$gpu_tests" "$test::" --test-threads 1
 done
 pack

@@ -1,18 +1,88 @@
 #!/usr/bin/env bash
-# Formatting, lints and every test — what CI runs.
+# Formatting, lints and every test — what CI runs. Ends with the time of each stage, so
+# the next slow one is visible.
+#
+# One build serves the lints and the tests: the test build runs under clippy's driver
+# (what `cargo clippy` itself does, with `check` in place of `test --no-run`), so the
+# dependencies are compiled once, not once to check and once to link. The development and
+# test profiles are the same (Cargo.toml), so the binary, the examples and the Python
+# wheel reuse what the test build compiled.
+#
+# GONIOLIGHT_FUZZ_SECONDS: each stable-Rust fuzz target's budget in the gate (default 10;
+# scripts/fuzz.sh runs them for longer).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 # A one-shot build gains nothing from the incremental cache, which costs gigabytes of disk.
 export CARGO_INCREMENTAL="${CARGO_INCREMENTAL:-0}"
-cargo fmt --all --check
-cargo clippy --all-targets -- -D warnings
-# The library without its GPU/GUI stack (photometry, sun, geometry, silhouettes, scene files).
-cargo clippy --lib --no-default-features -- -D warnings
-cargo clippy -p goniolight-python -- -D warnings
-# The stable-Rust fuzzers (tests/fuzz_parsers.rs) run 90 s per reader in CI.
-GONIOLIGHT_FUZZ_SECONDS="${GONIOLIGHT_FUZZ_SECONDS:-90}" cargo test
-cargo test --lib --no-default-features
-RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --lib --no-default-features --quiet
-cargo package -p goniolight --allow-dirty --no-verify --quiet
-scripts/test-python.sh
+export GONIOLIGHT_FUZZ_SECONDS="${GONIOLIGHT_FUZZ_SECONDS:-10}"
+
+# Clippy's driver compiles the workspace's crates in every build below, denying warnings
+# (`cargo clippy` hands its arguments to the driver the same way). Every cargo call keeps
+# it: the wrapper is part of what cargo fingerprints, so a call without it builds again.
+clippy_driver="$(rustc --print sysroot)/bin/clippy-driver"
+if [ ! -x "$clippy_driver" ]; then
+  echo "error: $clippy_driver not found: install clippy (rustup component add clippy)" >&2
+  exit 1
+fi
+export RUSTC_WORKSPACE_WRAPPER="$clippy_driver"
+export CLIPPY_ARGS="-D__CLIPPY_HACKERY__warnings__CLIPPY_HACKERY__"
+
+started=$SECONDS
+times=()
+failed=()
+current=""
+# stage NAME COMMAND…: runs COMMAND and records its time; a failure stops the run.
+stage() {
+  current=$1
+  shift
+  local t0=$SECONDS
+  echo "==> $current" >&2
+  "$@"
+  times+=("$(printf '%6d s  %s' $((SECONDS - t0)) "$current")")
+}
+# test_stage NAME COMMAND…: as stage, but a failing test binary does not stop the others.
+test_stage() {
+  current=$1
+  shift
+  local t0=$SECONDS mark=""
+  echo "==> $current" >&2
+  "$@" || { mark="  FAILED"; failed+=("$current"); }
+  times+=("$(printf '%6d s  %s%s' $((SECONDS - t0)) "$current" "$mark")")
+}
+report() {
+  local rc=$?
+  echo
+  echo "Stage times (scripts/test.sh, $((SECONDS - started)) s in all):"
+  printf '%s\n' "${times[@]}"
+  if [ "$rc" -ne 0 ] && [ ${#failed[@]} -eq 0 ]; then
+    echo "stopped in: $current (exit $rc)"
+  fi
+}
+trap report EXIT
+
+stage "fmt" cargo fmt --all --check
+stage "build and clippy: every target (tests, benches, examples, binary)" \
+  cargo test --all-targets --no-run --quiet
+test_stage "test: library unit tests" cargo test --lib --quiet
+test_stage "test: binary unit tests" cargo test --bins --quiet
+for main in tests/*.rs tests/*/main.rs; do
+  name=$(basename "$main" .rs)
+  [ "$name" = main ] && name=$(basename "$(dirname "$main")")
+  test_stage "test: tests/$name" cargo test --test "$name" --quiet
+done
+test_stage "test: doc tests" cargo test --doc --quiet
+# The library without its GPU/GUI stack (photometry, sun, geometry, silhouettes, scene
+# files): linted with its unit tests (the same tests run above with every feature; none is
+# written for the feature-less build alone), and its documentation built.
+stage "clippy: library without default features, with its unit tests" \
+  cargo clippy --lib --no-default-features --profile test --quiet -- -D warnings
+stage "docs: library without default features" \
+  env RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --lib --no-default-features --quiet
+stage "package" cargo package -p goniolight --allow-dirty --no-verify --quiet
+test_stage "python: wheel (with clippy), pytest" scripts/test-python.sh
+
+if [ ${#failed[@]} -gt 0 ]; then
+  echo "failed: ${failed[*]}" >&2
+  exit 1
+fi

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Regenerates the malformed luminaire files used by tests/malformed.rs.
+"""Regenerates the malformed luminaire files used by tests/cli/malformed.rs.
 
 Each case starts from a valid file and breaks one thing. EXPECTED.txt lists
 `file<TAB>line<TAB>substring of the message` for the test to assert."""

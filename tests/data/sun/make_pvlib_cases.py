@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Regenerates pvlib_cases.csv, the oracle for tests/sun.rs.
+"""Regenerates pvlib_cases.csv, the oracle for tests/cli/sun.rs.
 
 pvlib's spa_python is NREL's SPA in Python. Cases are drawn at random over sites,
 dates (1980-2045), elevations and atmospheres, keeping the sun at least 1 degree up so the

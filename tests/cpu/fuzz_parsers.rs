@@ -1,0 +1,386 @@
+//! Mutation fuzzing of every reader on stable Rust, time-boxed: luminaire files (LDT and
+//! IES), OBJ meshes, MTL materials, scene TOML and the point and angle lists read from
+//! stdin. Seeds are the real
+//! files (bundled luminaires, the wild corpus in `../shared`, the bundled scenes); each
+//! case applies a few structure-aware mutations (extreme numbers in place of numbers,
+//! lines deleted, duplicated or swapped, truncation, byte flips, splices).
+//!
+//! Every case must end without a panic, and what is accepted must be usable: finite,
+//! non-negative intensities and flux, files the writers produce read back with the same
+//! table, mesh indices inside the mesh. A failing input is written to
+//! `target/fuzz-found/`; once fixed, keep it in `tests/data/fuzz-found/` (`.lum` for
+//! luminaires), where it becomes a seed that must pass.
+//!
+//! `GONIOLIGHT_FUZZ_SECONDS` sets the budget of each target (default 10, as in the gate;
+//! `scripts/fuzz.sh` runs them for 10 minutes each, for nightly use) and
+//! `GONIOLIGHT_FUZZ_SEED` the first seed (default: fixed, so a run repeats).
+
+use crate::common;
+
+use std::panic::AssertUnwindSafe;
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+use goniolight::geometry::obj::{parse_mtl, parse_obj};
+use goniolight::lighting::{read_angles, read_points};
+use goniolight::photometry::ies::write_ies;
+use goniolight::photometry::{Interp, Luminaire};
+use goniolight::scene::Scene;
+
+/// xorshift64*: enough randomness to pick mutations, and reproducible from a seed.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
+    }
+
+    fn below(&mut self, n: usize) -> usize {
+        (self.next() % n.max(1) as u64) as usize
+    }
+}
+
+/// Numbers that broke or nearly broke goniolight before: overflow, underflow, signs,
+/// counts beyond every limit, things that are not numbers.
+const EXTREMES: &[&str] = &[
+    "1e308",
+    "-1e308",
+    "1e-320",
+    "4.9e-324",
+    "-1",
+    "0",
+    "-0",
+    "1e9",
+    "3601",
+    "99999999999",
+    "NaN",
+    "inf",
+    "",
+    "0,5",
+    "1e-7",
+    "360",
+    "180",
+    "-90",
+    "2",
+    "3",
+];
+
+fn mutate(rng: &mut Rng, seed: &[u8], others: &[Vec<u8>]) -> Vec<u8> {
+    let mut b = seed.to_vec();
+    for _ in 0..1 + rng.below(4) {
+        if b.is_empty() {
+            b.extend_from_slice(b"1\n");
+        }
+        match rng.below(8) {
+            0 | 1 => {
+                // A number replaced by an extreme.
+                let at = rng.below(b.len());
+                if let Some(start) = (0..=at).rev().find(|&i| b[i].is_ascii_digit()) {
+                    let mut lo = start;
+                    while lo > 0 && !b[lo - 1].is_ascii_whitespace() {
+                        lo -= 1;
+                    }
+                    let mut hi = start;
+                    while hi < b.len() && !b[hi].is_ascii_whitespace() {
+                        hi += 1;
+                    }
+                    let x = EXTREMES[rng.below(EXTREMES.len())].as_bytes();
+                    b.splice(lo..hi, x.iter().copied());
+                }
+            }
+            2 | 3 => {
+                // A line deleted, duplicated or moved.
+                let mut lines: Vec<Vec<u8>> =
+                    b.split(|&c| c == b'\n').map(<[u8]>::to_vec).collect();
+                let i = rng.below(lines.len());
+                match rng.below(3) {
+                    0 => {
+                        lines.remove(i);
+                    }
+                    1 => {
+                        let l = lines[i].clone();
+                        for _ in 0..1 + rng.below(3) {
+                            lines.insert(i, l.clone());
+                        }
+                    }
+                    _ => {
+                        let j = rng.below(lines.len());
+                        lines.swap(i, j);
+                    }
+                }
+                b = lines.join(&b'\n');
+            }
+            4 => {
+                let at = rng.below(b.len());
+                b.truncate(at);
+            }
+            5 => {
+                let at = rng.below(b.len());
+                b[at] = b"0123456789.-+eE ,\n\r\t#[]=\"\x00\xff\xe4"[rng.below(27)];
+            }
+            6 => {
+                let at = rng.below(b.len() + 1);
+                let x = EXTREMES[rng.below(EXTREMES.len())].as_bytes();
+                let sep: &[u8] = if rng.below(2) == 0 { b"\n" } else { b" " };
+                b.splice(at..at, sep.iter().chain(x).copied());
+            }
+            _ => {
+                // The tail of another seed spliced on.
+                let other = &others[rng.below(others.len())];
+                let at = rng.below(b.len());
+                let from = rng.below(other.len());
+                b.truncate(at);
+                b.extend_from_slice(&other[from..]);
+            }
+        }
+    }
+    b
+}
+
+fn budget() -> Duration {
+    let s = std::env::var("GONIOLIGHT_FUZZ_SECONDS")
+        .ok()
+        .and_then(|v| v.parse::<f64>().ok())
+        .unwrap_or(10.0);
+    Duration::from_secs_f64(s)
+}
+
+fn first_seed(target: &str) -> u64 {
+    let base = std::env::var("GONIOLIGHT_FUZZ_SEED")
+        .ok()
+        .and_then(|v| v.parse::<u64>().ok())
+        .unwrap_or(0x9E37_79B9_7F4A_7C15);
+    target
+        .bytes()
+        .fold(base, |h, c| (h ^ c as u64).wrapping_mul(0x100_0000_01B3))
+        | 1
+}
+
+/// Runs `check` on mutations of `seeds` for the budget; saves and reports failures.
+fn fuzz(target: &str, ext: &str, seeds: &[Vec<u8>], check: impl Fn(&[u8]) -> Result<(), String>) {
+    assert!(!seeds.is_empty(), "{target}: no seeds");
+    let mut rng = Rng(first_seed(target));
+    let started = Instant::now();
+    let (mut cases, mut accepted) = (0usize, 0usize);
+    let mut failures = Vec::new();
+    let found = common::root().join("target/fuzz-found");
+    // Seeds first (they must pass as they are), then mutations until the budget is spent.
+    while cases < seeds.len() || started.elapsed() < budget() {
+        let input = if cases < seeds.len() {
+            seeds[cases].clone()
+        } else {
+            let k = rng.below(seeds.len());
+            mutate(&mut rng, &seeds[k], seeds)
+        };
+        cases += 1;
+        let t0 = Instant::now();
+        let outcome = std::panic::catch_unwind(AssertUnwindSafe(|| check(&input)));
+        let slow = t0.elapsed() > Duration::from_secs(10);
+        let problem = match outcome {
+            Ok(Ok(())) if !slow => {
+                accepted += 1;
+                continue;
+            }
+            Ok(Ok(())) => format!("took {:?}", t0.elapsed()),
+            Ok(Err(e)) => e,
+            Err(_) => "panicked".to_string(),
+        };
+        let _ = std::fs::create_dir_all(&found);
+        let file = found.join(format!("{target}-{cases}.{ext}"));
+        let _ = std::fs::write(&file, &input);
+        failures.push(format!("{}: {problem}", file.display()));
+        if failures.len() >= 10 {
+            break;
+        }
+    }
+    eprintln!(
+        "fuzz {target}: {cases} cases in {:.1} s ({accepted} ended well), {} failures",
+        started.elapsed().as_secs_f64(),
+        failures.len()
+    );
+    assert!(failures.is_empty(), "{target}:\n{}", failures.join("\n"));
+}
+
+fn read_all(files: impl IntoIterator<Item = PathBuf>) -> Vec<Vec<u8>> {
+    files
+        .into_iter()
+        .map(|p| std::fs::read(p).unwrap())
+        .collect()
+}
+
+fn files_under(dir: &Path, exts: &[&str], out: &mut Vec<PathBuf>) {
+    out.extend(common::files_with(dir, exts));
+}
+
+/// What an accepted luminaire must be: usable numbers, and both writers' output read back
+/// with the same table.
+fn luminaire_is_usable(name: &str, bytes: &[u8]) -> Result<(), String> {
+    let Ok(lum) = Luminaire::from_bytes(name, bytes) else {
+        return Ok(());
+    };
+    let d = &lum.distribution;
+    if d.grid().values().iter().any(|v| !v.is_finite() || *v < 0.0) {
+        return Err("accepted a non-finite or negative intensity".into());
+    }
+    let (lamp, flux) = (d.lamp_flux_lm(), d.flux_lm());
+    if !(lamp.is_finite() && lamp > 0.0 && flux.is_finite() && flux >= 0.0) {
+        return Err(format!("accepted lamp flux {lamp}, flux {flux}"));
+    }
+    let _ = lum.summary();
+    let peak = d.max_intensity().0 * lamp / 1000.0;
+    for (ext, text) in [
+        ("ldt", lum.data.to_ldt_string()),
+        ("ies", write_ies(&lum.data, lum.source_label())),
+    ] {
+        let back = Luminaire::from_bytes(&format!("w.{ext}"), text.as_bytes())
+            .map_err(|e| format!("its {ext} is refused: {e}"))?;
+        let b = &back.distribution;
+        for (ci, &c) in d.grid().c_angles().iter().enumerate() {
+            for (gi, &g) in d.grid().gamma_angles().iter().enumerate() {
+                let want = d.grid().value(ci, gi) * lamp / 1000.0;
+                let got = b.candela(c, g, Interp::Nearest, 1.0);
+                if (got - want).abs() > 1e-9 * peak {
+                    return Err(format!("{ext} round trip: C{c} γ{g} {want} → {got} cd"));
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+#[test]
+fn fuzz_luminaire_readers_and_writers() {
+    let mut files = Vec::new();
+    files_under(
+        &common::root().join("luminaires"),
+        &["ldt", "ies"],
+        &mut files,
+    );
+    files_under(
+        &common::shared_dir().join("luminaires/wild"),
+        &["ldt", "ies"],
+        &mut files,
+    );
+    // The largest tables make slow cases; the small ones reach every branch.
+    files.retain(|p| std::fs::metadata(p).unwrap().len() < 60_000);
+    let seeds = read_all(files);
+    fuzz("luminaire", "txt", &seeds, |bytes| {
+        // The same bytes through both readers (the extension is only a hint).
+        luminaire_is_usable("f.ldt", bytes)?;
+        luminaire_is_usable("f.ies", bytes)
+    });
+}
+
+#[test]
+fn fuzz_obj_reader() {
+    let mut files = Vec::new();
+    files_under(&common::root().join("assets"), &["obj"], &mut files);
+    files.retain(|p| std::fs::metadata(p).unwrap().len() < 300_000);
+    let seeds = read_all(files);
+    fuzz("obj", "obj", &seeds, |bytes| {
+        let Ok(mut mesh) = parse_obj("f.obj", bytes) else {
+            return Ok(());
+        };
+        let n = mesh.positions.len();
+        if mesh.triangles.iter().flatten().any(|&i| i as usize >= n) {
+            return Err(format!("a triangle indexes past the {n} vertices"));
+        }
+        mesh.remove_degenerate();
+        let _ = mesh.validate("f.obj");
+        Ok(())
+    });
+}
+
+#[test]
+fn fuzz_scene_files() {
+    let dir = common::root().join("assets/scenes");
+    let mut files = Vec::new();
+    files_under(&dir, &["toml"], &mut files);
+    let seeds = read_all(files);
+    // Scenes resolve their files against the bundled scenes' folder.
+    let path = dir.join("fuzzed.toml");
+    fuzz("scene", "toml", &seeds, |bytes| {
+        let text = String::from_utf8_lossy(bytes);
+        let Ok(scene) = Scene::from_toml(&path, &text) else {
+            return Ok(());
+        };
+        for l in &scene.luminaires {
+            if !l.position.is_finite() {
+                return Err("accepted a non-finite luminaire position".into());
+            }
+        }
+        for g in &scene.grids {
+            if g.points.is_empty() || g.points.iter().any(|p| !p.is_finite()) {
+                return Err(format!(
+                    "accepted grid {:?} without usable points",
+                    g.entry.name
+                ));
+            }
+        }
+        Ok(())
+    });
+}
+
+#[test]
+fn fuzz_point_lists() {
+    let seeds = vec![
+        b"1 1 0.8 0 0 1\n2 3 0 0 0 1\n".to_vec(),
+        b"# x y z nx ny nz\n0.5,0.5,0.8,0,0,1\n\n1 2 3 0 1 0\n".to_vec(),
+        b"3 2 0.8 0 0 1 extra\n".to_vec(),
+    ];
+    fuzz("points", "txt", &seeds, |bytes| {
+        let Ok(points) = read_points(std::io::Cursor::new(bytes), "<stdin>") else {
+            return Ok(());
+        };
+        for p in &points {
+            let ok = p.position.is_finite() && p.normal.is_finite() && p.normal.length() > 0.5;
+            if !ok {
+                return Err(format!("accepted point {p:?}"));
+            }
+        }
+        Ok(())
+    });
+}
+
+#[test]
+fn fuzz_mtl_reader() {
+    let mut files = Vec::new();
+    files_under(&common::root().join("assets"), &["mtl"], &mut files);
+    let seeds = read_all(files);
+    fuzz("mtl", "mtl", &seeds, |bytes| {
+        let Ok((materials, _)) = parse_mtl("f.mtl", bytes) else {
+            return Ok(());
+        };
+        for m in &materials {
+            if m.diffuse.is_some_and(|d| d.iter().any(|x| !x.is_finite())) {
+                return Err(format!(
+                    "accepted material {:?} with a non-finite colour",
+                    m.name
+                ));
+            }
+        }
+        Ok(())
+    });
+}
+
+#[test]
+fn fuzz_angle_lists() {
+    let seeds = vec![
+        b"0 0\n90 45\n".to_vec(),
+        b"# C gamma\n370,12.5\n\n-15 180\n".to_vec(),
+    ];
+    fuzz("angles", "txt", &seeds, |bytes| {
+        let Ok(angles) = read_angles(std::io::Cursor::new(bytes), "<stdin>") else {
+            return Ok(());
+        };
+        for &(c, g) in &angles {
+            if !c.is_finite() || !(0.0..=180.0).contains(&g) {
+                return Err(format!("accepted C {c}, γ {g}"));
+            }
+        }
+        Ok(())
+    });
+}
