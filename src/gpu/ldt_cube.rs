@@ -5,7 +5,7 @@
 //! fetch indexed by the direction in the luminaire's frame — no (C, γ) angles, no
 //! trigonometry per pixel. Between texel centres the value is bilinear, so it differs from
 //! the spline where the distribution bends within a texel (0.18° at a face's centre);
-//! `tests/gpu_ldt.rs` measures how far over every bundled file.
+//! `tests/gpu/gpu_ldt.rs` measures how far over every bundled file.
 
 use std::collections::HashMap;
 use std::hash::{Hash, Hasher};

@@ -5,7 +5,7 @@
 //! tensor product, so the renderer's `CatmullRomTable` light model — the γ spline over
 //! four table rows, linear across two columns, two texel gathers instead of 16 loads and
 //! the 2D spline — is the per-pixel spline up to the linear step in C and the 16-bit
-//! rounding: within 1e-3 · I_max (checked by `tests/gpu_ldt.rs` for every bundled file,
+//! rounding: within 1e-3 · I_max (checked by `tests/gpu/gpu_ldt.rs` for every bundled file,
 //! with [`table_value`] as the CPU twin of the lookup).
 
 use super::ldt::LdtAtlas;

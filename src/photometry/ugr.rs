@@ -26,7 +26,7 @@
 //!   their exact form factors (uniform exitance per surface), and E_i is the walls'
 //!   illuminance from that reflected light.
 //!
-//! Checked against an independent numerical evaluation (`tests/ugr.rs`) and against the
+//! Checked against an independent numerical evaluation (`tests/cli/ugr.rs`) and against the
 //! `eulumdat-ugr` package, which its authors report within 0.43 UGR of Relux
 //! (`python/tests/test_ugr_oracle.py`).
 

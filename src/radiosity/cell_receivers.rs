@@ -12,7 +12,7 @@
 //! box may hold one that takes its light, by the shader's rule with slack
 //! ([`takes_light_from`](crate::radiosity::links::takes_light_from), conservative): every
 //! receiver that takes light from the cell is still dispatched, so the solution is the
-//! same. `tests/links.rs` checks it against that rule, receiver by receiver.
+//! same. `tests/gpu/links.rs` checks it against that rule, receiver by receiver.
 
 use glam::DVec3;
 

@@ -12,12 +12,12 @@
 //! leaves out texels whose centre lies exactly on an edge; this one keeps them, and those
 //! within the rounding of an edge function: on an H200, whose compiler fuses
 //! multiply-adds, exact ties left cracks along shared edges, and 2.1 of 80 lm passed a
-//! solid panel; `tests/alpha_masks.rs`). The stereographic map is the exception: here each
+//! solid panel; `tests/gpu/alpha_masks.rs`). The stereographic map is the exception: here each
 //! texel's ray (the direction its centre projects from) is tested against the triangle in
 //! 3-D and the texels tested are the box of the arcs its edges project to, so the map is
 //! exact, where the render pass draws chords between the projected vertices (and a sliver
 //! between chord and rim shows what lies behind a wall's foot:
-//! `tests/radiosity.rs`, `light_stays_in_its_closed_room_with_either_map`).
+//! `tests/gpu/radiosity.rs`, `light_stays_in_its_closed_room_with_either_map`).
 
 use super::super::atlas::VisibilityAtlas;
 use super::{dispatch_groups, FACE_STRIDE};
