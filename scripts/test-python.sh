@@ -40,9 +40,16 @@ if not built.exists():
 shutil.copy2(built, staged.joinpath(*package) / f"{module}.abi3.so")
 EOF
   export PYTHONPATH="$PWD/$staged"
+  # The same build made the command line (a `cargo build --bin` here would resolve the
+  # features of the root crate alone and build the GPU stack again).
+  if [ ! -x target/debug/goniolight ]; then
+    echo "error: target/debug/goniolight is missing: build it first with" \
+      "\`cargo build --workspace --all-targets --profile test\`" >&2
+    exit 1
+  fi
 else
   # A development-profile build shares the compiled dependencies of `cargo test`.
   MATURIN_PEP517_ARGS="--profile dev" "$venv/bin/python" -m pip install --quiet ./python
+  cargo build --quiet --bin goniolight
 fi
-cargo build --quiet --bin goniolight
 GONIOLIGHT_BIN="$PWD/target/debug/goniolight" "$venv/bin/python" -m pytest -q python/tests
