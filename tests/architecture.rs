@@ -480,3 +480,63 @@ fn the_library_without_default_features_has_no_gpu_or_gui_crates() {
         );
     }
 }
+
+/// Every file under `dir`, recursively.
+fn files_under(dir: &Path) -> Vec<PathBuf> {
+    let mut out = Vec::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        for entry in std::fs::read_dir(&d).unwrap() {
+            let p = entry.unwrap().path();
+            if p.is_dir() {
+                stack.push(p);
+            } else {
+                out.push(p);
+            }
+        }
+    }
+    out
+}
+
+/// proptest reads a test module's failure seeds from a folder beside the nearest folder
+/// with a `main.rs` or `lib.rs`: for `tests/AREA/NAME.rs` that is
+/// `tests/proptest-regressions/NAME.txt`. A seed file anywhere else (such as
+/// `NAME.proptest-regressions` beside its module) is never read, and its cases never run.
+#[test]
+fn proptest_seed_files_sit_where_proptest_reads_them() {
+    let tests = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests");
+    let stray: Vec<_> = files_under(&tests)
+        .into_iter()
+        .filter(|p| p.extension().is_some_and(|e| e == "proptest-regressions"))
+        .collect();
+    assert!(
+        stray.is_empty(),
+        "seed files proptest never reads: {stray:?}"
+    );
+    let seeds = tests.join("proptest-regressions");
+    let mut modules = 0;
+    for seed in files_under(&seeds) {
+        let name = seed.file_stem().unwrap().to_str().unwrap();
+        let module: Vec<_> = ["cpu", "gpu", "cli", "viewer"]
+            .iter()
+            .map(|area| tests.join(area).join(format!("{name}.rs")))
+            .filter(|p| p.is_file())
+            .collect();
+        assert_eq!(
+            module.len(),
+            1,
+            "{seed:?} belongs to one test module: {module:?}"
+        );
+        let text = std::fs::read_to_string(&module[0]).unwrap();
+        assert!(
+            text.contains("proptest!"),
+            "{:?} has no property test",
+            module[0]
+        );
+        modules += 1;
+    }
+    assert!(
+        modules >= 3,
+        "the interpolation, BVH and silhouette seeds are kept"
+    );
+}
