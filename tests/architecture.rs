@@ -4,6 +4,8 @@
 //!   defines the module it names, except a child naming its own ancestors);
 //! - the library without default features pulls in no GPU or GUI crate.
 
+mod common;
+
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
@@ -481,23 +483,6 @@ fn the_library_without_default_features_has_no_gpu_or_gui_crates() {
     }
 }
 
-/// Every file under `dir`, recursively.
-fn files_under(dir: &Path) -> Vec<PathBuf> {
-    let mut out = Vec::new();
-    let mut stack = vec![dir.to_path_buf()];
-    while let Some(d) = stack.pop() {
-        for entry in std::fs::read_dir(&d).unwrap() {
-            let p = entry.unwrap().path();
-            if p.is_dir() {
-                stack.push(p);
-            } else {
-                out.push(p);
-            }
-        }
-    }
-    out
-}
-
 /// proptest reads a test module's failure seeds from a folder beside the nearest folder
 /// with a `main.rs` or `lib.rs`: for `tests/AREA/NAME.rs` that is
 /// `tests/proptest-regressions/NAME.txt`. A seed file anywhere else (such as
@@ -505,7 +490,7 @@ fn files_under(dir: &Path) -> Vec<PathBuf> {
 #[test]
 fn proptest_seed_files_sit_where_proptest_reads_them() {
     let tests = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests");
-    let stray: Vec<_> = files_under(&tests)
+    let stray: Vec<_> = common::files_in(&tests)
         .into_iter()
         .filter(|p| p.extension().is_some_and(|e| e == "proptest-regressions"))
         .collect();
@@ -515,7 +500,7 @@ fn proptest_seed_files_sit_where_proptest_reads_them() {
     );
     let seeds = tests.join("proptest-regressions");
     let mut modules = 0;
-    for seed in files_under(&seeds) {
+    for seed in common::files_in(&seeds) {
         let name = seed.file_stem().unwrap().to_str().unwrap();
         let module: Vec<_> = ["cpu", "gpu", "cli", "viewer"]
             .iter()
