@@ -5,7 +5,7 @@
 
 pub mod specular;
 
-use std::io::BufRead;
+use std::io::{BufRead, Read};
 
 use glam::DVec3;
 use rayon::prelude::*;
@@ -126,19 +126,41 @@ pub fn illuminance_cpu_in_scene(
 /// Reads lines of `count` finite numbers separated by spaces or commas (blank lines and
 /// `#` comments skipped); `what` describes a line in errors. Returns (line, numbers).
 fn read_number_lines(
-    input: impl BufRead,
+    mut input: impl BufRead,
     name: &str,
     count: usize,
     what: &str,
 ) -> Result<Vec<(usize, Vec<f64>)>, PointsError> {
     let mut rows = Vec::new();
-    for (i, line) in input.lines().enumerate() {
+    let mut total = 0u64;
+    let mut buf = Vec::new();
+    for i in 0.. {
         let err = |message: String| PointsError {
             source_name: name.to_string(),
             line: i + 1,
             message,
         };
-        let line = line.map_err(|e| err(e.to_string()))?;
+        buf.clear();
+        let n = (&mut input)
+            .take(MAX_LINE_BYTES + 1)
+            .read_until(b'\n', &mut buf)
+            .map_err(|e| err(e.to_string()))?;
+        if n == 0 {
+            break;
+        }
+        total += n as u64;
+        if buf.len() as u64 > MAX_LINE_BYTES {
+            return Err(err(format!(
+                "a line longer than {MAX_LINE_BYTES} bytes (is this a text file of points?)"
+            )));
+        }
+        if total > crate::io::MAX_MODEL_BYTES {
+            return Err(err(format!(
+                "more than the {} bytes goniolight reads as points",
+                crate::io::MAX_MODEL_BYTES
+            )));
+        }
+        let line = std::str::from_utf8(&buf).map_err(|e| err(format!("not text: {e}")))?;
         let t = line.trim();
         if t.is_empty() || t.starts_with('#') {
             continue;
@@ -155,6 +177,9 @@ fn read_number_lines(
     }
     Ok(rows)
 }
+
+/// The longest line of a points input, bytes.
+const MAX_LINE_BYTES: u64 = 4096;
 
 /// Parses lines `x y z nx ny nz` (spaces or commas; blank lines and `#` comments
 /// skipped); normals are returned with unit length.

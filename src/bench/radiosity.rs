@@ -204,7 +204,7 @@ pub fn run(
         let stop = StopAt {
             converge: 0.99,
             max_shots: Some(max_shots),
-            time_budget: time_limit.map(std::time::Duration::from_secs_f64),
+            time_budget: time_limit.and_then(|t| crate::io::limits::duration(t).ok()),
         };
         let (_, log) = solver.solve(&stop, &AtomicBool::new(false), |p| {
             progress(config, p.convergence)

@@ -58,6 +58,32 @@ pub fn background_point(observer: &Observer) -> SurfacePoint {
     }
 }
 
+/// An error when `observer`'s eye lies inside the luminaire `l`'s body (the box of its
+/// luminaire dimensions, or of its luminous area where larger, around the photometric
+/// centre): the glare formula's solid angle and position index mean nothing there.
+pub fn check_outside(observer: &Observer, l: &crate::scene::PlacedLuminaire) -> Result<(), String> {
+    let d = &l.luminaire.data.dimensions;
+    let along = d.length.max(d.area_length).max(0.0) / 1000.0;
+    let across = if d.width > 0.0 || d.area_width > 0.0 {
+        d.width.max(d.area_width) / 1000.0
+    } else {
+        along
+    };
+    let tall = d
+        .height
+        .max(d.area_heights.iter().copied().fold(0.0, f64::max))
+        / 1000.0;
+    let reach = 0.5 * (along * along + across * across + tall * tall).sqrt();
+    let distance = observer.eye.distance(l.position);
+    if distance <= reach.max(1e-3) {
+        return Err(format!(
+            "the eye is {distance:.3} m from the photometric centre of {}, inside the luminaire ({reach:.3} m from its centre to its corners); move the eye out of it",
+            l.file.display()
+        ));
+    }
+    Ok(())
+}
+
 /// The glare at `observer` with the background luminance `background_cd_m2`; an error
 /// naming the luminaire file when a luminaire in the field has no luminous area.
 pub fn observer_glare(
@@ -77,6 +103,7 @@ pub fn observer_glare(
     let visible = point_visibility(&casters, &positions, &eye);
     let mut luminaires = Vec::new();
     for (i, l) in scene.luminaires.iter().enumerate() {
+        check_outside(observer, l)?;
         let (t, h, r) = observer.relative(l.position);
         if !in_glare_field(t, h, r) || !visible[i][0] {
             continue;
@@ -101,7 +128,13 @@ pub fn observer_glare(
             term,
         });
     }
-    let glare_sum = luminaires.iter().map(|l| l.term).sum();
+    let glare_sum: f64 = luminaires.iter().map(|l| l.term).sum();
+    if glare_sum > 0.0 && (background_cd_m2.is_nan() || background_cd_m2 <= 0.0) {
+        return Err(format!(
+            "the background luminance L_b is {background_cd_m2} cd/m² (no light reflected toward the eye) while {} luminaire(s) glare: UGR = 8 log10(0.25 / L_b · Σ) has no finite value; give the room's surfaces a reflectance",
+            luminaires.len()
+        ));
+    }
     Ok(ObserverGlare {
         ugr: ugr_of(glare_sum, background_cd_m2),
         background_cd_m2,

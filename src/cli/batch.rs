@@ -130,6 +130,47 @@ fn read_jobs(path: &Path) -> Result<Vec<Job>, CliError> {
     Ok(file.job)
 }
 
+/// Refuses (before any job runs) a job `stdout` or the `--summary` that is the jobs file,
+/// a job's stdin or any existing file a job's arguments name, that is another job's
+/// `stdout`, or that is no regular file; and a job `stdin` that is a device.
+fn check_outputs(args: &BatchArgs, jobs: &[Job]) -> Result<(), CliError> {
+    let base = args.jobs.parent().unwrap_or(Path::new(""));
+    let mut check = crate::io::outputs::OutputCheck::new();
+    check.input(&args.jobs);
+    for (i, job) in jobs.iter().enumerate() {
+        if let Some(p) = &job.stdin {
+            let p = base.join(p);
+            if let Ok(meta) = std::fs::metadata(&p) {
+                if !meta.is_file() {
+                    return Err(CliError::input(anyhow!(
+                        "{}: job[{i}].stdin {}: not a regular file (a device or FIFO never ends)",
+                        args.jobs.display(),
+                        p.display()
+                    )));
+                }
+            }
+            check.input(p);
+        }
+        for a in &job.args {
+            let p = base.join(a);
+            if p.is_file() {
+                check.input(p);
+            }
+        }
+    }
+    for (i, job) in jobs.iter().enumerate() {
+        if let Some(p) = &job.stdout {
+            check.named_output(&format!("job[{i}].stdout {}", p.display()), base.join(p));
+        }
+    }
+    if let Some(p) = &args.summary {
+        check.named_output(&format!("--summary {}", p.display()), p);
+    }
+    check
+        .check()
+        .map_err(|e| CliError::input(anyhow!("{}: {e}", args.jobs.display())))
+}
+
 /// Runs `batch`.
 pub fn run(args: BatchArgs) -> Result<(), CliError> {
     let shard = match &args.shard {
@@ -137,6 +178,7 @@ pub fn run(args: BatchArgs) -> Result<(), CliError> {
         None => [1, 1],
     };
     let jobs = read_jobs(&args.jobs)?;
+    check_outputs(&args, &jobs)?;
     // Resolve our own paths before moving into the jobs file's folder.
     let summary_path = args
         .summary
@@ -248,13 +290,8 @@ fn run_job(job: &Job) -> Result<(), CliError> {
             super::run(cli)
         }
         Some(p) => {
-            let tmp = p.with_file_name(format!(
-                ".{}.tmp{}",
-                p.file_name()
-                    .map(|n| n.to_string_lossy())
-                    .unwrap_or_default(),
-                std::process::id()
-            ));
+            let tmp = crate::io::outputs::temporary_beside(p, "tmp")
+                .map_err(|e| CliError::input(anyhow!("stdout {}: {e}", p.display())))?;
             if let Some(dir) = p.parent().filter(|d| !d.as_os_str().is_empty()) {
                 std::fs::create_dir_all(dir)
                     .map_err(|e| CliError::failure(anyhow!("stdout {}: {e}", p.display())))?;
@@ -273,6 +310,7 @@ fn run_job(job: &Job) -> Result<(), CliError> {
             if done.is_err() {
                 let _ = std::fs::remove_file(&tmp);
             }
+            crate::io::outputs::finished(&tmp);
             done
         }
     }

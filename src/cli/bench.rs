@@ -159,7 +159,7 @@ pub enum BenchCommand {
         #[arg(long, default_value_t = 5000)]
         max_shots: usize,
         /// Give up after this many seconds per solution.
-        #[arg(long)]
+        #[arg(long, value_parser = super::seconds_arg)]
         time_limit: Option<f64>,
         /// Visibility maps to compare (comma-separated).
         #[arg(

@@ -32,7 +32,7 @@ pub struct AdaptiveBenchArgs {
     #[arg(long, default_value_t = 0.95)]
     converge: f64,
     /// Give up after this many seconds per solution.
-    #[arg(long, default_value_t = 120.0)]
+    #[arg(long, default_value_t = 120.0, value_parser = super::seconds_arg)]
     time_limit: f64,
 }
 
@@ -74,7 +74,7 @@ pub fn run(args: AdaptiveBenchArgs) -> Result<(), CliError> {
     let stop = StopAt {
         converge: args.converge,
         max_shots: None,
-        time_budget: Some(std::time::Duration::from_secs_f64(args.time_limit)),
+        time_budget: crate::io::limits::duration(args.time_limit).ok(),
     };
     let rows = adaptive::run(&gpu, &scene, &meshings, args.level, &stop, |what| {
         eprintln!("solving {what} …")

@@ -17,7 +17,9 @@ use crate::calc::glare::{background_point, observer_glare, ObserverGlare};
 use crate::calc::plan::Plan;
 use crate::calc::{grid_stats, CalcGrid, CalcSettings};
 use crate::gpu::Gpu;
-use crate::io::write_atomic;
+use crate::io::limits::MAX_TOTAL_POINTS;
+use crate::io::outputs::{OutputCheck, Staging};
+use crate::io::{printable, write_atomic};
 use crate::lighting::SurfacePoint;
 use crate::photometry::Interp;
 use crate::render::illuminance::scene_illuminance;
@@ -68,6 +70,10 @@ pub struct CalcArgs {
     /// luminance): `radiosity`. Default: the scene's `calc.indirect`, else none.
     #[arg(long, value_enum)]
     pub indirect: Option<Indirect>,
+    /// The most points over all grids together (each costs memory and about 100 bytes
+    /// of files); a run above it is refused before any work.
+    #[arg(long, value_name = "N", default_value_t = MAX_TOTAL_POINTS)]
+    pub max_points: usize,
     /// The radiosity solver's options (with `--indirect radiosity`).
     #[command(flatten, next_help_heading = "Radiosity (with --indirect radiosity)")]
     pub solver: SolverArgs,
@@ -88,6 +94,14 @@ pub fn csv_name(grid_name: &str) -> String {
         })
         .collect();
     format!("{stem}.csv")
+}
+
+/// How the values were lit, for the grids' files: the maintenance factor, the light's
+/// description and whether it includes the interreflected light.
+struct Lit<'l> {
+    mf: f64,
+    light: &'l [String],
+    total: bool,
 }
 
 /// One grid's computed values (maintained) and how they were lit.
@@ -151,6 +165,44 @@ pub fn run(args: CalcArgs) -> Result<(), CliError> {
             args.out.display()
         )));
     }
+    let inputs = scene.input_files();
+    let mut outputs = OutputCheck::new();
+    for f in &inputs {
+        outputs.input(f);
+    }
+    outputs.output(args.out.join("calc.json"));
+    for g in &scene.grids {
+        let csv = csv_name(&g.entry.name);
+        let stem = csv.trim_end_matches(".csv");
+        for name in [csv.clone(), format!("{stem}.png"), format!("{stem}.svg")] {
+            outputs.output(args.out.join(name));
+        }
+    }
+    if let Some(report) = &args.report {
+        outputs.named_output(&format!("--report {}", report.display()), report);
+        check_folder_of(report, "--report")?;
+    }
+    outputs.check()?;
+    let total: usize = scene.grids.iter().map(|g| g.points.len()).sum();
+    if total > args.max_points {
+        return Err(CliError::input(anyhow!(
+            "{}: the grids hold {total} points together, more than --max-points {} (each point costs memory and about 100 bytes of files): use a larger spacing, split the grids over several runs, or raise --max-points",
+            args.scene.display(),
+            args.max_points
+        )));
+    }
+    for o in &scene.observers {
+        for l in &scene.luminaires {
+            crate::calc::glare::check_outside(o, l).map_err(|e| {
+                CliError::input(anyhow!(
+                    "{}: observer {:?}: {e}",
+                    args.scene.display(),
+                    o.entry.name
+                ))
+            })?;
+        }
+    }
+    let cancel = super::interrupt_flag();
     let gpu = if args.cpu { None } else { Some(Gpu::shared()?) };
     // Every (point, normal) of every grid, then the observers' eyes: one list, so the
     // radiosity gather runs once.
@@ -158,6 +210,7 @@ pub fn run(args: CalcArgs) -> Result<(), CliError> {
     let eyes: Vec<SurfacePoint> = scene.observers.iter().map(background_point).collect();
     let mut lux: Vec<Vec<f64>> = Vec::with_capacity(grid_points.len());
     for (g, points) in scene.grids.iter().zip(&grid_points) {
+        interrupted(&cancel)?;
         let direct = scene_illuminance(gpu.as_ref(), &scene, points, args.interp, args.shadows)?;
         check_usable(&g.entry.name, &direct)?;
         lux.push(direct);
@@ -211,16 +264,20 @@ pub fn run(args: CalcArgs) -> Result<(), CliError> {
         ],
         _ => vec!["direct light only".to_string()],
     };
-    std::fs::create_dir_all(&args.out)
+    interrupted(&cancel)?;
+    let staging = Staging::beside(&args.out, &inputs)
         .map_err(|e| CliError::failure(anyhow!("{}: {e}", args.out.display())))?;
     let (grids_json, report_grids) = write_grids(
         &args,
+        staging.dir(),
         &scene,
         &computed,
-        mf,
         &glare,
-        &light,
-        indirect == Indirect::Radiosity,
+        Lit {
+            mf,
+            light: &light,
+            total: indirect == Indirect::Radiosity,
+        },
     )?;
     let observers_json: Vec<_> = scene
         .observers
@@ -241,7 +298,7 @@ pub fn run(args: CalcArgs) -> Result<(), CliError> {
     for (o, g) in scene.observers.iter().zip(&glare) {
         println!(
             "observer {:<15} UGR {:>5}  (L_b {:.1} cd/m², {} luminaire(s) in the field)",
-            o.entry.name,
+            printable(&o.entry.name),
             g.ugr.map_or("—".into(), |u| format!("{u:.1}")),
             g.background_cd_m2,
             g.luminaires.len()
@@ -258,7 +315,8 @@ pub fn run(args: CalcArgs) -> Result<(), CliError> {
         "observers": observers_json,
     });
     let text = serde_json::to_string_pretty(&doc).map_err(CliError::failure)?;
-    write_atomic(&args.out.join("calc.json"), text.as_bytes()).map_err(CliError::failure)?;
+    write_atomic(&staging.dir().join("calc.json"), text.as_bytes()).map_err(CliError::failure)?;
+    let mut report = None;
     if let Some(path) = &args.report {
         let settings = [
             ("scene", args.scene.display().to_string()),
@@ -292,7 +350,17 @@ pub fn run(args: CalcArgs) -> Result<(), CliError> {
                 glare: g,
             })
             .collect();
-        let html = report_html(&scene, &settings, &report_grids, &observers);
+        report = Some((
+            path,
+            report_html(&scene, &settings, &report_grids, &observers),
+        ));
+    }
+    // Complete or none: the last chance for Ctrl-C to leave nothing.
+    interrupted(&cancel)?;
+    staging
+        .commit()
+        .map_err(|e| CliError::failure(anyhow!("{}: {e:#}", args.out.display())))?;
+    if let Some((path, html)) = report {
         write_atomic(path, html.as_bytes())
             .map_err(|e| CliError::input(anyhow!("--report {}: {e:#}", path.display())))?;
     }
@@ -303,6 +371,28 @@ pub fn run(args: CalcArgs) -> Result<(), CliError> {
         computed.len(),
         glare.len()
     );
+    Ok(())
+}
+
+/// The error of a run stopped by Ctrl-C (or SIGTERM) before its outputs were written.
+fn interrupted(cancel: &std::sync::atomic::AtomicBool) -> Result<(), CliError> {
+    if cancel.load(std::sync::atomic::Ordering::SeqCst) {
+        return Err(CliError::failure(anyhow!("interrupted: nothing written")));
+    }
+    Ok(())
+}
+
+/// An error naming `flag` when the folder `path` goes into does not exist (checked before
+/// the work, so that the run does not fail at its end).
+pub(crate) fn check_folder_of(path: &std::path::Path, flag: &str) -> Result<(), CliError> {
+    let folder = path.parent().filter(|p| !p.as_os_str().is_empty());
+    if folder.is_some_and(|f| !f.is_dir()) {
+        return Err(CliError::input(anyhow!(
+            "{flag} {}: the folder {} does not exist",
+            path.display(),
+            folder.expect("checked").display()
+        )));
+    }
     Ok(())
 }
 
@@ -348,13 +438,13 @@ fn interreflected_lux(
 /// Writes each grid's CSV and plans; returns their `calc.json` entries and report parts.
 fn write_grids<'a>(
     args: &CalcArgs,
+    dir: &std::path::Path,
     scene: &'a Scene,
     computed: &[Computed<'a>],
-    mf: f64,
     glare: &[ObserverGlare],
-    light: &[String],
-    total: bool,
+    lit: Lit,
 ) -> Result<(Vec<serde_json::Value>, Vec<ReportGrid<'a>>), CliError> {
+    let Lit { mf, light, total } = lit;
     let mut grids_json = Vec::new();
     let mut report_grids = Vec::new();
     if !computed.is_empty() {
@@ -366,8 +456,7 @@ fn write_grids<'a>(
     for Computed { grid: g, values } in computed {
         let s = grid_stats(values);
         let csv = csv_name(&g.entry.name);
-        write_atomic(&args.out.join(&csv), grid_csv(g, values).as_bytes())
-            .map_err(CliError::failure)?;
+        write_atomic(&dir.join(&csv), grid_csv(g, values).as_bytes()).map_err(CliError::failure)?;
         let plan = Plan {
             grid: g,
             values,
@@ -397,9 +486,9 @@ fn write_grids<'a>(
         };
         let stem = csv.trim_end_matches(".csv");
         let png = plan.png().map_err(|e| CliError::failure(anyhow!(e)))?;
-        write_atomic(&args.out.join(format!("{stem}.png")), &png).map_err(CliError::failure)?;
+        write_atomic(&dir.join(format!("{stem}.png")), &png).map_err(CliError::failure)?;
         let svg = plan.svg().map_err(|e| CliError::failure(anyhow!(e)))?;
-        write_atomic(&args.out.join(format!("{stem}.svg")), svg.as_bytes())
+        write_atomic(&dir.join(format!("{stem}.svg")), svg.as_bytes())
             .map_err(CliError::failure)?;
         report_grids.push(ReportGrid {
             name: &g.entry.name,
@@ -409,7 +498,7 @@ fn write_grids<'a>(
         });
         println!(
             "{:<24} {:>15} {:>7} {:>9.1} {:>9.1} {:>9.1} {:>6.2} {:>6.2}",
-            g.entry.name,
+            printable(&g.entry.name),
             format!("{:?}", g.entry.kind).to_lowercase(),
             s.points,
             s.em,

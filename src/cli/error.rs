@@ -94,6 +94,12 @@ impl From<GeometryError> for CliError {
     }
 }
 
+impl From<crate::io::outputs::OutputError> for CliError {
+    fn from(e: crate::io::outputs::OutputError) -> CliError {
+        CliError::input(e)
+    }
+}
+
 impl From<ProfileError> for CliError {
     fn from(e: ProfileError) -> CliError {
         match e {

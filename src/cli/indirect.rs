@@ -25,7 +25,7 @@ pub struct IndirectArgs {
     #[arg(long, value_enum)]
     pub indirect: Option<DisplayIndirect>,
     /// With --indirect radiosity: seconds of shooting.
-    #[arg(long, value_name = "S", default_value_t = 10.0)]
+    #[arg(long, value_name = "S", default_value_t = 10.0, value_parser = super::seconds_arg)]
     pub indirect_time: f64,
 }
 

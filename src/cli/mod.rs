@@ -73,9 +73,19 @@ pub enum Command {
 
 pub use crate::io::data_root;
 
-/// The process-wide Ctrl-C flag (the handler is installed on first use). The first Ctrl-C
-/// sets it: long commands finish their current step and write what they have, a batch
-/// starts no further job; a second one ends the process at once (exit 130).
+/// clap's parser of a number of seconds (time limits): positive, finite and at most
+/// [`crate::io::limits::MAX_SECONDS`], so that no later conversion to a duration fails.
+pub(crate) fn seconds_arg(s: &str) -> Result<f64, String> {
+    let v: f64 = s.trim().parse().map_err(|e| format!("{s:?}: {e}"))?;
+    crate::io::limits::duration(v)?;
+    Ok(v)
+}
+
+/// The process-wide Ctrl-C flag (the handler, also for SIGTERM and SIGHUP, is installed on
+/// first use). The first signal sets it: long commands finish their current step and
+/// write a complete set or nothing (as each documents), a batch starts no further job; a
+/// second one removes the temporary files of writes in progress and ends the process at
+/// once (exit 130).
 pub fn interrupt_flag() -> std::sync::Arc<std::sync::atomic::AtomicBool> {
     use std::sync::atomic::{AtomicBool, Ordering};
     use std::sync::{Arc, OnceLock};
@@ -85,6 +95,8 @@ pub fn interrupt_flag() -> std::sync::Arc<std::sync::atomic::AtomicBool> {
         let set = flag.clone();
         let _ = ctrlc::set_handler(move || {
             if set.swap(true, Ordering::SeqCst) {
+                // Nothing half-written stays: the temporary files and staging folders go.
+                crate::io::outputs::remove_unfinished();
                 std::process::exit(130);
             }
             eprintln!("\ninterrupted: finishing the current step (Ctrl-C again to quit)");

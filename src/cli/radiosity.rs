@@ -41,7 +41,7 @@ pub struct SolverArgs {
     #[arg(long)]
     pub max_shots: Option<usize>,
     /// Stop after this many seconds of shooting.
-    #[arg(long)]
+    #[arg(long, value_parser = super::seconds_arg)]
     pub time_limit: Option<f64>,
     /// Elements (light-map texels) per metre.
     #[arg(long, default_value_t = 10.0)]
@@ -184,7 +184,9 @@ impl SolverArgs {
         StopAt {
             converge: self.converge,
             max_shots: self.max_shots,
-            time_budget: self.time_limit.map(Duration::from_secs_f64),
+            time_budget: self
+                .time_limit
+                .and_then(|t| crate::io::limits::duration(t).ok()),
         }
     }
 }
@@ -537,9 +539,9 @@ impl Prepared<'_> {
                 let d = self.drive(&solver, point, settings, gpu_settings, stop_at.time_budget)?;
                 d.drive(&mut solver, args.drive, point, args.fov_margin)?;
                 // The importance solve's time is the solve's.
-                stop_at.time_budget = stop_at
-                    .time_budget
-                    .map(|b| b.saturating_sub(Duration::from_secs_f64(d.importance_seconds)));
+                stop_at.time_budget = stop_at.time_budget.map(|b| {
+                    b.saturating_sub(Duration::try_from_secs_f64(d.importance_seconds).unwrap_or(b))
+                });
                 Some(d)
             }
             None => None,
@@ -681,6 +683,20 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
         (None, false) => Some(PathBuf::from("radiosity-out")),
         (None, true) => None,
     };
+    let inputs = scene.input_files();
+    let mut outputs = crate::io::outputs::OutputCheck::new();
+    for f in &inputs {
+        outputs.input(f);
+    }
+    if let Some(dir) = &out_dir {
+        for name in OUT_DIR_FILES {
+            outputs.output(dir.join(name));
+        }
+    }
+    if let Some(path) = &args.export {
+        outputs.named_output(&format!("--export {}", path.display()), path);
+    }
+    outputs.check()?;
     let prepared = prepare(&args.scene, &scene, &args.solver, &mut settings, started)?;
     let solved = prepared.solve()?;
     if !points.is_empty() {
@@ -734,7 +750,12 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
         };
         settings.read_hdr = true;
         settings.shown_light = crate::scene::DisplayIndirect::Radiosity;
-        write_outputs(&prepared.gpu, &scene, &settings, &outputs, &dir)?;
+        let staging = crate::io::outputs::Staging::beside(&dir, &inputs)
+            .map_err(|e| CliError::input(anyhow!("--out-dir {}: {e}", dir.display())))?;
+        write_outputs(&prepared.gpu, &scene, &settings, &outputs, staging.dir())?;
+        staging
+            .commit()
+            .map_err(|e| CliError::failure(anyhow!("--out-dir {}: {e:#}", dir.display())))?;
     }
     if solved.stop == StopReason::Cancelled {
         eprintln!("stopped early: the solution so far was written");
@@ -779,6 +800,15 @@ fn bake_summary(plan: &BakePlan, map: &LightMap) -> String {
         map.height,
     )
 }
+
+/// The files `radiosity` writes into its output folder.
+const OUT_DIR_FILES: [&str; 5] = [
+    "render.png",
+    "render.exr",
+    "lightmap.exr",
+    "lightmap_lux.exr",
+    "convergence.csv",
+];
 
 /// Writes the rendering, the atlas and the log into `dir`.
 fn write_outputs(

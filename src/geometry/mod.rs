@@ -47,6 +47,17 @@ pub fn has_area([p, q, r]: [glam::DVec3; 3]) -> bool {
     n.is_finite() && n.length_squared() > 1e-24 * scale * scale
 }
 
+/// The unit vector along `v`, or `None` when `v` has no direction (zero, or a component
+/// that is not finite). Scaled by its largest component first, so vectors whose length
+/// overflows (`[1e200, 3e199, 0]`) or underflows still give their direction.
+pub fn unit(v: DVec3) -> Option<DVec3> {
+    let scale = v.abs().max_element();
+    if !(scale.is_finite() && scale > 0.0) {
+        return None;
+    }
+    Some((v / scale).normalize())
+}
+
 /// A triangle mesh: positions and counter-clockwise triangles (outward normals).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Mesh {
@@ -108,5 +119,26 @@ impl Mesh {
             )));
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn unit_gives_the_direction_of_huge_and_tiny_vectors() {
+        let small = unit(DVec3::new(1.0, 0.3, 0.0)).unwrap();
+        for v in [
+            DVec3::new(1e200, 3e199, 0.0),
+            DVec3::new(1e-300, 3e-301, 0.0),
+        ] {
+            let u = unit(v).unwrap();
+            assert!((u - small).length() < 1e-12, "{v} → {u}");
+        }
+        assert!((small.length() - 1.0).abs() < 1e-12);
+        assert_eq!(unit(DVec3::ZERO), None);
+        assert_eq!(unit(DVec3::new(f64::NAN, 0.0, 1.0)), None);
+        assert_eq!(unit(DVec3::new(f64::INFINITY, 0.0, 1.0)), None);
     }
 }

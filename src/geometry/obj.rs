@@ -384,6 +384,26 @@ pub fn to_obj_string(mesh: &Mesh, comment: &str) -> String {
     out
 }
 
+/// The `mtllib` files an OBJ names (looked up beside it), from its first megabyte where
+/// exporters write them; an unreadable file names none.
+pub fn material_libraries(obj: &std::path::Path) -> Vec<std::path::PathBuf> {
+    use std::io::{BufRead, Read};
+    let Ok(file) = std::fs::File::open(obj) else {
+        return Vec::new();
+    };
+    let dir = obj.parent().unwrap_or(std::path::Path::new(""));
+    std::io::BufReader::new(file.take(1 << 20))
+        .split(b'\n')
+        .map_while(Result::ok)
+        .filter_map(|line| {
+            let line = String::from_utf8_lossy(&line).trim().to_string();
+            line.strip_prefix("mtllib")
+                .filter(|rest| rest.starts_with(char::is_whitespace))
+                .map(|rest| dir.join(rest.trim()))
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -2,6 +2,9 @@
 //! the scene bundled in the binary.
 
 pub mod bundled;
+pub mod exact;
+pub mod limits;
+pub mod outputs;
 
 use std::io::Write;
 use std::path::Path;
@@ -14,6 +17,20 @@ pub fn xml_escape(s: &str) -> String {
         .replace('<', "&lt;")
         .replace('>', "&gt;")
         .replace('"', "&quot;")
+}
+
+/// Text safe to print on a terminal: control characters (newlines, BEL, the ESC of
+/// colour codes) shown escaped as `\n`, `\u{7}`, `\u{1b}` instead of acting.
+pub fn printable(s: &str) -> String {
+    s.chars()
+        .map(|c| {
+            if c.is_control() {
+                c.escape_default().to_string()
+            } else {
+                c.to_string()
+            }
+        })
+        .collect()
 }
 
 /// Words of `s` in lines of at most `width` characters (a longer word stands alone).
@@ -35,30 +52,26 @@ pub fn wrap_words(s: &str, width: usize) -> Vec<String> {
 
 /// Writes `bytes` to `path` through a temporary file in the same folder and a rename, so a
 /// failure never leaves a half-written output behind.
+///
+/// A path that exists and is not a regular file (a FIFO, a device, a folder) is refused:
+/// the rename would replace the node itself (as root, `/dev/null`).
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
-    let dir = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    };
-    let name = path
-        .file_name()
+    let mut check = outputs::OutputCheck::new();
+    check.output(path);
+    check.check()?;
+    let tmp = outputs::temporary_beside(path, "tmp")
         .with_context(|| format!("{}: not a file path", path.display()))?;
-    let tmp = dir.join(format!(
-        ".{}.tmp{}",
-        name.to_string_lossy(),
-        std::process::id()
-    ));
     let result = (|| -> std::io::Result<()> {
         let mut f = std::fs::File::create(&tmp)?;
         f.write_all(bytes)?;
         f.sync_all()?;
         std::fs::rename(&tmp, path)
     })();
-    if let Err(e) = result {
+    if result.is_err() {
         let _ = std::fs::remove_file(&tmp);
-        return Err(e).with_context(|| format!("writing {}", path.display()));
     }
-    Ok(())
+    outputs::finished(&tmp);
+    result.with_context(|| format!("writing {}", path.display()))
 }
 
 /// The folder holding the bundled data (`assets/`, `luminaires/`): `$GONIOLIGHT_DATA_DIR`

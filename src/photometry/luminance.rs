@@ -21,6 +21,10 @@ use super::error::PhotometryError;
 use super::grid::Interp;
 use super::Luminaire;
 
+/// The smallest luminous area accepted where luminance is computed, m² (1 mm²: smaller
+/// than the smallest LED package; below it the dimensions are certainly wrong).
+pub const MIN_LUMINOUS_AREA_M2: f64 = 1e-6;
+
 /// The luminous area's faces, m².
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LuminousArea {
@@ -60,7 +64,28 @@ impl LuminousArea {
     /// The luminous area of `lum`, refused when the file gives none (`why` says what
     /// needs it).
     pub fn required(lum: &Luminaire, why: &str) -> Result<LuminousArea, PhotometryError> {
+        let d = &lum.data.dimensions;
+        let fields = [
+            (16, "luminous area length/diameter", d.area_length),
+            (17, "luminous area width", d.area_width),
+            (18, "luminous area height C0", d.area_heights[0]),
+            (19, "luminous area height C90", d.area_heights[1]),
+            (20, "luminous area height C180", d.area_heights[2]),
+            (21, "luminous area height C270", d.area_heights[3]),
+        ];
+        if let Some((line, what, v)) = fields.iter().find(|(_, _, v)| *v < 0.0) {
+            return Err(PhotometryError::Invalid(format!(
+                "EULUMDAT line {line} ({what}): {v} mm is negative; a luminous dimension is a size ≥ 0: {why}"
+            )));
+        }
         let area = LuminousArea::of(lum);
+        let total = area.bottom_m2 + area.sides_m2.iter().sum::<f64>();
+        if total > 0.0 && total < MIN_LUMINOUS_AREA_M2 {
+            return Err(PhotometryError::Invalid(format!(
+                "EULUMDAT lines 16–21: a luminous area of {total:.3e} m², smaller than the {} mm² of the smallest LED; the dimensions are in millimetres: {why}",
+                MIN_LUMINOUS_AREA_M2 * 1e6
+            )));
+        }
         if area.bottom_m2 <= 0.0 && area.sides_m2.iter().all(|s| *s <= 0.0) {
             return Err(PhotometryError::Invalid(format!(
                 "the file gives no luminous area (EULUMDAT lines 16–21, IES width/length/height): {why}"

@@ -8,7 +8,7 @@ use glam::DVec3;
 use super::clusters::PlanarClusters;
 use super::elements::{
     ElementError, Elements, InputTriangle, NeverSplit, SplitTest, Subdivision, MAX_ATLAS,
-    MAX_SUBDIVISION,
+    MAX_SENT_BACK, MAX_SUBDIVISION,
 };
 use super::shadow_edges::LuminaireShadowEdges;
 use super::specular::SpecularSurfaces;
@@ -108,6 +108,7 @@ impl RadiosityScene {
         if subdivision.levels > MAX_SUBDIVISION {
             return Err(ElementError::Subdivision(subdivision.levels));
         }
+        check_absorbing(scene)?;
         // Translucent surfaces get back faces of their own (appended after the scene's).
         let twinned = super::transmission::with_back_faces(scene);
         let scene = &*twinned;
@@ -429,4 +430,26 @@ impl RadiosityScene {
 /// Rec. 709 luminance of an RGB value.
 pub fn luminance(c: DVec3) -> f64 {
     c.dot(crate::scene::placement::LUMINANCE_WEIGHTS)
+}
+
+/// An error naming the first material used by a triangle that absorbs nothing
+/// (reflectance plus transmittance above [`MAX_SENT_BACK`] in some channel).
+fn check_absorbing(scene: &Scene) -> Result<(), ElementError> {
+    for m in scene.meshes.iter().filter(|m| !m.indices.is_empty()) {
+        let Some(mat) = scene.materials.get(m.material) else {
+            continue;
+        };
+        let sum = (mat.diffuse_reflectance()
+            + mat.diffuse_transmittance
+            + mat.specular_reflectance
+            + mat.specular_transmittance)
+            .max_element();
+        if sum > MAX_SENT_BACK {
+            return Err(ElementError::Lossless {
+                name: mat.name.clone(),
+                sum,
+            });
+        }
+    }
+    Ok(())
 }

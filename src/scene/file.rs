@@ -160,10 +160,18 @@ pub struct ModelEntry {
     #[serde(default)]
     pub up: UpAxis,
     /// Translation in metres (applied last).
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "crate::io::exact::option"
+    )]
     pub translation: Option<[f64; 3]>,
     /// Rotation about world X, then Y, then Z, degrees.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "crate::io::exact::option"
+    )]
     pub rotation_deg: Option<[f64; 3]>,
     /// Scale (applied first).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -193,24 +201,41 @@ pub struct LuminaireEntry {
     /// `.ldt` or `.ies` file, relative to the scene file.
     pub file: String,
     /// Photometric centre in metres.
+    #[serde(deserialize_with = "crate::io::exact::array")]
     pub position: [f64; 3],
     /// Direction of γ = 0.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "crate::io::exact::option"
+    )]
     pub aim: Option<[f64; 3]>,
     /// A point γ = 0 points at (instead of `aim`).
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "crate::io::exact::option"
+    )]
     pub aim_at: Option<[f64; 3]>,
     /// Rotation about the aim direction, degrees.
     #[serde(default)]
     pub roll: f64,
     /// Rotation about world X, then Y, then Z (degrees), after aiming.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "crate::io::exact::option"
+    )]
     pub rotation_deg: Option<[f64; 3]>,
     /// Dimming factor on the declared flux.
     #[serde(default = "one")]
     pub multiplier: f64,
     /// Light colour (linear RGB), normalised to luminance 1 so lux stay photometric.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "crate::io::exact::option"
+    )]
     pub color: Option<[f64; 3]>,
     /// A display name (defaults to the file name).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -228,7 +253,11 @@ pub struct LuminaireEntry {
     /// Effect lights: one colour per equal C sector, in the luminaire's own frame (the
     /// first from C0 counter-clockwise toward C90), each normalised to luminance 1; they
     /// turn with the luminaire. Replaces `color`.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "crate::io::exact::option_vec"
+    )]
     pub sector_colors: Option<Vec<[f64; 3]>>,
 }
 
@@ -259,11 +288,17 @@ fn interp_name<S: serde::Serializer>(
 #[serde(deny_unknown_fields)]
 pub struct CameraEntry {
     /// Eye position, metres.
+    #[serde(deserialize_with = "crate::io::exact::array")]
     pub position: [f64; 3],
     /// The point looked at.
+    #[serde(deserialize_with = "crate::io::exact::array")]
     pub look_at: [f64; 3],
     /// Up direction (default +Z).
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "crate::io::exact::option"
+    )]
     pub up: Option<[f64; 3]>,
     /// Vertical field of view of a perspective camera, degrees.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -335,7 +370,11 @@ pub struct DisplayEntry {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub steps: Option<u32>,
     /// Colour of pixels that show no surface (linear RGB in cd/m²).
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "crate::io::exact::option"
+    )]
     pub background: Option<[f64; 3]>,
     /// Shadows: "none", "paraboloid" (default) or "volumes".
     #[serde(skip_serializing_if = "Option::is_none")]

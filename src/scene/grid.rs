@@ -58,13 +58,25 @@ pub struct GridEntry {
     /// The grid's name (also its CSV file's name).
     pub name: String,
     /// Plan position of one corner of a rectangle, metres.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "crate::io::exact::option"
+    )]
     pub corner: Option<[f64; 2]>,
     /// The rectangle's size along x and y (vertical grids: along the wall and up), metres.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "crate::io::exact::option"
+    )]
     pub size: Option<[f64; 2]>,
     /// A polygon outline in plan instead of a rectangle (horizontal kinds), metres.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "crate::io::exact::option_vec"
+    )]
     pub outline: Option<Vec<[f64; 2]>>,
     /// Height above z = 0 (vertical grids: of the bottom edge), metres.
     #[serde(default = "default_height")]
@@ -79,7 +91,11 @@ pub struct GridEntry {
     #[serde(default)]
     pub kind: GridKind,
     /// Vertical: the direction the wall faces; semi-cylindrical: the facing direction.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "crate::io::exact::option"
+    )]
     pub normal: Option<[f64; 3]>,
 }
 
@@ -173,15 +189,15 @@ impl GridEntry {
                 )
             }
             (GridKind::Vertical | GridKind::Semicylindrical, Some(n)) => {
-                let v = DVec3::from_array(n);
-                let flat = DVec3::new(v.x, v.y, 0.0);
-                if !v.is_finite() || flat.length() < 1e-9 || v.z.abs() > 1e-9 * v.length() {
-                    return bad(
-                        "normal",
-                        format!("{n:?}: give a horizontal direction [x, y, 0]"),
-                    );
+                match crate::geometry::unit(DVec3::from_array(n)) {
+                    Some(v) if v.z.abs() <= 1e-9 => Some(DVec3::new(v.x, v.y, 0.0).normalize()),
+                    _ => {
+                        return bad(
+                            "normal",
+                            format!("{n:?}: give a horizontal direction [x, y, 0]"),
+                        )
+                    }
                 }
-                Some(flat.normalize())
             }
             (_, Some(_)) => {
                 return bad(
@@ -206,7 +222,10 @@ impl GridEntry {
                 o.clone()
             }
             (None, Some(c), Some(s)) => {
-                if !(c.iter().chain(&s).all(|v| v.is_finite()) && s[0] > 0.0 && s[1] > 0.0) {
+                if !c.iter().all(|v| v.is_finite()) {
+                    return bad("corner", format!("{c:?}: give two finite coordinates"));
+                }
+                if !(s.iter().all(|v| v.is_finite()) && s[0] > 0.0 && s[1] > 0.0) {
                     return bad("size", format!("{s:?}: give two positive lengths"));
                 }
                 vec![

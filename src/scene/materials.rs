@@ -32,6 +32,15 @@ pub fn apply(
 ) -> Result<(), (String, String)> {
     for (i, entry) in entries.iter().enumerate() {
         let key = format!("material[{i}]");
+        if let Some(first) = entries[..i].iter().position(|e| e.name == entry.name) {
+            return Err((
+                format!("{key}.name"),
+                format!(
+                    "{:?} is already overridden by material[{first}]; give each material one [[material]] table",
+                    entry.name
+                ),
+            ));
+        }
         let colour = |value: Option<Rgb>, field: &str| {
             value
                 .map(|v| checked(v, &format!("{key}.{field}")))

@@ -147,6 +147,24 @@ fn resolve_observers(
 pub const MAX_LUMINAIRES: usize = 10_000;
 
 impl Scene {
+    /// The files the scene was read from: the scene file, its models (with the MTL files
+    /// beside them that they name) and its luminaires — what no output may replace.
+    pub fn input_files(&self) -> Vec<PathBuf> {
+        let mut files = Vec::new();
+        if !self.path.as_os_str().is_empty() {
+            files.push(self.path.clone());
+        }
+        for m in &self.models {
+            let obj = PathBuf::from(&m.path);
+            files.extend(crate::geometry::obj::material_libraries(&obj));
+            files.push(obj);
+        }
+        files.extend(self.luminaires.iter().map(|l| l.file.clone()));
+        files.sort();
+        files.dedup();
+        files
+    }
+
     /// Reads a scene file and everything it refers to.
     pub fn load(path: &Path) -> Result<Scene, SceneError> {
         let bytes = crate::io::read_limited(path, crate::io::MAX_MODEL_BYTES)

@@ -67,6 +67,10 @@ impl Default for Material {
     }
 }
 
+/// The largest luminous exitance a material may emit (`Ke`), lm/m²: about twice the
+/// sun's surface (π × 1.6·10⁹ cd/m²); larger values are mistakes whose solution overflows.
+pub const MAX_EXITANCE_LM_M2: f64 = 1e10;
+
 impl Material {
     /// Sets the diffuse texture and the alpha mask of its holes.
     pub fn set_diffuse_map(&mut self, img: Option<Arc<image::RgbaImage>>) {
@@ -554,6 +558,11 @@ impl TextureCache {
         }
         if diffuse.max_element() > 1.0 {
             return Err(format!("Kd {diffuse} is a reflectance and cannot exceed 1"));
+        }
+        if f64::from(emission.max_element()) > MAX_EXITANCE_LM_M2 {
+            return Err(format!(
+                "Ke {emission} lm/m² is brighter than the sun's surface (at most {MAX_EXITANCE_LM_M2:e})"
+            ));
         }
         let shininess = m.shininess.unwrap_or(1.0).max(0.0) as f32;
         let mut diffuse_map = m

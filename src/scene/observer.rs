@@ -22,8 +22,10 @@ pub struct ObserverEntry {
     /// The observer's name in reports.
     pub name: String,
     /// The eye, metres.
+    #[serde(deserialize_with = "crate::io::exact::array")]
     pub position: [f64; 3],
     /// The line of sight (any length; not vertical).
+    #[serde(deserialize_with = "crate::io::exact::array")]
     pub direction: [f64; 3],
 }
 
@@ -59,14 +61,13 @@ impl ObserverEntry {
         }
         let eye = finite_vec(path, &key("position"), self.position)?;
         let d = finite_vec(path, &key("direction"), self.direction)?;
-        if d.length() <= 1e-9 {
+        let Some(forward) = crate::geometry::unit(d) else {
             return Err(SceneError::new(
                 path,
                 key("direction"),
                 "the line of sight has no length",
             ));
-        }
-        let forward = d.normalize();
+        };
         let tilt = forward.z.asin().to_degrees();
         if tilt.abs() > MAX_TILT_DEG {
             return Err(SceneError::new(

@@ -300,8 +300,10 @@ pub struct WindowPoint {
     pub name: String,
     /// Position, metres, in the model's plan coordinates (x, y as the file gives them for
     /// a Z-up file) and height.
+    #[serde(deserialize_with = "crate::io::exact::array")]
     pub position: [f64; 3],
     /// The window's outward normal.
+    #[serde(deserialize_with = "crate::io::exact::array")]
     pub normal: [f64; 3],
 }
 
@@ -317,8 +319,7 @@ struct PointsFile {
 pub fn parse_points(text: &str) -> Result<Vec<WindowPoint>, String> {
     let file: PointsFile = toml::from_str(text).map_err(|e| e.to_string())?;
     for (k, p) in file.point.iter().enumerate() {
-        let n = DVec3::from_array(p.normal);
-        if !(n.is_finite() && n.length() > 1e-9) {
+        if crate::geometry::unit(DVec3::from_array(p.normal)).is_none() {
             return Err(format!(
                 "point[{k}].normal: {:?} is not a direction",
                 p.normal

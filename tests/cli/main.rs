@@ -20,6 +20,7 @@ mod faults;
 mod fuzz_crashes;
 mod luminance;
 mod malformed;
+mod outputs_and_limits;
 mod profile;
 mod radiosity_cli;
 mod scene;

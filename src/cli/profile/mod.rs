@@ -19,6 +19,8 @@ use surfaces::Surfaces;
 
 use super::CliError;
 use crate::gpu::Gpu;
+use crate::io::limits::{bytes, MAX_OUTPUT_BYTES};
+use crate::io::outputs::{OutputCheck, Staging};
 use crate::scene::Camera;
 use crate::scene::UpAxis;
 use crate::shadow::SilhouetteMethod;
@@ -150,6 +152,10 @@ pub struct ProfileArgs {
     /// The output folder (one sub-folder per date when there are several).
     #[arg(long)]
     pub out: PathBuf,
+    /// The most the study may write, GB (estimated from the resolution, dates and steps
+    /// before the work; refused above it).
+    #[arg(long, value_name = "GB", default_value_t = MAX_OUTPUT_BYTES as f64 / f64::from(1u32 << 30))]
+    pub output_limit: f64,
 }
 
 /// The camera of `--model-view`: the user's eye and target (the model file's plan
@@ -278,7 +284,10 @@ impl ProfileArgs {
             let mut d = first;
             while d <= last {
                 v.push(d);
-                d += chrono::Duration::days(self.day_step as i64);
+                match d.checked_add_days(chrono::Days::new(u64::from(self.day_step))) {
+                    Some(next) => d = next,
+                    None => break,
+                }
             }
             v
         } else {
@@ -296,6 +305,49 @@ impl ProfileArgs {
         }
         Ok(dates)
     }
+}
+
+impl ProfileArgs {
+    /// The files the study reads: the model (and its MTL files), the points and areas.
+    fn input_files(&self) -> Vec<PathBuf> {
+        let mut files = crate::geometry::obj::material_libraries(&self.model);
+        files.push(self.model.clone());
+        files.extend(self.points.iter().cloned());
+        files.extend(self.areas.iter().cloned());
+        files
+    }
+}
+
+/// Bytes per plan pixel over the files a date writes: measured 31 at 1024 px on a box
+/// (hours.csv 23, hours.asc 7, the PNGs and hours.exr the rest), rounded up.
+const BYTES_PER_PIXEL: u64 = 32;
+/// Bytes per pixel of one step image (--step-images, --gif).
+const BYTES_PER_STEP_PIXEL: u64 = 2;
+
+/// An error when the study's files would exceed [`MAX_OUTPUT_BYTES`] (estimated from the
+/// resolution, the dates and the steps before any is written).
+fn check_budget(a: &ProfileArgs, dates: usize, steps: usize) -> Result<(), CliError> {
+    let (dates, steps) = (dates as u64, steps as u64);
+    let pixels = u64::from(a.resolution).pow(2);
+    let per_step = u64::from(a.step_images) + u64::from(a.gif.is_some());
+    let estimate =
+        dates * pixels * BYTES_PER_PIXEL + steps * per_step * pixels * BYTES_PER_STEP_PIXEL;
+    let limit = a.output_limit * f64::from(1u32 << 30);
+    if !(a.output_limit.is_finite() && a.output_limit > 0.0) {
+        return Err(CliError::input(anyhow!(
+            "--output-limit {} must be a positive number of GB",
+            a.output_limit
+        )));
+    }
+    if estimate as f64 > limit {
+        return Err(CliError::input(anyhow!(
+            "--resolution {} over {dates} date(s) and {steps} step(s) would write about {} of files, more than --output-limit {} GB: lower --resolution, give fewer dates, or raise --output-limit",
+            a.resolution,
+            bytes(estimate),
+            a.output_limit
+        )));
+    }
+    Ok(())
 }
 
 /// A model's plan coordinates named for titles: "48.21° N, 16.37° E".
@@ -348,6 +400,22 @@ pub fn run(a: ProfileArgs) -> Result<(), CliError> {
             a.facade_cell
         )));
     }
+    let inputs = a.input_files();
+    let mut outputs = OutputCheck::new();
+    for f in &inputs {
+        outputs.input(f);
+    }
+    if let Some(gif) = &a.gif {
+        outputs.named_output(&format!("--gif {}", gif.display()), gif);
+        super::calc::check_folder_of(gif, "--gif")?;
+    }
+    outputs.check()?;
+    if a.out.is_file() {
+        return Err(CliError::input(anyhow!(
+            "--out {}: is a file, not a folder",
+            a.out.display()
+        )));
+    }
     let (mut model, non_casters) = load_components(&a.model, a.up, &a.casters)?;
     if let Some(w) = up_axis_warning(&model, a.up) {
         eprintln!("warning: {}: {w}", a.model.display());
@@ -379,6 +447,7 @@ pub fn run(a: ProfileArgs) -> Result<(), CliError> {
         steps += s.local_times()?.len();
         s.suns()?;
     }
+    check_budget(&a, specs.len(), steps)?;
     let camera = model_camera(&a, &model, origin)?;
     if camera.is_some() {
         steps *= 2;
@@ -453,15 +522,26 @@ pub fn run(a: ProfileArgs) -> Result<(), CliError> {
         profiles.push((spec, profile, seconds, view));
     }
     bar.finish_and_clear();
+    let mut staging = Staging::beside(&a.out, &inputs)
+        .map_err(|e| CliError::input(anyhow!("--out {}: {e}", a.out.display())))?;
     let surfaces = Surfaces::new(&a, &model, origin, points, non_casters);
     let several = profiles.len() > 1;
     let mut summaries = Vec::new();
     for (spec, profile, seconds, view) in &profiles {
         report(&a, profile, *seconds);
         let dir = if several {
-            a.out.join(spec.date.to_string())
+            staging.dir().join(spec.date.to_string())
         } else {
-            a.out.clone()
+            staging.dir().to_path_buf()
+        };
+        let gif = match &a.gif {
+            Some(g) if several => Some(dir.join(g.file_name().unwrap_or(g.as_os_str()))),
+            Some(g) => Some(
+                staging
+                    .outside(g)
+                    .map_err(|e| CliError::failure(anyhow!("--gif {}: {e}", g.display())))?,
+            ),
+            None => None,
         };
         let output = StudyOutput {
             metric: a.metric,
@@ -480,13 +560,7 @@ pub fn run(a: ProfileArgs) -> Result<(), CliError> {
             },
             step_images: a.step_images,
             surfaces: surfaces.for_profile(profile, a.north_offset),
-            gif: a.gif.as_ref().map(|g| {
-                if several {
-                    dir.join(g.file_name().unwrap_or(g.as_os_str()))
-                } else {
-                    g.clone()
-                }
-            }),
+            gif,
         };
         let summary = write_study(profile, &dir, &output).map_err(CliError::failure)?;
         write_sun_path(spec, profile, &dir, &output.labels, surfaces.masks())?;
@@ -512,8 +586,17 @@ pub fn run(a: ProfileArgs) -> Result<(), CliError> {
         summaries.push((spec.date, summary));
     }
     if several {
-        write_dates_table(&a.out, &summaries).map_err(CliError::failure)?;
+        write_dates_table(staging.dir(), &summaries).map_err(CliError::failure)?;
     }
+    // Complete or none: a Ctrl-C while writing leaves nothing.
+    if cancel.load(std::sync::atomic::Ordering::SeqCst) {
+        return Err(CliError::failure(anyhow!(
+            "interrupted while writing the outputs: nothing written"
+        )));
+    }
+    staging
+        .commit()
+        .map_err(|e| CliError::failure(anyhow!("--out {}: {e:#}", a.out.display())))?;
     for (date, s) in &summaries {
         if let Some(f) = s.pass_fraction {
             println!(

@@ -137,6 +137,7 @@ fn point_frame(p: &WindowPoint, origin: DVec2) -> (glam::DVec3, glam::DVec3) {
     let [x, y, z] = p.position;
     (
         glam::DVec3::new(x - origin.x, y - origin.y, z),
-        glam::DVec3::from_array(p.normal).normalize(),
+        crate::geometry::unit(glam::DVec3::from_array(p.normal))
+            .expect("parse_points refused normals without a direction"),
     )
 }

@@ -147,6 +147,17 @@ pub enum ElementError {
         texel_count(*.0)
     )]
     TooLarge(u64),
+    /// A surface that gives back all the light it receives: no finite solution in a closed
+    /// room, and none that converges.
+    #[error(
+        "material {name:?} reflects and transmits {sum:.4} of the light it receives (at most {MAX_SENT_BACK}): a surface that absorbs nothing has no finite radiosity solution in a closed room; lower its reflectance (Kd, diffuse_reflectance) or transmittance"
+    )]
+    Lossless {
+        /// The material's name.
+        name: String,
+        /// Reflectance plus transmittance, its largest channel.
+        sum: f32,
+    },
     /// No triangle with an area.
     #[error("the scene has no triangle with an area")]
     Empty,
@@ -162,6 +173,10 @@ pub enum ElementError {
         triangles: usize,
     },
 }
+
+/// The most a surface may send back out of the light it receives (reflectance plus
+/// transmittance, any channel): the whitest real surfaces reach about 0.99.
+pub const MAX_SENT_BACK: f32 = 0.999;
 
 /// A texel count as people read it: digits up to a trillion, then "about 1.4e19".
 fn texel_count(n: u64) -> String {
