@@ -100,12 +100,25 @@ fn parse_shard(s: &str) -> Result<[usize; 2], CliError> {
     Ok([k, n])
 }
 
-/// Reads and checks the jobs file.
+/// Reads and checks the jobs file (at most [`crate::io::MAX_MODEL_BYTES`], no device).
 fn read_jobs(path: &Path) -> Result<Vec<Job>, CliError> {
-    let text = std::fs::read_to_string(path)
+    let bytes = crate::io::read_limited(path, crate::io::MAX_MODEL_BYTES)
         .map_err(|e| CliError::input(anyhow!("{}: {e}", path.display())))?;
+    let text = String::from_utf8(bytes)
+        .map_err(|e| CliError::input(anyhow!("{}: not UTF-8 text: {e}", path.display())))?;
+    parse_jobs(path, &text)
+}
+
+/// The number of jobs in a jobs file's text, or the error `batch` gives for it (`path`
+/// names it in messages): for fuzzing and editors.
+pub fn count_jobs(path: &Path, text: &str) -> Result<usize, CliError> {
+    parse_jobs(path, text).map(|jobs| jobs.len())
+}
+
+/// Parses and checks a jobs file's text.
+fn parse_jobs(path: &Path, text: &str) -> Result<Vec<Job>, CliError> {
     let file: JobsFile =
-        toml::from_str(&text).map_err(|e| CliError::input(anyhow!("{}: {e}", path.display())))?;
+        toml::from_str(text).map_err(|e| CliError::input(anyhow!("{}: {e}", path.display())))?;
     if file.job.is_empty() {
         return Err(CliError::input(anyhow!(
             "{}: no [[job]] tables (each needs args = [\"command\", …])",

@@ -21,6 +21,7 @@ mod view;
 
 use clap::{Parser, Subcommand};
 
+pub use batch::count_jobs;
 pub use error::CliError;
 
 /// goniolight — real luminaires in real-time rendering, radiosity and shadow studies.

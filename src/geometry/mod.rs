@@ -52,7 +52,7 @@ pub fn has_area([p, q, r]: [glam::DVec3; 3]) -> bool {
 /// overflows (`[1e200, 3e199, 0]`) or underflows still give their direction.
 pub fn unit(v: DVec3) -> Option<DVec3> {
     let scale = v.abs().max_element();
-    if !(scale.is_finite() && scale > 0.0) {
+    if !(v.is_finite() && scale > 0.0) {
         return None;
     }
     Some((v / scale).normalize())

@@ -432,9 +432,12 @@ pub fn luminance(c: DVec3) -> f64 {
     c.dot(crate::scene::placement::LUMINANCE_WEIGHTS)
 }
 
-/// An error naming the first material used by a triangle that absorbs nothing
-/// (reflectance plus transmittance above [`MAX_SENT_BACK`] in some channel).
+/// An error when no surface of the scene absorbs (reflectance plus transmittance above
+/// [`MAX_SENT_BACK`] in some channel on every triangle): in a closed room its light
+/// never ends, and the solver would shoot forever. One lossless surface among absorbing
+/// ones (an ideal mirror or pane) converges and is accepted.
 fn check_absorbing(scene: &Scene) -> Result<(), ElementError> {
+    let mut lossless = None;
     for m in scene.meshes.iter().filter(|m| !m.indices.is_empty()) {
         let Some(mat) = scene.materials.get(m.material) else {
             continue;
@@ -444,12 +447,13 @@ fn check_absorbing(scene: &Scene) -> Result<(), ElementError> {
             + mat.specular_reflectance
             + mat.specular_transmittance)
             .max_element();
-        if sum > MAX_SENT_BACK {
-            return Err(ElementError::Lossless {
-                name: mat.name.clone(),
-                sum,
-            });
+        if sum <= MAX_SENT_BACK {
+            return Ok(());
         }
+        lossless.get_or_insert((mat.name.clone(), sum));
     }
-    Ok(())
+    match lossless {
+        Some((name, sum)) => Err(ElementError::Lossless { name, sum }),
+        None => Ok(()),
+    }
 }

@@ -285,7 +285,10 @@ fn profile_gif_never_replaces_the_model_or_the_study() {
     );
     assert_ne!(code, 0, "{err}");
     assert!(err.contains("another output"), "{err}");
-    assert!(common::files_in(&dir.join("po")).is_empty(), "nothing written");
+    assert!(
+        common::files_in(&dir.join("po")).is_empty(),
+        "nothing written"
+    );
     no_temporaries(&dir);
 }
 
@@ -368,7 +371,7 @@ fn a_room_that_absorbs_nothing_is_refused_naming_the_material() {
             "--indirect",
             "radiosity",
         ],
-        &["scene.toml", "material", "absorbs nothing"],
+        &["scene.toml", "material", "no surface absorbs"],
     );
     assert!(!dir.join("out").exists());
 }

@@ -384,3 +384,104 @@ fn fuzz_angle_lists() {
         Ok(())
     });
 }
+
+/// The scene's tables that name outputs and glare: `[[grid]]`, `[[observer]]`,
+/// `[[material]]` (seeds: the bundled calculation scene with each table added). What is
+/// accepted must be computable: grids of finite points within the per-grid cap, observers
+/// with a finite eye and a unit line of sight, materials that send back at most what they
+/// receive, no name twice.
+#[test]
+fn fuzz_scene_tables() {
+    let dir = common::root().join("assets/scenes");
+    let base = std::fs::read_to_string(dir.join("box_room_calc.toml")).unwrap();
+    let tables = [
+        "[[material]]\nname = \"wall\"\ndiffuse_reflectance = [0.5, 0.5, 0.5]\n",
+        "[[material]]\nname = \"floor\"\ndiffuse_reflectance = [0.2, 0.2, 0.2]\ndiffuse_transmittance = [0.1, 0.1, 0.1]\n",
+        "[[observer]]\nname = \"door\"\nposition = [0.5, 0.5, 1.6]\ndirection = [1.0, 0.3, 0.0]\n",
+        "[[grid]]\nname = \"outline\"\noutline = [[0.5, 0.5], [3.0, 0.5], [2.0, 3.0]]\nheight = 0.8\nspacing = 0.25\n",
+        "[[grid]]\nname = \"wall\"\nkind = \"vertical\"\ncorner = [0.0, 0.0]\nsize = [3.0, 2.0]\nnormal = [0.0, 1.0, 0.0]\n",
+    ];
+    let mut seeds = vec![base.clone().into_bytes()];
+    seeds.extend(tables.iter().map(|t| format!("{base}\n{t}").into_bytes()));
+    let path = dir.join("fuzzed.toml");
+    fuzz("scene-tables", "toml", &seeds, |bytes| {
+        let text = String::from_utf8_lossy(bytes);
+        let Ok(scene) = Scene::from_toml(&path, &text) else {
+            return Ok(());
+        };
+        let mut names = std::collections::HashSet::new();
+        for g in &scene.grids {
+            if g.points.is_empty()
+                || g.points.len() > goniolight::scene::grid::MAX_POINTS
+                || g.points.iter().any(|p| !p.is_finite())
+            {
+                return Err(format!(
+                    "accepted grid {:?} without usable points",
+                    g.entry.name
+                ));
+            }
+            if !names.insert(g.entry.name.trim().to_lowercase()) {
+                return Err(format!("accepted grid {:?} twice", g.entry.name));
+            }
+        }
+        for o in &scene.observers {
+            if !o.eye.is_finite() || (o.forward.length() - 1.0).abs() > 1e-9 {
+                return Err(format!(
+                    "accepted observer {:?}: eye {}, forward {}",
+                    o.entry.name, o.eye, o.forward
+                ));
+            }
+        }
+        for m in &scene.materials {
+            let sent = m.diffuse_reflectance()
+                + m.diffuse_transmittance
+                + m.specular_reflectance
+                + m.specular_transmittance;
+            if !sent.is_finite() || sent.max_element() > 1.0 + 1e-5 {
+                return Err(format!(
+                    "accepted material {:?} sending back {sent}",
+                    m.name
+                ));
+            }
+        }
+        let mut overridden = std::collections::HashSet::new();
+        for m in &scene.material_overrides {
+            if !overridden.insert(m.name.as_str()) {
+                return Err(format!("accepted [[material]] {:?} twice", m.name));
+            }
+        }
+        Ok(())
+    });
+}
+
+/// `batch`'s jobs files (seeds: the reproducers' and a full one): no panic, and an
+/// accepted file has jobs.
+#[test]
+fn fuzz_jobs_files() {
+    let mut files = Vec::new();
+    files_under(
+        &common::shared_dir().join("fuzz-crashes/outputs-and-limits"),
+        &["toml"],
+        &mut files,
+    );
+    let mut seeds: Vec<Vec<u8>> = read_all(files)
+        .into_iter()
+        .filter(|b| String::from_utf8_lossy(b).contains("[[job]]"))
+        .collect();
+    seeds.push(
+        b"[[job]]\nname = \"a\"\nargs = [\"sun\", \"--lat\", \"48.2\", \"--lon\", \"16.4\", \"--time\", \"2026-03-21T12:00:00+01:00\"]\nstdout = \"out/a.txt\"\n\n[[job]]\nargs = [\"illuminance\", \"s.toml\"]\nstdin = \"p.txt\"\n".to_vec(),
+    );
+    let path = Path::new("jobs.toml");
+    fuzz("jobs", "toml", &seeds, |bytes| {
+        let text = String::from_utf8_lossy(bytes);
+        match goniolight::cli::count_jobs(path, &text) {
+            Ok(0) => Err("accepted a jobs file without jobs".into()),
+            Ok(_) => Ok(()),
+            Err(e) if e.message().contains("jobs.toml") => Ok(()),
+            Err(e) => Err(format!(
+                "an error that does not name the file: {}",
+                e.message()
+            )),
+        }
+    });
+}

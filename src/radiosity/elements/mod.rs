@@ -147,10 +147,10 @@ pub enum ElementError {
         texel_count(*.0)
     )]
     TooLarge(u64),
-    /// A surface that gives back all the light it receives: no finite solution in a closed
-    /// room, and none that converges.
+    /// No surface absorbs: every one gives back all the light it receives, so a closed
+    /// room has no finite solution.
     #[error(
-        "material {name:?} reflects and transmits {sum:.4} of the light it receives (at most {MAX_SENT_BACK}): a surface that absorbs nothing has no finite radiosity solution in a closed room; lower its reflectance (Kd, diffuse_reflectance) or transmittance"
+        "no surface absorbs light: material {name:?} (like every other) reflects and transmits {sum:.4} of the light it receives (at most {MAX_SENT_BACK} absorbs): a room whose surfaces absorb nothing has no finite radiosity solution; lower a reflectance (Kd, diffuse_reflectance) or transmittance"
     )]
     Lossless {
         /// The material's name.
