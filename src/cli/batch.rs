@@ -100,12 +100,10 @@ fn parse_shard(s: &str) -> Result<[usize; 2], CliError> {
     Ok([k, n])
 }
 
-/// Reads and checks the jobs file (at most [`crate::io::MAX_MODEL_BYTES`], no device).
+/// Reads and checks the jobs file (at most [`crate::io::MAX_TEXT_BYTES`], no device).
 fn read_jobs(path: &Path) -> Result<Vec<Job>, CliError> {
-    let bytes = crate::io::read_limited(path, crate::io::MAX_MODEL_BYTES)
+    let text = crate::io::read_text_limited(path, crate::io::MAX_TEXT_BYTES)
         .map_err(|e| CliError::input(anyhow!("{}: {e}", path.display())))?;
-    let text = String::from_utf8(bytes)
-        .map_err(|e| CliError::input(anyhow!("{}: not UTF-8 text: {e}", path.display())))?;
     parse_jobs(path, &text)
 }
 

@@ -82,12 +82,23 @@ pub(crate) fn seconds_arg(s: &str) -> Result<f64, String> {
     Ok(v)
 }
 
-/// The process-wide Ctrl-C flag (the handler, also for SIGTERM and SIGHUP, is installed on
-/// first use). The first signal sets it: long commands finish their current step and
-/// write a complete set or nothing (as each documents), a batch starts no further job; a
-/// second one removes the temporary files of writes in progress and ends the process at
+/// Whether the running command polls [`interrupt_flag`] (it asked for it): then a first
+/// signal lets it finish its step; otherwise a signal ends the process at once.
+static POLLED: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
+/// The process-wide flag set by SIGINT (Ctrl-C), SIGTERM or SIGHUP. A command that calls
+/// this polls it: the first signal sets it, and the command finishes its current step and
+/// writes a complete set or nothing (as each documents), a batch starts no further job. A
+/// second signal, or the first in a command that never asked for the flag, removes the
+/// temporary files and staging folders of the writes in progress and ends the process at
 /// once (exit 130).
 pub fn interrupt_flag() -> std::sync::Arc<std::sync::atomic::AtomicBool> {
+    POLLED.store(true, std::sync::atomic::Ordering::SeqCst);
+    signal_flag()
+}
+
+/// The flag, with the handler installed on first use.
+fn signal_flag() -> std::sync::Arc<std::sync::atomic::AtomicBool> {
     use std::sync::atomic::{AtomicBool, Ordering};
     use std::sync::{Arc, OnceLock};
     static FLAG: OnceLock<Arc<AtomicBool>> = OnceLock::new();
@@ -95,7 +106,7 @@ pub fn interrupt_flag() -> std::sync::Arc<std::sync::atomic::AtomicBool> {
         let flag = Arc::new(AtomicBool::new(false));
         let set = flag.clone();
         let _ = ctrlc::set_handler(move || {
-            if set.swap(true, Ordering::SeqCst) {
+            if !POLLED.load(Ordering::SeqCst) || set.swap(true, Ordering::SeqCst) {
                 // Nothing half-written stays: the temporary files and staging folders go.
                 crate::io::outputs::remove_unfinished();
                 std::process::exit(130);
@@ -109,6 +120,8 @@ pub fn interrupt_flag() -> std::sync::Arc<std::sync::atomic::AtomicBool> {
 
 /// Runs a parsed command line.
 pub fn run(cli: Cli) -> Result<(), CliError> {
+    // Every command ends cleanly on a signal; those that poll the flag ask for it.
+    signal_flag();
     match cli.command {
         Command::Ldt(cmd) => ldt::run(cmd),
         Command::Demo(args) => demo::run(args),

@@ -209,6 +209,12 @@ pub fn render_to_files(
     let mut settings = settings.clone();
     settings.read_hdr = exr.is_some();
     let started = Instant::now();
+    // The HDR image (RGBA32F) is read back whole: refuse a size the device cannot.
+    gpu.check_read_back(
+        settings.width,
+        settings.height,
+        u64::from(settings.width) * u64::from(settings.height) * 16,
+    )?;
     check_scene(gpu, scene, &mut settings.shadows)?;
     warn_what_volumes_miss(scene, &settings.shadows, light_map.is_some());
     check_specular(scene, settings.mode, light_map.is_some())?;

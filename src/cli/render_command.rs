@@ -54,6 +54,15 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
     }
     args.indirect.check()?;
     let scene = scene_at(Scene::load(&args.scene)?, args.image.time)?;
+    let mut outputs = crate::io::outputs::OutputCheck::new();
+    for f in scene.input_files() {
+        outputs.input(f);
+    }
+    outputs.named_output(&format!("--out {}", args.out.display()), &args.out);
+    if let Some(e) = &args.exr {
+        outputs.named_output(&format!("--exr {}", e.display()), e);
+    }
+    outputs.check()?;
     let mut settings = args.image.settings(&scene)?;
     let choice = args.indirect.choice(&scene, DisplayIndirect::None);
     let map = light_map(

@@ -404,6 +404,20 @@ impl Gpu {
         Ok(bytemuck::pod_collect_to_vec(&bytes))
     }
 
+    /// An error when reading back a `width` × `height` image of `bytes` bytes would need a
+    /// buffer larger than the device allows (a [`GpuError::Limit`]: refuse before the work).
+    pub fn check_read_back(&self, width: u32, height: u32, bytes: u64) -> Result<(), GpuError> {
+        let max = self.device.limits().max_buffer_size;
+        if bytes > max {
+            return Err(GpuError::Limit(format!(
+                "reading back a {width}×{height} image takes {} MB, more than the {} MB this device's buffers hold: use a smaller image",
+                bytes >> 20,
+                max >> 20
+            )));
+        }
+        Ok(())
+    }
+
     /// Copies a whole 2D texture (which must allow COPY_SRC) back to the CPU, rows packed,
     /// layer after layer for an array.
     pub fn read_texture(&self, texture: &wgpu::Texture) -> Result<Vec<u8>, GpuError> {
@@ -416,9 +430,11 @@ impl Gpu {
         let row = w * texel;
         let padded =
             row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+        let size = u64::from(padded) * u64::from(h) * u64::from(layers);
+        self.check_read_back(w, h, size)?;
         let buffer = self.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("texture read-back"),
-            size: (padded * h * layers) as u64,
+            size,
             usage: wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });

@@ -145,6 +145,19 @@ pub fn read_limited(path: &Path, limit: u64) -> std::io::Result<Vec<u8>> {
     Ok(bytes)
 }
 
+/// Largest small text input read (a points file, GeoJSON areas, a jobs file).
+pub const MAX_TEXT_BYTES: u64 = 64 << 20;
+
+/// [`read_limited`] as UTF-8 text (invalid UTF-8 is `InvalidData`).
+pub fn read_text_limited(path: &Path, limit: u64) -> std::io::Result<String> {
+    String::from_utf8(read_limited(path, limit)?).map_err(|e| {
+        std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!("not UTF-8 text: {e}"),
+        )
+    })
+}
+
 /// The process's peak resident memory, MB (Linux: `VmHWM` in `/proc/self/status`; `None`
 /// elsewhere or when it cannot be read).
 pub fn peak_memory_mb() -> Option<u64> {

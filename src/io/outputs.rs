@@ -491,4 +491,17 @@ mod tests {
         assert!(!target.join("new.txt").exists());
         assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
     }
+
+    #[test]
+    fn a_forced_exit_removes_the_writes_in_progress() {
+        let dir = tempfile::tempdir().unwrap();
+        let s = Staging::beside(&dir.path().join("out"), &[]).unwrap();
+        std::fs::write(s.dir().join("half.csv"), "1,2").unwrap();
+        let tmp = temporary_beside(&dir.path().join("x.png"), "tmp").unwrap();
+        std::fs::write(&tmp, "partial").unwrap();
+        remove_unfinished();
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+        finished(&tmp);
+        drop(s);
+    }
 }

@@ -34,6 +34,11 @@ pub struct Targets {
     pub ldr_view: wgpu::TextureView,
 }
 
+/// Bytes a supersampled pixel takes: depth-stencil and RGBA32F colour.
+const SUPERSAMPLED_BYTES_PER_PIXEL: u64 = 24;
+/// The most the supersampled targets may take, bytes.
+const MAX_SUPERSAMPLED_BYTES: u64 = 1 << 30;
+
 impl Targets {
     /// Creates targets of `width` × `height` without supersampling.
     pub fn new(gpu: &Gpu, width: u32, height: u32) -> Targets {
@@ -44,13 +49,18 @@ impl Targets {
     /// odd (an even factor has no centre sample), and 1 when the render size would pass
     /// the device's largest texture.
     pub fn supersample_for(gpu: &Gpu, width: u32, height: u32, wanted: u32) -> u32 {
-        let s = wanted.max(1) | 1;
+        let mut s = wanted.max(1) | 1;
         let max = gpu.device.limits().max_texture_dimension_2d;
-        if width.max(height).saturating_mul(s) <= max {
-            s
-        } else {
-            1
+        if width.max(height).saturating_mul(s) > max {
+            return 1;
         }
+        // The supersampled depth and colour targets stay within a memory budget (a
+        // software device runs out long before its largest texture).
+        let pixels = |s: u32| u64::from(width * s) * u64::from(height * s);
+        while s > 1 && pixels(s) * SUPERSAMPLED_BYTES_PER_PIXEL > MAX_SUPERSAMPLED_BYTES {
+            s -= 2;
+        }
+        s
     }
 
     /// Creates targets of `width` × `height` drawn with `supersample` × `supersample`

@@ -99,8 +99,8 @@ fn ring_contains(ring: &[DVec2], p: DVec2) -> bool {
 /// Reads analysis areas from a GeoJSON FeatureCollection (or one Feature) of Polygon and
 /// MultiPolygon geometries in the model file's plan coordinates, metres.
 pub fn read_areas(path: &Path) -> anyhow::Result<Vec<AnalysisArea>> {
-    let text =
-        std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
+    let text = crate::io::read_text_limited(path, crate::io::MAX_TEXT_BYTES)
+        .with_context(|| format!("reading {}", path.display()))?;
     parse_areas(&text).with_context(|| format!("{}", path.display()))
 }
 

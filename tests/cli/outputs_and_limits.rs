@@ -468,6 +468,38 @@ fn ctrl_c_in_calc_leaves_a_complete_set_or_nothing() {
 }
 
 #[test]
+fn ctrl_c_in_a_command_that_does_not_poll_ends_it_at_once_and_cleanly() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = common::root().join("assets/scenes/box_room.toml");
+    let scene = scene.to_str().unwrap();
+    let (code, err) = interrupted(
+        dir.path(),
+        &[
+            "render", scene, "--out", "r.png", "--exr", "r.exr", "--width", "4096", "--height",
+            "4096",
+        ],
+        &[Duration::from_millis(1500)],
+    );
+    assert!(!err.contains("panicked"), "{err}");
+    no_temporaries(dir.path());
+    match code {
+        0 => assert!(dir.path().join("r.png").is_file() && dir.path().join("r.exr").is_file()),
+        130 => {}
+        _ => panic!("exit {code}: {err}"),
+    }
+    // An image the device cannot read back is refused before the work (it panicked in
+    // wgpu: a 1 GB read-back buffer against lavapipe's 256 MB).
+    let err = refused(
+        dir.path(),
+        &[
+            "render", scene, "--out", "r8.png", "--width", "8192", "--height", "8192",
+        ],
+        &["8192×8192", "use a smaller image"],
+    );
+    assert!(!dir.path().join("r8.png").exists(), "{err}");
+}
+
+#[test]
 fn ctrl_c_in_profile_writes_nothing_at_any_moment() {
     let (_t, dir) = copy_of("HALF-WRITTEN-04");
     let args = [

@@ -354,11 +354,10 @@ fn check_output(input: &Path, out: &Path, exts: &[&str]) -> Result<(), CliError>
             exts.join(" or .")
         )));
     }
-    let same = match (input.canonicalize(), out.canonicalize()) {
-        (Ok(a), Ok(b)) => a == b,
-        _ => false,
-    };
-    if same {
+    let mut check = crate::io::outputs::OutputCheck::new();
+    check.named_output(&format!("--out {}", out.display()), out);
+    check.check()?;
+    if crate::io::outputs::same_file(input, out) {
         return Err(CliError::input(anyhow::anyhow!(
             "{}: the output would replace the input file; choose another name with --out or --out-dir",
             out.display()

@@ -388,7 +388,7 @@ pub fn run(a: ProfileArgs) -> Result<(), CliError> {
     }
     let points = match &a.points {
         Some(p) => {
-            let text = std::fs::read_to_string(p)
+            let text = crate::io::read_text_limited(p, crate::io::MAX_TEXT_BYTES)
                 .map_err(|e| CliError::input(anyhow!("{}: {e}", p.display())))?;
             parse_points(&text).map_err(|e| CliError::input(anyhow!("{}: {e}", p.display())))?
         }
