@@ -48,7 +48,7 @@ pub fn default_scene() -> Result<PathBuf, CliError> {
 }
 
 /// Renders the scene shaded and in false-colour illuminance.
-fn render_both(args: &DemoArgs) -> Result<(), CliError> {
+fn render_both(args: &DemoArgs, dir: &std::path::Path) -> Result<(), CliError> {
     let scene_path = match &args.scene {
         Some(p) => p.clone(),
         None => default_scene()?,
@@ -80,8 +80,8 @@ fn render_both(args: &DemoArgs) -> Result<(), CliError> {
             shown_light: base.shown_light,
             ..opts.settings(&scene)?
         };
-        let png = args.out_dir.join(format!("{stem}.png"));
-        let exr = args.out_dir.join(format!("{stem}.exr"));
+        let png = dir.join(format!("{stem}.png"));
+        let exr = dir.join(format!("{stem}.exr"));
         let light_map = map.as_ref().map(|m| &m.0);
         let (_, report) = render_to_files(
             &gpu,
@@ -92,7 +92,10 @@ fn render_both(args: &DemoArgs) -> Result<(), CliError> {
             &png,
             Some(&exr),
         )?;
-        println!("{report}");
+        println!(
+            "{}",
+            super::radiosity::shown_at(&report, dir, &args.out_dir)
+        );
     }
     Ok(())
 }
@@ -101,9 +104,18 @@ fn render_both(args: &DemoArgs) -> Result<(), CliError> {
 pub fn run(args: DemoArgs) -> Result<(), CliError> {
     args.indirect.check()?;
     let lum = Luminaire::from_bytes("luminaires/eulumdat-analysis/sample_18.ldt", DEMO_LUMINAIRE)?;
-    std::fs::create_dir_all(&args.out_dir)
+    if args.out_dir.is_file() {
+        return Err(CliError::input(anyhow::anyhow!(
+            "--out-dir {}: is a file, not a folder",
+            args.out_dir.display()
+        )));
+    }
+    // Complete or none: written beside the folder, moved in at the end.
+    let inputs: Vec<PathBuf> = args.scene.iter().cloned().collect();
+    let staging = crate::io::outputs::Staging::beside(&args.out_dir, &inputs)
         .map_err(|e| CliError::failure(anyhow::anyhow!("{}: {e}", args.out_dir.display())))?;
-    render_both(&args)?;
+    let dir = staging.dir();
+    render_both(&args, dir)?;
     let s = lum.summary();
     println!(
         "sample_18.ldt: {} C planes × {} γ angles, integrated flux {:.1} lm (declared lamp flux {:.1} lm)",
@@ -116,15 +128,20 @@ pub fn run(args: DemoArgs) -> Result<(), CliError> {
     let report = check::downsample(&lum.distribution, dc, dg)?;
     print_check(&report, false);
     let json = serde_json::to_string_pretty(&report).map_err(CliError::failure)?;
-    let check_path = args.out_dir.join("check.json");
-    write_atomic(&check_path, json.as_bytes()).map_err(CliError::failure)?;
-    let plot_path = args.out_dir.join("polar.png");
+    write_atomic(&dir.join("check.json"), json.as_bytes()).map_err(CliError::failure)?;
     write_plot(
         &lum,
         "sample_18.ldt (lab measurement)",
-        &plot_path,
+        &dir.join("polar.png"),
         Some((dc, dg)),
     )?;
-    println!("wrote {} and {}", plot_path.display(), check_path.display());
+    staging
+        .commit()
+        .map_err(|e| CliError::failure(anyhow::anyhow!("{}: {e:#}", args.out_dir.display())))?;
+    println!(
+        "wrote {} and {}",
+        args.out_dir.join("polar.png").display(),
+        args.out_dir.join("check.json").display()
+    );
     Ok(())
 }

@@ -752,7 +752,13 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
         settings.shown_light = crate::scene::DisplayIndirect::Radiosity;
         let staging = crate::io::outputs::Staging::beside(&dir, &inputs)
             .map_err(|e| CliError::input(anyhow!("--out-dir {}: {e}", dir.display())))?;
-        write_outputs(&prepared.gpu, &scene, &settings, &outputs, staging.dir())?;
+        write_outputs(
+            &prepared.gpu,
+            &scene,
+            &settings,
+            &outputs,
+            (staging.dir(), &dir),
+        )?;
         staging
             .commit()
             .map_err(|e| CliError::failure(anyhow!("--out-dir {}: {e:#}", dir.display())))?;
@@ -810,13 +816,19 @@ const OUT_DIR_FILES: [&str; 5] = [
     "convergence.csv",
 ];
 
-/// Writes the rendering, the atlas and the log into `dir`.
+/// `text` with the staging folder `staged` named as the folder `target` it moves into.
+pub(crate) fn shown_at(text: &str, staged: &Path, target: &Path) -> String {
+    text.replace(&staged.display().to_string(), &target.display().to_string())
+}
+
+/// Writes the rendering, the atlas and the log into `dir` (a staging folder, named in
+/// messages as `shown`).
 fn write_outputs(
     gpu: &Gpu,
     scene: &Scene,
     settings: &crate::render::RenderSettings,
     outputs: &Outputs,
-    dir: &Path,
+    (dir, shown): (&Path, &Path),
 ) -> Result<(), CliError> {
     std::fs::create_dir_all(dir)
         .map_err(|e| CliError::input(anyhow!("--out-dir {}: {e}", dir.display())))?;
@@ -832,7 +844,8 @@ fn write_outputs(
         &png,
         Some(&exr),
     )?;
-    eprintln!("{report}");
+    // The files are named where they will be once moved in.
+    eprintln!("{}", shown_at(&report, dir, shown));
     let map = &outputs.light_map;
     let rgb: Vec<f32> = map.texels.iter().flat_map(|t| [t[0], t[1], t[2]]).collect();
     let lux: Vec<f32> = map.texels.iter().flat_map(|t| [t[3]; 3]).collect();

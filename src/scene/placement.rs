@@ -105,7 +105,7 @@ impl PlacedLuminaire {
             (None, None) => None,
         };
         if let Some((a, k)) = aim {
-            if a.length() < 1e-9 {
+            if crate::geometry::unit(a).is_none() || a.abs().max_element() < 1e-9 {
                 return Err(SceneError::new(
                     scene,
                     format!("{key}.{k}"),
@@ -270,7 +270,8 @@ impl PlacedLuminaire {
 pub fn aim_frame(aim: Option<DVec3>, roll_deg: f64) -> DMat3 {
     let down = match aim {
         None => return DMat3::from_axis_angle(DVec3::NEG_Z, roll_deg.to_radians()),
-        Some(a) => a.normalize(),
+        // Scaled first: an aim of [1e200, 0, -1e200] keeps its direction.
+        Some(a) => crate::geometry::unit(a).unwrap_or(DVec3::NEG_Z),
     };
     let project = |v: DVec3| v - v.dot(down) * down;
     let mut c0 = project(DVec3::X);
@@ -323,5 +324,17 @@ mod tests {
         // the aim direction, which is −local Z).
         let a = aim_frame(Some(DVec3::NEG_Z), 90.0);
         assert!(close(a * DVec3::X, DVec3::NEG_Y));
+    }
+
+    #[test]
+    fn a_huge_aim_keeps_its_direction() {
+        let small = aim_frame(Some(DVec3::new(1.0, 0.0, -1.0)), 10.0);
+        let huge = aim_frame(Some(DVec3::new(1e200, 0.0, -1e200)), 10.0);
+        assert!(huge.is_finite());
+        assert!((huge - small)
+            .abs()
+            .to_cols_array()
+            .iter()
+            .all(|d| *d < 1e-12));
     }
 }
