@@ -102,7 +102,6 @@ fn render_both(args: &DemoArgs, dir: &std::path::Path) -> Result<(), CliError> {
 
 /// Runs the demo.
 pub fn run(args: DemoArgs) -> Result<(), CliError> {
-    args.indirect.check()?;
     let lum = Luminaire::from_bytes("luminaires/eulumdat-analysis/sample_18.ldt", DEMO_LUMINAIRE)?;
     if args.out_dir.is_file() {
         return Err(CliError::input(anyhow::anyhow!(

@@ -30,17 +30,6 @@ pub struct IndirectArgs {
 }
 
 impl IndirectArgs {
-    /// An error naming a bad --indirect-time.
-    pub fn check(&self) -> Result<(), CliError> {
-        if !(self.indirect_time.is_finite() && self.indirect_time > 0.0) {
-            return Err(CliError::input(anyhow!(
-                "--indirect-time {} must be a positive number of seconds",
-                self.indirect_time
-            )));
-        }
-        Ok(())
-    }
-
     /// What to show: the flag, else the scene's `display.indirect`, else `default`.
     pub fn choice(&self, scene: &Scene, default: DisplayIndirect) -> DisplayIndirect {
         self.indirect.or(scene.display.indirect).unwrap_or(default)

@@ -52,7 +52,6 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
     if let Some(e) = &args.exr {
         check_extension(e, "exr", "--exr")?;
     }
-    args.indirect.check()?;
     let scene = scene_at(Scene::load(&args.scene)?, args.image.time)?;
     let mut outputs = crate::io::outputs::OutputCheck::new();
     for f in scene.input_files() {

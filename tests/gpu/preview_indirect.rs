@@ -100,7 +100,10 @@ fn the_radiosity_preview_and_the_scene_key() {
     // Bad input is refused before anything is written.
     let (code, _, err) = render(&scene, &["--indirect-time", "0"]);
     assert_eq!(code, 2, "{err}");
-    assert!(err.contains("--indirect-time 0"), "{err}");
+    assert!(
+        err.contains("'0' for '--indirect-time") && err.contains("positive"),
+        "{err}"
+    );
     let bad = dir.path().join("bad.toml");
     let text = std::fs::read_to_string(&scene)
         .unwrap()
