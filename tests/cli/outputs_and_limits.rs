@@ -379,13 +379,9 @@ fn a_room_that_absorbs_nothing_is_refused_naming_the_material() {
 #[test]
 fn grid_errors_name_the_right_key_and_names_print_escaped() {
     let (_t, dir) = copy_of("MSG-01");
-    refused(
-        &dir,
-        &["calc", "scene.toml", "--out", "out"],
-        &["grid[0].corner"],
-    );
+    refused(&dir, &calc("scene.toml"), &["grid[0].corner"]);
     let (_t, dir) = copy_of("MSG-02");
-    let (code, out, err) = run(&dir, &["calc", "scene.toml", "--out", "out"]);
+    let (code, out, err) = run(&dir, &calc("scene.toml"));
     assert_eq!(code, 0, "{err}");
     assert!(
         !out.chars().any(|c| c.is_control() && c != '\n'),
@@ -548,12 +544,12 @@ fn extra_coordinates_are_refused_with_the_line() {
     let (_t, dir) = copy_of("WRONG-EXIT0-01");
     refused(
         &dir,
-        &["calc", "scene.toml", "--out", "out"],
+        &calc("scene.toml"),
         &["scene.toml", "line", "invalid length 3", "2 numbers"],
     );
     refused(
         &dir,
-        &["calc", "scene_outline.toml", "--out", "out"],
+        &calc("scene_outline.toml"),
         &["scene_outline.toml", "outline", "invalid length"],
     );
     refused(
@@ -568,6 +564,25 @@ fn extra_coordinates_are_refused_with_the_line() {
         ]),
         &["q10_pos4.toml", "invalid length 4"],
     );
+}
+
+/// `calc SCENE --out out`.
+fn calc(scene: &str) -> [&str; 4] {
+    ["calc", scene, "--out", "out"]
+}
+
+/// `calc SCENE --out out --indirect radiosity --max-shots SHOTS`.
+fn calc_radiosity<'a>(scene: &'a str, shots: &'a str) -> [&'a str; 8] {
+    [
+        "calc",
+        scene,
+        "--out",
+        "out",
+        "--indirect",
+        "radiosity",
+        "--max-shots",
+        shots,
+    ]
 }
 
 /// `calc.json`'s first observer.
@@ -622,16 +637,7 @@ fn an_eye_inside_a_luminaire_is_refused_before_the_solve() {
     for scene in ["scene_0.11m.toml", "scene_at_centre.toml"] {
         let err = refused(
             &dir,
-            &[
-                "calc",
-                scene,
-                "--out",
-                "out",
-                "--indirect",
-                "radiosity",
-                "--max-shots",
-                "1",
-            ],
+            &calc_radiosity(scene, "1"),
             &[scene, "observer \"a\"", "inside the luminaire"],
         );
         assert!(!err.contains("shots"), "refused before solving: {err}");
@@ -644,16 +650,7 @@ fn ugr_without_a_background_is_refused_not_called_no_glare() {
     let (_t, dir) = copy_of("WRONG-EXIT0-04");
     refused(
         &dir,
-        &[
-            "calc",
-            "scene.toml",
-            "--out",
-            "out",
-            "--indirect",
-            "radiosity",
-            "--max-shots",
-            "3",
-        ],
+        &calc_radiosity("scene.toml", "3"),
         &[
             "observer",
             "background luminance L_b is 0",
@@ -668,16 +665,7 @@ fn a_material_overridden_twice_is_refused() {
     let (_t, dir) = copy_of("WRONG-EXIT0-05");
     refused(
         &dir,
-        &[
-            "calc",
-            "scene.toml",
-            "--out",
-            "out",
-            "--indirect",
-            "radiosity",
-            "--max-shots",
-            "2",
-        ],
+        &calc_radiosity("scene.toml", "2"),
         &["scene.toml", "material[1].name", "\"wall\"", "material[0]"],
     );
 }
@@ -687,16 +675,7 @@ fn an_emission_brighter_than_the_sun_is_refused() {
     let (_t, dir) = copy_of("WRONG-EXIT0-06");
     refused(
         &dir,
-        &[
-            "calc",
-            "scene.toml",
-            "--out",
-            "out",
-            "--indirect",
-            "radiosity",
-            "--max-shots",
-            "2",
-        ],
+        &calc_radiosity("scene.toml", "2"),
         &["Ke", "brighter than the sun"],
     );
 }
@@ -725,7 +704,7 @@ fn budgets_over_the_whole_run_are_refused_with_the_option_that_raises_them() {
     let (_t, dir) = copy_of("RESOURCE-01");
     refused(
         &dir,
-        &["calc", "scene.toml", "--out", "out"],
+        &calc("scene.toml"),
         &["20000000 points", "--max-points"],
     );
     assert!(!dir.join("out").exists());
