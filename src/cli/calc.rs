@@ -180,7 +180,7 @@ pub fn run(args: CalcArgs) -> Result<(), CliError> {
     }
     if let Some(report) = &args.report {
         outputs.named_output(&format!("--report {}", report.display()), report);
-        check_folder_of(report, "--report")?;
+        super::check_folder_of(report, "--report")?;
     }
     outputs.check()?;
     let total: usize = scene.grids.iter().map(|g| g.points.len()).sum();
@@ -378,20 +378,6 @@ pub fn run(args: CalcArgs) -> Result<(), CliError> {
 fn interrupted(cancel: &std::sync::atomic::AtomicBool) -> Result<(), CliError> {
     if cancel.load(std::sync::atomic::Ordering::SeqCst) {
         return Err(CliError::failure(anyhow!("interrupted: nothing written")));
-    }
-    Ok(())
-}
-
-/// An error naming `flag` when the folder `path` goes into does not exist (checked before
-/// the work, so that the run does not fail at its end).
-pub(crate) fn check_folder_of(path: &std::path::Path, flag: &str) -> Result<(), CliError> {
-    let folder = path.parent().filter(|p| !p.as_os_str().is_empty());
-    if folder.is_some_and(|f| !f.is_dir()) {
-        return Err(CliError::input(anyhow!(
-            "{flag} {}: the folder {} does not exist",
-            path.display(),
-            folder.expect("checked").display()
-        )));
     }
     Ok(())
 }

@@ -48,7 +48,8 @@ pub fn default_scene() -> Result<PathBuf, CliError> {
 }
 
 /// Renders the scene shaded and in false-colour illuminance.
-fn render_both(args: &DemoArgs, dir: &std::path::Path) -> Result<(), CliError> {
+fn render_both(args: &DemoArgs, staging: &crate::io::outputs::Staging) -> Result<(), CliError> {
+    let dir = staging.dir();
     let scene_path = match &args.scene {
         Some(p) => p.clone(),
         None => default_scene()?,
@@ -92,10 +93,7 @@ fn render_both(args: &DemoArgs, dir: &std::path::Path) -> Result<(), CliError> {
             &png,
             Some(&exr),
         )?;
-        println!(
-            "{}",
-            super::radiosity::shown_at(&report, dir, &args.out_dir)
-        );
+        println!("{}", staging.as_target(&report));
     }
     Ok(())
 }
@@ -113,8 +111,8 @@ pub fn run(args: DemoArgs) -> Result<(), CliError> {
     let inputs: Vec<PathBuf> = args.scene.iter().cloned().collect();
     let staging = crate::io::outputs::Staging::beside(&args.out_dir, &inputs)
         .map_err(|e| CliError::failure(anyhow::anyhow!("{}: {e}", args.out_dir.display())))?;
+    render_both(&args, &staging)?;
     let dir = staging.dir();
-    render_both(&args, dir)?;
     let s = lum.summary();
     println!(
         "sample_18.ldt: {} C planes × {} γ angles, integrated flux {:.1} lm (declared lamp flux {:.1} lm)",

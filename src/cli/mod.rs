@@ -118,6 +118,20 @@ fn signal_flag() -> std::sync::Arc<std::sync::atomic::AtomicBool> {
     .clone()
 }
 
+/// An error naming `flag` when the folder `path` goes into does not exist (checked before
+/// the work, so that the run does not fail at its end).
+pub(crate) fn check_folder_of(path: &std::path::Path, flag: &str) -> Result<(), CliError> {
+    let folder = path.parent().filter(|p| !p.as_os_str().is_empty());
+    if folder.is_some_and(|f| !f.is_dir()) {
+        return Err(CliError::input(anyhow::anyhow!(
+            "{flag} {}: the folder {} does not exist",
+            path.display(),
+            folder.expect("checked").display()
+        )));
+    }
+    Ok(())
+}
+
 /// Runs a parsed command line.
 pub fn run(cli: Cli) -> Result<(), CliError> {
     // Every command ends cleanly on a signal; those that poll the flag ask for it.

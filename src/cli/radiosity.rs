@@ -752,13 +752,7 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
         settings.shown_light = crate::scene::DisplayIndirect::Radiosity;
         let staging = crate::io::outputs::Staging::beside(&dir, &inputs)
             .map_err(|e| CliError::input(anyhow!("--out-dir {}: {e}", dir.display())))?;
-        write_outputs(
-            &prepared.gpu,
-            &scene,
-            &settings,
-            &outputs,
-            (staging.dir(), &dir),
-        )?;
+        write_outputs(&prepared.gpu, &scene, &settings, &outputs, &staging)?;
         staging
             .commit()
             .map_err(|e| CliError::failure(anyhow!("--out-dir {}: {e:#}", dir.display())))?;
@@ -816,20 +810,16 @@ const OUT_DIR_FILES: [&str; 5] = [
     "convergence.csv",
 ];
 
-/// `text` with the staging folder `staged` named as the folder `target` it moves into.
-pub(crate) fn shown_at(text: &str, staged: &Path, target: &Path) -> String {
-    text.replace(&staged.display().to_string(), &target.display().to_string())
-}
-
-/// Writes the rendering, the atlas and the log into `dir` (a staging folder, named in
-/// messages as `shown`).
+/// Writes the rendering, the atlas and the log into the staging folder of the output
+/// folder.
 fn write_outputs(
     gpu: &Gpu,
     scene: &Scene,
     settings: &crate::render::RenderSettings,
     outputs: &Outputs,
-    (dir, shown): (&Path, &Path),
+    staging: &crate::io::outputs::Staging,
 ) -> Result<(), CliError> {
+    let dir = staging.dir();
     std::fs::create_dir_all(dir)
         .map_err(|e| CliError::input(anyhow!("--out-dir {}: {e}", dir.display())))?;
     let png = dir.join("render.png");
@@ -845,7 +835,7 @@ fn write_outputs(
         Some(&exr),
     )?;
     // The files are named where they will be once moved in.
-    eprintln!("{}", shown_at(&report, dir, shown));
+    eprintln!("{}", staging.as_target(&report));
     let map = &outputs.light_map;
     let rgb: Vec<f32> = map.texels.iter().flat_map(|t| [t[0], t[1], t[2]]).collect();
     let lux: Vec<f32> = map.texels.iter().flat_map(|t| [t[3]; 3]).collect();

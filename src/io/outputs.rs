@@ -290,6 +290,15 @@ impl Staging {
         &self.root
     }
 
+    /// `text` (a message naming files written here) with the staging folder named as the
+    /// target folder the files move into.
+    pub fn as_target(&self, text: &str) -> String {
+        text.replace(
+            &self.root.display().to_string(),
+            &self.target.display().to_string(),
+        )
+    }
+
     /// Where to write a file whose place is `target`, outside the target folder (moved
     /// there by the commit with the rest).
     pub fn outside(&mut self, target: &Path) -> std::io::Result<PathBuf> {
@@ -353,16 +362,9 @@ impl Staging {
             moved.push(to);
         }
         for (staged, target) in outside {
-            // Another file system: copy beside the target, then rename.
+            // Another file system: written whole beside the target, then renamed.
             if std::fs::rename(staged, target).is_err() {
-                let tmp = temporary_beside(target, "tmp")?;
-                let copied =
-                    std::fs::copy(staged, &tmp).and_then(|_| std::fs::rename(&tmp, target));
-                if copied.is_err() {
-                    let _ = std::fs::remove_file(&tmp);
-                }
-                finished(&tmp);
-                copied?;
+                super::write_atomic(target, &std::fs::read(staged)?)?;
             }
             moved.push(target.clone());
         }

@@ -407,7 +407,7 @@ pub fn run(a: ProfileArgs) -> Result<(), CliError> {
     }
     if let Some(gif) = &a.gif {
         outputs.named_output(&format!("--gif {}", gif.display()), gif);
-        super::calc::check_folder_of(gif, "--gif")?;
+        super::check_folder_of(gif, "--gif")?;
     }
     outputs.check()?;
     if a.out.is_file() {
