@@ -3,7 +3,7 @@
 //! refined regularly (each strip into `n²` strips like itself) and by patch refinement
 //! (`radiosity/refine.rs`).
 //!
-//! `cargo run --release --example refinement_figure -- docs/patch-refinement.svg`
+//! `cargo run --release --example refinement_figure -- docs/src/images/patch-refinement.svg`
 
 use std::fmt::Write as _;
 

@@ -19,7 +19,12 @@ fi
 "$venv/bin/python" -m pip install --quiet --upgrade pip
 "$venv/bin/python" -m pip install --quiet pytest numpy "eulumdat-ugr==1.0.2"
 
+from_build=""
 if [ "${1:-}" = "--from-build" ]; then
+  from_build=1
+  shift
+fi
+if [ -n "$from_build" ]; then
   # The built module and the package, at the paths that pyproject.toml's [tool.maturin]
   # gives (module-name "goniolight._native", python-packages ["goniolight"]).
   staged=target/python-from-build
@@ -52,4 +57,4 @@ else
   MATURIN_PEP517_ARGS="--profile dev" "$venv/bin/python" -m pip install --quiet ./python
   cargo build --quiet --bin goniolight
 fi
-GONIOLIGHT_BIN="$PWD/target/debug/goniolight" "$venv/bin/python" -m pytest -q python/tests
+GONIOLIGHT_BIN="$PWD/target/debug/goniolight" "$venv/bin/python" -m pytest -q python/tests "$@"

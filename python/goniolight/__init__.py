@@ -6,9 +6,19 @@ equals ``goniolight ldt info --json``, ``sample`` equals ``goniolight ldt sample
 ``sun_position`` equals ``goniolight sun --json`` and ``illuminance`` equals
 ``goniolight illuminance``.
 
+Run from the repository's root (the tests run these examples):
+
 >>> import goniolight, numpy as np
->>> lum = goniolight.read("luminaires/eulumdat-analysis/sample_18.ldt")   # doctest: +SKIP
->>> lum.sample([0, 90], [0, 30], interp="catmull-rom")                    # doctest: +SKIP
+>>> lum = goniolight.read("luminaires/eulumdat-analysis/sample_18.ldt")
+>>> round(lum.info["flux_lm"], 1)
+2445.4
+>>> lum.sample([0, 90], [0, 30], interp="catmull-rom").round(1)
+array([442.8, 346.2])
+>>> sun = goniolight.sun_position(48.21, 16.37, "2026-06-21T12:00", tz="Europe/Vienna")
+>>> round(float(sun["elevation_deg"][0]), 2)
+62.83
+>>> goniolight.illuminance("assets/scenes/box_room.toml", [[1, 1, 0.8, 0, 0, 1]], cpu=True).round(1)
+array([33.])
 """
 
 from __future__ import annotations
@@ -30,7 +40,11 @@ PathLike = Union[str, "os.PathLike[str]"]
 
 
 class Luminaire:
-    """A luminaire file read into goniolight's full-sphere distribution (cd/klm)."""
+    """A luminaire file read into goniolight's full-sphere distribution (cd/klm).
+
+    ``info`` is the dict that ``goniolight ldt info --json`` prints for the file. Made by
+    :func:`read`.
+    """
 
     def __init__(self, native: "_native.NativeLuminaire"):
         self._native = native
@@ -39,10 +53,12 @@ class Luminaire:
 
     @property
     def path(self) -> str:
+        """The file's path, as given to :func:`read`."""
         return str(self._native.path())
 
     @property
     def warnings(self) -> list:
+        """What the reader noticed and repaired (decimal commas, missing optional values, …)."""
         return list(self._native.warnings())
 
     @property

@@ -180,7 +180,10 @@ pub fn run(args: CalcArgs) -> Result<(), CliError> {
     }
     if let Some(report) = &args.report {
         outputs.named_output(&format!("--report {}", report.display()), report);
-        super::check_folder_of(report, "--report")?;
+        // The report may go into the --out folder, which the run makes.
+        if report.parent() != Some(args.out.as_path()) {
+            super::check_folder_of(report, "--report")?;
+        }
     }
     outputs.check()?;
     let total: usize = scene.grids.iter().map(|g| g.points.len()).sum();

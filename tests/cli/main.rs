@@ -16,6 +16,7 @@ mod calc;
 mod catalogue;
 mod cli;
 mod datasheet_plot;
+mod docs;
 mod faults;
 mod fuzz_crashes;
 mod luminance;
