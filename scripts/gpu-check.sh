@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The checks a machine with a real GPU is for (README, "On a real GPU"), as one short run,
+# The checks a machine with a real GPU is for (the "On a real GPU" figures of
+# docs/src/measurements/radiosity.md and renderer.md), as one short run,
 # the most wanted first:
 #  1. the view-driven radiosity benchmark on the large scene seen in part: the generated
 #     CAD office seen at a desk, three rounds (issue #20's goal: perspective-driven >= 5x

@@ -2,7 +2,7 @@
 //! sun-path shadow studies.
 //!
 //! The library holds all logic; the `goniolight` binary's commands only call it.
-//! See `DESIGN.md` in the repository's shared notes and the README for the data flow.
+//! See `DESIGN.md` in the repository's shared notes and ARCHITECTURE.md and the book under `docs/` for the data flow.
 //!
 //! Features: without any, the CPU parts (photometry, sun, geometry, silhouettes, scene
 //! files, the CPU lighting twin); `gpu` adds the renderer, radiosity, the shadow studies and

@@ -116,7 +116,7 @@ pub fn run(args: CalcArgs) -> Result<(), CliError> {
     let scene = scene_at(Scene::load(&args.scene)?, args.time)?;
     if scene.grids.is_empty() && scene.observers.is_empty() {
         return Err(CliError::input(anyhow!(
-            "{}: no [[grid]] or [[observer]] to compute; add a calculation surface (README: \"Lighting calculations\")",
+            "{}: no [[grid]] or [[observer]] to compute; add a calculation surface (docs/src/guide/calc.md)",
             args.scene.display()
         )));
     }

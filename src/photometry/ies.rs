@@ -450,7 +450,7 @@ impl IesFile {
             type_b::check_ranges(&file.vertical, &file.horizontal)
                 .map_err(|m| src.error(v_tok[0].line, m))?;
             warnings.push(format!(
-                "Type {} photometry converted to the C-γ frame (see the README: beam axis at γ = 0)",
+                "Type {} photometry converted to the C-γ frame (docs/src/design/photometry.md: beam axis at γ = 0)",
                 if photometric_type == 2 { "B" } else { "A" }
             ));
         }

@@ -7,7 +7,7 @@ use super::{LdtTexture, Luminaire};
 
 impl Luminaire {
     /// Data, flux, ratios, peak, beam and field angles and warnings as JSON (the keys the
-    /// README documents for `ldt info --json`).
+    /// reference (docs/src/reference/commands.md) documents for `ldt info --json`).
     pub fn info_json(&self) -> serde_json::Value {
         let lum = self;
         let s = lum.summary();

@@ -61,7 +61,7 @@ fn run_in(dir: &Path, args: &[&str], stdin: &str, names: &str) -> (i32, String, 
 }
 
 /// A null anywhere but in the beam and field angles and the CIE flux code (null there
-/// means the 50 % or 10 % level is never crossed, or no light goes downward, as the README
+/// means the 50 % or 10 % level is never crossed, or no light goes downward, as the reference (docs/src/reference/commands.md)
 /// documents).
 fn has_null(v: &Value) -> bool {
     match v {

@@ -5,7 +5,7 @@
 //! copied from the report's tables, so the report's erratum tables do not enter.
 //!
 //! Each case runs the command a user runs (`calc`, `illuminance`, `radiosity --points`)
-//! and prints its row of the README's error table (`cargo test --test gpu cie171:: --
+//! and prints its row of the error table on docs/src/measurements/cie171.md (`cargo test --test gpu cie171:: --
 //! --nocapture`).
 //!
 //! - 5.3-like: a point source with an isotropic distribution, direct illuminance on a
