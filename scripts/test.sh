@@ -17,22 +17,9 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
-# A one-shot build gains nothing from the incremental cache, which costs gigabytes of disk.
-export CARGO_INCREMENTAL="${CARGO_INCREMENTAL:-0}"
-export GONIOLIGHT_FUZZ_SECONDS="${GONIOLIGHT_FUZZ_SECONDS:-10}"
-
-# Clippy's driver compiles the workspace's crates in every build below, denying warnings
-# (`cargo clippy` hands its arguments to the driver the same way). Every cargo call keeps
-# it: the wrapper is part of what cargo fingerprints, so a call without it builds again.
-clippy_driver="$(rustc --print sysroot)/bin/clippy-driver"
-if [ ! -x "$clippy_driver" ]; then
-  echo "error: $clippy_driver not found: install clippy (rustup component add clippy)" >&2
-  exit 1
-fi
-export RUSTC_WORKSPACE_WRAPPER="$clippy_driver"
-export CLIPPY_ARGS="-D__CLIPPY_HACKERY__warnings__CLIPPY_HACKERY__"
-# The Python extension links no libpython (as maturin builds it).
-export PYO3_BUILD_EXTENSION_MODULE=1
+# The build settings every cargo call of the test command shares (clippy's driver, no
+# incremental cache, the Python extension's linking).
+. scripts/build-env.sh
 
 started=$SECONDS
 times=()

@@ -10,7 +10,9 @@
 use serde::Serialize;
 
 /// Interpolation between the measured angles.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, serde::Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, serde::Deserialize, schemars::JsonSchema,
+)]
 #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all(serialize = "snake_case", deserialize = "kebab-case"))]
 pub enum Interp {

@@ -55,8 +55,23 @@ use serde::{Deserialize, Serialize};
 /// files and image flags alike.
 pub const MAX_IMAGE_SIZE: u32 = 8192;
 
+/// The JSON Schema (draft 7) of the scene file, generated from these types: every table,
+/// key, type, allowed value and default, with the doc comments as descriptions. Editors
+/// that read TOML through a schema (Taplo, Even Better TOML) complete and check a scene
+/// file that starts with a `#:schema PATH` line naming it; the book's scene-file
+/// reference is made from it.
+pub fn json_schema() -> serde_json::Value {
+    let mut schema = schemars::generate::SchemaSettings::draft07()
+        .for_deserialize()
+        .into_generator()
+        .into_root_schema_for::<SceneFile>()
+        .to_value();
+    schema["title"] = "goniolight scene file".into();
+    schema
+}
+
 /// The whole file.
-#[derive(Debug, Clone, Deserialize, Serialize)]
+#[derive(Debug, Clone, Deserialize, Serialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SceneFile {
     /// Geometry.
@@ -87,7 +102,7 @@ pub struct SceneFile {
 }
 
 /// A colour as the scene file writes it: one number (grey) or linear RGB.
-#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize, schemars::JsonSchema)]
 #[serde(untagged)]
 pub enum Rgb {
     /// The same value in every channel.
@@ -107,7 +122,7 @@ impl Rgb {
 }
 
 /// `[[material]]`.
-#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct MaterialEntry {
     /// The MTL material name it overrides.
@@ -129,7 +144,9 @@ pub struct MaterialEntry {
 }
 
 /// The up axis of an OBJ file.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, Default)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, Default, schemars::JsonSchema,
+)]
 #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum UpAxis {
@@ -141,7 +158,7 @@ pub enum UpAxis {
 }
 
 /// A scale: one factor or one per axis.
-#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize, schemars::JsonSchema)]
 #[serde(untagged)]
 pub enum Scale {
     /// The same factor on every axis.
@@ -151,7 +168,7 @@ pub enum Scale {
 }
 
 /// `[[model]]`.
-#[derive(Debug, Clone, Deserialize, Serialize)]
+#[derive(Debug, Clone, Deserialize, Serialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ModelEntry {
     /// OBJ file, relative to the scene file.
@@ -185,7 +202,7 @@ pub struct ModelEntry {
 }
 
 /// How a solved surface carries its light in the exported scene (Edström §5.3).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum Bake {
     /// A light-map texture over the surface's input triangles.
@@ -195,7 +212,7 @@ pub enum Bake {
 }
 
 /// `[[luminaire]]`.
-#[derive(Debug, Clone, Deserialize, Serialize)]
+#[derive(Debug, Clone, Deserialize, Serialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct LuminaireEntry {
     /// `.ldt` or `.ies` file, relative to the scene file.
@@ -284,7 +301,7 @@ fn interp_name<S: serde::Serializer>(
 }
 
 /// `[camera]`.
-#[derive(Debug, Clone, Deserialize, Serialize)]
+#[derive(Debug, Clone, Deserialize, Serialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct CameraEntry {
     /// Eye position, metres.
@@ -312,7 +329,9 @@ pub struct CameraEntry {
 }
 
 /// The output mode.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, Default)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, Default, schemars::JsonSchema,
+)]
 #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum Mode {
@@ -324,7 +343,9 @@ pub enum Mode {
 }
 
 /// The tone-mapping operator.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, Default)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, Default, schemars::JsonSchema,
+)]
 #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum Tonemap {
@@ -336,7 +357,7 @@ pub enum Tonemap {
 }
 
 /// `[display]`.
-#[derive(Debug, Clone, Default, PartialEq, Deserialize, Serialize)]
+#[derive(Debug, Clone, Default, PartialEq, Deserialize, Serialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct DisplayEntry {
     /// Shaded or false-colour illuminance.
@@ -387,7 +408,9 @@ pub struct DisplayEntry {
 }
 
 /// What an image shows of the light that surfaces send each other.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, Default)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, Default, schemars::JsonSchema,
+)]
 #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum DisplayIndirect {

@@ -19,7 +19,9 @@ use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
 /// What a grid's points measure.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, Serialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, Serialize, schemars::JsonSchema,
+)]
 #[serde(rename_all = "lowercase")]
 pub enum GridKind {
     /// Illuminance on a horizontal plane facing up.
@@ -36,7 +38,7 @@ pub enum GridKind {
 }
 
 /// The spacing of a grid's points.
-#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize, schemars::JsonSchema)]
 #[serde(untagged)]
 pub enum Spacing {
     /// Metres between points.
@@ -52,7 +54,7 @@ impl Default for Spacing {
 }
 
 /// `[[grid]]` as written in the scene file.
-#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct GridEntry {
     /// The grid's name (also its CSV file's name).
@@ -317,7 +319,7 @@ impl GridEntry {
 }
 
 /// `[calc]` in the scene file: settings of `goniolight calc`.
-#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct CalcSettings {
     /// Maintenance factor: the values reported are the computed ones times it (EN 12464-1's
@@ -330,7 +332,7 @@ pub struct CalcSettings {
 }
 
 /// What light `calc` computes.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, schemars::JsonSchema)]
 #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum Indirect {

@@ -16,7 +16,7 @@ use serde::{Deserialize, Serialize};
 use super::{finite_vec, SceneError};
 
 /// `[[observer]]` as written in the scene file.
-#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ObserverEntry {
     /// The observer's name in reports.

@@ -15,7 +15,9 @@ pub const MAX_STEPS: u32 = 20;
 pub const MAX_STOPS: usize = 16;
 
 /// A false-colour palette.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, Default)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, Default, schemars::JsonSchema,
+)]
 #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum Palette {

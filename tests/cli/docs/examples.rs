@@ -216,3 +216,55 @@ fn every_console_example_runs_as_shown() {
         problems.join("\n")
     );
 }
+
+/// Why a `toml` block of the documentation is not a valid file of its kind (scene file,
+/// batch jobs file, sun-study points file), if it is not.
+fn toml_rejected(text: &str) -> Option<String> {
+    let first_table = text
+        .lines()
+        .map(str::trim)
+        .find(|l| l.starts_with('['))
+        .unwrap_or("");
+    let result = match first_table {
+        "[[job]]" => goniolight::cli::count_jobs(Path::new("jobs.toml"), text)
+            .map(|_| ())
+            .map_err(|e| format!("{e:?}")),
+        "[[point]]" => goniolight::study::surfaces::parse_points(text).map(|_| ()),
+        _ => toml::from_str::<goniolight::scene::file::SceneFile>(text)
+            .map(|_| ())
+            .map_err(|e| e.to_string()),
+    };
+    result.err()
+}
+
+#[test]
+fn every_toml_example_is_a_valid_file() {
+    let mut problems = Vec::new();
+    let mut checked = 0;
+    for file in markdown::documentation_files() {
+        for block in markdown::read(&file).code_blocks {
+            if block.info != "toml" {
+                continue;
+            }
+            checked += 1;
+            if let Some(why) = toml_rejected(&block.text) {
+                problems.push(format!("{}:{}: {why}", file.display(), block.line));
+            }
+        }
+    }
+    assert!(checked >= 5, "only {checked} toml blocks found");
+    assert!(
+        problems.is_empty(),
+        "toml examples that do not read:\n{}",
+        problems.join("\n")
+    );
+}
+
+#[test]
+fn a_wrong_toml_example_is_rejected() {
+    assert!(toml_rejected("[[luminaire]]\nfile = \"a.ldt\"\nposition = [0, 0, 3]\n").is_none());
+    assert!(toml_rejected("[[luminaire]]\nfile = \"a.ldt\"\nposition = [0, 0]\n").is_some());
+    assert!(toml_rejected("[display]\nmode = \"shady\"\n").is_some());
+    assert!(toml_rejected("[[job]]\nargs = [\"ldt\", \"info\", \"x.ldt\"]\n").is_none());
+    assert!(toml_rejected("[[job]]\nargz = []\n").is_some());
+}

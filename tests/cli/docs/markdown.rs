@@ -15,8 +15,10 @@ pub fn documentation_files() -> Vec<PathBuf> {
         .iter()
         .map(PathBuf::from)
         .collect();
-    for page in common::files_with(&root.join("docs/src"), &["md"]) {
-        files.push(Path::new("docs/src").join(page));
+    for page in common::files_in(&root.join("docs/src")) {
+        if page.extension().is_some_and(|e| e == "md") {
+            files.push(Path::new("docs/src").join(page));
+        }
     }
     files
 }

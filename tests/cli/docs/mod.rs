@@ -6,6 +6,8 @@
 //! generated pages after a change to the flags.
 
 mod examples;
+mod generated;
 mod links;
 mod markdown;
 mod reference;
+mod scene_file;

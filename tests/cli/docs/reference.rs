@@ -9,6 +9,7 @@ use std::path::{Path, PathBuf};
 
 use clap::{Arg, ArgAction, Command, CommandFactory};
 
+use super::generated;
 use crate::common;
 
 /// Where the Markdown pages live, relative to the repository root.
@@ -234,44 +235,9 @@ fn generated() -> BTreeMap<PathBuf, Vec<u8>> {
     files
 }
 
-/// The files now in the generated folders.
-fn checked_in() -> BTreeMap<PathBuf, Vec<u8>> {
-    let root = common::root();
-    let mut files = BTreeMap::new();
-    for dir in [PAGES, MAN] {
-        for rel in common::files_in(&root.join(dir)) {
-            let path = Path::new(dir).join(rel);
-            files.insert(path.clone(), std::fs::read(root.join(&path)).unwrap());
-        }
-    }
-    files
-}
-
 #[test]
 fn the_command_line_reference_is_what_the_code_generates() {
-    let want = generated();
-    let root = common::root();
-    if std::env::var_os("GONIOLIGHT_BLESS").is_some() {
-        for dir in [PAGES, MAN] {
-            let _ = std::fs::remove_dir_all(root.join(dir));
-            std::fs::create_dir_all(root.join(dir)).unwrap();
-        }
-        for (path, bytes) in &want {
-            std::fs::write(root.join(path), bytes).unwrap();
-        }
-    }
-    let have = checked_in();
-    let stale: Vec<_> = have.keys().filter(|p| !want.contains_key(*p)).collect();
-    let differ: Vec<_> = want
-        .iter()
-        .filter(|(p, bytes)| have.get(*p) != Some(bytes))
-        .map(|(p, _)| p)
-        .collect();
-    assert!(
-        stale.is_empty() && differ.is_empty(),
-        "the command-line reference is out of date (run scripts/gen-docs.sh):\n\
-         differ or missing: {differ:?}\nstale: {stale:?}"
-    );
+    generated::compare_or_bless(&generated(), &[PAGES, MAN]);
 }
 
 /// The commands and `--flags` that `goniolight PATH --help` lists.
