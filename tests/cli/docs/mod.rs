@@ -5,6 +5,7 @@
 //! `GONIOLIGHT_BLESS=1 cargo test --test cli docs::` (or `scripts/gen-docs.sh`) writes the
 //! generated pages after a change to the flags.
 
+mod book;
 mod examples;
 mod generated;
 mod links;
