@@ -13,7 +13,10 @@ const README_LINES: usize = 250;
 fn the_readme_is_short_and_starts_with_the_two_commands() {
     let readme = markdown::read(Path::new("README.md"));
     let lines = readme.text.lines().count();
-    assert!(lines <= README_LINES, "README.md has {lines} lines (at most {README_LINES})");
+    assert!(
+        lines <= README_LINES,
+        "README.md has {lines} lines (at most {README_LINES})"
+    );
     let first: Vec<&str> = readme
         .code_blocks
         .iter()
@@ -23,7 +26,8 @@ fn the_readme_is_short_and_starts_with_the_two_commands() {
     assert_eq!(first, ["scripts/demo.sh", "scripts/test.sh"]);
     let ci = std::fs::read_to_string(common::root().join(".ci/run")).unwrap();
     assert!(
-        ci.lines().any(|l| l.trim_start().contains("scripts/test.sh")),
+        ci.lines()
+            .any(|l| l.trim_start().contains("scripts/test.sh")),
         ".ci/run calls the test command"
     );
 }
@@ -40,6 +44,13 @@ fn every_page_of_the_book_is_in_its_summary() {
             missing.push(name.into_owned());
         }
     }
-    assert!(listed.len() >= 40, "only {} pages in the summary", listed.len());
-    assert!(missing.is_empty(), "pages the summary does not list: {missing:?}");
+    assert!(
+        listed.len() >= 40,
+        "only {} pages in the summary",
+        listed.len()
+    );
+    assert!(
+        missing.is_empty(),
+        "pages the summary does not list: {missing:?}"
+    );
 }

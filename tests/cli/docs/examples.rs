@@ -268,3 +268,22 @@ fn a_wrong_toml_example_is_rejected() {
     assert!(toml_rejected("[[job]]\nargs = [\"ldt\", \"info\", \"x.ldt\"]\n").is_none());
     assert!(toml_rejected("[[job]]\nargz = []\n").is_some());
 }
+
+#[test]
+fn a_wrong_console_example_fails() {
+    let dir = example_folder();
+    let page = dir.path().join("page.md");
+    let info = "$ goniolight ldt info luminaires/eulumdat-analysis/sample_18.ldt";
+    let write = |body: &str| std::fs::write(&page, format!("# t\n\n```console\n{body}\n```\n"));
+    write(&format!("{info}\n  CIE flux code  55 85 98 100 100")).unwrap();
+    assert_eq!(run_console_examples(&page, dir.path()), (1, vec![]));
+    for wrong in [
+        format!("{info}\n  CIE flux code  99 99 99 100 100"),
+        "$ goniolight ldt info luminaires/none.ldt".to_string(),
+        "$ ls".to_string(),
+    ] {
+        write(&wrong).unwrap();
+        let (_, problems) = run_console_examples(&page, dir.path());
+        assert_eq!(problems.len(), 1, "{wrong}: {problems:?}");
+    }
+}
