@@ -62,7 +62,7 @@ pub struct CalcArgs {
     #[arg(long)]
     pub values: bool,
     /// Also write one self-contained HTML page: settings, luminaires, each grid's
-    /// statistics and plan.
+    /// statistics and plan (its folder must exist, or be the --out folder).
     #[arg(long, value_name = "FILE.html")]
     pub report: Option<PathBuf>,
     /// Direct light only, or total light (direct + interreflected, through the radiosity
