@@ -51,6 +51,18 @@ fn goniolight_words(line: &str) -> Option<Vec<String>> {
         .unwrap();
     let line = line.split(['<', '>', '|']).next().unwrap();
     let words = shlex::split(line)?;
+    // `cargo run [--release] -- ARGS` runs goniolight with ARGS (not `--example`s).
+    if words.starts_with(&["cargo".into(), "run".into()]) && !words.contains(&"--example".into()) {
+        let args = words
+            .iter()
+            .position(|w| w == "--")
+            .map_or(&[][..], |i| &words[i + 1..]);
+        return Some(
+            std::iter::once("goniolight".to_string())
+                .chain(args.iter().cloned())
+                .collect(),
+        );
+    }
     (words.first().map(String::as_str) == Some("goniolight")).then_some(words)
 }
 
@@ -135,6 +147,11 @@ fn a_wrong_command_line_is_rejected() {
     assert!(rejected(&words("goniolight calc"), true).is_none());
     assert!(rejected(&words("goniolight calk"), true).is_some());
     assert!(goniolight_words("cargo build").is_none());
+    assert_eq!(
+        goniolight_words("cargo run --release -- view --up z").unwrap(),
+        ["goniolight", "view", "--up", "z"]
+    );
+    assert!(goniolight_words("cargo run --release --example make_scenes x").is_none());
 }
 
 /// A folder to run examples in: the bundled data linked in, outputs written inside.
