@@ -172,7 +172,7 @@ fn importance_and_perspective_driven_solutions_converge_to_the_global_one_in_vie
 
 /// Where the view's room is lit and the room beside it dark, so that the view sees more
 /// interreflected light than the scene's mean (2.9 times: what a link error measured
-/// against the view would scale by; tried, docs/src/guide/radiosity/drive.md), and the dark room's charts wait
+/// against the view would scale by; tried, docs/src/measurements/radiosity-view.md), and the dark room's charts wait
 /// for the view to converge: the driven solutions still converge to the global one within
 /// 1 % in view (0.06 %; 0.12 % with the view-relative link error, lavapipe).
 #[test]
@@ -297,7 +297,7 @@ fn receivers_that_matter_less_to_the_view_take_coarser_cells_light() {
     eprintln!("maps in 8 shots: {even} with an even link error, {weighted} weighted");
     // 1 211 against 1 282 (lavapipe): in one small room most receivers matter (the CAD
     // office at a desk: 456 maps with the 1/64 floor, 529 with 1/16, against 1 054 with
-    // an even link error, to 5 % in view, docs/src/guide/radiosity/drive.md).
+    // an even link error, to 5 % in view, docs/src/measurements/radiosity-view.md).
     assert!(weighted < even, "{weighted} vs {even}");
 }
 
