@@ -70,8 +70,9 @@ pub const IMPORTANCE_CONVERGE: f64 = 0.5;
 /// H's magnitude, came out at half the missing light (furnished room after the first
 /// shot: 22.6 against the light cells' 42.8; the image as shown within 5 % after
 /// 6.6–6.8 s, global 4.5 s). At 5 % it is 41.8 and the image as shown is within 5 %
-/// after 2.8 s, for 0.14 s of importance solve instead of 0.05 s (lavapipe; docs/src/measurements/radiosity-view.md:
-/// "Why the driven drives' image as shown lagged").
+/// after 2.8 s, for 0.14 s of importance solve instead of 0.05 s (lavapipe;
+/// docs/src/measurements/radiosity-view.md: "Why the driven drives' image as shown
+/// lagged").
 pub const IMPORTANCE_CELL_POWER: f64 = 0.05;
 /// The importance solve's visibility maps have this many times fewer texels per side
 /// (Bozalina keeps importance at half the radiosity's resolution).
