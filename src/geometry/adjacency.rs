@@ -6,7 +6,7 @@
 //! **inconsistent** (two faces traversing it in the same direction: winding flips across
 //! it), **non-manifold** (more than two faces).
 //!
-//! Rule used for every kind (documented in docs/src/guide/sun.md): for a light, an edge's signed count
+//! Rule used for every kind (documented in docs/src/design/silhouettes-and-shadow-volumes.md): for a light, an edge's signed count
 //! is the number of lit faces traversing it a→b minus those traversing it b→a; the edge is
 //! a silhouette edge when that count is non-zero, and the shadow volume gets |count| side
 //! quads for it. For manifold edges this is "one face lit, the other not"; for border edges
