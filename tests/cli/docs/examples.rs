@@ -8,15 +8,24 @@ use std::time::Duration;
 
 use clap::Parser;
 
-use super::markdown::{self, CodeBlock};
+use super::markdown::{self, CodeBlock, Page};
 use crate::common;
 
 /// The info strings of the blocks whose `goniolight` lines are commands.
 const SHELL: [&str; 5] = ["sh", "bash", "shell", "console", "text"];
 
-/// The command lines of a block: `\` continuations joined, a `$ ` prompt taken off,
-/// comments and redirections cut off; with the line of the block they start on.
-fn command_lines(block: &CodeBlock) -> Vec<(usize, String)> {
+/// One line of a block with its `\` continuations joined.
+struct CommandLine {
+    /// The line of the file it starts on.
+    line: usize,
+    /// Its text, the `$ ` prompt taken off.
+    text: String,
+    /// Whether it had the prompt (a command to run, not output shown under one).
+    prompted: bool,
+}
+
+/// The lines of a block: `\` continuations joined, a `$ ` prompt taken off.
+fn command_lines(block: &CodeBlock) -> Vec<CommandLine> {
     let mut out = Vec::new();
     let mut pending = String::new();
     let mut start = 0;
@@ -32,9 +41,13 @@ fn command_lines(block: &CodeBlock) -> Vec<(usize, String)> {
         pending.push_str(body);
         pending.push(' ');
         if !continues {
-            let text = pending.trim().trim_start_matches("$ ").to_string();
+            let joined = pending.trim();
+            out.push(CommandLine {
+                line: start,
+                text: joined.strip_prefix("$ ").unwrap_or(joined).to_string(),
+                prompted: joined.starts_with("$ "),
+            });
             pending.clear();
-            out.push((start, text));
         }
     }
     out
@@ -96,37 +109,31 @@ fn is_synopsis(text: &str) -> bool {
 
 #[test]
 fn every_command_shown_is_a_valid_command_line() {
-    let mut problems = Vec::new();
-    let mut checked = 0;
-    for file in markdown::documentation_files() {
-        let page = markdown::read(&file);
+    markdown::check_every_page("command lines", 30, |_, page| {
         let in_blocks = page
             .code_blocks
             .iter()
             .filter(|b| SHELL.contains(&b.info.as_str()))
             .flat_map(command_lines)
-            .map(|(line, text)| (line, text, false));
+            .map(|c| (c.line, c.text, false));
         let inline = page
             .inline_code
             .iter()
             .filter(|(_, text)| !is_synopsis(text))
             .map(|(line, text)| (*line, text.clone(), true));
+        let mut checked = 0;
+        let mut problems = Vec::new();
         for (line, text, mention) in in_blocks.chain(inline) {
             let Some(words) = goniolight_words(&text) else {
                 continue;
             };
             checked += 1;
             if let Some(why) = rejected(&words, mention) {
-                problems.push(format!("{}:{line}: {text}\n    {why}", file.display()));
+                problems.push(format!("{line}: {text}\n    {why}"));
             }
         }
-    }
-    assert!(checked > 30, "only {checked} command lines found");
-    assert!(
-        problems.is_empty(),
-        "commands that do not parse:\n{}",
-        problems.join("\n")
-    );
+        (checked, problems)
+    });
 }
 
 #[test]
@@ -163,38 +170,34 @@ fn example_folder() -> tempfile::TempDir {
     dir
 }
 
-/// Runs the console examples of `file`: `$` lines, each followed by lines it must print.
-fn run_console_examples(file: &Path, dir: &Path) -> (usize, Vec<String>) {
+/// Runs the console examples of a page in `dir`: `$` lines, each followed by lines it must
+/// print. Returns how many ran and what failed ("LINE: why").
+fn run_console_examples(page: &Page, dir: &Path) -> (usize, Vec<String>) {
     let mut problems = Vec::new();
     let mut ran = 0;
-    for block in markdown::read(file).code_blocks {
+    for block in &page.code_blocks {
         if block.info != "console" {
             continue;
         }
         let mut last: Option<(usize, String, String)> = None;
-        for (line, text) in command_lines(&block) {
-            let is_command = block
-                .text
-                .lines()
-                .nth(line - block.line - 1)
-                .is_some_and(|l| l.starts_with("$ "));
-            if !is_command {
+        for CommandLine {
+            line,
+            text,
+            prompted,
+        } in command_lines(block)
+        {
+            if !prompted {
                 // Output shown under a command: the command printed it.
                 if let Some((at, cmd, out)) = &last {
                     if !text.is_empty() && !out.contains(text.trim()) {
-                        problems.push(format!(
-                            "{}:{at}: {cmd}\n    did not print {:?}",
-                            file.display(),
-                            text.trim()
-                        ));
+                        problems.push(format!("{at}: {cmd}\n    did not print {:?}", text.trim()));
                     }
                 }
                 continue;
             }
             let Some(words) = goniolight_words(&text) else {
                 problems.push(format!(
-                    "{}:{line}: only goniolight commands run in a console block: {text}",
-                    file.display()
+                    "{line}: only goniolight commands run in a console block: {text}"
                 ));
                 continue;
             };
@@ -204,8 +207,7 @@ fn run_console_examples(file: &Path, dir: &Path) -> (usize, Vec<String>) {
                 common::run_cli_in(dir, &args, "", Duration::from_secs(300));
             if code != 0 || timed_out {
                 problems.push(format!(
-                    "{}:{line}: {text}\n    exit {code}{}: {}",
-                    file.display(),
+                    "{line}: {text}\n    exit {code}{}: {}",
                     if timed_out { " (timed out)" } else { "" },
                     err.lines().last().unwrap_or("")
                 ));
@@ -219,19 +221,9 @@ fn run_console_examples(file: &Path, dir: &Path) -> (usize, Vec<String>) {
 #[test]
 fn every_console_example_runs_as_shown() {
     let dir = example_folder();
-    let mut ran = 0;
-    let mut problems = Vec::new();
-    for file in markdown::documentation_files() {
-        let (n, p) = run_console_examples(&file, dir.path());
-        ran += n;
-        problems.extend(p);
-    }
-    assert!(ran >= 6, "only {ran} console examples ran");
-    assert!(
-        problems.is_empty(),
-        "examples that fail:\n{}",
-        problems.join("\n")
-    );
+    markdown::check_every_page("console examples", 6, |_, page| {
+        run_console_examples(page, dir.path())
+    });
 }
 
 /// Why a `toml` block of the documentation is not a valid file of its kind (scene file,
@@ -256,25 +248,18 @@ fn toml_rejected(text: &str) -> Option<String> {
 
 #[test]
 fn every_toml_example_is_a_valid_file() {
-    let mut problems = Vec::new();
-    let mut checked = 0;
-    for file in markdown::documentation_files() {
-        for block in markdown::read(&file).code_blocks {
-            if block.info != "toml" {
-                continue;
-            }
-            checked += 1;
-            if let Some(why) = toml_rejected(&block.text) {
-                problems.push(format!("{}:{}: {why}", file.display(), block.line));
-            }
-        }
-    }
-    assert!(checked >= 5, "only {checked} toml blocks found");
-    assert!(
-        problems.is_empty(),
-        "toml examples that do not read:\n{}",
-        problems.join("\n")
-    );
+    markdown::check_every_page("toml examples", 5, |_, page| {
+        let blocks: Vec<_> = page
+            .code_blocks
+            .iter()
+            .filter(|b| b.info == "toml")
+            .collect();
+        let problems = blocks
+            .iter()
+            .filter_map(|b| Some(format!("{}: {}", b.line, toml_rejected(&b.text)?)))
+            .collect();
+        (blocks.len(), problems)
+    });
 }
 
 #[test]
@@ -291,16 +276,19 @@ fn a_wrong_console_example_fails() {
     let dir = example_folder();
     let page = dir.path().join("page.md");
     let info = "$ goniolight ldt info luminaires/eulumdat-analysis/sample_18.ldt";
-    let write = |body: &str| std::fs::write(&page, format!("# t\n\n```console\n{body}\n```\n"));
-    write(&format!("{info}\n  CIE flux code  55 85 98 100 100")).unwrap();
-    assert_eq!(run_console_examples(&page, dir.path()), (1, vec![]));
+    // A page as the documentation holds it (read back from a file, as the pages are).
+    let page_with = |body: &str| {
+        std::fs::write(&page, format!("# t\n\n```console\n{body}\n```\n")).unwrap();
+        markdown::read(&page)
+    };
+    let right = page_with(&format!("{info}\n  CIE flux code  55 85 98 100 100"));
+    assert_eq!(run_console_examples(&right, dir.path()), (1, vec![]));
     for wrong in [
         format!("{info}\n  CIE flux code  99 99 99 100 100"),
         "$ goniolight ldt info luminaires/none.ldt".to_string(),
         "$ ls".to_string(),
     ] {
-        write(&wrong).unwrap();
-        let (_, problems) = run_console_examples(&page, dir.path());
+        let (_, problems) = run_console_examples(&page_with(&wrong), dir.path());
         assert_eq!(problems.len(), 1, "{wrong}: {problems:?}");
     }
 }

@@ -51,31 +51,17 @@ fn broken(page: &Path, anchors: &[String], target: &str) -> Option<String> {
 
 #[test]
 fn every_relative_link_and_image_resolves() {
-    let mut problems = Vec::new();
-    let mut checked = 0;
-    for file in markdown::documentation_files() {
-        let page = markdown::read(&file);
-        for link in &page.links {
-            checked += 1;
-            if let Some(why) = broken(&file, &page.anchors, &link.target) {
-                problems.push(format!(
-                    "{}:{}: ({}) {why}",
-                    file.display(),
-                    link.line,
-                    link.target
-                ));
-            }
-        }
-    }
-    assert!(
-        checked > 100,
-        "only {checked} links found: is the parser reading the pages?"
-    );
-    assert!(
-        problems.is_empty(),
-        "broken links:\n{}",
-        problems.join("\n")
-    );
+    markdown::check_every_page("links", 100, |file, page| {
+        let problems = page
+            .links
+            .iter()
+            .filter_map(|link| {
+                let why = broken(file, &page.anchors, &link.target)?;
+                Some(format!("{}: ({}) {why}", link.line, link.target))
+            })
+            .collect();
+        (page.links.len(), problems)
+    });
 }
 
 #[test]

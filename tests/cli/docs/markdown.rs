@@ -23,6 +23,30 @@ pub fn documentation_files() -> Vec<PathBuf> {
     files
 }
 
+/// Runs `check` on every documentation page; it returns how many things it checked there
+/// and what is wrong ("LINE: why", prefixed here with the file). Fails with every problem
+/// found, or when fewer than `at_least` things were checked in all (the check would then
+/// not be reading the pages).
+pub fn check_every_page(
+    what: &str,
+    at_least: usize,
+    mut check: impl FnMut(&Path, &Page) -> (usize, Vec<String>),
+) {
+    let mut checked = 0;
+    let mut problems = Vec::new();
+    for file in documentation_files() {
+        let (n, found) = check(&file, &read(&file));
+        checked += n;
+        problems.extend(found.into_iter().map(|p| format!("{}:{p}", file.display())));
+    }
+    assert!(checked >= at_least, "only {checked} {what} found");
+    assert!(
+        problems.is_empty(),
+        "{what} that fail:\n{}",
+        problems.join("\n")
+    );
+}
+
 /// One fenced code block: its info string (`sh`, `console`, …), its text and the line of
 /// its opening fence.
 pub struct CodeBlock {

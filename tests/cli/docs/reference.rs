@@ -156,9 +156,12 @@ fn page(path: &[String], cmd: &mut Command) -> String {
         }
         out.push('\n');
     }
-    let options: Vec<&Arg> = cmd.get_opts().chain(flags(cmd)).filter(visible).collect();
-    let mut options = options;
-    options.sort_by_key(|a| cmd.get_arguments().position(|b| b.get_id() == a.get_id()));
+    // Options and flags in the order the code defines them (as --help lists them).
+    let options: Vec<&Arg> = cmd
+        .get_arguments()
+        .filter(|a| !a.is_positional())
+        .filter(visible)
+        .collect();
     if !options.is_empty() {
         out.push_str("## Options\n\n");
         for arg in options {
@@ -168,12 +171,6 @@ fn page(path: &[String], cmd: &mut Command) -> String {
     }
     out.push_str("Every command also takes `-h`/`--help`.\n");
     out
-}
-
-/// The arguments that are flags (no value, not positional).
-fn flags(cmd: &Command) -> impl Iterator<Item = &Arg> {
-    cmd.get_arguments()
-        .filter(|a| !a.is_positional() && !a.get_action().takes_values())
 }
 
 /// The index page: every command with its one-line description.
