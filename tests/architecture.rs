@@ -2,7 +2,9 @@
 //! - no import cycle between the library's files (every `use crate::…`, `use super::…`,
 //!   child-module path and inline `crate::…` path counts as an arrow to the file that
 //!   defines the module it names, except a child naming its own ancestors);
-//! - the library without default features pulls in no GPU or GUI crate.
+//! - the library without default features pulls in no GPU or GUI crate;
+//! - the command line, the viewer and the Python package solve radiosity only through
+//!   `radiosity::session` (no second shooting loop).
 
 mod common;
 
@@ -523,5 +525,82 @@ fn proptest_seed_files_sit_where_proptest_reads_them() {
     assert!(
         modules >= 3,
         "the interpolation, BVH and silhouette seeds are kept"
+    );
+}
+
+/// What only `radiosity::session` (and the solver's own modules) may name: the solver,
+/// its start, the view's importance, the elements' construction, the gather, the loop's
+/// steps.
+const SOLVER_INTERNALS: [&str; 9] = [
+    "GpuSolver",
+    "InitialState",
+    "LuminaireLight",
+    "ViewDriven",
+    "RadiosityScene::",
+    "gather::",
+    "select_next",
+    "shoot_until",
+    "solve_to_scale",
+];
+
+/// The solver internals that `text` names outside comments, with their line numbers.
+fn solver_internals_named(text: &str) -> Vec<(usize, &'static str)> {
+    let mut found = Vec::new();
+    for (i, line) in text.lines().enumerate() {
+        let code = line.split("//").next().unwrap_or("");
+        for name in SOLVER_INTERNALS {
+            if code.contains(name) {
+                found.push((i + 1, name));
+            }
+        }
+    }
+    found
+}
+
+/// Every `.rs` file under `dir`.
+fn rust_files(dir: &Path) -> Vec<PathBuf> {
+    let mut out = Vec::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        for entry in std::fs::read_dir(&d).expect("read dir") {
+            let path = entry.expect("dir entry").path();
+            if path.is_dir() {
+                stack.push(path);
+            } else if path.extension().and_then(|e| e.to_str()) == Some("rs") {
+                out.push(path);
+            }
+        }
+    }
+    out.sort();
+    out
+}
+
+#[test]
+fn the_front_ends_solve_radiosity_only_through_the_session() {
+    let root = common::root();
+    let mut files = rust_files(&root.join("src/cli"));
+    files.extend(rust_files(&root.join("src/viewer")));
+    files.extend(rust_files(&root.join("python/src")));
+    assert!(files.len() > 20, "{} files", files.len());
+    let mut offences = Vec::new();
+    for f in &files {
+        let text = std::fs::read_to_string(f).expect("read source");
+        for (line, name) in solver_internals_named(&text) {
+            offences.push(format!("{}:{line}: {name}", f.display()));
+        }
+    }
+    assert!(
+        offences.is_empty(),
+        "front ends reach into the radiosity solver (use radiosity::session):\n{}",
+        offences.join("\n")
+    );
+}
+
+#[test]
+fn a_planted_shooting_loop_is_found() {
+    let planted = "let s = solver.select_next()?; // pick\n// solver.shoot_until(t)\nsolver.shoot_until(t, &over)?;\n";
+    assert_eq!(
+        solver_internals_named(planted),
+        vec![(1, "select_next"), (3, "shoot_until")]
     );
 }

@@ -1,10 +1,12 @@
 """goniolight for Python: real luminaire files (EULUMDAT ``.ldt``, IES ``.ies``), their
-interpolation and its check, the sun's position, and illuminance at points of a scene.
+interpolation and its check, the sun's position, illuminance at points of a scene, and
+its radiosity solution (the interreflected light).
 
 The numbers come from the same library code as the ``goniolight`` command line: ``info``
 equals ``goniolight ldt info --json``, ``sample`` equals ``goniolight ldt sample``,
-``sun_position`` equals ``goniolight sun --json`` and ``illuminance`` equals
-``goniolight illuminance``.
+``sun_position`` equals ``goniolight sun --json``, ``illuminance`` equals
+``goniolight illuminance`` and ``radiosity(...).lux`` equals ``goniolight radiosity
+--points``.
 
 Run from the repository's root (the tests run these examples):
 
@@ -31,7 +33,8 @@ import numpy as np
 
 from . import _native
 
-__all__ = ["Luminaire", "read", "sun_position", "illuminance", "INTERPOLATIONS"]
+__all__ = ["Luminaire", "read", "sun_position", "illuminance", "radiosity", "Radiosity",
+           "INTERPOLATIONS"]
 
 #: The interpolation methods, as the command line names them.
 INTERPOLATIONS = ("nearest", "bilinear", "catmull-rom", "monotone")
@@ -161,3 +164,99 @@ def illuminance(scene: PathLike, points, *, interp: str = "catmull-rom",
     if return_device:
         return lux, ("gpu" if on_gpu else "cpu")
     return lux
+
+
+class Radiosity:
+    """A radiosity solution of a scene: what ``goniolight radiosity`` solves. Made by
+    :func:`radiosity`.
+
+    ``convergence`` is the fraction of the luminaires' first-bounce power that was shot
+    when the solver stopped, ``stop_reason`` why it stopped (``"converged"``, ``"shot
+    limit reached"``, ``"time budget spent"``, ``"interrupted"``, …).
+    """
+
+    def __init__(self, native: "_native.NativeRadiosity"):
+        self._native = native
+
+    @property
+    def convergence(self) -> float:
+        """The converged fraction (0..1) when the solver stopped."""
+        return float(self._native.convergence())
+
+    @property
+    def stop_reason(self) -> str:
+        """Why the solver stopped."""
+        return str(self._native.stop_reason())
+
+    @property
+    def elements(self) -> int:
+        """Elements (light-map texels) of the solution."""
+        return int(self._native.sizes()[0])
+
+    @property
+    def log(self) -> dict:
+        """The convergence log (``convergence.csv`` of ``goniolight radiosity``) as a dict
+        of arrays: ``shot``, ``seconds``, ``unshot_lm``, ``convergence``."""
+        rows = [line.split(",") for line in self._native.convergence_csv().splitlines()[1:]]
+        cols = {"shot": 0, "seconds": 1, "unshot_lm": 3, "convergence": 4}
+        return {k: np.asarray([float(r[i]) for r in rows]) for k, i in cols.items()}
+
+    def lux(self, points) -> np.ndarray:
+        """Total illuminance (lux: the luminaires' direct light with its shadows, what
+        mirrors and clear glass pass on, and the interreflected light) at an N × 6 array
+        of ``x y z nx ny nz``: what ``goniolight radiosity SCENE --points`` prints."""
+        return self._native.lux(_points(points))
+
+    def interreflected_lux(self, points) -> np.ndarray:
+        """The interreflected illuminance alone (lux) at an N × 6 array of points."""
+        return self._native.interreflected_lux(_points(points))
+
+    def export(self, path: PathLike, bake: str = "auto", bake_budget: Optional[int] = None) -> None:
+        """Writes the solved scene as glTF 2.0 binary (``radiosity --export``): each
+        surface light-mapped or vertex-lit as ``bake`` (auto, map or vertex) chooses."""
+        self._native.export(os.fspath(path), bake, bake_budget)
+
+    def __repr__(self) -> str:
+        return (f"Radiosity({self.elements} elements, {100 * self.convergence:.2f} % "
+                f"converged, {self.stop_reason})")
+
+
+def _points(points) -> np.ndarray:
+    return np.ascontiguousarray(np.atleast_2d(np.asarray(points, dtype=float)))
+
+
+def radiosity(scene: PathLike, *, converge: float = 0.99, max_shots: Optional[int] = None,
+              time_limit: Optional[float] = None, texel_density: float = 10.0, level: int = 2,
+              adaptive: int = 0, adaptive_share: Sequence[float] = (0.0, 1.0),
+              visibility: str = "hemicube", map_size: int = 256, raster: str = "auto",
+              hierarchy: str = "clusters", cell_power: float = 1e-3, link_error: float = 0.05,
+              form_factor: str = "polygon", ambient: str = "display", drive: str = "global",
+              fov_margin: float = 10.0, interp: Optional[str] = None,
+              shadows: Optional[str] = None, progress=None) -> Radiosity:
+    """Solves a scene file's interreflected light on the GPU, as ``goniolight radiosity``
+    does: every keyword is the command's flag of that name, with its default.
+
+    ``interp`` and ``shadows`` default to the scene's ``[display]``. ``progress``, if
+    given, is called as ``progress(shot, convergence)`` before each shot. Ctrl-C (or
+    Jupyter's interrupt) during the preparation raises KeyboardInterrupt; during the
+    shooting it stops the solver and returns the solution so far (``stop_reason`` is
+    ``"interrupted"``). Bad options and scenes raise ValueError naming the option or the
+    file.
+
+    >>> import goniolight
+    >>> sol = goniolight.radiosity("assets/scenes/box_room.toml", converge=0.9, texel_density=4)
+    >>> sol.stop_reason, sol.convergence >= 0.9
+    ('converged', True)
+    >>> bool(sol.lux([[1, 1, 0.8, 0, 0, 1]])[0] > 33.0)
+    True
+    """
+    options = {
+        "converge": converge, "max_shots": max_shots, "time_limit": time_limit,
+        "texel_density": texel_density, "level": level, "adaptive": adaptive,
+        "adaptive_share": [float(v) for v in adaptive_share], "visibility": visibility,
+        "map_size": map_size, "raster": raster, "hierarchy": hierarchy,
+        "cell_power": cell_power, "link_error": link_error, "form_factor": form_factor,
+        "ambient": ambient, "drive": drive, "fov_margin": fov_margin,
+    }
+    native = _native.radiosity(os.fspath(scene), json.dumps(options), interp, shadows, progress)
+    return Radiosity(native)

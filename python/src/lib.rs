@@ -2,6 +2,7 @@
 //! the Python layer (`goniolight/__init__.py`) turns JSON into dicts and documents the API.
 
 use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
@@ -11,6 +12,8 @@ use goniolight::lighting::SurfacePoint;
 use goniolight::photometry::check::{self, LeaveOut};
 use goniolight::photometry::ies::write_ies;
 use goniolight::photometry::{Interp, Luminaire};
+use goniolight::radiosity::bake::BakeChoice;
+use goniolight::radiosity::session::{Options, SessionError, Solution};
 use goniolight::shadow::ShadowTechnique;
 
 fn value_error(e: impl std::fmt::Display) -> PyErr {
@@ -190,42 +193,9 @@ fn illuminance<'py>(
     use goniolight::gpu::{Gpu, GpuError};
     use goniolight::render::illuminance::scene_illuminance;
     let method = parse_interp(interp)?;
-    let view = points.as_array();
-    if view.ncols() != 6 {
-        return Err(value_error(format!(
-            "points must be an N × 6 array (x y z nx ny nz), got {} columns",
-            view.ncols()
-        )));
-    }
-    let mut pts = Vec::with_capacity(view.nrows());
-    for (i, row) in view.rows().into_iter().enumerate() {
-        let v: Vec<f64> = row.iter().copied().collect();
-        if v.iter().any(|x| !x.is_finite()) {
-            return Err(value_error(format!("points[{i}] is not finite")));
-        }
-        let normal = glam_dvec3(v[3], v[4], v[5]);
-        if normal.length() < 1e-12 {
-            return Err(value_error(format!(
-                "points[{i}]: the normal has zero length"
-            )));
-        }
-        pts.push(SurfacePoint {
-            position: glam_dvec3(v[0], v[1], v[2]),
-            normal,
-        });
-    }
+    let pts = surface_points(&points)?;
     let scene = goniolight::scene::Scene::load(&scene).map_err(value_error)?;
-    let technique = match shadows {
-        None => scene.display.shadows.unwrap_or_default(),
-        Some("none") => ShadowTechnique::None,
-        Some("paraboloid") => ShadowTechnique::Paraboloid,
-        Some("volumes") => ShadowTechnique::Volumes,
-        Some(other) => {
-            return Err(value_error(format!(
-                "shadows {other:?}: none, paraboloid or volumes"
-            )))
-        }
-    };
+    let technique = parse_shadows(shadows, &scene)?;
     let gpu = if cpu {
         None
     } else {
@@ -250,8 +220,207 @@ fn illuminance<'py>(
     Ok((lux.into_pyarray(py), on_gpu))
 }
 
+/// Points from an N × 6 array (x y z nx ny nz), each finite with a normal.
+fn surface_points(points: &PyReadonlyArray2<'_, f64>) -> PyResult<Vec<SurfacePoint>> {
+    let view = points.as_array();
+    if view.ncols() != 6 {
+        return Err(value_error(format!(
+            "points must be an N × 6 array (x y z nx ny nz), got {} columns",
+            view.ncols()
+        )));
+    }
+    let mut pts = Vec::with_capacity(view.nrows());
+    for (i, row) in view.rows().into_iter().enumerate() {
+        let v: Vec<f64> = row.iter().copied().collect();
+        if v.iter().any(|x| !x.is_finite()) {
+            return Err(value_error(format!("points[{i}] is not finite")));
+        }
+        let normal = glam_dvec3(v[3], v[4], v[5]);
+        if normal.length() < 1e-12 {
+            return Err(value_error(format!(
+                "points[{i}]: the normal has zero length"
+            )));
+        }
+        pts.push(SurfacePoint {
+            position: glam_dvec3(v[0], v[1], v[2]),
+            normal,
+        });
+    }
+    Ok(pts)
+}
+
+fn parse_shadows(
+    shadows: Option<&str>,
+    scene: &goniolight::scene::Scene,
+) -> PyResult<ShadowTechnique> {
+    Ok(match shadows {
+        None => scene.display.shadows.unwrap_or_default(),
+        Some("none") => ShadowTechnique::None,
+        Some("paraboloid") => ShadowTechnique::Paraboloid,
+        Some("volumes") => ShadowTechnique::Volumes,
+        Some(other) => {
+            return Err(value_error(format!(
+                "shadows {other:?}: none, paraboloid or volumes"
+            )))
+        }
+    })
+}
+
 fn glam_dvec3(x: f64, y: f64, z: f64) -> glam::DVec3 {
     glam::DVec3::new(x, y, z)
+}
+
+/// A radiosity error as Python raises it: bad options and scenes are `ValueError`s.
+fn session_error(e: SessionError) -> PyErr {
+    match e {
+        SessionError::Cancelled(_) => pyo3::exceptions::PyKeyboardInterrupt::new_err(e.to_string()),
+        e if e.is_bad_input() => value_error(e),
+        e => PyRuntimeError::new_err(e.to_string()),
+    }
+}
+
+/// A radiosity solution of a scene (what `goniolight radiosity` solves).
+#[pyclass(module = "goniolight._native", unsendable)]
+struct NativeRadiosity {
+    solution: Solution,
+    scene: goniolight::scene::Scene,
+}
+
+#[pymethods]
+impl NativeRadiosity {
+    /// Total illuminance (direct and interreflected, lux) at an N × 6 array of points, as
+    /// `radiosity --points` prints it.
+    fn lux<'py>(
+        &self,
+        py: Python<'py>,
+        points: PyReadonlyArray2<'py, f64>,
+    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let pts = surface_points(&points)?;
+        let cancel = AtomicBool::new(false);
+        let lux = self
+            .solution
+            .lux(&pts, &cancel, &|_| {})
+            .map_err(session_error)?;
+        Ok(lux.into_pyarray(py))
+    }
+
+    /// The interreflected illuminance alone (lux) at an N × 6 array of points.
+    fn interreflected_lux<'py>(
+        &self,
+        py: Python<'py>,
+        points: PyReadonlyArray2<'py, f64>,
+    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let pts = surface_points(&points)?;
+        let cancel = AtomicBool::new(false);
+        let lux = self
+            .solution
+            .interreflected_lux(&pts, &cancel, &|_| {})
+            .map_err(session_error)?;
+        Ok(lux.into_pyarray(py))
+    }
+
+    /// The converged fraction of the initial unshot power when the solver stopped.
+    fn convergence(&self) -> f64 {
+        self.solution.convergence()
+    }
+
+    /// Why the solver stopped ("converged", "shot limit reached", "interrupted", …).
+    fn stop_reason(&self) -> String {
+        self.solution.stop().to_string()
+    }
+
+    /// The convergence log, as `convergence.csv` holds it.
+    fn convergence_csv(&self) -> String {
+        self.solution.convergence_csv()
+    }
+
+    /// Elements (light-map texels) and shooting patches.
+    fn sizes(&self) -> (usize, usize) {
+        let el = &self.solution.prepared().scene().elements;
+        (el.len(), el.patches.len())
+    }
+
+    /// Writes the solved scene as glTF 2.0 binary (`radiosity --export`).
+    #[pyo3(signature = (path, bake="auto", bake_budget=None))]
+    fn export(&self, path: PathBuf, bake: &str, bake_budget: Option<u64>) -> PyResult<()> {
+        let choice: BakeChoice = serde_json::from_value(serde_json::Value::from(bake))
+            .map_err(|_| value_error(format!("bake {bake:?}: auto, map or vertex")))?;
+        let (bytes, _, _) = self
+            .solution
+            .export_glb(&self.scene, choice, bake_budget)
+            .map_err(|e| PyRuntimeError::new_err(format!("{e:#}")))?;
+        goniolight::io::write_atomic(&path, &bytes)
+            .map_err(|e| value_error(format!("{}: {e:#}", path.display())))
+    }
+}
+
+/// The radiosity options' defaults as JSON (the command line's).
+#[pyfunction]
+fn radiosity_defaults_json() -> PyResult<String> {
+    serde_json::to_string(&Options::default()).map_err(value_error)
+}
+
+/// Solves `scene`'s interreflected light on the GPU with the options in `options_json`
+/// (the fields of `goniolight::radiosity::session::Options`; those left out take their
+/// defaults). `progress(shot, convergence)` is called before each shot. Ctrl-C stops the
+/// preparation with KeyboardInterrupt and the shooting with the solution so far.
+#[pyfunction]
+#[pyo3(signature = (scene, options_json, interp=None, shadows=None, progress=None))]
+fn radiosity(
+    py: Python<'_>,
+    scene: PathBuf,
+    options_json: &str,
+    interp: Option<&str>,
+    shadows: Option<&str>,
+    progress: Option<Bound<'_, PyAny>>,
+) -> PyResult<NativeRadiosity> {
+    use goniolight::radiosity::session::{self, Event};
+    let options: Options = serde_json::from_str(options_json).map_err(value_error)?;
+    let scene = goniolight::scene::Scene::load(&scene).map_err(value_error)?;
+    let mut settings = goniolight::render::RenderSettings::from_display(&scene.display);
+    if let Some(name) = interp {
+        settings.light_model = goniolight::render::LightModel::Ldt(parse_interp(name)?);
+    }
+    settings.shadows = goniolight::render::ShadowSettings::with(parse_shadows(shadows, &scene)?);
+    let gpu = goniolight::gpu::Gpu::shared().map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+    let aspect = settings.width as f64 / settings.height.max(1) as f64;
+    let cancel = AtomicBool::new(false);
+    let mut failed: Option<PyErr> = None;
+    let mut events = |e: Event| {
+        if let Err(err) = py.check_signals() {
+            cancel.store(true, Ordering::SeqCst);
+            failed.get_or_insert(err);
+            return;
+        }
+        if let (Event::Shot(p), Some(f)) = (e, &progress) {
+            if let Err(err) = f.call1((p.shot, p.convergence)) {
+                cancel.store(true, Ordering::SeqCst);
+                failed.get_or_insert(err);
+            }
+        }
+    };
+    let solved = session::solve(
+        &gpu,
+        &scene,
+        &options,
+        settings.light_model.interp(),
+        &mut settings.shadows,
+        Some((&scene.camera, aspect)),
+        &cancel,
+        &mut events,
+    );
+    let solution = match solved {
+        Ok(s) => s,
+        // Stopped while preparing: what stopped it is the error.
+        Err(e) => return Err(failed.take().unwrap_or_else(|| session_error(e))),
+    };
+    // A progress callable that raised is the caller's error; Ctrl-C keeps the solution.
+    if let Some(err) = failed {
+        if !err.is_instance_of::<pyo3::exceptions::PyKeyboardInterrupt>(py) {
+            return Err(err);
+        }
+    }
+    Ok(NativeRadiosity { solution, scene })
 }
 
 /// The native module.
@@ -261,5 +430,8 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(read, m)?)?;
     m.add_function(wrap_pyfunction!(sun_positions_json, m)?)?;
     m.add_function(wrap_pyfunction!(illuminance, m)?)?;
+    m.add_class::<NativeRadiosity>()?;
+    m.add_function(wrap_pyfunction!(radiosity, m)?)?;
+    m.add_function(wrap_pyfunction!(radiosity_defaults_json, m)?)?;
     Ok(())
 }

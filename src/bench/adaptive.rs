@@ -4,16 +4,12 @@
 //! side in one run.
 
 use std::sync::atomic::AtomicBool;
-use std::time::Instant;
 
 use crate::gpu::Gpu;
-use crate::radiosity::elements::Subdivision;
-use crate::radiosity::gpu::{GpuSettings, GpuSolver};
-use crate::radiosity::initial::{InitialState, LuminaireLight};
-use crate::radiosity::scene::RadiosityScene;
+use crate::photometry::Interp;
+use crate::radiosity::session::{Options, Prepared};
 use crate::radiosity::shooters::Hierarchy;
 use crate::radiosity::solve::StopAt;
-use crate::radiosity::SolverSettings;
 use crate::scene::Scene;
 
 /// One measured meshing.
@@ -39,7 +35,8 @@ pub struct AdaptiveBenchRow {
     pub subdivision_seconds: f64,
     /// Seconds for the receiving normals (normal maps, vertex normals).
     pub normals_seconds: f64,
-    /// Seconds for the luminaires' direct light (on the GPU).
+    /// Seconds for the luminaires' direct light (on the GPU; their GPU scene built for
+    /// it included).
     pub direct_seconds: f64,
     /// Seconds of shooting to the convergence asked for (or the limits).
     pub solve_seconds: f64,
@@ -82,9 +79,7 @@ pub fn run(
         None => vec![(scene, false)],
     };
     let mut shadows = crate::render::ShadowSettings::default();
-    crate::render::limits::check_scene(gpu, scene, &mut shadows)?;
-    let defaults = SolverSettings::default();
-    let light = LuminaireLight::new(gpu, scene, defaults.interp);
+    let cancel = AtomicBool::new(false);
     let mut rows = Vec::new();
     for (variant, normal_maps) in variants {
         for m in meshings {
@@ -94,25 +89,30 @@ pub fn run(
                 m.texel_density,
                 if normal_maps { ", normal maps" } else { "" }
             ));
-            let started = Instant::now();
-            let rscene = RadiosityScene::with_subdivision(
-                variant,
-                m.texel_density,
+            let options = Options {
+                converge: stop.converge,
+                max_shots: stop.max_shots,
+                time_limit: stop.time_budget.map(|d| d.as_secs_f64()),
+                texel_density: m.texel_density,
                 level,
-                Hierarchy::Clusters,
-                Subdivision::levels(m.levels),
-            )?;
-            let prepared = started.elapsed().as_secs_f64();
-            crate::render::limits::check_radiosity(gpu, rscene.elements.len())?;
-            let started = Instant::now();
-            let initial = InitialState::from_luminaires_gpu(gpu, &light, &rscene, &shadows)?;
-            let direct_seconds = started.elapsed().as_secs_f64();
-            let gpu_settings = GpuSettings {
+                adaptive: m.levels,
                 hierarchy: Hierarchy::Clusters,
-                ..GpuSettings::default()
+                ..Options::default()
             };
-            let mut solver = GpuSolver::new(gpu, &rscene, &initial, defaults, gpu_settings);
-            let (_, log) = solver.solve(stop, &AtomicBool::new(false), |_| {})?;
+            let prepared = Prepared::new(
+                gpu,
+                variant,
+                &options,
+                Interp::CatmullRom,
+                &mut shadows,
+                None,
+                &cancel,
+                &mut |_| {},
+            )?;
+            let mut session = prepared.session(&mut |_| {})?;
+            session.solve(&cancel, &mut |_| {})?;
+            let rscene = prepared.scene();
+            let log = session.log();
             let el = &rscene.elements;
             rows.push(AdaptiveBenchRow {
                 meshing: if m.levels == 0 { "uniform" } else { "adaptive" }.into(),
@@ -122,12 +122,12 @@ pub fn run(
                 triangles: el.triangles.len(),
                 elements: el.len(),
                 texels: el.span.iter().map(|&s| u64::from(s) * u64::from(s)).sum(),
-                elements_seconds: prepared - rscene.receiving_seconds,
+                elements_seconds: prepared.times.elements - rscene.receiving_seconds,
                 subdivision_seconds: rscene.subdivision_seconds,
                 normals_seconds: rscene.receiving_seconds,
-                direct_seconds,
+                direct_seconds: prepared.times.direct_light,
                 solve_seconds: log.last().map_or(0.0, |p| p.seconds),
-                shots: solver.shots,
+                shots: session.solver().shots,
                 convergence: log.last().map_or(0.0, |p| p.convergence),
             });
         }

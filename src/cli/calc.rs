@@ -412,15 +412,14 @@ fn interreflected_lux(
     let mut settings = crate::render::RenderSettings::from_display(&scene.display);
     settings.light_model = crate::render::LightModel::Ldt(args.interp);
     settings.shadows = ShadowSettings::with(args.shadows);
-    let prepared =
-        super::radiosity::prepare(&args.scene, scene, &args.solver, &mut settings, started)?;
-    let solved = prepared.solve()?;
-    if solved.stop == crate::radiosity::solve::StopReason::Cancelled {
+    let options = args.solver.check()?;
+    let solved = super::radiosity::solve(&args.scene, scene, &options, &mut settings, started)?;
+    if solved.stop() == crate::radiosity::solve::StopReason::Cancelled {
         return Err(CliError::failure(anyhow!(
             "interrupted while solving the interreflected light: nothing written"
         )));
     }
-    let (lux, _) = solved.interreflected_lux(points)?;
+    let lux = super::radiosity::interreflected_lux(&args.scene, &solved, points)?;
     Ok((lux, solved.convergence()))
 }
 

@@ -121,6 +121,29 @@ impl From<ProfileError> for CliError {
     }
 }
 
+impl From<crate::radiosity::session::OptionError> for CliError {
+    /// The library names the option's field; the command, its flag (`map_size` is
+    /// `--map-size`).
+    fn from(e: crate::radiosity::session::OptionError) -> CliError {
+        let flag = e.field.replace('_', "-");
+        CliError::input(anyhow::anyhow!("--{flag} {} {}", e.value, e.problem))
+    }
+}
+
+impl From<crate::radiosity::session::SessionError> for CliError {
+    fn from(e: crate::radiosity::session::SessionError) -> CliError {
+        use crate::radiosity::session::SessionError;
+        match e {
+            SessionError::Option(o) => o.into(),
+            SessionError::Gpu(g) => g.into(),
+            e => {
+                let bad_input = e.is_bad_input();
+                CliError::classified(e, bad_input)
+            }
+        }
+    }
+}
+
 impl From<SunError> for CliError {
     fn from(e: SunError) -> CliError {
         match e {

@@ -6,11 +6,11 @@
 use std::path::Path;
 use std::time::Instant;
 
-use anyhow::anyhow;
-use clap::{Args, FromArgMatches};
+use clap::Args;
 
-use super::radiosity::{prepare, SolverArgs};
+use super::radiosity::solve;
 use super::CliError;
+use crate::radiosity::session::Options;
 use crate::render::lightmap::LightMap;
 use crate::render::RenderSettings;
 use crate::scene::{DisplayIndirect, Scene};
@@ -36,15 +36,6 @@ impl IndirectArgs {
     }
 }
 
-/// The radiosity solver's options at their defaults (as `radiosity` parses them).
-fn default_solver() -> Result<SolverArgs, CliError> {
-    let command = SolverArgs::augment_args(clap::Command::new("indirect"));
-    let matches = command
-        .try_get_matches_from(["indirect"])
-        .map_err(|e| CliError::failure(anyhow!(e)))?;
-    SolverArgs::from_arg_matches(&matches).map_err(|e| CliError::failure(anyhow!(e)))
-}
-
 /// The light map that shows `choice` for `scene` (`label`: its file, for messages), and
 /// a line saying what it holds; `None` for [`DisplayIndirect::None`]. Sets
 /// `settings.shown_light`.
@@ -56,16 +47,15 @@ pub fn light_map(
     seconds: f64,
 ) -> Result<Option<(LightMap, String)>, CliError> {
     settings.shown_light = choice;
-    let mut solver = default_solver()?;
+    let mut options = Options::default();
     match choice {
         DisplayIndirect::None => return Ok(None),
         // No shot: the luminaires' first bounce and the ambient term alone.
-        DisplayIndirect::Ambient => solver.max_shots = Some(0),
-        DisplayIndirect::Radiosity => solver.time_limit = Some(seconds),
+        DisplayIndirect::Ambient => options.max_shots = Some(0),
+        DisplayIndirect::Radiosity => options.time_limit = Some(seconds),
     }
     let started = Instant::now();
-    let prepared = prepare(label, scene, &solver, settings, started)?;
-    let solved = prepared.solve()?;
+    let solved = solve(label, scene, &options, settings, started)?;
     let what = match choice {
         DisplayIndirect::Ambient => format!(
             "indirect light: ambient estimate from the luminaires' first bounce ({:.1} s)",
@@ -74,7 +64,7 @@ pub fn light_map(
         _ => format!(
             "indirect light: radiosity, {:.1} % converged ({}) in {:.1} s, the ambient term for the rest",
             100.0 * solved.convergence(),
-            solved.stop,
+            solved.stop(),
             started.elapsed().as_secs_f64()
         ),
     };

@@ -3,11 +3,11 @@
 //! `--points` print the total illuminance at points read from stdin.
 
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
 use anyhow::anyhow;
 use clap::Args;
-use glam::DVec3;
 
 use super::render::{render_to_files, ImageOptions};
 use super::CliError;
@@ -15,17 +15,15 @@ use crate::gpu::Gpu;
 use crate::io::write_atomic;
 use crate::lighting::read_points;
 use crate::lighting::SurfacePoint;
-use crate::radiosity::bake::{self, BakeChoice, BakePlan};
-use crate::radiosity::elements::{Elements, Subdivision};
-use crate::radiosity::gather;
-use crate::radiosity::gpu::{GpuSettings, GpuSolver, Raster, Visibility};
-use crate::radiosity::initial::{InitialState, LuminaireLight};
+use crate::radiosity::bake::{BakeChoice, BakePlan};
+use crate::radiosity::elements::Elements;
+use crate::radiosity::gpu::{Raster, Visibility};
 use crate::radiosity::links::DEFAULT_LINK_ERROR;
-use crate::radiosity::scene::{luminance, RadiosityScene};
-use crate::radiosity::shooters::{Hierarchy, Shooters, DEFAULT_CELL_POWER};
-use crate::radiosity::solve::{self, ConvergencePoint, StopAt, StopReason};
-use crate::radiosity::view::{self, Drive, ViewDriven, ViewPoint};
-use crate::radiosity::{Ambient, FormFactorKind, SolverSettings};
+use crate::radiosity::session::{self, Event, Options, SessionError, Solution, Stage};
+use crate::radiosity::shooters::{Hierarchy, DEFAULT_CELL_POWER};
+use crate::radiosity::solve::StopReason;
+use crate::radiosity::view::Drive;
+use crate::radiosity::{Ambient, FormFactorKind};
 use crate::render::lightmap::LightMap;
 use crate::render::output::write_image;
 use crate::render::Renderer;
@@ -113,81 +111,47 @@ pub struct SolverArgs {
 }
 
 impl SolverArgs {
-    /// An error naming the flag whose value is out of range.
-    pub fn check(&self) -> Result<(), CliError> {
-        let bad = |what: String| Err(CliError::input(anyhow!(what)));
-        if !(self.converge.is_finite() && (0.0..=1.0).contains(&self.converge)) {
-            return bad(format!("--converge {} is not in 0..=1", self.converge));
-        }
-        if !(self.texel_density.is_finite() && self.texel_density > 0.0) {
-            return bad(format!(
-                "--texel-density {} must be a positive number of texels per metre",
-                self.texel_density
-            ));
-        }
-        if self.level > 6 {
-            return bad(format!("--level {} is not in 0..=6", self.level));
-        }
-        if self.adaptive > 4 {
-            return bad(format!("--adaptive {} is not in 0..=4", self.adaptive));
-        }
-        let share_ok = match self.adaptive_share[..] {
-            [lower, upper] => (0.0..=1.0).contains(&lower) && (lower..=1.0).contains(&upper),
-            _ => false,
+    /// The library's options these flags give (`adaptive_share` must hold two values:
+    /// [`SolverArgs::check`]).
+    pub fn options(&self) -> Options {
+        let share = match self.adaptive_share[..] {
+            [lower, upper] => [lower, upper],
+            _ => [f64::NAN; 2],
         };
-        if !share_ok {
-            let given: Vec<String> = self.adaptive_share.iter().map(f64::to_string).collect();
-            return bad(format!(
-                "--adaptive-share {}: give LOWER,UPPER with 0 ≤ LOWER ≤ UPPER ≤ 1",
-                given.join(",")
-            ));
-        }
-        if !(self.cell_power.is_finite() && self.cell_power > 0.0 && self.cell_power <= 1.0) {
-            return bad(format!("--cell-power {} is not in (0, 1]", self.cell_power));
-        }
-        if !(self.link_error.is_finite() && (0.0..=1.0).contains(&self.link_error)) {
-            return bad(format!("--link-error {} is not in [0, 1]", self.link_error));
-        }
-        if !(16..=4096).contains(&self.map_size) {
-            return bad(format!("--map-size {} is not in 16..=4096", self.map_size));
-        }
-        if !(self.fov_margin.is_finite() && (0.0..=180.0).contains(&self.fov_margin)) {
-            return bad(format!(
-                "--fov-margin {} is not in 0..=180 degrees",
-                self.fov_margin
-            ));
-        }
-        if let Some(t) = self.time_limit {
-            if !(t.is_finite() && t > 0.0) {
-                return bad(format!(
-                    "--time-limit {t} must be a positive number of seconds"
-                ));
-            }
-        }
-        Ok(())
-    }
-
-    /// The adaptive subdivision asked for.
-    pub fn subdivision(&self) -> Subdivision {
-        let (lower, upper) = match self.adaptive_share[..] {
-            [lower, upper] => (lower, upper),
-            _ => (0.0, 1.0),
-        };
-        Subdivision {
-            levels: self.adaptive,
-            lower,
-            upper,
-        }
-    }
-
-    fn stop(&self) -> StopAt {
-        StopAt {
+        Options {
             converge: self.converge,
             max_shots: self.max_shots,
-            time_budget: self
-                .time_limit
-                .and_then(|t| crate::io::limits::duration(t).ok()),
+            time_limit: self.time_limit,
+            texel_density: self.texel_density,
+            level: self.level,
+            adaptive: self.adaptive,
+            adaptive_share: share,
+            visibility: self.visibility,
+            map_size: self.map_size,
+            raster: self.raster,
+            hierarchy: self.hierarchy,
+            cell_power: self.cell_power,
+            link_error: self.link_error,
+            form_factor: self.form_factor,
+            ambient: self.ambient,
+            drive: self.drive,
+            fov_margin: self.fov_margin,
+            importance_time_limit: None,
         }
+    }
+
+    /// The options, or an error naming the flag whose value is out of range.
+    pub fn check(&self) -> Result<Options, CliError> {
+        if self.adaptive_share.len() != 2 {
+            let given: Vec<String> = self.adaptive_share.iter().map(f64::to_string).collect();
+            return Err(CliError::input(anyhow!(
+                "--adaptive-share {}: give LOWER,UPPER with 0 ≤ LOWER ≤ UPPER ≤ 1",
+                given.join(",")
+            )));
+        }
+        let options = self.options();
+        options.validate()?;
+        Ok(options)
     }
 }
 
@@ -263,415 +227,290 @@ impl RadiosityArgs {
     }
 }
 
-fn progress_bar() -> Result<indicatif::ProgressBar, CliError> {
-    let bar = indicatif::ProgressBar::new(10_000);
-    bar.set_style(
-        indicatif::ProgressStyle::with_template(
-            "radiosity [{bar:40}] {msg} ({elapsed_precise}, Ctrl-C stops and writes)",
-        )
-        .map_err(|e| CliError::failure(anyhow!(e)))?,
-    );
-    Ok(bar)
-}
-
-/// A spinner naming the preparation stage that runs (drawn on a terminal only), cleared
-/// when dropped, so an error is printed on a clean line. Ctrl-C during a stage stops the
-/// command when that stage ends, before anything is written.
-struct StageSpinner {
-    spinner: indicatif::ProgressBar,
-    stage: std::cell::Cell<&'static str>,
-    cancel: std::sync::Arc<std::sync::atomic::AtomicBool>,
-}
-
-impl StageSpinner {
-    fn new(first: &'static str) -> Result<StageSpinner, CliError> {
-        let spinner = indicatif::ProgressBar::new_spinner();
-        spinner.set_style(
-            indicatif::ProgressStyle::with_template("{spinner} radiosity: {msg} ({elapsed})")
-                .map_err(|e| CliError::failure(anyhow!(e)))?,
-        );
-        spinner.enable_steady_tick(Duration::from_millis(100));
-        spinner.set_message(first);
-        let cancel = super::interrupt_flag();
-        cancel.store(false, std::sync::atomic::Ordering::SeqCst);
-        Ok(StageSpinner {
-            spinner,
-            stage: std::cell::Cell::new(first),
-            cancel,
-        })
-    }
-
-    /// Ends the current stage (an error if Ctrl-C came during it) and names the next.
-    fn set(&self, stage: &'static str) -> Result<(), CliError> {
-        self.check()?;
-        self.stage.set(stage);
-        self.spinner.set_message(stage);
-        Ok(())
-    }
-
-    /// An error if Ctrl-C came during the current stage.
-    fn check(&self) -> Result<(), CliError> {
-        if self.cancel.load(std::sync::atomic::Ordering::SeqCst) {
-            return Err(CliError::failure(anyhow!(
-                "interrupted while preparing ({}): nothing written",
-                self.stage.get()
-            )));
-        }
-        Ok(())
-    }
-}
-
-impl Drop for StageSpinner {
-    fn drop(&mut self) {
-        self.spinner.finish_and_clear();
-    }
-}
-
-/// Everything the command writes, computed before anything is written.
-struct Outputs {
-    light_map: LightMap,
-    csv: String,
-}
-
-/// A scene made ready to solve: its elements and the luminaires' direct light on them.
-pub struct Prepared<'s> {
+/// What a solve shows on the terminal: a spinner naming the preparation's stage, a bar
+/// of the convergence, and the summary lines (standard error).
+struct Progress<'a> {
     /// The scene file (for messages).
-    label: &'s Path,
-    gpu: Gpu,
-    rscene: RadiosityScene,
-    light: LuminaireLight,
-    initial: InitialState,
-    solver: SolverArgs,
-    interp: crate::photometry::Interp,
-    /// The scene's camera, where the view drives the solution.
-    view: Option<ViewPoint>,
-    /// Seconds from the start of the command to here.
-    pub prepared_s: f64,
-}
-
-/// A solution, with what it was solved from.
-pub struct Solved<'p> {
-    prepared: &'p Prepared<'p>,
-    solver: GpuSolver<'p>,
-    /// Why the solver stopped.
-    pub stop: StopReason,
-    log: Vec<ConvergencePoint>,
-    /// The radiosity shown (with the ambient term where the solver's `ambient` says so),
-    /// per element.
-    shown: Vec<DVec3>,
-    shown_lux: Vec<f64>,
-}
-
-/// Builds the elements of `scene` (loaded by now, the command having started at
-/// `started`) and the luminaires' direct light on them, with a spinner naming each
-/// stage; Ctrl-C stops it between stages.
-pub fn prepare<'s>(
-    label: &'s Path,
-    scene: &Scene,
-    solver: &SolverArgs,
-    settings: &mut crate::render::RenderSettings,
+    label: &'a Path,
+    /// When the command started.
     started: Instant,
-) -> Result<Prepared<'s>, CliError> {
-    let load_s = started.elapsed().as_secs_f64();
-    let view = match solver.drive {
-        Drive::Global => None,
-        drive => {
-            let aspect = settings.width as f64 / settings.height.max(1) as f64;
-            Some(ViewPoint::new(&scene.camera, aspect).ok_or_else(|| {
-                CliError::input(anyhow!(
-                    "{}: --drive {} needs a perspective camera (the scene's is orthographic)",
-                    label.display(),
-                    drive.name()
-                ))
-            })?)
+    /// Seconds from `started` to the end of loading the scene.
+    load_s: f64,
+    spinner: Option<indicatif::ProgressBar>,
+    bar: Option<indicatif::ProgressBar>,
+    prepared_s: f64,
+    error: Option<CliError>,
+}
+
+fn style(template: &str) -> Result<indicatif::ProgressStyle, CliError> {
+    indicatif::ProgressStyle::with_template(template).map_err(|e| CliError::failure(anyhow!(e)))
+}
+
+/// A spinner naming a stage (drawn on a terminal only).
+fn spinner(first: &str) -> Result<indicatif::ProgressBar, CliError> {
+    let spinner = indicatif::ProgressBar::new_spinner();
+    spinner.set_style(style("{spinner} radiosity: {msg} ({elapsed})")?);
+    spinner.enable_steady_tick(Duration::from_millis(100));
+    spinner.set_message(first.to_string());
+    Ok(spinner)
+}
+
+impl Progress<'_> {
+    fn event(&mut self, event: Event) {
+        if let Err(e) = self.show(event) {
+            self.error.get_or_insert(e);
         }
-    };
-    let stage = StageSpinner::new(match solver.hierarchy {
-        Hierarchy::None => "elements and atlas",
-        Hierarchy::Clusters => "face clusters, charts, elements and atlas",
-    })?;
-    let rscene = RadiosityScene::with_subdivision(
-        scene,
-        solver.texel_density,
-        solver.level,
-        solver.hierarchy,
-        solver.subdivision(),
-    )
-    .map_err(|e| CliError::input(anyhow!("{}: {e}", label.display())))?;
-    if solver.adaptive > 0 {
+    }
+
+    fn show(&mut self, event: Event) -> Result<(), CliError> {
+        match event {
+            Event::Stage(stage) if stage != Stage::Importance => {
+                let name = stage.name();
+                match &self.spinner {
+                    Some(s) => s.set_message(name),
+                    None => self.spinner = Some(spinner(name)?),
+                }
+            }
+            Event::Stage(_) | Event::Gathered(_) => {}
+            Event::Prepared(p) => {
+                if let Some(s) = self.spinner.take() {
+                    s.finish_and_clear();
+                }
+                self.prepared_s = self.started.elapsed().as_secs_f64();
+                prepared_summary(self.label, p, self.load_s, self.prepared_s);
+            }
+            Event::Shooting(session) => {
+                if let Some(d) = session.driven() {
+                    eprintln!(
+                        "{}: the camera sees {} of {} elements; importance solved in {:.2} s",
+                        self.label.display(),
+                        d.view.iter().filter(|&&w| w > 0.0).count(),
+                        session.prepared().scene().elements.len(),
+                        d.importance_seconds
+                    );
+                }
+                shooting_summary(self.label, session);
+                let bar = indicatif::ProgressBar::new(10_000);
+                bar.set_style(style(
+                    "radiosity [{bar:40}] {msg} ({elapsed_precise}, Ctrl-C stops and writes)",
+                )?);
+                self.bar = Some(bar);
+            }
+            Event::Shot(p) => {
+                if let Some(bar) = &self.bar {
+                    bar.set_position((p.convergence.clamp(0.0, 1.0) * 10_000.0) as u64);
+                    bar.set_message(format!(
+                        "{:.2} % converged, {} shots",
+                        100.0 * p.convergence,
+                        p.shot
+                    ));
+                }
+            }
+            Event::Solved(session) => {
+                if let Some(bar) = self.bar.take() {
+                    bar.finish_and_clear();
+                }
+                solved_summary(self.label, session, self.prepared_s);
+            }
+        }
+        Ok(())
+    }
+}
+
+impl Drop for Progress<'_> {
+    fn drop(&mut self) {
+        for bar in [self.spinner.take(), self.bar.take()].into_iter().flatten() {
+            bar.finish_and_clear();
+        }
+    }
+}
+
+/// The preparation's line: its stages' times, the triangles, the peak memory.
+fn prepared_summary(label: &Path, p: &session::Prepared, load_s: f64, prepared_s: f64) {
+    let rscene = p.scene();
+    if p.options().adaptive > 0 {
         eprintln!(
             "{} (the splits decided in {:.2} s of CPU)",
             adaptive_summary(&rscene.elements),
             rscene.subdivision_seconds
         );
     }
-    let elements_s = started.elapsed().as_secs_f64() - load_s;
-    let interp = settings.light_model.interp();
-    let gpu = Gpu::shared()?;
-    crate::render::limits::check_scene(&gpu, scene, &mut settings.shadows)?;
-    crate::render::limits::check_radiosity(&gpu, rscene.elements.len())?;
-    stage.set("the luminaires' direct light")?;
-    let light = LuminaireLight::new(&gpu, scene, interp);
-    let initial = InitialState::from_luminaires_gpu(&gpu, &light, &rscene, &settings.shadows)?;
-    stage.check()?;
-    drop(stage);
-    let prepared_s = started.elapsed().as_secs_f64();
     eprintln!(
         "{}: prepared in {prepared_s:.2} s — load {load_s:.2} s, {}elements and atlas {:.2} s, {}luminaires' direct light {:.2} s; {} triangles{}",
         label.display(),
-        match solver.hierarchy {
+        match p.options().hierarchy {
             Hierarchy::None => String::new(),
             Hierarchy::Clusters => format!("face clusters {:.2} s, ", rscene.clustering_seconds),
         },
-        elements_s - rscene.clustering_seconds - rscene.receiving_seconds,
+        p.times.elements - rscene.clustering_seconds - rscene.receiving_seconds,
         if rscene.receiving_normals.is_empty() {
             String::new()
         } else {
             format!("receiving normals {:.2} s, ", rscene.receiving_seconds)
         },
-        prepared_s - load_s - elements_s,
-        scene.triangle_count(),
+        p.times.direct_light,
+        p.triangle_count(),
         crate::io::peak_memory_mb().map_or(String::new(), |mb| format!(", peak memory {mb} MB")),
     );
-    Ok(Prepared {
-        label,
-        gpu,
-        rscene,
-        light,
-        initial,
-        solver: solver.clone(),
-        interp,
-        view,
-        prepared_s,
-    })
 }
 
-impl Prepared<'_> {
-    /// The view's weights and importance (an importance solve of at most a quarter of
-    /// `time_budget`); an error when the camera sees no surface.
-    fn drive(
-        &self,
-        light: &GpuSolver,
-        point: &ViewPoint,
-        settings: SolverSettings,
-        gpu_settings: GpuSettings,
-        time_budget: Option<Duration>,
-    ) -> Result<ViewDriven, CliError> {
-        let weights = view::view_weights(&self.rscene, point);
-        let seen = weights.iter().filter(|&&w| w > 0.0).count();
-        if seen == 0 {
-            return Err(CliError::input(anyhow!(
-                "{}: --drive {}: the camera sees no surface of the scene (check camera.position and camera.look_at)",
-                self.label.display(),
-                self.solver.drive.name()
-            )));
-        }
-        let driven = ViewDriven::new(
-            light,
-            settings,
-            gpu_settings,
-            weights,
-            time_budget.map(|b| b / 4),
-        )?;
-        eprintln!(
-            "{}: the camera sees {seen} of {} elements; importance solved in {:.2} s",
-            self.label.display(),
-            self.rscene.elements.len(),
-            driven.importance_seconds
-        );
-        Ok(driven)
-    }
-
-    /// Shoots until the solver's stop (Ctrl-C stops early), with a progress bar, and
-    /// reads the solution back.
-    pub fn solve(&self) -> Result<Solved<'_>, CliError> {
-        let args = &self.solver;
-        let rscene = &self.rscene;
-        let gpu_settings = GpuSettings {
-            visibility: args.visibility,
-            map_size: args.map_size,
-            hierarchy: args.hierarchy,
-            cell_power: args.cell_power,
-            link_error: args.link_error,
-            raster: args.raster,
-            ..GpuSettings::default()
-        };
-        if let Some(why) = args.raster.refusal(rscene.has_masked_casters()) {
-            return Err(CliError::input(anyhow!("{}: {why}", self.label.display())));
-        }
-        let shooters = Shooters::build(rscene, args.hierarchy);
-        let shooter_count = shooters.len();
-        let settings = SolverSettings {
-            form_factor: args.form_factor,
-            ambient: args.ambient,
-            interp: self.interp,
-        };
-        let mut solver = GpuSolver::with_shooters(
-            &self.gpu,
-            rscene,
-            &self.initial,
-            settings,
-            gpu_settings,
-            shooters,
-        );
-        let cancel = super::interrupt_flag();
-        eprintln!(
-            "{}: {} elements in {} charts, {} patches, atlas {}×{}; {shooter_count} shooters{}; visibility maps draw {} triangles ({} raster); shooting (Ctrl-C stops and writes the solution so far)",
-            self.label.display(),
-            rscene.elements.len(),
-            rscene.elements.charts.len(),
-            rscene.elements.patches.len(),
-            rscene.elements.atlas_width,
-            rscene.elements.atlas_height,
-            match args.hierarchy {
-                Hierarchy::None => " (one per triangle: --hierarchy none)".to_string(),
-                Hierarchy::Clusters => {
-                    let tree = &rscene.planar_clusters().tree;
-                    format!(" of {} face clusters", tree.nodes.len() - tree.order.len())
-                }
-            },
-            solver.visibility_triangles(),
-            solver.raster().name(),
-        );
-        let mut stop_at = args.stop();
-        let driven = match &self.view {
-            Some(point) => {
-                let d = self.drive(&solver, point, settings, gpu_settings, stop_at.time_budget)?;
-                d.drive(&mut solver, args.drive, point, args.fov_margin)?;
-                // The importance solve's time is the solve's.
-                stop_at.time_budget = stop_at.time_budget.map(|b| {
-                    b.saturating_sub(Duration::try_from_secs_f64(d.importance_seconds).unwrap_or(b))
-                });
-                Some(d)
+/// The line before shooting: elements, charts, patches, atlas, shooters, the maps.
+fn shooting_summary(label: &Path, session: &session::Session) {
+    let rscene = session.prepared().scene();
+    let solver = session.solver();
+    eprintln!(
+        "{}: {} elements in {} charts, {} patches, atlas {}×{}; {} shooters{}; visibility maps draw {} triangles ({} raster); shooting (Ctrl-C stops and writes the solution so far)",
+        label.display(),
+        rscene.elements.len(),
+        rscene.elements.charts.len(),
+        rscene.elements.patches.len(),
+        rscene.elements.atlas_width,
+        rscene.elements.atlas_height,
+        solver.shooters().len(),
+        match session.prepared().options().hierarchy {
+            Hierarchy::None => " (one per triangle: --hierarchy none)".to_string(),
+            Hierarchy::Clusters => {
+                let tree = &rscene.planar_clusters().tree;
+                format!(" of {} face clusters", tree.nodes.len() - tree.order.len())
             }
-            None => None,
-        };
-        let bar = progress_bar()?;
-        let (stop, log) = solver.solve(&stop_at, &cancel, |p: &ConvergencePoint| {
-            bar.set_position((p.convergence.clamp(0.0, 1.0) * 10_000.0) as u64);
-            bar.set_message(format!(
-                "{:.2} % converged, {} shots",
-                100.0 * p.convergence,
-                p.shot
-            ));
-        })?;
-        bar.finish_and_clear();
-        let solve_s = log.last().map_or(0.0, |p| p.seconds);
-        let (radiosity, illuminance) = solver.radiosity_and_illuminance()?;
-        let unshot = solver.unshot_to_come()?;
-        let (shown, shown_lux) = crate::radiosity::view::displayed(
-            rscene,
-            &radiosity,
-            &illuminance,
-            &unshot,
-            args.ambient,
-            driven.as_ref(),
-        );
-        if let Some((stage, stages)) = solver.area_stage() {
-            eprintln!(
-                "{}: area of interest at stage {} of {stages}; {} charts hold their light back, {} wait, {} shots kept for them",
-                self.label.display(),
-                stage + 1,
-                solver.holding_charts(),
-                solver.waiting_charts(),
-                solver.missed_shots(),
-            );
-        }
-        let last = log.last().copied();
+        },
+        solver.visibility_triangles(),
+        solver.raster().name(),
+    );
+}
+
+/// The line after shooting: shots, convergence, why it stopped, the maps drawn.
+fn solved_summary(label: &Path, session: &session::Session, prepared_s: f64) {
+    let solver = session.solver();
+    let elements = session.prepared().scene().elements.len();
+    if let Some((stage, stages)) = solver.area_stage() {
         eprintln!(
-            "{}: {} shots, {:.2} % converged ({stop}) in {solve_s:.2} s (+{:.2} s to prepare); {} visibility maps drawn{}, {} cells skipped (no receiver takes light from them); receivers culled to {:.0} % of the elements per map{}",
-            self.label.display(),
-            solver.shots,
-            100.0 * last.map_or(1.0, |p| p.convergence),
-            self.prepared_s,
-            solver.drawn + solver.virtual_drawn,
-            match solver.virtual_drawn {
-                0 => String::new(),
-                n => format!(" ({n} of them cells' images through mirrors and glass)"),
-            },
-            solver.skipped,
-            100.0 * solver.receiver_threads as f64
-                / ((solver.drawn + solver.virtual_drawn).max(1) as f64
-                    * rscene.elements.len().max(1) as f64),
-            crate::io::peak_memory_mb().map_or(String::new(), |mb| format!("; peak memory {mb} MB")),
+            "{}: area of interest at stage {} of {stages}; {} charts hold their light back, {} wait, {} shots kept for them",
+            label.display(),
+            stage + 1,
+            solver.holding_charts(),
+            solver.waiting_charts(),
+            solver.missed_shots(),
         );
-        Ok(Solved {
-            prepared: self,
-            solver,
-            stop,
-            log,
-            shown,
-            shown_lux,
-        })
+    }
+    let last = session.log().last().copied();
+    let drawn = solver.drawn + solver.virtual_drawn;
+    eprintln!(
+        "{}: {} shots, {:.2} % converged ({}) in {:.2} s (+{prepared_s:.2} s to prepare); {drawn} visibility maps drawn{}, {} cells skipped (no receiver takes light from them); receivers culled to {:.0} % of the elements per map{}",
+        label.display(),
+        solver.shots,
+        100.0 * last.map_or(1.0, |p| p.convergence),
+        session.stopped().unwrap_or(StopReason::Cancelled),
+        last.map_or(0.0, |p| p.seconds),
+        match solver.virtual_drawn {
+            0 => String::new(),
+            n => format!(" ({n} of them cells' images through mirrors and glass)"),
+        },
+        solver.skipped,
+        100.0 * solver.receiver_threads as f64
+            / (drawn.max(1) as f64 * elements.max(1) as f64),
+        crate::io::peak_memory_mb().map_or(String::new(), |mb| format!("; peak memory {mb} MB")),
+    );
+}
+
+/// A solve's error as the command reports it: a cancelled preparation wrote nothing.
+fn session_error(e: SessionError, label: &Path) -> CliError {
+    match e {
+        SessionError::Cancelled(
+            stage @ (Stage::Elements | Stage::DirectLight | Stage::Importance),
+        ) => CliError::failure(anyhow!(
+            "interrupted while preparing ({}): nothing written",
+            stage.name()
+        )),
+        SessionError::Option(o) => CliError::from(o),
+        SessionError::Cancelled(_) | SessionError::Gpu(_) => CliError::from(e),
+        e => {
+            let bad = e.is_bad_input();
+            CliError::classified(anyhow!("{}: {e}", label.display()), bad)
+        }
     }
 }
 
-impl Solved<'_> {
-    /// The interreflected illuminance (lux, the light the solution's surfaces send; not
-    /// the luminaires' direct light) at `points`, gathered from the shooters' finest
-    /// cells, with a progress bar; Ctrl-C stops it with an error. Also the number of
-    /// patches gathered from.
-    pub fn interreflected_lux(
-        &self,
-        points: &[SurfacePoint],
-    ) -> Result<(Vec<f64>, usize), CliError> {
-        let rscene = &self.prepared.rscene;
-        let patches = gather::patches(rscene, self.solver.shooters(), &self.shown);
-        eprintln!(
-            "gathering at {} points from {} patches (Ctrl-C stops)",
-            points.len(),
-            patches.len()
-        );
-        let bar = indicatif::ProgressBar::new(points.len() as u64);
-        bar.set_style(
-            indicatif::ProgressStyle::with_template(
-                "gather [{bar:40}] {pos}/{len} points ({elapsed_precise}, Ctrl-C stops)",
-            )
-            .map_err(|e| CliError::failure(anyhow!(e)))?,
-        );
-        // A Ctrl-C that stopped the shooting has been answered: the next one stops this.
-        let cancel = super::interrupt_flag();
-        cancel.store(false, std::sync::atomic::Ordering::SeqCst);
-        let gathered = gather::at_points(
-            rscene,
-            &patches,
-            points,
-            self.prepared.solver.form_factor,
-            &cancel,
-            &|done| bar.set_position(done as u64),
-        );
-        bar.finish_and_clear();
-        let Some(gathered) = gathered else {
-            return Err(CliError::failure(anyhow!(
-                "interrupted while gathering at the points: no illuminance given"
-            )));
-        };
-        Ok((gathered.into_iter().map(luminance).collect(), patches.len()))
+/// Solves `scene` (loaded from `label` by now, the command having started at `started`)
+/// with `options` on the shared device, with a spinner, a progress bar and summary
+/// lines; Ctrl-C stops the preparation with an error and the shooting with the solution
+/// so far.
+pub fn solve(
+    label: &Path,
+    scene: &Scene,
+    options: &Options,
+    settings: &mut crate::render::RenderSettings,
+    started: Instant,
+) -> Result<Solution, CliError> {
+    let load_s = started.elapsed().as_secs_f64();
+    let aspect = settings.width as f64 / settings.height.max(1) as f64;
+    let gpu = Gpu::shared()?;
+    let cancel = super::interrupt_flag();
+    let mut progress = Progress {
+        label,
+        started,
+        load_s,
+        spinner: None,
+        bar: None,
+        prepared_s: 0.0,
+        error: None,
+    };
+    let solution = session::solve(
+        &gpu,
+        scene,
+        options,
+        settings.light_model.interp(),
+        &mut settings.shadows,
+        Some((&scene.camera, aspect)),
+        &cancel,
+        &mut |e| progress.event(e),
+    )
+    .map_err(|e| session_error(e, label))?;
+    match progress.error.take() {
+        Some(e) => Err(e),
+        None => Ok(solution),
     }
+}
 
-    /// The light-map atlas of the solution as shown.
-    pub fn light_map(&self) -> LightMap {
-        solve::light_map(&self.prepared.rscene, &self.shown, &self.shown_lux)
-    }
-
-    /// The fraction of the initial unshot power shot when the solver stopped.
-    pub fn convergence(&self) -> f64 {
-        self.log.last().map_or(1.0, |p| p.convergence)
-    }
+/// The interreflected illuminance of `solution` at `points` (lux), with a progress bar;
+/// Ctrl-C stops it with an error.
+pub fn interreflected_lux(
+    label: &Path,
+    solution: &Solution,
+    points: &[SurfacePoint],
+) -> Result<Vec<f64>, CliError> {
+    eprintln!(
+        "gathering at {} points from {} patches (Ctrl-C stops)",
+        points.len(),
+        solution.gather_patches()
+    );
+    let bar = indicatif::ProgressBar::new(points.len() as u64);
+    bar.set_style(style(
+        "gather [{bar:40}] {pos}/{len} points ({elapsed_precise}, Ctrl-C stops)",
+    )?);
+    // A Ctrl-C that stopped the shooting has been answered: the next one stops this.
+    let cancel = super::interrupt_flag();
+    cancel.store(false, Ordering::SeqCst);
+    let lux = solution.interreflected_lux(points, &cancel, &|done| bar.set_position(done as u64));
+    bar.finish_and_clear();
+    lux.map_err(|e| session_error(e, label))
 }
 
 /// Runs `radiosity`.
 pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
     args.check()?;
+    let options = args.solver.check()?;
     let started = Instant::now();
-    let stage = StageSpinner::new("loading the scene")?;
+    let loading = spinner("loading the scene")?;
+    let cancel = super::interrupt_flag();
+    cancel.store(false, Ordering::SeqCst);
     eprintln!(
         "{}: preparing (Ctrl-C stops; nothing is written)",
         args.scene.display()
     );
     let scene = super::render::scene_at(Scene::load(&args.scene)?, args.image.time)?;
-    stage.check()?;
-    drop(stage);
+    loading.finish_and_clear();
+    interrupted_while(&cancel, "loading the scene")?;
     let mut settings = args.image.settings(&scene)?;
     let points = if args.points {
         read_points(std::io::stdin().lock(), "stdin")?
@@ -697,44 +536,36 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
         outputs.named_output(&format!("--export {}", path.display()), path);
     }
     outputs.check()?;
-    let prepared = prepare(&args.scene, &scene, &args.solver, &mut settings, started)?;
-    let solved = prepared.solve()?;
+    let solution = solve(&args.scene, &scene, &options, &mut settings, started)?;
     if !points.is_empty() {
         let gathered = Instant::now();
-        let mut direct = prepared
-            .light
-            .lux(&prepared.gpu, &points, &settings.shadows)?;
-        // What mirrors and clear glass pass on (the probe draws straight light only).
-        let interp = settings.light_model.interp();
-        let specular = prepared.rscene.specular_light();
-        specular.add_lux_at_points(&points, &mut direct, interp);
-        let (indirect, patches) = solved.interreflected_lux(&points)?;
+        let direct = solution
+            .direct_lux(&points)
+            .map_err(|e| session_error(e, &args.scene))?;
+        let indirect = interreflected_lux(&args.scene, &solution, &points)?;
         let mut out = String::with_capacity(points.len() * 12);
         for (d, i) in direct.iter().zip(&indirect) {
             out.push_str(&format!("{:.6}\n", d + i));
         }
         print!("{out}");
         eprintln!(
-            "{}: {} points gathered from {patches} patches in {:.2} s",
+            "{}: {} points gathered from {} patches in {:.2} s",
             args.scene.display(),
             points.len(),
+            solution.gather_patches(),
             gathered.elapsed().as_secs_f64()
         );
     }
-    let rscene = &prepared.rscene;
-    let light_map = solved.light_map();
     if let Some(path) = &args.export {
-        let names: Vec<String> = scene.materials.iter().map(|m| m.name.clone()).collect();
-        let material_bake: Vec<_> = scene.materials.iter().map(|m| m.bake).collect();
         let planning = Instant::now();
-        let plan = bake::plan(rscene, &material_bake, args.bake, args.bake_budget);
+        let (bytes, plan, map) = solution
+            .export_glb(&scene, args.bake, args.bake_budget)
+            .map_err(CliError::failure)?;
         eprintln!(
             "{}; chosen and refined in {:.2} s",
-            bake_summary(&plan, &light_map),
+            bake_summary(&plan, &map),
             planning.elapsed().as_secs_f64()
         );
-        let bytes = crate::radiosity::export::glb(rscene, &light_map, &plan, &names)
-            .map_err(CliError::failure)?;
         let folder = path.parent().filter(|p| !p.as_os_str().is_empty());
         folder
             .map_or(Ok(()), std::fs::create_dir_all)
@@ -745,20 +576,36 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
     }
     if let Some(dir) = out_dir {
         let outputs = Outputs {
-            light_map,
-            csv: solve::convergence_csv(&solved.log),
+            light_map: solution.light_map(),
+            csv: solution.convergence_csv(),
         };
         settings.read_hdr = true;
         settings.shown_light = crate::scene::DisplayIndirect::Radiosity;
         let staging = crate::io::outputs::Staging::beside(&dir, &inputs)
             .map_err(|e| CliError::input(anyhow!("--out-dir {}: {e}", dir.display())))?;
-        write_outputs(&prepared.gpu, &scene, &settings, &outputs, &staging)?;
+        write_outputs(
+            solution.prepared().gpu(),
+            &scene,
+            &settings,
+            &outputs,
+            &staging,
+        )?;
         staging
             .commit()
             .map_err(|e| CliError::failure(anyhow!("--out-dir {}: {e:#}", dir.display())))?;
     }
-    if solved.stop == StopReason::Cancelled {
+    if solution.stop() == StopReason::Cancelled {
         eprintln!("stopped early: the solution so far was written");
+    }
+    Ok(())
+}
+
+/// An error if Ctrl-C came while `stage` ran (before anything is written).
+fn interrupted_while(cancel: &AtomicBool, stage: &str) -> Result<(), CliError> {
+    if cancel.load(Ordering::SeqCst) {
+        return Err(CliError::failure(anyhow!(
+            "interrupted while preparing ({stage}): nothing written"
+        )));
     }
     Ok(())
 }
@@ -799,6 +646,12 @@ fn bake_summary(plan: &BakePlan, map: &LightMap) -> String {
         map.width,
         map.height,
     )
+}
+
+/// Everything the command writes, computed before anything is written.
+struct Outputs {
+    light_map: LightMap,
+    csv: String,
 }
 
 /// The files `radiosity` writes into its output folder.
@@ -847,4 +700,35 @@ fn write_outputs(
     write_atomic(&dir.join("convergence.csv"), outputs.csv.as_bytes())
         .map_err(CliError::failure)?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use clap::{Args, FromArgMatches};
+
+    use super::SolverArgs;
+    use crate::radiosity::session::Options;
+
+    fn parsed(args: &[&str]) -> SolverArgs {
+        let command = SolverArgs::augment_args(clap::Command::new("radiosity"));
+        let matches = command
+            .try_get_matches_from(std::iter::once("radiosity").chain(args.iter().copied()))
+            .unwrap();
+        SolverArgs::from_arg_matches(&matches).unwrap()
+    }
+
+    #[test]
+    fn the_flags_defaults_are_the_librarys() {
+        assert_eq!(parsed(&[]).options(), Options::default());
+    }
+
+    #[test]
+    fn a_value_out_of_range_names_its_flag() {
+        let e = parsed(&["--map-size", "8"]).check().unwrap_err();
+        assert_eq!(e.message(), "--map-size 8 is not in 16..=4096");
+        let e = parsed(&["--adaptive-share", "0.5"]).check().unwrap_err();
+        assert!(e
+            .message()
+            .starts_with("--adaptive-share 0.5: give LOWER,UPPER"));
+    }
 }

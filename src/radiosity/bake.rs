@@ -36,8 +36,9 @@ pub const MAX_SPLITS: u32 = 32;
 pub const DEFAULT_BUDGET_SHARE: f64 = 0.10;
 
 /// How the representation of each surface is chosen.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Deserialize, serde::Serialize)]
 #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+#[serde(rename_all = "lowercase")]
 pub enum BakeChoice {
     /// Per surface: the scene file's choice, else the introduced-triangles heuristic.
     #[default]

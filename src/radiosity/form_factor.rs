@@ -6,7 +6,7 @@ use std::f64::consts::PI;
 use glam::DVec3;
 
 /// How the solver evaluates the form factor from a receiver element to a shooting patch.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Deserialize, serde::Serialize)]
 #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum FormFactorKind {

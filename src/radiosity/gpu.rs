@@ -35,7 +35,7 @@ pub use raster::Raster;
 pub use timers::GpuPassSeconds;
 
 /// How a shooting patch sees what it can reach.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Deserialize, serde::Serialize)]
 #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum Visibility {

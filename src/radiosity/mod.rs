@@ -17,6 +17,7 @@ pub mod links;
 mod polygon;
 pub mod refine;
 pub mod scene;
+pub mod session;
 pub mod shading;
 pub mod shadow_edges;
 pub mod shooters;
@@ -30,7 +31,7 @@ use crate::photometry::Interp;
 pub use form_factor::FormFactorKind;
 
 /// How the light map's charts and the shooters are formed.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Deserialize, serde::Serialize)]
 #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum Hierarchy {
@@ -45,7 +46,7 @@ pub enum Hierarchy {
 }
 
 /// What the ambient term is used for.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Deserialize, serde::Serialize)]
 #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum Ambient {

@@ -135,54 +135,100 @@ impl GpuSolver<'_> {
         cancel: &AtomicBool,
         mut progress: impl FnMut(&ConvergencePoint),
     ) -> Result<(StopReason, Vec<ConvergencePoint>), GpuError> {
-        let started = Instant::now();
+        let mut run = ShotRun::new(scale);
         let mut log = Vec::new();
-        let mut initial = scale;
         loop {
-            let s = self.select_next()?;
-            let unshot = self.measured(&s);
-            let initial = *initial.get_or_insert(unshot);
-            let point = ConvergencePoint {
-                shot: self.shots,
-                seconds: started.elapsed().as_secs_f64(),
-                shooter: s.shooter,
-                unshot_power: s.unshot_power,
-                convergence: if initial > 0.0 {
-                    1.0 - unshot / initial
-                } else {
-                    1.0
-                },
-            };
+            let (point, reason) = self.advance(stop, &mut run, None, cancel)?;
             progress(&point);
             log.push(point);
-            // Converged only when no receiver waits for shots it missed.
-            let reason = if point.convergence >= stop.converge && self.area_is_whole() {
-                Some(StopReason::Converged)
-            } else if s.shooter.is_none() {
-                Some(StopReason::NothingLeft)
-            } else if stop.max_shots.is_some_and(|m| self.shots >= m) {
-                Some(StopReason::ShotLimit)
-            } else if stop
-                .time_budget
-                .is_some_and(|b| point.seconds >= b.as_secs_f64())
-            {
-                Some(StopReason::TimeBudget)
-            } else if cancel.load(Ordering::Relaxed) {
-                Some(StopReason::Cancelled)
-            } else {
-                None
-            };
             if let Some(r) = reason {
                 return Ok((r, log));
             }
-            if let Some(t) = s.shooter {
-                // Stopped between batches of patches when the time is up or Ctrl-C came.
-                let over = || {
-                    cancel.load(Ordering::Relaxed)
-                        || stop.time_budget.is_some_and(|b| started.elapsed() >= b)
-                };
-                self.shoot_until(t, &over)?;
-            }
+        }
+    }
+
+    /// One step of a solution: selects the next shooter, measures the convergence, and
+    /// unless `stop` says the solution is done shoots it — stopped between batches of
+    /// patches when `cancel` is set, the run's time budget is spent or `slice` (this
+    /// step's own share of time) is used up; a shooter stopped early keeps the rest of
+    /// its unshot power for a later step. Returns the log point (the state before the
+    /// shot) and why the solution stops there, if it does. The one shooting loop: every
+    /// solve, the viewer's and [`super::session::Session`]'s, is these steps.
+    pub fn advance(
+        &mut self,
+        stop: &StopAt,
+        run: &mut ShotRun,
+        slice: Option<Duration>,
+        cancel: &AtomicBool,
+    ) -> Result<(ConvergencePoint, Option<StopReason>), GpuError> {
+        let started = Instant::now();
+        let s = self.select_next()?;
+        let unshot = self.measured(&s);
+        let initial = *run.scale.get_or_insert(unshot);
+        let point = ConvergencePoint {
+            shot: self.shots,
+            seconds: run.seconds + started.elapsed().as_secs_f64(),
+            shooter: s.shooter,
+            unshot_power: s.unshot_power,
+            convergence: if initial > 0.0 {
+                1.0 - unshot / initial
+            } else {
+                1.0
+            },
+        };
+        // Converged only when no receiver waits for shots it missed; nothing asked to
+        // converge shoots nothing.
+        let reason = if stop.converge <= 0.0
+            || (point.convergence >= stop.converge && self.area_is_whole())
+        {
+            Some(StopReason::Converged)
+        } else if s.shooter.is_none() {
+            Some(StopReason::NothingLeft)
+        } else if stop.max_shots.is_some_and(|m| self.shots >= m) {
+            Some(StopReason::ShotLimit)
+        } else if stop
+            .time_budget
+            .is_some_and(|b| point.seconds >= b.as_secs_f64())
+        {
+            Some(StopReason::TimeBudget)
+        } else if cancel.load(Ordering::Relaxed) {
+            Some(StopReason::Cancelled)
+        } else {
+            None
+        };
+        if let (None, Some(t)) = (reason, s.shooter) {
+            let before = run.seconds;
+            let over = || {
+                let elapsed = started.elapsed();
+                cancel.load(Ordering::Relaxed)
+                    || slice.is_some_and(|d| elapsed >= d)
+                    || stop
+                        .time_budget
+                        .is_some_and(|b| before + elapsed.as_secs_f64() >= b.as_secs_f64())
+            };
+            self.shoot_until(t, &over)?;
+        }
+        run.seconds += started.elapsed().as_secs_f64();
+        Ok((point, reason))
+    }
+}
+
+/// Where a run of [`GpuSolver::advance`]s stands: the unshot power its convergence is a
+/// fraction of, and the seconds it has shot.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct ShotRun {
+    /// The unshot power at the start (`None`: the first step's).
+    pub scale: Option<f64>,
+    /// Seconds of steps so far (pauses between them left out).
+    pub seconds: f64,
+}
+
+impl ShotRun {
+    /// A run measured against `scale` (`None`: against its first step's unshot power).
+    pub fn new(scale: Option<f64>) -> ShotRun {
+        ShotRun {
+            scale,
+            seconds: 0.0,
         }
     }
 }

@@ -25,7 +25,7 @@ use crate::scene::camera::{Camera, Projection};
 use crate::shadow::IgnoredTriangles;
 
 /// What drives the choice of shooters and receivers.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Deserialize, serde::Serialize)]
 #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum Drive {

@@ -3,7 +3,7 @@
 //! solution every few tenths of a second with the ambient term for what is not shot yet,
 //! follows the camera when the view drives it (importance or perspective, Bozalina), and
 //! when luminaires move, dim, come or go re-shoots the change in place
-//! ([`crate::radiosity::gpu::GpuSolver::relight`]) instead of starting over. Once
+//! ([`crate::radiosity::session::Session::relight`]) instead of starting over. Once
 //! converged it waits for the next change.
 
 use std::sync::atomic::{AtomicI64, Ordering};
@@ -14,14 +14,8 @@ use std::time::{Duration, Instant};
 use super::jobs::{JobControl, Worker};
 use crate::gpu::Gpu;
 use crate::photometry::Interp;
-use crate::radiosity::elements::Subdivision;
-use crate::radiosity::gpu::{GpuSettings, GpuSolver};
-use crate::radiosity::initial::{InitialState, LuminaireLight};
-use crate::radiosity::scene::RadiosityScene;
-use crate::radiosity::shooters::Hierarchy;
-use crate::radiosity::solve;
-use crate::radiosity::view::{self, Drive, ViewDriven, ViewPoint};
-use crate::radiosity::SolverSettings;
+use crate::radiosity::session::{Follow, Options, Prepared, Session, SessionError};
+use crate::radiosity::solve::StopReason;
 use crate::render::lightmap::LightMap;
 use crate::render::ShadowSettings;
 use crate::scene::{Camera, Scene};
@@ -30,30 +24,18 @@ use crate::scene::{Camera, Scene};
 const IMPORTANCE_SECONDS: f64 = 2.0;
 
 /// What a radiosity run is asked to do.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct RadiositySettings {
-    /// Elements (light-map texels) per metre.
-    pub texel_density: f64,
-    /// Shooting patches of 2^level texels.
-    pub level: u32,
-    /// Adaptive subdivision's levels: elements split up to this many times at the
-    /// luminaires' shadow and beam edges (0: uniform; the splits follow the luminaires
-    /// where the run started: one moved later keeps them, and its new edges are as fine
-    /// as the elements there).
-    pub adaptive: u32,
-    /// Stop at this converged fraction of the initial unshot power (0: shoot nothing,
-    /// show the luminaires' first bounce and the ambient term).
-    pub converge: f64,
-    /// Form factor and ambient options.
-    pub solver: SolverSettings,
-    /// Visibility maps.
-    pub gpu: GpuSettings,
+    /// The solve's options (the command line's defaults; the importance solve of a new
+    /// view limited to [`IMPORTANCE_SECONDS`]). A converge of 0 shoots nothing: the
+    /// luminaires' first bounce and the ambient term. Adaptive subdivision's splits
+    /// follow the luminaires where the run started: one moved later keeps them, and its
+    /// new edges are as fine as the elements there.
+    pub options: Options,
+    /// Interpolation of the luminaires' distributions.
+    pub interp: Interp,
     /// Seconds between displayed updates.
     pub update_every_s: f64,
-    /// What chooses the shooters and receivers: the whole scene, or the camera's view.
-    pub drive: Drive,
-    /// Perspective drive: degrees around the image the area of interest starts with.
-    pub fov_margin_deg: f64,
     /// Milliseconds of solving each displayed frame grants (0: no limit).
     pub frame_budget_ms: f64,
 }
@@ -61,18 +43,12 @@ pub struct RadiositySettings {
 impl Default for RadiositySettings {
     fn default() -> Self {
         RadiositySettings {
-            texel_density: 10.0,
-            level: 2,
-            adaptive: 0,
-            converge: 0.99,
-            solver: SolverSettings::default(),
-            gpu: GpuSettings {
-                hierarchy: Hierarchy::Clusters,
-                ..GpuSettings::default()
+            options: Options {
+                importance_time_limit: Some(IMPORTANCE_SECONDS),
+                ..Options::default()
             },
+            interp: Interp::CatmullRom,
             update_every_s: 0.5,
-            drive: Drive::Global,
-            fov_margin_deg: 10.0,
             frame_budget_ms: 40.0,
         }
     }
@@ -170,7 +146,7 @@ pub struct LiveLink {
 }
 
 /// Starts a live radiosity solution of `scene` on `gpu`, driven by `view` (a camera and
-/// the viewport's width / height) when `settings.drive` is not global.
+/// the viewport's width / height) when `settings.options.drive` is not global.
 pub fn start(
     gpu: Arc<Gpu>,
     scene: Scene,
@@ -206,12 +182,6 @@ struct Job<'a> {
     credit: &'a FrameCredit,
 }
 
-/// The view driving a solution.
-struct Driver {
-    driven: ViewDriven,
-    point: ViewPoint,
-}
-
 fn err(e: &dyn std::fmt::Display) -> String {
     e.to_string()
 }
@@ -221,62 +191,14 @@ impl Job<'_> {
         let _ = self.tx.send(u);
     }
 
-    /// The luminaires' first shot of `scene` on the elements.
-    fn first_shot(
-        &self,
-        scene: &Scene,
-        interp: Interp,
-        rscene: &RadiosityScene,
-    ) -> Result<InitialState, String> {
-        let light = LuminaireLight::new(self.gpu, scene, interp);
-        InitialState::from_luminaires_gpu(self.gpu, &light, rscene, self.shadows)
-            .map_err(|e| err(&e))
-    }
-
-    /// Solves the importance of `view` and drives `solver` by it (nothing for a global
-    /// drive or an orthographic camera).
-    fn follow(
-        &self,
-        solver: &mut GpuSolver,
-        view: &(Camera, f64),
-    ) -> Result<Option<Driver>, String> {
-        let s = self.settings;
-        let Some(point) = ViewPoint::new(&view.0, view.1).filter(|_| s.drive != Drive::Global)
-        else {
-            return Ok(None);
-        };
-        let weights = view::view_weights(solver.scene(), &point);
-        if weights.iter().all(|&w| w == 0.0) {
-            return Ok(None);
-        }
-        let budget = Some(Duration::from_secs_f64(IMPORTANCE_SECONDS));
-        let driven =
-            ViewDriven::new(solver, s.solver, s.gpu, weights, budget).map_err(|e| err(&e))?;
-        driven
-            .drive(solver, s.drive, &point, s.fov_margin_deg)
-            .map_err(|e| err(&e))?;
-        Ok(Some(Driver { driven, point }))
-    }
-
     /// The solution as shown: with the ambient term (the view's where the view drives).
-    fn show(
-        &self,
-        solver: &GpuSolver,
-        driver: &Option<Driver>,
-        seconds: f64,
-        convergence: f64,
-    ) -> Result<(), String> {
-        let rscene = solver.scene();
-        let (b, e) = solver.radiosity_and_illuminance().map_err(|e| err(&e))?;
-        let unshot = solver.unshot_to_come().map_err(|e| err(&e))?;
-        let driven = driver.as_ref().map(|d| &d.driven);
-        let ambient = self.settings.solver.ambient;
-        let (b, e) = view::displayed(rscene, &b, &e, &unshot, ambient, driven);
+    fn show(&self, session: &Session, seconds: f64, convergence: f64) -> Result<(), String> {
+        let light_map = session.light_map().map_err(|e| err(&e))?;
         self.send(RadiosityUpdate::Progress {
-            shots: solver.shots,
+            shots: session.solver().shots,
             seconds,
             convergence,
-            light_map: Some(Arc::new(solve::light_map(rscene, &b, &e))),
+            light_map: Some(Arc::new(light_map)),
         });
         Ok(())
     }
@@ -289,29 +211,34 @@ impl Job<'_> {
         inbox: &Receiver<RadiosityCommand>,
     ) -> Result<(), String> {
         let s = self.settings;
-        let rscene = RadiosityScene::with_subdivision(
+        let mut shadows = self.shadows.clone();
+        let prepared = match Prepared::new(
+            self.gpu,
             scene,
-            s.texel_density,
-            s.level,
-            s.gpu.hierarchy,
-            Subdivision::levels(s.adaptive),
-        )
-        .map_err(|e| err(&e))?;
-        let mut start = self.first_shot(scene, s.solver.interp, &rscene)?;
-        let mut solver = GpuSolver::new(self.gpu, &rscene, &start, s.solver, s.gpu);
+            &s.options,
+            s.interp,
+            &mut shadows,
+            None,
+            &self.control.cancel,
+            &mut |_| {},
+        ) {
+            Ok(p) => p,
+            Err(SessionError::Cancelled(_)) => return Ok(()),
+            Err(e) => return Err(err(&e)),
+        };
+        let mut session = prepared.session(&mut |_| {}).map_err(|e| err(&e))?;
         if s.frame_budget_ms > 0.0 {
             // A shot stops between batches: half a frame's share each.
-            solver.set_batch_seconds(s.frame_budget_ms / 2000.0);
+            session.set_batch_seconds(s.frame_budget_ms / 2000.0);
         }
+        let rscene = prepared.scene();
         self.send(RadiosityUpdate::Prepared {
             elements: rscene.elements.len(),
             patches: rscene.elements.patches.len(),
         });
-        let mut driver = match &view {
-            Some(v) => self.follow(&mut solver, v)?,
-            None => None,
-        };
-        let mut scale = solver.start_scale(&start.radiosity);
+        if let Some((camera, aspect)) = &view {
+            session.follow(camera, *aspect).map_err(|e| err(&e))?;
+        }
         let mut seconds = 0.0;
         let mut done = false;
         let mut last_shown: Option<Instant> = None;
@@ -335,44 +262,18 @@ impl Job<'_> {
                 }
             };
             if let Some(first) = command {
-                let Latest { relight, view } = latest(first, inbox);
                 let took = Instant::now();
-                let mut notes = Vec::new();
-                if let Some((new_scene, interp)) = relight {
-                    let new = self.first_shot(&new_scene, interp, &rscene)?;
-                    solver.relight(&start, &new).map_err(|e| err(&e))?;
-                    start = new;
-                    // The area of interest starts again around the view.
-                    if let Some(d) = &driver {
-                        d.driven
-                            .drive(&mut solver, s.drive, &d.point, s.fov_margin_deg)
-                            .map_err(|e| err(&e))?;
-                    }
-                    notes.push("relit: the luminaires' change re-shot in place");
-                }
-                if let Some(v) = view {
-                    match self.follow(&mut solver, &v)? {
-                        Some(d) => {
-                            driver = Some(d);
-                            notes.push("following the view (importance solved again)");
-                        }
-                        None if driver.is_some() => {
-                            notes.push("the view sees no surface: still driven by the last one")
-                        }
-                        None => {}
-                    }
-                }
+                let notes = apply(&mut session, latest(first, inbox)).map_err(|e| err(&e))?;
                 if notes.is_empty() {
                     continue;
                 }
-                scale = solver.start_scale(&start.radiosity);
                 done = false;
                 self.send(RadiosityUpdate::Note(format!(
                     "{} ({:.2} s)",
                     notes.join("; "),
                     took.elapsed().as_secs_f64()
                 )));
-                self.show(&solver, &driver, seconds, convergence)?;
+                self.show(&session, seconds, convergence)?;
                 last_shown = Some(Instant::now());
                 continue;
             }
@@ -391,47 +292,55 @@ impl Job<'_> {
                 continue;
             }
             let started = Instant::now();
-            let sel = solver.select_next().map_err(|e| err(&e))?;
-            let unshot = solver.measured(&sel);
-            convergence = if scale > 0.0 {
-                1.0 - unshot / scale
-            } else {
-                1.0
-            };
-            let finished = match sel.shooter {
-                _ if s.converge <= 0.0 => Some("converged"),
-                _ if convergence >= s.converge && solver.area_is_whole() => Some("converged"),
-                None => Some("nothing left to shoot"),
-                Some(t) => {
-                    let over = || {
-                        self.control.cancel.load(Ordering::Relaxed)
-                            || available.is_some_and(|d| started.elapsed() >= d)
-                    };
-                    solver.shoot_until(t, &over).map_err(|e| err(&e))?;
-                    None
-                }
-            };
+            let (point, finished) = session
+                .step(available, &self.control.cancel)
+                .map_err(|e| err(&e))?;
+            if finished == Some(StopReason::Cancelled) {
+                return Ok(());
+            }
+            convergence = point.convergence;
             let spent = started.elapsed();
             self.credit.spend(spent);
             seconds += spent.as_secs_f64();
             let due = last_shown.is_none_or(|t| t.elapsed().as_secs_f64() >= s.update_every_s);
             if finished.is_some() || due {
-                self.show(&solver, &driver, seconds, convergence)?;
+                self.show(&session, seconds, convergence)?;
                 last_shown = Some(Instant::now());
             } else {
                 self.send(RadiosityUpdate::Progress {
-                    shots: solver.shots,
+                    shots: session.solver().shots,
                     seconds,
                     convergence,
                     light_map: None,
                 });
             }
             if let Some(reason) = finished {
-                self.send(RadiosityUpdate::Done(reason.into()));
+                self.send(RadiosityUpdate::Done(reason.to_string()));
                 done = true;
             }
         }
     }
+}
+
+/// Relights `session` and follows the view as `latest` asks; what changed, for the
+/// status line.
+fn apply(session: &mut Session, latest: Latest) -> Result<Vec<&'static str>, SessionError> {
+    let mut notes = Vec::new();
+    if let Some((new_scene, interp)) = latest.relight {
+        session.relight(&new_scene, interp)?;
+        notes.push("relit: the luminaires' change re-shot in place");
+    }
+    if let Some((camera, aspect)) = latest.view {
+        let driven = session.driven().is_some();
+        match session.follow(&camera, aspect)? {
+            Follow::Following => notes.push("following the view (importance solved again)"),
+            Follow::Kept if driven => {
+                notes.push("the view sees no surface: still driven by the last one")
+            }
+            Follow::Kept | Follow::Global => {}
+        }
+    }
+    Ok(notes)
 }
 
 /// What the commands waiting at once come to: the latest luminaires (and interpolation)

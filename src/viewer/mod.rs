@@ -101,7 +101,7 @@ pub fn start(options: StartOptions) -> Result<window::RunSummary, ViewerError> {
     }
     app.obj_up = up;
     app.radiosity.start_with = indirect;
-    app.radiosity.settings.drive = options.drive;
+    app.radiosity.settings.options.drive = options.drive;
     if let Some(ms) = options.solver_ms_per_frame {
         app.radiosity.settings.frame_budget_ms = ms;
     }

@@ -197,15 +197,15 @@ impl ViewerApp {
                 .num_columns(2)
                 .show(ui, |ui| {
                     let label = ui.label("Texels per metre");
-                    ui.add(egui::DragValue::new(&mut st.texel_density).range(1.0..=100.0))
+                    ui.add(egui::DragValue::new(&mut st.options.texel_density).range(1.0..=100.0))
                         .labelled_by(label.id);
                     ui.end_row();
                     let label = ui.label("Patch level");
-                    ui.add(egui::Slider::new(&mut st.level, 0..=6))
+                    ui.add(egui::Slider::new(&mut st.options.level, 0..=6))
                         .labelled_by(label.id);
                     ui.end_row();
                     let label = ui.label("Split at shadow edges (levels)");
-                    ui.add(egui::Slider::new(&mut st.adaptive, 0..=3))
+                    ui.add(egui::Slider::new(&mut st.options.adaptive, 0..=3))
                         .labelled_by(label.id)
                         .on_hover_text(
                             "Adaptive subdivision: elements split up to this many times \
@@ -213,13 +213,15 @@ impl ViewerApp {
                         );
                     ui.end_row();
                     let label = ui.label("Converge to");
-                    ui.add(egui::Slider::new(&mut st.converge, 0.5..=0.999).fixed_decimals(3))
-                        .labelled_by(label.id);
+                    ui.add(
+                        egui::Slider::new(&mut st.options.converge, 0.5..=0.999).fixed_decimals(3),
+                    )
+                    .labelled_by(label.id);
                     ui.end_row();
                     choice_row(
                         ui,
                         "Visibility",
-                        &mut st.gpu.visibility,
+                        &mut st.options.visibility,
                         &[
                             (Visibility::Hemicube, "hemicube"),
                             (Visibility::Stereographic, "stereographic"),
@@ -228,7 +230,7 @@ impl ViewerApp {
                     choice_row(
                         ui,
                         "Charts and shooters",
-                        &mut st.gpu.hierarchy,
+                        &mut st.options.hierarchy,
                         &[
                             (Hierarchy::Clusters, "face clusters"),
                             (Hierarchy::None, "every triangle"),
@@ -237,7 +239,7 @@ impl ViewerApp {
                     choice_row(
                         ui,
                         "Form factor",
-                        &mut st.solver.form_factor,
+                        &mut st.options.form_factor,
                         &[
                             (FormFactorKind::Polygon, "polygon"),
                             (FormFactorKind::Disc, "disc"),
@@ -246,7 +248,7 @@ impl ViewerApp {
                     choice_row(
                         ui,
                         "Driven by",
-                        &mut st.drive,
+                        &mut st.options.drive,
                         &[
                             (Drive::Global, "whole scene"),
                             (Drive::Importance, "importance (view)"),
@@ -254,7 +256,7 @@ impl ViewerApp {
                         ],
                     );
                     let label = ui.label("Margin around the view (°)");
-                    ui.add(egui::DragValue::new(&mut st.fov_margin_deg).range(0.0..=90.0))
+                    ui.add(egui::DragValue::new(&mut st.options.fov_margin).range(0.0..=90.0))
                         .labelled_by(label.id);
                     ui.end_row();
                     let label = ui.label("Solver ms per frame (0: all)");
@@ -264,7 +266,7 @@ impl ViewerApp {
                     choice_row(
                         ui,
                         "Ambient term",
-                        &mut st.solver.ambient,
+                        &mut st.options.ambient,
                         &[
                             (Ambient::Display, "display"),
                             (Ambient::Overshoot, "overshoot"),
@@ -322,8 +324,8 @@ impl ViewerApp {
             return self.error("no GPU for radiosity");
         };
         self.reset_radiosity();
-        let mut settings = self.radiosity.settings;
-        settings.solver.interp = self.display.interp;
+        let mut settings = self.radiosity.settings.clone();
+        settings.interp = self.display.interp;
         let view = self.radiosity_view();
         self.radiosity.followed = Some(view);
         match live_radiosity::start(
@@ -348,14 +350,14 @@ impl ViewerApp {
     pub fn start_indirect(&mut self) {
         use crate::scene::DisplayIndirect;
         let wanted = std::mem::take(&mut self.radiosity.start_with);
-        let converge = self.radiosity.settings.converge;
+        let converge = self.radiosity.settings.options.converge;
         match wanted {
             DisplayIndirect::None => return,
-            DisplayIndirect::Ambient => self.radiosity.settings.converge = 0.0,
+            DisplayIndirect::Ambient => self.radiosity.settings.options.converge = 0.0,
             DisplayIndirect::Radiosity => {}
         }
         self.start_radiosity();
-        self.radiosity.settings.converge = converge;
+        self.radiosity.settings.options.converge = converge;
     }
 
     /// Pauses or resumes the solver.
@@ -383,7 +385,7 @@ impl ViewerApp {
     /// [`FOLLOW_AFTER_S`] away from the view it has.
     fn follow_the_view(&mut self, ctx: &egui::Context) {
         let r = &self.radiosity;
-        if r.settings.drive == crate::radiosity::view::Drive::Global || r.link.is_none() {
+        if r.settings.options.drive == crate::radiosity::view::Drive::Global || r.link.is_none() {
             return;
         }
         let view = self.radiosity_view();

@@ -404,8 +404,8 @@ fn radiosity_runs_in_the_background_pauses_and_converges() {
     let Some(gpu) = gpu_common::gpu() else { return };
     let mut a = app("box_room.toml");
     a.gpu = Some(Arc::new(gpu));
-    a.radiosity.settings.texel_density = 4.0;
-    a.radiosity.settings.converge = 0.95;
+    a.radiosity.settings.options.texel_density = 4.0;
+    a.radiosity.settings.options.converge = 0.95;
     a.radiosity.settings.update_every_s = 0.0;
     let mut h = harness(a);
     h.get_by_label("Radiosity").click();
@@ -475,8 +475,8 @@ fn radiosity_splits_elements_at_shadow_edges_from_the_panel() {
     let Some(gpu) = gpu_common::gpu() else { return };
     let mut a = app("boxes_room.toml");
     a.gpu = Some(Arc::new(gpu));
-    a.radiosity.settings.texel_density = 4.0;
-    a.radiosity.settings.converge = 0.9;
+    a.radiosity.settings.options.texel_density = 4.0;
+    a.radiosity.settings.options.converge = 0.9;
     a.radiosity.settings.update_every_s = 0.0;
     let mut h = harness(a);
     h.get_by_label("Radiosity").click();
@@ -492,7 +492,7 @@ fn radiosity_splits_elements_at_shadow_edges_from_the_panel() {
         h.key_press(egui::Key::ArrowRight);
         h.run();
     }
-    assert_eq!(h.state().radiosity.settings.adaptive, 2);
+    assert_eq!(h.state().radiosity.settings.options.adaptive, 2);
     h.get_by_label("Start").click();
     h.step();
     run_until(&mut h, converged);
@@ -518,8 +518,8 @@ fn solved_in_the_viewer(
     gpu: &Arc<goniolight::gpu::Gpu>,
 ) -> Harness<'static, ViewerApp> {
     a.gpu = Some(gpu.clone());
-    a.radiosity.settings.texel_density = 4.0;
-    a.radiosity.settings.converge = 0.995;
+    a.radiosity.settings.options.texel_density = 4.0;
+    a.radiosity.settings.options.converge = 0.995;
     let mut h = harness(a);
     h.state_mut().start_radiosity();
     run_until(&mut h, converged);
@@ -578,6 +578,34 @@ fn moving_a_luminaire_relights_the_running_solution() {
     );
     assert!(stale > 0.2, "{stale}");
     assert!(off < 0.01, "relit light map {:.3} % off", 100.0 * off);
+}
+
+/// The viewer's live solver (shooting a slice of each frame at a time, through
+/// `radiosity::session::Session::step`) ends with the solution that the library's one
+/// solve (what `goniolight radiosity` runs) gives from the same options.
+#[test]
+fn the_live_solver_gives_the_radiosity_commands_solution() {
+    let Some(gpu) = gpu_common::gpu() else { return };
+    let gpu = Arc::new(gpu);
+    let h = solved_in_the_viewer(app("box_room.toml"), &gpu);
+    let a = h.state();
+    let live = a.radiosity.light_map.clone().unwrap();
+    let mut shadows = a.display.shadows.clone();
+    let solution = goniolight::radiosity::session::solve(
+        &gpu,
+        &a.render_scene(),
+        &a.radiosity.settings.options,
+        a.display.interp,
+        &mut shadows,
+        None,
+        &std::sync::atomic::AtomicBool::new(false),
+        &mut |_| {},
+    )
+    .unwrap();
+    assert_eq!(solution.stop().to_string(), "converged");
+    let off = map_difference(&live, &solution.light_map());
+    eprintln!("live solution {:.4} % off the command's", 100.0 * off);
+    assert!(off < 0.005, "live light map {:.3} % off", 100.0 * off);
 }
 
 #[test]
@@ -805,9 +833,9 @@ fn a_view_driven_solver_follows_the_camera() {
     let Some(gpu) = gpu_common::gpu() else { return };
     let mut a = app("boxes_room.toml");
     a.gpu = Some(Arc::new(gpu));
-    a.radiosity.settings.texel_density = 4.0;
-    a.radiosity.settings.converge = 0.999;
-    a.radiosity.settings.drive = goniolight::radiosity::view::Drive::Perspective;
+    a.radiosity.settings.options.texel_density = 4.0;
+    a.radiosity.settings.options.converge = 0.999;
+    a.radiosity.settings.options.drive = goniolight::radiosity::view::Drive::Perspective;
     let mut h = harness(a);
     h.state_mut().start_radiosity();
     run_until(&mut h, |a| a.radiosity.shots > 0);

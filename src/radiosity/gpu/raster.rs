@@ -56,8 +56,8 @@ impl Raster {
     /// Why `self` cannot draw a scene with or without alpha-masked casters, if it cannot.
     pub fn refusal(self, masked: bool) -> Option<&'static str> {
         (self == Raster::Compute && masked).then_some(
-            "--raster compute does not draw alpha-masked casters (their holes need the \
-             render pass); use --raster auto or hardware",
+            "does not draw alpha-masked casters (their holes need the render pass): use \
+             auto or hardware",
         )
     }
 

@@ -1,0 +1,91 @@
+"""The radiosity solution from Python equals the command line's, option for option."""
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+import goniolight
+from goniolight import _native
+
+from test_goniolight import ROOT, cli
+
+BOX_CALC = ROOT / "assets" / "scenes" / "box_room_calc.toml"
+FURNISHED = ROOT / "assets" / "scenes" / "furnished_room.toml"
+# Coarse and not fully converged: the same work on both sides, and quick on lavapipe.
+FLAGS = {"converge": 0.9, "texel_density": 4.0}
+
+
+def grid_points(z=0.8, n=4, extent=(0.5, 3.5)):
+    xs = np.linspace(*extent, n)
+    return np.array([[x, y, z, 0.0, 0.0, 1.0] for x in xs for y in xs])
+
+
+def command_lux(scene, pts, **flags):
+    args = ["radiosity", str(scene), "--points"]
+    for k, v in flags.items():
+        args += ["--" + k.replace("_", "-"), str(v)]
+    text = "".join(" ".join(repr(float(v)) for v in p) + "\n" for p in pts)
+    return np.asarray([float(v) for v in cli(*args, stdin=text).split()])
+
+
+@pytest.mark.parametrize("scene", [BOX_CALC, FURNISHED], ids=["box_room_calc", "furnished_room"])
+def test_lux_at_points_equals_radiosity_points(scene):
+    pts = grid_points()
+    expected = command_lux(scene, pts, **FLAGS)
+    sol = goniolight.radiosity(scene, **FLAGS)
+    assert sol.stop_reason == "converged"
+    assert sol.convergence >= 0.9
+    lux = sol.lux(pts)
+    # The command prints six decimals; both solve on the same GPU in the same order.
+    np.testing.assert_allclose(lux, expected, rtol=1e-4, atol=5e-6)
+    assert (lux > 0).all()
+    # The interreflected part is a real share of it, below the total.
+    inter = sol.interreflected_lux(pts)
+    assert (inter > 0).all() and (inter < lux).all()
+
+
+def test_every_keyword_defaults_to_the_commands_default():
+    import inspect
+
+    defaults = json.loads(_native.radiosity_defaults_json())
+    params = inspect.signature(goniolight.radiosity).parameters
+    for name, value in defaults.items():
+        if name == "importance_time_limit":  # the viewer's; the command has no flag
+            continue
+        given = params[name].default
+        if isinstance(value, list):
+            given = list(given)
+        assert given == value, f"{name}: {given!r} vs the library's {value!r}"
+
+
+def test_a_bad_option_names_its_field():
+    with pytest.raises(ValueError, match=r"map_size 8 is not in 16\.\.=4096"):
+        goniolight.radiosity(BOX_CALC, map_size=8)
+    with pytest.raises(ValueError, match="unknown variant"):
+        goniolight.radiosity(BOX_CALC, visibility="cubemap")
+
+
+def test_progress_shot_limit_log_and_export(tmp_path):
+    seen = []
+    sol = goniolight.radiosity(BOX_CALC, max_shots=5, texel_density=4.0,
+                               progress=lambda shot, c: seen.append((shot, c)))
+    assert sol.stop_reason == "shot limit reached"
+    assert [s for s, _ in seen] == list(range(6))
+    conv = [c for _, c in seen]
+    assert conv == sorted(conv) and conv[0] == 0.0 and conv[-1] > 0.0
+    log = sol.log
+    np.testing.assert_array_equal(log["shot"], np.arange(6))
+    assert math.isclose(log["convergence"][-1], sol.convergence, rel_tol=1e-6)
+    glb = tmp_path / "box.glb"
+    sol.export(glb)
+    assert glb.read_bytes()[:4] == b"glTF"
+
+
+def test_a_raising_progress_callable_stops_the_solve():
+    def fail(shot, c):
+        raise RuntimeError("stop here")
+
+    with pytest.raises(RuntimeError, match="stop here"):
+        goniolight.radiosity(BOX_CALC, texel_density=4.0, progress=fail)
