@@ -33,8 +33,8 @@ import numpy as np
 
 from . import _native
 
-__all__ = ["Luminaire", "read", "sun_position", "illuminance", "radiosity", "Radiosity",
-           "INTERPOLATIONS"]
+__all__ = ["Luminaire", "read", "ugr_table", "luminance_table", "datasheet", "sun_position",
+           "illuminance", "radiosity", "Radiosity", "calc", "INTERPOLATIONS"]
 
 #: The interpolation methods, as the command line names them.
 INTERPOLATIONS = ("nearest", "bilinear", "catmull-rom", "monotone")
@@ -92,17 +92,39 @@ class Luminaire:
         ref = None if reference is None else os.fspath(reference)
         return json.loads(self._native.check_json(leave_out, ds, ref))
 
+    def ugr_table(self, shr: float = 0.25, lamp_set: Optional[int] = None) -> dict:
+        """The UGR table (CIE 117 formula, CIE 190 tabular method) at spacing ``shr`` × H:
+        the dict that ``goniolight ldt ugr --json`` prints (``shr``, ``rooms``,
+        ``reflectances``, ``crosswise``, ``endwise`` with ``None`` where a room is not
+        tabulated, ``observer_variation``, ``flux_lm``). ``lamp_set`` counts from 1."""
+        return json.loads(self._native.ugr_table_json(float(shr), lamp_set))
+
+    def luminance_table(self, lamp_set: Optional[int] = None, gamma_from: int = 65,
+                        interp: str = "bilinear") -> dict:
+        """The luminance table (cd/m² of the luminous area by C plane 0–345° every 15° and
+        γ from ``gamma_from`` every 5° below 90°): the dict that ``goniolight ldt
+        luminance --json`` prints, with ``cd_m2`` as a NumPy array (C × γ)."""
+        t = json.loads(self._native.luminance_table_json(lamp_set, int(gamma_from), interp))
+        t["cd_m2"] = np.asarray(t["cd_m2"], dtype=float)
+        return t
+
     def write(self, path: PathLike) -> None:
         """Writes the file as EULUMDAT or IES, chosen by the extension (.ldt or .ies)."""
         path = os.fspath(path)
         ext = os.path.splitext(path)[1].lower().lstrip(".")
         if ext not in ("ldt", "ies"):
             raise ValueError(f"{path}: the extension must be .ldt or .ies")
-        text = self._native.to_text(ext)
-        tmp = f"{path}.tmp{os.getpid()}"
-        with open(tmp, "w", encoding="utf-8", newline="") as f:
-            f.write(text)
-        os.replace(tmp, path)
+        _write_text(path, self._native.to_text(ext))
+
+    def datasheet(self, out: PathLike, lamp_set: int = 1) -> None:
+        """Writes the one-page datasheet (``goniolight ldt report``: summary, polar,
+        cartesian and isocandela diagrams, UGR and luminance tables, warnings) as one
+        self-contained HTML or SVG file, chosen by the extension."""
+        out = os.fspath(out)
+        ext = os.path.splitext(out)[1].lower().lstrip(".")
+        if ext not in ("html", "htm", "svg"):
+            raise ValueError(f"{out}: the extension must be .html or .svg")
+        _write_text(out, self._native.datasheet_page(ext == "svg", int(lamp_set)))
 
     def __repr__(self) -> str:
         i = self.info
@@ -113,6 +135,33 @@ class Luminaire:
 def read(path: PathLike) -> Luminaire:
     """Reads an ``.ldt`` or ``.ies`` file (ValueError naming file and line when malformed)."""
     return Luminaire(_native.read(os.fspath(path)))
+
+
+def _write_text(path: str, text: str) -> None:
+    """Writes ``text`` to ``path`` whole or not at all (a temporary file moved into place)."""
+    tmp = f"{path}.tmp{os.getpid()}"
+    with open(tmp, "w", encoding="utf-8", newline="") as f:
+        f.write(text)
+    os.replace(tmp, path)
+
+
+def datasheet(path: PathLike, out: PathLike, lamp_set: int = 1) -> None:
+    """Writes a luminaire file's one-page datasheet (``goniolight ldt report FILE --out
+    OUT``): :meth:`Luminaire.datasheet` of :func:`read`."""
+    read(path).datasheet(out, lamp_set=lamp_set)
+
+
+def ugr_table(path: PathLike, shr: float = 0.25, lamp_set: Optional[int] = None) -> dict:
+    """The UGR table of a luminaire file (``goniolight ldt ugr --json``):
+    :meth:`Luminaire.ugr_table` of :func:`read`."""
+    return read(path).ugr_table(shr=shr, lamp_set=lamp_set)
+
+
+def luminance_table(path: PathLike, lamp_set: Optional[int] = None, gamma_from: int = 65,
+                    interp: str = "bilinear") -> dict:
+    """The luminance table of a luminaire file (``goniolight ldt luminance --json``):
+    :meth:`Luminaire.luminance_table` of :func:`read`."""
+    return read(path).luminance_table(lamp_set=lamp_set, gamma_from=gamma_from, interp=interp)
 
 
 def _iso(t) -> str:
@@ -260,3 +309,34 @@ def radiosity(scene: PathLike, *, converge: float = 0.99, max_shots: Optional[in
     }
     native = _native.radiosity(os.fspath(scene), json.dumps(options), interp, shadows, progress)
     return Radiosity(native)
+
+
+def calc(scene: PathLike, *, maintenance_factor: Optional[float] = None, cpu: bool = False,
+         interp: str = "catmull-rom", shadows: str = "volumes", indirect: Optional[str] = None,
+         max_points: Optional[int] = None, solver: Optional[dict] = None,
+         progress=None) -> dict:
+    """The scene's calculation surfaces and observers, as ``goniolight calc`` computes
+    them: the dict of its ``calc.json`` (``grids`` with ``em``, ``emin``, ``emax``,
+    ``u0``, ``g2``, …; ``observers`` with ``ugr``; ``indirect``, ``convergence``), each
+    grid also with ``values`` (the maintained lux at its points, a NumPy array in the
+    order of its CSV). Keywords are the command's flags: ``maintenance_factor`` (default
+    the scene's), ``cpu``, ``interp``, ``shadows``, ``indirect`` (``"none"`` or
+    ``"radiosity"``; default the scene's), ``max_points``; ``solver`` is a dict of
+    :func:`radiosity`'s options for the interreflected light; ``progress(shot,
+    convergence)`` sees its solve.
+
+    >>> import goniolight
+    >>> doc = goniolight.calc("assets/scenes/box_room_calc.toml",
+    ...                       solver={"converge": 0.9, "texel_density": 4})
+    >>> [g["name"] for g in doc["grids"]][:2]
+    ['desk', 'work plane']
+    >>> bool(doc["grids"][0]["values"].min() == doc["grids"][0]["emin"])
+    True
+    """
+    text, values = _native.calc_json(
+        os.fspath(scene), maintenance_factor, bool(cpu), interp, shadows, indirect,
+        max_points, json.dumps(solver or {}), progress)
+    doc = json.loads(text)
+    for grid, v in zip(doc["grids"], values):
+        grid["values"] = np.asarray(v, dtype=float)
+    return doc

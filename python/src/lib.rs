@@ -30,6 +30,14 @@ fn parse_interp(name: &str) -> PyResult<Interp> {
         })
 }
 
+/// A lamp set number as the command line takes it (1-based).
+fn lamp_set_arg(lamp_set: Option<usize>) -> PyResult<Option<usize>> {
+    match lamp_set {
+        Some(0) => Err(value_error("lamp_set 0: lamp sets count from 1")),
+        other => Ok(other),
+    }
+}
+
 /// A luminaire file (EULUMDAT or IES) read into goniolight's distribution.
 #[pyclass(module = "goniolight._native", frozen)]
 struct NativeLuminaire {
@@ -111,6 +119,53 @@ impl NativeLuminaire {
         }
         .map_err(value_error)?;
         serde_json::to_string(&report).map_err(value_error)
+    }
+
+    /// `ldt ugr --json` of the file (CIE 117/190 UGR table at spacing `shr` × H, for lamp
+    /// set `lamp_set`, 1-based), as a JSON string.
+    #[pyo3(signature = (shr=0.25, lamp_set=None))]
+    fn ugr_table_json(&self, shr: f64, lamp_set: Option<usize>) -> PyResult<String> {
+        let set = lamp_set_arg(lamp_set)?;
+        let t = goniolight::photometry::ugr::ugr_table(&self.lum, set, shr, Interp::Bilinear)
+            .map_err(value_error)?;
+        serde_json::to_string(&t).map_err(value_error)
+    }
+
+    /// `ldt luminance --json` of the file (cd/m² of the luminous area, C 0–345° every 15°,
+    /// γ from `gamma_from` every 5° below 90°), as a JSON string.
+    #[pyo3(signature = (lamp_set=None, gamma_from=65, interp="bilinear"))]
+    fn luminance_table_json(
+        &self,
+        lamp_set: Option<usize>,
+        gamma_from: u16,
+        interp: &str,
+    ) -> PyResult<String> {
+        use goniolight::photometry::luminance::{gamma_rows, luminance_table, ugr_grid};
+        let set = lamp_set_arg(lamp_set)?;
+        let gammas = gamma_rows(gamma_from).ok_or_else(|| {
+            value_error(format!(
+                "gamma_from {gamma_from}: give a multiple of 5 below 90 (the rows are 5° apart)"
+            ))
+        })?;
+        let (c_angles, _) = ugr_grid();
+        let t = luminance_table(&self.lum, &c_angles, &gammas, set, parse_interp(interp)?)
+            .map_err(value_error)?;
+        serde_json::to_string(&t).map_err(value_error)
+    }
+
+    /// `ldt report`'s one-page datasheet of the file for lamp set `lamp_set` (1-based):
+    /// a self-contained SVG page (`svg`) or HTML page.
+    #[pyo3(signature = (svg=false, lamp_set=1))]
+    fn datasheet_page(&self, svg: bool, lamp_set: usize) -> PyResult<String> {
+        use goniolight::photometry::datasheet;
+        let set = lamp_set_arg(Some(lamp_set))?;
+        let file_name = self
+            .path
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        let sheet = datasheet::sheet(&file_name, &self.lum, set).map_err(value_error)?;
+        Ok(datasheet::page(&sheet, svg))
     }
 
     /// The file's data as EULUMDAT (`"ldt"`) or IES LM-63-2002 (`"ies"`) text.
@@ -386,19 +441,7 @@ fn radiosity(
     let aspect = settings.width as f64 / settings.height.max(1) as f64;
     let cancel = AtomicBool::new(false);
     let mut failed: Option<PyErr> = None;
-    let mut events = |e: Event| {
-        if let Err(err) = py.check_signals() {
-            cancel.store(true, Ordering::SeqCst);
-            failed.get_or_insert(err);
-            return;
-        }
-        if let (Event::Shot(p), Some(f)) = (e, &progress) {
-            if let Err(err) = f.call1((p.shot, p.convergence)) {
-                cancel.store(true, Ordering::SeqCst);
-                failed.get_or_insert(err);
-            }
-        }
-    };
+    let mut events = |e: Event| observe(py, e, progress.as_ref(), &cancel, &mut failed);
     let solved = session::solve(
         &gpu,
         &scene,
@@ -423,6 +466,88 @@ fn radiosity(
     Ok(NativeRadiosity { solution, scene })
 }
 
+/// `goniolight calc` of a scene: the `calc.json` document as JSON text (the scene named
+/// as `scene` is given) and each grid's maintained values. `options_json` holds the
+/// fields of `goniolight::calc::compute::CalcOptions` but `radiosity`, which
+/// `radiosity_json` holds (those left out take their defaults).
+#[pyfunction]
+#[pyo3(signature = (scene, maintenance_factor=None, cpu=false, interp="catmull-rom", shadows="volumes", indirect=None, max_points=None, radiosity_json="{}", progress=None))]
+#[allow(clippy::too_many_arguments)]
+fn calc_json(
+    py: Python<'_>,
+    scene: PathBuf,
+    maintenance_factor: Option<f64>,
+    cpu: bool,
+    interp: &str,
+    shadows: &str,
+    indirect: Option<&str>,
+    max_points: Option<usize>,
+    radiosity_json: &str,
+    progress: Option<Bound<'_, PyAny>>,
+) -> PyResult<(String, Vec<Vec<f64>>)> {
+    use goniolight::calc::compute::{compute, CalcError, CalcOptions};
+    let label = scene.display().to_string();
+    let loaded = goniolight::scene::Scene::load(&scene).map_err(value_error)?;
+    let indirect = indirect
+        .map(|name| {
+            serde_json::from_value(serde_json::Value::from(name))
+                .map_err(|_| value_error(format!("indirect {name:?}: none or radiosity")))
+        })
+        .transpose()?;
+    let defaults = CalcOptions::default();
+    let options = CalcOptions {
+        maintenance_factor,
+        cpu,
+        interp: parse_interp(interp)?,
+        shadows: parse_shadows(Some(shadows), &loaded)?,
+        indirect,
+        max_points: max_points.unwrap_or(defaults.max_points),
+        radiosity: serde_json::from_str(radiosity_json).map_err(value_error)?,
+    };
+    let cancel = AtomicBool::new(false);
+    let mut failed: Option<PyErr> = None;
+    let mut events = |e: goniolight::radiosity::session::Event| {
+        observe(py, e, progress.as_ref(), &cancel, &mut failed)
+    };
+    let calc = match compute(&loaded, &options, &cancel, &mut events) {
+        Ok(c) => c,
+        Err(e) => {
+            return Err(failed.take().unwrap_or_else(|| match e {
+                CalcError::Radiosity(e) => session_error(e),
+                e if e.is_bad_input() => value_error(e),
+                e => PyRuntimeError::new_err(e.to_string()),
+            }))
+        }
+    };
+    if let Some(err) = failed {
+        return Err(err);
+    }
+    let doc = serde_json::to_string(&calc.json(&label)).map_err(value_error)?;
+    Ok((doc, calc.grids.into_iter().map(|g| g.values).collect()))
+}
+
+/// A solve's event seen from Python: Ctrl-C sets `cancel` (and is kept in `failed`), and
+/// each shot goes to the `progress` callable as `(shot, convergence)`.
+fn observe(
+    py: Python<'_>,
+    e: goniolight::radiosity::session::Event,
+    progress: Option<&Bound<'_, PyAny>>,
+    cancel: &AtomicBool,
+    failed: &mut Option<PyErr>,
+) {
+    if let Err(err) = py.check_signals() {
+        cancel.store(true, Ordering::SeqCst);
+        failed.get_or_insert(err);
+        return;
+    }
+    if let (goniolight::radiosity::session::Event::Shot(p), Some(f)) = (e, progress) {
+        if let Err(err) = f.call1((p.shot, p.convergence)) {
+            cancel.store(true, Ordering::SeqCst);
+            failed.get_or_insert(err);
+        }
+    }
+}
+
 /// The native module.
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -433,5 +558,6 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<NativeRadiosity>()?;
     m.add_function(wrap_pyfunction!(radiosity, m)?)?;
     m.add_function(wrap_pyfunction!(radiosity_defaults_json, m)?)?;
+    m.add_function(wrap_pyfunction!(calc_json, m)?)?;
     Ok(())
 }

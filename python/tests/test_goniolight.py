@@ -102,3 +102,42 @@ def test_illuminance_equals_the_illuminance_command():
         assert (lux > 1.0).all()
     with pytest.raises(ValueError, match="N × 6"):
         goniolight.illuminance(SCENE, np.zeros((3, 5)))
+
+
+@pytest.mark.parametrize("shr", [0.25, 1.0])
+def test_ugr_table_equals_ldt_ugr_json(shr):
+    expected = json.loads(cli("ldt", "ugr", str(SAMPLE), "--json", "--shr", str(shr)))
+    assert goniolight.ugr_table(SAMPLE, shr=shr) == expected
+    assert goniolight.read(SAMPLE).ugr_table(shr=shr) == expected
+    # A real table: crosswise values in the usual band, 19 rooms × 5 reflectances.
+    assert len(expected["rooms"]) == 19
+    values = [v for row in expected["crosswise"] for v in row if v is not None]
+    assert values and all(10 < v < 35 for v in values)
+
+
+def test_luminance_table_equals_ldt_luminance_json():
+    for args, kwargs in [([], {}), (["--gamma-from", "45", "--interp", "catmull-rom"],
+                                    {"gamma_from": 45, "interp": "catmull-rom"})]:
+        expected = json.loads(cli("ldt", "luminance", str(SAMPLE), "--json", *args))
+        got = goniolight.luminance_table(SAMPLE, **kwargs)
+        assert set(got) == set(expected)
+        assert got["c_angles"] == expected["c_angles"]
+        assert got["gamma_angles"] == expected["gamma_angles"]
+        assert got["flux_lm"] == expected["flux_lm"]
+        np.testing.assert_array_equal(got["cd_m2"], np.asarray(expected["cd_m2"]))
+    with pytest.raises(ValueError, match="gamma_from 47"):
+        goniolight.luminance_table(SAMPLE, gamma_from=47)
+    with pytest.raises(ValueError, match="lamp_set 0"):
+        goniolight.ugr_table(SAMPLE, lamp_set=0)
+
+
+@pytest.mark.parametrize("ext", ["html", "svg"])
+def test_datasheet_equals_ldt_report(tmp_path, ext):
+    want = tmp_path / f"cli.{ext}"
+    cli("ldt", "report", str(SAMPLE), "--out", str(want))
+    got = tmp_path / f"py.{ext}"
+    goniolight.datasheet(SAMPLE, got)
+    assert got.read_bytes() == want.read_bytes()
+    assert b"UGR" in got.read_bytes()
+    with pytest.raises(ValueError, match="extension"):
+        goniolight.datasheet(SAMPLE, tmp_path / "sheet.pdf")

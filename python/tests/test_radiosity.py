@@ -89,3 +89,54 @@ def test_a_raising_progress_callable_stops_the_solve():
 
     with pytest.raises(RuntimeError, match="stop here"):
         goniolight.radiosity(BOX_CALC, texel_density=4.0, progress=fail)
+
+
+def calc_command(scene, out, *flags):
+    cli("calc", str(scene), "--out", str(out), *flags)
+    return json.loads((out / "calc.json").read_text())
+
+
+def csv_values(path):
+    rows = path.read_text().splitlines()[1:]
+    return np.asarray([float(r.split(",")[3]) for r in rows])
+
+
+COARSE = {"converge": 0.9, "texel_density": 4.0}
+COARSE_FLAGS = ["--converge", "0.9", "--texel-density", "4"]
+
+
+@pytest.mark.parametrize("flags,kwargs", [
+    ([], {}),
+    (["--maintenance-factor", "0.8", "--interp", "bilinear", "--shadows", "paraboloid"],
+     {"maintenance_factor": 0.8, "interp": "bilinear", "shadows": "paraboloid"}),
+], ids=["scene-defaults", "mf-bilinear-paraboloid"])
+def test_calc_equals_the_calc_command(tmp_path, flags, kwargs):
+    # The scene asks for the interreflected light (UGR at its observers needs it).
+    expected = calc_command(BOX_CALC, tmp_path, *flags, *COARSE_FLAGS)
+    got = goniolight.calc(BOX_CALC, solver=COARSE, **kwargs)
+    values = [g.pop("values") for g in got["grids"]]
+    got["scene"] = expected["scene"]  # named as each was given the path
+    # The same solve on the same GPU: equal to the last digit.
+    assert got == expected
+    assert expected["indirect"] == "radiosity" and expected["observers"][0]["ugr"] > 0
+    for grid, v in zip(expected["grids"], values):
+        np.testing.assert_allclose(v, csv_values(tmp_path / grid["csv"]), rtol=0, atol=5e-7)
+        assert v.size == grid["points"] and v.min() == grid["emin"]
+
+
+def test_calc_with_radiosity_equals_the_command_and_names_bad_options(tmp_path):
+    expected = calc_command(BOX_CALC, tmp_path, "--indirect", "radiosity",
+                            "--converge", "0.9", "--texel-density", "4")
+    got = goniolight.calc(BOX_CALC, indirect="radiosity",
+                          solver={"converge": 0.9, "texel_density": 4.0})
+    assert got["indirect"] == "radiosity" and got["convergence"] >= 0.9
+    for g, e in zip(got["grids"], expected["grids"]):
+        for key in ("em", "emin", "emax", "u0", "g2"):
+            assert math.isclose(g[key], e[key], rel_tol=1e-4), (g["name"], key)
+        np.testing.assert_allclose(g["values"], csv_values(tmp_path / e["csv"]), rtol=1e-4)
+    with pytest.raises(ValueError, match="cpu computes the direct light only"):
+        goniolight.calc(BOX_CALC, cpu=True)
+    with pytest.raises(ValueError, match="maintenance_factor 1.5"):
+        goniolight.calc(BOX_CALC, maintenance_factor=1.5)
+    with pytest.raises(ValueError, match="drive importance"):
+        goniolight.calc(BOX_CALC, indirect="radiosity", solver={"drive": "importance"})

@@ -1,9 +1,12 @@
 //! Lighting calculations a designer hands over: calculation surfaces (`[[grid]]`), the
 //! directions each point measures, and the statistics of the values (Em, Emin, U0, g2).
 
+#[cfg(feature = "gpu")]
+pub mod compute;
 pub mod directions;
 pub mod glare;
 pub mod plan;
+pub mod report;
 pub mod stats;
 
 pub use crate::scene::grid::{CalcGrid, CalcSettings, GridEntry, GridKind};

@@ -1,28 +1,25 @@
 //! `calc`: the scene's calculation surfaces — per grid the illuminance at every point,
 //! maintained (times the maintenance factor), its statistics in `calc.json`, the points
-//! in one CSV per grid and its plan (PNG and SVG).
+//! in one CSV per grid and its plan (PNG and SVG). The calculation is the library's
+//! ([`crate::calc::compute`]); this parses, checks the outputs, shows progress and
+//! writes.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use anyhow::anyhow;
 use clap::Args;
-use serde_json::json;
 
-use super::calc_report::{report_html, ReportGrid, ReportObserver};
 use super::radiosity::SolverArgs;
 use super::render::scene_at;
 use super::CliError;
-use crate::calc::directions::{combine, surface_points};
-use crate::calc::glare::{background_point, observer_glare, ObserverGlare};
-use crate::calc::plan::Plan;
-use crate::calc::{grid_stats, CalcGrid, CalcSettings};
+use crate::calc::compute::{csv_name, CalcError, CalcOptions, Calculation, Request};
+use crate::calc::report::{report_html, ReportGrid, ReportObserver};
 use crate::gpu::Gpu;
 use crate::io::limits::MAX_TOTAL_POINTS;
 use crate::io::outputs::{OutputCheck, Staging};
 use crate::io::{printable, write_atomic};
-use crate::lighting::SurfacePoint;
 use crate::photometry::Interp;
-use crate::render::illuminance::scene_illuminance;
 use crate::render::{ShadowSettings, ShadowTechnique};
 use crate::scene::grid::Indirect;
 use crate::scene::Scene;
@@ -79,95 +76,49 @@ pub struct CalcArgs {
     pub solver: SolverArgs,
 }
 
-/// The file name of a grid's CSV: its name with anything but letters, digits, `-` and `_`
-/// replaced by `-`.
-pub fn csv_name(grid_name: &str) -> String {
-    let stem: String = grid_name
-        .trim()
-        .chars()
-        .map(|c| {
-            if c.is_alphanumeric() || c == '-' || c == '_' {
-                c
-            } else {
-                '-'
-            }
+impl CalcArgs {
+    /// The library's options these flags give.
+    pub fn options(&self) -> Result<CalcOptions, CliError> {
+        Ok(CalcOptions {
+            maintenance_factor: self.maintenance_factor,
+            cpu: self.cpu,
+            interp: self.interp,
+            shadows: self.shadows,
+            indirect: self.indirect,
+            max_points: self.max_points,
+            radiosity: self.solver.check()?,
         })
-        .collect();
-    format!("{stem}.csv")
+    }
 }
 
-/// How the values were lit, for the grids' files: the maintenance factor, the light's
-/// description and whether it includes the interreflected light.
-struct Lit<'l> {
-    mf: f64,
-    light: &'l [String],
-    total: bool,
-}
-
-/// One grid's computed values (maintained) and how they were lit.
-struct Computed<'g> {
-    grid: &'g CalcGrid,
-    values: Vec<f64>,
-}
-
-/// Runs `calc`.
-pub fn run(args: CalcArgs) -> Result<(), CliError> {
-    let started = std::time::Instant::now();
-    let scene = scene_at(Scene::load(&args.scene)?, args.time)?;
-    if scene.grids.is_empty() && scene.observers.is_empty() {
-        return Err(CliError::input(anyhow!(
-            "{}: no [[grid]] or [[observer]] to compute; add a calculation surface (docs/src/guide/calc.md)",
-            args.scene.display()
-        )));
-    }
-    let mf = CalcSettings::check(
-        args.maintenance_factor
-            .unwrap_or(scene.calc.maintenance_factor),
-    )
-    .map_err(|e| CliError::input(anyhow!("--maintenance-factor {e}")))?;
-    let indirect = args
-        .indirect
-        .or(scene.calc.indirect)
-        .unwrap_or(Indirect::None);
-    if !scene.observers.is_empty() && indirect == Indirect::None {
-        return Err(CliError::input(anyhow!(
-            "{}: UGR at the [[observer]]s needs the background luminance, which is the interreflected light at the eye: run with --indirect radiosity (or set calc.indirect = \"radiosity\")",
-            args.scene.display()
-        )));
-    }
-    if indirect == Indirect::Radiosity && args.cpu {
-        return Err(CliError::input(anyhow!(
-            "--cpu computes the direct light only: the radiosity solver runs on the GPU (leave out --cpu, or use --indirect none)"
-        )));
-    }
-    args.solver.check()?;
-    if args.solver.drive != crate::radiosity::view::Drive::Global {
-        // A grid's lux must not depend on where the camera looks.
-        return Err(CliError::input(anyhow!(
-            "--drive {}: calc's interreflected light is solved for the whole scene (--drive global); view-driven solutions are for `radiosity` and the viewer",
-            args.solver.drive.name()
-        )));
-    }
-    let mut names = std::collections::HashSet::new();
-    for g in &scene.grids {
-        if !names.insert(csv_name(&g.entry.name)) {
-            return Err(CliError::input(anyhow!(
-                "{}: grid {:?} would write the same CSV file as another grid ({}); rename one",
-                args.scene.display(),
-                g.entry.name,
-                csv_name(&g.entry.name)
-            )));
+/// A calculation's error as the command reports it: the library names its options'
+/// fields, the command its flags.
+fn calc_error(e: CalcError) -> CliError {
+    match e {
+        CalcError::Option { field, message } => {
+            let flag = field.replace('_', "-");
+            CliError::input(anyhow!("--{flag} {message}"))
+        }
+        CalcError::Radiosity(e) => e.into(),
+        CalcError::Gpu(e) => e.into(),
+        e => {
+            let bad = e.is_bad_input();
+            CliError::classified(e, bad)
         }
     }
+}
+
+/// The files of the run: `calc.json` and per grid its CSV and plans (PNG, SVG), refused
+/// before any work where one would replace an input or another output.
+fn check_outputs(args: &CalcArgs, scene: &Scene) -> Result<(), CliError> {
     if args.out.is_file() {
         return Err(CliError::input(anyhow!(
             "--out {}: is a file, not a folder",
             args.out.display()
         )));
     }
-    let inputs = scene.input_files();
     let mut outputs = OutputCheck::new();
-    for f in &inputs {
+    for f in &scene.input_files() {
         outputs.input(f);
     }
     outputs.output(args.out.join("calc.json"));
@@ -186,119 +137,30 @@ pub fn run(args: CalcArgs) -> Result<(), CliError> {
         }
     }
     outputs.check()?;
-    let total: usize = scene.grids.iter().map(|g| g.points.len()).sum();
-    if total > args.max_points {
-        return Err(CliError::input(anyhow!(
-            "{}: the grids hold {total} points together, more than --max-points {} (each point costs memory and about 100 bytes of files): use a larger spacing, split the grids over several runs, or raise --max-points",
-            args.scene.display(),
-            args.max_points
-        )));
-    }
-    for o in &scene.observers {
-        for l in &scene.luminaires {
-            crate::calc::glare::check_outside(o, l).map_err(|e| {
-                CliError::input(anyhow!(
-                    "{}: observer {:?}: {e}",
-                    args.scene.display(),
-                    o.entry.name
-                ))
-            })?;
-        }
-    }
+    Ok(())
+}
+
+/// Runs `calc`.
+pub fn run(args: CalcArgs) -> Result<(), CliError> {
+    let started = std::time::Instant::now();
+    let scene = scene_at(Scene::load(&args.scene)?, args.time)?;
+    let options = args.options()?;
+    let request = Request::new(&scene, &options).map_err(calc_error)?;
+    check_outputs(&args, &scene)?;
     let cancel = super::interrupt_flag();
     let gpu = if args.cpu { None } else { Some(Gpu::shared()?) };
-    // Every (point, normal) of every grid, then the observers' eyes: one list, so the
-    // radiosity gather runs once.
-    let grid_points: Vec<Vec<SurfacePoint>> = scene.grids.iter().map(surface_points).collect();
-    let eyes: Vec<SurfacePoint> = scene.observers.iter().map(background_point).collect();
-    let mut lux: Vec<Vec<f64>> = Vec::with_capacity(grid_points.len());
-    for (g, points) in scene.grids.iter().zip(&grid_points) {
-        interrupted(&cancel)?;
-        let direct = scene_illuminance(gpu.as_ref(), &scene, points, args.interp, args.shadows)?;
-        check_usable(&g.entry.name, &direct)?;
-        lux.push(direct);
-    }
-    let mut background = vec![0.0; eyes.len()];
-    let mut convergence = None;
-    if indirect == Indirect::Radiosity {
-        let all: Vec<SurfacePoint> = grid_points.iter().flatten().chain(&eyes).copied().collect();
-        let (interreflected, converged) = interreflected_lux(&args, &scene, &all, started)?;
-        convergence = Some(converged);
-        let mut at = 0;
-        for (g, direct) in scene.grids.iter().zip(lux.iter_mut()) {
-            for v in direct.iter_mut() {
-                *v += interreflected[at];
-                at += 1;
-            }
-            check_usable(&g.entry.name, direct)?;
-        }
-        // UGR from the installation's initial light, as UGR tables are: the maintenance
-        // factor scales neither the luminaires' luminance nor the background.
-        for b in &mut background {
-            *b = interreflected[at].max(0.0) / std::f64::consts::PI;
-            at += 1;
-        }
-    }
-    let computed: Vec<Computed> = scene
-        .grids
-        .iter()
-        .zip(&lux)
-        .map(|(g, lux)| Computed {
-            grid: g,
-            values: combine(g, lux)
-                .into_iter()
-                .map(|v| v.max(0.0) * mf)
-                .collect(),
-        })
-        .collect();
-    let glare: Vec<ObserverGlare> = scene
-        .observers
-        .iter()
-        .zip(&background)
-        .map(|(o, &lb)| {
-            observer_glare(&scene, o, lb, args.interp)
-                .map_err(|e| CliError::input(anyhow!("observer {:?}: {e}", o.entry.name)))
-        })
-        .collect::<Result<_, _>>()?;
-    let light = match (indirect, convergence) {
-        (Indirect::Radiosity, Some(c)) => vec![
-            "direct + interreflected".to_string(),
-            format!("(radiosity, {:.1} % converged)", 100.0 * c),
-        ],
-        _ => vec!["direct light only".to_string()],
+    let direct = request.direct(gpu.as_ref(), &cancel).map_err(calc_error)?;
+    let interreflected = match request.indirect {
+        Indirect::Radiosity => Some(interreflected_lux(&args, &scene, &request, started)?),
+        Indirect::None => None,
     };
+    let calc = request.finish(direct, interreflected).map_err(calc_error)?;
     interrupted(&cancel)?;
+    let inputs = scene.input_files();
     let staging = Staging::beside(&args.out, &inputs)
         .map_err(|e| CliError::failure(anyhow!("{}: {e}", args.out.display())))?;
-    let (grids_json, report_grids) = write_grids(
-        &args,
-        staging.dir(),
-        &scene,
-        &computed,
-        &glare,
-        Lit {
-            mf,
-            light: &light,
-            total: indirect == Indirect::Radiosity,
-        },
-    )?;
-    let observers_json: Vec<_> = scene
-        .observers
-        .iter()
-        .zip(&glare)
-        .map(|(o, g)| {
-            json!({
-                "name": o.entry.name,
-                "position": o.entry.position,
-                "direction": o.entry.direction,
-                "ugr": g.ugr,
-                "background_cd_m2": g.background_cd_m2,
-                "glare_sum": g.glare_sum,
-                "luminaires": g.luminaires,
-            })
-        })
-        .collect();
-    for (o, g) in scene.observers.iter().zip(&glare) {
+    let report_grids = write_grids(&args, staging.dir(), &calc)?;
+    for (o, g) in scene.observers.iter().zip(&calc.glare) {
         println!(
             "observer {:<15} UGR {:>5}  (L_b {:.1} cd/m², {} luminaire(s) in the field)",
             printable(&o.entry.name),
@@ -307,45 +169,14 @@ pub fn run(args: CalcArgs) -> Result<(), CliError> {
             g.luminaires.len()
         );
     }
-    let doc = json!({
-        "scene": args.scene.display().to_string(),
-        "interp": args.interp.name().to_string(),
-        "shadows": format!("{:?}", args.shadows).to_lowercase(),
-        "device": if args.cpu { "cpu" } else { "gpu" },
-        "indirect": indirect,
-        "convergence": convergence,
-        "grids": grids_json,
-        "observers": observers_json,
-    });
-    let text = serde_json::to_string_pretty(&doc).map_err(CliError::failure)?;
+    let label = args.scene.display().to_string();
+    let text = serde_json::to_string_pretty(&calc.json(&label)).map_err(CliError::failure)?;
     write_atomic(&staging.dir().join("calc.json"), text.as_bytes()).map_err(CliError::failure)?;
-    let mut report = None;
-    if let Some(path) = &args.report {
-        let settings = [
-            ("scene", args.scene.display().to_string()),
-            ("maintenance factor", mf.to_string()),
-            (
-                "light",
-                format!(
-                    "{}; {}",
-                    light.join(" "),
-                    match (args.shadows, args.cpu) {
-                        (ShadowTechnique::None, _) => "no shadows",
-                        (ShadowTechnique::Paraboloid, false) => "paraboloid shadow maps",
-                        _ => "exact shadows (a ray from each point to each luminaire)",
-                    }
-                ),
-            ),
-            ("interpolation", args.interp.name().to_string()),
-            (
-                "computed on",
-                if args.cpu { "CPU" } else { "GPU" }.to_string(),
-            ),
-        ];
+    let report = args.report.as_ref().map(|path| {
         let observers: Vec<ReportObserver> = scene
             .observers
             .iter()
-            .zip(&glare)
+            .zip(&calc.glare)
             .map(|(o, g)| ReportObserver {
                 name: &o.entry.name,
                 eye: o.eye,
@@ -353,11 +184,12 @@ pub fn run(args: CalcArgs) -> Result<(), CliError> {
                 glare: g,
             })
             .collect();
-        report = Some((
+        let settings = calc.report_settings(&label);
+        (
             path,
             report_html(&scene, &settings, &report_grids, &observers),
-        ));
-    }
+        )
+    });
     // Complete or none: the last chance for Ctrl-C to leave nothing.
     interrupted(&cancel)?;
     staging
@@ -368,45 +200,31 @@ pub fn run(args: CalcArgs) -> Result<(), CliError> {
             .map_err(|e| CliError::input(anyhow!("--report {}: {e:#}", path.display())))?;
     }
     println!(
-        "maintenance factor {mf}; {}; wrote {} and, per grid, a CSV and a plan (PNG, SVG); {} grid(s), {} observer(s)",
-        light.join(" "),
+        "maintenance factor {}; {}; wrote {} and, per grid, a CSV and a plan (PNG, SVG); {} grid(s), {} observer(s)",
+        calc.maintenance_factor,
+        calc.light.join(" "),
         args.out.join("calc.json").display(),
-        computed.len(),
-        glare.len()
+        calc.grids.len(),
+        calc.glare.len()
     );
     Ok(())
 }
 
 /// The error of a run stopped by Ctrl-C (or SIGTERM) before its outputs were written.
-fn interrupted(cancel: &std::sync::atomic::AtomicBool) -> Result<(), CliError> {
-    if cancel.load(std::sync::atomic::Ordering::SeqCst) {
-        return Err(CliError::failure(anyhow!("interrupted: nothing written")));
+fn interrupted(cancel: &AtomicBool) -> Result<(), CliError> {
+    if cancel.load(Ordering::SeqCst) {
+        return Err(calc_error(CalcError::Cancelled));
     }
     Ok(())
 }
 
-/// An error naming the grid and point when a computed illuminance is not a usable number.
-fn check_usable(grid: &str, lux: &[f64]) -> Result<(), CliError> {
-    if let Some((i, v)) = lux
-        .iter()
-        .enumerate()
-        .find(|(_, v)| !v.is_finite() || **v < -1e-6)
-    {
-        return Err(CliError::failure(anyhow!(
-            "grid {grid:?}, point {}: the computed illuminance {v} lx is not a usable number",
-            i + 1
-        )));
-    }
-    Ok(())
-}
-
-/// The interreflected illuminance at `points` from a radiosity solution of `scene` with
-/// the command's solver options (the luminaires' light on the elements with its shadows and
-/// interpolation), and the solution's convergence.
+/// The interreflected illuminance at the request's gather points from a radiosity
+/// solution of `scene` with the command's solver options (the luminaires' light on the
+/// elements with its shadows and interpolation), and the solution's convergence.
 fn interreflected_lux(
     args: &CalcArgs,
     scene: &Scene,
-    points: &[SurfacePoint],
+    request: &Request,
     started: std::time::Instant,
 ) -> Result<(Vec<f64>, f64), CliError> {
     let mut settings = crate::render::RenderSettings::from_display(&scene.display);
@@ -419,75 +237,40 @@ fn interreflected_lux(
             "interrupted while solving the interreflected light: nothing written"
         )));
     }
-    let lux = super::radiosity::interreflected_lux(&args.scene, &solved, points)?;
+    let points = request.gather_points();
+    let lux = super::radiosity::interreflected_lux(&args.scene, &solved, &points)?;
     Ok((lux, solved.convergence()))
 }
 
-/// Writes each grid's CSV and plans; returns their `calc.json` entries and report parts.
-fn write_grids<'a>(
+/// Writes each grid's CSV and plans and prints its line; returns the report's parts.
+fn write_grids<'c>(
     args: &CalcArgs,
-    dir: &std::path::Path,
-    scene: &'a Scene,
-    computed: &[Computed<'a>],
-    glare: &[ObserverGlare],
-    lit: Lit,
-) -> Result<(Vec<serde_json::Value>, Vec<ReportGrid<'a>>), CliError> {
-    let Lit { mf, light, total } = lit;
-    let mut grids_json = Vec::new();
+    dir: &Path,
+    calc: &'c Calculation,
+) -> Result<Vec<ReportGrid<'c>>, CliError> {
     let mut report_grids = Vec::new();
-    if !computed.is_empty() {
+    if !calc.grids.is_empty() {
         println!(
             "{:<24} {:>15} {:>7} {:>9} {:>9} {:>9} {:>6} {:>6}",
             "grid", "kind", "points", "Em lx", "Emin lx", "Emax lx", "U0", "g2"
         );
     }
-    for Computed { grid: g, values } in computed {
-        let s = grid_stats(values);
+    for (k, (g, r)) in calc.grid_results().enumerate() {
+        let s = r.stats;
         let csv = csv_name(&g.entry.name);
-        write_atomic(&dir.join(&csv), grid_csv(g, values).as_bytes()).map_err(CliError::failure)?;
-        let plan = Plan {
-            grid: g,
-            values,
-            stats: s,
-            maintenance_factor: mf,
-            luminaires: scene
-                .luminaires
-                .iter()
-                .enumerate()
-                .map(|(i, l)| (l.position, format!("L{}", i + 1)))
-                .collect(),
-            observers: scene
-                .observers
-                .iter()
-                .zip(glare)
-                .map(|(o, gl)| {
-                    let ugr = gl.ugr.map_or("—".into(), |u| format!("{u:.1}"));
-                    (o.eye, o.forward, format!("{} UGR {ugr}", o.entry.name))
-                })
-                .collect(),
-            light: light.to_vec(),
-            palette: (
-                args.palette.or(scene.display.palette).unwrap_or_default(),
-                args.steps.or(scene.display.steps).unwrap_or(0),
-            ),
-            values_at_points: args.values,
-        };
+        write_atomic(&dir.join(&csv), calc.grid_csv(k).as_bytes()).map_err(CliError::failure)?;
+        let plan = calc.plan(k, args.palette, args.steps, args.values);
         let stem = csv.trim_end_matches(".csv");
         let png = plan.png().map_err(|e| CliError::failure(anyhow!(e)))?;
         write_atomic(&dir.join(format!("{stem}.png")), &png).map_err(CliError::failure)?;
         let svg = plan.svg().map_err(|e| CliError::failure(anyhow!(e)))?;
         write_atomic(&dir.join(format!("{stem}.svg")), svg.as_bytes())
             .map_err(CliError::failure)?;
-        report_grids.push(ReportGrid {
-            name: &g.entry.name,
-            kind: format!("{:?}", g.entry.kind).to_lowercase(),
-            stats: s,
-            plan_svg: svg,
-        });
+        let kind = format!("{:?}", g.entry.kind).to_lowercase();
         println!(
             "{:<24} {:>15} {:>7} {:>9.1} {:>9.1} {:>9.1} {:>6.2} {:>6.2}",
             printable(&g.entry.name),
-            format!("{:?}", g.entry.kind).to_lowercase(),
+            kind,
             s.points,
             s.em,
             s.emin,
@@ -495,31 +278,12 @@ fn write_grids<'a>(
             s.u0,
             s.g2
         );
-        grids_json.push(json!({
-            "name": g.entry.name,
-            "kind": g.entry.kind,
-            "points": s.points,
-            "em": s.em,
-            "emin": s.emin,
-            "emax": s.emax,
-            "u0": s.u0,
-            "g2": s.g2,
-            "maintenance_factor": mf,
-            "indirect": total,
-            "spacing_m": g.spacing,
-            "plans": [csv.replace(".csv", ".png"), csv.replace(".csv", ".svg")],
-            "csv": csv,
-        }));
+        report_grids.push(ReportGrid {
+            name: &g.entry.name,
+            kind,
+            stats: s,
+            plan_svg: svg,
+        });
     }
-    Ok((grids_json, report_grids))
-}
-
-/// `x,y,z,lux` with a header, one row per point (coordinates exact, so the points can be
-/// fed back to `illuminance`).
-fn grid_csv(g: &CalcGrid, values: &[f64]) -> String {
-    let mut out = String::from("x,y,z,lux\n");
-    for (p, v) in g.points.iter().zip(values) {
-        out.push_str(&format!("{},{},{},{v:.6}\n", p.x, p.y, p.z));
-    }
-    out
+    Ok(report_grids)
 }

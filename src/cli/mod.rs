@@ -5,7 +5,6 @@ mod batch;
 mod bench;
 mod bench_adaptive;
 mod calc;
-mod calc_report;
 mod demo;
 mod error;
 mod indirect;

@@ -147,6 +147,13 @@ pub fn ugr_grid() -> (Vec<f64>, Vec<f64>) {
     )
 }
 
+/// The γ rows of a luminance table that starts at `from` degrees and runs every 5° below
+/// 90° (datasheets start at 45° or 65°, the UGR grid's first row); `None` unless `from` is
+/// a multiple of 5 below 90.
+pub fn gamma_rows(from: u16) -> Option<Vec<f64>> {
+    (from < 90 && from.is_multiple_of(5)).then(|| (from..90).step_by(5).map(f64::from).collect())
+}
+
 /// The lamp flux of lamp set `set` (1-based; `None`: the first set, as Relux and DIALux
 /// read EULUMDAT's sets as alternative equipment), lm.
 pub fn lamp_set_flux(lum: &Luminaire, set: Option<usize>) -> Result<f64, PhotometryError> {

@@ -3,7 +3,7 @@
 use std::path::{Path, PathBuf};
 
 use super::{tables_per_file, CliError};
-use crate::photometry::luminance::{luminance_table, ugr_grid, LuminanceTable};
+use crate::photometry::luminance::{gamma_rows, luminance_table, ugr_grid, LuminanceTable};
 use crate::photometry::Interp;
 
 /// Prints the luminance table of each file, as text or JSON.
@@ -14,13 +14,12 @@ pub(super) fn run(
     gamma_from: u16,
     interp: Interp,
 ) -> Result<(), CliError> {
-    if !gamma_from.is_multiple_of(5) {
+    let Some(gammas) = gamma_rows(gamma_from) else {
         return Err(CliError::input(anyhow::anyhow!(
             "--gamma-from {gamma_from}: give a multiple of 5 (the rows are 5° apart)"
         )));
-    }
+    };
     let (c_angles, _) = ugr_grid();
-    let gammas: Vec<f64> = (gamma_from..90).step_by(5).map(f64::from).collect();
     tables_per_file(
         files,
         as_json,

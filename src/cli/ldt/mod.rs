@@ -11,8 +11,6 @@ mod inputs;
 mod luminance;
 mod plot;
 mod report;
-mod report_svg;
-mod sheet;
 mod ugr;
 
 pub(super) use catalogue::print_check;

@@ -1,4 +1,4 @@
-//! `calc --report report.html`: one self-contained HTML page a designer hands over — the
+//! The calculation's report (`calc --report report.html`): one self-contained HTML page a designer hands over — the
 //! settings used, the luminaires, and per grid its statistics and plan (inline SVG).
 
 use std::fmt::Write as _;

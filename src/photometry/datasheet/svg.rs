@@ -4,7 +4,7 @@
 
 use std::fmt::Write as _;
 
-use super::sheet::{escape, Sheet, Table};
+use super::{escape, Sheet, Table};
 
 /// Page width and margin, SVG units (pixels at 96 dpi).
 const PAGE: f64 = 1100.0;
@@ -127,7 +127,7 @@ fn svg_size(svg: &str) -> Option<(f64, f64)> {
 }
 
 /// The sheet as one SVG document.
-pub(super) fn svg(sheet: &Sheet) -> String {
+pub fn svg(sheet: &Sheet) -> String {
     let mut page = Page {
         body: String::new(),
         y: 0.0,

@@ -1,0 +1,560 @@
+//! A scene's calculation, whichever front end asks (`goniolight calc`, Python's
+//! `goniolight.calc`): the checks before any work ([`Request::new`]), the luminaires'
+//! direct light at every grid point ([`Request::direct`]), the interreflected light of a
+//! radiosity solution where asked ([`Request::gather_points`], then the front end's
+//! solve and gather), and the maintained values, their statistics and the observers' UGR
+//! ([`Request::finish`]); [`compute`] runs them in a row. The result writes its own
+//! `calc.json`, CSVs and plans ([`Calculation`]).
+
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use serde_json::json;
+
+use super::directions::{combine, surface_points};
+use super::glare::{background_point, check_outside, observer_glare, ObserverGlare};
+use super::plan::Plan;
+use super::{grid_stats, CalcGrid, CalcSettings, GridStats};
+use crate::gpu::{Gpu, GpuError};
+use crate::io::limits::MAX_TOTAL_POINTS;
+use crate::lighting::SurfacePoint;
+use crate::photometry::Interp;
+use crate::radiosity::session::{self, Event, SessionError};
+use crate::radiosity::view::Drive;
+use crate::render::illuminance::scene_illuminance;
+use crate::render::ShadowTechnique;
+use crate::scene::grid::Indirect;
+use crate::scene::{Palette, Scene};
+
+/// What a calculation is asked to do (the options of `goniolight calc`, with its
+/// defaults).
+#[derive(Debug, Clone, PartialEq)]
+pub struct CalcOptions {
+    /// The values reported are the computed ones times this, in (0, 1] (`None`: the
+    /// scene's `calc.maintenance_factor`).
+    pub maintenance_factor: Option<f64>,
+    /// Compute the direct light on the CPU (the reference) instead of the GPU.
+    pub cpu: bool,
+    /// Interpolation of the light distributions.
+    pub interp: Interp,
+    /// Shadows cast by the scene's geometry.
+    pub shadows: ShadowTechnique,
+    /// Direct light only, or total light through the radiosity solver (`None`: the
+    /// scene's `calc.indirect`, else none).
+    pub indirect: Option<Indirect>,
+    /// The most points over all grids together.
+    pub max_points: usize,
+    /// The radiosity solver's options (with the radiosity indirect light).
+    pub radiosity: session::Options,
+}
+
+impl Default for CalcOptions {
+    fn default() -> CalcOptions {
+        CalcOptions {
+            maintenance_factor: None,
+            cpu: false,
+            interp: Interp::CatmullRom,
+            shadows: ShadowTechnique::Volumes,
+            indirect: None,
+            max_points: MAX_TOTAL_POINTS,
+            radiosity: session::Options::default(),
+        }
+    }
+}
+
+/// Why a calculation failed.
+#[derive(Debug, thiserror::Error)]
+pub enum CalcError {
+    /// An option out of range or in conflict with another (the field named as in
+    /// [`CalcOptions`]; `radiosity.…` for the solver's).
+    #[error("{field} {message}")]
+    Option {
+        /// The field of [`CalcOptions`].
+        field: &'static str,
+        /// What is wrong.
+        message: String,
+    },
+    /// The scene cannot be calculated as it is (no grid, two grids writing one file, an
+    /// observer inside a luminaire, …).
+    #[error("{0}")]
+    Scene(String),
+    /// A computed value is not a usable number: a bug, refused rather than reported.
+    #[error(
+        "grid {grid:?}, point {point}: the computed illuminance {value} lx is not a usable number"
+    )]
+    Unusable {
+        /// The grid's name.
+        grid: String,
+        /// The point, counted from 1.
+        point: usize,
+        /// The value.
+        value: f64,
+    },
+    /// The GPU failed.
+    #[error(transparent)]
+    Gpu(#[from] GpuError),
+    /// The radiosity solution failed (or its preparation was cancelled).
+    #[error(transparent)]
+    Radiosity(#[from] SessionError),
+    /// Cancelled before the values were complete.
+    #[error("interrupted: nothing written")]
+    Cancelled,
+}
+
+impl CalcError {
+    /// Whether the input (options, scene) is to blame rather than the machine.
+    pub fn is_bad_input(&self) -> bool {
+        match self {
+            CalcError::Option { .. } | CalcError::Scene(_) => true,
+            CalcError::Radiosity(e) => e.is_bad_input(),
+            CalcError::Gpu(e) => matches!(e, GpuError::Limit(_)),
+            CalcError::Unusable { .. } | CalcError::Cancelled => false,
+        }
+    }
+}
+
+/// The file name of a grid's CSV: its name with anything but letters, digits, `-` and `_`
+/// replaced by `-`.
+pub fn csv_name(grid_name: &str) -> String {
+    let stem: String = grid_name
+        .trim()
+        .chars()
+        .map(|c| {
+            if c.is_alphanumeric() || c == '-' || c == '_' {
+                c
+            } else {
+                '-'
+            }
+        })
+        .collect();
+    format!("{stem}.csv")
+}
+
+/// A calculation checked and ready to run.
+pub struct Request<'s> {
+    scene: &'s Scene,
+    options: &'s CalcOptions,
+    /// The maintenance factor applied.
+    pub maintenance_factor: f64,
+    /// The light computed.
+    pub indirect: Indirect,
+    grid_points: Vec<Vec<SurfacePoint>>,
+}
+
+impl<'s> Request<'s> {
+    /// Checks `options` against `scene` before any work: a scene with something to
+    /// compute, the maintenance factor, the light asked for (UGR needs the
+    /// interreflected light; the CPU computes direct light only; a grid's lux must not
+    /// depend on a view), grid files that do not collide, the point budget, observers
+    /// outside every luminaire.
+    pub fn new(scene: &'s Scene, options: &'s CalcOptions) -> Result<Request<'s>, CalcError> {
+        let label = scene.path.display();
+        if scene.grids.is_empty() && scene.observers.is_empty() {
+            return Err(CalcError::Scene(format!(
+                "{label}: no [[grid]] or [[observer]] to compute; add a calculation surface (docs/src/guide/calc.md)"
+            )));
+        }
+        let mf = CalcSettings::check(
+            options
+                .maintenance_factor
+                .unwrap_or(scene.calc.maintenance_factor),
+        )
+        .map_err(|message| CalcError::Option {
+            field: "maintenance_factor",
+            message,
+        })?;
+        let indirect = options
+            .indirect
+            .or(scene.calc.indirect)
+            .unwrap_or(Indirect::None);
+        if !scene.observers.is_empty() && indirect == Indirect::None {
+            return Err(CalcError::Scene(format!(
+                "{label}: UGR at the [[observer]]s needs the background luminance, which is the interreflected light at the eye: run with --indirect radiosity (or set calc.indirect = \"radiosity\")"
+            )));
+        }
+        if indirect == Indirect::Radiosity {
+            if options.cpu {
+                return Err(CalcError::Option {
+                    field: "cpu",
+                    message: "computes the direct light only: the radiosity solver runs on the GPU (leave out --cpu, or use --indirect none)".into(),
+                });
+            }
+            options.radiosity.validate().map_err(SessionError::from)?;
+            if options.radiosity.drive != Drive::Global {
+                // A grid's lux must not depend on where the camera looks.
+                return Err(CalcError::Option {
+                    field: "drive",
+                    message: format!("{}: calc's interreflected light is solved for the whole scene (--drive global); view-driven solutions are for `radiosity` and the viewer", options.radiosity.drive.name()),
+                });
+            }
+        }
+        let mut names = std::collections::HashSet::new();
+        for g in &scene.grids {
+            if !names.insert(csv_name(&g.entry.name)) {
+                return Err(CalcError::Scene(format!(
+                    "{label}: grid {:?} would write the same CSV file as another grid ({}); rename one",
+                    g.entry.name,
+                    csv_name(&g.entry.name)
+                )));
+            }
+        }
+        let total: usize = scene.grids.iter().map(|g| g.points.len()).sum();
+        if total > options.max_points {
+            return Err(CalcError::Scene(format!(
+                "{label}: the grids hold {total} points together, more than --max-points {} (each point costs memory and about 100 bytes of files): use a larger spacing, split the grids over several runs, or raise --max-points",
+                options.max_points
+            )));
+        }
+        for o in &scene.observers {
+            for l in &scene.luminaires {
+                check_outside(o, l).map_err(|e| {
+                    CalcError::Scene(format!("{label}: observer {:?}: {e}", o.entry.name))
+                })?;
+            }
+        }
+        Ok(Request {
+            scene,
+            options,
+            maintenance_factor: mf,
+            indirect,
+            grid_points: scene.grids.iter().map(surface_points).collect(),
+        })
+    }
+
+    /// The luminaires' direct illuminance at every grid point (per grid, per point and
+    /// direction), on `gpu` (`None`: the CPU); `cancel` stops between grids.
+    pub fn direct(
+        &self,
+        gpu: Option<&Gpu>,
+        cancel: &AtomicBool,
+    ) -> Result<Vec<Vec<f64>>, CalcError> {
+        let mut lux = Vec::with_capacity(self.grid_points.len());
+        for (g, points) in self.scene.grids.iter().zip(&self.grid_points) {
+            if cancel.load(Ordering::SeqCst) {
+                return Err(CalcError::Cancelled);
+            }
+            let direct = scene_illuminance(
+                gpu,
+                self.scene,
+                points,
+                self.options.interp,
+                self.options.shadows,
+            )?;
+            check_usable(&g.entry.name, &direct)?;
+            lux.push(direct);
+        }
+        Ok(lux)
+    }
+
+    /// Where the interreflected light is gathered: every grid point (and direction),
+    /// then each observer's eye, in one list (one gather for all).
+    pub fn gather_points(&self) -> Vec<SurfacePoint> {
+        let eyes = self.scene.observers.iter().map(background_point);
+        self.grid_points
+            .iter()
+            .flatten()
+            .copied()
+            .chain(eyes)
+            .collect()
+    }
+
+    /// The calculation from the direct light ([`Request::direct`]) and, with the
+    /// radiosity indirect light, the interreflected light at [`Request::gather_points`]
+    /// and the solution's convergence: the maintained values and their statistics per
+    /// grid, the UGR of each observer (from the initial light, as UGR tables are: the
+    /// maintenance factor scales neither the luminaires' luminance nor the background).
+    pub fn finish(
+        self,
+        mut direct: Vec<Vec<f64>>,
+        interreflected: Option<(Vec<f64>, f64)>,
+    ) -> Result<Calculation<'s>, CalcError> {
+        let scene = self.scene;
+        let mut background = vec![0.0; scene.observers.len()];
+        let mut convergence = None;
+        if let Some((inter, converged)) = &interreflected {
+            convergence = Some(*converged);
+            let mut at = 0;
+            for (g, lux) in scene.grids.iter().zip(direct.iter_mut()) {
+                for v in lux.iter_mut() {
+                    *v += inter[at];
+                    at += 1;
+                }
+                check_usable(&g.entry.name, lux)?;
+            }
+            for b in &mut background {
+                *b = inter[at].max(0.0) / std::f64::consts::PI;
+                at += 1;
+            }
+        }
+        let mf = self.maintenance_factor;
+        let grids: Vec<GridResult> = scene
+            .grids
+            .iter()
+            .zip(&direct)
+            .map(|(g, lux)| {
+                let values: Vec<f64> = combine(g, lux)
+                    .into_iter()
+                    .map(|v| v.max(0.0) * mf)
+                    .collect();
+                GridResult {
+                    stats: grid_stats(&values),
+                    values,
+                }
+            })
+            .collect();
+        let glare = scene
+            .observers
+            .iter()
+            .zip(&background)
+            .map(|(o, &lb)| {
+                observer_glare(scene, o, lb, self.options.interp)
+                    .map_err(|e| CalcError::Scene(format!("observer {:?}: {e}", o.entry.name)))
+            })
+            .collect::<Result<_, _>>()?;
+        let light = match convergence {
+            Some(c) => vec![
+                "direct + interreflected".to_string(),
+                format!("(radiosity, {:.1} % converged)", 100.0 * c),
+            ],
+            None => vec!["direct light only".to_string()],
+        };
+        Ok(Calculation {
+            scene,
+            maintenance_factor: mf,
+            indirect: self.indirect,
+            convergence,
+            interp: self.options.interp,
+            shadows: self.options.shadows,
+            cpu: self.options.cpu,
+            grids,
+            glare,
+            light,
+        })
+    }
+}
+
+/// An error naming the grid and point when a computed illuminance is not a usable number.
+fn check_usable(grid: &str, lux: &[f64]) -> Result<(), CalcError> {
+    match lux
+        .iter()
+        .enumerate()
+        .find(|(_, v)| !v.is_finite() || **v < -1e-6)
+    {
+        Some((i, &value)) => Err(CalcError::Unusable {
+            grid: grid.to_string(),
+            point: i + 1,
+            value,
+        }),
+        None => Ok(()),
+    }
+}
+
+/// One grid's result.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GridResult {
+    /// The maintained illuminance at each point, lux.
+    pub values: Vec<f64>,
+    /// Their statistics.
+    pub stats: GridStats,
+}
+
+/// A scene's calculation: per grid the maintained values and statistics, per observer
+/// the UGR.
+pub struct Calculation<'s> {
+    scene: &'s Scene,
+    /// The maintenance factor the values include.
+    pub maintenance_factor: f64,
+    /// The light computed.
+    pub indirect: Indirect,
+    /// The radiosity solution's convergence, with the radiosity indirect light.
+    pub convergence: Option<f64>,
+    interp: Interp,
+    shadows: ShadowTechnique,
+    cpu: bool,
+    /// Per grid of the scene, in order.
+    pub grids: Vec<GridResult>,
+    /// Per observer of the scene, in order.
+    pub glare: Vec<ObserverGlare>,
+    /// What light the values hold, in words (one or two short lines).
+    pub light: Vec<String>,
+}
+
+impl Calculation<'_> {
+    /// The scene's grids with their results.
+    pub fn grid_results(&self) -> impl Iterator<Item = (&CalcGrid, &GridResult)> {
+        self.scene.grids.iter().zip(&self.grids)
+    }
+
+    /// The `calc.json` entry of grid `k`.
+    pub fn grid_json(&self, k: usize) -> serde_json::Value {
+        let g = &self.scene.grids[k];
+        let s = self.grids[k].stats;
+        let csv = csv_name(&g.entry.name);
+        json!({
+            "name": g.entry.name,
+            "kind": g.entry.kind,
+            "points": s.points,
+            "em": s.em,
+            "emin": s.emin,
+            "emax": s.emax,
+            "u0": s.u0,
+            "g2": s.g2,
+            "maintenance_factor": self.maintenance_factor,
+            "indirect": self.indirect == Indirect::Radiosity,
+            "spacing_m": g.spacing,
+            "plans": [csv.replace(".csv", ".png"), csv.replace(".csv", ".svg")],
+            "csv": csv,
+        })
+    }
+
+    /// The whole `calc.json` document; `scene_label` is how the scene file is named
+    /// (as given on the command line).
+    pub fn json(&self, scene_label: &str) -> serde_json::Value {
+        let observers: Vec<_> = self
+            .scene
+            .observers
+            .iter()
+            .zip(&self.glare)
+            .map(|(o, g)| {
+                json!({
+                    "name": o.entry.name,
+                    "position": o.entry.position,
+                    "direction": o.entry.direction,
+                    "ugr": g.ugr,
+                    "background_cd_m2": g.background_cd_m2,
+                    "glare_sum": g.glare_sum,
+                    "luminaires": g.luminaires,
+                })
+            })
+            .collect();
+        json!({
+            "scene": scene_label,
+            "interp": self.interp.name().to_string(),
+            "shadows": format!("{:?}", self.shadows).to_lowercase(),
+            "device": if self.cpu { "cpu" } else { "gpu" },
+            "indirect": self.indirect,
+            "convergence": self.convergence,
+            "grids": (0..self.grids.len()).map(|k| self.grid_json(k)).collect::<Vec<_>>(),
+            "observers": observers,
+        })
+    }
+
+    /// Grid `k`'s CSV: `x,y,z,lux` with a header, one row per point (coordinates exact,
+    /// so the points can be fed back to `illuminance`).
+    pub fn grid_csv(&self, k: usize) -> String {
+        let g = &self.scene.grids[k];
+        let mut out = String::from("x,y,z,lux\n");
+        for (p, v) in g.points.iter().zip(&self.grids[k].values) {
+            out.push_str(&format!("{},{},{},{v:.6}\n", p.x, p.y, p.z));
+        }
+        out
+    }
+
+    /// Grid `k`'s plan, coloured by `palette` (default: the scene's `display.palette`)
+    /// in `steps` hard steps (default the scene's, else smooth), with the value at every
+    /// point where `values_at_points`.
+    pub fn plan(
+        &self,
+        k: usize,
+        palette: Option<Palette>,
+        steps: Option<u32>,
+        values_at_points: bool,
+    ) -> Plan<'_> {
+        let scene = self.scene;
+        let r = &self.grids[k];
+        Plan {
+            grid: &scene.grids[k],
+            values: &r.values,
+            stats: r.stats,
+            maintenance_factor: self.maintenance_factor,
+            luminaires: scene
+                .luminaires
+                .iter()
+                .enumerate()
+                .map(|(i, l)| (l.position, format!("L{}", i + 1)))
+                .collect(),
+            observers: scene
+                .observers
+                .iter()
+                .zip(&self.glare)
+                .map(|(o, gl)| {
+                    let ugr = gl.ugr.map_or("—".into(), |u| format!("{u:.1}"));
+                    (o.eye, o.forward, format!("{} UGR {ugr}", o.entry.name))
+                })
+                .collect(),
+            light: self.light.clone(),
+            palette: (
+                palette.or(scene.display.palette).unwrap_or_default(),
+                steps.or(scene.display.steps).unwrap_or(0),
+            ),
+            values_at_points,
+        }
+    }
+
+    /// The report's settings table: scene, maintenance factor, light, interpolation,
+    /// device.
+    pub fn report_settings(&self, scene_label: &str) -> [(&'static str, String); 5] {
+        [
+            ("scene", scene_label.to_string()),
+            ("maintenance factor", self.maintenance_factor.to_string()),
+            (
+                "light",
+                format!(
+                    "{}; {}",
+                    self.light.join(" "),
+                    match (self.shadows, self.cpu) {
+                        (ShadowTechnique::None, _) => "no shadows",
+                        (ShadowTechnique::Paraboloid, false) => "paraboloid shadow maps",
+                        _ => "exact shadows (a ray from each point to each luminaire)",
+                    }
+                ),
+            ),
+            ("interpolation", self.interp.name().to_string()),
+            (
+                "computed on",
+                if self.cpu { "CPU" } else { "GPU" }.to_string(),
+            ),
+        ]
+    }
+}
+
+/// Runs a calculation of `scene` with `options` start to end: the direct light (on the
+/// shared GPU unless `options.cpu`), the radiosity solution and its gather where asked
+/// (`events` sees the solve's progress), the results. `cancel` stops it with an error.
+pub fn compute<'s>(
+    scene: &'s Scene,
+    options: &'s CalcOptions,
+    cancel: &AtomicBool,
+    events: &mut dyn FnMut(Event),
+) -> Result<Calculation<'s>, CalcError> {
+    let request = Request::new(scene, options)?;
+    let gpu = if options.cpu {
+        None
+    } else {
+        Some(Gpu::shared()?)
+    };
+    let direct = request.direct(gpu.as_ref(), cancel)?;
+    let interreflected = match (request.indirect, &gpu) {
+        (Indirect::Radiosity, Some(gpu)) => {
+            let mut settings = crate::render::RenderSettings::from_display(&scene.display);
+            settings.shadows = crate::render::ShadowSettings::with(options.shadows);
+            let solution = session::solve(
+                gpu,
+                scene,
+                &options.radiosity,
+                options.interp,
+                &mut settings.shadows,
+                None,
+                cancel,
+                events,
+            )?;
+            if solution.stop() == crate::radiosity::solve::StopReason::Cancelled {
+                return Err(CalcError::Cancelled);
+            }
+            let points = request.gather_points();
+            let lux = solution.interreflected_lux(&points, cancel, &|_| {})?;
+            Some((lux, solution.convergence()))
+        }
+        _ => None,
+    };
+    request.finish(direct, interreflected)
+}
