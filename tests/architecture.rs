@@ -17,32 +17,21 @@ mod imports {
     /// A module path (`["render", "shadows"]`) for each `.rs` file under `src`.
     pub fn module_files(src: &Path) -> BTreeMap<Vec<String>, PathBuf> {
         let mut out = BTreeMap::new();
-        let mut stack = vec![src.to_path_buf()];
-        while let Some(dir) = stack.pop() {
-            for entry in std::fs::read_dir(&dir).expect("read src") {
-                let path = entry.expect("dir entry").path();
-                if path.is_dir() {
-                    stack.push(path);
-                    continue;
+        for path in super::rust_files(src) {
+            let rel = path.strip_prefix(src).expect("under src");
+            let mut parts: Vec<String> = rel
+                .iter()
+                .map(|p| p.to_string_lossy().trim_end_matches(".rs").to_string())
+                .collect();
+            match parts.last().map(String::as_str) {
+                Some("main") if parts.len() == 1 => continue,
+                Some("lib") if parts.len() == 1 => parts.clear(),
+                Some("mod") => {
+                    parts.pop();
                 }
-                if path.extension().and_then(|e| e.to_str()) != Some("rs") {
-                    continue;
-                }
-                let rel = path.strip_prefix(src).expect("under src");
-                let mut parts: Vec<String> = rel
-                    .iter()
-                    .map(|p| p.to_string_lossy().trim_end_matches(".rs").to_string())
-                    .collect();
-                match parts.last().map(String::as_str) {
-                    Some("main") if parts.len() == 1 => continue,
-                    Some("lib") if parts.len() == 1 => parts.clear(),
-                    Some("mod") => {
-                        parts.pop();
-                    }
-                    _ => {}
-                }
-                out.insert(parts, path);
+                _ => {}
             }
+            out.insert(parts, path);
         }
         out
     }

@@ -329,7 +329,7 @@ def calc(scene: PathLike, *, maintenance_factor: Optional[float] = None, cpu: bo
     >>> doc = goniolight.calc("assets/scenes/box_room_calc.toml",
     ...                       solver={"converge": 0.9, "texel_density": 4})
     >>> [g["name"] for g in doc["grids"]][:2]
-    ['desk', 'work plane']
+    ['work plane', 'cylindrical 1.2 m']
     >>> bool(doc["grids"][0]["values"].min() == doc["grids"][0]["emin"])
     True
     """

@@ -350,13 +350,7 @@ impl NativeRadiosity {
         py: Python<'py>,
         points: PyReadonlyArray2<'py, f64>,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
-        let pts = surface_points(&points)?;
-        let cancel = AtomicBool::new(false);
-        let lux = self
-            .solution
-            .lux(&pts, &cancel, &|_| {})
-            .map_err(session_error)?;
-        Ok(lux.into_pyarray(py))
+        self.gathered(py, points, true)
     }
 
     /// The interreflected illuminance alone (lux) at an N × 6 array of points.
@@ -365,13 +359,7 @@ impl NativeRadiosity {
         py: Python<'py>,
         points: PyReadonlyArray2<'py, f64>,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
-        let pts = surface_points(&points)?;
-        let cancel = AtomicBool::new(false);
-        let lux = self
-            .solution
-            .interreflected_lux(&pts, &cancel, &|_| {})
-            .map_err(session_error)?;
-        Ok(lux.into_pyarray(py))
+        self.gathered(py, points, false)
     }
 
     /// The converged fraction of the initial unshot power when the solver stopped.
@@ -409,6 +397,25 @@ impl NativeRadiosity {
     }
 }
 
+impl NativeRadiosity {
+    /// The total (`total`) or interreflected illuminance at an N × 6 array of points.
+    fn gathered<'py>(
+        &self,
+        py: Python<'py>,
+        points: PyReadonlyArray2<'py, f64>,
+        total: bool,
+    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let pts = surface_points(&points)?;
+        let cancel = AtomicBool::new(false);
+        let lux = if total {
+            self.solution.lux(&pts, &cancel, &|_| {})
+        } else {
+            self.solution.interreflected_lux(&pts, &cancel, &|_| {})
+        };
+        Ok(lux.map_err(session_error)?.into_pyarray(py))
+    }
+}
+
 /// The radiosity options' defaults as JSON (the command line's).
 #[pyfunction]
 fn radiosity_defaults_json() -> PyResult<String> {
@@ -442,16 +449,14 @@ fn radiosity(
     let cancel = AtomicBool::new(false);
     let mut failed: Option<PyErr> = None;
     let mut events = |e: Event| observe(py, e, progress.as_ref(), &cancel, &mut failed);
-    let solved = session::solve(
-        &gpu,
-        &scene,
-        &options,
-        settings.light_model.interp(),
-        &mut settings.shadows,
-        Some((&scene.camera, aspect)),
-        &cancel,
-        &mut events,
-    );
+    let setup = session::Setup {
+        scene: &scene,
+        options: &options,
+        interp: settings.light_model.interp(),
+        shadows: &mut settings.shadows,
+        view: Some((&scene.camera, aspect)),
+    };
+    let solved = session::solve(&gpu, setup, &cancel, &mut events);
     let solution = match solved {
         Ok(s) => s,
         // Stopped while preparing: what stopped it is the error.

@@ -123,3 +123,30 @@ def test_every_public_name_is_documented():
         obj = getattr(goniolight, name)
         if callable(obj):
             assert _doc(obj), f"goniolight.{name} has no docstring"
+
+
+def test_the_native_stub_lists_what_the_module_exports():
+    """``_native.pyi`` names every function and class of the extension and each method,
+    and nothing it lacks (editors and type checkers read the stub)."""
+    import ast
+    import inspect
+
+    from goniolight import _native
+
+    stub = ast.parse((ROOT / "python" / "goniolight" / "_native.pyi").read_text())
+    declared = {}
+    for node in stub.body:
+        if isinstance(node, ast.FunctionDef):
+            declared[node.name] = None
+        elif isinstance(node, ast.ClassDef):
+            declared[node.name] = {n.name for n in node.body if isinstance(n, ast.FunctionDef)}
+    exported = {}
+    for name, obj in vars(_native).items():
+        if name.startswith("_"):
+            continue
+        if inspect.isclass(obj):
+            exported[name] = {m for m in vars(obj) if not m.startswith("_")}
+        elif callable(obj):
+            exported[name] = None
+    assert declared == exported
+    assert (ROOT / "python" / "goniolight" / "py.typed").exists()

@@ -7,7 +7,7 @@ use std::sync::atomic::AtomicBool;
 
 use crate::gpu::Gpu;
 use crate::photometry::Interp;
-use crate::radiosity::session::{Options, Prepared};
+use crate::radiosity::session::{Options, Prepared, Setup};
 use crate::radiosity::shooters::Hierarchy;
 use crate::radiosity::solve::StopAt;
 use crate::scene::Scene;
@@ -99,16 +99,14 @@ pub fn run(
                 hierarchy: Hierarchy::Clusters,
                 ..Options::default()
             };
-            let prepared = Prepared::new(
-                gpu,
-                variant,
-                &options,
-                Interp::CatmullRom,
-                &mut shadows,
-                None,
-                &cancel,
-                &mut |_| {},
-            )?;
+            let setup = Setup {
+                scene: variant,
+                options: &options,
+                interp: Interp::CatmullRom,
+                shadows: &mut shadows,
+                view: None,
+            };
+            let prepared = Prepared::new(gpu, setup, &cancel, &mut |_| {})?;
             let mut session = prepared.session(&mut |_| {})?;
             session.solve(&cancel, &mut |_| {})?;
             let rscene = prepared.scene();

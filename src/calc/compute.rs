@@ -537,16 +537,14 @@ pub fn compute<'s>(
         (Indirect::Radiosity, Some(gpu)) => {
             let mut settings = crate::render::RenderSettings::from_display(&scene.display);
             settings.shadows = crate::render::ShadowSettings::with(options.shadows);
-            let solution = session::solve(
-                gpu,
+            let setup = session::Setup {
                 scene,
-                &options.radiosity,
-                options.interp,
-                &mut settings.shadows,
-                None,
-                cancel,
-                events,
-            )?;
+                options: &options.radiosity,
+                interp: options.interp,
+                shadows: &mut settings.shadows,
+                view: None,
+            };
+            let solution = session::solve(gpu, setup, cancel, events)?;
             if solution.stop() == crate::radiosity::solve::StopReason::Cancelled {
                 return Err(CalcError::Cancelled);
             }

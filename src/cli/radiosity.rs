@@ -455,17 +455,15 @@ pub fn solve(
         prepared_s: 0.0,
         error: None,
     };
-    let solution = session::solve(
-        &gpu,
+    let setup = session::Setup {
         scene,
         options,
-        settings.light_model.interp(),
-        &mut settings.shadows,
-        Some((&scene.camera, aspect)),
-        &cancel,
-        &mut |e| progress.event(e),
-    )
-    .map_err(|e| session_error(e, label))?;
+        interp: settings.light_model.interp(),
+        shadows: &mut settings.shadows,
+        view: Some((&scene.camera, aspect)),
+    };
+    let solution = session::solve(&gpu, setup, &cancel, &mut |e| progress.event(e))
+        .map_err(|e| session_error(e, label))?;
     match progress.error.take() {
         Some(e) => Err(e),
         None => Ok(solution),

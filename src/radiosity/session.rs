@@ -118,6 +118,22 @@ impl SessionError {
     }
 }
 
+/// What a solve is of: the scene, the options, and how the luminaires light it.
+pub struct Setup<'a> {
+    /// The scene.
+    pub scene: &'a Scene,
+    /// The solver's options (validated by [`Prepared::new`]).
+    pub options: &'a Options,
+    /// Interpolation of the luminaires' distributions.
+    pub interp: Interp,
+    /// The luminaires' shadows (the device's limits may lower them).
+    pub shadows: &'a mut ShadowSettings,
+    /// The camera and the image's width / height, which drive the solution where
+    /// `options.drive` is not global (without one the solution is global until
+    /// [`Session::follow`]).
+    pub view: Option<(&'a Camera, f64)>,
+}
+
 /// Seconds the preparation took, by stage.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct PrepareTimes {
@@ -153,23 +169,21 @@ fn checkpoint(cancel: &AtomicBool, stage: Stage) -> Result<(), SessionError> {
 }
 
 impl Prepared {
-    /// Prepares `scene` for a solve with `options` (validated here) on `gpu`, the
-    /// luminaires' distributions interpolated by `interp` and shadowed by `shadows`
-    /// (which the device's limits may lower). `view` (the camera and the image's
-    /// width / height) drives the solution where `options.drive` is not global; without
-    /// one the solution is global until [`Session::follow`]. `cancel` stops it between
-    /// stages.
-    #[allow(clippy::too_many_arguments)]
+    /// Prepares `setup`'s scene for a solve on `gpu` (its options validated here);
+    /// `cancel` stops it between stages.
     pub fn new(
         gpu: &Gpu,
-        scene: &Scene,
-        options: &Options,
-        interp: Interp,
-        shadows: &mut ShadowSettings,
-        view: Option<(&Camera, f64)>,
+        setup: Setup,
         cancel: &AtomicBool,
         events: &mut dyn FnMut(Event),
     ) -> Result<Prepared, SessionError> {
+        let Setup {
+            scene,
+            options,
+            interp,
+            shadows,
+            view,
+        } = setup;
         options.validate()?;
         let view = match (options.drive, view) {
             (Drive::Global, _) | (_, None) => None,
@@ -618,22 +632,17 @@ impl Solution {
     }
 }
 
-/// Prepares `scene`, solves it to the options' stop and returns the solution
+/// Prepares `setup`'s scene, solves it to the options' stop and returns the solution
 /// ([`Prepared::new`], [`Prepared::session`], [`Session::solve`], [`Session::finish`]).
 /// Cancelling stops the preparation with an error and the shooting with the solution so
 /// far ([`Solution::stop`] is then [`StopReason::Cancelled`]).
-#[allow(clippy::too_many_arguments)]
 pub fn solve(
     gpu: &Gpu,
-    scene: &Scene,
-    options: &Options,
-    interp: Interp,
-    shadows: &mut ShadowSettings,
-    view: Option<(&Camera, f64)>,
+    setup: Setup,
     cancel: &AtomicBool,
     events: &mut dyn FnMut(Event),
 ) -> Result<Solution, SessionError> {
-    let prepared = Prepared::new(gpu, scene, options, interp, shadows, view, cancel, events)?;
+    let prepared = Prepared::new(gpu, setup, cancel, events)?;
     let solved = {
         let mut session = prepared.session(events)?;
         events(Event::Shooting(&session));

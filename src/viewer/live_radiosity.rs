@@ -14,7 +14,7 @@ use std::time::{Duration, Instant};
 use super::jobs::{JobControl, Worker};
 use crate::gpu::Gpu;
 use crate::photometry::Interp;
-use crate::radiosity::session::{Follow, Options, Prepared, Session, SessionError};
+use crate::radiosity::session::{Follow, Options, Prepared, Session, SessionError, Setup};
 use crate::radiosity::solve::StopReason;
 use crate::render::lightmap::LightMap;
 use crate::render::ShadowSettings;
@@ -212,16 +212,14 @@ impl Job<'_> {
     ) -> Result<(), String> {
         let s = self.settings;
         let mut shadows = self.shadows.clone();
-        let prepared = match Prepared::new(
-            self.gpu,
+        let setup = Setup {
             scene,
-            &s.options,
-            s.interp,
-            &mut shadows,
-            None,
-            &self.control.cancel,
-            &mut |_| {},
-        ) {
+            options: &s.options,
+            interp: s.interp,
+            shadows: &mut shadows,
+            view: None,
+        };
+        let prepared = match Prepared::new(self.gpu, setup, &self.control.cancel, &mut |_| {}) {
             Ok(p) => p,
             Err(SessionError::Cancelled(_)) => return Ok(()),
             Err(e) => return Err(err(&e)),

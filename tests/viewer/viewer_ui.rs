@@ -591,17 +591,16 @@ fn the_live_solver_gives_the_radiosity_commands_solution() {
     let a = h.state();
     let live = a.radiosity.light_map.clone().unwrap();
     let mut shadows = a.display.shadows.clone();
-    let solution = goniolight::radiosity::session::solve(
-        &gpu,
-        &a.render_scene(),
-        &a.radiosity.settings.options,
-        a.display.interp,
-        &mut shadows,
-        None,
-        &std::sync::atomic::AtomicBool::new(false),
-        &mut |_| {},
-    )
-    .unwrap();
+    let scene = a.render_scene();
+    let setup = goniolight::radiosity::session::Setup {
+        scene: &scene,
+        options: &a.radiosity.settings.options,
+        interp: a.display.interp,
+        shadows: &mut shadows,
+        view: None,
+    };
+    let never = std::sync::atomic::AtomicBool::new(false);
+    let solution = goniolight::radiosity::session::solve(&gpu, setup, &never, &mut |_| {}).unwrap();
     assert_eq!(solution.stop().to_string(), "converged");
     let off = map_difference(&live, &solution.light_map());
     eprintln!("live solution {:.4} % off the command's", 100.0 * off);
