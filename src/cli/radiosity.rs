@@ -271,7 +271,7 @@ impl Progress<'_> {
                     None => self.spinner = Some(spinner(name)?),
                 }
             }
-            Event::Stage(_) | Event::Gathered(_) => {}
+            Event::Stage(_) => {}
             Event::Prepared(p) => {
                 if let Some(s) = self.spinner.take() {
                     s.finish_and_clear();

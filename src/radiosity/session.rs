@@ -49,8 +49,6 @@ pub enum Stage {
     DirectLight,
     /// The importance the camera sends through the scene (a view-driven solution).
     Importance,
-    /// Shooting.
-    Shooting,
     /// Gathering the solution's light at points.
     Gathering,
 }
@@ -62,7 +60,6 @@ impl Stage {
             Stage::Elements => "elements and atlas",
             Stage::DirectLight => "the luminaires' direct light",
             Stage::Importance => "the view's importance",
-            Stage::Shooting => "shooting",
             Stage::Gathering => "gathering at the points",
         }
     }
@@ -80,8 +77,6 @@ pub enum Event<'a> {
     Shot(&'a ConvergencePoint),
     /// The shooting stopped.
     Solved(&'a Session<'a>),
-    /// Points gathered so far.
-    Gathered(usize),
 }
 
 /// Why a solve failed.
