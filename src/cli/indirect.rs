@@ -47,13 +47,9 @@ pub fn light_map(
     seconds: f64,
 ) -> Result<Option<(LightMap, String)>, CliError> {
     settings.shown_light = choice;
-    let mut options = Options::default();
-    match choice {
-        DisplayIndirect::None => return Ok(None),
-        // No shot: the luminaires' first bounce and the ambient term alone.
-        DisplayIndirect::Ambient => options.max_shots = Some(0),
-        DisplayIndirect::Radiosity => options.time_limit = Some(seconds),
-    }
+    let Some(options) = Options::shown_indirect(choice, seconds) else {
+        return Ok(None);
+    };
     let started = Instant::now();
     let solved = solve(label, scene, &options, settings, started)?;
     let what = match choice {

@@ -382,7 +382,6 @@ fn shooting_summary(label: &Path, session: &session::Session) {
 /// The line after shooting: shots, convergence, why it stopped, the maps drawn.
 fn solved_summary(label: &Path, session: &session::Session, prepared_s: f64) {
     let solver = session.solver();
-    let elements = session.prepared().scene().elements.len();
     if let Some((stage, stages)) = solver.area_stage() {
         eprintln!(
             "{}: area of interest at stage {} of {stages}; {} charts hold their light back, {} wait, {} shots kept for them",
@@ -407,8 +406,7 @@ fn solved_summary(label: &Path, session: &session::Session, prepared_s: f64) {
             n => format!(" ({n} of them cells' images through mirrors and glass)"),
         },
         solver.skipped,
-        100.0 * solver.receiver_threads as f64
-            / (drawn.max(1) as f64 * elements.max(1) as f64),
+        100.0 * solver.receiver_share(),
         crate::io::peak_memory_mb().map_or(String::new(), |mb| format!("; peak memory {mb} MB")),
     );
 }
@@ -611,12 +609,7 @@ fn interrupted_while(cancel: &AtomicBool, stage: &str) -> Result<(), CliError> {
 /// What the export's representation costs (Edström §5.3, §7.6).
 /// What adaptive subdivision made: elements by size against one per texel.
 fn adaptive_summary(el: &Elements) -> String {
-    let levels = el.subdivision.levels;
-    let mut by_side = vec![0usize; levels as usize + 1];
-    for &s in &el.span {
-        by_side[s.trailing_zeros() as usize] += 1;
-    }
-    let texels: u64 = el.span.iter().map(|&s| u64::from(s) * u64::from(s)).sum();
+    let (by_side, texels) = el.sizes();
     let sizes: Vec<String> = by_side
         .iter()
         .enumerate()
@@ -688,11 +681,10 @@ fn write_outputs(
     // The files are named where they will be once moved in.
     eprintln!("{}", staging.as_target(&report));
     let map = &outputs.light_map;
-    let rgb: Vec<f32> = map.texels.iter().flat_map(|t| [t[0], t[1], t[2]]).collect();
-    let lux: Vec<f32> = map.texels.iter().flat_map(|t| [t[3]; 3]).collect();
-    for (name, data) in [("lightmap.exr", rgb), ("lightmap_lux.exr", lux)] {
-        let image = image::Rgb32FImage::from_raw(map.width, map.height, data)
-            .ok_or_else(|| CliError::failure(anyhow!("light-map size mismatch")))?;
+    let (rgb, lux) = map
+        .images()
+        .ok_or_else(|| CliError::failure(anyhow!("light-map size mismatch")))?;
+    for (name, image) in [("lightmap.exr", rgb), ("lightmap_lux.exr", lux)] {
         write_image(&dir.join(name), &image).map_err(CliError::failure)?;
     }
     write_atomic(&dir.join("convergence.csv"), outputs.csv.as_bytes())

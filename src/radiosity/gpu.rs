@@ -502,6 +502,13 @@ impl<'a> GpuSolver<'a> {
         self.scene
     }
 
+    /// The share of the elements each visibility map's receive pass took in, on average
+    /// (the rest culled as behind or outside the shooter), 0..=1.
+    pub fn receiver_share(&self) -> f64 {
+        let maps = (self.drawn + self.virtual_drawn).max(1) as f64;
+        self.receiver_threads as f64 / (maps * self.scene.elements.len().max(1) as f64)
+    }
+
     /// Whether the selection weighs the shooters.
     pub fn is_weighted(&self) -> bool {
         self.weighted

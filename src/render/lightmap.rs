@@ -22,6 +22,22 @@ pub struct LightMap {
 }
 
 impl LightMap {
+    /// The radiosity (rgb, lm/m²) and the received illuminance (lux, in each of r, g
+    /// and b) as float images, as `radiosity` writes `lightmap.exr` and
+    /// `lightmap_lux.exr`.
+    pub fn images(&self) -> Option<(image::Rgb32FImage, image::Rgb32FImage)> {
+        let rgb: Vec<f32> = self
+            .texels
+            .iter()
+            .flat_map(|t| [t[0], t[1], t[2]])
+            .collect();
+        let lux: Vec<f32> = self.texels.iter().flat_map(|t| [t[3]; 3]).collect();
+        Some((
+            image::Rgb32FImage::from_raw(self.width, self.height, rgb)?,
+            image::Rgb32FImage::from_raw(self.width, self.height, lux)?,
+        ))
+    }
+
     /// Whether `other` lays the same triangles out in the same atlas (a later solution
     /// of the same elements): its texels can replace these without new vertices.
     pub fn same_layout(&self, other: &LightMap) -> bool {

@@ -188,6 +188,17 @@ fn texel_count(n: u64) -> String {
 }
 
 impl Elements {
+    /// How many elements there are of each side (index k: 2^k × 2^k texels, up to the
+    /// subdivision's levels), and the texels they cover together.
+    pub fn sizes(&self) -> (Vec<usize>, u64) {
+        let mut by_side = vec![0usize; self.subdivision.levels as usize + 1];
+        for &s in &self.span {
+            by_side[s.trailing_zeros() as usize] += 1;
+        }
+        let texels = self.span.iter().map(|&s| u64::from(s) * u64::from(s)).sum();
+        (by_side, texels)
+    }
+
     /// Splits `triangles` into elements with shooting patches of 2^`level` texels, each
     /// triangle its own chart.
     pub fn build(triangles: &[InputTriangle], level: u32) -> Result<Elements, ElementError> {

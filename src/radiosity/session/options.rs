@@ -12,6 +12,7 @@ use super::super::solve::StopAt;
 use super::super::view::Drive;
 use super::super::{Ambient, FormFactorKind, SolverSettings};
 use crate::photometry::Interp;
+use crate::scene::DisplayIndirect;
 
 /// The options of a radiosity solve: what is solved (elements, shooters, form factors),
 /// how the visibility maps are drawn, what drives the work and when it stops.
@@ -247,6 +248,24 @@ impl Options {
         }
     }
 
+    /// The options of the indirect light that `render`, `demo` and the viewer show
+    /// beside the luminaires' direct light: none, the luminaires' first bounce with the
+    /// ambient term (no shot), or a solution of `seconds` of shooting.
+    pub fn shown_indirect(choice: DisplayIndirect, seconds: f64) -> Option<Options> {
+        let defaults = Options::default();
+        match choice {
+            DisplayIndirect::None => None,
+            DisplayIndirect::Ambient => Some(Options {
+                max_shots: Some(0),
+                ..defaults
+            }),
+            DisplayIndirect::Radiosity => Some(Options {
+                time_limit: Some(seconds),
+                ..defaults
+            }),
+        }
+    }
+
     /// How long the importance solve of a view-driven solution may take.
     pub fn importance_budget(&self) -> Option<Duration> {
         match (self.importance_time_limit, self.time_limit) {
@@ -299,6 +318,16 @@ mod tests {
         assert_eq!(o.converge, Options::default().converge);
         let e = serde_json::from_str::<Options>(r#"{"map_sise": 64}"#).unwrap_err();
         assert!(e.to_string().contains("map_sise"), "{e}");
+    }
+
+    #[test]
+    fn the_shown_indirect_light_shoots_nothing_or_for_its_time() {
+        use crate::scene::DisplayIndirect;
+        assert_eq!(Options::shown_indirect(DisplayIndirect::None, 5.0), None);
+        let ambient = Options::shown_indirect(DisplayIndirect::Ambient, 5.0).unwrap();
+        assert_eq!((ambient.max_shots, ambient.time_limit), (Some(0), None));
+        let solved = Options::shown_indirect(DisplayIndirect::Radiosity, 5.0).unwrap();
+        assert_eq!((solved.max_shots, solved.time_limit), (None, Some(5.0)));
     }
 
     #[test]
