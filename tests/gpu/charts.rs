@@ -6,17 +6,13 @@
 //! `tests/gpu/radiosity.rs`, with ambient overshooting).
 
 use std::path::Path;
+use std::sync::Arc;
 
 use glam::{DVec2, DVec3};
-use goniolight::radiosity::cpu::CpuSolver;
-use goniolight::radiosity::gpu::GpuSettings;
-use goniolight::radiosity::initial::{InitialState, LuminaireLight};
 use goniolight::radiosity::scene::{luminance, RadiosityScene};
 use goniolight::radiosity::shooters::Hierarchy;
 use goniolight::radiosity::solve;
-use goniolight::radiosity::SolverSettings;
 use goniolight::render::lightmap::LightMap;
-use goniolight::render::ShadowSettings;
 use goniolight::scene::Scene;
 
 use crate::gpu_common;
@@ -29,29 +25,17 @@ fn bundled(name: &str) -> Scene {
     Scene::load(&path).unwrap()
 }
 
-/// A scene laid out by `hierarchy`, solved with its shooters to `converge`: the scene, the
-/// radiosity per element and the displayed light map.
+/// The bundled scene `name` laid out by `hierarchy` (its charts and its shooters) at ten
+/// texels a metre and solved to 99.9 % (once for the tests that compare with it:
+/// [`solve_common::bundled_solve`]), and its displayed light map.
 fn solved(
     gpu: &goniolight::gpu::Gpu,
-    scene: &Scene,
+    name: &str,
     hierarchy: Hierarchy,
-    converge: f64,
-) -> (RadiosityScene, Vec<DVec3>, LightMap) {
-    let r = RadiosityScene::with_hierarchy(scene, 10.0, 2, hierarchy).unwrap();
-    let settings = SolverSettings::default();
-    let initial = if scene.luminaires.is_empty() {
-        CpuSolver::new(&r, settings).state()
-    } else {
-        let light = LuminaireLight::new(gpu, scene, settings.interp);
-        InitialState::from_luminaires_gpu(gpu, &light, &r, &ShadowSettings::default()).unwrap()
-    };
-    let gpu_settings = GpuSettings {
-        hierarchy,
-        ..GpuSettings::default()
-    };
-    let solved = solve_common::solve(gpu, &r, &initial, gpu_settings, converge);
-    let map = solve::light_map(&r, &solved.radiosity, &solved.illuminance);
-    (r, solved.radiosity, map)
+) -> (Arc<solve_common::BundledSolve>, LightMap) {
+    let s = solve_common::bundled_solve(gpu, name, 10.0, (hierarchy, hierarchy), 0.999);
+    let map = solve::light_map(&s.r, &s.solved.radiosity, &s.solved.illuminance);
+    (s, map)
 }
 
 /// The scene's triangle corners, in its order.
@@ -136,8 +120,8 @@ fn the_box_room_floor_has_no_seam_along_its_diagonal() {
     let c = corners(&scene);
     // The floor is triangles 0 and 1 (the fan of its quad).
     assert!(c[0].iter().chain(&c[1]).all(|p| p.z == 0.0));
-    let (r, _, map) = solved(&gpu, &scene, Hierarchy::Clusters, 0.95);
-    let el = &r.elements;
+    let (charted, map) = solved(&gpu, "box_room.toml", Hierarchy::Clusters);
+    let el = &charted.r.elements;
     assert_eq!(el.triangles[0].chart, el.triangles[1].chart, "one chart");
     let (jump, seam, interior) = floor_seam(&map, &c, 0.1);
     eprintln!("charts: jump {jump:.2e}, seam {seam:.3} lx, interior {interior:.3} lx");
@@ -150,7 +134,7 @@ fn the_box_room_floor_has_no_seam_along_its_diagonal() {
         "across the diagonal {seam} lx, inside {interior} lx"
     );
     // The check sees the seam of one rectangle per triangle.
-    let (_, _, per_triangle) = solved(&gpu, &scene, Hierarchy::None, 0.95);
+    let (_, per_triangle) = solved(&gpu, "box_room.toml", Hierarchy::None);
     let (jump, seam, interior) = floor_seam(&per_triangle, &c, 0.1);
     eprintln!("per triangle: jump {jump:.2e}, seam {seam:.3} lx, interior {interior:.3} lx");
     assert!(
@@ -187,14 +171,18 @@ fn charts_give_the_per_triangle_light_over_the_same_areas() {
     let Some(gpu) = gpu_common::gpu() else { return };
     for name in ["box_room.toml", "boxes_room.toml"] {
         let scene = bundled(name);
-        let (flat, flat_b, _) = solved(&gpu, &scene, Hierarchy::None, 0.999);
-        let (charted, chart_b, _) = solved(&gpu, &scene, Hierarchy::Clusters, 0.999);
+        let (flat, charted) = (
+            solved(&gpu, name, Hierarchy::None).0,
+            solved(&gpu, name, Hierarchy::Clusters).0,
+        );
+        let (flat, flat_b) = (&flat.r, &flat.solved.radiosity);
+        let (charted, chart_b) = (&charted.r, &charted.solved.radiosity);
         assert!(charted.elements.charts.len() < flat.elements.charts.len());
         // The same surfaces, cut into texels along other axes: the power each direction's
         // surfaces send out, and the mean radiosity over half-metre pieces of them (but
         // next to a luminaire, 5 cm under the ceiling: there the texel at its foot carries
         // ten times its neighbours', and which piece it falls in depends on the grid).
-        let (a, f) = (binned(&charted, &chart_b, 1e3), binned(&flat, &flat_b, 1e3));
+        let (a, f) = (binned(charted, chart_b, 1e3), binned(flat, flat_b, 1e3));
         for (key, &(power, _)) in &f {
             let p = a[key].0;
             eprintln!("{name}: facing {:?}: {p:.1} vs {power:.1} lm", &key[3..]);
@@ -203,7 +191,7 @@ fn charts_give_the_per_triangle_light_over_the_same_areas() {
                 "{name} {key:?}: {p} vs {power}"
             );
         }
-        let (a, f) = (binned(&charted, &chart_b, 0.5), binned(&flat, &flat_b, 0.5));
+        let (a, f) = (binned(charted, chart_b, 0.5), binned(flat, flat_b, 0.5));
         let near_luminaire = |key: &[i64; 6]| {
             let centre = DVec3::new(key[0] as f64, key[1] as f64, key[2] as f64) * 0.5 + 0.25;
             let d = |l: &goniolight::scene::PlacedLuminaire| l.position.distance(centre);

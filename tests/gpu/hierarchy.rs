@@ -10,11 +10,10 @@ use std::sync::atomic::AtomicBool;
 use glam::DVec3;
 use goniolight::radiosity::cpu::CpuSolver;
 use goniolight::radiosity::gpu::GpuSettings;
-use goniolight::radiosity::initial::{InitialState, LuminaireLight};
+use goniolight::radiosity::initial::InitialState;
 use goniolight::radiosity::scene::{luminance, RadiosityScene};
 use goniolight::radiosity::shooters::{Hierarchy, ShooterShape, Shooters};
 use goniolight::radiosity::SolverSettings;
-use goniolight::render::ShadowSettings;
 use goniolight::scene::Scene;
 
 use crate::furnace_common;
@@ -57,20 +56,21 @@ fn mean_relative_difference(r: &RadiosityScene, a: &[DVec3], b: &[DVec3]) -> f64
     diff / mean
 }
 
-fn clusters_against_flat(name: &str) {
+/// The clusters' solution of the bundled scene `name` at `density` texels a metre against
+/// the flat solver's, both to 99.9 %.
+fn clusters_against_flat(name: &str, density: f64) {
     let Some(gpu) = gpu_common::gpu() else { return };
-    let scene = bundled(name);
-    let r = RadiosityScene::new(&scene, 10.0, 2).unwrap();
-    let settings = SolverSettings::default();
-    let light = LuminaireLight::new(&gpu, &scene, settings.interp);
-    let initial =
-        InitialState::from_luminaires_gpu(&gpu, &light, &r, &ShadowSettings::default()).unwrap();
-    let (flat, flat_shots) = solve(&gpu, &r, &initial, GpuSettings::default(), 0.999);
-    let (tree, tree_shots) = solve(&gpu, &r, &initial, clusters(), 0.999);
-    let d = mean_relative_difference(&r, &tree, &flat);
+    let flat = (Hierarchy::None, Hierarchy::None);
+    let flat = solve_common::bundled_solve(&gpu, name, density, flat, 0.999);
+    let tree = (Hierarchy::None, Hierarchy::Clusters);
+    let tree = solve_common::bundled_solve(&gpu, name, density, tree, 0.999);
+    let r = &flat.r;
+    let d = mean_relative_difference(r, &tree.solved.radiosity, &flat.solved.radiosity);
     eprintln!(
-        "{name}: {} elements; flat {flat_shots} shots, clusters {tree_shots} shots; mean difference {:.3} %",
+        "{name}: {} elements; flat {} shots, clusters {} shots; mean difference {:.3} %",
         r.elements.len(),
+        flat.solved.shots,
+        tree.solved.shots,
         100.0 * d
     );
     assert!(d <= 0.01, "{name}: clusters differ from flat by {d}");
@@ -78,12 +78,17 @@ fn clusters_against_flat(name: &str) {
 
 #[test]
 fn clusters_give_the_flat_solution_on_the_box_room() {
-    clusters_against_flat("box_room.toml");
+    // The flat solve is the one the charts' tests compare with (solved once for both).
+    // The difference follows the elements here: 0.31 % at ten texels a metre, 0.83 % at
+    // five (lavapipe).
+    clusters_against_flat("box_room.toml", 10.0);
 }
 
 #[test]
 fn clusters_give_the_flat_solution_on_the_cornell_box() {
-    clusters_against_flat("cornell_box.toml");
+    // The difference does not follow the elements here (0.90 % at ten texels a metre and
+    // at five, lavapipe), the solve's time does: four times as long at ten.
+    clusters_against_flat("cornell_box.toml", 5.0);
 }
 
 #[test]

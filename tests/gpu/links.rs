@@ -327,31 +327,49 @@ fn lit_hall(gpu: &goniolight::gpu::Gpu) -> (RadiosityScene, InitialState) {
     (r, initial)
 }
 
-/// Solves to `converge`: radiosity per element, shots, visibility maps drawn.
-fn solve(
-    gpu: &goniolight::gpu::Gpu,
-    r: &RadiosityScene,
-    initial: &InitialState,
-    link_error: f64,
-    converge: f64,
-) -> (Vec<DVec3>, usize, usize) {
-    let gpu_settings = GpuSettings {
+/// The lit hall solved to 99 % with the finest cells (link error 0) and with the default
+/// link error: computed once, for the tests that compare other solves with them.
+struct SolvedHall {
+    r: RadiosityScene,
+    initial: InitialState,
+    fine: solve_common::Solved,
+    linked: solve_common::Solved,
+}
+
+/// The face-cluster settings with `link_error`.
+fn linked(link_error: f64) -> GpuSettings {
+    GpuSettings {
         hierarchy: Hierarchy::Clusters,
         link_error,
         ..GpuSettings::default()
-    };
-    let s = solve_common::solve(gpu, r, initial, gpu_settings, converge);
-    (s.radiosity, s.shots, s.drawn)
+    }
+}
+
+/// The [`SolvedHall`], solved by the first test that asks (the others wait for it).
+fn solved_hall(gpu: &goniolight::gpu::Gpu) -> &'static SolvedHall {
+    static HALL: std::sync::OnceLock<SolvedHall> = std::sync::OnceLock::new();
+    HALL.get_or_init(|| {
+        let (r, initial) = lit_hall(gpu);
+        let fine = solve_common::solve(gpu, &r, &initial, linked(0.0), 0.99);
+        let default = linked(links::DEFAULT_LINK_ERROR);
+        let linked = solve_common::solve(gpu, &r, &initial, default, 0.99);
+        SolvedHall {
+            r,
+            initial,
+            fine,
+            linked,
+        }
+    })
 }
 
 #[test]
 fn links_in_a_hall_draw_fewer_maps_for_the_same_light() {
     let Some(gpu) = gpu_common::gpu() else { return };
-    let (r, initial) = lit_hall(&gpu);
-    let (fine, fine_shots, fine_maps) = solve(&gpu, &r, &initial, 0.0, 0.99);
+    let hall = solved_hall(&gpu);
+    let (fine, fine_shots, fine_maps) = (&hall.fine.radiosity, hall.fine.shots, hall.fine.drawn);
     let (linked, linked_shots, linked_maps) =
-        solve(&gpu, &r, &initial, links::DEFAULT_LINK_ERROR, 0.99);
-    let el = &r.elements;
+        (&hall.linked.radiosity, hall.linked.shots, hall.linked.drawn);
+    let el = &hall.r.elements;
     let diff: f64 = (0..el.len())
         .map(|e| (luminance(linked[e]) - luminance(fine[e])).abs() * el.area[e])
         .sum();
@@ -372,16 +390,15 @@ fn links_in_a_hall_draw_fewer_maps_for_the_same_light() {
 #[test]
 fn receivers_that_matter_less_take_coarser_cells_light_within_their_share_of_the_error() {
     let Some(gpu) = gpu_common::gpu() else { return };
-    let (r, initial) = lit_hall(&gpu);
-    let el = &r.elements;
+    let SolvedHall {
+        r,
+        initial,
+        fine,
+        linked: even,
+    } = solved_hall(&gpu);
+    let (el, fine) = (&r.elements, &fine.radiosity);
     let far: Vec<bool> = el.position.iter().map(|p| p.x > 12.0).collect();
-    let gpu_settings = GpuSettings {
-        hierarchy: Hierarchy::Clusters,
-        link_error: links::DEFAULT_LINK_ERROR,
-        ..GpuSettings::default()
-    };
-    let fine = solve(&gpu, &r, &initial, 0.0, 0.99).0;
-    let even = solve_common::solve(&gpu, &r, &initial, gpu_settings, 0.99);
+    let gpu_settings = linked(links::DEFAULT_LINK_ERROR);
     // The mean difference from the finest cells' light over the near or far half.
     let off = |b: &[DVec3], half: bool| {
         let (diff, mean) =
@@ -403,7 +420,7 @@ fn receivers_that_matter_less_take_coarser_cells_light_within_their_share_of_the
         goniolight::radiosity::view::RECEIVER_WEIGHT_FLOOR,
     ] {
         let weights: Vec<f64> = far.iter().map(|&f| if f { share } else { 1.0 }).collect();
-        let weighted = solve_common::solve_with(&gpu, &r, &initial, gpu_settings, 0.99, |s| {
+        let weighted = solve_common::solve_with(&gpu, r, initial, gpu_settings, 0.99, |s| {
             s.set_receiver_weights(&weights)
         });
         let (near, far_off) = (
@@ -450,7 +467,13 @@ fn furnace_hall_with_links_gives_e_over_one_minus_rho() {
     let scene = hall(true);
     let r = RadiosityScene::with_hierarchy(&scene, 1.0, 1, Hierarchy::Clusters).unwrap();
     let initial = CpuSolver::new(&r, SolverSettings::default()).state();
-    let (b, shots, maps) = solve(&gpu, &r, &initial, links::DEFAULT_LINK_ERROR, 0.9999);
+    let default = linked(links::DEFAULT_LINK_ERROR);
+    let solve_common::Solved {
+        radiosity: b,
+        shots,
+        drawn: maps,
+        ..
+    } = solve_common::solve(&gpu, &r, &initial, default, 0.9999);
     let worst = b
         .iter()
         .map(|b| (b.x / 200.0 - 1.0).abs())
