@@ -29,6 +29,15 @@ fn stop() -> StopAt {
     }
 }
 
+/// The solver's settings: 128² maps (the restarted and the fresh solves draw theirs alike;
+/// what is compared is the restart, not the maps' resolution).
+fn maps() -> GpuSettings {
+    GpuSettings {
+        map_size: 128,
+        ..GpuSettings::default()
+    }
+}
+
 /// The luminaires' first shot of `scene` on the elements of `r`.
 fn first_shot(gpu: &Gpu, scene: &Scene, r: &RadiosityScene) -> InitialState {
     let light = LuminaireLight::new(gpu, scene, SolverSettings::default().interp);
@@ -60,7 +69,7 @@ fn a_moved_and_dimmed_luminaire_relit_in_place_equals_a_fresh_solve() {
     changed.luminaires[0].position += DVec3::new(1.6, 1.0, -0.4);
     changed.luminaires[0].multiplier *= 0.6;
     let new = first_shot(&gpu, &changed, &r);
-    let (settings, gpu_settings) = (SolverSettings::default(), GpuSettings::default());
+    let (settings, gpu_settings) = (SolverSettings::default(), maps());
     let cancel = AtomicBool::new(false);
 
     let mut solver = GpuSolver::new(&gpu, &r, &old, settings, gpu_settings);
@@ -119,13 +128,7 @@ fn a_luminaire_turned_off_takes_all_its_light_away() {
     let new = first_shot(&gpu, &dark, &r);
     assert!(new.radiosity.iter().all(|b| *b == DVec3::ZERO));
     let cancel = AtomicBool::new(false);
-    let mut solver = GpuSolver::new(
-        &gpu,
-        &r,
-        &old,
-        SolverSettings::default(),
-        GpuSettings::default(),
-    );
+    let mut solver = GpuSolver::new(&gpu, &r, &old, SolverSettings::default(), maps());
     solver.solve(&stop(), &cancel, |_| {}).unwrap();
     let lit: f64 = solver
         .radiosity()

@@ -69,10 +69,12 @@ fn boxes_rooms_lit(
 }
 
 /// The solver's settings for elements laid out for `hierarchy` (the same hierarchy as the
-/// scene's layout, [`boxes_rooms`]).
+/// scene's layout, [`boxes_rooms`]), with 128² maps (the drives and the global solves they
+/// are compared with draw theirs alike).
 fn settings_for(hierarchy: Hierarchy) -> (SolverSettings, GpuSettings) {
     let gpu_settings = GpuSettings {
         hierarchy,
+        map_size: 128,
         ..GpuSettings::default()
     };
     (SolverSettings::default(), gpu_settings)
