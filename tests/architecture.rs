@@ -593,3 +593,60 @@ fn a_planted_shooting_loop_is_found() {
         vec![(1, "select_next"), (3, "shoot_until")]
     );
 }
+
+/// The printing macros `text` calls outside comments, with their line numbers.
+fn prints_in(text: &str) -> Vec<usize> {
+    text.lines()
+        .enumerate()
+        .filter(|(_, line)| {
+            let code = line.split("//").next().unwrap_or("");
+            ["println!", "eprintln!", "print!(", "eprint!("]
+                .iter()
+                .any(|m| code.contains(m))
+        })
+        .map(|(i, _)| i + 1)
+        .collect()
+}
+
+/// Library files that still print, each with why (docs/src/design/library.md): none may
+/// join without a line here.
+const STILL_PRINTING: [&str; 1] = [
+    // The paraboloid tessellation's warning, printed inside the limits' check.
+    "src/render/limits.rs",
+];
+
+/// The library says nothing on a terminal: what it worked around goes back to the caller
+/// (`Scene::warnings`), and the front ends (`cli/`, `viewer/`, the binary, Python) show it.
+#[test]
+fn the_library_prints_nothing_the_front_ends_show_its_warnings() {
+    let root = common::root();
+    let mut offences = Vec::new();
+    for f in rust_files(&root.join("src")) {
+        let rel = f
+            .strip_prefix(&root)
+            .unwrap()
+            .to_string_lossy()
+            .replace('\\', "/");
+        let front_end = ["src/cli/", "src/viewer/", "src/main.rs"]
+            .iter()
+            .any(|p| rel.starts_with(p));
+        if front_end || STILL_PRINTING.contains(&rel.as_str()) {
+            continue;
+        }
+        let text = std::fs::read_to_string(&f).expect("read source");
+        for line in prints_in(&text) {
+            offences.push(format!("{rel}:{line}"));
+        }
+    }
+    assert!(
+        offences.is_empty(),
+        "the library prints (return the message to the caller):\n{}",
+        offences.join("\n")
+    );
+}
+
+#[test]
+fn a_planted_print_is_found() {
+    let planted = "let a = 1; // eprintln!(\"no\")\neprintln!(\"warning: {a}\");\n";
+    assert_eq!(prints_in(planted), vec![2]);
+}

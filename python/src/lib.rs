@@ -20,6 +20,22 @@ fn value_error(e: impl std::fmt::Display) -> PyErr {
     PyValueError::new_err(e.to_string())
 }
 
+/// Raises `message` as a Python warning of `category` (`warnings.warn`).
+fn warn<T: pyo3::PyTypeInfo>(py: Python<'_>, message: &str) -> PyResult<()> {
+    let text = std::ffi::CString::new(message.replace('\0', " ")).unwrap_or_default();
+    PyErr::warn(py, &py.get_type::<T>(), &text, 1)
+}
+
+/// The scene file at `path`; what its loading worked around (`Scene::warnings`: a missing
+/// MTL file, triangles without area) is raised as `UserWarning`s.
+fn load_scene(py: Python<'_>, path: &std::path::Path) -> PyResult<goniolight::scene::Scene> {
+    let scene = goniolight::scene::Scene::load(path).map_err(value_error)?;
+    for w in &scene.warnings {
+        warn::<pyo3::exceptions::PyUserWarning>(py, w)?;
+    }
+    Ok(scene)
+}
+
 fn parse_interp(name: &str) -> PyResult<Interp> {
     Interp::ALL
         .into_iter()
@@ -249,7 +265,7 @@ fn illuminance<'py>(
     use goniolight::render::illuminance::scene_illuminance;
     let method = parse_interp(interp)?;
     let pts = surface_points(&points)?;
-    let scene = goniolight::scene::Scene::load(&scene).map_err(value_error)?;
+    let scene = load_scene(py, &scene)?;
     let technique = parse_shadows(shadows, &scene)?;
     let gpu = if cpu {
         None
@@ -257,13 +273,8 @@ fn illuminance<'py>(
         match Gpu::shared() {
             Ok(gpu) => Some(gpu),
             Err(GpuError::NoAdapter(why)) => {
-                let warn = format!("no GPU adapter{why}: computing on the CPU");
-                PyErr::warn(
-                    py,
-                    &py.get_type::<pyo3::exceptions::PyRuntimeWarning>(),
-                    &std::ffi::CString::new(warn).unwrap_or_default(),
-                    1,
-                )?;
+                let message = format!("no GPU adapter{why}: computing on the CPU");
+                warn::<pyo3::exceptions::PyRuntimeWarning>(py, &message)?;
                 None
             }
             Err(e) => return Err(PyRuntimeError::new_err(e.to_string())),
@@ -438,7 +449,7 @@ fn radiosity(
 ) -> PyResult<NativeRadiosity> {
     use goniolight::radiosity::session::{self, Event};
     let options: Options = serde_json::from_str(options_json).map_err(value_error)?;
-    let scene = goniolight::scene::Scene::load(&scene).map_err(value_error)?;
+    let scene = load_scene(py, &scene)?;
     let mut settings = goniolight::render::RenderSettings::from_display(&scene.display);
     if let Some(name) = interp {
         settings.light_model = goniolight::render::LightModel::Ldt(parse_interp(name)?);
@@ -492,7 +503,7 @@ fn calc_json(
 ) -> PyResult<(String, Vec<Vec<f64>>)> {
     use goniolight::calc::compute::{compute, CalcError, CalcOptions};
     let label = scene.display().to_string();
-    let loaded = goniolight::scene::Scene::load(&scene).map_err(value_error)?;
+    let loaded = load_scene(py, &scene)?;
     let indirect = indirect
         .map(|name| {
             serde_json::from_value(serde_json::Value::from(name))

@@ -15,11 +15,15 @@ SAMPLE = ROOT / "luminaires" / "eulumdat-analysis" / "sample_18.ldt"
 SCENE = ROOT / "assets" / "scenes" / "box_room.toml"
 
 
-def cli(*args, stdin=None):
+def cli_with_stderr(*args, stdin=None):
     exe = os.environ.get("GONIOLIGHT_BIN") or str(ROOT / "target" / "debug" / "goniolight")
     assert os.path.exists(exe), f"goniolight binary not found at {exe}: build it or set GONIOLIGHT_BIN"
     done = subprocess.run([exe, *args], input=stdin, capture_output=True, text=True, check=True)
-    return done.stdout
+    return done.stdout, done.stderr
+
+
+def cli(*args, stdin=None):
+    return cli_with_stderr(*args, stdin=stdin)[0]
 
 
 def test_info_equals_ldt_info_json():
@@ -88,6 +92,31 @@ def test_sun_position_equals_sun_json():
     assert a["azimuth_deg"][0] == b["azimuth_deg"][0]
 
 
+def test_sun_position_names_the_bad_value_as_the_library_does():
+    # Not the command's flags (--lat, --tz): the library's fields.
+    with pytest.raises(ValueError, match=r"latitude 95 is outside \[-90, 90\]"):
+        goniolight.sun_position(95.0, 0.0, "2026-06-21T12:00Z")
+    with pytest.raises(ValueError, match=r'zone "Nowhere/City" is not a time zone'):
+        goniolight.sun_position(40.0, 0.0, "2026-06-21T12:00", tz="Nowhere/City")
+    with pytest.raises(ValueError, match="has no UTC offset"):
+        goniolight.sun_position(40.0, 0.0, "2026-06-21T12:00")
+
+
+def test_what_loading_worked_around_is_a_user_warning(tmp_path):
+    # A model whose MTL file is missing loads with the default material: the command line
+    # says so on stderr, Python as a UserWarning (and the numbers come all the same).
+    (tmp_path / "floor.obj").write_text(
+        "mtllib missing.mtl\nv 0 0 0\nv 4 0 0\nv 4 4 0\nv 0 4 0\nf 1 2 3\nf 1 3 4\n")
+    scene = tmp_path / "scene.toml"
+    scene.write_text(f'[[model]]\npath = "floor.obj"\nup = "z"\n\n[[luminaire]]\n'
+                     f'file = {json.dumps(str(SAMPLE))}\nposition = [2.0, 2.0, 3.0]\n')
+    with pytest.warns(UserWarning, match="its MTL file could not be opened"):
+        lux = goniolight.illuminance(scene, np.array([[2.0, 2.0, 0.0, 0.0, 0.0, 1.0]]), cpu=True)
+    assert lux[0] > 0.0
+    _, err = cli_with_stderr("illuminance", str(scene), "--cpu", stdin="2 2 0 0 0 1\n")
+    assert "warning: " in err and "its MTL file could not be opened" in err
+
+
 def test_illuminance_equals_the_illuminance_command():
     xs = np.linspace(0.5, 3.5, 5)
     pts = np.array([[x, y, 0.8, 0.0, 0.0, 1.0] for x in xs for y in (1.0, 2.0)])
@@ -129,6 +158,13 @@ def test_luminance_table_equals_ldt_luminance_json():
         goniolight.luminance_table(SAMPLE, gamma_from=47)
     with pytest.raises(ValueError, match="lamp_set 0"):
         goniolight.ugr_table(SAMPLE, lamp_set=0)
+    # The library's names of the arguments, not the command's flags (--shr, --lamp-set).
+    with pytest.raises(ValueError, match="shr 9 is not a spacing-to-height ratio"):
+        goniolight.ugr_table(SAMPLE, shr=9.0)
+    with pytest.raises(ValueError, match="lamp_set 5 is not in the file"):
+        goniolight.ugr_table(SAMPLE, lamp_set=5)
+    with pytest.raises(ValueError, match="downsample 0,5 must be two positive steps"):
+        goniolight.read(SAMPLE).check(downsample=(0.0, 5.0))
 
 
 @pytest.mark.parametrize("ext", ["html", "svg"])

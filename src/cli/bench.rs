@@ -437,7 +437,7 @@ fn run_radiosity(
     }
     let path =
         scene.unwrap_or_else(|| crate::io::data_root().join("assets/scenes/cornell_box.toml"));
-    let scene = crate::scene::Scene::load(&path)?;
+    let scene = super::render::load_scene(&path)?;
     let gpu = Gpu::shared()?;
     eprintln!("GPU: {}", gpu.describe());
     let bar = indicatif::ProgressBar::new(1000);
@@ -637,7 +637,7 @@ fn run_radiosity_view(
     let path =
         scene.unwrap_or_else(|| crate::io::data_root().join("assets/scenes/furnished_room.toml"));
     let scene =
-        crate::bench::radiosity_view::row_of_rooms(&crate::scene::Scene::load(&path)?, rooms);
+        crate::bench::radiosity_view::row_of_rooms(&super::render::load_scene(&path)?, rooms);
     let mut camera = scene.camera;
     if let Some((e, l, fov)) = eye {
         camera = crate::scene::camera::Camera {

@@ -11,7 +11,7 @@ use anyhow::anyhow;
 use clap::Args;
 
 use super::radiosity::SolverArgs;
-use super::render::scene_at;
+use super::render::{load_scene, scene_at};
 use super::CliError;
 use crate::calc::compute::{csv_name, CalcError, CalcOptions, Calculation, Request};
 use crate::calc::report::{report_html, ReportGrid, ReportObserver};
@@ -143,7 +143,7 @@ fn check_outputs(args: &CalcArgs, scene: &Scene) -> Result<(), CliError> {
 /// Runs `calc`.
 pub fn run(args: CalcArgs) -> Result<(), CliError> {
     let started = std::time::Instant::now();
-    let scene = scene_at(Scene::load(&args.scene)?, args.time)?;
+    let scene = scene_at(load_scene(&args.scene)?, args.time)?;
     let options = args.options()?;
     let request = Request::new(&scene, &options).map_err(calc_error)?;
     check_outputs(&args, &scene)?;

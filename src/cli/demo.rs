@@ -19,7 +19,7 @@ use crate::gpu::Gpu;
 use crate::io::write_atomic;
 use crate::photometry::{check, Luminaire};
 use crate::render::Renderer;
-use crate::scene::{DisplayIndirect, Mode, Scene};
+use crate::scene::{DisplayIndirect, Mode};
 
 /// The bundled luminaire of the demo.
 pub static DEMO_LUMINAIRE: &[u8] =
@@ -54,7 +54,7 @@ fn render_both(args: &DemoArgs, staging: &crate::io::outputs::Staging) -> Result
         Some(p) => p.clone(),
         None => default_scene()?,
     };
-    let scene = super::render::scene_at(Scene::load(&scene_path)?, args.image.time)?;
+    let scene = super::render::scene_at(super::render::load_scene(&scene_path)?, args.image.time)?;
     let gpu = Gpu::shared()?;
     println!("GPU: {}", gpu.describe());
     // One solution for both images.

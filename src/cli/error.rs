@@ -71,7 +71,28 @@ impl CliError {
 impl From<PhotometryError> for CliError {
     fn from(e: PhotometryError) -> CliError {
         let bad_input = e.is_bad_input();
-        CliError::classified(e, bad_input)
+        CliError::classified(photometry_message(e), bad_input)
+    }
+}
+
+/// A photometry error as the command says it: an argument named by its flag (the library's
+/// `shr` is `--shr`), anything else as the library says it.
+pub(crate) fn photometry_message(e: PhotometryError) -> anyhow::Error {
+    match e {
+        PhotometryError::Field {
+            field,
+            value,
+            problem,
+        } => {
+            let flag = match field {
+                "shr" => "--shr",
+                "lamp_set" => "--lamp-set",
+                "downsample" => "--downsample",
+                other => other,
+            };
+            anyhow::anyhow!("{flag} {value} {problem}")
+        }
+        e => anyhow::Error::new(e),
     }
 }
 
@@ -145,9 +166,33 @@ impl From<crate::radiosity::session::SessionError> for CliError {
 }
 
 impl From<SunError> for CliError {
+    /// The library names the site's and the time's fields; the command, its flags
+    /// (`latitude` is `--lat`).
     fn from(e: SunError) -> CliError {
         match e {
-            SunError::Input(_) => CliError::input(e),
+            SunError::Invalid {
+                field,
+                value,
+                problem,
+            } => {
+                let flag = match field {
+                    "latitude" => "--lat",
+                    "longitude" => "--lon",
+                    "elevation_m" => "--elevation",
+                    "delta_t" => "--delta-t",
+                    "pressure_hpa/temperature_c" => "--pressure/--temperature",
+                    "zone" => "--tz",
+                    "time" => "--time",
+                    other => other,
+                };
+                let problem = match problem.as_str() {
+                    crate::sun::time::NO_OFFSET => {
+                        "has no UTC offset: add one (e.g. +02:00) or give --tz".to_string()
+                    }
+                    _ => problem,
+                };
+                CliError::input(anyhow::anyhow!("{flag} {value} {problem}"))
+            }
             SunError::Model(_) => CliError::input(e),
         }
     }

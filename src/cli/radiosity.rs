@@ -504,7 +504,7 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
         "{}: preparing (Ctrl-C stops; nothing is written)",
         args.scene.display()
     );
-    let scene = super::render::scene_at(Scene::load(&args.scene)?, args.image.time)?;
+    let scene = super::render::scene_at(super::render::load_scene(&args.scene)?, args.image.time)?;
     loading.finish_and_clear();
     interrupted_while(&cancel, "loading the scene")?;
     let mut settings = args.image.settings(&scene)?;

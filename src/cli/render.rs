@@ -83,6 +83,15 @@ pub struct ImageOptions {
     pub show_volumes: bool,
 }
 
+/// The scene file at `path`, what its loading worked around printed as warnings on stderr.
+pub fn load_scene(path: &std::path::Path) -> Result<Scene, CliError> {
+    let scene = Scene::load(path)?;
+    for w in &scene.warnings {
+        eprintln!("warning: {w}");
+    }
+    Ok(scene)
+}
+
 /// `scene` at `--time` seconds (effect lights turned); an error when it is not finite.
 pub fn scene_at(scene: Scene, time: Option<f64>) -> Result<Scene, CliError> {
     match time {
@@ -289,7 +298,7 @@ pub enum PointsFormat {
 
 /// Runs `illuminance`.
 pub fn run_illuminance(args: IlluminanceArgs) -> Result<(), CliError> {
-    let scene = scene_at(Scene::load(&args.scene)?, args.time)?;
+    let scene = scene_at(load_scene(&args.scene)?, args.time)?;
     let points = read_points(std::io::stdin().lock(), "stdin")?;
     let technique = args.shadows.or(scene.display.shadows).unwrap_or_default();
     let gpu = if args.cpu { None } else { Some(Gpu::shared()?) };

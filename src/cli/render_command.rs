@@ -7,11 +7,11 @@ use std::path::{Path, PathBuf};
 use anyhow::anyhow;
 
 use super::indirect::{light_map, IndirectArgs};
-use super::render::{render_to_files, scene_at, ImageOptions};
+use super::render::{load_scene, render_to_files, scene_at, ImageOptions};
 use super::CliError;
 use crate::gpu::Gpu;
 use crate::render::Renderer;
-use crate::scene::{DisplayIndirect, Scene};
+use crate::scene::DisplayIndirect;
 
 /// Options of `render`.
 #[derive(Debug, Args)]
@@ -52,7 +52,7 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
     if let Some(e) = &args.exr {
         check_extension(e, "exr", "--exr")?;
     }
-    let scene = scene_at(Scene::load(&args.scene)?, args.image.time)?;
+    let scene = scene_at(load_scene(&args.scene)?, args.image.time)?;
     let mut outputs = crate::io::outputs::OutputCheck::new();
     for f in scene.input_files() {
         outputs.input(f);

@@ -173,9 +173,11 @@ fn downsample_masks(
     dg: f64,
 ) -> Result<(Vec<bool>, Vec<bool>), PhotometryError> {
     if !(dc > 0.0 && dg > 0.0 && dc.is_finite() && dg.is_finite()) {
-        return Err(PhotometryError::Invalid(format!(
-            "--downsample steps must be positive, got {dc},{dg}"
-        )));
+        return Err(PhotometryError::Field {
+            field: "downsample",
+            value: format!("{dc},{dg}"),
+            problem: "must be two positive steps (ΔC,Δγ in degrees)".into(),
+        });
     }
     let grid = dist.grid();
     let on_step = |a: f64, step: f64| {

@@ -53,6 +53,17 @@ pub enum PhotometryError {
     /// The request cannot be met with this data (a bad option, an impossible downsampling).
     #[error("{0}")]
     Invalid(String),
+    /// A bad argument, named as the library names it (`shr`, `lamp_set`, `downsample`); a
+    /// front end names its own parameter instead (the command line: `--shr`, …).
+    #[error("{field} {value} {problem}")]
+    Field {
+        /// The argument.
+        field: &'static str,
+        /// Its value as given.
+        value: String,
+        /// What is wrong with it, and what would do.
+        problem: String,
+    },
 }
 
 impl PhotometryError {
@@ -61,7 +72,9 @@ impl PhotometryError {
     pub fn is_bad_input(&self) -> bool {
         match self {
             PhotometryError::Io { source, .. } => crate::io::is_bad_input(source),
-            PhotometryError::Parse(_) | PhotometryError::Invalid(_) => true,
+            PhotometryError::Parse(_)
+            | PhotometryError::Invalid(_)
+            | PhotometryError::Field { .. } => true,
         }
     }
 }

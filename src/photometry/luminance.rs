@@ -164,10 +164,11 @@ pub fn lamp_set_flux(lum: &Luminaire, set: Option<usize>) -> Result<f64, Photome
         Some(_) => Err(PhotometryError::Invalid(format!(
             "lamp set {k} has no flux: intensities cannot be turned into candela"
         ))),
-        None => Err(PhotometryError::Invalid(format!(
-            "--lamp-set {k}: the file has {} lamp set(s)",
-            sets.len()
-        ))),
+        None => Err(PhotometryError::Field {
+            field: "lamp_set",
+            value: k.to_string(),
+            problem: format!("is not in the file: it has {} lamp set(s)", sets.len()),
+        }),
     }
 }
 

@@ -376,9 +376,11 @@ pub fn ugr_table(
     interp: Interp,
 ) -> Result<UgrTable, PhotometryError> {
     if !(shr.is_finite() && (0.05..=4.0).contains(&shr)) {
-        return Err(PhotometryError::Invalid(format!(
-            "--shr {shr}: give a spacing-to-height ratio between 0.05 and 4"
-        )));
+        return Err(PhotometryError::Field {
+            field: "shr",
+            value: shr.to_string(),
+            problem: "is not a spacing-to-height ratio between 0.05 and 4".into(),
+        });
     }
     LuminousArea::required(lum, "UGR needs the luminance")?;
     let flux = lamp_set_flux(lum, set)?;

@@ -78,6 +78,11 @@ pub struct Scene {
     pub observers: Vec<Observer>,
     /// The `[[material]]` overrides as written (already applied to `materials`).
     pub material_overrides: Vec<file::MaterialEntry>,
+    /// What loading worked around rather than refused (a model's missing MTL file, its
+    /// triangles without area, a transmittance capped at what a material does not
+    /// reflect): the front ends show them (the command line on stderr, Python as
+    /// `UserWarning`s).
+    pub warnings: Vec<String>,
 }
 
 /// Resolves the `[[table]]` entries (`what`: the table's name in keys and messages) one by
@@ -179,10 +184,11 @@ impl Scene {
         let parsed: SceneFile = toml::from_str(text).map_err(|e| toml_error(path, text, &e))?;
         let dir = path.parent().unwrap_or(Path::new("")).to_path_buf();
         let mut materials = vec![Material::default()];
-        let mut meshes = Vec::new();
+        let (mut meshes, mut warnings) = (Vec::new(), Vec::new());
         for (i, entry) in parsed.model.iter().enumerate() {
             let key = format!("model[{i}]");
-            meshes.extend(model::load_model(path, &key, &dir, entry, &mut materials)?);
+            let sinks = (&mut materials, &mut warnings);
+            meshes.extend(model::load_model(path, &key, &dir, entry, sinks)?);
         }
         materials::apply(&parsed.material, &mut materials)
             .map_err(|(key, message)| SceneError::new(path, key, message))?;
@@ -253,6 +259,7 @@ impl Scene {
             calc,
             observers,
             material_overrides: parsed.material,
+            warnings,
         })
     }
 
@@ -283,6 +290,7 @@ impl Scene {
             calc: Default::default(),
             observers: Vec::new(),
             material_overrides: Vec::new(),
+            warnings: Vec::new(),
         }
     }
 

@@ -225,13 +225,15 @@ pub fn euler_xyz_deg(deg: [f64; 3]) -> DMat3 {
         * DMat3::from_rotation_x(deg[0].to_radians())
 }
 
-/// Loads the OBJ of `entry`; its materials are appended to `materials`.
+/// Loads the OBJ of `entry`; its materials are appended to `materials`, and what the
+/// loading worked around (a missing MTL file, triangles without area, a capped
+/// transmittance) to `warnings`.
 pub(super) fn load_model(
     scene: &Path,
     key: &str,
     dir: &Path,
     entry: &ModelEntry,
-    materials: &mut Vec<Material>,
+    (materials, warnings): (&mut Vec<Material>, &mut Vec<String>),
 ) -> Result<Vec<SceneMesh>, SceneError> {
     let path_key = format!("{key}.path");
     for (k, v) in [
@@ -288,12 +290,10 @@ pub(super) fn load_model(
             }
         }
         // A missing MTL is common in exported files: warn and use the default material.
-        Err(MtlError::Missing) => {
-            eprintln!(
-                "warning: {}: its MTL file could not be opened; using the default material",
-                obj.display()
-            );
-        }
+        Err(MtlError::Missing) => warnings.push(format!(
+            "{}: its MTL file could not be opened; using the default material",
+            obj.display()
+        )),
         Err(e) => {
             return Err(SceneError::new(
                 scene,
@@ -302,6 +302,7 @@ pub(super) fn load_model(
             ))
         }
     }
+    warnings.append(&mut textures.warnings);
     let mtl_end = materials.len();
     let fallback = bake_overrides(scene, key, entry, first_material, materials)?;
     let matrix = model_matrix(entry);
@@ -324,11 +325,11 @@ pub(super) fn load_model(
         }
     }
     if dropped > 0 {
-        eprintln!(
-            "warning: {}: {key} ({}): {dropped} of its {total} triangles have no area and were dropped",
+        warnings.push(format!(
+            "{}: {key} ({}): {dropped} of its {total} triangles have no area and were dropped",
             scene.display(),
             obj.display()
-        );
+        ));
     }
     if meshes.is_empty() {
         return Err(SceneError::new(
@@ -518,6 +519,8 @@ pub fn mtl_transmittance(
 struct TextureCache {
     dir: PathBuf,
     loaded: HashMap<String, Arc<image::RgbaImage>>,
+    /// What reading the materials worked around.
+    warnings: Vec<String>,
 }
 
 impl TextureCache {
@@ -525,6 +528,7 @@ impl TextureCache {
         TextureCache {
             dir: dir.to_path_buf(),
             loaded: HashMap::new(),
+            warnings: Vec::new(),
         }
     }
 
@@ -610,13 +614,13 @@ impl TextureCache {
         // capped at what it does not reflect.
         let room = (Vec3::ONE - material.diffuse_reflectance()).max(Vec3::ZERO);
         if material.diffuse_transmittance.cmpgt(room).any() {
-            eprintln!(
-                "warning: material {:?}: reflectance {} plus transmittance {} exceeds 1; \
-                 the transmittance is capped at {room}",
+            self.warnings.push(format!(
+                "material {:?}: reflectance {} plus transmittance {} exceeds 1; the \
+                 transmittance is capped at {room}",
                 m.name,
                 material.diffuse_reflectance(),
                 material.diffuse_transmittance
-            );
+            ));
             material.diffuse_transmittance = material.diffuse_transmittance.min(room);
         }
         Ok(material)

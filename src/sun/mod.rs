@@ -20,9 +20,20 @@ pub use time::{parse_time, Zone};
 /// What can go wrong computing a sun position.
 #[derive(Debug, thiserror::Error)]
 pub enum SunError {
-    /// Bad input (coordinates, time, atmosphere).
-    #[error("{0}")]
-    Input(String),
+    /// A bad input value, named as the library names it: `field` is one of `latitude`,
+    /// `longitude`, `elevation_m` ([`Site`]), `delta_t`, `pressure_hpa/temperature_c`
+    /// ([`SunOptions`]), `zone` ([`Zone::parse`]), `time` ([`parse_time`]) or `step`
+    /// ([`path`]); a front end names its own parameter instead (the command line: `--lat`,
+    /// `--tz`, …).
+    #[error("{field} {value} {problem}")]
+    Invalid {
+        /// The field.
+        field: &'static str,
+        /// The value as given.
+        value: String,
+        /// What is wrong with it, and what would do.
+        problem: String,
+    },
     /// The algorithm refused (e.g. a date outside its range).
     #[error("sun position: {0}")]
     Model(String),
@@ -43,19 +54,25 @@ impl Site {
     /// A site, checked.
     pub fn new(latitude: f64, longitude: f64, elevation_m: f64) -> Result<Site, SunError> {
         if !latitude.is_finite() || !(-90.0..=90.0).contains(&latitude) {
-            return Err(SunError::Input(format!(
-                "--lat {latitude} outside [-90, 90]"
-            )));
+            return Err(SunError::invalid(
+                "latitude",
+                latitude,
+                "is outside [-90, 90]",
+            ));
         }
         if !longitude.is_finite() || !(-180.0..=180.0).contains(&longitude) {
-            return Err(SunError::Input(format!(
-                "--lon {longitude} outside [-180, 180]"
-            )));
+            return Err(SunError::invalid(
+                "longitude",
+                longitude,
+                "is outside [-180, 180]",
+            ));
         }
         if !elevation_m.is_finite() || !(-500.0..=9000.0).contains(&elevation_m) {
-            return Err(SunError::Input(format!(
-                "--elevation {elevation_m} m is not plausible"
-            )));
+            return Err(SunError::invalid(
+                "elevation_m",
+                elevation_m,
+                "is not plausible (-500 to 9000 m above sea level)",
+            ));
         }
         Ok(Site {
             latitude,
@@ -123,6 +140,21 @@ impl SunPosition {
     }
 }
 
+impl SunError {
+    /// [`SunError::Invalid`] for `field` holding `value`.
+    pub fn invalid(
+        field: &'static str,
+        value: impl std::fmt::Display,
+        problem: impl Into<String>,
+    ) -> SunError {
+        SunError::Invalid {
+            field,
+            value: value.to_string(),
+            problem: problem.into(),
+        }
+    }
+}
+
 fn model_err(e: impl std::fmt::Display) -> SunError {
     SunError::Model(e.to_string())
 }
@@ -131,7 +163,11 @@ fn model_err(e: impl std::fmt::Display) -> SunError {
 fn delta_t_for(utc: &DateTime<Utc>, opts: &SunOptions) -> Result<f64, SunError> {
     match opts.delta_t {
         Some(d) if d.is_finite() => Ok(d),
-        Some(d) => Err(SunError::Input(format!("--delta-t {d} is not a number"))),
+        Some(d) => Err(SunError::invalid(
+            "delta_t",
+            d,
+            "is not a number of seconds",
+        )),
         None => delta_t::estimate_from_date_like(utc).map_err(model_err),
     }
 }
@@ -150,8 +186,14 @@ pub fn position(
     utc: DateTime<Utc>,
     opts: &SunOptions,
 ) -> Result<SunPosition, SunError> {
-    let refraction = RefractionCorrection::new(opts.pressure_hpa, opts.temperature_c)
-        .map_err(|e| SunError::Input(format!("atmosphere (--pressure/--temperature): {e}")))?;
+    let refraction =
+        RefractionCorrection::new(opts.pressure_hpa, opts.temperature_c).map_err(|e| {
+            SunError::Invalid {
+                field: "pressure_hpa/temperature_c",
+                value: format!("{}/{}", opts.pressure_hpa, opts.temperature_c),
+                problem: format!("is not an atmosphere: {e}"),
+            }
+        })?;
     let dt = delta_t_for(&utc, opts)?;
     let location = Location {
         latitude: site.latitude,
@@ -236,7 +278,7 @@ pub fn path(
     opts: &SunOptions,
 ) -> Result<Vec<SunPosition>, SunError> {
     if step <= Duration::zero() {
-        return Err(SunError::Input("the time step must be positive".into()));
+        return Err(SunError::invalid("step", step, "must be positive"));
     }
     let mut out = Vec::new();
     let mut t = start;
@@ -250,6 +292,30 @@ pub fn path(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn bad_values_name_their_fields_as_the_library_does() {
+        let said = |e: SunError| e.to_string();
+        assert_eq!(
+            said(Site::new(95.0, 0.0, 0.0).unwrap_err()),
+            "latitude 95 is outside [-90, 90]"
+        );
+        assert!(said(Site::new(0.0, 0.0, f64::NAN).unwrap_err()).starts_with("elevation_m NaN "));
+        assert!(said(Zone::parse("Nowhere/City").unwrap_err())
+            .starts_with("zone \"Nowhere/City\" is not a time zone"));
+        assert_eq!(
+            said(parse_time("2026-06-21T12:00", None).unwrap_err()),
+            format!("time \"2026-06-21T12:00\" {}", time::NO_OFFSET)
+        );
+        let site = Site::new(40.0, 0.0, 0.0).unwrap();
+        let (utc, _) = parse_time("2026-06-21T12:00:00Z", None).unwrap();
+        let thin = SunOptions {
+            pressure_hpa: -3.0,
+            ..SunOptions::default()
+        };
+        assert!(said(position(&site, utc, &thin).unwrap_err())
+            .starts_with("pressure_hpa/temperature_c -3/12 is not an atmosphere"));
+    }
 
     #[test]
     fn spa_paper_example() {

@@ -25,9 +25,14 @@ impl Zone {
         if let Ok(tz) = t.parse::<Tz>() {
             return Ok(Zone::Iana(tz));
         }
-        parse_offset(t)
-            .map(Zone::Fixed)
-            .ok_or_else(|| SunError::Input(format!("--tz: unknown time zone {s:?} (use an IANA name such as Europe/Vienna, or an offset such as +02:00)")))
+        parse_offset(t).map(Zone::Fixed).ok_or_else(|| {
+            SunError::invalid(
+                "zone",
+                format!("{s:?}"),
+                "is not a time zone: use an IANA name such as Europe/Vienna, or an offset \
+                     such as +02:00",
+            )
+        })
     }
 
     /// The instant of local time `local` in this zone. A local time that daylight saving
@@ -38,9 +43,11 @@ impl Zone {
             Zone::Fixed(off) => map_local(off.from_local_datetime(&local)),
         };
         result.ok_or_else(|| {
-            SunError::Input(format!(
-                "local time {local} does not exist in {self:?} (skipped by daylight saving)"
-            ))
+            SunError::invalid(
+                "time",
+                local,
+                format!("does not exist in {self:?} (skipped by daylight saving)"),
+            )
         })
     }
 
@@ -87,6 +94,9 @@ fn parse_offset(s: &str) -> Option<FixedOffset> {
     FixedOffset::east_opt(sign * (h * 3600 + m * 60))
 }
 
+/// What [`parse_time`] says of a local time given without a zone.
+pub const NO_OFFSET: &str = "has no UTC offset: add one (e.g. +02:00) or give a time zone";
+
 /// Parses TIME: ISO 8601 with an offset (`2003-10-17T12:30:30-07:00`), or, when `zone`
 /// is given, local time without one (`2026-06-21T12:00`, `2026-06-21 12:00:00`).
 /// Returns the instant and whether a repeated local hour was resolved to its first
@@ -115,15 +125,15 @@ pub fn parse_time(s: &str, zone: Option<&Zone>) -> Result<(DateTime<Utc>, bool),
     .iter()
     .find_map(|f| NaiveDateTime::parse_from_str(t, f).ok())
     .ok_or_else(|| {
-        SunError::Input(format!(
-            "--time: cannot read {s:?}: expected ISO 8601 such as 2026-06-21T12:00:00+02:00"
-        ))
+        SunError::invalid(
+            "time",
+            format!("{s:?}"),
+            "cannot be read: expected ISO 8601 such as 2026-06-21T12:00:00+02:00",
+        )
     })?;
     match zone {
         Some(z) => z.resolve(local),
-        None => Err(SunError::Input(format!(
-            "--time {s:?} has no UTC offset: add one (e.g. +02:00) or give --tz"
-        ))),
+        None => Err(SunError::invalid("time", format!("{s:?}"), NO_OFFSET)),
     }
 }
 

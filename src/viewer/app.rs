@@ -271,13 +271,22 @@ impl ViewerApp {
         if let Some(p) = &app.scene_path {
             app.recent.add(p);
         }
-        app.say_what_mirrors_show();
+        app.say_what_the_scene_needs();
         app
     }
 
-    /// Says once per scene what the view does with mirrors and clear glass: it draws them
-    /// by their diffuse part, and its direct light (and the lux under the cursor) leaves
-    /// out what they pass on until radiosity has solved.
+    /// Says once per scene what its loading worked around ([`Scene::warnings`]) and what
+    /// the view does with mirrors and clear glass.
+    fn say_what_the_scene_needs(&mut self) {
+        for w in self.scene.warnings.clone() {
+            self.info(format!("warning: {w}"));
+        }
+        self.say_what_mirrors_show();
+    }
+
+    /// Says what the view does with mirrors and clear glass: it draws them by their
+    /// diffuse part, and its direct light (and the lux under the cursor) leaves out what
+    /// they pass on until radiosity has solved.
     fn say_what_mirrors_show(&mut self) {
         if let Some(m) = self.scene.specular_material() {
             let text = format!(
@@ -445,7 +454,7 @@ impl ViewerApp {
         }
         self.scene_path = path;
         self.revision += 1;
-        self.say_what_mirrors_show();
+        self.say_what_the_scene_needs();
     }
 
     /// Copies the camera and display choices into the scene (before saving).

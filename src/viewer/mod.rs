@@ -83,6 +83,9 @@ pub fn start(options: StartOptions) -> Result<window::RunSummary, ViewerError> {
     };
     let up = options.up;
     let scene = load_scene_or_model(&path, up)?;
+    for w in &scene.warnings {
+        eprintln!("warning: {w}");
+    }
     let is_scene = !scene.path.as_os_str().is_empty();
     let indirect = options
         .indirect

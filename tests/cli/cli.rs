@@ -270,7 +270,8 @@ fn info_text_is_for_people() {
     let (code, _, err) = run_cli(&["ldt", "info", f.to_str().unwrap(), "--lamp-set", "3"], "");
     assert_eq!(code, 2);
     assert!(
-        err.contains("sample_06.ldt") && err.contains("2 lamp set"),
+        err.contains("sample_06.ldt")
+            && err.contains("--lamp-set 3 is not in the file: it has 2 lamp set"),
         "{err}"
     );
 }

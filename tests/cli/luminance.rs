@@ -95,7 +95,8 @@ fn lamp_set_choice_scales_the_table_and_bad_choices_are_refused() {
     let (code, _, err) = run_cli(&["ldt", "luminance", f, "--lamp-set", "3"], "");
     assert_eq!(code, 2);
     assert!(
-        err.contains("sample_06.ldt") && err.contains("2 lamp set"),
+        err.contains("sample_06.ldt")
+            && err.contains("--lamp-set 3 is not in the file: it has 2 lamp set"),
         "{err}"
     );
     // Lower rows for datasheets: γ 45–85°.

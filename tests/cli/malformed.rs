@@ -54,6 +54,8 @@ fn missing_file_and_bad_flags_exit_2() {
         "",
     );
     assert_eq!(code, 2, "{err}");
+    // The flag's parser refuses it (the library's own check answers Python: pytest).
+    assert!(err.contains("expected a positive number"), "{err}");
     let (code, _, err) = run_cli(
         &["ldt", "check", f.to_str().unwrap(), "--downsample", "15,5"],
         "",

@@ -119,68 +119,54 @@ fn local_time_with_a_zone_across_daylight_saving() {
 
 #[test]
 fn bad_input_exits_2() {
-    for args in [
-        vec![
-            "sun",
-            "--lat",
-            "95",
-            "--lon",
-            "0",
-            "--time",
-            "2026-06-21T12:00:00Z",
-        ],
-        vec!["sun", "--lat", "40", "--lon", "0", "--time", "noon"],
-        vec![
-            "sun",
-            "--lat",
-            "40",
-            "--lon",
-            "0",
-            "--time",
-            "2026-06-21T12:00",
-        ],
-        vec![
-            "sun",
-            "--lat",
-            "40",
-            "--lon",
-            "0",
-            "--time",
-            "2026-03-29T02:30",
-            "--tz",
-            "Europe/Vienna",
-        ],
-        vec![
-            "sun",
-            "--lat",
-            "40",
-            "--lon",
-            "0",
-            "--time",
-            "2026-06-21T12:00",
-            "--tz",
-            "Nowhere/City",
-        ],
-        vec![
-            "sun",
-            "--lat",
-            "40",
-            "--lon",
-            "0",
-            "--time",
-            "2026-06-21T12:00Z",
-            "--pressure",
-            "-3",
-        ],
-        vec![
-            "sun",
-            "--lat",
-            "nan",
-            "--lon",
-            "0",
-            "--time",
-            "2026-06-21T12:00Z",
-        ],
+    // Each refusal names the flag (the library names its field: `latitude`, `zone`, …).
+    let time = |t: &'static str| vec!["sun", "--lat", "40", "--lon", "0", "--time", t];
+    let with = |mut args: Vec<&'static str>, more: &[&'static str]| {
+        args.extend_from_slice(more);
+        args
+    };
+    for (args, said) in [
+        (
+            vec![
+                "sun",
+                "--lat",
+                "95",
+                "--lon",
+                "0",
+                "--time",
+                "2026-06-21T12:00:00Z",
+            ],
+            "--lat 95 is outside [-90, 90]",
+        ),
+        (time("noon"), "--time \"noon\" cannot be read"),
+        (
+            time("2026-06-21T12:00"),
+            "--time \"2026-06-21T12:00\" has no UTC offset: add one (e.g. +02:00) or give --tz",
+        ),
+        (
+            with(time("2026-03-29T02:30"), &["--tz", "Europe/Vienna"]),
+            "--time 2026-03-29 02:30:00 does not exist in",
+        ),
+        (
+            with(time("2026-06-21T12:00"), &["--tz", "Nowhere/City"]),
+            "--tz \"Nowhere/City\" is not a time zone",
+        ),
+        (
+            with(time("2026-06-21T12:00:00Z"), &["--pressure=-3"]),
+            "--pressure/--temperature -3/12 is not an atmosphere",
+        ),
+        (
+            vec![
+                "sun",
+                "--lat",
+                "nan",
+                "--lon",
+                "0",
+                "--time",
+                "2026-06-21T12:00:00Z",
+            ],
+            "--lat NaN is outside",
+        ),
     ] {
         let (code, out, err) = run_cli(&args, "");
         assert_eq!(code, 2, "{args:?}: {err}");
@@ -188,6 +174,7 @@ fn bad_input_exits_2() {
             out.is_empty() && err.starts_with("error:"),
             "{args:?}: {err}"
         );
+        assert!(err.contains(said), "{args:?}: {err}");
     }
 }
 

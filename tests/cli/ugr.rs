@@ -276,7 +276,11 @@ fn bad_requests_are_refused_by_name() {
     let file = luminaire("eulumdat-luminance/sample_01.ldt");
     let (code, _, err) = run_cli(&["ldt", "ugr", file.to_str().unwrap(), "--shr", "0"], "");
     assert_eq!(code, 2);
-    assert!(err.contains("--shr"), "{err}");
+    // The library names its argument `shr`; the command, its flag.
+    assert!(
+        err.contains("--shr 0 is not a spacing-to-height ratio between 0.05 and 4"),
+        "{err}"
+    );
     // An uplight (DFF 0 %) sends nothing toward the eye: no table, and it says why.
     let file = luminaire("eulumdat-plot/sample_13_isym1.ldt");
     let (code, out, err) = run_cli(&["ldt", "ugr", file.to_str().unwrap()], "");

@@ -440,7 +440,7 @@ fn create_dir(option: &str, dir: Option<&Path>) -> Result<(), CliError> {
 fn about(file: &Path, e: crate::photometry::PhotometryError) -> CliError {
     let bad_input = e.is_bad_input();
     CliError::classified(
-        anyhow::anyhow!(e).context(file.display().to_string()),
+        super::error::photometry_message(e).context(file.display().to_string()),
         bad_input,
     )
 }
