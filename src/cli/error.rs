@@ -68,6 +68,33 @@ impl CliError {
     }
 }
 
+/// The library's field names (the sun study's spec, the site and time, the photometry
+/// arguments) and the flags that set them.
+const FLAGS_OF_FIELDS: [(&str, &str); 14] = [
+    ("step_minutes", "--step"),
+    ("extent_m", "--extent"),
+    ("resolution", "--resolution"),
+    ("from", "--from"),
+    ("latitude", "--lat"),
+    ("longitude", "--lon"),
+    ("elevation_m", "--elevation"),
+    ("delta_t", "--delta-t"),
+    ("pressure_hpa/temperature_c", "--pressure/--temperature"),
+    ("zone", "--tz"),
+    ("time", "--time"),
+    ("shr", "--shr"),
+    ("lamp_set", "--lamp-set"),
+    ("downsample", "--downsample"),
+];
+
+/// The flag that sets the library's `field` (the field itself where none does).
+fn flag_of(field: &str) -> &str {
+    FLAGS_OF_FIELDS
+        .iter()
+        .find(|(f, _)| *f == field)
+        .map_or(field, |(_, flag)| flag)
+}
+
 impl From<PhotometryError> for CliError {
     fn from(e: PhotometryError) -> CliError {
         let bad_input = e.is_bad_input();
@@ -84,12 +111,7 @@ pub(crate) fn photometry_message(e: PhotometryError) -> anyhow::Error {
             value,
             problem,
         } => {
-            let flag = match field {
-                "shr" => "--shr",
-                "lamp_set" => "--lamp-set",
-                "downsample" => "--downsample",
-                other => other,
-            };
+            let flag = flag_of(field);
             anyhow::anyhow!("{flag} {value} {problem}")
         }
         e => anyhow::Error::new(e),
@@ -126,13 +148,7 @@ impl From<ProfileError> for CliError {
         match e {
             // The library names the spec's fields; the command names its flags.
             ProfileError::Invalid { field, message } => {
-                let flag = match field {
-                    "step_minutes" => "--step",
-                    "extent_m" => "--extent",
-                    "resolution" => "--resolution",
-                    "from" => "--from",
-                    other => other,
-                };
+                let flag = flag_of(field);
                 let message = message.replace("`to`", "--to");
                 CliError::input(anyhow::anyhow!("{flag} {message}"))
             }
@@ -175,16 +191,7 @@ impl From<SunError> for CliError {
                 value,
                 problem,
             } => {
-                let flag = match field {
-                    "latitude" => "--lat",
-                    "longitude" => "--lon",
-                    "elevation_m" => "--elevation",
-                    "delta_t" => "--delta-t",
-                    "pressure_hpa/temperature_c" => "--pressure/--temperature",
-                    "zone" => "--tz",
-                    "time" => "--time",
-                    other => other,
-                };
+                let flag = flag_of(field);
                 let problem = match problem.as_str() {
                     crate::sun::time::NO_OFFSET => {
                         "has no UTC offset: add one (e.g. +02:00) or give --tz".to_string()
