@@ -1,12 +1,14 @@
 """goniolight for Python: real luminaire files (EULUMDAT ``.ldt``, IES ``.ies``), their
-interpolation and its check, the sun's position, illuminance at points of a scene, and
-its radiosity solution (the interreflected light).
+interpolation and its check, the sun's position, illuminance at points of a scene,
+its radiosity solution (the interreflected light), its calculation surfaces, and sun studies
+of a model (hours of sun or shadow on the ground, facades and windows).
 
 The numbers come from the same library code as the ``goniolight`` command line: ``info``
 equals ``goniolight ldt info --json``, ``sample`` equals ``goniolight ldt sample``,
 ``sun_position`` equals ``goniolight sun --json``, ``illuminance`` equals
-``goniolight illuminance`` and ``radiosity(...).lux`` equals ``goniolight radiosity
---points``.
+``goniolight illuminance``, ``radiosity(...).lux`` equals ``goniolight radiosity
+--points``, ``calc`` equals ``goniolight calc``'s ``calc.json`` and ``sun_study`` equals
+``goniolight profile``'s ``study.json`` and ``hours.csv``.
 
 Run from the repository's root (the tests run these examples):
 
@@ -34,7 +36,8 @@ import numpy as np
 from . import _native
 
 __all__ = ["Luminaire", "read", "ugr_table", "luminance_table", "datasheet", "sun_position",
-           "illuminance", "radiosity", "Radiosity", "calc", "INTERPOLATIONS"]
+           "illuminance", "radiosity", "Radiosity", "calc", "sun_study", "SunStudy",
+           "INTERPOLATIONS"]
 
 #: The interpolation methods, as the command line names them.
 INTERPOLATIONS = ("nearest", "bilinear", "catmull-rom", "monotone")
@@ -340,3 +343,122 @@ def calc(scene: PathLike, *, maintenance_factor: Optional[float] = None, cpu: bo
     for grid, v in zip(doc["grids"], values):
         grid["values"] = np.asarray(v, dtype=float)
     return doc
+
+
+def _hhmm(t) -> str:
+    return t if isinstance(t, str) else t.strftime("%H:%M")
+
+
+def _site(site):
+    """(latitude, longitude, timezone, north_offset_deg) of a ``[site]``-style dict or a
+    (latitude, longitude) pair."""
+    if isinstance(site, dict):
+        unknown = set(site) - {"latitude", "longitude", "timezone", "north_offset_deg"}
+        if unknown:
+            raise ValueError(f"site: unknown key(s) {sorted(unknown)}; expected latitude, "
+                             "longitude, timezone, north_offset_deg")
+        try:
+            return (float(site["latitude"]), float(site["longitude"]), site.get("timezone"),
+                    float(site.get("north_offset_deg", 0.0)))
+        except KeyError as e:
+            raise ValueError(f"site: {e.args[0]} is missing") from None
+    lat, lon = site
+    return float(lat), float(lon), None, 0.0
+
+
+class SunStudy:
+    """A sun study of a model over one or more dates (what ``goniolight profile``
+    computes): per date the hours of sun or shadow on the plan, its ``study.json``
+    numbers (passing fractions, facades, window points), and every file the command
+    writes."""
+
+    def __init__(self, native: "_native.NativeSunStudy"):
+        self._native = native
+
+    @property
+    def dates(self) -> list:
+        """The dates, ``YYYY-MM-DD``, in order."""
+        return self._native.dates()
+
+    @property
+    def studies(self) -> list:
+        """Each date's ``study.json`` as a dict (the command's keys)."""
+        return [json.loads(self._native.study_json(k)) for k in range(len(self.dates))]
+
+    @property
+    def warnings(self) -> list:
+        """What the study warned about (also raised as UserWarnings)."""
+        return self._native.warnings()
+
+    def hours(self, date: int = 0) -> np.ndarray:
+        """Hours per plan cell of date number ``date`` (a resolution × resolution array,
+        row 0 at the plan's +y edge; NaN where the plan sees neither ground nor model)."""
+        return self._native.hours(date)
+
+    def cells(self, date: int = 0) -> np.ndarray:
+        """The rows of ``hours.csv`` of date number ``date``: an N × 3 array of x, y (the
+        model file's plan coordinates, metres) and hours."""
+        return self._native.cells(date)
+
+    def plan(self, date: int = 0) -> dict:
+        """The plan's corner at row 0, column 0 (``x``, ``y`` of its outer corner, metres),
+        its side ``extent_m`` and ``resolution`` (pixels per side)."""
+        (x, y), extent, resolution = self._native.plan(date)
+        return {"x": x, "y": y, "extent_m": extent, "resolution": resolution}
+
+    def write(self, out: PathLike, step_images: bool = False) -> None:
+        """Writes what ``goniolight profile --out OUT`` writes (plans, rasters, tables,
+        ``study.json``, sun-path diagrams; a folder per date and ``dates.csv`` when there
+        are several): complete or nothing."""
+        self._native.write(os.fspath(out), bool(step_images))
+
+    def __repr__(self) -> str:
+        return f"SunStudy({len(self.dates)} date(s): {', '.join(self.dates)})"
+
+
+def sun_study(model: PathLike, site, dates, *, start="08:00", end="16:00", step: int = 60,
+              north_offset: Optional[float] = None, extent: Optional[float] = None,
+              resolution: int = 1024, up: str = "y", silhouettes: str = "hextree",
+              metric: str = "shadow", threshold: Optional[float] = None,
+              areas: Optional[PathLike] = None, casters: Sequence[str] = (),
+              facades: bool = False, facade_cell: float = 0.5, min_facade_area: float = 1.0,
+              points: Optional[PathLike] = None, min_elevation: float = 0.0,
+              model_view: bool = False, view_from: Optional[Sequence[float]] = None,
+              view_at: Optional[Sequence[float]] = None,
+              view_size: Sequence[int] = (1200, 900), progress=None) -> SunStudy:
+    """A sun study of an OBJ model, as ``goniolight profile`` runs it: the keywords are
+    its flags (``start``/``end`` are ``--from``/``--to``, ``step`` minutes).
+
+    ``site`` is a dict with the scene file's ``[site]`` keys (``latitude``,
+    ``longitude``, ``timezone``, ``north_offset_deg``) or a ``(latitude, longitude)``
+    pair (then the times are UTC); ``north_offset`` overrides the site's.
+    ``dates`` is a date (``"2026-03-21"`` or a ``datetime.date``) or several.
+    ``progress(done, total)`` is called after each step; Ctrl-C (Jupyter's interrupt)
+    raises KeyboardInterrupt. Bad options raise ValueError naming the option.
+
+    >>> import goniolight
+    >>> s = goniolight.sun_study("assets/models/box.obj",
+    ...                          {"latitude": 48.21, "longitude": 16.37,
+    ...                           "timezone": "Europe/Vienna"},
+    ...                          "2026-03-21", up="z", resolution=64, metric="sun")
+    >>> s.dates, s.hours().shape
+    (['2026-03-21'], (64, 64))
+    >>> round(s.studies[0]["period_h"], 1)
+    8.0
+    """
+    lat, lon, tz, site_north = _site(site)
+    if isinstance(dates, (str, bytes)) or not isinstance(dates, Iterable):
+        dates = [dates]
+    dates = [d if isinstance(d, str) else d.isoformat() for d in dates]
+    view = None
+    if model_view:
+        view = (None if view_from is None else [float(v) for v in view_from],
+                None if view_at is None else [float(v) for v in view_at],
+                tuple(int(v) for v in view_size))
+    native = _native.sun_study(
+        os.fspath(model), lat, lon, dates, _hhmm(start), _hhmm(end), int(step), tz,
+        site_north if north_offset is None else float(north_offset), extent, int(resolution),
+        up, silhouettes, metric, threshold, None if areas is None else os.fspath(areas),
+        list(casters), (float(facade_cell), float(min_facade_area)) if facades else None,
+        None if points is None else os.fspath(points), float(min_elevation), view, progress)
+    return SunStudy(native)

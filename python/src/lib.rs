@@ -16,12 +16,14 @@ use goniolight::radiosity::bake::BakeChoice;
 use goniolight::radiosity::session::{Options, SessionError, Solution};
 use goniolight::shadow::ShadowTechnique;
 
-fn value_error(e: impl std::fmt::Display) -> PyErr {
+mod sun_study;
+
+pub(crate) fn value_error(e: impl std::fmt::Display) -> PyErr {
     PyValueError::new_err(e.to_string())
 }
 
 /// Raises `message` as a Python warning of `category` (`warnings.warn`).
-fn warn<T: pyo3::PyTypeInfo>(py: Python<'_>, message: &str) -> PyResult<()> {
+pub(crate) fn warn<T: pyo3::PyTypeInfo>(py: Python<'_>, message: &str) -> PyResult<()> {
     let text = std::ffi::CString::new(message.replace('\0', " ")).unwrap_or_default();
     PyErr::warn(py, &py.get_type::<T>(), &text, 1)
 }
@@ -575,5 +577,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(radiosity, m)?)?;
     m.add_function(wrap_pyfunction!(radiosity_defaults_json, m)?)?;
     m.add_function(wrap_pyfunction!(calc_json, m)?)?;
+    m.add_class::<sun_study::NativeSunStudy>()?;
+    m.add_function(wrap_pyfunction!(sun_study::sun_study, m)?)?;
     Ok(())
 }

@@ -68,13 +68,14 @@ impl CliError {
     }
 }
 
-/// The library's field names (the sun study's spec, the site and time, the photometry
+/// The library's field names (the sun study's options, the site and time, the photometry
 /// arguments) and the flags that set them.
-const FLAGS_OF_FIELDS: [(&str, &str); 14] = [
+const FLAGS_OF_FIELDS: &[(&str, &str)] = &[
     ("step_minutes", "--step"),
     ("extent_m", "--extent"),
     ("resolution", "--resolution"),
     ("from", "--from"),
+    ("to", "--to"),
     ("latitude", "--lat"),
     ("longitude", "--lon"),
     ("elevation_m", "--elevation"),
@@ -85,6 +86,17 @@ const FLAGS_OF_FIELDS: [(&str, &str); 14] = [
     ("shr", "--shr"),
     ("lamp_set", "--lamp-set"),
     ("downsample", "--downsample"),
+    ("up", "--up"),
+    ("casters", "--casters"),
+    ("dates", "--dates"),
+    ("threshold_h", "--threshold"),
+    ("facade_cell_m", "--facade-cell"),
+    ("min_facade_area_m2", "--min-facade-area"),
+    ("points", "--points"),
+    ("north_offset_deg", "--north-offset"),
+    ("min_elevation_deg", "--min-elevation"),
+    ("view_from", "--view-from"),
+    ("view_at", "--view-at"),
 ];
 
 /// The flag that sets the library's `field` (the field itself where none does).
@@ -93,6 +105,32 @@ fn flag_of(field: &str) -> &str {
         .iter()
         .find(|(f, _)| *f == field)
         .map_or(field, |(_, flag)| flag)
+}
+
+/// `text` with every field the library quotes in backquotes (`` `extent_m` ``) named by
+/// its flag (`--extent`); other quoted words stay as they are.
+pub(crate) fn flags_in(text: &str) -> String {
+    let parts: Vec<&str> = text.split('`').collect();
+    // An even count of parts: the last backquote is not closed.
+    let unclosed = parts.len().is_multiple_of(2);
+    let mut out = String::with_capacity(text.len());
+    for (k, part) in parts.iter().enumerate() {
+        let flag = FLAGS_OF_FIELDS.iter().find(|(f, _)| f == part);
+        match (k % 2 == 1, flag) {
+            (false, _) => out.push_str(part),
+            (true, _) if unclosed && k + 1 == parts.len() => {
+                out.push('`');
+                out.push_str(part);
+            }
+            (true, Some((_, flag))) => out.push_str(flag),
+            (true, None) => {
+                out.push('`');
+                out.push_str(part);
+                out.push('`');
+            }
+        }
+    }
+    out
 }
 
 impl From<PhotometryError> for CliError {
@@ -149,11 +187,14 @@ impl From<ProfileError> for CliError {
             // The library names the spec's fields; the command names its flags.
             ProfileError::Invalid { field, message } => {
                 let flag = flag_of(field);
-                let message = message.replace("`to`", "--to");
-                CliError::input(anyhow::anyhow!("{flag} {message}"))
+                CliError::input(anyhow::anyhow!("{flag} {}", flags_in(&message)))
             }
+            ProfileError::Model(e) => e.into(),
+            ProfileError::Sun(e) => e.into(),
             ProfileError::Input(_) => CliError::input(e),
-            ProfileError::Gpu(_) | ProfileError::Cancelled => CliError::failure(e),
+            ProfileError::Output(_) | ProfileError::Gpu(_) | ProfileError::Cancelled => {
+                CliError::failure(e)
+            }
         }
     }
 }
@@ -225,5 +266,21 @@ impl From<GpuError> for CliError {
 impl From<crate::lighting::PointsError> for CliError {
     fn from(e: crate::lighting::PointsError) -> CliError {
         CliError::input(e)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::flags_in;
+
+    #[test]
+    fn quoted_fields_become_their_flags_and_other_quotes_stay() {
+        assert_eq!(
+            flags_in("the file is Z-up, pass `up` z; use a larger `extent_m`"),
+            "the file is Z-up, pass --up z; use a larger --extent"
+        );
+        assert_eq!(flags_in("`nothing` is `to`"), "`nothing` is --to");
+        assert_eq!(flags_in("no quotes"), "no quotes");
+        assert_eq!(flags_in("an odd ` quote"), "an odd ` quote");
     }
 }

@@ -10,9 +10,13 @@ pub mod outlines;
 pub mod output;
 pub mod profile;
 pub mod rasters;
+pub mod study_files;
+pub mod sun_study;
 pub mod sunpath;
 pub mod surface_output;
+pub mod surface_set;
 pub mod surfaces;
 pub mod view_hours;
 
 pub use profile::{compute, HoursMetric, Profile, ProfileError, ProfileSpec};
+pub use sun_study::{StudyDay, SunStudy, SunStudyOptions};

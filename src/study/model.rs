@@ -51,7 +51,7 @@ pub fn up_axis_warning(mesh: &Mesh, up: UpAxis) -> Option<String> {
     let other_extent = size.y;
     (other_area > 1.5 * up_area && size.z > 0.75 * other_extent).then(|| {
         format!(
-            "the model looks as if its up axis were not {}: more of its area faces the other axis ({:.0} m² against {:.0} m² facing up) and it stands {:.1} m tall on a {:.1} m deep plan; if the file is {}-up, pass --up {other_flag}",
+            "the model looks as if its up axis were not {}: more of its area faces the other axis ({:.0} m² against {:.0} m² facing up) and it stands {:.1} m tall on a {:.1} m deep plan; if the file is {}-up, pass `up` {other_flag}",
             match up {
                 UpAxis::Y => "y",
                 UpAxis::Z => "z",
@@ -63,4 +63,126 @@ pub fn up_axis_warning(mesh: &Mesh, up: UpAxis) -> Option<String> {
             other_flag.to_uppercase()
         )
     })
+}
+
+/// A study's model read from its file: +Z up, the casting triangles first.
+#[derive(Debug, Clone)]
+pub struct StudyModel {
+    /// The triangles, in the world frame (metres, +Z up), casters first.
+    pub mesh: Mesh,
+    /// The triangles that receive shadows but cast none (those after the casters).
+    pub non_casters: crate::shadow::IgnoredTriangles,
+    /// How many triangles cast shadows.
+    pub casting: usize,
+    /// What the caller should be told (dropped triangles), without the file's name.
+    pub warnings: Vec<String>,
+}
+
+/// Reads an OBJ model, turns it to the world's +Z up and, when `casters` names objects
+/// (`o`/`g` names, `*` matches any run of characters), puts their triangles first: the
+/// rest receive shadows but cast none. Refused (field `casters`) when a pattern matches no
+/// object (the message lists the names) or the objects named have no triangle with area.
+pub fn load_components(
+    path: &std::path::Path,
+    up: UpAxis,
+    casters: &[String],
+) -> Result<StudyModel, super::ProfileError> {
+    use super::ProfileError;
+    let (mut mesh, objects) = crate::geometry::obj::read_obj_objects(path)?;
+    if up == UpAxis::Y {
+        for p in &mut mesh.positions {
+            *p = glam::DVec3::new(p.x, -p.z, p.y);
+        }
+    }
+    let casts: Vec<bool> = if casters.is_empty() {
+        vec![true; objects.names.len()]
+    } else {
+        for pattern in casters {
+            if !objects.names.iter().any(|n| wildcard_match(pattern, n)) {
+                let names = objects.names.iter().take(30).cloned().collect::<Vec<_>>();
+                let more = if objects.names.len() > 30 {
+                    ", …"
+                } else {
+                    ""
+                };
+                return Err(ProfileError::invalid(
+                    "casters",
+                    format!(
+                        "{pattern:?} matches no object of {} (its objects: {}{more})",
+                        path.display(),
+                        names.join(", ")
+                    ),
+                ));
+            }
+        }
+        objects
+            .names
+            .iter()
+            .map(|n| casters.iter().any(|p| wildcard_match(p, n)))
+            .collect()
+    };
+    let total = mesh.triangles.len();
+    // Casters first, then the rest; each part loses its degenerate triangles.
+    let part = |cast: bool| {
+        let mut m = Mesh {
+            positions: mesh.positions.clone(),
+            triangles: mesh
+                .triangles
+                .iter()
+                .zip(&objects.of_triangle)
+                .filter(|(_, &o)| casts[o as usize] == cast)
+                .map(|(t, _)| *t)
+                .collect(),
+        };
+        let dropped = m.remove_degenerate();
+        (m, dropped)
+    };
+    let ((mut model, dropped_casting), (rest, dropped_rest)) = (part(true), part(false));
+    let dropped = dropped_casting + dropped_rest;
+    let mut warnings = Vec::new();
+    if dropped > 0 {
+        warnings.push(format!(
+            "{dropped} of its {total} triangles have no area and were dropped"
+        ));
+    }
+    let casting = model.triangles.len();
+    model.triangles.extend(rest.triangles);
+    model.validate(&path.display().to_string())?;
+    if !casters.is_empty() && casting == 0 {
+        return Err(ProfileError::invalid(
+            "casters",
+            "names only objects without triangles of any area".into(),
+        ));
+    }
+    let non_casters = if casting < model.triangles.len() {
+        crate::shadow::IgnoredTriangles(std::iter::once(casting..model.triangles.len()).collect())
+    } else {
+        crate::shadow::IgnoredTriangles::default()
+    };
+    Ok(StudyModel {
+        mesh: model,
+        non_casters,
+        casting,
+        warnings,
+    })
+}
+
+/// Whether `name` matches `pattern`, where `*` stands for any run of characters.
+pub fn wildcard_match(pattern: &str, name: &str) -> bool {
+    let parts: Vec<&str> = pattern.split('*').collect();
+    if parts.len() == 1 {
+        return pattern == name;
+    }
+    let (first, last) = (parts[0], parts[parts.len() - 1]);
+    if !name.starts_with(first) || name.len() < first.len() + last.len() || !name.ends_with(last) {
+        return false;
+    }
+    let mut rest = &name[first.len()..name.len() - last.len()];
+    for middle in &parts[1..parts.len() - 1] {
+        match rest.find(middle) {
+            Some(k) => rest = &rest[k + middle.len()..],
+            None => return false,
+        }
+    }
+    true
 }

@@ -33,6 +33,15 @@ pub enum ProfileError {
         /// What is wrong with its value.
         message: String,
     },
+    /// The model could not be read or has no triangles with area.
+    #[error(transparent)]
+    Model(#[from] crate::geometry::GeometryError),
+    /// The site or time zone is out of range.
+    #[error(transparent)]
+    Sun(#[from] crate::sun::SunError),
+    /// A file of the study could not be written.
+    #[error("{0:#}")]
+    Output(anyhow::Error),
     /// The GPU failed.
     #[error(transparent)]
     Gpu(#[from] GpuError),
@@ -42,7 +51,8 @@ pub enum ProfileError {
 }
 
 impl ProfileError {
-    fn invalid(field: &'static str, message: String) -> ProfileError {
+    /// A field of the options is out of range: `message` says how.
+    pub fn invalid(field: &'static str, message: String) -> ProfileError {
         ProfileError::Invalid { field, message }
     }
 }

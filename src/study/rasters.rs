@@ -41,19 +41,24 @@ pub fn ascii_grid(profile: &Profile, hours: &[f32]) -> String {
     out
 }
 
+/// Every cell that sees ground or model, in the order of `hours.csv` (rows from the top):
+/// its index in the plan and its centre in the model file's plan coordinates, metres.
+pub fn surface_cells(profile: &Profile) -> impl Iterator<Item = (usize, DVec2)> + '_ {
+    let n = profile.resolution;
+    (0..n)
+        .flat_map(move |py| (0..n).map(move |px| (px, py)))
+        .map(move |(px, py)| {
+            let k = (py * n + px) as usize;
+            (k, profile.pixel_center(px, py) + profile.origin)
+        })
+        .filter(|&(k, _)| profile.surface[k] != SURFACE_NONE)
+}
+
 /// `hours.csv`: `x,y,hours` at every cell centre that sees ground or model.
 pub fn hours_csv(profile: &Profile, hours: &[f32]) -> String {
-    let n = profile.resolution;
     let mut out = String::from("x,y,hours\n");
-    for py in 0..n {
-        for px in 0..n {
-            let k = (py * n + px) as usize;
-            if profile.surface[k] == SURFACE_NONE {
-                continue;
-            }
-            let c = profile.pixel_center(px, py) + profile.origin;
-            let _ = writeln!(out, "{:.4},{:.4},{:.4}", c.x, c.y, hours[k]);
-        }
+    for (k, c) in surface_cells(profile) {
+        let _ = writeln!(out, "{:.4},{:.4},{:.4}", c.x, c.y, hours[k]);
     }
     out
 }

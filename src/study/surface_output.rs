@@ -97,8 +97,48 @@ pub fn facade_image(f: &Facade, scale_h: f32) -> image::RgbaImage {
     with_legend_panel(&raster, "sun", &labels, |t| hours_colour(t, 1.0))
 }
 
+/// The summaries of `results` for `study.json`: each facade (its image's name, written by
+/// [`write_surfaces`] for the largest [`MAX_FACADE_IMAGES`]) and each window point.
+pub fn surface_summaries(
+    results: &SurfaceResults,
+    north_offset_deg: f64,
+) -> (Vec<FacadeSummary>, Vec<PointResult>) {
+    let facades = results
+        .facades
+        .iter()
+        .enumerate()
+        .map(|(n, f)| {
+            let id = n + 1;
+            let faces = f.azimuth_deg(north_offset_deg);
+            let values: Vec<f64> = f.hours.iter().flatten().map(|&h| h as f64).collect();
+            let count = values.len().max(1) as f64;
+            FacadeSummary {
+                id,
+                faces_deg: faces,
+                area_m2: f.area_m2,
+                min_h: values.iter().copied().fold(f64::INFINITY, f64::min),
+                mean_h: values.iter().sum::<f64>() / count + 0.0,
+                max_h: values.iter().copied().fold(0.0, f64::max),
+                image: (n < MAX_FACADE_IMAGES)
+                    .then(|| format!("facades/{id:02}-{}.png", compass(faces))),
+            }
+        })
+        .collect();
+    let points = results
+        .points
+        .iter()
+        .map(|(p, hours)| PointResult {
+            name: p.name.clone(),
+            hours: *hours,
+            en17037: en17037_level(*hours),
+        })
+        .collect();
+    (facades, points)
+}
+
 /// Writes `facades.csv`, the facade images and `points.csv` into `dir`; returns their
-/// summaries. `origin` is added to world x, y; heights are above `ground_z`.
+/// summaries ([`surface_summaries`]). `origin` is added to world x, y; heights are above
+/// `ground_z`.
 pub fn write_surfaces(
     dir: &Path,
     results: &SurfaceResults,
@@ -109,17 +149,15 @@ pub fn write_surfaces(
 ) -> anyhow::Result<(Vec<FacadeSummary>, Vec<PointResult>)> {
     let to_file = |p: DVec3| DVec3::new(p.x + origin.x, p.y + origin.y, p.z - ground_z);
     let north = labels.north_offset_deg;
-    let mut facades = Vec::new();
+    let (facades, points) = surface_summaries(results, north);
     if !results.facades.is_empty() {
         let mut csv = String::from("facade,faces_deg,x,y,z,hours\n");
         let images = dir.join("facades");
         std::fs::create_dir_all(&images)
             .with_context(|| format!("creating {}", images.display()))?;
-        for (n, f) in results.facades.iter().enumerate() {
-            let id = n + 1;
-            let faces = f.azimuth_deg(north);
+        for (f, summary) in results.facades.iter().zip(&facades) {
+            let (id, faces) = (summary.id, summary.faces_deg);
             let (nu, _) = f.cells;
-            let values: Vec<f64> = f.hours.iter().flatten().map(|&h| h as f64).collect();
             for (k, h) in f.hours.iter().enumerate() {
                 if let Some(h) = h {
                     let p = to_file(f.cell_center(k % nu, k / nu));
@@ -130,9 +168,7 @@ pub fn write_surfaces(
                     );
                 }
             }
-            let image =
-                (n < MAX_FACADE_IMAGES).then(|| format!("facades/{id:02}-{}.png", compass(faces)));
-            if let Some(name) = &image {
+            if let Some(name) = &summary.image {
                 let k = cell_px(f);
                 let frame = Frame {
                     size_px: (f.cells.0 as u32 * k, f.cells.1 as u32 * k),
@@ -158,36 +194,20 @@ pub fn write_surfaces(
                     &framed(&frame, &facade_image(f, scale_h), &l),
                 )?;
             }
-            let count = values.len().max(1) as f64;
-            facades.push(FacadeSummary {
-                id,
-                faces_deg: faces,
-                area_m2: f.area_m2,
-                min_h: values.iter().copied().fold(f64::INFINITY, f64::min),
-                mean_h: values.iter().sum::<f64>() / count + 0.0,
-                max_h: values.iter().copied().fold(0.0, f64::max),
-                image,
-            });
         }
         write_atomic(&dir.join("facades.csv"), csv.as_bytes())?;
     }
-    let mut points = Vec::new();
     if !results.points.is_empty() {
         let mut csv = String::from("name,x,y,z,nx,ny,nz,hours,en17037\n");
-        for (p, hours) in &results.points {
-            let level = en17037_level(*hours);
+        for ((p, hours), summary) in results.points.iter().zip(&points) {
             let [x, y, z] = p.position;
             let [nx, ny, nz] = p.normal;
             let _ = writeln!(
                 csv,
-                "{},{x},{y},{z},{nx},{ny},{nz},{hours:.4},{level}",
-                p.name.replace(',', " ")
+                "{},{x},{y},{z},{nx},{ny},{nz},{hours:.4},{}",
+                p.name.replace(',', " "),
+                summary.en17037
             );
-            points.push(PointResult {
-                name: p.name.clone(),
-                hours: *hours,
-                en17037: level,
-            });
         }
         write_atomic(&dir.join("points.csv"), csv.as_bytes())?;
     }

@@ -318,7 +318,14 @@ struct PointsFile {
 /// point and key.
 pub fn parse_points(text: &str) -> Result<Vec<WindowPoint>, String> {
     let file: PointsFile = toml::from_str(text).map_err(|e| e.to_string())?;
-    for (k, p) in file.point.iter().enumerate() {
+    check_points(&file.point)?;
+    Ok(file.point)
+}
+
+/// An error naming the first point (`point[k].normal`, `point[k].position`) whose normal
+/// has no direction or whose position is not finite, or when there is none.
+pub fn check_points(points: &[WindowPoint]) -> Result<(), String> {
+    for (k, p) in points.iter().enumerate() {
         if crate::geometry::unit(DVec3::from_array(p.normal)).is_none() {
             return Err(format!(
                 "point[{k}].normal: {:?} is not a direction",
@@ -329,10 +336,10 @@ pub fn parse_points(text: &str) -> Result<Vec<WindowPoint>, String> {
             return Err(format!("point[{k}].position: not finite"));
         }
     }
-    if file.point.is_empty() {
+    if points.is_empty() {
         return Err("no [[point]]".into());
     }
-    Ok(file.point)
+    Ok(())
 }
 
 /// EN 17037's recommendation level for sunlight exposure reached with `hours` on the

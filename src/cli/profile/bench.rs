@@ -5,10 +5,9 @@ use std::path::PathBuf;
 use anyhow::anyhow;
 
 use super::super::CliError;
-use super::load_components;
 use crate::gpu::Gpu;
 use crate::scene::UpAxis;
-use crate::study::model::recentre;
+use crate::study::model::{load_components, recentre};
 
 /// Runs `bench profile`: the same profile with brute-force and hextree silhouettes, and
 /// with the volumes ending at the ground or of one length, on the generated building and,
@@ -31,7 +30,7 @@ pub fn run_bench(
             ("Delft city block", "models/delft_3dfier/testarea.obj"),
             ("high-rise block", "models/openfoam_buildings/buildings.obj"),
         ] {
-            let (mut mesh, _) = load_components(&dir.join(rel), UpAxis::Z, &[])?;
+            let mut mesh = load_components(&dir.join(rel), UpAxis::Z, &[])?.mesh;
             recentre(&mut mesh);
             models.push((name.to_string(), mesh));
         }

@@ -1,40 +1,30 @@
 //! `goniolight profile`: sun studies of a model over a period — shadow profiles, hours of sun
 //! or shadow, thresholds, several dates, facades and windows.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use anyhow::anyhow;
 use chrono::{NaiveDate, NaiveTime};
 use clap::Args;
+use glam::DVec3;
 
 mod bench;
-mod model;
-mod outputs;
-mod surfaces;
 
 pub use bench::run_bench;
-pub use model::load_components;
-use outputs::{write_dates_table, write_sun_path};
-use surfaces::Surfaces;
 
+use super::error::flags_in;
 use super::CliError;
 use crate::gpu::Gpu;
 use crate::io::limits::{bytes, MAX_OUTPUT_BYTES};
 use crate::io::outputs::{OutputCheck, Staging};
-use crate::scene::Camera;
 use crate::scene::UpAxis;
 use crate::shadow::SilhouetteMethod;
-use crate::study::annotate::PlanLabels;
-use crate::study::model::{recentre, up_axis_warning};
-use crate::study::output::{write_study, StudyOutput};
-use crate::study::profile::{
-    compute_on, prepare, shared_extent, HoursMetric, Profile, ProfileSpec,
-};
-use crate::study::rasters::read_areas;
-use crate::study::surfaces::parse_points;
-use crate::study::view_hours::{compute as view_hours, default_camera, write_model_view};
-use crate::sun::{Site, SunOptions, Zone};
-use glam::DVec3;
+use crate::study::profile::HoursMetric;
+use crate::study::rasters::{read_areas, AnalysisArea};
+use crate::study::sun_study::{GifPlace, ModelView, StudyFiles, MAX_DATES};
+use crate::study::surface_set::FacadeOptions;
+use crate::study::surfaces::{parse_points, WindowPoint};
+use crate::study::{SunStudy, SunStudyOptions};
 
 /// Options of `profile`.
 #[derive(Debug, Args)]
@@ -158,36 +148,6 @@ pub struct ProfileArgs {
     pub output_limit: f64,
 }
 
-/// The camera of `--model-view`: the user's eye and target (the model file's plan
-/// coordinates, moved as the model was by `origin`), else the default view.
-fn model_camera(
-    a: &ProfileArgs,
-    model: &crate::geometry::Mesh,
-    origin: glam::DVec2,
-) -> Result<Option<Camera>, CliError> {
-    if !a.model_view {
-        return Ok(None);
-    }
-    let shift = DVec3::new(origin.x, origin.y, 0.0);
-    let camera = match a.view_from {
-        Some(from) => {
-            let (lo, hi) = model
-                .bounds()
-                .ok_or_else(|| CliError::input(anyhow!("the model has no triangles")))?;
-            let at = a.view_at.map_or((lo + hi) * 0.5, |at| at - shift);
-            if (from - shift).distance(at) < 1e-3 {
-                return Err(CliError::input(anyhow!(
-                    "--view-from and --view-at must be different points"
-                )));
-            }
-            Camera::perspective(from - shift, at, 40.0)
-        }
-        None => default_camera(model, a.north_offset)
-            .ok_or_else(|| CliError::input(anyhow!("the model has no triangles")))?,
-    };
-    Ok(Some(camera))
-}
-
 fn parse_xyz(s: &str) -> Result<DVec3, String> {
     let v: Vec<f64> = s
         .split(',')
@@ -260,10 +220,6 @@ fn parse_range(s: &str) -> Result<(NaiveDate, NaiveDate), String> {
     Ok((a, b))
 }
 
-/// The most dates one run takes (each date's profile stays in memory until all are done,
-/// so an interrupted study writes nothing).
-pub const MAX_DATES: usize = 60;
-
 impl ProfileArgs {
     /// The study's dates, in order, without repeats.
     fn study_dates(&self) -> Result<Vec<NaiveDate>, CliError> {
@@ -308,41 +264,62 @@ impl ProfileArgs {
 }
 
 impl ProfileArgs {
-    /// The files the study reads: the model (and its MTL files), the points and areas.
-    fn input_files(&self) -> Vec<PathBuf> {
-        let mut files = crate::geometry::obj::material_libraries(&self.model);
-        files.push(self.model.clone());
-        files.extend(self.points.iter().cloned());
-        files.extend(self.areas.iter().cloned());
-        files
+    /// The library's options from the flags, with the dates, areas and points read.
+    fn options(
+        &self,
+        dates: Vec<NaiveDate>,
+        areas: Vec<AnalysisArea>,
+        points: Vec<WindowPoint>,
+    ) -> SunStudyOptions {
+        SunStudyOptions {
+            up: self.up,
+            casters: self.casters.clone(),
+            zone: self.tz.clone(),
+            north_offset_deg: self.north_offset,
+            extent_m: self.extent,
+            resolution: self.resolution,
+            silhouettes: self.silhouettes,
+            metric: self.metric,
+            threshold_h: self.threshold,
+            areas,
+            facades: self.facades.then_some(FacadeOptions {
+                cell_m: self.facade_cell,
+                min_area_m2: self.min_facade_area,
+            }),
+            points,
+            min_elevation_deg: self.min_elevation,
+            model_view: self.model_view.then_some(ModelView {
+                from: self.view_from,
+                at: self.view_at,
+                size: self.view_size,
+            }),
+            ..SunStudyOptions::new(
+                self.model.clone(),
+                (self.lat, self.lon),
+                dates,
+                (self.from, self.to),
+                self.step,
+            )
+        }
     }
 }
 
-/// Bytes per plan pixel over the files a date writes: measured 31 at 1024 px on a box
-/// (hours.csv 23, hours.asc 7, the PNGs and hours.exr the rest), rounded up.
-const BYTES_PER_PIXEL: u64 = 32;
-/// Bytes per pixel of one step image (--step-images, --gif).
-const BYTES_PER_STEP_PIXEL: u64 = 2;
-
-/// An error when the study's files would exceed [`MAX_OUTPUT_BYTES`] (estimated from the
+/// An error when the study's files would exceed `--output-limit` (estimated from the
 /// resolution, the dates and the steps before any is written).
-fn check_budget(a: &ProfileArgs, dates: usize, steps: usize) -> Result<(), CliError> {
-    let (dates, steps) = (dates as u64, steps as u64);
-    let pixels = u64::from(a.resolution).pow(2);
-    let per_step = u64::from(a.step_images) + u64::from(a.gif.is_some());
-    let estimate =
-        dates * pixels * BYTES_PER_PIXEL + steps * per_step * pixels * BYTES_PER_STEP_PIXEL;
-    let limit = a.output_limit * f64::from(1u32 << 30);
+fn check_budget(a: &ProfileArgs, study: &SunStudy, files: &StudyFiles) -> Result<(), CliError> {
     if !(a.output_limit.is_finite() && a.output_limit > 0.0) {
         return Err(CliError::input(anyhow!(
             "--output-limit {} must be a positive number of GB",
             a.output_limit
         )));
     }
-    if estimate as f64 > limit {
+    let estimate = study.estimated_output_bytes(files);
+    if estimate as f64 > a.output_limit * f64::from(1u32 << 30) {
         return Err(CliError::input(anyhow!(
-            "--resolution {} over {dates} date(s) and {steps} step(s) would write about {} of files, more than --output-limit {} GB: lower --resolution, give fewer dates, or raise --output-limit",
+            "--resolution {} over {} date(s) and {} step(s) would write about {} of files, more than --output-limit {} GB: lower --resolution, give fewer dates, or raise --output-limit",
             a.resolution,
+            study.options().dates.len(),
+            study.plan_steps(),
             bytes(estimate),
             a.output_limit
         )));
@@ -350,57 +327,33 @@ fn check_budget(a: &ProfileArgs, dates: usize, steps: usize) -> Result<(), CliEr
     Ok(())
 }
 
-/// A model's plan coordinates named for titles: "48.21° N, 16.37° E".
-fn site_label(lat: f64, lon: f64) -> String {
-    format!(
-        "{:.4}° {}, {:.4}° {}",
-        lat.abs(),
-        if lat >= 0.0 { "N" } else { "S" },
-        lon.abs(),
-        if lon >= 0.0 { "E" } else { "W" }
-    )
+/// Reads the `--points` file.
+fn read_points(path: &Path) -> Result<Vec<WindowPoint>, CliError> {
+    let text = crate::io::read_text_limited(path, crate::io::MAX_TEXT_BYTES)
+        .map_err(|e| CliError::input(anyhow!("{}: {e}", path.display())))?;
+    parse_points(&text).map_err(|e| CliError::input(anyhow!("{}: {e}", path.display())))
 }
 
 /// Runs `profile`.
 pub fn run(a: ProfileArgs) -> Result<(), CliError> {
-    let site = Site::new(a.lat, a.lon, 0.0)?;
-    let zone = match &a.tz {
-        Some(tz) => Zone::parse(tz)?,
-        None => {
-            eprintln!(
-                "warning: no --tz: --from/--to and every time written are UTC (give --tz Europe/Vienna or +01:00 for local time)"
-            );
-            Zone::parse("UTC")?
-        }
-    };
-    let tz_name = a.tz.clone().unwrap_or_else(|| "UTC".into());
+    if a.tz.is_none() {
+        eprintln!(
+            "warning: no --tz: --from/--to and every time written are UTC (give --tz Europe/Vienna or +01:00 for local time)"
+        );
+    }
     let dates = a.study_dates()?;
     let areas = match &a.areas {
         Some(p) => read_areas(p).map_err(CliError::input)?,
         None => Vec::new(),
     };
-    if let Some(t) = a.threshold {
-        if !(t.is_finite() && t >= 0.0) {
-            return Err(CliError::input(anyhow!(
-                "--threshold {t} must be a number of hours ≥ 0"
-            )));
-        }
-    }
     let points = match &a.points {
-        Some(p) => {
-            let text = crate::io::read_text_limited(p, crate::io::MAX_TEXT_BYTES)
-                .map_err(|e| CliError::input(anyhow!("{}: {e}", p.display())))?;
-            parse_points(&text).map_err(|e| CliError::input(anyhow!("{}: {e}", p.display())))?
-        }
+        Some(p) => read_points(p)?,
         None => Vec::new(),
     };
-    if a.facades && !(a.facade_cell.is_finite() && a.facade_cell >= 0.01) {
-        return Err(CliError::input(anyhow!(
-            "--facade-cell {} must be at least 0.01 m",
-            a.facade_cell
-        )));
-    }
-    let inputs = a.input_files();
+    let options = a.options(dates, areas, points);
+    let mut inputs = options.input_files();
+    inputs.extend(a.points.iter().cloned());
+    inputs.extend(a.areas.iter().cloned());
     let mut outputs = OutputCheck::new();
     for f in &inputs {
         outputs.input(f);
@@ -416,49 +369,38 @@ pub fn run(a: ProfileArgs) -> Result<(), CliError> {
             a.out.display()
         )));
     }
-    let (mut model, non_casters) = load_components(&a.model, a.up, &a.casters)?;
-    if let Some(w) = up_axis_warning(&model, a.up) {
-        eprintln!("warning: {}: {w}", a.model.display());
+    let study = SunStudy::prepare(options)?;
+    let name = a.model.display();
+    for w in study.warnings() {
+        eprintln!("warning: {name}: {}", flags_in(w));
     }
-    let origin = recentre(&mut model);
-    let specs: Vec<ProfileSpec> = dates
-        .iter()
-        .map(|&date| ProfileSpec {
-            site,
-            zone,
-            date,
-            from: a.from,
-            to: a.to,
-            step_minutes: a.step,
-            sun: SunOptions {
-                north_offset_deg: a.north_offset,
-                ..Default::default()
-            },
-            extent_m: a.extent,
-            resolution: a.resolution,
-            silhouette: a.silhouettes,
-            non_casters: non_casters.clone(),
-            volume_ends: Default::default(),
-        })
-        .collect();
-    // Check every period before starting the GPU; several dates share one extent.
-    let mut steps = 0;
-    for s in &specs {
-        steps += s.local_times()?.len();
-        s.suns()?;
+    let model = study.model();
+    if !a.casters.is_empty() {
+        let total = model.mesh.triangles.len();
+        eprintln!(
+            "{name}: {} of {total} triangles cast shadows (--casters)",
+            model.casting
+        );
     }
-    check_budget(&a, specs.len(), steps)?;
-    let camera = model_camera(&a, &model, origin)?;
-    if camera.is_some() {
-        steps *= 2;
+    if a.facades {
+        let facades = study.facades();
+        let cells: usize = facades
+            .iter()
+            .map(|f| f.hours.iter().flatten().count())
+            .sum();
+        eprintln!(
+            "{name}: {} facade(s) of at least {} m², {cells} cells",
+            facades.len(),
+            a.min_facade_area
+        );
     }
-    let shared = match (a.extent, specs.len()) {
-        (None, 2..) => Some(shared_extent(&model, &specs)?),
-        (e, _) => e,
+    let mut files = StudyFiles {
+        step_images: a.step_images,
+        gif: a.gif.as_ref().map(|g| GifPlace::At(g.clone())),
     };
+    check_budget(&a, &study, &files)?;
     let gpu = Gpu::shared().map_err(CliError::failure)?;
-    // Welded, with its edges (and the hextree on first use), once for every date and view.
-    let geometry = prepare(&gpu, &model)?;
+    let steps = study.progress_steps();
     let bar = indicatif::ProgressBar::new(steps as u64);
     bar.set_style(
         indicatif::ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} steps, {eta} left")
@@ -468,126 +410,32 @@ pub fn run(a: ProfileArgs) -> Result<(), CliError> {
     // Ctrl-C stops between steps; nothing is written for an unfinished study.
     let cancel = super::interrupt_flag();
     eprintln!(
-        "{}: {steps} steps on {} date(s) (Ctrl-C stops and writes nothing)",
-        a.model.display(),
-        dates.len()
+        "{name}: {steps} steps on {} date(s) (Ctrl-C stops and writes nothing)",
+        study.options().dates.len()
     );
-    let mut profiles = Vec::with_capacity(specs.len());
-    let mut done_before = 0;
-    for spec in &specs {
-        let spec = ProfileSpec {
-            extent_m: shared,
-            ..spec.clone()
-        };
-        let t = std::time::Instant::now();
-        let result = compute_on(
-            &gpu,
-            &geometry,
-            &spec,
-            |done, _| bar.set_position((done_before + done) as u64),
-            &cancel,
-        );
-        let mut profile = match result {
-            Ok(p) => p,
-            Err(e) => {
-                bar.finish_and_clear();
-                return Err(e.into());
-            }
-        };
-        done_before += spec.local_times()?.len();
-        profile.origin = origin;
-        let seconds = t.elapsed().as_secs_f64();
-        let view = match &camera {
-            Some(camera) => {
-                let result = view_hours(
-                    &gpu,
-                    &geometry,
-                    &spec,
-                    camera,
-                    a.view_size,
-                    |done, _| bar.set_position((done_before + done) as u64),
-                    &cancel,
-                );
-                done_before += spec.local_times()?.len();
-                match result {
-                    Ok(v) => Some(v),
-                    Err(e) => {
-                        bar.finish_and_clear();
-                        return Err(e.into());
-                    }
-                }
-            }
-            None => None,
-        };
-        profiles.push((spec, profile, seconds, view));
-    }
+    let days = study.compute(&gpu, |done, _| bar.set_position(done as u64), &cancel);
     bar.finish_and_clear();
+    let days = days?;
+    for day in &days {
+        for w in day.warnings() {
+            eprintln!("warning: {}", flags_in(&w));
+        }
+        println!("{name}: {} → {}", day.describe(), a.out.display());
+    }
     let mut staging = Staging::beside(&a.out, &inputs)
         .map_err(|e| CliError::input(anyhow!("--out {}: {e}", a.out.display())))?;
-    let surfaces = Surfaces::new(&a, &model, origin, points, non_casters);
-    let several = profiles.len() > 1;
-    let mut summaries = Vec::new();
-    for (spec, profile, seconds, view) in &profiles {
-        report(&a, profile, *seconds);
-        let dir = if several {
-            staging.dir().join(spec.date.to_string())
-        } else {
-            staging.dir().to_path_buf()
-        };
-        let gif = match &a.gif {
-            Some(g) if several => Some(dir.join(g.file_name().unwrap_or(g.as_os_str()))),
-            Some(g) => Some(
-                staging
-                    .outside(g)
-                    .map_err(|e| CliError::failure(anyhow!("--gif {}: {e}", g.display())))?,
-            ),
-            None => None,
-        };
-        let output = StudyOutput {
-            metric: a.metric,
-            threshold_h: a.threshold,
-            areas: areas.clone(),
-            labels: PlanLabels {
-                title: site_label(a.lat, a.lon),
-                subtitle: format!(
-                    "{}, {}–{} {tz_name}, every {} min",
-                    spec.date,
-                    a.from.format("%H:%M"),
-                    a.to.format("%H:%M"),
-                    a.step
-                ),
-                north_offset_deg: a.north_offset,
-            },
-            step_images: a.step_images,
-            surfaces: surfaces.for_profile(profile, a.north_offset),
-            gif,
-        };
-        let summary = write_study(profile, &dir, &output).map_err(CliError::failure)?;
-        write_sun_path(spec, profile, &dir, &output.labels, surfaces.masks())?;
-        if let Some(v) = view {
-            let view_labels = PlanLabels {
-                title: format!(
-                    "{} — hours of {} on the model",
-                    site_label(a.lat, a.lon),
-                    a.metric.name()
-                ),
-                subtitle: format!(
-                    "{}; seen from {}",
-                    output.labels.subtitle,
-                    match a.view_from {
-                        Some(f) => format!("({:.1}, {:.1}, {:.1}) m", f.x, f.y, f.z),
-                        None => "the south-west, 35° above the horizon".into(),
-                    }
-                ),
-                ..output.labels.clone()
-            };
-            write_model_view(v, a.metric, &view_labels, &dir).map_err(CliError::failure)?;
-        }
-        summaries.push((spec.date, summary));
-    }
-    if several {
-        write_dates_table(staging.dir(), &summaries).map_err(CliError::failure)?;
-    }
+    files.gif = match &a.gif {
+        Some(g) if days.len() > 1 => Some(GifPlace::EachDate(
+            g.file_name().unwrap_or(g.as_os_str()).to_owned(),
+        )),
+        Some(g) => Some(GifPlace::At(staging.outside(g).map_err(|e| {
+            CliError::failure(anyhow!("--gif {}: {e}", g.display()))
+        })?)),
+        None => None,
+    };
+    let summaries = study
+        .write(&days, staging.dir(), &files)
+        .map_err(|e| CliError::failure(anyhow!(e)))?;
     // Complete or none: a Ctrl-C while writing leaves nothing.
     if cancel.load(std::sync::atomic::Ordering::SeqCst) {
         return Err(CliError::failure(anyhow!(
@@ -597,74 +445,10 @@ pub fn run(a: ProfileArgs) -> Result<(), CliError> {
     staging
         .commit()
         .map_err(|e| CliError::failure(anyhow!("--out {}: {e:#}", a.out.display())))?;
-    for (date, s) in &summaries {
-        if let Some(f) = s.pass_fraction {
-            println!(
-                "{date}: {:.1} % of the plan reaches {} h of {} ({} area(s){})",
-                100.0 * f,
-                s.threshold_h.unwrap_or(0.0),
-                s.metric,
-                s.areas.len(),
-                s.areas
-                    .iter()
-                    .map(|r| format!(
-                        ", {}: {}",
-                        r.name,
-                        r.pass_fraction
-                            .map_or("outside the plan".into(), |f| format!("{:.1} %", 100.0 * f))
-                    ))
-                    .collect::<String>()
-            );
+    for (day, s) in days.iter().zip(&summaries) {
+        if let Some(line) = s.pass_line() {
+            println!("{}: {line}", day.spec.date);
         }
     }
     Ok(())
-}
-
-fn report(a: &ProfileArgs, profile: &Profile, seconds: f64) {
-    let date = profile
-        .steps
-        .first()
-        .map(|s| s.time.format("%Y-%m-%d: ").to_string())
-        .unwrap_or_default();
-    if !profile.skipped.is_empty() {
-        let times: Vec<String> = profile
-            .skipped
-            .iter()
-            .map(|t| t.format("%H:%M").to_string())
-            .collect();
-        eprintln!(
-            "warning: {date}the sun is below the horizon at {} step(s), skipped: {}",
-            times.len(),
-            times.join(" ")
-        );
-    }
-    let cut: Vec<String> = profile
-        .steps
-        .iter()
-        .filter(|s| s.reaches_edge)
-        .map(|s| s.time.format("%H:%M").to_string())
-        .collect();
-    if !cut.is_empty() {
-        eprintln!(
-            "warning: {date}the shadow reaches the edge of the {:.0} m plan at {} (its area is cut; use a larger --extent): {}",
-            profile.extent_m,
-            cut.len(),
-            cut.join(" ")
-        );
-    }
-    let n = profile.steps.len().max(1) as f64;
-    println!(
-        "{}: {date}{} steps, plan {:.1} m at {} px ({:.3} m/px), footprint {:.1} m²; {:.2} s ({:.1} ms/step: silhouettes {:.1} ms, shadow volumes {:.1} ms) → {}",
-        a.model.display(),
-        profile.steps.len(),
-        profile.extent_m,
-        profile.resolution,
-        profile.extent_m / profile.resolution as f64,
-        profile.footprint_area_m2(),
-        seconds,
-        1000.0 * seconds / n,
-        1000.0 * profile.timing.silhouette_s / n,
-        1000.0 * profile.timing.render_s / n,
-        a.out.display()
-    );
 }

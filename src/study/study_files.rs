@@ -1,29 +1,28 @@
-//! A study's files beside the per-date ones: the sun-path diagram and the dates' table.
+//! A study's files beside each date's plans: the sun-path diagrams (the site's and one per
+//! window point) and, for several dates, the dates' table.
 
 use std::path::Path;
 
-use anyhow::anyhow;
 use chrono::NaiveDate;
 
-use super::super::CliError;
+use super::annotate::PlanLabels;
+use super::mask::ObstructionMask;
+use super::output::StudySummary;
+use super::profile::{Profile, ProfileSpec};
+use super::sunpath::{Projection, SunPathDiagram};
 use crate::io::write_atomic;
-use crate::study::annotate::PlanLabels;
-use crate::study::mask::ObstructionMask;
-use crate::study::output::StudySummary;
-use crate::study::profile::{Profile, ProfileSpec};
-use crate::study::sunpath::{Projection, SunPathDiagram};
 
 /// The sun-path diagram of the study's site with this date's steps marked, stereographic
 /// (`sunpath.svg`) and cylindrical (`sunpath-cylindrical.svg`), and one per window point with the sky the model hides from it
 /// (`sunpath-NAME.svg`, the name's other characters than letters, digits, `-` and `_` as
 /// `_`; a name taken already gets `-2`, `-3` …).
-pub(super) fn write_sun_path(
+pub fn write_sun_path(
     spec: &ProfileSpec,
     profile: &Profile,
     dir: &Path,
     labels: &PlanLabels,
     masks: &[ObstructionMask],
-) -> Result<(), CliError> {
+) -> anyhow::Result<()> {
     let suns: Vec<_> = profile
         .steps
         .iter()
@@ -40,8 +39,8 @@ pub(super) fn write_sun_path(
         projection: Projection::Cylindrical,
     };
     let write = |diagram: &SunPathDiagram, name: &str| {
-        let svg = diagram.svg().map_err(|e| CliError::failure(anyhow!(e)))?;
-        write_atomic(&dir.join(name), svg.as_bytes()).map_err(CliError::failure)
+        let svg = diagram.svg().map_err(anyhow::Error::msg)?;
+        write_atomic(&dir.join(name), svg.as_bytes())
     };
     write(&diagram, "sunpath-cylindrical.svg")?;
     diagram.projection = Projection::Stereographic;
@@ -89,7 +88,7 @@ fn file_safe(name: &str) -> String {
 }
 
 /// `dates.csv` and `dates.json` beside the per-date folders: one row per date.
-pub(super) fn write_dates_table(
+pub fn write_dates_table(
     dir: &Path,
     summaries: &[(NaiveDate, StudySummary)],
 ) -> anyhow::Result<()> {
