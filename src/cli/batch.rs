@@ -21,10 +21,14 @@ use std::sync::atomic::Ordering;
 use std::time::Instant;
 
 use anyhow::anyhow;
-use clap::{Args, Parser};
+use clap::Args;
 use serde::{Deserialize, Serialize};
 
-use super::{Cli, CliError, Command};
+use super::error::CliError;
+use super::interrupt::interrupt_flag;
+
+/// Runs one job's command line (without the program's name).
+pub type RunLine<'a> = &'a dyn Fn(&[String]) -> Result<(), CliError>;
 
 /// Options of `batch`.
 #[derive(Debug, Args)]
@@ -183,7 +187,7 @@ fn check_outputs(args: &BatchArgs, jobs: &[Job]) -> Result<(), CliError> {
 }
 
 /// Runs `batch`.
-pub fn run(args: BatchArgs) -> Result<(), CliError> {
+pub fn run(args: BatchArgs, run_line: RunLine<'_>) -> Result<(), CliError> {
     let shard = match &args.shard {
         Some(s) => parse_shard(s)?,
         None => [1, 1],
@@ -204,7 +208,7 @@ pub fn run(args: BatchArgs) -> Result<(), CliError> {
     let cwd = std::env::current_dir().map_err(CliError::failure)?;
     std::env::set_current_dir(&base)
         .map_err(|e| CliError::input(anyhow!("{}: {e}", base.display())))?;
-    let result = run_jobs(&args, &jobs, shard);
+    let result = run_jobs(&args, &jobs, shard, run_line);
     std::env::set_current_dir(&cwd).map_err(CliError::failure)?;
     let summary = result?;
     let json = serde_json::to_string_pretty(&summary).map_err(CliError::failure)?;
@@ -229,7 +233,12 @@ pub fn run(args: BatchArgs) -> Result<(), CliError> {
     Ok(())
 }
 
-fn run_jobs(args: &BatchArgs, jobs: &[Job], shard: [usize; 2]) -> Result<Summary, CliError> {
+fn run_jobs(
+    args: &BatchArgs,
+    jobs: &[Job],
+    shard: [usize; 2],
+    run_line: RunLine<'_>,
+) -> Result<Summary, CliError> {
     let start = Instant::now();
     let mine: Vec<(usize, &Job)> = jobs
         .iter()
@@ -240,7 +249,7 @@ fn run_jobs(args: &BatchArgs, jobs: &[Job], shard: [usize; 2]) -> Result<Summary
     if let Ok(style) = indicatif::ProgressStyle::with_template("{bar:30} {pos}/{len} jobs {msg}") {
         bar.set_style(style);
     }
-    let interrupt = super::interrupt_flag();
+    let interrupt = interrupt_flag();
     let mut results = Vec::new();
     let mut interrupted = false;
     for (index, job) in mine {
@@ -251,7 +260,7 @@ fn run_jobs(args: &BatchArgs, jobs: &[Job], shard: [usize; 2]) -> Result<Summary
         let name = job.name.clone().unwrap_or(format!("job-{}", index + 1));
         bar.set_message(name.clone());
         let t = Instant::now();
-        let outcome = run_job(job);
+        let outcome = run_job(job, run_line);
         let failed = outcome.is_err();
         results.push(JobResult {
             index,
@@ -281,12 +290,7 @@ fn run_jobs(args: &BatchArgs, jobs: &[Job], shard: [usize; 2]) -> Result<Summary
 }
 
 /// Runs one job with its standard input and output redirected.
-fn run_job(job: &Job) -> Result<(), CliError> {
-    let argv = std::iter::once("goniolight".to_string()).chain(job.args.iter().cloned());
-    let cli = Cli::try_parse_from(argv).map_err(|e| CliError::input(anyhow!("{}", e.render())))?;
-    if matches!(cli.command, Command::Batch(_)) {
-        return Err(CliError::input(anyhow!("a batch cannot run a batch")));
-    }
+fn run_job(job: &Job, run_line: RunLine<'_>) -> Result<(), CliError> {
     let _stdin = match &job.stdin {
         Some(p) => {
             let file = std::fs::File::open(p)
@@ -298,7 +302,7 @@ fn run_job(job: &Job) -> Result<(), CliError> {
     match &job.stdout {
         None => {
             let _out = redirect::Redirect::to_stderr().map_err(CliError::failure)?;
-            super::run(cli)
+            run_line(&job.args)
         }
         Some(p) => {
             let tmp = crate::io::outputs::temporary_beside(p, "tmp")
@@ -311,7 +315,7 @@ fn run_job(job: &Job) -> Result<(), CliError> {
                 .map_err(|e| CliError::failure(anyhow!("stdout {}: {e}", p.display())))?;
             let result = {
                 let _out = redirect::Redirect::new(1, &file).map_err(CliError::failure)?;
-                super::run(cli)
+                run_line(&job.args)
             };
             let done = result.and_then(|()| {
                 file.sync_all()

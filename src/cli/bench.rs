@@ -4,7 +4,8 @@
 use clap::Subcommand;
 use serde_json::json;
 
-use super::{silhouette, CliError};
+use super::error::CliError;
+use super::silhouette;
 use crate::bench::render as render_bench;
 use crate::gpu::Gpu;
 
@@ -159,7 +160,7 @@ pub enum BenchCommand {
         #[arg(long, default_value_t = 5000)]
         max_shots: usize,
         /// Give up after this many seconds per solution.
-        #[arg(long, value_parser = super::seconds_arg)]
+        #[arg(long, value_parser = super::args::seconds_arg)]
         time_limit: Option<f64>,
         /// Visibility maps to compare (comma-separated).
         #[arg(

@@ -3,7 +3,7 @@
 use clap::Args;
 use serde_json::json;
 
-use super::CliError;
+use super::error::CliError;
 use crate::bench::adaptive::{self, Meshing};
 use crate::gpu::Gpu;
 use crate::radiosity::solve::StopAt;
@@ -32,7 +32,7 @@ pub struct AdaptiveBenchArgs {
     #[arg(long, default_value_t = 0.95)]
     converge: f64,
     /// Give up after this many seconds per solution.
-    #[arg(long, default_value_t = 120.0, value_parser = super::seconds_arg)]
+    #[arg(long, default_value_t = 120.0, value_parser = super::args::seconds_arg)]
     time_limit: f64,
 }
 

@@ -10,9 +10,9 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use anyhow::anyhow;
 use clap::Args;
 
+use super::error::CliError;
 use super::radiosity::SolverArgs;
 use super::render::{load_scene, scene_at};
-use super::CliError;
 use crate::calc::compute::{csv_name, CalcError, CalcOptions, Calculation, Request};
 use crate::calc::report::{report_html, ReportGrid, ReportObserver};
 use crate::gpu::Gpu;
@@ -133,7 +133,7 @@ fn check_outputs(args: &CalcArgs, scene: &Scene) -> Result<(), CliError> {
         outputs.named_output(&format!("--report {}", report.display()), report);
         // The report may go into the --out folder, which the run makes.
         if report.parent() != Some(args.out.as_path()) {
-            super::check_folder_of(report, "--report")?;
+            super::args::check_folder_of(report, "--report")?;
         }
     }
     outputs.check()?;
@@ -147,7 +147,7 @@ pub fn run(args: CalcArgs) -> Result<(), CliError> {
     let options = args.options()?;
     let request = Request::new(&scene, &options).map_err(calc_error)?;
     check_outputs(&args, &scene)?;
-    let cancel = super::interrupt_flag();
+    let cancel = super::interrupt::interrupt_flag();
     let gpu = if args.cpu { None } else { Some(Gpu::shared()?) };
     let direct = request.direct(gpu.as_ref(), &cancel).map_err(calc_error)?;
     let interreflected = match request.indirect {

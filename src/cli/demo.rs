@@ -12,9 +12,9 @@ use std::path::PathBuf;
 
 use clap::Args;
 
+use super::error::CliError;
 use super::ldt::{print_check, write_plot};
 use super::render::{render_to_files, ImageOptions};
-use super::CliError;
 use crate::gpu::Gpu;
 use crate::io::write_atomic;
 use crate::photometry::{check, Luminaire};

@@ -8,8 +8,8 @@ use std::time::Instant;
 
 use clap::Args;
 
+use super::error::CliError;
 use super::radiosity::solve;
-use super::CliError;
 use crate::radiosity::session::Options;
 use crate::render::lightmap::LightMap;
 use crate::render::RenderSettings;
@@ -25,7 +25,7 @@ pub struct IndirectArgs {
     #[arg(long, value_enum)]
     pub indirect: Option<DisplayIndirect>,
     /// With --indirect radiosity: seconds of shooting.
-    #[arg(long, value_name = "S", default_value_t = 10.0, value_parser = super::seconds_arg)]
+    #[arg(long, value_name = "S", default_value_t = 10.0, value_parser = super::args::seconds_arg)]
     pub indirect_time: f64,
 }
 

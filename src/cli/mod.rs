@@ -1,6 +1,7 @@
 //! The command-line interface: clap definitions and dispatch. Commands call the library
 //! and hold no logic of their own beyond reading input and printing results.
 
+mod args;
 mod batch;
 mod bench;
 mod bench_adaptive;
@@ -8,6 +9,7 @@ mod calc;
 mod demo;
 mod error;
 mod indirect;
+mod interrupt;
 mod ldt;
 mod profile;
 mod radiosity;
@@ -22,6 +24,7 @@ use clap::{Parser, Subcommand};
 
 pub use batch::count_jobs;
 pub use error::CliError;
+pub use interrupt::interrupt_flag;
 
 /// goniolight — real luminaires in real-time rendering, radiosity and shadow studies.
 #[derive(Debug, Parser)]
@@ -73,68 +76,10 @@ pub enum Command {
 
 pub use crate::io::data_root;
 
-/// clap's parser of a number of seconds (time limits): positive, finite and at most
-/// [`crate::io::limits::MAX_SECONDS`], so that no later conversion to a duration fails.
-pub(crate) fn seconds_arg(s: &str) -> Result<f64, String> {
-    let v: f64 = s.trim().parse().map_err(|e| format!("{s:?}: {e}"))?;
-    crate::io::limits::duration(v)?;
-    Ok(v)
-}
-
-/// Whether the running command polls [`interrupt_flag`] (it asked for it): then a first
-/// signal lets it finish its step; otherwise a signal ends the process at once.
-static POLLED: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
-
-/// The process-wide flag set by SIGINT (Ctrl-C), SIGTERM or SIGHUP. A command that calls
-/// this polls it: the first signal sets it, and the command finishes its current step and
-/// writes a complete set or nothing (as each documents), a batch starts no further job. A
-/// second signal, or the first in a command that never asked for the flag, removes the
-/// temporary files and staging folders of the writes in progress and ends the process at
-/// once (exit 130).
-pub fn interrupt_flag() -> std::sync::Arc<std::sync::atomic::AtomicBool> {
-    POLLED.store(true, std::sync::atomic::Ordering::SeqCst);
-    signal_flag()
-}
-
-/// The flag, with the handler installed on first use.
-fn signal_flag() -> std::sync::Arc<std::sync::atomic::AtomicBool> {
-    use std::sync::atomic::{AtomicBool, Ordering};
-    use std::sync::{Arc, OnceLock};
-    static FLAG: OnceLock<Arc<AtomicBool>> = OnceLock::new();
-    FLAG.get_or_init(|| {
-        let flag = Arc::new(AtomicBool::new(false));
-        let set = flag.clone();
-        let _ = ctrlc::set_handler(move || {
-            if !POLLED.load(Ordering::SeqCst) || set.swap(true, Ordering::SeqCst) {
-                // Nothing half-written stays: the temporary files and staging folders go.
-                crate::io::outputs::remove_unfinished();
-                std::process::exit(130);
-            }
-            eprintln!("\ninterrupted: finishing the current step (Ctrl-C again to quit)");
-        });
-        flag
-    })
-    .clone()
-}
-
-/// An error naming `flag` when the folder `path` goes into does not exist (checked before
-/// the work, so that the run does not fail at its end).
-pub(crate) fn check_folder_of(path: &std::path::Path, flag: &str) -> Result<(), CliError> {
-    let folder = path.parent().filter(|p| !p.as_os_str().is_empty());
-    if folder.is_some_and(|f| !f.is_dir()) {
-        return Err(CliError::input(anyhow::anyhow!(
-            "{flag} {}: the folder {} does not exist",
-            path.display(),
-            folder.expect("checked").display()
-        )));
-    }
-    Ok(())
-}
-
 /// Runs a parsed command line.
 pub fn run(cli: Cli) -> Result<(), CliError> {
     // Every command ends cleanly on a signal; those that poll the flag ask for it.
-    signal_flag();
+    interrupt::signal_flag();
     match cli.command {
         Command::Ldt(cmd) => ldt::run(cmd),
         Command::Demo(args) => demo::run(args),
@@ -145,9 +90,24 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         Command::Silhouette(args) => silhouette::run(args),
         Command::Profile(args) => profile::run(args),
         Command::Radiosity(args) => radiosity::run(args),
-        Command::Batch(args) => batch::run(args),
+        Command::Batch(args) => batch::run(args, &run_job_line),
         Command::Bench(cmd) => bench::run(cmd),
         #[cfg(feature = "viewer")]
         Command::View(args) => view::run(args),
     }
+}
+
+/// Parses and runs one command line of a batch job (`argv` without the program's name);
+/// a batch inside a batch is refused.
+fn run_job_line(argv: &[String]) -> Result<(), CliError> {
+    use clap::Parser as _;
+    let argv = std::iter::once("goniolight").chain(argv.iter().map(String::as_str));
+    let cli = Cli::try_parse_from(argv)
+        .map_err(|e| CliError::input(anyhow::anyhow!("{}", e.render())))?;
+    if matches!(cli.command, Command::Batch(_)) {
+        return Err(CliError::input(anyhow::anyhow!(
+            "a batch cannot run a batch"
+        )));
+    }
+    run(cli)
 }

@@ -9,8 +9,8 @@ use std::time::{Duration, Instant};
 use anyhow::anyhow;
 use clap::Args;
 
+use super::error::CliError;
 use super::render::{render_to_files, ImageOptions};
-use super::CliError;
 use crate::gpu::Gpu;
 use crate::io::write_atomic;
 use crate::lighting::read_points;
@@ -39,7 +39,7 @@ pub struct SolverArgs {
     #[arg(long)]
     pub max_shots: Option<usize>,
     /// Stop after this many seconds of shooting.
-    #[arg(long, value_parser = super::seconds_arg)]
+    #[arg(long, value_parser = super::args::seconds_arg)]
     pub time_limit: Option<f64>,
     /// Elements (light-map texels) per metre.
     #[arg(long, default_value_t = 10.0)]
@@ -443,7 +443,7 @@ pub fn solve(
     let load_s = started.elapsed().as_secs_f64();
     let aspect = settings.width as f64 / settings.height.max(1) as f64;
     let gpu = Gpu::shared()?;
-    let cancel = super::interrupt_flag();
+    let cancel = super::interrupt::interrupt_flag();
     let mut progress = Progress {
         label,
         started,
@@ -485,7 +485,7 @@ pub fn interreflected_lux(
         "gather [{bar:40}] {pos}/{len} points ({elapsed_precise}, Ctrl-C stops)",
     )?);
     // A Ctrl-C that stopped the shooting has been answered: the next one stops this.
-    let cancel = super::interrupt_flag();
+    let cancel = super::interrupt::interrupt_flag();
     cancel.store(false, Ordering::SeqCst);
     let lux = solution.interreflected_lux(points, &cancel, &|done| bar.set_position(done as u64));
     bar.finish_and_clear();
@@ -498,7 +498,7 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
     let options = args.solver.check()?;
     let started = Instant::now();
     let loading = spinner("loading the scene")?;
-    let cancel = super::interrupt_flag();
+    let cancel = super::interrupt::interrupt_flag();
     cancel.store(false, Ordering::SeqCst);
     eprintln!(
         "{}: preparing (Ctrl-C stops; nothing is written)",

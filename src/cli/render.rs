@@ -8,7 +8,7 @@ use std::time::Instant;
 use anyhow::anyhow;
 use clap::Args;
 
-use super::CliError;
+use super::error::CliError;
 use crate::gpu::Gpu;
 use crate::lighting::read_points;
 use crate::photometry::Interp;

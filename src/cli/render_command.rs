@@ -6,9 +6,9 @@ use std::path::{Path, PathBuf};
 
 use anyhow::anyhow;
 
+use super::error::CliError;
 use super::indirect::{light_map, IndirectArgs};
 use super::render::{load_scene, render_to_files, scene_at, ImageOptions};
-use super::CliError;
 use crate::gpu::Gpu;
 use crate::render::Renderer;
 use crate::scene::DisplayIndirect;

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use clap::Args;
 use serde_json::json;
 
-use super::CliError;
+use super::error::CliError;
 use crate::bench::silhouette as bench;
 use crate::geometry::obj::read_obj;
 use crate::shadow::{Hextree, Light, SilhouetteMesh};

@@ -2,7 +2,7 @@
 
 use clap::Args;
 
-use super::CliError;
+use super::error::CliError;
 use crate::sun::{self, parse_time, Site, SunOptions, Zone};
 
 /// Options of `sun`.

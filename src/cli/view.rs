@@ -6,7 +6,7 @@ use anyhow::anyhow;
 use chrono::Timelike;
 use clap::Args;
 
-use super::CliError;
+use super::error::CliError;
 use crate::viewer::{start, window::WindowOptions, StartOptions};
 
 /// Options of `view`.

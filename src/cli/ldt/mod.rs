@@ -16,7 +16,7 @@ mod ugr;
 pub(super) use catalogue::print_check;
 use inputs::{Inputs, OutputNames};
 
-use super::CliError;
+use super::error::CliError;
 use crate::io::write_atomic;
 use crate::photometry::check::{self, LeaveOut};
 use crate::photometry::ies::write_ies;

@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use anyhow::anyhow;
 
-use super::super::CliError;
+use super::super::error::CliError;
 use crate::gpu::Gpu;
 use crate::scene::UpAxis;
 use crate::study::model::{load_components, recentre};

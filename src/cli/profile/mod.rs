@@ -13,7 +13,7 @@ mod bench;
 pub use bench::run_bench;
 
 use super::error::flags_in;
-use super::CliError;
+use super::error::CliError;
 use crate::gpu::Gpu;
 use crate::io::limits::{bytes, MAX_OUTPUT_BYTES};
 use crate::io::outputs::{OutputCheck, Staging};
@@ -360,7 +360,7 @@ pub fn run(a: ProfileArgs) -> Result<(), CliError> {
     }
     if let Some(gif) = &a.gif {
         outputs.named_output(&format!("--gif {}", gif.display()), gif);
-        super::check_folder_of(gif, "--gif")?;
+        super::args::check_folder_of(gif, "--gif")?;
     }
     outputs.check()?;
     if a.out.is_file() {
@@ -408,7 +408,7 @@ pub fn run(a: ProfileArgs) -> Result<(), CliError> {
     );
     bar.set_message("shadow profile");
     // Ctrl-C stops between steps; nothing is written for an unfinished study.
-    let cancel = super::interrupt_flag();
+    let cancel = super::interrupt::interrupt_flag();
     eprintln!(
         "{name}: {steps} steps on {} date(s) (Ctrl-C stops and writes nothing)",
         study.options().dates.len()
