@@ -650,3 +650,42 @@ fn a_planted_print_is_found() {
     let planted = "let a = 1; // eprintln!(\"no\")\neprintln!(\"warning: {a}\");\n";
     assert_eq!(prints_in(planted), vec![2]);
 }
+
+/// Lines of `text` that lay out a Markdown table by hand (a `|---` rule or a
+/// `println!("| …`): the library's `bench::report::Table` lays them out.
+fn hand_made_tables_in(text: &str) -> Vec<usize> {
+    text.lines()
+        .enumerate()
+        .filter(|(_, l)| {
+            let code = l.split("//").next().unwrap_or("");
+            code.contains("\"|---") || code.contains("println!(\"|")
+        })
+        .map(|(k, _)| k + 1)
+        .collect()
+}
+
+#[test]
+fn the_commands_print_no_tables_by_hand() {
+    let root = common::root();
+    let offences: Vec<String> = rust_files(&root.join("src/cli"))
+        .iter()
+        .flat_map(|f| {
+            let text = std::fs::read_to_string(f).expect("read source");
+            let rel = f.strip_prefix(&root).unwrap().display().to_string();
+            hand_made_tables_in(&text)
+                .into_iter()
+                .map(move |line| format!("{rel}:{line}"))
+        })
+        .collect();
+    assert!(
+        offences.is_empty(),
+        "cli/ lays out tables (build a bench::report::BenchReport in the library):\n{}",
+        offences.join("\n")
+    );
+}
+
+#[test]
+fn a_planted_hand_made_table_is_found() {
+    let planted = "let t = 1;\nprintln!(\"| a | b |\");\nlet r = \"|---|---|\";\n// println!(\"| no\")\n";
+    assert_eq!(hand_made_tables_in(planted), vec![2, 3]);
+}

@@ -132,3 +132,57 @@ pub fn run(
     }
     Ok(rows)
 }
+
+/// The report of `bench adaptive` on the scene at `scene` solved to `converge`.
+pub fn report(
+    rows: &[AdaptiveBenchRow],
+    scene: &std::path::Path,
+    converge: f64,
+) -> super::report::BenchReport {
+    use super::report::{BenchReport, Table};
+    let mut r = BenchReport::new(serde_json::json!({ "scene": scene, "rows": rows }));
+    r.line(format!(
+        "Uniform vs adaptive elements (Wallner Table 2.1), {}, to {:.0} %",
+        scene.display(),
+        100.0 * converge
+    ));
+    let mut t = Table::new(&[
+        "meshing",
+        "normal maps",
+        "elements /m",
+        "n_t",
+        "n_e",
+        "texels",
+        "elements s (subdivision incl.)",
+        "subdivision CPU s",
+        "normals s",
+        "direct s",
+        "solve s",
+        "shots",
+        "reached",
+    ]);
+    for row in rows {
+        let levels = match row.levels {
+            0 => String::new(),
+            1 => " (1 level)".into(),
+            n => format!(" ({n} levels)"),
+        };
+        t.row(vec![
+            format!("{}{levels}", row.meshing),
+            if row.normal_maps { "yes" } else { "no" }.into(),
+            row.texel_density.to_string(),
+            row.triangles.to_string(),
+            row.elements.to_string(),
+            row.texels.to_string(),
+            format!("{:.2}", row.elements_seconds),
+            format!("{:.2}", row.subdivision_seconds),
+            format!("{:.2}", row.normals_seconds),
+            format!("{:.2}", row.direct_seconds),
+            format!("{:.2}", row.solve_seconds),
+            row.shots.to_string(),
+            format!("{:.1} %", 100.0 * row.convergence),
+        ]);
+    }
+    r.table(t);
+    r
+}

@@ -76,3 +76,32 @@ pub fn run(shared: &Path, mut progress: impl FnMut(&str)) -> anyhow::Result<Vec<
     }
     Ok(rows)
 }
+
+/// The report of `bench clusters`: seconds to load and to cluster each model.
+pub fn report(rows: &[ClusterBenchRow]) -> super::report::BenchReport {
+    use super::report::{BenchReport, Table};
+    let mut r = BenchReport::new(serde_json::json!({ "rows": rows }));
+    r.line("Face-cluster hierarchy (Edström §4.2), one thread");
+    let mut t = Table::new(&[
+        "model",
+        "triangles",
+        "load s",
+        "cluster s",
+        "clusters",
+        "roots",
+        "depth",
+    ]);
+    for row in rows {
+        t.row(vec![
+            row.model.to_string(),
+            row.triangles.to_string(),
+            format!("{:.2}", row.load_s),
+            format!("{:.2}", row.cluster_s),
+            row.clusters.to_string(),
+            row.roots.to_string(),
+            row.depth.to_string(),
+        ]);
+    }
+    r.table(t);
+    r
+}

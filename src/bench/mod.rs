@@ -1,13 +1,17 @@
 //! Benchmarks behind `goniolight bench …`: each measures goniolight against a peer or a goal
-//! side by side in one run and returns rows that the command prints as a table or JSON.
+//! side by side in one run and returns rows, and each builds its [`report::BenchReport`] (Markdown
+//! tables or JSON) that the command prints.
 
 pub mod adaptive;
 pub mod clusters;
 pub mod profile;
 pub mod radiosity;
+pub mod radiosity_report;
 pub mod radiosity_view;
+pub mod radiosity_view_report;
 pub mod raycast;
 pub mod render;
+pub mod report;
 pub mod silhouette;
 
 /// The median of `v` (the mean of the two middle values for an even count); NaN when empty.

@@ -119,3 +119,50 @@ fn run_model(
     }
     Ok(rows)
 }
+
+/// The report of `bench profile`: each model's rows, then per model the hextree's and the
+/// ground-ended volumes' speed-ups.
+pub fn report(rows: &[ProfileBenchRow], resolution: u32) -> super::report::BenchReport {
+    use super::report::{BenchReport, Table};
+    let mut r = BenchReport::new(serde_json::json!({ "rows": rows }));
+    r.line(format!(
+        "shadow profile: {} steps, {resolution}² plan",
+        rows.first().map_or(0, |r| r.steps)
+    ));
+    let mut t = Table::new(&[
+        "model",
+        "triangles",
+        "silhouettes",
+        "volumes end",
+        "total s",
+        "ms/step",
+        "silhouette ms/step",
+        "volumes + read-back ms/step",
+    ])
+    .numbers_from(4);
+    for row in rows {
+        t.row(vec![
+            row.model.clone(),
+            row.triangles.to_string(),
+            row.method.to_string(),
+            row.volume_ends.to_string(),
+            format!("{:.2}", row.total_s),
+            format!("{:.1}", row.per_step_ms),
+            format!("{:.2}", row.silhouette_ms_per_step),
+            format!("{:.1}", row.render_ms_per_step),
+        ]);
+    }
+    r.table(t);
+    for model in rows.chunks(3) {
+        if let [brute, hex, one_length] = model {
+            r.line(format!(
+                "{}: hextree / brute force: total {:.2}×, silhouettes {:.2}× faster; volumes to the ground / of one length: volumes {:.2}× faster",
+                brute.model,
+                brute.total_s / hex.total_s,
+                brute.silhouette_ms_per_step / hex.silhouette_ms_per_step.max(1e-12),
+                one_length.render_ms_per_step / hex.render_ms_per_step.max(1e-12)
+            ));
+        }
+    }
+    r
+}

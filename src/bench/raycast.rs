@@ -139,3 +139,39 @@ pub fn run(
     }
     Ok(rows)
 }
+
+/// The report of `bench raycast`: rays per second by brute force and through the BVH.
+pub fn report(rows: &[RaycastBenchRow]) -> super::report::BenchReport {
+    use super::report::{BenchReport, Table};
+    let mut r = BenchReport::new(serde_json::json!({ "rows": rows }));
+    r.line("CPU ray casts, one thread: rays/s by brute force and through the BVH");
+    let mut t = Table::new(&[
+        "triangles",
+        "BVH build s",
+        "shadow brute",
+        "shadow BVH",
+        "×",
+        "nearest hit brute",
+        "nearest hit BVH",
+        "×",
+        "blocked",
+    ]);
+    for row in rows {
+        t.row(vec![
+            row.triangles.to_string(),
+            format!("{:.3}", row.build_s),
+            format!("{:.0}", row.brute_shadow_rays_per_s),
+            format!("{:.0}", row.bvh_shadow_rays_per_s),
+            format!(
+                "{:.0}×",
+                row.bvh_shadow_rays_per_s / row.brute_shadow_rays_per_s
+            ),
+            format!("{:.0}", row.brute_hit_rays_per_s),
+            format!("{:.0}", row.bvh_hit_rays_per_s),
+            format!("{:.0}×", row.bvh_hit_rays_per_s / row.brute_hit_rays_per_s),
+            format!("{:.0} %", 100.0 * row.blocked_fraction),
+        ]);
+    }
+    r.table(t);
+    r
+}

@@ -225,3 +225,53 @@ pub fn run(
     }
     Ok(rows)
 }
+
+/// The report of `bench render`: frame times per light model and their ratios to point
+/// lights; `gpu` names the adapter.
+pub fn report(rows: &[RenderBenchRow], plan: BenchPlan, gpu: &str) -> super::report::BenchReport {
+    use super::report::{BenchReport, Table};
+    let BenchPlan {
+        width,
+        height,
+        frames,
+        rounds,
+    } = plan;
+    let mut r = BenchReport::new(serde_json::json!({
+        "rows": rows, "gpu": gpu, "width": width, "height": height, "frames": frames,
+        "rounds": rounds
+    }));
+    r.line(format!(
+        "{gpu}, {width}×{height}, median of {rounds} rounds of {frames} frames"
+    ));
+    let mut t = Table::new(&[
+        "triangles",
+        "lights",
+        "point ms",
+        "bilinear ms",
+        "catmull-rom ms",
+        "cr-table ms",
+        "cr-cube ms",
+        "bil/pt",
+        "cr/pt",
+        "table/pt",
+        "cube/pt",
+    ])
+    .numbers_from(0);
+    for row in rows {
+        t.row(vec![
+            row.triangles.to_string(),
+            row.lights.to_string(),
+            format!("{:.2}", row.point_ms),
+            format!("{:.2}", row.bilinear_ms),
+            format!("{:.2}", row.catmull_rom_ms),
+            format!("{:.2}", row.catmull_rom_table_ms),
+            format!("{:.2}", row.catmull_rom_cube_ms),
+            format!("{:.3}×", row.bilinear_ratio()),
+            format!("{:.3}×", row.catmull_rom_ratio()),
+            format!("{:.3}×", row.table_ratio()),
+            format!("{:.3}×", row.cube_ratio()),
+        ]);
+    }
+    r.table(t);
+    r
+}

@@ -128,3 +128,34 @@ pub fn run(
     }
     Ok(rows)
 }
+
+/// The report of `bench silhouette`: per mesh, brute force against the hextree.
+pub fn report(rows: &[SilhouetteBenchRow]) -> super::report::BenchReport {
+    use super::report::{BenchReport, Table};
+    let mut r = BenchReport::new(serde_json::json!({ "meshes": rows }));
+    let mut t = Table::new(&[
+        "mesh",
+        "triangles",
+        "brute ms",
+        "hextree ms",
+        "speedup",
+        "sil. edges",
+        "build s",
+        "scanned",
+    ])
+    .numbers_from(1);
+    for row in rows {
+        t.row(vec![
+            row.mesh.to_string(),
+            row.triangles.to_string(),
+            format!("{:.3}", row.brute_ms),
+            format!("{:.3}", row.hextree_ms),
+            format!("{:.2}×", row.speedup),
+            format!("{:.0}", row.silhouette_edges),
+            format!("{:.2}", row.hextree_build_s),
+            format!("{:.0} %", 100.0 * row.scanned_fraction),
+        ]);
+    }
+    r.table(t);
+    r
+}

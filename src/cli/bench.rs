@@ -2,7 +2,6 @@
 //! one run.
 
 use clap::Subcommand;
-use serde_json::json;
 
 use super::error::CliError;
 use super::silhouette;
@@ -343,20 +342,6 @@ pub fn run(cmd: BenchCommand) -> Result<(), CliError> {
     }
 }
 
-/// A radiosity benchmark row's settings, for the lines under the table.
-fn row_label(r: &crate::bench::radiosity::RadiosityBenchRow) -> String {
-    format!(
-        "{}{}, {} raster / {} / {} / link error {} / cell power {}",
-        r.visibility,
-        if r.chunk_culling { "" } else { ", whole mesh" },
-        r.raster,
-        r.ambient,
-        r.hierarchy,
-        r.link_error,
-        r.cell_power
-    )
-}
-
 fn run_raycast(as_json: bool, rays: usize, brute_rays: usize, scale: f64) -> Result<(), CliError> {
     use crate::bench::raycast as rbench;
     if rays == 0 || brute_rays == 0 || brute_rays > rays || !(scale > 0.0 && scale <= 1.0) {
@@ -369,27 +354,7 @@ fn run_raycast(as_json: bool, rays: usize, brute_rays: usize, scale: f64) -> Res
         eprintln!("benchmarking {n} triangles …")
     })
     .map_err(|e| CliError::failure(anyhow::anyhow!(e)))?;
-    if as_json {
-        println!("{}", json!({ "rows": rows }));
-        return Ok(());
-    }
-    println!("CPU ray casts, one thread: rays/s by brute force and through the BVH");
-    println!("| triangles | BVH build s | shadow brute | shadow BVH | × | nearest hit brute | nearest hit BVH | × | blocked |");
-    println!("|---|---|---|---|---|---|---|---|---|");
-    for r in rows {
-        println!(
-            "| {} | {:.3} | {:.0} | {:.0} | {:.0}× | {:.0} | {:.0} | {:.0}× | {:.0} % |",
-            r.triangles,
-            r.build_s,
-            r.brute_shadow_rays_per_s,
-            r.bvh_shadow_rays_per_s,
-            r.bvh_shadow_rays_per_s / r.brute_shadow_rays_per_s,
-            r.brute_hit_rays_per_s,
-            r.bvh_hit_rays_per_s,
-            r.bvh_hit_rays_per_s / r.brute_hit_rays_per_s,
-            100.0 * r.blocked_fraction
-        );
-    }
+    println!("{}", rbench::report(&rows).text(as_json));
     Ok(())
 }
 
@@ -399,19 +364,7 @@ fn run_clusters(as_json: bool, shared: Option<std::path::PathBuf>) -> Result<(),
         .unwrap_or_else(|| crate::io::data_root().join("../shared"));
     let rows = crate::bench::clusters::run(&shared, |m| eprintln!("clustering the {m} …"))
         .map_err(CliError::input)?;
-    if as_json {
-        println!("{}", json!({ "rows": rows }));
-        return Ok(());
-    }
-    println!("Face-cluster hierarchy (Edström §4.2), one thread");
-    println!("| model | triangles | load s | cluster s | clusters | roots | depth |");
-    println!("|---|---|---|---|---|---|---|");
-    for r in rows {
-        println!(
-            "| {} | {} | {:.2} | {:.2} | {} | {} | {} |",
-            r.model, r.triangles, r.load_s, r.cluster_s, r.clusters, r.roots, r.depth
-        );
-    }
+    println!("{}", crate::bench::clusters::report(&rows).text(as_json));
     Ok(())
 }
 
@@ -451,95 +404,8 @@ fn run_radiosity(
     })
     .map_err(CliError::failure)?;
     bar.finish_and_clear();
-    if as_json {
-        println!(
-            "{}",
-            json!({ "rows": rows, "gpu": gpu.describe(), "scene": path, "level": level })
-        );
-        return Ok(());
-    }
-    let first = &rows[0];
-    println!(
-        "{}: {}, {} triangles, {:.1} texels/m, level {level}",
-        gpu.describe(),
-        path.display(),
-        first.triangles,
-        first.texel_density,
-    );
-    println!("| visibility, raster | ambient | hierarchy | link error | cell power | elements | patches | shooters (built in) | maps drawn | triangles per map | shots to 90 % | s to 90 % | shots to 99 % | s to 99 % | ms/shot | time to 90 % / first row |");
-    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
-    let opt = |v: Option<f64>| v.map_or("—".to_string(), |v| format!("{v:.2}"));
-    let shots = |v: Option<usize>| v.map_or("—".to_string(), |v| v.to_string());
-    for r in &rows {
-        let ratio = match (r.seconds_90, first.seconds_90) {
-            (Some(a), Some(b)) if b > 0.0 => format!("{:.3}", a / b),
-            // The first row gave up first: an upper bound.
-            (Some(a), None) if first.seconds > 0.0 => format!("< {:.3}", a / first.seconds),
-            _ => "—".into(),
-        };
-        let (link, cell) = if r.hierarchy == "none" {
-            ("—".to_string(), "—".to_string())
-        } else {
-            (r.link_error.to_string(), r.cell_power.to_string())
-        };
-        println!(
-            "| {}{}, {} | {} | {} | {link} | {cell} | {} | {} | {} ({:.2} s) | {} | {:.0} | {} | {} | {} | {} | {:.1} | {ratio} |",
-            r.visibility,
-            if r.chunk_culling { "" } else { ", whole mesh" },
-            r.raster,
-            r.ambient,
-            r.hierarchy,
-            r.elements,
-            r.patches,
-            r.shooters,
-            r.shooters_seconds,
-            r.maps,
-            r.triangles_per_map,
-            shots(r.shots_90),
-            opt(r.seconds_90),
-            shots(r.shots_99),
-            opt(r.seconds_99),
-            r.ms_per_shot
-        );
-    }
-    println!("Where the shots' time went (s; a phase that reads from the GPU waits there for the work before it):");
-    for r in &rows {
-        let t = &r.phase_seconds;
-        println!(
-            "{}: {}; the rest {:.2}; cells from the plan cache {:.0} %",
-            row_label(r),
-            phase_list(t, 2),
-            (r.seconds - t.total()).max(0.0),
-            100.0 * r.plan_cache_hits,
-        );
-    }
-    println!("The GPU's own clock (timestamps around each batch's passes; s):");
-    for r in &rows {
-        match &r.gpu_pass_seconds {
-            Some(g) => println!(
-                "{}: visibility maps {:.3} ({:.1} µs a map), receive {:.3} ({:.1} µs a map, {:.0} receivers a map), in {} batches; GPU busy in them {:.0} % of the run",
-                row_label(r),
-                g.maps,
-                1e6 * g.maps / r.maps.max(1) as f64,
-                g.receive,
-                1e6 * g.receive / r.maps.max(1) as f64,
-                r.receivers_per_map,
-                g.batches,
-                100.0 * (g.maps + g.receive) / r.seconds.max(1e-9),
-            ),
-            None => println!("{}: this adapter has no timestamp queries", row_label(r)),
-        }
-    }
-    for r in rows.iter().filter(|r| r.seconds_99.is_none()) {
-        println!(
-            "{}: {:.2} % after {} shots in {:.1} s (— : not reached within --max-shots {} or --time-limit)",
-            row_label(r),
-            100.0 * r.convergence,
-            r.shots,
-            r.seconds,
-            plan.max_shots,
-        );
-    }
+    let report = crate::bench::radiosity_report::report(&rows, &plan, &gpu.describe(), &path);
+    println!("{}", report.text(as_json));
     Ok(())
 }
 
@@ -567,47 +433,10 @@ fn run_render(as_json: bool, plan: render_bench::BenchPlan, quick: bool) -> Resu
         eprintln!("benchmarking {tris} triangles, {lights} luminaires …")
     })
     .map_err(CliError::failure)?;
-    if as_json {
-        println!(
-            "{}",
-            json!({ "rows": rows, "gpu": gpu.describe(), "width": width, "height": height, "frames": frames, "rounds": rounds })
-        );
-        return Ok(());
-    }
     println!(
-        "{}, {width}×{height}, median of {rounds} rounds of {frames} frames",
-        gpu.describe()
+        "{}",
+        render_bench::report(&rows, plan, &gpu.describe()).text(as_json)
     );
-    println!(
-        "{:>9} {:>6} {:>10} {:>12} {:>15} {:>10} {:>10} {:>9} {:>9} {:>9} {:>9}",
-        "triangles",
-        "lights",
-        "point ms",
-        "bilinear ms",
-        "catmull-rom ms",
-        "cr-table ms",
-        "cr-cube ms",
-        "bil/pt",
-        "cr/pt",
-        "table/pt",
-        "cube/pt"
-    );
-    for r in &rows {
-        println!(
-            "{:>9} {:>6} {:>10.2} {:>12.2} {:>15.2} {:>10.2} {:>10.2} {:>8.3}× {:>8.3}× {:>8.3}× {:>8.3}×",
-            r.triangles,
-            r.lights,
-            r.point_ms,
-            r.bilinear_ms,
-            r.catmull_rom_ms,
-            r.catmull_rom_table_ms,
-            r.catmull_rom_cube_ms,
-            r.bilinear_ratio(),
-            r.catmull_rom_ratio(),
-            r.table_ratio(),
-            r.cube_ratio()
-        );
-    }
     Ok(())
 }
 
@@ -664,141 +493,8 @@ fn run_radiosity_view(
         eprintln!("solving: {what} …")
     })
     .map_err(CliError::failure)?;
-    if as_json {
-        println!(
-            "{}",
-            json!({ "bench": result, "gpu": gpu.describe(), "scene": path })
-        );
-        return Ok(());
-    }
-    println!(
-        "{}: {}{}, {} elements ({} seen), reference: global to {:.2} % in {:.1} s",
-        gpu.describe(),
-        path.display(),
-        if rooms > 1 {
-            format!(" × {rooms} rooms")
-        } else {
-            String::new()
-        },
-        result.elements,
-        result.elements_seen,
-        100.0 * result.reference_convergence,
-        result.reference_seconds
-    );
-    let tol = 100.0 * result.tolerance;
-    println!("| drive | view weights s | importance s | to {tol:.0} % shown s | to {tol:.0} % shot s | shots | × global (shot) | maps | maps reused |");
-    println!("|---|---|---|---|---|---|---|---|---|");
-    let fmt = |v: Option<f64>| v.map_or("not reached".to_string(), |s| format!("{s:.2}"));
-    let base = result.rows.first().and_then(|r| r.seconds_shot);
-    for r in &result.rows {
-        let ratio = match (base, r.seconds_shot) {
-            (Some(b), Some(s)) if s > 0.0 => format!("{:.2}×", b / s),
-            _ => "–".to_string(),
-        };
-        println!(
-            "| {} | {:.3} | {:.2} | {} | {} | {} | {ratio} | {} | {} |",
-            r.drive,
-            r.view_weights_seconds,
-            r.importance_seconds,
-            fmt(r.seconds_shown),
-            fmt(r.seconds_shot),
-            r.shots_shot.map_or("–".to_string(), |s| s.to_string()),
-            r.maps,
-            r.maps_reused
-        );
-    }
-    println!("Where the shots' time went until the shot light was within {tol:.0} % (s):");
-    for r in &result.rows {
-        println!(
-            "{}: view weights {:.3}, importance {:.3} (its solver's setup {:.3}); {}",
-            r.drive,
-            r.view_weights_seconds,
-            r.importance_seconds,
-            r.importance_setup_seconds,
-            phase_list(&r.phase_seconds, 3)
-        );
-    }
-    println!("The GPU's own clock until then (timestamps around each batch's passes; s):");
-    for r in &result.rows {
-        match &r.gpu_pass_seconds {
-            Some(g) => println!(
-                "{}: visibility maps {:.3}, receive {:.3} ({:.0} receivers a map), in {} batches",
-                r.drive, g.maps, g.receive, r.receivers_per_map, g.batches
-            ),
-            None => println!("{}: this adapter has no timestamp queries", r.drive),
-        }
-    }
-    if result.rounds.len() > 1 {
-        print_rounds(&result, tol);
-    }
+    let report =
+        crate::bench::radiosity_view_report::report(&result, &gpu.describe(), &path, rooms);
+    println!("{}", report.text(as_json));
     Ok(())
-}
-
-/// The rounds of `bench radiosity-view --repeat`: each drive's time to `tol` % (shot
-/// light, and the image as shown) and speed-up over global, least, median and greatest,
-/// then round by round.
-fn print_rounds(result: &crate::bench::radiosity_view::ViewBench, tol: f64) {
-    let spread = |s: Option<crate::bench::radiosity_view::Spread>, unit: &str| {
-        s.map_or("–".to_string(), |s| {
-            format!(
-                "{:.2}{unit} ({:.2}{unit} – {:.2}{unit})",
-                s.median, s.min, s.max
-            )
-        })
-    };
-    let n = result.rounds.len();
-    println!("Over {n} rounds (the drives in turn, round after round; one reference):");
-    println!(
-        "| drive | rounds within {tol:.0} % (shot / shown) | to {tol:.0} % shot s: median (least – most) | × global (shot) | to {tol:.0} % shown s | × global (shown) |"
-    );
-    println!("|---|---|---|---|---|---|");
-    for d in &result.summary {
-        println!(
-            "| {} | {} / {} of {n} | {} | {} | {} | {} |",
-            d.drive,
-            d.rounds_reached,
-            d.rounds_reached_shown,
-            spread(d.seconds_shot, ""),
-            spread(d.speedup, "×"),
-            spread(d.seconds_shown, ""),
-            spread(d.speedup_shown, "×")
-        );
-    }
-    let s = |s: Option<f64>| s.map_or("–".into(), |s| format!("{s:.2} s"));
-    let line = |r: &[crate::bench::radiosity_view::ViewBenchRow]| {
-        r.iter()
-            .map(|d| {
-                format!(
-                    "{} {} (shown {})",
-                    d.drive,
-                    s(d.seconds_shot),
-                    s(d.seconds_shown)
-                )
-            })
-            .collect::<Vec<_>>()
-            .join(", ")
-    };
-    for (k, r) in result.rounds.iter().enumerate() {
-        println!("round {}: {}", k + 1, line(r));
-    }
-}
-
-/// A solver's phases for people: "select 0.12, piece powers 0.01, …", seconds with
-/// `digits` decimals.
-fn phase_list(t: &crate::radiosity::gpu::ShotTimes, digits: usize) -> String {
-    [
-        ("select", t.select),
-        ("piece powers", t.piece_powers),
-        ("plan", t.plan),
-        ("gather", t.gather),
-        ("links", t.links),
-        ("cull", t.cull),
-        ("record", t.record),
-        ("batch wait", t.batch_wait),
-        ("catch-up", t.catch_up),
-    ]
-    .iter()
-    .map(|(name, s)| format!("{name} {s:.digits$}"))
-    .collect::<Vec<_>>()
-    .join(", ")
 }

@@ -1,7 +1,6 @@
 //! `goniolight bench adaptive` (Wallner Table 2.1): uniform against adaptive elements.
 
 use clap::Args;
-use serde_json::json;
 
 use super::error::CliError;
 use crate::bench::adaptive::{self, Meshing};
@@ -80,43 +79,7 @@ pub fn run(args: AdaptiveBenchArgs) -> Result<(), CliError> {
         eprintln!("solving {what} …")
     })
     .map_err(CliError::failure)?;
-    if args.json {
-        println!("{}", json!({ "scene": path, "rows": rows }));
-        return Ok(());
-    }
-    println!(
-        "Uniform vs adaptive elements (Wallner Table 2.1), {}, to {:.0} %",
-        path.display(),
-        100.0 * args.converge
-    );
-    println!("| meshing | normal maps | elements /m | n_t | n_e | texels | elements s (subdivision incl.) | subdivision CPU s | normals s | direct s | solve s | shots | reached |");
-    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|");
-    for r in rows {
-        println!(
-            "| {}{} | {} | {} | {} | {} | {} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {} | {:.1} % |",
-            r.meshing,
-            if r.levels > 0 {
-                format!(
-                    " ({} level{})",
-                    r.levels,
-                    if r.levels == 1 { "" } else { "s" }
-                )
-            } else {
-                String::new()
-            },
-            if r.normal_maps { "yes" } else { "no" },
-            r.texel_density,
-            r.triangles,
-            r.elements,
-            r.texels,
-            r.elements_seconds,
-            r.subdivision_seconds,
-            r.normals_seconds,
-            r.direct_seconds,
-            r.solve_seconds,
-            r.shots,
-            100.0 * r.convergence
-        );
-    }
+    let report = adaptive::report(&rows, &path, args.converge);
+    println!("{}", report.text(args.json));
     Ok(())
 }

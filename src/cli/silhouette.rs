@@ -101,26 +101,6 @@ pub fn run_bench(as_json: bool, queries: usize, depth: u32, scale: f64) -> Resul
         eprintln!("benchmarking {name} …")
     })
     .map_err(|e| CliError::failure(anyhow::anyhow!(e)))?;
-    if as_json {
-        println!("{}", json!({ "meshes": rows }));
-        return Ok(());
-    }
-    println!(
-        "{:<28} {:>10} {:>10} {:>12} {:>8} {:>10} {:>9} {:>8}",
-        "mesh", "triangles", "brute ms", "hextree ms", "speedup", "sil.edges", "build s", "scanned"
-    );
-    for r in rows {
-        println!(
-            "{:<28} {:>10} {:>10.3} {:>12.3} {:>7.2}× {:>10.0} {:>9.2} {:>7.0}%",
-            r.mesh,
-            r.triangles,
-            r.brute_ms,
-            r.hextree_ms,
-            r.speedup,
-            r.silhouette_edges,
-            r.hextree_build_s,
-            100.0 * r.scanned_fraction
-        );
-    }
+    println!("{}", bench::report(&rows).text(as_json));
     Ok(())
 }

@@ -38,41 +38,7 @@ pub fn run_bench(
     let gpu = Gpu::shared().map_err(CliError::failure)?;
     eprintln!("GPU: {}", gpu.describe());
     let rows = crate::bench::profile::run(&gpu, &models, resolution, step)?;
-    if as_json {
-        println!("{}", serde_json::json!({ "rows": rows }));
-        return Ok(());
-    }
-    println!(
-        "shadow profile: {} steps, {resolution}² plan",
-        rows.first().map_or(0, |r| r.steps)
-    );
-    println!(
-        "| model | triangles | silhouettes | volumes end | total s | ms/step | silhouette ms/step | volumes + read-back ms/step |"
-    );
-    println!("|---|---:|---|---|---:|---:|---:|---:|");
-    for r in &rows {
-        println!(
-            "| {} | {} | {} | {} | {:.2} | {:.1} | {:.2} | {:.1} |",
-            r.model,
-            r.triangles,
-            r.method,
-            r.volume_ends,
-            r.total_s,
-            r.per_step_ms,
-            r.silhouette_ms_per_step,
-            r.render_ms_per_step
-        );
-    }
-    for model in rows.chunks(3) {
-        if let [brute, hex, one_length] = model {
-            println!(
-                "{}: hextree / brute force: total {:.2}×, silhouettes {:.2}× faster; volumes to the ground / of one length: volumes {:.2}× faster",
-                brute.model,
-                brute.total_s / hex.total_s,
-                brute.silhouette_ms_per_step / hex.silhouette_ms_per_step.max(1e-12),
-                one_length.render_ms_per_step / hex.render_ms_per_step.max(1e-12)
-            );
-        }
-    }
+    let report = crate::bench::profile::report(&rows, resolution);
+    println!("{}", report.text(as_json));
     Ok(())
 }
