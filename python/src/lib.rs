@@ -283,8 +283,12 @@ fn illuminance<'py>(
         }
     };
     let on_gpu = gpu.is_some();
-    let lux = scene_illuminance(gpu.as_ref(), &scene, &pts, method, technique)
+    let mut shadows = goniolight::render::ShadowSettings::with(technique);
+    let lux = scene_illuminance(gpu.as_ref(), &scene, &pts, method, &mut shadows)
         .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+    if let Some(w) = shadows.warning() {
+        warn::<pyo3::exceptions::PyUserWarning>(py, &w)?;
+    }
     Ok((lux.into_pyarray(py), on_gpu))
 }
 
@@ -475,6 +479,9 @@ fn radiosity(
         // Stopped while preparing: what stopped it is the error.
         Err(e) => return Err(failed.take().unwrap_or_else(|| session_error(e))),
     };
+    if let Some(w) = settings.shadows.warning() {
+        warn::<pyo3::exceptions::PyUserWarning>(py, &w)?;
+    }
     // A progress callable that raised is the caller's error; Ctrl-C keeps the solution.
     if let Some(err) = failed {
         if !err.is_instance_of::<pyo3::exceptions::PyKeyboardInterrupt>(py) {
@@ -539,6 +546,9 @@ fn calc_json(
     };
     if let Some(err) = failed {
         return Err(err);
+    }
+    for w in &calc.warnings {
+        warn::<pyo3::exceptions::PyUserWarning>(py, w)?;
     }
     let doc = serde_json::to_string(&calc.json(&label)).map_err(value_error)?;
     Ok((doc, calc.grids.into_iter().map(|g| g.values).collect()))

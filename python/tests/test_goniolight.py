@@ -117,6 +117,21 @@ def test_what_loading_worked_around_is_a_user_warning(tmp_path):
     assert "warning: " in err and "its MTL file could not be opened" in err
 
 
+def test_a_coarser_paraboloid_tessellation_is_a_user_warning():
+    # A 300 m ground plane: its paraboloid casters at 0.25 m edges would exhaust the GPU's
+    # buffers, so they are tessellated more coarsely (the library says so, naming its
+    # option; the command names its flag).
+    scene = ROOT.parent / "shared" / "fuzz-crashes" / "04-large-triangle-paraboloid" / "g300.toml"
+    assert scene.exists(), f"the shared test data is missing: {scene}"
+    with pytest.warns(UserWarning, match=r"casters tessellated to .*`shadows` volumes is exact"):
+        lux = goniolight.illuminance(scene, np.array([[10.0, 10.0, 0.0, 0.0, 0.0, 1.0]]),
+                                     shadows="paraboloid")
+    assert lux[0] > 0.0
+    _, err = cli_with_stderr("illuminance", str(scene), "--shadows", "paraboloid",
+                             stdin="10 10 0 0 0 1\n")
+    assert "--shadows volumes is exact" in err
+
+
 def test_illuminance_equals_the_illuminance_command():
     xs = np.linspace(0.5, 3.5, 5)
     pts = np.array([[x, y, 0.8, 0.0, 0.0, 1.0] for x in xs for y in (1.0, 2.0)])

@@ -222,27 +222,22 @@ impl<'s> Request<'s> {
 
     /// The luminaires' direct illuminance at every grid point (per grid, per point and
     /// direction), on `gpu` (`None`: the CPU); `cancel` stops between grids.
-    pub fn direct(
-        &self,
-        gpu: Option<&Gpu>,
-        cancel: &AtomicBool,
-    ) -> Result<Vec<Vec<f64>>, CalcError> {
+    pub fn direct(&self, gpu: Option<&Gpu>, cancel: &AtomicBool) -> Result<Direct, CalcError> {
+        let mut shadows = crate::render::ShadowSettings::with(self.options.shadows);
         let mut lux = Vec::with_capacity(self.grid_points.len());
         for (g, points) in self.scene.grids.iter().zip(&self.grid_points) {
             if cancel.load(Ordering::SeqCst) {
                 return Err(CalcError::Cancelled);
             }
-            let direct = scene_illuminance(
-                gpu,
-                self.scene,
-                points,
-                self.options.interp,
-                self.options.shadows,
-            )?;
+            let direct =
+                scene_illuminance(gpu, self.scene, points, self.options.interp, &mut shadows)?;
             check_usable(&g.entry.name, &direct)?;
             lux.push(direct);
         }
-        Ok(lux)
+        Ok(Direct {
+            lux,
+            warnings: shadows.warning().into_iter().collect(),
+        })
     }
 
     /// Where the interreflected light is gathered: every grid point (and direction),
@@ -264,9 +259,13 @@ impl<'s> Request<'s> {
     /// maintenance factor scales neither the luminaires' luminance nor the background).
     pub fn finish(
         self,
-        mut direct: Vec<Vec<f64>>,
+        direct: Direct,
         interreflected: Option<(Vec<f64>, f64)>,
     ) -> Result<Calculation<'s>, CalcError> {
+        let Direct {
+            lux: mut direct,
+            warnings,
+        } = direct;
         let scene = self.scene;
         let mut background = vec![0.0; scene.observers.len()];
         let mut convergence = None;
@@ -328,8 +327,18 @@ impl<'s> Request<'s> {
             grids,
             glare,
             light,
+            warnings,
         })
     }
+}
+
+/// The luminaires' direct light at the grids' points ([`Request::direct`]).
+#[derive(Debug, Clone)]
+pub struct Direct {
+    /// Per grid, per point (and direction), lux.
+    pub lux: Vec<Vec<f64>>,
+    /// What the caller should be told (options named in backquotes).
+    pub warnings: Vec<String>,
 }
 
 /// An error naming the grid and point when a computed illuminance is not a usable number.
@@ -376,6 +385,9 @@ pub struct Calculation<'s> {
     pub glare: Vec<ObserverGlare>,
     /// What light the values hold, in words (one or two short lines).
     pub light: Vec<String>,
+    /// What the caller should be told (options named in backquotes), e.g. a paraboloid
+    /// tessellation made coarser to fit the GPU.
+    pub warnings: Vec<String>,
 }
 
 impl Calculation<'_> {
@@ -533,6 +545,7 @@ pub fn compute<'s>(
         Some(Gpu::shared()?)
     };
     let direct = request.direct(gpu.as_ref(), cancel)?;
+    let mut solver_warning = None;
     let interreflected = match (request.indirect, &gpu) {
         (Indirect::Radiosity, Some(gpu)) => {
             let mut settings = crate::render::RenderSettings::from_display(&scene.display);
@@ -550,9 +563,14 @@ pub fn compute<'s>(
             }
             let points = request.gather_points();
             let lux = solution.interreflected_lux(&points, cancel, &|_| {})?;
+            solver_warning = settings.shadows.warning();
             Some((lux, solution.convergence()))
         }
         _ => None,
     };
-    request.finish(direct, interreflected)
+    let mut calc = request.finish(direct, interreflected)?;
+    if let Some(w) = solver_warning.filter(|w| !calc.warnings.contains(w)) {
+        calc.warnings.push(w);
+    }
+    Ok(calc)
 }

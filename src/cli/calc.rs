@@ -155,6 +155,9 @@ pub fn run(args: CalcArgs) -> Result<(), CliError> {
         Indirect::None => None,
     };
     let calc = request.finish(direct, interreflected).map_err(calc_error)?;
+    for w in &calc.warnings {
+        super::render::warn_once(&scene.path, w);
+    }
     interrupted(&cancel)?;
     let inputs = scene.input_files();
     let staging = Staging::beside(&args.out, &inputs)

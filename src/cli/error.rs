@@ -97,6 +97,13 @@ const FLAGS_OF_FIELDS: &[(&str, &str)] = &[
     ("min_elevation_deg", "--min-elevation"),
     ("view_from", "--view-from"),
     ("view_at", "--view-at"),
+    ("shadows", "--shadows"),
+    ("texel_density", "--texel-density"),
+    ("display.width", "--width"),
+    ("display.height", "--height"),
+    ("display.exposure", "--exposure"),
+    ("display.lux_max", "--lux-max"),
+    ("display.steps", "--steps"),
 ];
 
 /// The flag that sets the library's `field` (the field itself where none does).
@@ -246,6 +253,15 @@ impl From<SunError> for CliError {
     }
 }
 
+impl From<crate::scene::display::DisplayError> for CliError {
+    /// The library names the `[display]` key; the command, its flag (`display.width` is
+    /// `--width`).
+    fn from(e: crate::scene::display::DisplayError) -> CliError {
+        let flag = flag_of(e.field);
+        CliError::input(anyhow::anyhow!("{flag} {} {}", e.value, e.problem))
+    }
+}
+
 impl From<SceneError> for CliError {
     fn from(e: SceneError) -> CliError {
         CliError::input(e)
@@ -255,8 +271,8 @@ impl From<SceneError> for CliError {
 impl From<GpuError> for CliError {
     fn from(e: GpuError) -> CliError {
         // A scene too large for the device is the input's doing: exit 2.
-        if matches!(e, GpuError::Limit(_)) {
-            CliError::input(e)
+        if let GpuError::Limit(message) = &e {
+            CliError::input(anyhow::anyhow!(flags_in(message)))
         } else {
             CliError::failure(e)
         }

@@ -462,6 +462,7 @@ pub fn solve(
     };
     let solution = session::solve(&gpu, setup, &cancel, &mut |e| progress.event(e))
         .map_err(|e| session_error(e, label))?;
+    super::render::warn_shadow_fit(scene, &settings.shadows);
     match progress.error.take() {
         Some(e) => Err(e),
         None => Ok(solution),

@@ -8,7 +8,7 @@ use std::time::Instant;
 use anyhow::anyhow;
 use clap::Args;
 
-use super::error::CliError;
+use super::error::{flags_in, CliError};
 use crate::gpu::Gpu;
 use crate::lighting::read_points;
 use crate::photometry::Interp;
@@ -17,11 +17,9 @@ use crate::render::legend::format_lux;
 use crate::render::lightmap::LightMap;
 use crate::render::output::{linear_image, write_image};
 use crate::render::{
-    LightModel, RenderSettings, RenderedFrame, Renderer, ShadowTechnique, VolumeTest,
-    MAX_IMAGE_SIZE,
+    RenderSettings, RenderedFrame, Renderer, ShadowTechnique, VolumeTest, MAX_IMAGE_SIZE,
 };
-use crate::scene::palette::MAX_STEPS;
-use crate::scene::{DisplayIndirect, Mode, Palette, Scene, Tonemap};
+use crate::scene::{DisplayEntry, DisplayIndirect, Mode, Palette, Scene, Tonemap};
 use crate::shadow::SilhouetteMethod;
 
 /// Image options shared by `render` and `demo`.
@@ -104,54 +102,29 @@ pub fn scene_at(scene: Scene, time: Option<f64>) -> Result<Scene, CliError> {
 }
 
 impl ImageOptions {
-    /// The scene's display settings with these options applied.
+    /// The `[display]` settings these flags give (the overlay on the scene's).
+    pub fn display(&self) -> DisplayEntry {
+        DisplayEntry {
+            mode: self.mode,
+            tonemap: self.tonemap,
+            exposure: self.exposure,
+            interp: self.interp,
+            width: self.width,
+            height: self.height,
+            lux_max: self.lux_max,
+            palette: self.palette,
+            steps: self.steps,
+            shadows: self.shadows,
+            ..Default::default()
+        }
+    }
+
+    /// The scene's display settings with these options applied (checked by the one
+    /// validator of `[display]`; a value out of range names its flag).
     pub fn settings(&self, scene: &Scene) -> Result<RenderSettings, CliError> {
-        let mut s = RenderSettings::from_display(&scene.display);
-        for (flag, v, slot) in [
-            ("--width", self.width, &mut s.width),
-            ("--height", self.height, &mut s.height),
-        ] {
-            if let Some(v) = v {
-                if !(1..=MAX_IMAGE_SIZE).contains(&v) {
-                    return Err(CliError::input(anyhow!(
-                        "{flag} {v} is not in 1..={MAX_IMAGE_SIZE}"
-                    )));
-                }
-                *slot = v;
-            }
-        }
-        if let Some(i) = self.interp {
-            s.light_model = LightModel::Ldt(i);
-        }
-        if let Some(m) = self.mode {
-            s.mode = m;
-        }
-        if let Some(t) = self.tonemap {
-            s.tonemap = t;
-        }
-        for (flag, v) in [("--exposure", self.exposure), ("--lux-max", self.lux_max)] {
-            if let Some(v) = v {
-                if !(v.is_finite() && v > 0.0) {
-                    return Err(CliError::input(anyhow!(
-                        "{flag} {v} must be a positive number"
-                    )));
-                }
-            }
-        }
-        if let Some(p) = self.palette {
-            s.palette = p;
-        }
-        if let Some(n) = self.steps {
-            if !(1..=MAX_STEPS).contains(&n) {
-                return Err(CliError::input(anyhow!(
-                    "--steps {n} is not in 1..={MAX_STEPS}"
-                )));
-            }
-            s.steps = n;
-        }
-        if let Some(t) = self.shadows {
-            s.shadows.technique = t;
-        }
+        let display = scene.display.overlay(&self.display());
+        display.check()?;
+        let mut s = RenderSettings::from_display(&display);
         if let Some(size) = self.shadow_map_size {
             if !(16..=MAX_IMAGE_SIZE).contains(&size) {
                 return Err(CliError::input(anyhow!(
@@ -171,8 +144,6 @@ impl ImageOptions {
         s.shadows.silhouette = self.silhouettes;
         s.shadows.show_volumes = self.show_volumes;
         s.shadows.show_silhouettes = self.show_volumes;
-        s.exposure = self.exposure.or(s.exposure);
-        s.lux_max = self.lux_max.or(s.lux_max);
         Ok(s)
     }
 }
@@ -225,6 +196,7 @@ pub fn render_to_files(
         u64::from(settings.width) * u64::from(settings.height) * 16,
     )?;
     check_scene(gpu, scene, &mut settings.shadows)?;
+    warn_shadow_fit(scene, &settings.shadows);
     warn_what_volumes_miss(scene, &settings.shadows, light_map.is_some());
     check_specular(scene, settings.mode, light_map.is_some())?;
     let uploaded = match light_map {
@@ -302,7 +274,9 @@ pub fn run_illuminance(args: IlluminanceArgs) -> Result<(), CliError> {
     let points = read_points(std::io::stdin().lock(), "stdin")?;
     let technique = args.shadows.or(scene.display.shadows).unwrap_or_default();
     let gpu = if args.cpu { None } else { Some(Gpu::shared()?) };
-    let lux = scene_illuminance(gpu.as_ref(), &scene, &points, args.interp, technique)?;
+    let mut shadows = crate::render::ShadowSettings::with(technique);
+    let lux = scene_illuminance(gpu.as_ref(), &scene, &points, args.interp, &mut shadows)?;
+    warn_shadow_fit(&scene, &shadows);
     let mut out = String::with_capacity(lux.len() * 12);
     let mut json = Vec::new();
     if args.format == PointsFormat::Csv {
@@ -374,6 +348,27 @@ fn check_specular(scene: &Scene, mode: Mode, solved: bool) -> Result<(), CliErro
 /// start at a surface turned from the light, so a translucent surface lit from behind
 /// stays dark in a direct render (a solved light map holds the transmitted light either
 /// way); and they are built from whole triangles, so alpha-masked holes cast shadows.
+/// Prints what the GPU's check changed in `shadows` (a coarser paraboloid tessellation).
+pub(super) fn warn_shadow_fit(scene: &Scene, shadows: &crate::render::ShadowSettings) {
+    if let Some(w) = shadows.warning() {
+        warn_once(&scene.path, &w);
+    }
+}
+
+/// Prints the library's warning `text` about `file` (options as flags) unless this process
+/// printed it already (a solve and the render or calculation after it meet the same
+/// limits).
+pub(super) fn warn_once(file: &Path, text: &str) {
+    use std::collections::HashSet;
+    use std::sync::{Mutex, OnceLock};
+    static SAID: OnceLock<Mutex<HashSet<String>>> = OnceLock::new();
+    let line = format!("warning: {}: {}", file.display(), flags_in(text));
+    let said = SAID.get_or_init(Default::default);
+    if said.lock().map_or(true, |mut s| s.insert(line.clone())) {
+        eprintln!("{line}");
+    }
+}
+
 fn warn_what_volumes_miss(scene: &Scene, shadows: &crate::render::ShadowSettings, solved: bool) {
     let translucent = crate::scene::back_faces::has_translucent_surfaces(scene);
     if translucent && !solved && shadows.technique == crate::shadow::ShadowTechnique::Volumes {
@@ -386,7 +381,7 @@ fn warn_what_volumes_miss(scene: &Scene, shadows: &crate::render::ShadowSettings
     let masked = scene.materials.iter().any(|m| m.alpha_mask.is_some());
     if masked && shadows.technique == crate::shadow::ShadowTechnique::Volumes {
         eprintln!(
-            "warning: {}: stencil shadow volumes cannot see the holes of alpha-masked              materials; they cast solid shadows in this image (--shadows paraboloid lets              light through them)",
+            "warning: {}: stencil shadow volumes cannot see the holes of alpha-masked materials; they cast solid shadows in this image (--shadows paraboloid lets light through them)",
             scene.path.display()
         );
     }

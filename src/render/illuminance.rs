@@ -19,8 +19,9 @@ pub use crate::lighting::{
     illuminance_cpu, illuminance_cpu_in_scene, point_visibility, Occluders, SurfacePoint,
 };
 
-/// Direct illuminance (lux) at `points` in `scene` with the shadows of `technique`: on
-/// `gpu` with the renderer's own lighting code, or by the CPU twin when `gpu` is `None`
+/// Direct illuminance (lux) at `points` in `scene` with `shadows` (its technique; the GPU's
+/// check may coarsen its paraboloid tessellation: [`ShadowSettings::warning`]): on `gpu`
+/// with the renderer's own lighting code, or by the CPU twin when `gpu` is `None`
 /// (ray-cast shadows unless `none`); with shadows, plus the light mirrors and clear glass
 /// pass on (ray-cast, [`SceneWindows`]).
 pub fn scene_illuminance(
@@ -28,11 +29,11 @@ pub fn scene_illuminance(
     scene: &Scene,
     points: &[SurfacePoint],
     interp: Interp,
-    technique: ShadowTechnique,
+    shadows: &mut ShadowSettings,
 ) -> Result<Vec<f64>, GpuError> {
-    let mut lux = straight_illuminance(gpu, scene, points, interp, technique)?;
+    let mut lux = straight_illuminance(gpu, scene, points, interp, shadows)?;
     // Mirrors and clear glass pass light on where shadows are drawn ([`SceneWindows`]).
-    if technique != ShadowTechnique::None {
+    if shadows.technique != ShadowTechnique::None {
         if let Some(windows) = SceneWindows::new(scene) {
             let light = windows.light(&scene.luminaires);
             light.add_lux_at_points(points, &mut lux, interp);
@@ -47,8 +48,9 @@ fn straight_illuminance(
     scene: &Scene,
     points: &[SurfacePoint],
     interp: Interp,
-    technique: ShadowTechnique,
+    shadows: &mut ShadowSettings,
 ) -> Result<Vec<f64>, GpuError> {
+    let technique = shadows.technique;
     let Some(gpu) = gpu else {
         let (mesh, cutouts) = (scene.caster_mesh(), scene.caster_cutouts());
         let ignored = scene.ignored_per_luminaire();
@@ -64,11 +66,10 @@ fn straight_illuminance(
             interp,
         ));
     };
-    let mut shadows = ShadowSettings::with(technique);
-    super::limits::check_scene(gpu, scene, &mut shadows)?;
+    super::limits::check_scene(gpu, scene, shadows)?;
     let uploaded = GpuScene::new(gpu, &Layouts::new(gpu), scene);
     IlluminanceProbe::new(gpu, LightModel::Ldt(interp))
-        .run_in_scene(gpu, &uploaded, points, &shadows)
+        .run_in_scene(gpu, &uploaded, points, shadows)
 }
 
 #[repr(C)]

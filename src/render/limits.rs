@@ -20,8 +20,10 @@ const MAX_CASTER_BYTES: u64 = 128 << 20;
 
 /// Checks `scene` drawn with `shadows` fits `gpu`: the vertex buffer, the shadow layers
 /// (two paraboloid maps or one mask layer per luminaire) and the paraboloid casters after
-/// tessellation, whose edge length is made coarser (with a warning) where the requested
-/// one would not fit.
+/// tessellation, whose edge length is made coarser where the requested one would not fit
+/// (then `shadows.coarsened_from_m` holds the one asked for and
+/// [`ShadowSettings::warning`] says so). Refusals name the options to change in
+/// backquotes (`` `shadows` ``, `` `texel_density` ``).
 pub fn check_scene(gpu: &Gpu, scene: &Scene, shadows: &mut ShadowSettings) -> Result<(), GpuError> {
     let limits = gpu.device.limits();
     let max_buffer = limits.max_buffer_size;
@@ -44,9 +46,9 @@ pub fn check_scene(gpu: &Gpu, scene: &Scene, shadows: &mut ShadowSettings) -> Re
     };
     if layers > max_layers {
         return Err(scene_refusal(scene, format!(
-            "the scene's {lights} luminaires need {per} each, {layers} texture layers; this GPU allows {max_layers}: use {}--shadows none, or fewer luminaires",
+            "the scene's {lights} luminaires need {per} each, {layers} texture layers; this GPU allows {max_layers}: use {}`shadows` none, or fewer luminaires",
             if shadows.technique == ShadowTechnique::Paraboloid {
-                "--shadows volumes (one layer each), "
+                "`shadows` volumes (one layer each), "
             } else {
                 ""
             }
@@ -84,16 +86,13 @@ fn fit_tessellation(
             return Err(scene_refusal(
                 scene,
                 format!(
-                    "paraboloid shadows tessellate every caster: this scene's faces need more than {budget} triangles even at {MAX_TESSELLATION_M} m edges. Use --shadows volumes, or split the large faces"
+                    "paraboloid shadows tessellate every caster: this scene's faces need more than {budget} triangles even at {MAX_TESSELLATION_M} m edges. Use `shadows` volumes, or split the large faces"
                 ),
             ));
         }
     }
     if edge > asked {
-        eprintln!(
-            "warning: {}: paraboloid shadow casters tessellated to {edge} m edges instead of {asked} m to stay within {budget} triangles (shadows of large faces may be less exact; --shadows volumes is exact)",
-            scene.path.display()
-        );
+        shadows.coarsened_from_m.get_or_insert(asked);
         shadows.tessellation_m = edge;
     }
     Ok(())
@@ -133,7 +132,7 @@ pub fn check_radiosity(gpu: &Gpu, elements: usize) -> Result<(), GpuError> {
     let need = elements as u64 * RADIOSITY_ELEMENT_BYTES;
     if need > max {
         return Err(refusal(format!(
-            "{elements} radiosity elements need {} MB per buffer; this GPU binds at most {} MB: lower --texel-density (about {} elements fit)",
+            "{elements} radiosity elements need {} MB per buffer; this GPU binds at most {} MB: lower `texel_density` (about {} elements fit)",
             need >> 20,
             max >> 20,
             max / RADIOSITY_ELEMENT_BYTES

@@ -108,6 +108,25 @@ impl RenderSettings {
             shown_light: DisplayIndirect::None,
         }
     }
+
+    /// `base` (a scene's `[display]`) with what these settings choose of it: the mode,
+    /// tone mapping, exposure and scale top (absent when automatic), palette and bands
+    /// (absent at their defaults), interpolation and shadow technique; its size,
+    /// background and indirect light stay `base`'s. [`RenderSettings::from_display`] of
+    /// the result gives these choices back.
+    pub fn to_display(&self, base: &DisplayEntry) -> DisplayEntry {
+        DisplayEntry {
+            mode: Some(self.mode),
+            tonemap: Some(self.tonemap),
+            exposure: self.exposure,
+            lux_max: self.lux_max,
+            palette: (self.palette != Palette::default()).then_some(self.palette),
+            steps: (self.steps > 0).then_some(self.steps),
+            interp: Some(self.light_model.interp()),
+            shadows: Some(self.shadows.technique),
+            ..base.clone()
+        }
+    }
 }
 
 /// A rendered image.
@@ -300,5 +319,38 @@ impl Renderer {
         );
         gpu.queue.submit([enc.finish()]);
         Ok((shadow, stats, tone))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{LightModel, RenderSettings};
+    use crate::photometry::Interp;
+    use crate::scene::{DisplayEntry, Mode, Palette, Tonemap};
+    use crate::shadow::ShadowTechnique;
+
+    #[test]
+    fn the_viewers_choices_go_into_the_scene_file_and_come_back() {
+        let base = DisplayEntry {
+            width: Some(640),
+            height: Some(480),
+            exposure: Some(0.3),
+            background: Some([0.1, 0.2, 0.3]),
+            ..Default::default()
+        };
+        let mut chosen = RenderSettings::from_display(&base);
+        chosen.mode = Mode::Illuminance;
+        chosen.tonemap = Tonemap::Exposure;
+        chosen.exposure = None;
+        chosen.lux_max = Some(750.0);
+        chosen.palette = Palette::Viridis;
+        chosen.steps = 6;
+        chosen.light_model = LightModel::Ldt(Interp::Monotone);
+        chosen.shadows.technique = ShadowTechnique::Volumes;
+        let saved = chosen.to_display(&base);
+        // Automatic exposure is saved as absent, not as the file's old value.
+        assert_eq!(saved.exposure, None);
+        assert_eq!((saved.width, saved.background), (Some(640), base.background));
+        assert_eq!(RenderSettings::from_display(&saved), chosen);
     }
 }

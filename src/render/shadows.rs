@@ -33,6 +33,9 @@ pub struct ShadowSettings {
     pub show_volumes: bool,
     /// Debug view: silhouette edges in pink.
     pub show_silhouettes: bool,
+    /// The caster edge asked for, when [`super::limits::check_scene`] made
+    /// `tessellation_m` coarser to fit the GPU (see [`ShadowSettings::warning`]).
+    pub coarsened_from_m: Option<f64>,
 }
 
 impl Default for ShadowSettings {
@@ -48,6 +51,7 @@ impl Default for ShadowSettings {
             bias_slope: 1.0,
             show_volumes: false,
             show_silhouettes: false,
+            coarsened_from_m: None,
         }
     }
 }
@@ -67,6 +71,16 @@ impl ShadowSettings {
             technique,
             ..Default::default()
         }
+    }
+
+    /// What the caller should be told when the paraboloid casters were tessellated more
+    /// coarsely than asked to fit the GPU (the option named in backquotes).
+    pub fn warning(&self) -> Option<String> {
+        let asked = self.coarsened_from_m?;
+        Some(format!(
+            "paraboloid shadow casters tessellated to {} m edges instead of {asked} m to fit the GPU's buffers (shadows of large faces may be less exact; `shadows` volumes is exact)",
+            self.tessellation_m
+        ))
     }
 }
 

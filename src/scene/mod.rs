@@ -8,6 +8,7 @@ pub mod alpha;
 pub mod back_faces;
 pub mod bump;
 pub mod camera;
+pub mod display;
 pub mod file;
 pub mod grid;
 pub mod materials;
@@ -488,46 +489,8 @@ fn bounds_of(meshes: &[SceneMesh], luminaires: &[PlacedLuminaire]) -> (DVec3, DV
 }
 
 fn check_display(path: &Path, d: &DisplayEntry) -> Result<(), SceneError> {
-    for (key, v) in [("display.width", d.width), ("display.height", d.height)] {
-        if let Some(v) = v {
-            let max = file::MAX_IMAGE_SIZE;
-            if !(1..=max).contains(&v) {
-                return Err(SceneError::new(
-                    path,
-                    key,
-                    format!("{v} is not in 1..={max}"),
-                ));
-            }
-        }
-    }
-    for (key, v) in [
-        ("display.exposure", d.exposure),
-        ("display.lux_max", d.lux_max),
-    ] {
-        if let Some(v) = v {
-            if !(v.is_finite() && v > 0.0) {
-                return Err(SceneError::new(
-                    path,
-                    key,
-                    format!("{v} must be a positive number"),
-                ));
-            }
-        }
-    }
-    if let Some(b) = d.background {
-        finite_vec(path, "display.background", b)?;
-    }
-    if let Some(n) = d.steps {
-        let max = palette::MAX_STEPS;
-        if !(1..=max).contains(&n) {
-            return Err(SceneError::new(
-                path,
-                "display.steps",
-                format!("{n} is not in 1..={max}"),
-            ));
-        }
-    }
-    Ok(())
+    d.check()
+        .map_err(|e| SceneError::new(path, e.field, format!("{} {}", e.value, e.problem)))
 }
 
 /// `v` as a vector if every component is finite.

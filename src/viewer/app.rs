@@ -14,10 +14,9 @@ use super::jobs::{ProfileUpdate, Worker};
 use super::live_radiosity::{LiveLink, RadiositySettings, RadiosityUpdate};
 use super::sun::SunControls;
 use crate::gpu::Gpu;
-use crate::photometry::Interp;
 use crate::render::lightmap::LightMap;
-use crate::render::{LightModel, RenderSettings, ShadowSettings};
-use crate::scene::{Mode, Palette, PlacedLuminaire, Scene, Tonemap};
+use crate::render::RenderSettings;
+use crate::scene::{PlacedLuminaire, Scene};
 use crate::study::profile::Profile;
 use crate::study::view_hours::ViewHours;
 
@@ -37,27 +36,6 @@ pub struct Message {
     pub level: Level,
     /// Its text.
     pub text: String,
-}
-
-/// Display choices (they become [`RenderSettings`]).
-#[derive(Debug, Clone, PartialEq)]
-pub struct DisplayChoices {
-    /// Interpolation of the luminaires' distributions.
-    pub interp: Interp,
-    /// Shaded or false-colour lux.
-    pub mode: Mode,
-    /// Tone-mapping operator.
-    pub tonemap: Tonemap,
-    /// Exposure k (1/(cd/m²)); `None`: automatic.
-    pub exposure: Option<f64>,
-    /// Top of the false-colour scale; `None`: automatic.
-    pub lux_max: Option<f64>,
-    /// False-colour palette.
-    pub palette: Palette,
-    /// Hard bands on the false-colour scale (0: continuous).
-    pub steps: u32,
-    /// Shadows.
-    pub shadows: ShadowSettings,
 }
 
 /// Aim of a luminaire as the panel edits it.
@@ -190,7 +168,7 @@ pub struct ViewerApp {
     /// The camera.
     pub camera: ViewCamera,
     /// Display choices.
-    pub display: DisplayChoices,
+    pub display: RenderSettings,
     /// Aim controls, one per luminaire of the scene.
     pub aims: Vec<AimControls>,
     /// The luminaire being edited.
@@ -238,7 +216,7 @@ impl ViewerApp {
     pub fn new(scene: Scene, path: Option<PathBuf>, recent: RecentFiles) -> ViewerApp {
         let mut app = ViewerApp {
             camera: ViewCamera::from_camera(&scene.camera),
-            display: display_choices(&scene),
+            display: RenderSettings::from_display(&scene.display),
             aims: Vec::new(),
             scene,
             scene_path: path,
@@ -330,7 +308,7 @@ impl ViewerApp {
     pub fn lights_changed(&mut self) {
         self.revision += 1;
         let scene = Box::new(self.render_scene());
-        let interp = self.display.interp;
+        let interp = self.display.light_model.interp();
         let r = &mut self.radiosity;
         let relit = match (&r.worker, &r.link) {
             (Some(_), Some(link)) => link
@@ -414,19 +392,11 @@ impl ViewerApp {
 
     /// The renderer's settings for a viewport of `width` × `height` pixels.
     pub fn render_settings(&self, width: u32, height: u32) -> RenderSettings {
-        let d = &self.display;
-        let mut s = RenderSettings::from_display(&self.scene.display);
-        s.width = width;
-        s.height = height;
-        s.light_model = LightModel::Ldt(d.interp);
-        s.mode = d.mode;
-        s.tonemap = d.tonemap;
-        s.exposure = d.exposure;
-        s.lux_max = d.lux_max;
-        s.palette = d.palette;
-        s.steps = d.steps;
-        s.shadows = d.shadows.clone();
-        s
+        RenderSettings {
+            width,
+            height,
+            ..self.display.clone()
+        }
     }
 
     /// Size of the scene (metres), for the far plane and the fly speed.
@@ -440,7 +410,7 @@ impl ViewerApp {
         self.reset_radiosity();
         self.profile = ProfileState::default();
         self.camera = ViewCamera::from_camera(&scene.camera);
-        self.display = display_choices(&scene);
+        self.display = RenderSettings::from_display(&scene.display);
         self.aims = scene
             .luminaires
             .iter()
@@ -461,16 +431,7 @@ impl ViewerApp {
     pub fn sync_scene(&mut self) {
         let extent = self.extent();
         self.scene.camera = self.camera.camera(extent);
-        let d = &self.display;
-        let e = &mut self.scene.display;
-        e.mode = Some(d.mode);
-        e.tonemap = Some(d.tonemap);
-        e.exposure = d.exposure;
-        e.lux_max = d.lux_max;
-        e.palette = (d.palette != Palette::default()).then_some(d.palette);
-        e.steps = (d.steps > 0).then_some(d.steps);
-        e.interp = Some(d.interp);
-        e.shadows = Some(d.shadows.technique);
+        self.scene.display = self.display.to_display(&self.scene.display);
     }
 
     /// Stops radiosity and goes back to direct light.
@@ -661,19 +622,5 @@ impl ViewerApp {
                 path.display()
             )),
         }
-    }
-}
-
-fn display_choices(scene: &Scene) -> DisplayChoices {
-    let s = RenderSettings::from_display(&scene.display);
-    DisplayChoices {
-        interp: s.light_model.interp(),
-        mode: s.mode,
-        tonemap: s.tonemap,
-        exposure: s.exposure,
-        lux_max: s.lux_max,
-        palette: s.palette,
-        steps: s.steps,
-        shadows: s.shadows,
     }
 }

@@ -44,7 +44,7 @@ impl ViewerApp {
         });
         ui.horizontal(|ui| {
             let label = ui.label("Interpolation");
-            let mut interp = self.display.interp;
+            let mut interp = self.display.light_model.interp();
             egui::ComboBox::from_id_salt("interp")
                 .selected_text(label_of(interp))
                 .show_ui(ui, |ui| {
@@ -54,8 +54,8 @@ impl ViewerApp {
                 })
                 .response
                 .labelled_by(label.id);
-            if interp != self.display.interp {
-                self.display.interp = interp;
+            if interp != self.display.light_model.interp() {
+                self.display.light_model = crate::render::LightModel::Ldt(interp);
                 self.lights_changed();
             }
         });
@@ -150,7 +150,7 @@ impl ViewerApp {
         let l = &self.scene.luminaires[i];
         let title = format!("Photometry: {}", l.name);
         let view = &mut self.photometry_view;
-        let interp = self.display.interp;
+        let interp = self.display.light_model.interp();
         egui::Window::new(title)
             .open(&mut open)
             .default_size([460.0, 560.0])

@@ -106,6 +106,12 @@ impl Viewport {
                     shadows.tessellation_m = 0.0;
                 }
             }
+            // Said when the fitted edge changes (a scene loaded or edited), not per upload.
+            if shadows.tessellation_m != self.fitted_tessellation_m {
+                if let Some(w) = shadows.warning() {
+                    app.info(format!("warning: {w}"));
+                }
+            }
             self.fitted_tessellation_m = shadows.tessellation_m;
             let uploaded = match &map {
                 Some(map) => self.renderer.upload_solved(gpu, &scene, map),

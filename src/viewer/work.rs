@@ -325,7 +325,7 @@ impl ViewerApp {
         };
         self.reset_radiosity();
         let mut settings = self.radiosity.settings.clone();
-        settings.interp = self.display.interp;
+        settings.interp = self.display.light_model.interp();
         let view = self.radiosity_view();
         self.radiosity.followed = Some(view);
         match live_radiosity::start(

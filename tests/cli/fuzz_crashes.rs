@@ -343,6 +343,11 @@ fn scenes_beyond_the_gpu_are_refused_before_upload() {
         let (code, err, image) = render_small(scene, &["--shadows", shadows]);
         assert_eq!(code, 2, "{scene}: {err}");
         assert!(err.contains(says), "{scene}: {err}");
+        // The library names the option; the command, its flag.
+        assert!(
+            err.contains("--shadows none") && !err.contains('`'),
+            "{scene}: {err}"
+        );
         assert!(!image, "{scene}: no image on refusal");
     }
     // Ground planes of 300 m and 1 km: the paraboloid casters are tessellated more
@@ -354,6 +359,8 @@ fn scenes_beyond_the_gpu_are_refused_before_upload() {
         let (code, err, image) = render_small(scene, &[]);
         assert_eq!(code, 0, "{scene}: {err}");
         assert!(err.contains("casters tessellated to"), "{scene}: {err}");
+        assert!(err.contains("--shadows volumes is exact"), "{scene}: {err}");
+        assert_eq!(err.matches("casters tessellated to").count(), 1, "{err}");
         assert!(image);
     }
     // The same 257 luminaires without shadows render.

@@ -144,7 +144,7 @@ fn window_lux(gpu: Option<&goniolight::gpu::Gpu>) -> [Vec<f64>; 3] {
             &scene(p),
             &points,
             Interp::CatmullRom,
-            ShadowTechnique::Paraboloid,
+            &mut goniolight::render::ShadowSettings::with(ShadowTechnique::Paraboloid),
         )
         .unwrap()
     })

@@ -942,7 +942,7 @@ fn more_elements_than_one_binding_holds_are_refused() {
     check(fit).unwrap();
     let message = check(fit + 1).unwrap_err().to_string();
     assert!(
-        message.contains("lower --texel-density")
+        message.contains("lower `texel_density`")
             && message.contains(&format!("about {fit} elements fit")),
         "{message}"
     );

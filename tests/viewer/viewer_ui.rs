@@ -133,7 +133,7 @@ fn interpolation_choice_reaches_the_render_settings() {
     h.run();
     h.get_by_label("nearest").click();
     h.run();
-    assert_eq!(h.state().display.interp, Interp::Nearest);
+    assert_eq!(h.state().display.light_model.interp(), Interp::Nearest);
     assert!(h.state().revision > r0);
     let s = h.state().render_settings(320, 200);
     assert_eq!(
@@ -595,7 +595,7 @@ fn the_live_solver_gives_the_radiosity_commands_solution() {
     let setup = goniolight::radiosity::session::Setup {
         scene: &scene,
         options: &a.radiosity.settings.options,
-        interp: a.display.interp,
+        interp: a.display.light_model.interp(),
         shadows: &mut shadows,
         view: None,
     };
@@ -779,7 +779,7 @@ fn photometry_window_shows_the_datasheet_diagrams_ldt_plot_draws() {
     h.run();
     assert_eq!(h.state().photometry_view.sheet_size(), Some([1100, 860]));
     // The picture is `ldt plot`'s, pixel for pixel.
-    let interp = h.state().display.interp;
+    let interp = h.state().display.light_model.interp();
     let l = &h.state().scene.luminaires[0];
     let shown = goniolight::viewer::photometry_sheet::datasheet_image(
         l,
