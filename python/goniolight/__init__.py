@@ -7,7 +7,8 @@ The numbers come from the same library code as the ``goniolight`` command line: 
 equals ``goniolight ldt info --json``, ``sample`` equals ``goniolight ldt sample``,
 ``sun_position`` equals ``goniolight sun --json``, ``illuminance`` equals
 ``goniolight illuminance``, ``radiosity(...).lux`` equals ``goniolight radiosity
---points``, ``calc`` equals ``goniolight calc``'s ``calc.json`` and ``sun_study`` equals
+--points``, ``calc`` equals ``goniolight calc``'s ``calc.json``, ``render`` draws what
+``goniolight render`` draws and ``sun_study`` equals
 ``goniolight profile``'s ``study.json`` and ``hours.csv``.
 
 Run from the repository's root (the tests run these examples):
@@ -36,7 +37,7 @@ import numpy as np
 from . import _native
 
 __all__ = ["Luminaire", "read", "ugr_table", "luminance_table", "datasheet", "sun_position",
-           "illuminance", "radiosity", "Radiosity", "calc", "sun_study", "SunStudy",
+           "illuminance", "radiosity", "Radiosity", "calc", "sun_study", "SunStudy", "render", "Rendering",
            "INTERPOLATIONS"]
 
 #: The interpolation methods, as the command line names them.
@@ -462,3 +463,70 @@ def sun_study(model: PathLike, site, dates, *, start="08:00", end="16:00", step:
         list(casters), (float(facade_cell), float(min_facade_area)) if facades else None,
         None if points is None else os.fspath(points), float(min_elevation), view, progress)
     return SunStudy(native)
+
+
+class Rendering:
+    """One image of a scene (what ``goniolight render`` draws): the picture and, per
+    pixel, the linear RGB (cd/m²) and the illuminance (lux)."""
+
+    def __init__(self, native: "_native.NativeRendering"):
+        self._native = native
+
+    @property
+    def image(self) -> np.ndarray:
+        """The picture as ``render --out`` writes it: rows × columns × RGBA, uint8 (in
+        false-colour lux with the legend panel beside the view)."""
+        return self._native.image()
+
+    @property
+    def rgb(self) -> np.ndarray:
+        """Per pixel of the view: the linear RGB of the surface seen, cd/m² (rows ×
+        columns × 3)."""
+        return self._native.rgb()
+
+    @property
+    def lux(self) -> np.ndarray:
+        """Per pixel of the view: the illuminance on the surface seen, lux (NaN where no
+        surface shows)."""
+        return self._native.lux()
+
+    @property
+    def stats(self) -> dict:
+        """What ``render`` reports: ``log_average_luminance``, ``max_luminance``, ``lux``
+        (mean, median, percentiles, max over the surfaces in view) and ``lux_max_shown``
+        (the top of the false-colour scale)."""
+        return json.loads(self._native.stats_json())
+
+    def save(self, png: PathLike, exr: Optional[PathLike] = None) -> None:
+        """Writes the picture as PNG and, with ``exr``, the HDR values as ``render --exr``
+        does."""
+        self._native.save(os.fspath(png), None if exr is None else os.fspath(exr))
+
+
+def render(scene: PathLike, *, width: Optional[int] = None, height: Optional[int] = None,
+           mode: Optional[str] = None, tonemap: Optional[str] = None,
+           exposure: Optional[float] = None, lux_max: Optional[float] = None,
+           palette: Optional[str] = None, steps: Optional[int] = None,
+           interp: Optional[str] = None, shadows: Optional[str] = None,
+           supersample: int = 3, solution: Optional[Radiosity] = None) -> Rendering:
+    """Renders a scene file from its camera, as ``goniolight render`` does: the keywords
+    are its flags (each absent one takes the scene's ``[display]`` value, then the
+    default); ``mode="illuminance"`` draws false-colour lux. With ``solution`` (from
+    :func:`radiosity`) the image shows its interreflected light, as ``render --indirect
+    radiosity``. A value out of range raises ValueError naming the ``[display]`` key.
+
+    >>> import goniolight
+    >>> r = goniolight.render("assets/scenes/box_room.toml", width=64, height=48,
+    ...                       mode="illuminance", supersample=1)
+    >>> r.lux.shape, r.image.shape[2]
+    ((48, 64), 4)
+    >>> bool(r.stats["lux"]["max"] > 30)
+    True
+    """
+    over = {k: v for k, v in {
+        "width": width, "height": height, "mode": mode, "tonemap": tonemap,
+        "exposure": exposure, "lux_max": lux_max, "palette": palette, "steps": steps,
+        "interp": interp, "shadows": shadows}.items() if v is not None}
+    native = _native.render(os.fspath(scene), json.dumps(over), int(supersample),
+                            None if solution is None else solution._native)
+    return Rendering(native)

@@ -16,6 +16,7 @@ use goniolight::radiosity::bake::BakeChoice;
 use goniolight::radiosity::session::{Options, SessionError, Solution};
 use goniolight::shadow::ShadowTechnique;
 
+mod render;
 mod sun_study;
 
 pub(crate) fn value_error(e: impl std::fmt::Display) -> PyErr {
@@ -30,7 +31,10 @@ pub(crate) fn warn<T: pyo3::PyTypeInfo>(py: Python<'_>, message: &str) -> PyResu
 
 /// The scene file at `path`; what its loading worked around (`Scene::warnings`: a missing
 /// MTL file, triangles without area) is raised as `UserWarning`s.
-fn load_scene(py: Python<'_>, path: &std::path::Path) -> PyResult<goniolight::scene::Scene> {
+pub(crate) fn load_scene(
+    py: Python<'_>,
+    path: &std::path::Path,
+) -> PyResult<goniolight::scene::Scene> {
     let scene = goniolight::scene::Scene::load(path).map_err(value_error)?;
     for w in &scene.warnings {
         warn::<pyo3::exceptions::PyUserWarning>(py, w)?;
@@ -353,7 +357,7 @@ fn session_error(e: SessionError) -> PyErr {
 
 /// A radiosity solution of a scene (what `goniolight radiosity` solves).
 #[pyclass(module = "goniolight._native", unsendable)]
-struct NativeRadiosity {
+pub(crate) struct NativeRadiosity {
     solution: Solution,
     scene: goniolight::scene::Scene,
 }
@@ -415,6 +419,11 @@ impl NativeRadiosity {
 }
 
 impl NativeRadiosity {
+    /// The solution's light map (what `render --indirect radiosity` shows).
+    pub(crate) fn light_map(&self) -> goniolight::render::lightmap::LightMap {
+        self.solution.light_map()
+    }
+
     /// The total (`total`) or interreflected illuminance at an N × 6 array of points.
     fn gathered<'py>(
         &self,
@@ -588,6 +597,8 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(radiosity_defaults_json, m)?)?;
     m.add_function(wrap_pyfunction!(calc_json, m)?)?;
     m.add_class::<sun_study::NativeSunStudy>()?;
+    m.add_class::<render::NativeRendering>()?;
+    m.add_function(wrap_pyfunction!(render::render, m)?)?;
     m.add_function(wrap_pyfunction!(sun_study::sun_study, m)?)?;
     Ok(())
 }

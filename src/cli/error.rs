@@ -104,6 +104,7 @@ const FLAGS_OF_FIELDS: &[(&str, &str)] = &[
     ("display.exposure", "--exposure"),
     ("display.lux_max", "--lux-max"),
     ("display.steps", "--steps"),
+    ("indirect", "--indirect"),
 ];
 
 /// The flag that sets the library's `field` (the field itself where none does).
@@ -259,6 +260,16 @@ impl From<crate::scene::display::DisplayError> for CliError {
     fn from(e: crate::scene::display::DisplayError) -> CliError {
         let flag = flag_of(e.field);
         CliError::input(anyhow::anyhow!("{flag} {} {}", e.value, e.problem))
+    }
+}
+
+impl From<crate::render::scene_frame::SceneFrameError> for CliError {
+    fn from(e: crate::render::scene_frame::SceneFrameError) -> CliError {
+        use crate::render::scene_frame::SceneFrameError;
+        match e {
+            SceneFrameError::Gpu(g) => g.into(),
+            e => CliError::input(anyhow::anyhow!(flags_in(&e.to_string()))),
+        }
     }
 }
 

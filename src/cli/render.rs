@@ -1,7 +1,7 @@
 //! `goniolight render` and `goniolight illuminance`: a scene to images, and the direct
 //! illuminance at points read from stdin.
 
-use crate::render::limits::check_scene;
+use crate::render::scene_frame::{render_scene, SceneFrame};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -189,21 +189,14 @@ pub fn render_to_files(
     let mut settings = settings.clone();
     settings.read_hdr = exr.is_some();
     let started = Instant::now();
-    // The HDR image (RGBA32F) is read back whole: refuse a size the device cannot.
-    gpu.check_read_back(
-        settings.width,
-        settings.height,
-        u64::from(settings.width) * u64::from(settings.height) * 16,
-    )?;
-    check_scene(gpu, scene, &mut settings.shadows)?;
-    warn_shadow_fit(scene, &settings.shadows);
-    warn_what_volumes_miss(scene, &settings.shadows, light_map.is_some());
-    check_specular(scene, settings.mode, light_map.is_some())?;
-    let uploaded = match light_map {
-        Some(map) => renderer.upload_solved(gpu, scene, map),
-        None => renderer.upload(gpu, scene),
-    };
-    let frame = renderer.render(gpu, &uploaded, &scene.camera, &settings)?;
+    let SceneFrame {
+        frame,
+        settings,
+        warnings,
+    } = render_scene(gpu, renderer, scene, light_map, &settings)?;
+    for w in &warnings {
+        warn_once(&scene.path, w);
+    }
     let ms = started.elapsed().as_secs_f64() * 1e3;
     write_image(png, &frame.image).map_err(CliError::failure)?;
     if let Some(exr) = exr {
@@ -312,38 +305,6 @@ pub fn run_illuminance(args: IlluminanceArgs) -> Result<(), CliError> {
     Ok(())
 }
 
-/// What the renderer does with mirrors and clear glass, said plainly: it draws them by
-/// their diffuse part (no planar mirror pass), and its direct light stops at glass. A
-/// direct-light illuminance image would print lux without what they pass on: refused
-/// (a solved light map holds it, as do `calc`, `illuminance` and `radiosity --points`).
-fn check_specular(scene: &Scene, mode: Mode, solved: bool) -> Result<(), CliError> {
-    let Some(m) = scene.specular_material() else {
-        return Ok(());
-    };
-    if mode == Mode::Illuminance && !solved {
-        return Err(CliError::input(anyhow!(
-            "{}: material {:?} is a mirror or clear glass: this direct-light illuminance image \
-             would leave out the light it passes on; use --indirect radiosity (its light map \
-             holds it), or `calc`, `illuminance` or `radiosity --points` for lux",
-            scene.path.display(),
-            m.name
-        )));
-    }
-    eprintln!(
-        "warning: {}: material {:?} is a mirror or clear glass: the image draws it by its \
-         diffuse part (no mirror reflection pass){}; lux from calc, illuminance and \
-         radiosity include the light it passes on",
-        scene.path.display(),
-        m.name,
-        if solved {
-            ""
-        } else {
-            ", and its direct light stops at the glass"
-        }
-    );
-    Ok(())
-}
-
 /// What stencil shadow volumes cannot show, said once with the choice that shows it: they
 /// start at a surface turned from the light, so a translucent surface lit from behind
 /// stays dark in a direct render (a solved light map holds the transmitted light either
@@ -366,23 +327,5 @@ pub(super) fn warn_once(file: &Path, text: &str) {
     let said = SAID.get_or_init(Default::default);
     if said.lock().map_or(true, |mut s| s.insert(line.clone())) {
         eprintln!("{line}");
-    }
-}
-
-fn warn_what_volumes_miss(scene: &Scene, shadows: &crate::render::ShadowSettings, solved: bool) {
-    let translucent = crate::scene::back_faces::has_translucent_surfaces(scene);
-    if translucent && !solved && shadows.technique == crate::shadow::ShadowTechnique::Volumes {
-        eprintln!(
-            "warning: {}: stencil shadow volumes cannot light a translucent surface from \
-             behind; it stays dark in this image (--shadows paraboloid shows it)",
-            scene.path.display()
-        );
-    }
-    let masked = scene.materials.iter().any(|m| m.alpha_mask.is_some());
-    if masked && shadows.technique == crate::shadow::ShadowTechnique::Volumes {
-        eprintln!(
-            "warning: {}: stencil shadow volumes cannot see the holes of alpha-masked materials; they cast solid shadows in this image (--shadows paraboloid lets light through them)",
-            scene.path.display()
-        );
     }
 }

@@ -14,6 +14,7 @@ pub mod mipmaps;
 pub mod output;
 pub mod paraboloid;
 pub mod passes;
+pub mod scene_frame;
 pub mod shadows;
 pub mod targets;
 pub mod tonemap;
@@ -350,7 +351,10 @@ mod tests {
         let saved = chosen.to_display(&base);
         // Automatic exposure is saved as absent, not as the file's old value.
         assert_eq!(saved.exposure, None);
-        assert_eq!((saved.width, saved.background), (Some(640), base.background));
+        assert_eq!(
+            (saved.width, saved.background),
+            (Some(640), base.background)
+        );
         assert_eq!(RenderSettings::from_display(&saved), chosen);
     }
 }
