@@ -83,9 +83,28 @@ pub fn annotate(
 /// drawing lands at ([`LEFT`], [`TOP`]).
 pub fn framed(frame: &Frame, body: &image::RgbaImage, labels: &PlanLabels) -> image::RgbaImage {
     let (bw, bh) = body.dimensions();
-    compose((LEFT + bw + 12, TOP + bh + BOTTOM), body, LEFT, |root| {
-        draw_frame(root, frame, labels)
+    // The north arrow sits above the plan's right corner, or right of the titles where
+    // they reach further (a small plan under a long title), and the image widens for it.
+    let arrow_x = arrow_x(frame.size_px.0, labels);
+    let width = (LEFT + bw + 12).max(arrow_x + 48);
+    compose((width, TOP + bh + BOTTOM), body, LEFT, |root| {
+        draw_frame(root, frame, labels, arrow_x as i32)
     })
+}
+
+/// The north arrow's centre: above the right corner of a plan `plan_width` pixels wide,
+/// or clear of the titles (its circle's radius is 34 pixels).
+fn arrow_x(plan_width: u32, labels: &PlanLabels) -> u32 {
+    (LEFT + plan_width)
+        .saturating_sub(40)
+        .max(titles_width(labels) + 44)
+}
+
+/// About how wide the title and subtitle are drawn, pixels (sans-serif averages under 0.6
+/// of its size per character), with the margins.
+fn titles_width(labels: &PlanLabels) -> u32 {
+    let text = |line: &str, px: f64| (line.chars().count() as f64 * 0.6 * px) as u32 + 24;
+    text(&labels.title, 21.0).max(text(&labels.subtitle, 15.0))
 }
 
 /// A white `size` image drawn on by `draw`, with `body` pasted at (`left`, [`TOP`]).
@@ -119,11 +138,7 @@ fn compose(
 /// the labels' title and subtitle.
 pub fn titled(body: &image::RgbaImage, labels: &PlanLabels) -> image::RgbaImage {
     let (bw, bh) = body.dimensions();
-    // Wide enough for the lines (sans-serif averages under 0.6 of its size per character).
-    let text = |line: &str, px: f64| (line.chars().count() as f64 * 0.6 * px) as u32 + 24;
-    let width = bw
-        .max(text(&labels.title, 21.0))
-        .max(text(&labels.subtitle, 15.0));
+    let width = bw.max(titles_width(labels));
     compose((width, TOP + bh), body, 0, |root| draw_titles(root, labels))
 }
 
@@ -148,6 +163,7 @@ fn draw_frame<DB: DrawingBackend>(
     root: &DrawingArea<DB, plotters::coord::Shift>,
     frame: &Frame,
     labels: &PlanLabels,
+    arrow_x: i32,
 ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
     let black = ("sans-serif", 15).into_font().color(&BLACK);
     draw_titles(root, labels)?;
@@ -165,13 +181,7 @@ fn draw_frame<DB: DrawingBackend>(
         width_m.max(height_m),
         (w_i.max(h_i) as f64 / 110.0).clamp(2.0, 8.0),
     );
-    let label = |v: f64| {
-        if step >= 1.0 {
-            format!("{v:.0}")
-        } else {
-            format!("{v:.1}")
-        }
-    };
+    let label = |v: f64| tick_label(v, step);
     let mut v = (west / step).ceil() * step;
     while v <= west + width_m + 1e-9 {
         let x = left + ((v - west) * px_per_m).round() as i32;
@@ -225,7 +235,7 @@ fn draw_frame<DB: DrawingBackend>(
     let Some(north) = frame.north_offset_deg else {
         return Ok(());
     };
-    let (cx, cy) = (left + w_i - 40, TOP as i32 / 2);
+    let (cx, cy) = (arrow_x, TOP as i32 / 2);
     let a = north.to_radians();
     let (dx, dy) = (a.sin(), -a.cos());
     let r = 30.0;
@@ -252,8 +262,41 @@ fn draw_frame<DB: DrawingBackend>(
     Ok(())
 }
 
+/// A metre axis tick's label: `v` on the grid of `step` (so that summed steps print as
+/// the round values they stand for, and zero never as "-0"), whole metres for steps of a
+/// metre or more.
+fn tick_label(v: f64, step: f64) -> String {
+    let v = (v / step).round() * step + 0.0;
+    if step >= 1.0 {
+        format!("{v:.0}")
+    } else {
+        format!("{v:.1}")
+    }
+}
+
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn the_north_arrow_keeps_clear_of_a_long_title_over_a_small_plan() {
+        let labels = super::PlanLabels {
+            title: "Hours of sun — 48.2100° N, 16.3700° E".into(),
+            subtitle: "2026-03-21, 08:00–17:00 Europe/Vienna, every 60 min".into(),
+            north_offset_deg: 0.0,
+        };
+        let width = super::titles_width(&labels);
+        assert!(super::arrow_x(64, &labels) >= width + 34 + 8);
+        // Over a wide plan it stays above the plan's right corner.
+        assert_eq!(super::arrow_x(1024, &labels), super::LEFT + 1024 - 40);
+    }
+
+    #[test]
+    fn tick_labels_never_read_minus_zero() {
+        assert_eq!(super::tick_label(-0.0, 50.0), "0");
+        assert_eq!(super::tick_label(-1e-13, 50.0), "0");
+        assert_eq!(super::tick_label(-50.0 + 1e-12, 50.0), "-50");
+        assert_eq!(super::tick_label(0.30000000000000004, 0.1), "0.3");
+    }
+
     use super::round_step;
 
     #[test]
