@@ -4,7 +4,9 @@
 //!   defines the module it names, except a child naming its own ancestors);
 //! - the library without default features pulls in no GPU or GUI crate;
 //! - the command line, the viewer and the Python package solve radiosity only through
-//!   `radiosity::session` (no second shooting loop).
+//!   `radiosity::session` (no second shooting loop);
+//! - `gpu/` (the device layer) imports no other library module;
+//! - one module style (`name/mod.rs`, never `name.rs` beside `name/`).
 
 mod common;
 
@@ -686,4 +688,97 @@ fn a_planted_hand_made_table_is_found() {
     let planted =
         "let t = 1;\nprintln!(\"| a | b |\");\nlet r = \"|---|---|\";\n// println!(\"| no\")\n";
     assert_eq!(hand_made_tables_in(planted), vec![2, 3]);
+}
+
+/// The library modules outside `gpu/` that files under `gpu/` import, as `file → module`.
+fn gpu_layer_imports(graph: &BTreeMap<PathBuf, BTreeSet<PathBuf>>, src: &Path) -> Vec<String> {
+    let gpu = src.join("gpu");
+    let mut out = Vec::new();
+    for (from, targets) in graph {
+        if !from.starts_with(&gpu) {
+            continue;
+        }
+        for to in targets.iter().filter(|t| !t.starts_with(&gpu)) {
+            let rel = |p: &Path| p.strip_prefix(src).unwrap_or(p).display().to_string();
+            out.push(format!("{} → {}", rel(from), rel(to)));
+        }
+    }
+    out
+}
+
+/// `gpu/` is the device layer (context, WGSL sources, read-back): it knows no photometry,
+/// scene or renderer; what is uploaded lives with whoever uploads it (`render::ldt`).
+#[test]
+fn the_device_layer_imports_no_other_library_module() {
+    let src = common::root().join("src");
+    let graph = imports::arrows(&src);
+    assert!(graph.keys().any(|f| f.starts_with(src.join("gpu"))));
+    let offences = gpu_layer_imports(&graph, &src);
+    assert!(
+        offences.is_empty(),
+        "gpu/ imports library modules (move the code to its user):\n{}",
+        offences.join("\n")
+    );
+}
+
+#[test]
+fn a_planted_device_layer_import_is_found() {
+    let src = Path::new("/s");
+    let graph = BTreeMap::from([
+        (
+            src.join("gpu/mod.rs"),
+            BTreeSet::from([src.join("gpu/shaders.rs")]),
+        ),
+        (
+            src.join("gpu/ldt.rs"),
+            BTreeSet::from([src.join("photometry/mod.rs")]),
+        ),
+    ]);
+    assert_eq!(
+        gpu_layer_imports(&graph, src),
+        vec!["gpu/ldt.rs → photometry/mod.rs"]
+    );
+}
+
+/// Files `name.rs` that sit beside a folder `name/` (the other module style).
+fn modules_in_both_styles(files: &[PathBuf]) -> Vec<PathBuf> {
+    let dirs: BTreeSet<PathBuf> = files
+        .iter()
+        .filter_map(|f| f.parent().map(Path::to_path_buf))
+        .collect();
+    files
+        .iter()
+        .filter(|f| dirs.contains(&f.with_extension("")))
+        .cloned()
+        .collect()
+}
+
+/// One module style: a module with children is `name/mod.rs`, never `name.rs` beside
+/// `name/`.
+#[test]
+fn every_module_with_children_is_a_folder_with_mod_rs() {
+    let root = common::root();
+    let mut files = rust_files(&root.join("src"));
+    files.extend(rust_files(&root.join("python/src")));
+    let both = modules_in_both_styles(&files);
+    assert!(
+        both.is_empty(),
+        "modules written as name.rs beside name/ (move to name/mod.rs): {both:?}"
+    );
+}
+
+#[test]
+fn a_planted_second_module_style_is_found() {
+    let files = [
+        "/s/a.rs",
+        "/s/a/b.rs",
+        "/s/c/mod.rs",
+        "/s/c/d.rs",
+        "/s/e.rs",
+    ]
+    .map(PathBuf::from);
+    assert_eq!(
+        modules_in_both_styles(&files),
+        vec![PathBuf::from("/s/a.rs")]
+    );
 }

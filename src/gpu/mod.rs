@@ -2,9 +2,6 @@
 //! tests) with the adapter chosen by `WGPU_BACKEND` / `WGPU_ADAPTER_NAME`; WGSL sources
 //! compiled in; read-back helpers.
 
-pub mod ldt;
-pub mod ldt_cube;
-pub mod ldt_table;
 pub mod shaders;
 
 /// Why no GPU context could be made.

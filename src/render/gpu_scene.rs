@@ -12,10 +12,10 @@ use super::mipmaps::{mip_chain, TexelKind};
 use super::paraboloid::{ParaboloidCasters, ShadowLight};
 use super::volumes::VolumeGeometry;
 use crate::geometry::Mesh;
-use crate::gpu::ldt::LdtAtlas;
-use crate::gpu::ldt_table::LdtTables;
 use crate::gpu::Gpu;
 use crate::photometry::LdtTexture;
+use crate::render::ldt::table::LdtTables;
+use crate::render::ldt::LdtAtlas;
 use crate::scene::{Material, PlacedLuminaire, Scene};
 
 /// A vertex as the shaders read it.

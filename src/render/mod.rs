@@ -7,6 +7,7 @@ pub mod cutout_gpu;
 pub mod gpu_scene;
 pub mod illuminance;
 pub mod layouts;
+pub mod ldt;
 pub mod legend;
 pub mod lightmap;
 pub mod limits;
@@ -76,7 +77,7 @@ pub struct RenderSettings {
 
 impl RenderSettings {
     /// The light model the image is drawn with: in shaded mode Catmull-Rom comes from the
-    /// cube maps ([`crate::gpu::ldt_cube`]: one filtered fetch per light, the cost of a
+    /// cube maps ([`crate::render::ldt::cube`]: one filtered fetch per light, the cost of a
     /// point light), in illuminance mode — where the pixels are lux — from the exact spline;
     /// every other model as chosen. `illuminance`, `calc` and radiosity always sample the
     /// exact spline.

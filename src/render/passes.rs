@@ -10,9 +10,9 @@ use glam::Mat4;
 use super::gpu_scene::{GpuScene, Vertex};
 use super::layouts::Layouts;
 use super::targets::{Targets, HDR_FORMAT};
-use crate::gpu::ldt::interp_code;
 use crate::gpu::{shaders, Gpu};
 use crate::photometry::Interp;
+use crate::render::ldt::interp_code;
 use crate::scene::{Camera, Projection};
 
 /// How luminaires emit.
@@ -22,10 +22,10 @@ pub enum LightModel {
     Point,
     /// The luminaire's distribution, sampled with an interpolation.
     Ldt(Interp),
-    /// Catmull-Rom from the dense table: one filtered fetch (see [`crate::gpu::ldt_table`]).
+    /// Catmull-Rom from the dense table: one filtered fetch (see [`crate::render::ldt::table`]).
     CatmullRomTable,
     /// Catmull-Rom resampled into a cube map: one filtered fetch by direction, no angles
-    /// (see [`crate::gpu::ldt_cube`]).
+    /// (see [`crate::render::ldt::cube`]).
     CatmullRomCube,
 }
 

@@ -8,9 +8,9 @@ use crate::gpu_common;
 
 use glam::DVec3;
 use goniolight::geometry::generate::XorShift;
-use goniolight::gpu::ldt::{LdtAtlas, LdtProbe};
 use goniolight::photometry::distribution::direction_to_angles;
 use goniolight::photometry::{Interp, LdtTexture, Luminaire};
+use goniolight::render::ldt::{LdtAtlas, LdtProbe};
 
 /// One real file per Isym, a 1°×1° lab file, an IES file and a half-sphere file.
 const FILES: [&str; 8] = [
@@ -97,7 +97,7 @@ fn near_a_tie(tex: &LdtTexture, c: f64, gamma: f64) -> bool {
 /// Catmull-Rom within 1e-3 · I_max (measured 5.0e-4 on lavapipe).
 #[test]
 fn the_catmull_rom_table_stays_within_1e_3_of_i_max() {
-    use goniolight::gpu::ldt_table::table_value;
+    use goniolight::render::ldt::table::table_value;
     use goniolight::render::LightModel;
     let dirs = random_directions(3000, 11);
     let mut worst: f64 = 0.0;

@@ -8,8 +8,8 @@
 //! rounding: within 1e-3 · I_max (checked by `tests/gpu/gpu_ldt.rs` for every bundled file,
 //! with [`table_value`] as the CPU twin of the lookup).
 
-use super::ldt::LdtAtlas;
-use super::{shaders, Gpu};
+use super::LdtAtlas;
+use crate::gpu::{shaders, Gpu};
 use crate::photometry::{Interp, LdtTexture};
 
 /// Columns: C from 0° in 0.125° steps (wrapping at 360°).
@@ -20,7 +20,7 @@ pub const TABLE_PADDING_ROWS: u32 = 4;
 pub const TABLE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R16Float;
 
 /// The tables of every layer of an atlas, with their filtering sampler; or, for the
-/// `CatmullRomCube` light model, the cube maps of [`super::ldt_cube`] (the other half
+/// `CatmullRomCube` light model, the cube maps of [`super::cube`] (the other half
 /// is then a one-texel stand-in: WGSL needs every binding filled).
 pub struct LdtTables {
     /// A `D2Array` view, one layer per atlas layer.
@@ -48,7 +48,7 @@ impl LdtTables {
 
     /// The cube maps of `textures` (one per atlas layer, in order), with a one-texel table.
     pub fn cubes(gpu: &Gpu, textures: &[LdtTexture]) -> LdtTables {
-        let cube = super::ldt_cube::cube_array(gpu, textures, super::ldt_cube::CUBE_SIZE);
+        let cube = super::cube::cube_array(gpu, textures, super::cube::CUBE_SIZE);
         LdtTables::with_texture(gpu, &LdtTables::one_texel(gpu), Some(cube))
     }
 
@@ -75,7 +75,7 @@ impl LdtTables {
         texture: &wgpu::Texture,
         cube: Option<wgpu::TextureView>,
     ) -> LdtTables {
-        let cube = cube.unwrap_or_else(|| super::ldt_cube::cube_array(gpu, &[], 1));
+        let cube = cube.unwrap_or_else(|| super::cube::cube_array(gpu, &[], 1));
         let sampler = gpu.device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("catmull-rom tables"),
             address_mode_u: wgpu::AddressMode::Repeat,
@@ -123,7 +123,7 @@ impl LdtTables {
             gpu.fullscreen_pipeline("ldt table", &module, ("vs_table", "fs_table"), TABLE_FORMAT);
         let mut enc = gpu.device.create_command_encoder(&Default::default());
         for layer in 0..layers {
-            let view = super::layer_view(&texture, layer);
+            let view = crate::gpu::layer_view(&texture, layer);
             let params = gpu.uniform_buffer(
                 "ldt table params",
                 &TableParams {
@@ -143,7 +143,7 @@ impl LdtTables {
             );
             let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("ldt table"),
-                color_attachments: &[Some(super::cleared_attachment(
+                color_attachments: &[Some(crate::gpu::cleared_attachment(
                     &view,
                     wgpu::Color::TRANSPARENT,
                 ))],

@@ -14,7 +14,7 @@ use std::sync::{Arc, Mutex};
 use glam::DVec3;
 use rayon::prelude::*;
 
-use super::Gpu;
+use crate::gpu::Gpu;
 use crate::photometry::{direction_to_angles, Interp, LdtTexture};
 
 /// Texels per face side.

@@ -5,7 +5,10 @@
 use bytemuck::Zeroable;
 use wgpu::util::DeviceExt;
 
-use super::{shaders, Gpu, GpuError};
+pub mod cube;
+pub mod table;
+
+use crate::gpu::{shaders, Gpu, GpuError};
 use crate::photometry::{Interp, LdtTexture};
 
 /// Per-layer grid information, laid out as `LdtInfo` in WGSL.
