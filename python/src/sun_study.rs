@@ -11,7 +11,7 @@ use pyo3::prelude::*;
 use goniolight::io::outputs::Staging;
 use goniolight::scene::UpAxis;
 use goniolight::shadow::SilhouetteMethod;
-use goniolight::study::profile::{HoursMetric, SURFACE_NONE};
+use goniolight::study::shadow_profile::{HoursMetric, SURFACE_NONE};
 use goniolight::study::sun_study::{ModelView, StudyFiles};
 use goniolight::study::surface_set::FacadeOptions;
 use goniolight::study::{ProfileError, StudyDay, SunStudy, SunStudyOptions};

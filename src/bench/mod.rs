@@ -4,7 +4,6 @@
 
 pub mod adaptive;
 pub mod clusters;
-pub mod profile;
 pub mod radiosity;
 pub mod radiosity_report;
 pub mod radiosity_view;
@@ -12,6 +11,7 @@ pub mod radiosity_view_report;
 pub mod raycast;
 pub mod render;
 pub mod report;
+pub mod shadow_profile;
 pub mod silhouette;
 
 /// The median of `v` (the mean of the two middle values for an even count); NaN when empty.

@@ -16,11 +16,11 @@ use super::plan::Plan;
 use super::{grid_stats, CalcGrid, CalcSettings, GridStats};
 use crate::gpu::{Gpu, GpuError};
 use crate::io::limits::MAX_TOTAL_POINTS;
-use crate::lighting::SurfacePoint;
+use crate::lighting::{usable_lux, SurfacePoint, UnusableLux};
 use crate::photometry::Interp;
 use crate::radiosity::session::{self, Event, SessionError};
 use crate::radiosity::view::Drive;
-use crate::render::illuminance::scene_illuminance;
+use crate::render::illuminance::{scene_illuminance, IlluminanceError};
 use crate::render::ShadowTechnique;
 use crate::scene::grid::Indirect;
 use crate::scene::{Palette, Scene};
@@ -230,8 +230,11 @@ impl<'s> Request<'s> {
                 return Err(CalcError::Cancelled);
             }
             let direct =
-                scene_illuminance(gpu, self.scene, points, self.options.interp, &mut shadows)?;
-            check_usable(&g.entry.name, &direct)?;
+                scene_illuminance(gpu, self.scene, points, self.options.interp, &mut shadows)
+                    .map_err(|e| match e {
+                        IlluminanceError::Gpu(g) => CalcError::Gpu(g),
+                        IlluminanceError::Unusable(u) => unusable(&g.entry.name, u),
+                    })?;
             lux.push(direct);
         }
         Ok(Direct {
@@ -277,7 +280,7 @@ impl<'s> Request<'s> {
                     *v += inter[at];
                     at += 1;
                 }
-                check_usable(&g.entry.name, lux)?;
+                usable_lux(lux).map_err(|u| unusable(&g.entry.name, u))?;
             }
             for b in &mut background {
                 *b = inter[at].max(0.0) / std::f64::consts::PI;
@@ -341,19 +344,12 @@ pub struct Direct {
     pub warnings: Vec<String>,
 }
 
-/// An error naming the grid and point when a computed illuminance is not a usable number.
-fn check_usable(grid: &str, lux: &[f64]) -> Result<(), CalcError> {
-    match lux
-        .iter()
-        .enumerate()
-        .find(|(_, v)| !v.is_finite() || **v < -1e-6)
-    {
-        Some((i, &value)) => Err(CalcError::Unusable {
-            grid: grid.to_string(),
-            point: i + 1,
-            value,
-        }),
-        None => Ok(()),
+/// The error naming the grid and point of a computed illuminance that is not a usable number.
+fn unusable(grid: &str, u: UnusableLux) -> CalcError {
+    CalcError::Unusable {
+        grid: grid.to_string(),
+        point: u.point,
+        value: u.value,
     }
 }
 

@@ -233,7 +233,7 @@ pub fn run(cmd: BenchCommand) -> Result<(), CliError> {
             step,
             floors,
             shared,
-        } => super::profile::run_bench(json, resolution, step, floors, shared),
+        } => super::bench_profile::run(json, resolution, step, floors, shared),
         BenchCommand::Raycast {
             json,
             rays,
@@ -391,7 +391,7 @@ fn run_radiosity(
     }
     let path =
         scene.unwrap_or_else(|| crate::io::data_root().join("assets/scenes/cornell_box.toml"));
-    let scene = super::render::load_scene(&path)?;
+    let scene = super::scene_input::load_scene(&path)?;
     let gpu = Gpu::shared()?;
     eprintln!("GPU: {}", gpu.describe());
     let bar = indicatif::ProgressBar::new(1000);
@@ -467,7 +467,7 @@ fn run_radiosity_view(
     let path =
         scene.unwrap_or_else(|| crate::io::data_root().join("assets/scenes/furnished_room.toml"));
     let scene =
-        crate::bench::radiosity_view::row_of_rooms(&super::render::load_scene(&path)?, rooms);
+        crate::bench::radiosity_view::row_of_rooms(&super::scene_input::load_scene(&path)?, rooms);
     let mut camera = scene.camera;
     if let Some((e, l, fov)) = eye {
         camera = crate::scene::camera::Camera {

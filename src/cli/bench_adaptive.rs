@@ -52,7 +52,7 @@ pub fn run(args: AdaptiveBenchArgs) -> Result<(), CliError> {
     let path = args
         .scene
         .unwrap_or_else(|| crate::io::data_root().join("assets/scenes/furnished_room.toml"));
-    let scene = super::render::load_scene(&path)?;
+    let scene = super::scene_input::load_scene(&path)?;
     let gpu = Gpu::shared()?;
     eprintln!("GPU: {}", gpu.describe());
     let d = args.texel_density;

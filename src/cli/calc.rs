@@ -11,8 +11,8 @@ use anyhow::anyhow;
 use clap::Args;
 
 use super::error::CliError;
-use super::radiosity::SolverArgs;
-use super::render::{load_scene, scene_at};
+use super::scene_input::{load_scene, scene_at};
+use super::solver_args::SolverArgs;
 use crate::calc::compute::{csv_name, CalcError, CalcOptions, Calculation, Request};
 use crate::calc::report::{report_html, ReportGrid, ReportObserver};
 use crate::gpu::Gpu;
@@ -156,7 +156,7 @@ pub fn run(args: CalcArgs) -> Result<(), CliError> {
     };
     let calc = request.finish(direct, interreflected).map_err(calc_error)?;
     for w in &calc.warnings {
-        super::render::warn_once(&scene.path, w);
+        super::scene_input::warn_once(&scene.path, w);
     }
     interrupted(&cancel)?;
     let inputs = scene.input_files();
@@ -234,14 +234,14 @@ fn interreflected_lux(
     settings.light_model = crate::render::LightModel::Ldt(args.interp);
     settings.shadows = ShadowSettings::with(args.shadows);
     let options = args.solver.check()?;
-    let solved = super::radiosity::solve(&args.scene, scene, &options, &mut settings, started)?;
+    let solved = super::solving::solve(&args.scene, scene, &options, &mut settings, started)?;
     if solved.stop() == crate::radiosity::solve::StopReason::Cancelled {
         return Err(CliError::failure(anyhow!(
             "interrupted while solving the interreflected light: nothing written"
         )));
     }
     let points = request.gather_points();
-    let lux = super::radiosity::interreflected_lux(&args.scene, &solved, &points)?;
+    let lux = super::solving::gathered_lux(&args.scene, &solved, &points, false)?;
     Ok((lux, solved.convergence()))
 }
 

@@ -13,8 +13,8 @@ use std::path::PathBuf;
 use clap::Args;
 
 use super::error::CliError;
+use super::image::{render_to_files, ImageOptions};
 use super::ldt::{print_check, write_plot};
-use super::render::{render_to_files, ImageOptions};
 use crate::gpu::Gpu;
 use crate::io::write_atomic;
 use crate::photometry::{check, Luminaire};
@@ -54,7 +54,10 @@ fn render_both(args: &DemoArgs, staging: &crate::io::outputs::Staging) -> Result
         Some(p) => p.clone(),
         None => default_scene()?,
     };
-    let scene = super::render::scene_at(super::render::load_scene(&scene_path)?, args.image.time)?;
+    let scene = super::scene_input::scene_at(
+        super::scene_input::load_scene(&scene_path)?,
+        args.image.time,
+    )?;
     let gpu = Gpu::shared()?;
     println!("GPU: {}", gpu.describe());
     // One solution for both images.

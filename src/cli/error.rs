@@ -5,7 +5,7 @@ use crate::geometry::GeometryError;
 use crate::gpu::GpuError;
 use crate::photometry::PhotometryError;
 use crate::scene::SceneError;
-use crate::study::profile::ProfileError;
+use crate::study::shadow_profile::ProfileError;
 use crate::sun::SunError;
 #[cfg(feature = "viewer")]
 use crate::viewer::ViewerError;
@@ -286,6 +286,15 @@ impl From<GpuError> for CliError {
             CliError::input(anyhow::anyhow!(flags_in(message)))
         } else {
             CliError::failure(e)
+        }
+    }
+}
+
+impl From<crate::render::illuminance::IlluminanceError> for CliError {
+    fn from(e: crate::render::illuminance::IlluminanceError) -> CliError {
+        match e {
+            crate::render::illuminance::IlluminanceError::Gpu(g) => g.into(),
+            unusable => CliError::failure(unusable),
         }
     }
 }

@@ -9,7 +9,7 @@ use std::time::Instant;
 use clap::Args;
 
 use super::error::CliError;
-use super::radiosity::solve;
+use super::solving::solve;
 use crate::radiosity::session::Options;
 use crate::render::lightmap::LightMap;
 use crate::render::RenderSettings;

@@ -5,17 +5,22 @@ mod args;
 mod batch;
 mod bench;
 mod bench_adaptive;
+mod bench_profile;
 mod calc;
 mod demo;
 mod error;
+mod illuminance;
+mod image;
 mod indirect;
 mod interrupt;
 mod ldt;
 mod profile;
 mod radiosity;
 mod render;
-mod render_command;
+mod scene_input;
 mod silhouette;
+mod solver_args;
+mod solving;
 mod sun;
 #[cfg(feature = "viewer")]
 mod view;
@@ -44,9 +49,9 @@ pub enum Command {
     /// Run the main job on the bundled data and write its outputs.
     Demo(demo::DemoArgs),
     /// Render a scene (shaded or false-colour illuminance) to PNG and optionally EXR.
-    Render(render_command::RenderArgs),
+    Render(render::RenderArgs),
     /// Read "x y z nx ny nz" lines from stdin and print the direct illuminance (lux) at each.
-    Illuminance(render::IlluminanceArgs),
+    Illuminance(illuminance::IlluminanceArgs),
     /// Lighting calculations on the scene's `[[grid]]` surfaces and `[[observer]]`s:
     /// maintained illuminance at every point (direct, or total with `--indirect
     /// radiosity`), Em/Emin/Emax/U0/g2 per grid, UGR per observer, `calc.json`, one CSV
@@ -83,8 +88,8 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
     match cli.command {
         Command::Ldt(cmd) => ldt::run(cmd),
         Command::Demo(args) => demo::run(args),
-        Command::Render(args) => render_command::run(args),
-        Command::Illuminance(args) => render::run_illuminance(args),
+        Command::Render(args) => render::run(args),
+        Command::Illuminance(args) => illuminance::run(args),
         Command::Calc(args) => calc::run(args),
         Command::Sun(args) => sun::run(args),
         Command::Silhouette(args) => silhouette::run(args),

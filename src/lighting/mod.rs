@@ -29,6 +29,38 @@ pub struct PointsError {
     pub message: String,
 }
 
+/// A computed illuminance that is not a usable number (not finite, or below zero by more
+/// than rounding): a bug, refused rather than reported.
+#[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+#[error("point {point}: the computed illuminance {value} lx is not a usable number")]
+pub struct UnusableLux {
+    /// The point, counted from 1.
+    pub point: usize,
+    /// The value, lux.
+    pub value: f64,
+}
+
+/// How far below zero a computed illuminance may fall by rounding, lux.
+pub const LUX_ROUNDING: f64 = 1e-6;
+
+/// Checks computed illuminances before anyone is told them: refuses the first that is not
+/// finite or lies below zero by more than [`LUX_ROUNDING`]; the others below zero (−0,
+/// rounding) become 0, so no −0 is ever printed.
+pub fn usable_lux(lux: &mut [f64]) -> Result<(), UnusableLux> {
+    for (i, v) in lux.iter_mut().enumerate() {
+        if !v.is_finite() || *v < -LUX_ROUNDING {
+            return Err(UnusableLux {
+                point: i + 1,
+                value: *v,
+            });
+        }
+        if *v <= 0.0 {
+            *v = 0.0;
+        }
+    }
+    Ok(())
+}
+
 /// A point on a surface: position (metres) and normal (need not be unit length).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SurfacePoint {

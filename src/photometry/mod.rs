@@ -4,6 +4,7 @@
 
 pub mod catalogue;
 pub mod check;
+pub mod check_text;
 pub mod datasheet;
 pub mod datasheet_plot;
 pub mod distribution;

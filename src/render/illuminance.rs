@@ -17,20 +17,32 @@ use crate::shadow::ShadowTechnique;
 
 pub use crate::lighting::{
     illuminance_cpu, illuminance_cpu_in_scene, point_visibility, Occluders, SurfacePoint,
+    UnusableLux,
 };
+
+/// Why [`scene_illuminance`] gave no values.
+#[derive(Debug, thiserror::Error)]
+pub enum IlluminanceError {
+    /// The GPU failed or the scene is beyond its limits.
+    #[error(transparent)]
+    Gpu(#[from] GpuError),
+    /// A computed value is not a usable number (refused, never returned).
+    #[error(transparent)]
+    Unusable(#[from] UnusableLux),
+}
 
 /// Direct illuminance (lux) at `points` in `scene` with `shadows` (its technique; the GPU's
 /// check may coarsen its paraboloid tessellation: [`ShadowSettings::warning`]): on `gpu`
 /// with the renderer's own lighting code, or by the CPU twin when `gpu` is `None`
 /// (ray-cast shadows unless `none`); with shadows, plus the light mirrors and clear glass
-/// pass on (ray-cast, [`SceneWindows`]).
+/// pass on (ray-cast, [`SceneWindows`]). Every value is checked ([`crate::lighting::usable_lux`]).
 pub fn scene_illuminance(
     gpu: Option<&Gpu>,
     scene: &Scene,
     points: &[SurfacePoint],
     interp: Interp,
     shadows: &mut ShadowSettings,
-) -> Result<Vec<f64>, GpuError> {
+) -> Result<Vec<f64>, IlluminanceError> {
     let mut lux = straight_illuminance(gpu, scene, points, interp, shadows)?;
     // Mirrors and clear glass pass light on where shadows are drawn ([`SceneWindows`]).
     if shadows.technique != ShadowTechnique::None {
@@ -39,6 +51,7 @@ pub fn scene_illuminance(
             light.add_lux_at_points(points, &mut lux, interp);
         }
     }
+    crate::lighting::usable_lux(&mut lux)?;
     Ok(lux)
 }
 

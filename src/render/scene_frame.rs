@@ -4,9 +4,10 @@
 //! `demo` and Python's `render` call [`render_scene`].
 
 use crate::gpu::{Gpu, GpuError};
-use crate::scene::{Mode, Scene};
+use crate::scene::{DisplayIndirect, Mode, Scene};
 use crate::shadow::ShadowTechnique;
 
+use super::legend::format_lux;
 use super::lightmap::LightMap;
 use super::{RenderSettings, RenderedFrame, Renderer};
 
@@ -35,6 +36,48 @@ pub struct SceneFrame {
     pub settings: RenderSettings,
     /// What the image leaves out or changed to fit.
     pub warnings: Vec<String>,
+}
+
+impl SceneFrame {
+    /// One line on the light in the image: in a shaded image the log-average and maximum
+    /// luminance; in an illuminance image the lux percentiles over the surface pixels
+    /// (the maximum beside the 99th percentile, with a note when a few pixels next to a
+    /// luminaire dominate it) and the false-colour scale.
+    pub fn light_summary(&self) -> String {
+        match self.settings.mode {
+            Mode::Shaded => format!(
+                "log-average luminance {:.1} cd/m², max {:.0} cd/m²",
+                self.frame.stats.log_average_luminance, self.frame.stats.max_luminance
+            ),
+            Mode::Illuminance => lux_summary(&self.frame, self.settings.shown_light),
+        }
+    }
+}
+
+/// The illuminance line of a report: percentiles over the surface pixels, the maximum
+/// beside the 99th percentile (it is usually a surface touching a luminaire), the scale.
+fn lux_summary(frame: &RenderedFrame, light: DisplayIndirect) -> String {
+    let scale = format!("scale 0–{} lx", format_lux(frame.tone.lux_max));
+    match frame.stats.lux {
+        Some(p) => {
+            let note = if p.max > 5.0 * p.p99 {
+                " (a few pixels next to a luminaire: quote the percentiles)"
+            } else {
+                ""
+            };
+            format!(
+                "illuminance ({}) over the surfaces in view: mean {:.0} lx, median {:.0}, 5 % {:.0}, 95 % {:.0}, 99 % {:.0}, max {:.0}{note}; {scale}",
+                light.describe(),
+                p.mean,
+                p.median,
+                p.p5,
+                p.p95,
+                p.p99,
+                p.max
+            )
+        }
+        None => format!("no surface in view; {scale}"),
+    }
 }
 
 /// Renders `scene` from its camera with `settings` (and `light_map`, a solved radiosity

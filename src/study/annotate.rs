@@ -4,7 +4,7 @@
 
 use plotters::prelude::*;
 
-use super::profile::Profile;
+use super::shadow_profile::Profile;
 use crate::photometry::plot::register_font;
 
 /// Pixels left of the plan (the y axis and its labels).

@@ -8,8 +8,8 @@ pub mod mask;
 pub mod model;
 pub mod outlines;
 pub mod output;
-pub mod profile;
 pub mod rasters;
+pub mod shadow_profile;
 pub mod study_files;
 pub mod sun_study;
 pub mod sunpath;
@@ -18,5 +18,5 @@ pub mod surface_set;
 pub mod surfaces;
 pub mod view_hours;
 
-pub use profile::{compute, HoursMetric, Profile, ProfileError, ProfileSpec};
+pub use shadow_profile::{compute, HoursMetric, Profile, ProfileError, ProfileSpec};
 pub use sun_study::{StudyDay, SunStudy, SunStudyOptions};

@@ -9,7 +9,7 @@ use glam::DVec2;
 use serde_json::json;
 
 use super::colours::time_colour;
-use super::profile::{Profile, ProfileStep, SURFACE_GROUND, SURFACE_MODEL};
+use super::shadow_profile::{Profile, ProfileStep, SURFACE_GROUND, SURFACE_MODEL};
 use crate::io::xml_escape;
 use crate::photometry::plot::nice_ceiling;
 

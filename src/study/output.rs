@@ -15,10 +15,10 @@ pub use super::colours::{hours_colour, time_colour};
 
 use super::annotate::{annotate, PlanLabels};
 use super::outlines::{outlines_geojson, outlines_svg};
-use super::profile::{
+use super::rasters::{ascii_grid, hours_csv, hours_exr, pass_fraction, surface_mean, AnalysisArea};
+use super::shadow_profile::{
     HoursMetric, Profile, ProfileStep, SURFACE_GROUND, SURFACE_MODEL, SURFACE_NONE,
 };
-use super::rasters::{ascii_grid, hours_csv, hours_exr, pass_fraction, surface_mean, AnalysisArea};
 use super::surface_output::{write_surfaces, FacadeSummary, PointResult, SurfaceResults};
 use crate::io::write_atomic;
 use crate::render::legend::with_legend_panel;

@@ -9,7 +9,7 @@ use std::path::Path;
 use anyhow::{bail, Context};
 use glam::DVec2;
 
-use super::profile::{Profile, SURFACE_NONE};
+use super::shadow_profile::{Profile, SURFACE_NONE};
 
 /// The value written for cells that see neither ground nor model.
 pub const NODATA: f64 = -9999.0;

@@ -8,7 +8,7 @@ use chrono::NaiveDate;
 use super::annotate::PlanLabels;
 use super::mask::ObstructionMask;
 use super::output::StudySummary;
-use super::profile::{Profile, ProfileSpec};
+use super::shadow_profile::{Profile, ProfileSpec};
 use super::sunpath::{Projection, SunPathDiagram};
 use crate::io::write_atomic;
 

@@ -12,8 +12,10 @@ use glam::{DVec2, DVec3};
 use super::annotate::PlanLabels;
 use super::model::{load_components, recentre, up_axis_warning, StudyModel};
 use super::output::{summary, write_study, StudyOutput, StudySummary};
-use super::profile::{compute_on, prepare, shared_extent, HoursMetric, Profile, ProfileSpec};
 use super::rasters::{surface_cells, AnalysisArea};
+use super::shadow_profile::{
+    compute_on, prepare, shared_extent, HoursMetric, Profile, ProfileSpec,
+};
 use super::study_files::{write_dates_table, write_sun_path};
 use super::surface_output::{surface_summaries, SurfaceResults};
 use super::surface_set::{FacadeOptions, SurfaceSet, SurfaceSetup};

@@ -3,7 +3,7 @@
 use glam::DVec2;
 
 use super::mask::{MaskRays, ObstructionMask};
-use super::profile::Profile;
+use super::shadow_profile::Profile;
 use super::surface_output::SurfaceResults;
 use super::surfaces::{
     facade_hours, find_facades, surface_offset, Facade, Sun, SunRays, WindowPoint,

@@ -17,7 +17,7 @@ use glam::DVec3;
 use super::annotate::{titled, PlanLabels};
 use super::colours::hours_colour;
 use super::output::with_hours_legend;
-use super::profile::{
+use super::shadow_profile::{
     depth_target, ground_square, plan_square, surfaces_seen, HoursMetric, ProfileError,
     ProfileSpec, SURFACE_NONE,
 };
@@ -36,8 +36,8 @@ pub struct ViewHours {
     pub width: u32,
     /// Image height, pixels.
     pub height: u32,
-    /// Per pixel (row-major, top row first): [`super::profile::SURFACE_GROUND`],
-    /// [`super::profile::SURFACE_MODEL`] or [`SURFACE_NONE`] (sky).
+    /// Per pixel (row-major, top row first): [`super::shadow_profile::SURFACE_GROUND`],
+    /// [`super::shadow_profile::SURFACE_MODEL`] or [`SURFACE_NONE`] (sky).
     pub surface: Vec<u8>,
     /// Per pixel: hours of direct sun (0 where nothing is seen).
     pub sun_h: Vec<f32>,
@@ -85,7 +85,7 @@ pub fn default_camera(model: &Mesh, north_offset_deg: f64) -> Option<Camera> {
 }
 
 /// Hours of sun per pixel of `camera`'s `width` × `height` view of a model
-/// ([`super::profile::prepare`]d: prepare once for a profile and a view) and of the ground
+/// ([`super::shadow_profile::prepare`]d: prepare once for a profile and a view) and of the ground
 /// square a plan of `spec` would show, at the model's lowest point, over `spec`'s period.
 /// `progress(done, total)` after each step; `cancel` stops between steps.
 pub fn compute(

@@ -17,7 +17,7 @@ use crate::gpu::Gpu;
 use crate::render::lightmap::LightMap;
 use crate::render::RenderSettings;
 use crate::scene::{PlacedLuminaire, Scene};
-use crate::study::profile::Profile;
+use crate::study::shadow_profile::Profile;
 use crate::study::view_hours::ViewHours;
 
 /// How serious a message is.

@@ -9,7 +9,7 @@ use std::time::{Duration, Instant};
 use anyhow::{anyhow, Context as _};
 
 use super::app::ViewerApp;
-use super::viewport::Viewport;
+use super::viewport_gpu::Viewport;
 use crate::gpu::Gpu;
 
 /// How a run of the viewer goes: in a window, or headless.

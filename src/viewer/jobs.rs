@@ -11,7 +11,7 @@ use std::sync::Arc;
 use crate::geometry::Mesh;
 use crate::gpu::Gpu;
 use crate::scene::Camera;
-use crate::study::profile::{compute_on, prepare, Profile, ProfileError, ProfileSpec};
+use crate::study::shadow_profile::{compute_on, prepare, Profile, ProfileError, ProfileSpec};
 use crate::study::view_hours::{compute as view_hours, ViewHours};
 
 /// Flags a worker reads between units of work.

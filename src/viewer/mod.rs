@@ -14,8 +14,8 @@ pub mod live_radiosity;
 pub mod luminaires;
 pub mod photometry_sheet;
 pub mod sun;
-pub mod view;
-pub mod viewport;
+pub mod viewport_gpu;
+pub mod viewport_ui;
 pub mod window;
 pub mod work;
 

@@ -15,7 +15,7 @@ use goniolight::geometry::generate::cuboid;
 use goniolight::shadow::raycast::in_shadow;
 use goniolight::shadow::{Light, SilhouetteMethod};
 use goniolight::study::output::{hours_colour, hours_image, hours_scale};
-use goniolight::study::profile::{
+use goniolight::study::shadow_profile::{
     compute, HoursMetric, Profile, ProfileSpec, VolumeEnds, SURFACE_GROUND,
 };
 use goniolight::sun::{direction_from_angles, Site, SunOptions, Zone};

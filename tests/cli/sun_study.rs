@@ -20,8 +20,8 @@ use goniolight::geometry::generate::cuboid;
 use goniolight::geometry::Mesh;
 use goniolight::shadow::bvh::TriangleBvh;
 use goniolight::shadow::{IgnoredTriangles, Light, SilhouetteMethod};
-use goniolight::study::profile::{compute, HoursMetric, Profile, ProfileSpec, SURFACE_NONE};
 use goniolight::study::rasters::{pass_fraction, AnalysisArea};
+use goniolight::study::shadow_profile::{compute, HoursMetric, Profile, ProfileSpec, SURFACE_NONE};
 use goniolight::sun::{direction_from_angles, Site, SunOptions, Zone};
 
 fn hm(s: &str) -> NaiveTime {
@@ -131,7 +131,7 @@ fn sun_hours_integrate_the_period_and_match_a_cpu_ray_cast() {
             }
             // Sun and shadow share the sun-up time.
             assert!((sun[k] + shadow[k] - 9.0).abs() < 1e-5, "cell {k}");
-            if p.surface[k] != goniolight::study::profile::SURFACE_GROUND {
+            if p.surface[k] != goniolight::study::shadow_profile::SURFACE_GROUND {
                 continue;
             }
             let c = p.pixel_center(px, py);
@@ -1173,7 +1173,7 @@ fn only_the_chosen_components_cast_shadows() {
 
 #[test]
 fn model_coloured_by_hours_matches_a_cpu_ray_cast_per_pixel() {
-    use goniolight::study::profile::{SURFACE_GROUND, SURFACE_MODEL};
+    use goniolight::study::shadow_profile::{SURFACE_GROUND, SURFACE_MODEL};
     use goniolight::study::view_hours::{compute as view_hours, default_camera, pixel_ray};
     // The box and two one-sided walls (open meshes: the camera sees the front of one and
     // the back of the other), from the south-west above, Vienna at the equinox, hourly:
@@ -1215,7 +1215,7 @@ fn model_coloured_by_hours_matches_a_cpu_ray_cast_per_pixel() {
     };
     let camera = default_camera(&model, 0.0).unwrap();
     let size = (240, 180);
-    let geometry = goniolight::study::profile::prepare(&gpu, &model).unwrap();
+    let geometry = goniolight::study::shadow_profile::prepare(&gpu, &model).unwrap();
     let v = view_hours(
         &gpu,
         &geometry,

@@ -640,7 +640,7 @@ fn shadow_profile_runs_in_the_background_and_is_shown() {
         .expect("the model's hours from the view");
     assert_eq!((v.width, v.height, v.sun_up_h), (800, 600, p.sun_up_h));
     let seen: Vec<f32> = (0..v.sun_h.len())
-        .filter(|&k| v.surface[k] != goniolight::study::profile::SURFACE_NONE)
+        .filter(|&k| v.surface[k] != goniolight::study::shadow_profile::SURFACE_NONE)
         .map(|k| v.sun_h[k])
         .collect();
     let full = seen
@@ -741,7 +741,7 @@ fn viewport_reads_the_lux_under_the_cursor_and_saves_png_and_exr() {
         wgpu::TextureFormat::Rgba8Unorm,
         egui_wgpu::RendererOptions::default(),
     );
-    let mut viewport = goniolight::viewer::viewport::Viewport::new(&gpu);
+    let mut viewport = goniolight::viewer::viewport_gpu::Viewport::new(&gpu);
     viewport.update(&gpu, &mut app, &mut egui_renderer).unwrap();
     assert!(app.viewport_texture.is_some());
     assert_eq!(app.last_error(), None);

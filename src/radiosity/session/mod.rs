@@ -16,6 +16,7 @@
 //! stops the preparation between stages (an error: nothing to show), the shooting
 //! between batches (the solution so far) and the gather (an error).
 
+pub mod describe;
 mod options;
 
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -34,7 +35,7 @@ use super::shooters::Shooters;
 use super::solve::{self, ConvergencePoint, ShotRun, StopAt, StopReason};
 use super::view::{self, Drive, ViewDriven, ViewPoint};
 use crate::gpu::{Gpu, GpuError};
-use crate::lighting::SurfacePoint;
+use crate::lighting::{usable_lux, SurfacePoint, UnusableLux};
 use crate::photometry::Interp;
 use crate::render::lightmap::LightMap;
 use crate::render::ShadowSettings;
@@ -100,6 +101,9 @@ pub enum SessionError {
     /// The cancel flag was set during a stage that has nothing to show for it.
     #[error("interrupted while {}", .0.name())]
     Cancelled(Stage),
+    /// A computed illuminance is not a usable number (refused, never returned).
+    #[error(transparent)]
+    Unusable(#[from] UnusableLux),
 }
 
 impl SessionError {
@@ -107,7 +111,7 @@ impl SessionError {
     pub fn is_bad_input(&self) -> bool {
         match self {
             SessionError::Gpu(e) => matches!(e, GpuError::Limit(_)),
-            SessionError::Cancelled(_) => false,
+            SessionError::Cancelled(_) | SessionError::Unusable(_) => false,
             _ => true,
         }
     }
@@ -580,8 +584,12 @@ impl Solution {
             cancel,
             progress,
         )
-        .map(|g| g.into_iter().map(luminance).collect())
         .ok_or(SessionError::Cancelled(Stage::Gathering))
+        .and_then(|g| {
+            let mut lux: Vec<f64> = g.into_iter().map(luminance).collect();
+            usable_lux(&mut lux)?;
+            Ok(lux)
+        })
     }
 
     /// The luminaires' direct illuminance at `points` with their shadows, and what
@@ -593,6 +601,7 @@ impl Solution {
         p.rscene
             .specular_light()
             .add_lux_at_points(points, &mut lux, p.interp);
+        usable_lux(&mut lux)?;
         Ok(lux)
     }
 
@@ -605,7 +614,9 @@ impl Solution {
     ) -> Result<Vec<f64>, SessionError> {
         let direct = self.direct_lux(points)?;
         let indirect = self.interreflected_lux(points, cancel, progress)?;
-        Ok(direct.iter().zip(&indirect).map(|(d, i)| d + i).collect())
+        let mut lux: Vec<f64> = direct.iter().zip(&indirect).map(|(d, i)| d + i).collect();
+        usable_lux(&mut lux)?;
+        Ok(lux)
     }
 
     /// The solved scene as glTF 2.0 binary: each surface light-mapped or vertex-lit as

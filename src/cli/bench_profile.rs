@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use anyhow::anyhow;
 
-use super::super::error::CliError;
+use super::error::CliError;
 use crate::gpu::Gpu;
 use crate::scene::UpAxis;
 use crate::study::model::{load_components, recentre};
@@ -12,7 +12,7 @@ use crate::study::model::{load_components, recentre};
 /// Runs `bench profile`: the same profile with brute-force and hextree silhouettes, and
 /// with the volumes ending at the ground or of one length, on the generated building and,
 /// with `shared`, on the real models.
-pub fn run_bench(
+pub fn run(
     as_json: bool,
     resolution: u32,
     step: u32,
@@ -24,7 +24,7 @@ pub fn run_bench(
             "--floors {floors} is not in 1..=40"
         )));
     }
-    let mut models = vec![crate::bench::profile::generated_building(floors)];
+    let mut models = vec![crate::bench::shadow_profile::generated_building(floors)];
     if let Some(dir) = shared {
         for (name, rel) in [
             ("Delft city block", "models/delft_3dfier/testarea.obj"),
@@ -37,8 +37,8 @@ pub fn run_bench(
     }
     let gpu = Gpu::shared().map_err(CliError::failure)?;
     eprintln!("GPU: {}", gpu.describe());
-    let rows = crate::bench::profile::run(&gpu, &models, resolution, step)?;
-    let report = crate::bench::profile::report(&rows, resolution);
+    let rows = crate::bench::shadow_profile::run(&gpu, &models, resolution, step)?;
+    let report = crate::bench::shadow_profile::report(&rows, resolution);
     println!("{}", report.text(as_json));
     Ok(())
 }

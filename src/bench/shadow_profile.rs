@@ -10,7 +10,7 @@ use serde::Serialize;
 use crate::geometry::Mesh;
 use crate::gpu::Gpu;
 use crate::shadow::SilhouetteMethod;
-use crate::study::profile::{compute, ProfileError, ProfileSpec, VolumeEnds};
+use crate::study::shadow_profile::{compute, ProfileError, ProfileSpec, VolumeEnds};
 use crate::sun::{Site, SunOptions, Zone};
 
 /// One silhouette method's timing on one model.

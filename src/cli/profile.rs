@@ -8,10 +8,6 @@ use chrono::{NaiveDate, NaiveTime};
 use clap::Args;
 use glam::DVec3;
 
-mod bench;
-
-pub use bench::run_bench;
-
 use super::error::flags_in;
 use super::error::CliError;
 use crate::gpu::Gpu;
@@ -19,8 +15,8 @@ use crate::io::limits::{bytes, MAX_OUTPUT_BYTES};
 use crate::io::outputs::{OutputCheck, Staging};
 use crate::scene::UpAxis;
 use crate::shadow::SilhouetteMethod;
-use crate::study::profile::HoursMetric;
 use crate::study::rasters::{read_areas, AnalysisArea};
+use crate::study::shadow_profile::HoursMetric;
 use crate::study::sun_study::{GifPlace, ModelView, StudyFiles, MAX_DATES};
 use crate::study::surface_set::FacadeOptions;
 use crate::study::surfaces::{parse_points, WindowPoint};
