@@ -52,17 +52,6 @@ pub fn light_map(
     };
     let started = Instant::now();
     let solved = solve(label, scene, &options, settings, started)?;
-    let what = match choice {
-        DisplayIndirect::Ambient => format!(
-            "indirect light: ambient estimate from the luminaires' first bounce ({:.1} s)",
-            started.elapsed().as_secs_f64()
-        ),
-        _ => format!(
-            "indirect light: radiosity, {:.1} % converged ({}) in {:.1} s, the ambient term for the rest",
-            100.0 * solved.convergence(),
-            solved.stop(),
-            started.elapsed().as_secs_f64()
-        ),
-    };
+    let what = solved.shown_summary(choice, started.elapsed().as_secs_f64());
     Ok(Some((solved.light_map(), what)))
 }

@@ -254,3 +254,24 @@ pub fn read_angles(input: impl BufRead, name: &str) -> Result<Vec<(f64, f64)>, P
         })
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn usable_lux_refuses_what_is_not_a_number_and_zeroes_rounding() {
+        let mut lux = [1.5, -0.0, -1e-9, 0.0];
+        assert_eq!(usable_lux(&mut lux), Ok(()));
+        assert_eq!(lux, [1.5, 0.0, 0.0, 0.0]);
+        assert!(lux.iter().all(|v| v.is_sign_positive()));
+        for bad in [f64::NAN, f64::INFINITY, -0.01] {
+            let mut lux = [3.0, bad, 4.0];
+            let e = usable_lux(&mut lux).unwrap_err();
+            assert_eq!(e.point, 2);
+            assert!(e
+                .to_string()
+                .starts_with("point 2: the computed illuminance"));
+        }
+    }
+}

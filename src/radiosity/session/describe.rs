@@ -3,12 +3,13 @@
 //! subdivision and the export's bake. The command prints them with the scene's name in
 //! front; the figures are worked out here, never by a front end.
 
-use super::{Prepared, Session};
+use super::{Prepared, Session, Solution};
 use crate::radiosity::bake::BakePlan;
 use crate::radiosity::elements::Elements;
 use crate::radiosity::shooters::Hierarchy;
 use crate::radiosity::solve::StopReason;
 use crate::render::lightmap::LightMap;
+use crate::scene::DisplayIndirect;
 
 /// `, peak memory N MB` (with `separator` in front), or nothing where the system does not
 /// say.
@@ -128,6 +129,23 @@ impl Session<'_> {
     }
 }
 
+impl Solution {
+    /// What a light map solved to show `choice` holds, solved in `seconds`: the ambient
+    /// estimate, or the radiosity solution's convergence and why it stopped.
+    pub fn shown_summary(&self, choice: DisplayIndirect, seconds: f64) -> String {
+        match choice {
+            DisplayIndirect::Ambient => format!(
+                "indirect light: ambient estimate from the luminaires' first bounce ({seconds:.1} s)"
+            ),
+            _ => format!(
+                "indirect light: radiosity, {:.1} % converged ({}) in {seconds:.1} s, the ambient term for the rest",
+                100.0 * self.convergence(),
+                self.stop(),
+            ),
+        }
+    }
+}
+
 /// What adaptive subdivision made: elements by size against one per texel.
 pub fn adaptive_summary(el: &Elements) -> String {
     let (by_side, texels) = el.sizes();
@@ -161,4 +179,17 @@ pub fn bake_summary(plan: &BakePlan, map: &LightMap) -> String {
         map.width,
         map.height,
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_progress_line_gives_percent_and_shots() {
+        assert_eq!(
+            Session::progress_line(0.123456, 42),
+            "12.35 % converged, 42 shots"
+        );
+    }
 }
