@@ -36,7 +36,7 @@ import numpy as np
 
 from . import _native
 
-__all__ = ["Luminaire", "read", "ugr_table", "luminance_table", "datasheet", "sun_position",
+__all__ = ["Scene", "Luminaire", "read", "ugr_table", "luminance_table", "datasheet", "sun_position",
            "illuminance", "radiosity", "Radiosity", "calc", "sun_study", "SunStudy", "render", "Rendering",
            "INTERPOLATIONS"]
 
@@ -44,6 +44,83 @@ __all__ = ["Luminaire", "read", "ugr_table", "luminance_table", "datasheet", "su
 INTERPOLATIONS = ("nearest", "bilinear", "catmull-rom", "monotone")
 
 PathLike = Union[str, "os.PathLike[str]"]
+
+
+class Scene:
+    """A scene: loaded once from its file (``Scene.load``) or built from a dict with the
+    scene file's keys (``Scene.from_dict``), and passed to ``render``, ``illuminance``,
+    ``radiosity`` and ``calc`` in place of a path (each also takes the path itself).
+
+    >>> import goniolight
+    >>> room = goniolight.Scene.load("assets/scenes/box_room_calc.toml")
+    >>> room.luminaires, room.grids[0]
+    (1, 'work plane')
+    >>> lamp = {"file": "../../luminaires/eulumdat-plot/sample_06_isym1.ldt",
+    ...         "position": [3.0, 2.0, 2.95]}
+    >>> same = goniolight.Scene.from_dict(
+    ...     {"model": [{"path": "box_room.obj", "up": "z"}], "luminaire": [lamp]},
+    ...     base="assets/scenes")
+    >>> same.luminaires, same.triangles == room.triangles
+    (1, True)
+    """
+
+    def __init__(self, native: "_native.NativeScene"):
+        self._native = native
+
+    @classmethod
+    def load(cls, path: PathLike) -> "Scene":
+        """The scene file at ``path`` (TOML) and everything it refers to. What loading works
+        around (a missing MTL file, triangles without area) is raised as ``UserWarning``;
+        a bad file raises ValueError naming the file, line and key."""
+        return cls(_native.NativeScene.load(os.fspath(path)))
+
+    @classmethod
+    def from_dict(cls, scene: dict, base: PathLike = ".", name: str = "scene.toml") -> "Scene":
+        """The scene of ``scene``, a dict with the scene file's keys (as ``tomllib.load``
+        reads a scene file: ``{"model": [{"path": ...}], "luminaire": [...], "grid":
+        [...]}``). Relative paths resolve against the folder ``base``; ``name`` names the
+        scene in messages. A key the scene file does not know raises ValueError."""
+        path = os.path.join(os.fspath(base), name)
+        return cls(_native.NativeScene.from_json(json.dumps(scene), path))
+
+    @property
+    def path(self) -> str:
+        """The scene file (or ``base/name`` of a scene from a dict)."""
+        return self._native.path
+
+    @property
+    def triangles(self) -> int:
+        """Triangles of the model."""
+        return self._native.triangles
+
+    @property
+    def luminaires(self) -> int:
+        """Placed luminaires."""
+        return self._native.luminaires
+
+    @property
+    def grids(self) -> list:
+        """The calculation grids' names."""
+        return list(self._native.grids)
+
+    @property
+    def observers(self) -> int:
+        """The glare observers."""
+        return self._native.observers
+
+    @property
+    def warnings(self) -> list:
+        """What loading worked around."""
+        return list(self._native.warnings)
+
+    def __repr__(self) -> str:
+        return (f"Scene({self.path!r}, {self.triangles} triangles, {self.luminaires} luminaires, "
+                f"{len(self.grids)} grids)")
+
+
+def _scene_arg(scene):
+    """A loaded scene's native object, or the path of a scene file."""
+    return scene._native if isinstance(scene, Scene) else os.fspath(scene)
 
 
 class Luminaire:
@@ -202,7 +279,7 @@ def sun_position(lat: float, lon: float, times: Union[str, Iterable], tz: Option
     return out
 
 
-def illuminance(scene: PathLike, points, *, interp: str = "catmull-rom",
+def illuminance(scene: Union[PathLike, Scene], points, *, interp: str = "catmull-rom",
                 shadows: Optional[str] = None, cpu: bool = False,
                 return_device: bool = False):
     """Direct illuminance (lux) at points of a scene file.
@@ -213,7 +290,7 @@ def illuminance(scene: PathLike, points, *, interp: str = "catmull-rom",
     (default: the scene's). With ``return_device=True`` also returns ``"gpu"`` or ``"cpu"``.
     """
     pts = np.ascontiguousarray(np.atleast_2d(np.asarray(points, dtype=float)))
-    lux, on_gpu = _native.illuminance(os.fspath(scene), pts, interp, shadows, bool(cpu))
+    lux, on_gpu = _native.illuminance(_scene_arg(scene), pts, interp, shadows, bool(cpu))
     if return_device:
         return lux, ("gpu" if on_gpu else "cpu")
     return lux
@@ -278,7 +355,7 @@ def _points(points) -> np.ndarray:
     return np.ascontiguousarray(np.atleast_2d(np.asarray(points, dtype=float)))
 
 
-def radiosity(scene: PathLike, *, converge: float = 0.99, max_shots: Optional[int] = None,
+def radiosity(scene: Union[PathLike, Scene], *, converge: float = 0.99, max_shots: Optional[int] = None,
               time_limit: Optional[float] = None, texel_density: float = 10.0, level: int = 2,
               adaptive: int = 0, adaptive_share: Sequence[float] = (0.0, 1.0),
               visibility: str = "hemicube", map_size: int = 256, raster: str = "auto",
@@ -311,11 +388,11 @@ def radiosity(scene: PathLike, *, converge: float = 0.99, max_shots: Optional[in
         "cell_power": cell_power, "link_error": link_error, "form_factor": form_factor,
         "ambient": ambient, "drive": drive, "fov_margin": fov_margin,
     }
-    native = _native.radiosity(os.fspath(scene), json.dumps(options), interp, shadows, progress)
+    native = _native.radiosity(_scene_arg(scene), json.dumps(options), interp, shadows, progress)
     return Radiosity(native)
 
 
-def calc(scene: PathLike, *, maintenance_factor: Optional[float] = None, cpu: bool = False,
+def calc(scene: Union[PathLike, Scene], *, maintenance_factor: Optional[float] = None, cpu: bool = False,
          interp: str = "catmull-rom", shadows: str = "volumes", indirect: Optional[str] = None,
          max_points: Optional[int] = None, solver: Optional[dict] = None,
          progress=None) -> dict:
@@ -338,7 +415,7 @@ def calc(scene: PathLike, *, maintenance_factor: Optional[float] = None, cpu: bo
     True
     """
     text, values = _native.calc_json(
-        os.fspath(scene), maintenance_factor, bool(cpu), interp, shadows, indirect,
+        _scene_arg(scene), maintenance_factor, bool(cpu), interp, shadows, indirect,
         max_points, json.dumps(solver or {}), progress)
     doc = json.loads(text)
     for grid, v in zip(doc["grids"], values):
@@ -503,7 +580,7 @@ class Rendering:
         self._native.save(os.fspath(png), None if exr is None else os.fspath(exr))
 
 
-def render(scene: PathLike, *, width: Optional[int] = None, height: Optional[int] = None,
+def render(scene: Union[PathLike, Scene], *, width: Optional[int] = None, height: Optional[int] = None,
            mode: Optional[str] = None, tonemap: Optional[str] = None,
            exposure: Optional[float] = None, lux_max: Optional[float] = None,
            palette: Optional[str] = None, steps: Optional[int] = None,
@@ -527,6 +604,6 @@ def render(scene: PathLike, *, width: Optional[int] = None, height: Optional[int
         "width": width, "height": height, "mode": mode, "tonemap": tonemap,
         "exposure": exposure, "lux_max": lux_max, "palette": palette, "steps": steps,
         "interp": interp, "shadows": shadows}.items() if v is not None}
-    native = _native.render(os.fspath(scene), json.dumps(over), int(supersample),
+    native = _native.render(_scene_arg(scene), json.dumps(over), int(supersample),
                             None if solution is None else solution._native)
     return Rendering(native)

@@ -17,7 +17,10 @@ use goniolight::radiosity::session::{Options, SessionError, Solution};
 use goniolight::shadow::ShadowTechnique;
 
 mod render;
+mod scene;
 mod sun_study;
+
+use scene::SceneArg;
 
 pub(crate) fn value_error(e: impl std::fmt::Display) -> PyErr {
     PyValueError::new_err(e.to_string())
@@ -27,19 +30,6 @@ pub(crate) fn value_error(e: impl std::fmt::Display) -> PyErr {
 pub(crate) fn warn<T: pyo3::PyTypeInfo>(py: Python<'_>, message: &str) -> PyResult<()> {
     let text = std::ffi::CString::new(message.replace('\0', " ")).unwrap_or_default();
     PyErr::warn(py, &py.get_type::<T>(), &text, 1)
-}
-
-/// The scene file at `path`; what its loading worked around (`Scene::warnings`: a missing
-/// MTL file, triangles without area) is raised as `UserWarning`s.
-pub(crate) fn load_scene(
-    py: Python<'_>,
-    path: &std::path::Path,
-) -> PyResult<goniolight::scene::Scene> {
-    let scene = goniolight::scene::Scene::load(path).map_err(value_error)?;
-    for w in &scene.warnings {
-        warn::<pyo3::exceptions::PyUserWarning>(py, w)?;
-    }
-    Ok(scene)
 }
 
 fn parse_interp(name: &str) -> PyResult<Interp> {
@@ -261,7 +251,7 @@ fn sun_positions_json(
 #[pyo3(signature = (scene, points, interp="catmull-rom", shadows=None, cpu=false))]
 fn illuminance<'py>(
     py: Python<'py>,
-    scene: PathBuf,
+    scene: SceneArg<'_>,
     points: PyReadonlyArray2<'py, f64>,
     interp: &str,
     shadows: Option<&str>,
@@ -271,7 +261,7 @@ fn illuminance<'py>(
     use goniolight::render::illuminance::scene_illuminance;
     let method = parse_interp(interp)?;
     let pts = surface_points(&points)?;
-    let scene = load_scene(py, &scene)?;
+    let scene = scene.scene(py)?;
     let technique = parse_shadows(shadows, &scene)?;
     let gpu = if cpu {
         None
@@ -456,7 +446,7 @@ fn radiosity_defaults_json() -> PyResult<String> {
 #[pyo3(signature = (scene, options_json, interp=None, shadows=None, progress=None))]
 fn radiosity(
     py: Python<'_>,
-    scene: PathBuf,
+    scene: SceneArg<'_>,
     options_json: &str,
     interp: Option<&str>,
     shadows: Option<&str>,
@@ -464,7 +454,7 @@ fn radiosity(
 ) -> PyResult<NativeRadiosity> {
     use goniolight::radiosity::session::{self, Event};
     let options: Options = serde_json::from_str(options_json).map_err(value_error)?;
-    let scene = load_scene(py, &scene)?;
+    let scene = scene.scene(py)?;
     let mut settings = goniolight::render::RenderSettings::from_display(&scene.display);
     if let Some(name) = interp {
         settings.light_model = goniolight::render::LightModel::Ldt(parse_interp(name)?);
@@ -509,7 +499,7 @@ fn radiosity(
 #[allow(clippy::too_many_arguments)]
 fn calc_json(
     py: Python<'_>,
-    scene: PathBuf,
+    scene: SceneArg<'_>,
     maintenance_factor: Option<f64>,
     cpu: bool,
     interp: &str,
@@ -520,8 +510,8 @@ fn calc_json(
     progress: Option<Bound<'_, PyAny>>,
 ) -> PyResult<(String, Vec<Vec<f64>>)> {
     use goniolight::calc::compute::{compute, CalcError, CalcOptions};
-    let label = scene.display().to_string();
-    let loaded = load_scene(py, &scene)?;
+    let label = scene.path().display().to_string();
+    let loaded = scene.scene(py)?;
     let indirect = indirect
         .map(|name| {
             serde_json::from_value(serde_json::Value::from(name))
@@ -589,6 +579,7 @@ fn observe(
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<NativeLuminaire>()?;
+    m.add_class::<scene::NativeScene>()?;
     m.add_function(wrap_pyfunction!(read, m)?)?;
     m.add_function(wrap_pyfunction!(sun_positions_json, m)?)?;
     m.add_function(wrap_pyfunction!(illuminance, m)?)?;

@@ -11,7 +11,8 @@ use goniolight::render::scene_frame::{render_scene, SceneFrameError};
 use goniolight::render::{RenderSettings, RenderedFrame, Renderer};
 use goniolight::scene::DisplayEntry;
 
-use crate::{load_scene, value_error, warn, NativeRadiosity};
+use crate::scene::SceneArg;
+use crate::{value_error, warn, NativeRadiosity};
 
 /// A rendered image: the displayable picture and, per pixel, luminance and illuminance.
 #[pyclass(module = "goniolight._native", unsendable)]
@@ -109,13 +110,13 @@ impl NativeRendering {
 #[pyo3(signature = (scene, display_json="{}", supersample=3, solution=None))]
 pub fn render(
     py: Python<'_>,
-    scene: PathBuf,
+    scene: SceneArg<'_>,
     display_json: &str,
     supersample: u32,
     solution: Option<PyRef<'_, NativeRadiosity>>,
 ) -> PyResult<NativeRendering> {
     let over: DisplayEntry = serde_json::from_str(display_json).map_err(value_error)?;
-    let scene = load_scene(py, &scene)?;
+    let scene = scene.scene(py)?;
     let display = scene.display.overlay(&over);
     display.check().map_err(value_error)?;
     if ![1, 3, 5].contains(&supersample) {

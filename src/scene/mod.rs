@@ -183,6 +183,20 @@ impl Scene {
     /// Parses scene text; relative paths are resolved against `path`'s folder.
     pub fn from_toml(path: &Path, text: &str) -> Result<Scene, SceneError> {
         let parsed: SceneFile = toml::from_str(text).map_err(|e| toml_error(path, text, &e))?;
+        Scene::from_file(path, parsed)
+    }
+
+    /// A scene from a JSON value with the scene file's keys (`{"model": [{"path": …}],
+    /// "luminaire": [...]}`: what Python's `Scene.from_dict` passes); relative paths are
+    /// resolved against `path`'s folder, which names the scene in messages.
+    pub fn from_json(path: &Path, value: serde_json::Value) -> Result<Scene, SceneError> {
+        let parsed: SceneFile = serde_json::from_value(value)
+            .map_err(|e| SceneError::new(path, "scene", e.to_string()))?;
+        Scene::from_file(path, parsed)
+    }
+
+    /// The scene a parsed scene file describes (`path`: where it is, for relative paths).
+    fn from_file(path: &Path, parsed: SceneFile) -> Result<Scene, SceneError> {
         let dir = path.parent().unwrap_or(Path::new("")).to_path_buf();
         let mut materials = vec![Material::default()];
         let (mut meshes, mut warnings) = (Vec::new(), Vec::new());
