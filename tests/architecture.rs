@@ -782,3 +782,66 @@ fn a_planted_second_module_style_is_found() {
         vec![PathBuf::from("/s/a.rs")]
     );
 }
+
+/// Lines of `text` (before its `#[cfg(test)]` module) whose code, outside comments, holds a
+/// string naming a command-line flag (`--name`).
+fn flags_named_in(text: &str) -> Vec<usize> {
+    let mut out = Vec::new();
+    for (i, line) in text.lines().enumerate() {
+        if line.trim_start().starts_with("#[cfg(test)]") {
+            break;
+        }
+        let code = line.trim_start();
+        if code.starts_with("//") {
+            continue;
+        }
+        let bytes = code.as_bytes();
+        let named = (0..bytes.len().saturating_sub(2)).any(|k| {
+            bytes[k] == b'-'
+                && bytes[k + 1] == b'-'
+                && bytes[k + 2].is_ascii_lowercase()
+                && (k == 0 || !bytes[k - 1].is_ascii_alphanumeric())
+        });
+        if named && (code.contains('"') || code.ends_with('\\') || !code.contains("//")) {
+            out.push(i + 1);
+        }
+    }
+    out
+}
+
+/// Errors and warnings of the library name its fields (`` `indirect` ``, `display.width`),
+/// never a flag of the command line: the viewer and Python show them too, and the command
+/// turns fields into flags in one place (`cli/error.rs`).
+#[test]
+fn the_library_names_fields_not_the_commands_flags() {
+    let root = common::root();
+    let mut offences = Vec::new();
+    for f in rust_files(&root.join("src")) {
+        let rel = f
+            .strip_prefix(&root)
+            .unwrap()
+            .to_string_lossy()
+            .replace('\\', "/");
+        if ["src/cli/", "src/viewer/", "src/main.rs"]
+            .iter()
+            .any(|p| rel.starts_with(p))
+        {
+            continue;
+        }
+        let text = std::fs::read_to_string(&f).expect("read source");
+        for line in flags_named_in(&text) {
+            offences.push(format!("{rel}:{line}"));
+        }
+    }
+    assert!(
+        offences.is_empty(),
+        "library strings name command-line flags (quote the field in backquotes):\n{}",
+        offences.join("\n")
+    );
+}
+
+#[test]
+fn a_planted_flag_in_a_library_string_is_found() {
+    let planted = "/// `--lat` in a comment\nlet a = x--y;\nErr(\"use --indirect radiosity\")\n    \"or a smaller --map-size)\",\n#[cfg(test)]\n\"--in-tests\"\n";
+    assert_eq!(flags_named_in(planted), vec![3, 4]);
+}

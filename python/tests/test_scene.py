@@ -64,3 +64,10 @@ def test_a_bad_dict_names_the_key_and_a_missing_file_names_the_file():
         goniolight.Scene.from_dict({"modle": [{"path": "box_room.obj"}]}, base=BOX.parent)
     with pytest.raises(ValueError, match="no_such.toml"):
         goniolight.Scene.load(BOX.parent / "no_such.toml")
+
+
+def test_refusals_name_the_keyword_not_the_commands_flag():
+    # The scene has observers: UGR needs the interreflected light.
+    with pytest.raises(ValueError) as e:
+        goniolight.calc(BOX_CALC, cpu=True, indirect="none")
+    assert "`indirect` radiosity" in str(e.value) and "--" not in str(e.value)

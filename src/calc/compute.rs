@@ -168,14 +168,14 @@ impl<'s> Request<'s> {
             .unwrap_or(Indirect::None);
         if !scene.observers.is_empty() && indirect == Indirect::None {
             return Err(CalcError::Scene(format!(
-                "{label}: UGR at the [[observer]]s needs the background luminance, which is the interreflected light at the eye: run with --indirect radiosity (or set calc.indirect = \"radiosity\")"
+                "{label}: UGR at the [[observer]]s needs the background luminance, which is the interreflected light at the eye: use `indirect` radiosity (or set calc.indirect = \"radiosity\" in the scene)"
             )));
         }
         if indirect == Indirect::Radiosity {
             if options.cpu {
                 return Err(CalcError::Option {
                     field: "cpu",
-                    message: "computes the direct light only: the radiosity solver runs on the GPU (leave out --cpu, or use --indirect none)".into(),
+                    message: "computes the direct light only: the radiosity solver runs on the GPU (leave out `cpu`, or use `indirect` none)".into(),
                 });
             }
             options.radiosity.validate().map_err(SessionError::from)?;
@@ -183,7 +183,7 @@ impl<'s> Request<'s> {
                 // A grid's lux must not depend on where the camera looks.
                 return Err(CalcError::Option {
                     field: "drive",
-                    message: format!("{}: calc's interreflected light is solved for the whole scene (--drive global); view-driven solutions are for `radiosity` and the viewer", options.radiosity.drive.name()),
+                    message: format!("{}: calc's interreflected light is solved for the whole scene (`drive` global); view-driven solutions are for `radiosity` and the viewer", options.radiosity.drive.name()),
                 });
             }
         }
@@ -200,7 +200,7 @@ impl<'s> Request<'s> {
         let total: usize = scene.grids.iter().map(|g| g.points.len()).sum();
         if total > options.max_points {
             return Err(CalcError::Scene(format!(
-                "{label}: the grids hold {total} points together, more than --max-points {} (each point costs memory and about 100 bytes of files): use a larger spacing, split the grids over several runs, or raise --max-points",
+                "{label}: the grids hold {total} points together, more than `max_points` {} (each point costs memory and about 100 bytes of files): use a larger spacing, split the grids over several runs, or raise `max_points`",
                 options.max_points
             )));
         }

@@ -10,6 +10,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use anyhow::anyhow;
 use clap::Args;
 
+use super::error::flags_in;
 use super::error::CliError;
 use super::scene_input::{load_scene, scene_at};
 use super::solver_args::SolverArgs;
@@ -96,14 +97,18 @@ impl CalcArgs {
 fn calc_error(e: CalcError) -> CliError {
     match e {
         CalcError::Option { field, message } => {
-            let flag = field.replace('_', "-");
-            CliError::input(anyhow!("--{flag} {message}"))
+            let flag = super::error::flag_of(field);
+            let flag = match flag.starts_with("--") {
+                true => flag.to_string(),
+                false => format!("--{}", field.replace('_', "-")),
+            };
+            CliError::input(anyhow!("{flag} {}", flags_in(&message)))
         }
         CalcError::Radiosity(e) => e.into(),
         CalcError::Gpu(e) => e.into(),
         e => {
             let bad = e.is_bad_input();
-            CliError::classified(e, bad)
+            CliError::classified(anyhow!(flags_in(&e.to_string())), bad)
         }
     }
 }

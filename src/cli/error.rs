@@ -105,10 +105,16 @@ const FLAGS_OF_FIELDS: &[(&str, &str)] = &[
     ("display.lux_max", "--lux-max"),
     ("display.steps", "--steps"),
     ("indirect", "--indirect"),
+    ("cpu", "--cpu"),
+    ("drive", "--drive"),
+    ("max_points", "--max-points"),
+    ("hierarchy", "--hierarchy"),
+    ("exact", "--exact"),
+    ("map_size", "--map-size"),
 ];
 
 /// The flag that sets the library's `field` (the field itself where none does).
-fn flag_of(field: &str) -> &str {
+pub(crate) fn flag_of(field: &str) -> &str {
     FLAGS_OF_FIELDS
         .iter()
         .find(|(f, _)| *f == field)
@@ -285,7 +291,7 @@ impl From<GpuError> for CliError {
         if let GpuError::Limit(message) = &e {
             CliError::input(anyhow::anyhow!(flags_in(message)))
         } else {
-            CliError::failure(e)
+            CliError::failure(anyhow::anyhow!(flags_in(&e.to_string())))
         }
     }
 }

@@ -10,7 +10,7 @@ use std::time::{Duration, Instant};
 
 use anyhow::anyhow;
 
-use super::error::CliError;
+use super::error::{flags_in, CliError};
 use crate::gpu::Gpu;
 use crate::lighting::SurfacePoint;
 use crate::radiosity::session::{self, Event, Options, Session, SessionError, Solution, Stage};
@@ -67,12 +67,12 @@ impl Progress<'_> {
                 }
                 self.prepared_s = self.started.elapsed().as_secs_f64();
                 for line in p.summary(self.load_s, self.prepared_s) {
-                    eprintln!("{}: {line}", self.label.display());
+                    eprintln!("{}: {}", self.label.display(), flags_in(&line));
                 }
             }
             Event::Shooting(session) => {
                 for line in session.shooting_summary() {
-                    eprintln!("{}: {line}", self.label.display());
+                    eprintln!("{}: {}", self.label.display(), flags_in(&line));
                 }
                 let bar = indicatif::ProgressBar::new(10_000);
                 bar.set_style(style(
@@ -91,7 +91,7 @@ impl Progress<'_> {
                     bar.finish_and_clear();
                 }
                 for line in session.solved_summary(self.prepared_s) {
-                    eprintln!("{}: {line}", self.label.display());
+                    eprintln!("{}: {}", self.label.display(), flags_in(&line));
                 }
             }
         }

@@ -50,7 +50,7 @@ impl std::fmt::Display for NotStandard {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "{}: {}; write with --exact to keep every digit (other programs may not read \
+            "{}: {}; write with `exact` to keep every digit (other programs may not read \
              such a file)",
             self.field, self.reason
         )

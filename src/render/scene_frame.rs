@@ -16,7 +16,7 @@ use super::{RenderSettings, RenderedFrame, Renderer};
 pub enum SceneFrameError {
     /// A mirror or clear glass in a direct-light illuminance image, which would leave
     /// out the light it passes on (the option to change named in backquotes).
-    #[error("{file}: material {material:?} is a mirror or clear glass: this direct-light illuminance image would leave out the light it passes on; use `indirect` radiosity (its light map holds it), or `calc`, `illuminance` or `radiosity --points` for lux")]
+    #[error("{file}: material {material:?} is a mirror or clear glass: this direct-light illuminance image would leave out the light it passes on; use `indirect` radiosity (its light map holds it), or `calc`, `illuminance` or a radiosity solution's lux at points")]
     Specular {
         /// The scene file.
         file: String,

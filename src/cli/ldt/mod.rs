@@ -403,10 +403,10 @@ fn convert(
         } else if exact {
             lum.data.to_ldt_string()
         } else {
-            let ldt = lum
-                .data
-                .to_ldt_standard()
-                .map_err(|e| CliError::input(anyhow::anyhow!("{}: {e}", file.display())))?;
+            let ldt = lum.data.to_ldt_standard().map_err(|e| {
+                let message = super::error::flags_in(&e.to_string());
+                CliError::input(anyhow::anyhow!("{}: {message}", file.display()))
+            })?;
             for note in &ldt.notes {
                 eprintln!("note: {}: {note}", target.display());
             }

@@ -112,7 +112,7 @@ impl GpuSolver<'_> {
         if !self.scene.specular.is_empty() {
             return Err(GpuError::Unsupported(
                 "perspective-driven radiosity (receivers that wait) does not handle mirrors \
-                 and clear glass yet; use --drive global or importance"
+                 and clear glass yet; use `drive` global or importance"
                     .into(),
             ));
         }

@@ -37,7 +37,7 @@ fn batch_parts(
             return Err(GpuError::Limit(format!(
                 "a cell and its {} mirror and glass images need {need} visibility maps at \
                  once; the atlas holds {most} (fewer specular surfaces facing each other, \
-                 or a smaller --map-size)",
+                 or a smaller `map_size`)",
                 list.len()
             )));
         }

@@ -77,7 +77,7 @@ impl Session<'_> {
             rscene.elements.atlas_height,
             solver.shooters().len(),
             match self.prepared().options().hierarchy {
-                Hierarchy::None => " (one per triangle: --hierarchy none)".to_string(),
+                Hierarchy::None => " (one per triangle: `hierarchy` none)".to_string(),
                 Hierarchy::Clusters => {
                     let tree = &rscene.planar_clusters().tree;
                     format!(" of {} face clusters", tree.nodes.len() - tree.order.len())
