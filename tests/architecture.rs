@@ -610,14 +610,10 @@ fn prints_in(text: &str) -> Vec<usize> {
         .collect()
 }
 
-/// Library files that still print, each with why (docs/src/design/library.md): none may
-/// join without a line here.
-const STILL_PRINTING: [&str; 0] = [];
-
-/// The library says nothing on a terminal: what it worked around goes back to the caller
-/// (`Scene::warnings`), and the front ends (`cli/`, `viewer/`, the binary, Python) show it.
-#[test]
-fn the_library_prints_nothing_the_front_ends_show_its_warnings() {
+/// The library's files outside the front ends (`cli/`, `viewer/`, the binary) with their
+/// paths from the repository root (`src/render/mod.rs`) and the `(line → offence)` lines
+/// `find` reports in each, as `path:line`.
+fn library_offences(find: fn(&str) -> Vec<usize>, skip: &[&str]) -> Vec<String> {
     let root = common::root();
     let mut offences = Vec::new();
     for f in rust_files(&root.join("src")) {
@@ -629,14 +625,26 @@ fn the_library_prints_nothing_the_front_ends_show_its_warnings() {
         let front_end = ["src/cli/", "src/viewer/", "src/main.rs"]
             .iter()
             .any(|p| rel.starts_with(p));
-        if front_end || STILL_PRINTING.contains(&rel.as_str()) {
+        if front_end || skip.contains(&rel.as_str()) {
             continue;
         }
         let text = std::fs::read_to_string(&f).expect("read source");
-        for line in prints_in(&text) {
+        for line in find(&text) {
             offences.push(format!("{rel}:{line}"));
         }
     }
+    offences
+}
+
+/// Library files that still print, each with why (docs/src/design/library.md): none may
+/// join without a line here.
+const STILL_PRINTING: [&str; 0] = [];
+
+/// The library says nothing on a terminal: what it worked around goes back to the caller
+/// (`Scene::warnings`), and the front ends (`cli/`, `viewer/`, the binary, Python) show it.
+#[test]
+fn the_library_prints_nothing_the_front_ends_show_its_warnings() {
+    let offences = library_offences(prints_in, &STILL_PRINTING);
     assert!(
         offences.is_empty(),
         "the library prints (return the message to the caller):\n{}",
@@ -814,25 +822,7 @@ fn flags_named_in(text: &str) -> Vec<usize> {
 /// turns fields into flags in one place (`cli/error.rs`).
 #[test]
 fn the_library_names_fields_not_the_commands_flags() {
-    let root = common::root();
-    let mut offences = Vec::new();
-    for f in rust_files(&root.join("src")) {
-        let rel = f
-            .strip_prefix(&root)
-            .unwrap()
-            .to_string_lossy()
-            .replace('\\', "/");
-        if ["src/cli/", "src/viewer/", "src/main.rs"]
-            .iter()
-            .any(|p| rel.starts_with(p))
-        {
-            continue;
-        }
-        let text = std::fs::read_to_string(&f).expect("read source");
-        for line in flags_named_in(&text) {
-            offences.push(format!("{rel}:{line}"));
-        }
-    }
+    let offences = library_offences(flags_named_in, &[]);
     assert!(
         offences.is_empty(),
         "library strings name command-line flags (quote the field in backquotes):\n{}",

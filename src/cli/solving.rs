@@ -66,9 +66,11 @@ impl Progress<'_> {
                     s.finish_and_clear();
                 }
                 self.prepared_s = self.started.elapsed().as_secs_f64();
-                for line in p.summary(self.load_s, self.prepared_s) {
-                    eprintln!("{}: {}", self.label.display(), flags_in(&line));
+                if let Some(line) = p.adaptive_line() {
+                    eprintln!("{line}");
                 }
+                let line = p.summary(self.load_s, self.prepared_s);
+                eprintln!("{}: {line}", self.label.display());
             }
             Event::Shooting(session) => {
                 for line in session.shooting_summary() {

@@ -298,6 +298,83 @@ impl<'a, 't> HeaderReader<'a, 't> {
         let luminaire_number = self.text("luminaire number")?;
         let file_name = self.text("file name")?;
         let date_user = self.text("date/user")?;
+        let dimensions = self.read_dimensions()?;
+        let dff_percent = self.optional("downward flux fraction DFF", 0.0)?;
+        let lorl_percent = self.optional("light output ratio LORL", 0.0)?;
+        let conversion_factor = self.optional("conversion factor", 1.0)?;
+        if conversion_factor <= 0.0 {
+            return Err(self.src.error(
+                self.line,
+                format!(
+                    "conversion factor must be positive, found {}",
+                    show(conversion_factor)
+                ),
+            ));
+        }
+        let tilt_deg = self.optional("tilt during measurement", 0.0)?;
+        let n_sets = self.integer("number of lamp sets", 1, MAX_LAMP_SETS as i64)? as usize;
+        let lamp_sets = self.read_lamp_sets(n_sets)?;
+        let first_data_line = self.line + 1;
+        let mut numbers = NumberStream::new(self.src, first_data_line, &[]);
+        let direct_ratios = self.read_direct_ratios(&mut numbers)?;
+        let c_tokens = numbers.take(mc, "C angle")?;
+        let g_tokens = numbers.take(ng, "γ angle")?;
+        check_increasing(self.src, &c_tokens, 0.0..360.0, "C")?;
+        // The format's C angles begin with 0° (every writer's full circle starts there).
+        if c_tokens[0].value != 0.0 {
+            return Err(self.src.error(
+                c_tokens[0].line,
+                format!(
+                    "the C angles must begin with 0°, found {}",
+                    show(c_tokens[0].value)
+                ),
+            ));
+        }
+        check_increasing(self.src, &g_tokens, 0.0..=180.0, "γ")?;
+        let c_angles: Vec<f64> = c_tokens.iter().map(|t| t.value).collect();
+        let gamma_angles: Vec<f64> = g_tokens.iter().map(|t| t.value).collect();
+        let stored = symmetry.stored_plane_indices(mc);
+        self.check_symmetric_angles(symmetry, &c_angles, &stored, c_tokens[0].line)?;
+        let intensities = self.read_intensities(&mut numbers, stored.len(), ng)?;
+        self.note_comma(numbers.saw_comma);
+        let trailing = numbers.trailing();
+        self.note_blank_tail();
+        self.check_steps(dc, &c_angles, "Dc", 5, symmetry);
+        self.check_steps(dg, &gamma_angles, "Dg", 7, symmetry);
+        if lorl_percent > 100.0 + 1e-9 {
+            self.warn(23, format!("LORL {lorl_percent} % exceeds 100 %"));
+        }
+        let data = Eulumdat {
+            company,
+            ityp,
+            symmetry,
+            dc,
+            dg,
+            report_number,
+            luminaire_name,
+            luminaire_number,
+            file_name,
+            date_user,
+            dimensions,
+            dff_percent,
+            lorl_percent,
+            conversion_factor,
+            tilt_deg,
+            lamp_sets,
+            direct_ratios,
+            c_angles,
+            gamma_angles,
+            intensities,
+        };
+        if let Some(t) = trailing {
+            self.accept_trailing(&data, t)?;
+        }
+        Ok(data)
+    }
+
+    /// The nine dimension lines (mm): the luminaire, its luminous area and the area's
+    /// heights at C0, C90, C180 and C270; a size no luminaire has is refused.
+    fn read_dimensions(&mut self) -> Result<Dimensions, ParseError> {
         let mut dims = [0.0; 9];
         for (i, what) in [
             "luminaire length/diameter",
@@ -321,28 +398,19 @@ impl<'a, 't> HeaderReader<'a, 't> {
                 format!("{} mm is not the size of a luminaire", show(dims[k])),
             ));
         }
-        let dimensions = Dimensions {
+        Ok(Dimensions {
             length: dims[0],
             width: dims[1],
             height: dims[2],
             area_length: dims[3],
             area_width: dims[4],
             area_heights: [dims[5], dims[6], dims[7], dims[8]],
-        };
-        let dff_percent = self.optional("downward flux fraction DFF", 0.0)?;
-        let lorl_percent = self.optional("light output ratio LORL", 0.0)?;
-        let conversion_factor = self.optional("conversion factor", 1.0)?;
-        if conversion_factor <= 0.0 {
-            return Err(self.src.error(
-                self.line,
-                format!(
-                    "conversion factor must be positive, found {}",
-                    show(conversion_factor)
-                ),
-            ));
-        }
-        let tilt_deg = self.optional("tilt during measurement", 0.0)?;
-        let n_sets = self.integer("number of lamp sets", 1, MAX_LAMP_SETS as i64)? as usize;
+        })
+    }
+
+    /// `n_sets` lamp sets (count, type, flux, colour, rendering, watts); refused when every
+    /// set's flux is 0 (the intensities, cd/klm, could not become candela).
+    fn read_lamp_sets(&mut self, n_sets: usize) -> Result<Vec<LampSet>, ParseError> {
         let mut lamp_sets = Vec::with_capacity(n_sets);
         let first_lamp_line = self.line + 1;
         for k in 1..=n_sets {
@@ -381,9 +449,15 @@ impl<'a, 't> HeaderReader<'a, 't> {
                 "the lamp flux of every set is 0: the intensities (cd/klm) cannot become candela",
             ));
         }
-        let first_data_line = self.line + 1;
-        let mut numbers = NumberStream::new(self.src, first_data_line, &[]);
-        // EULUMDAT is line-oriented: a blank line here is an empty field, not nothing.
+        Ok(lamp_sets)
+    }
+
+    /// The ten direct ratios; EULUMDAT is line-oriented, so a blank line is an empty
+    /// field (0, with a warning), not nothing.
+    fn read_direct_ratios(
+        &mut self,
+        numbers: &mut NumberStream<'_, '_>,
+    ) -> Result<[f64; 10], ParseError> {
         let mut direct_ratios = [0.0; 10];
         let mut blank_ratios = Vec::new();
         for (i, r) in direct_ratios.iter_mut().enumerate() {
@@ -398,25 +472,18 @@ impl<'a, 't> HeaderReader<'a, 't> {
                 blank_ratios.len()
             ));
         }
-        let c_tokens = numbers.take(mc, "C angle")?;
-        let g_tokens = numbers.take(ng, "γ angle")?;
-        check_increasing(self.src, &c_tokens, 0.0..360.0, "C")?;
-        // The format's C angles begin with 0° (every writer's full circle starts there).
-        if c_tokens[0].value != 0.0 {
-            return Err(self.src.error(
-                c_tokens[0].line,
-                format!(
-                    "the C angles must begin with 0°, found {}",
-                    show(c_tokens[0].value)
-                ),
-            ));
-        }
-        check_increasing(self.src, &g_tokens, 0.0..=180.0, "γ")?;
-        let c_angles: Vec<f64> = c_tokens.iter().map(|t| t.value).collect();
-        let gamma_angles: Vec<f64> = g_tokens.iter().map(|t| t.value).collect();
-        let stored = symmetry.stored_plane_indices(mc);
-        self.check_symmetric_angles(symmetry, &c_angles, &stored, c_tokens[0].line)?;
-        let expected = stored.len() * ng;
+        Ok(direct_ratios)
+    }
+
+    /// `planes` × `ng` intensities (cd/klm), none negative; a short table says how many
+    /// were expected and found.
+    fn read_intensities(
+        &mut self,
+        numbers: &mut NumberStream<'_, '_>,
+        planes: usize,
+        ng: usize,
+    ) -> Result<Vec<Vec<f64>>, ParseError> {
+        let expected = planes * ng;
         let mut flat = Vec::with_capacity(expected.min(self.src.lines.len() * 8));
         for found in 0..expected {
             let t = numbers.next("intensity").map_err(|e| {
@@ -425,7 +492,7 @@ impl<'a, 't> HeaderReader<'a, 't> {
                         e.line,
                         format!(
                             "unexpected end of file: expected {expected} intensities ({} stored planes × {ng} γ angles), found {found}",
-                            stored.len()
+                            planes
                         ),
                     )
                 } else {
@@ -439,9 +506,11 @@ impl<'a, 't> HeaderReader<'a, 't> {
             }
             flat.push(t.value);
         }
-        let intensities: Vec<Vec<f64>> = flat.chunks(ng).map(<[f64]>::to_vec).collect();
-        self.note_comma(numbers.saw_comma);
-        let trailing = numbers.trailing();
+        Ok(flat.chunks(ng).map(<[f64]>::to_vec).collect())
+    }
+
+    /// Blank lines at the end of the file: ignored, with a warning.
+    fn note_blank_tail(&mut self) {
         let blank_tail = self
             .src
             .lines
@@ -453,37 +522,6 @@ impl<'a, 't> HeaderReader<'a, 't> {
             self.warnings
                 .push(format!("{blank_tail} trailing blank line(s) ignored"));
         }
-        self.check_steps(dc, &c_angles, "Dc", 5, symmetry);
-        self.check_steps(dg, &gamma_angles, "Dg", 7, symmetry);
-        if lorl_percent > 100.0 + 1e-9 {
-            self.warn(23, format!("LORL {lorl_percent} % exceeds 100 %"));
-        }
-        let data = Eulumdat {
-            company,
-            ityp,
-            symmetry,
-            dc,
-            dg,
-            report_number,
-            luminaire_name,
-            luminaire_number,
-            file_name,
-            date_user,
-            dimensions,
-            dff_percent,
-            lorl_percent,
-            conversion_factor,
-            tilt_deg,
-            lamp_sets,
-            direct_ratios,
-            c_angles,
-            gamma_angles,
-            intensities,
-        };
-        if let Some(t) = trailing {
-            self.accept_trailing(&data, t)?;
-        }
-        Ok(data)
     }
 
     /// Data after the table is accepted with a warning when it cannot be misread table

@@ -8,7 +8,7 @@ use super::eulumdat::{Dimensions, Eulumdat, LampSet, Parsed};
 use super::grid::angle_eq;
 use super::symmetry::Symmetry;
 use super::text::{
-    check_increasing, decode_text, exact, show, show_rounded, NumberStream, SourceText,
+    check_increasing, decode_text, exact, show, show_rounded, NumberStream, SourceText, Token,
 };
 use super::type_b;
 
@@ -202,210 +202,13 @@ impl IesFile {
         let (text, decode_warnings) = decode_text(bytes);
         let src = SourceText::new(name, &text, decode_warnings);
         let mut warnings = src.warnings.clone();
-        let first = src.lines.first().map(|l| l.trim()).unwrap_or("");
-        let (version, mut line) = match first.to_ascii_uppercase().as_str() {
-            "IESNA:LM-63-1995" => (IesVersion::Lm63_1995, 1),
-            "IESNA:LM-63-2002" => (IesVersion::Lm63_2002, 1),
-            "IES:LM-63-2019" | "IESNA:LM-63-2019" => (IesVersion::Lm63_2019, 1),
-            "IESNA91" => (IesVersion::Lm63_1991, 1),
-            s if s.starts_with("IES") => {
-                warnings.push(format!(
-                    "line 1: unknown edition {first:?}: read as LM-63-2002"
-                ));
-                (IesVersion::Lm63_2002, 1)
-            }
-            _ => (IesVersion::Lm63_1986, 0),
-        };
-        // Keyword / label lines up to TILT=.
-        let mut keywords: Vec<(String, String)> = Vec::new();
-        let tilt_spec = loop {
-            let Some(text) = src.lines.get(line) else {
-                return Err(src.error(src.lines.len() + 1, "no TILT= line: not an IES LM-63 file"));
-            };
-            line += 1;
-            let t = text.trim();
-            if let Some(rest) = strip_prefix_ci(t, "TILT=").or_else(|| strip_prefix_ci(t, "TILT ="))
-            {
-                break rest.trim().to_string();
-            }
-            if let Some(body) = t.strip_prefix('[') {
-                let (key, value) = body.split_once(']').unwrap_or((body, ""));
-                let value = value.trim().to_string();
-                if key.eq_ignore_ascii_case("MORE") {
-                    if let Some(last) = keywords.last_mut() {
-                        last.1.push('\n');
-                        last.1.push_str(&value);
-                        continue;
-                    }
-                }
-                keywords.push((key.trim().to_ascii_uppercase(), value));
-            } else if !t.is_empty() {
-                keywords.push(("LABEL".to_string(), t.to_string()));
-            }
-            if line > 1000 {
-                return Err(src.error(line, "no TILT= line within the first 1000 lines"));
-            }
-        };
-        let tilt_line = line;
-        let mut nums = NumberStream::new(&src, line + 1, &[',']);
-        let tilt = match tilt_spec.to_ascii_uppercase().as_str() {
-            "NONE" => Tilt::None,
-            "INCLUDE" => {
-                let geometry = whole(&src, nums.next("lamp-to-luminaire geometry")?, 1, 3)? as u8;
-                let n = whole(&src, nums.next("number of tilt angles")?, 1, 3601)? as usize;
-                let angles = nums
-                    .take(n, "tilt angle")?
-                    .iter()
-                    .map(|t| t.value)
-                    .collect();
-                let factors = nums
-                    .take(n, "tilt multiplying factor")?
-                    .iter()
-                    .map(|t| t.value)
-                    .collect();
-                warnings.push(
-                    "TILT=INCLUDE data read; the distribution is used as measured (tilt factors not applied)"
-                        .to_string(),
-                );
-                Tilt::Include {
-                    geometry,
-                    angles,
-                    factors,
-                }
-            }
-            "" => {
-                return Err(src.error(
-                    tilt_line,
-                    "TILT= has no value (NONE, INCLUDE or a file name)",
-                ))
-            }
-            _ => {
-                warnings.push(format!(
-                    "line {tilt_line}: tilt file {tilt_spec:?} not read; the distribution is used as measured"
-                ));
-                Tilt::File(tilt_spec.clone())
-            }
-        };
-        let lamp_count = nums.next("number of lamps")?;
-        let lumens = nums.next("lumens per lamp")?;
-        let multiplier = nums.next("candela multiplier")?;
-        let n_vert = whole(&src, nums.next("number of vertical angles")?, 2, 3601)? as usize;
-        let n_horiz = whole(&src, nums.next("number of horizontal angles")?, 1, 3601)? as usize;
-        let ptype_tok = nums.next("photometric type")?;
-        let photometric_type = whole(&src, ptype_tok, 1, 3)? as u8;
-        let units = whole(&src, nums.next("units type")?, 1, 2)? as u8;
-        let size_tok = [
-            nums.next("opening width")?,
-            nums.next("opening length")?,
-            nums.next("opening height")?,
-        ];
-        let size = size_tok.map(|t| t.value);
-        let ballast = nums.next("ballast factor")?;
-        let ballast_factor = ballast.value;
-        let blpf_tok = nums.next("ballast-lamp photometric factor / future use")?;
-        let blpf = blpf_tok.value;
-        let old_edition = matches!(
-            version,
-            IesVersion::Lm63_1986 | IesVersion::Lm63_1991 | IesVersion::Lm63_1995
-        );
-        for (tok, what, used) in [
-            (ballast, "ballast factor", true),
-            (blpf_tok, "ballast-lamp photometric factor", old_edition),
-        ] {
-            if used && tok.value <= 0.0 {
-                return Err(src.error(
-                    tok.line,
-                    format!("{what} must be positive, found {}", tok.value),
-                ));
-            }
-        }
-        let input_watts = nums.next("input watts")?.value;
-        if lumens.value <= 0.0 && lumens.value != -1.0 {
-            return Err(src.error(
-                lumens.line,
-                format!(
-                    "lumens per lamp must be positive or -1, found {}",
-                    lumens.value
-                ),
-            ));
-        }
-        for (tok, what) in [
-            (size_tok[0], "opening width"),
-            (size_tok[1], "opening length"),
-            (size_tok[2], "opening height"),
-        ] {
-            if tok.value.abs() * metres_per_unit(units) > MAX_SIZE_M {
-                return Err(src.error(
-                    tok.line,
-                    format!("{what} {} is not the size of a luminaire", show(tok.value)),
-                ));
-            }
-        }
-        if lamp_count.value > 1e6 {
-            return Err(src.error(
-                lamp_count.line,
-                format!(
-                    "number of lamps {} exceeds 1 000 000",
-                    show(lamp_count.value)
-                ),
-            ));
-        }
-        if lamp_count.value <= 0.0 {
-            return Err(src.error(
-                lamp_count.line,
-                format!(
-                    "number of lamps must be positive, found {}",
-                    lamp_count.value
-                ),
-            ));
-        }
-        if multiplier.value <= 0.0 {
-            return Err(src.error(
-                multiplier.line,
-                format!(
-                    "candela multiplier must be positive, found {}",
-                    multiplier.value
-                ),
-            ));
-        }
-        let v_tok = nums.take(n_vert, "vertical angle")?;
-        let h_tok = nums.take(n_horiz, "horizontal angle")?;
-        if photometric_type == 1 {
-            check_increasing(&src, &v_tok, 0.0..=180.0, "vertical")?;
-            check_increasing(&src, &h_tok, 0.0..=360.0, "horizontal")?;
-        } else {
-            check_increasing(&src, &v_tok, -90.0..=90.0, "vertical")?;
-            check_increasing(&src, &h_tok, -90.0..=90.0, "horizontal")?;
-        }
-        let mut candela = Vec::with_capacity(n_horiz);
-        for h in &h_tok {
-            let row = nums.take(
-                n_vert,
-                &format!("candela value of horizontal angle {}", h.value),
-            )?;
-            if let Some(t) = row.iter().find(|t| t.value < 0.0) {
-                return Err(src.error(t.line, format!("negative candela value {}", t.value)));
-            }
-            candela.push(row.iter().map(|t| t.value).collect());
-        }
-        if let Some(t) = nums.trailing() {
-            // Numbers after the table may be a table the header miscounts: refused. End
-            // markers (END, ^Z) and words cannot be: accepted with a note.
-            if t.numbers > 0 {
-                return Err(src.error(
-                    t.first_line,
-                    format!(
-                        "more data than {n_vert} vertical × {n_horiz} horizontal angles announce: {} follow the table",
-                        t.describe()
-                    ),
-                ));
-            }
-            warnings.push(format!(
-                "line {}: {} after the table ignored",
-                t.first_line,
-                t.describe()
-            ));
-        }
+        let (version, first_keyword_line) = edition(&src, &mut warnings);
+        let (keywords, tilt_spec, tilt_line) = read_keywords(&src, first_keyword_line)?;
+        let mut nums = NumberStream::new(&src, tilt_line + 1, &[',']);
+        let tilt = read_tilt(&src, &mut nums, &tilt_spec, tilt_line, &mut warnings)?;
+        let header = read_header(&src, &mut nums, version)?;
+        let table = read_table(&src, &mut nums, &header)?;
+        check_after_table(&src, &mut nums, &header, &mut warnings)?;
         if nums.saw_comma {
             warnings.push("decimal commas read as decimal points".to_string());
         }
@@ -413,47 +216,27 @@ impl IesFile {
             version,
             keywords,
             tilt,
-            lamp_count: lamp_count.value,
-            lumens_per_lamp: lumens.value,
-            multiplier: multiplier.value,
-            photometric_type,
-            units,
-            size,
-            ballast_factor,
-            ballast_lamp_factor: blpf,
-            input_watts,
-            vertical: v_tok.iter().map(|t| t.value).collect(),
-            horizontal: h_tok.iter().map(|t| t.value).collect(),
-            candela,
+            lamp_count: header.lamp_count.value,
+            lumens_per_lamp: header.lumens.value,
+            multiplier: header.multiplier.value,
+            photometric_type: header.photometric_type,
+            units: header.units,
+            size: header.size.map(|t| t.value),
+            ballast_factor: header.ballast.value,
+            ballast_lamp_factor: header.blpf.value,
+            input_watts: header.input_watts,
+            vertical: table.vertical.iter().map(|t| t.value).collect(),
+            horizontal: table.horizontal.iter().map(|t| t.value).collect(),
+            candela: table.candela,
         };
-        // LM-63 closes a full circle with a C360 plane that repeats C0; where it does not,
-        // C0 is used, and the reader is told.
-        if let (Some(&0.0), Some(&360.0)) = (file.horizontal.first(), file.horizontal.last()) {
-            let (first, last) = (&file.candela[0], &file.candela[file.candela.len() - 1]);
-            let diff = first
-                .iter()
-                .zip(last)
-                .map(|(a, b)| (a - b).abs())
-                .fold(0.0, f64::max);
-            if diff > 0.0 {
-                warnings.push(format!(
-                    "line {}: the C360 plane differs from C0 by up to {} cd: C0 is used",
-                    h_tok[h_tok.len() - 1].line,
-                    show_rounded(diff)
-                ));
-            }
-        }
-        // Validate the angle ranges now so conversion cannot fail later.
-        if photometric_type == 1 {
-            horizontal_symmetry(&file.horizontal).map_err(|m| src.error(h_tok[0].line, m))?;
-        } else {
-            type_b::check_ranges(&file.vertical, &file.horizontal)
-                .map_err(|m| src.error(v_tok[0].line, m))?;
-            warnings.push(format!(
-                "Type {} photometry converted to the C-γ frame (docs/src/design/photometry.md: beam axis at γ = 0)",
-                if photometric_type == 2 { "B" } else { "A" }
-            ));
-        }
+        check_closing_plane(&file, &table.horizontal, &mut warnings);
+        check_angle_ranges(
+            &src,
+            &file,
+            &table.vertical,
+            &table.horizontal,
+            &mut warnings,
+        )?;
         Ok(Parsed {
             data: file,
             warnings,
@@ -705,7 +488,7 @@ fn strip_prefix_ci<'a>(s: &'a str, prefix: &str) -> Option<&'a str> {
         .then(|| &s[prefix.len()..])
 }
 
-fn whole(src: &SourceText<'_>, t: super::text::Token, lo: i64, hi: i64) -> Result<i64, ParseError> {
+fn whole(src: &SourceText<'_>, t: Token, lo: i64, hi: i64) -> Result<i64, ParseError> {
     if t.value.fract() != 0.0 || t.value < lo as f64 || t.value > hi as f64 {
         return Err(src.error(
             t.line,
@@ -788,4 +571,319 @@ fn uniform_step(a: &[f64]) -> f64 {
     } else {
         0.0
     }
+}
+
+/// The LM-63 edition the first line names, and the (0-based) line the keywords start on;
+/// a file without an edition line is LM-63-1986.
+fn edition(src: &SourceText<'_>, warnings: &mut Vec<String>) -> (IesVersion, usize) {
+    let first = src.lines.first().map(|l| l.trim()).unwrap_or("");
+    match first.to_ascii_uppercase().as_str() {
+        "IESNA:LM-63-1995" => (IesVersion::Lm63_1995, 1),
+        "IESNA:LM-63-2002" => (IesVersion::Lm63_2002, 1),
+        "IES:LM-63-2019" | "IESNA:LM-63-2019" => (IesVersion::Lm63_2019, 1),
+        "IESNA91" => (IesVersion::Lm63_1991, 1),
+        s if s.starts_with("IES") => {
+            warnings.push(format!(
+                "line 1: unknown edition {first:?}: read as LM-63-2002"
+            ));
+            (IesVersion::Lm63_2002, 1)
+        }
+        _ => (IesVersion::Lm63_1986, 0),
+    }
+}
+
+/// Keyword lines as (keyword, value), labels as ("LABEL", text), in file order.
+type Keywords = Vec<(String, String)>;
+
+/// The keyword and label lines from `line` (0-based) up to `TILT=`: the keywords (`[MORE]`
+/// continues the one before), the TILT value and the TILT line's number (1-based).
+fn read_keywords(
+    src: &SourceText<'_>,
+    mut line: usize,
+) -> Result<(Keywords, String, usize), ParseError> {
+    let mut keywords: Keywords = Vec::new();
+    loop {
+        let Some(text) = src.lines.get(line) else {
+            return Err(src.error(src.lines.len() + 1, "no TILT= line: not an IES LM-63 file"));
+        };
+        line += 1;
+        let t = text.trim();
+        if let Some(rest) = strip_prefix_ci(t, "TILT=").or_else(|| strip_prefix_ci(t, "TILT =")) {
+            return Ok((keywords, rest.trim().to_string(), line));
+        }
+        if let Some(body) = t.strip_prefix('[') {
+            let (key, value) = body.split_once(']').unwrap_or((body, ""));
+            let value = value.trim().to_string();
+            if key.eq_ignore_ascii_case("MORE") {
+                if let Some(last) = keywords.last_mut() {
+                    last.1.push('\n');
+                    last.1.push_str(&value);
+                    continue;
+                }
+            }
+            keywords.push((key.trim().to_ascii_uppercase(), value));
+        } else if !t.is_empty() {
+            keywords.push(("LABEL".to_string(), t.to_string()));
+        }
+        if line > 1000 {
+            return Err(src.error(line, "no TILT= line within the first 1000 lines"));
+        }
+    }
+}
+
+/// The tilt data `spec` (the value of `TILT=` on line `tilt_line`) announces: none, the
+/// included table (read, not applied) or a file (not read).
+fn read_tilt(
+    src: &SourceText<'_>,
+    nums: &mut NumberStream<'_, '_>,
+    spec: &str,
+    tilt_line: usize,
+    warnings: &mut Vec<String>,
+) -> Result<Tilt, ParseError> {
+    match spec.to_ascii_uppercase().as_str() {
+        "NONE" => Ok(Tilt::None),
+        "INCLUDE" => {
+            let geometry = whole(src, nums.next("lamp-to-luminaire geometry")?, 1, 3)? as u8;
+            let n = whole(src, nums.next("number of tilt angles")?, 1, 3601)? as usize;
+            let values = |nums: &mut NumberStream<'_, '_>, what| -> Result<Vec<f64>, ParseError> {
+                Ok(nums.take(n, what)?.iter().map(|t| t.value).collect())
+            };
+            let angles = values(nums, "tilt angle")?;
+            let factors = values(nums, "tilt multiplying factor")?;
+            warnings.push(
+                "TILT=INCLUDE data read; the distribution is used as measured (tilt factors not applied)"
+                    .to_string(),
+            );
+            Ok(Tilt::Include {
+                geometry,
+                angles,
+                factors,
+            })
+        }
+        "" => Err(src.error(
+            tilt_line,
+            "TILT= has no value (NONE, INCLUDE or a file name)",
+        )),
+        _ => {
+            warnings.push(format!(
+                "line {tilt_line}: tilt file {spec:?} not read; the distribution is used as measured"
+            ));
+            Ok(Tilt::File(spec.to_string()))
+        }
+    }
+}
+
+/// The numbers between the tilt data and the angles, with their lines for messages.
+struct Header {
+    lamp_count: Token,
+    lumens: Token,
+    multiplier: Token,
+    n_vert: usize,
+    n_horiz: usize,
+    photometric_type: u8,
+    units: u8,
+    size: [Token; 3],
+    ballast: Token,
+    blpf: Token,
+    input_watts: f64,
+}
+
+/// A token that must be positive, else an error naming `what`.
+fn positive(src: &SourceText<'_>, t: Token, what: &str) -> Result<(), ParseError> {
+    if t.value <= 0.0 {
+        return Err(src.error(
+            t.line,
+            format!("{what} must be positive, found {}", t.value),
+        ));
+    }
+    Ok(())
+}
+
+/// Reads and checks the header numbers: lamps, lumens, multiplier, the angle counts, the
+/// photometric and units types, the opening, the ballast factors and the input watts.
+fn read_header(
+    src: &SourceText<'_>,
+    nums: &mut NumberStream<'_, '_>,
+    version: IesVersion,
+) -> Result<Header, ParseError> {
+    let lamp_count = nums.next("number of lamps")?;
+    let lumens = nums.next("lumens per lamp")?;
+    let multiplier = nums.next("candela multiplier")?;
+    let n_vert = whole(src, nums.next("number of vertical angles")?, 2, 3601)? as usize;
+    let n_horiz = whole(src, nums.next("number of horizontal angles")?, 1, 3601)? as usize;
+    let photometric_type = whole(src, nums.next("photometric type")?, 1, 3)? as u8;
+    let units = whole(src, nums.next("units type")?, 1, 2)? as u8;
+    let size = [
+        nums.next("opening width")?,
+        nums.next("opening length")?,
+        nums.next("opening height")?,
+    ];
+    let ballast = nums.next("ballast factor")?;
+    let blpf = nums.next("ballast-lamp photometric factor / future use")?;
+    positive(src, ballast, "ballast factor")?;
+    let old_edition = matches!(
+        version,
+        IesVersion::Lm63_1986 | IesVersion::Lm63_1991 | IesVersion::Lm63_1995
+    );
+    if old_edition {
+        positive(src, blpf, "ballast-lamp photometric factor")?;
+    }
+    let input_watts = nums.next("input watts")?.value;
+    if lumens.value <= 0.0 && lumens.value != -1.0 {
+        return Err(src.error(
+            lumens.line,
+            format!(
+                "lumens per lamp must be positive or -1, found {}",
+                lumens.value
+            ),
+        ));
+    }
+    for (tok, what) in size
+        .iter()
+        .zip(["opening width", "opening length", "opening height"])
+    {
+        if tok.value.abs() * metres_per_unit(units) > MAX_SIZE_M {
+            return Err(src.error(
+                tok.line,
+                format!("{what} {} is not the size of a luminaire", show(tok.value)),
+            ));
+        }
+    }
+    if lamp_count.value > 1e6 {
+        return Err(src.error(
+            lamp_count.line,
+            format!(
+                "number of lamps {} exceeds 1 000 000",
+                show(lamp_count.value)
+            ),
+        ));
+    }
+    positive(src, lamp_count, "number of lamps")?;
+    positive(src, multiplier, "candela multiplier")?;
+    Ok(Header {
+        lamp_count,
+        lumens,
+        multiplier,
+        n_vert,
+        n_horiz,
+        photometric_type,
+        units,
+        size,
+        ballast,
+        blpf,
+        input_watts,
+    })
+}
+
+/// The angles (as tokens, for their lines) and the candela rows.
+struct Table {
+    vertical: Vec<Token>,
+    horizontal: Vec<Token>,
+    candela: Vec<Vec<f64>>,
+}
+
+/// Reads the angles (increasing, in the photometric type's range) and one candela row per
+/// horizontal angle (none negative).
+fn read_table(
+    src: &SourceText<'_>,
+    nums: &mut NumberStream<'_, '_>,
+    header: &Header,
+) -> Result<Table, ParseError> {
+    let vertical = nums.take(header.n_vert, "vertical angle")?;
+    let horizontal = nums.take(header.n_horiz, "horizontal angle")?;
+    if header.photometric_type == 1 {
+        check_increasing(src, &vertical, 0.0..=180.0, "vertical")?;
+        check_increasing(src, &horizontal, 0.0..=360.0, "horizontal")?;
+    } else {
+        check_increasing(src, &vertical, -90.0..=90.0, "vertical")?;
+        check_increasing(src, &horizontal, -90.0..=90.0, "horizontal")?;
+    }
+    let mut candela = Vec::with_capacity(header.n_horiz);
+    for h in &horizontal {
+        let row = nums.take(
+            header.n_vert,
+            &format!("candela value of horizontal angle {}", h.value),
+        )?;
+        if let Some(t) = row.iter().find(|t| t.value < 0.0) {
+            return Err(src.error(t.line, format!("negative candela value {}", t.value)));
+        }
+        candela.push(row.iter().map(|t| t.value).collect());
+    }
+    Ok(Table {
+        vertical,
+        horizontal,
+        candela,
+    })
+}
+
+/// What follows the table: numbers may be a table the header miscounts (refused); end
+/// markers (END, ^Z) and words cannot be (accepted with a note).
+fn check_after_table(
+    src: &SourceText<'_>,
+    nums: &mut NumberStream<'_, '_>,
+    header: &Header,
+    warnings: &mut Vec<String>,
+) -> Result<(), ParseError> {
+    let Some(t) = nums.trailing() else {
+        return Ok(());
+    };
+    if t.numbers > 0 {
+        return Err(src.error(
+            t.first_line,
+            format!(
+                "more data than {} vertical × {} horizontal angles announce: {} follow the table",
+                header.n_vert,
+                header.n_horiz,
+                t.describe()
+            ),
+        ));
+    }
+    warnings.push(format!(
+        "line {}: {} after the table ignored",
+        t.first_line,
+        t.describe()
+    ));
+    Ok(())
+}
+
+/// LM-63 closes a full circle with a C360 plane that repeats C0; where it does not, C0 is
+/// used, and the reader is told.
+fn check_closing_plane(file: &IesFile, horizontal: &[Token], warnings: &mut Vec<String>) {
+    if let (Some(&0.0), Some(&360.0)) = (file.horizontal.first(), file.horizontal.last()) {
+        let (first, last) = (&file.candela[0], &file.candela[file.candela.len() - 1]);
+        let diff = first
+            .iter()
+            .zip(last)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        if diff > 0.0 {
+            warnings.push(format!(
+                "line {}: the C360 plane differs from C0 by up to {} cd: C0 is used",
+                horizontal[horizontal.len() - 1].line,
+                show_rounded(diff)
+            ));
+        }
+    }
+}
+
+/// The angle ranges checked now, so that conversion cannot fail later (Type A and B are
+/// converted to the C-γ frame, which the reader is told).
+fn check_angle_ranges(
+    src: &SourceText<'_>,
+    file: &IesFile,
+    vertical: &[Token],
+    horizontal: &[Token],
+    warnings: &mut Vec<String>,
+) -> Result<(), ParseError> {
+    if file.photometric_type == 1 {
+        horizontal_symmetry(&file.horizontal).map_err(|m| src.error(horizontal[0].line, m))?;
+    } else {
+        type_b::check_ranges(&file.vertical, &file.horizontal)
+            .map_err(|m| src.error(vertical[0].line, m))?;
+        warnings.push(format!(
+            "Type {} photometry converted to the C-γ frame (docs/src/design/photometry.md: beam axis at γ = 0)",
+            if file.photometric_type == 2 { "B" } else { "A" }
+        ));
+    }
+    Ok(())
 }

@@ -313,6 +313,9 @@ fn begin_pass<'e>(
     })
 }
 
+/// The vertex attributes of the volumes and surfaces: one homogeneous position.
+const VERTEX_ATTRIBUTES: [wgpu::VertexAttribute; 1] = wgpu::vertex_attr_array![0 => Float32x4];
+
 fn stencil_face(
     compare: wgpu::CompareFunction,
     depth_fail: wgpu::StencilOperation,
@@ -326,6 +329,102 @@ fn stencil_face(
     }
 }
 
+/// One pipeline of the shadow-volume passes: its entry points, primitives, depth and
+/// stencil state, and colour target.
+struct PassSpec<'a> {
+    label: &'a str,
+    vs: &'a str,
+    fs: &'a str,
+    topology: wgpu::PrimitiveTopology,
+    unclipped: bool,
+    cull_mode: Option<wgpu::Face>,
+    depth_compare: wgpu::CompareFunction,
+    depth_write: bool,
+    stencil: wgpu::StencilState,
+    color: wgpu::ColorTargetState,
+}
+
+impl<'a> PassSpec<'a> {
+    /// Triangles read from vertex buffers, no culling, no clamping, depth not written.
+    fn triangles(label: &'a str, vs: &'a str, fs: &'a str, color: wgpu::ColorTargetState) -> Self {
+        PassSpec {
+            label,
+            vs,
+            fs,
+            topology: wgpu::PrimitiveTopology::TriangleList,
+            unclipped: false,
+            cull_mode: None,
+            depth_compare: wgpu::CompareFunction::Always,
+            depth_write: false,
+            stencil: Default::default(),
+            color,
+        }
+    }
+}
+
+/// What every shadow-volume pipeline shares: the module, the layouts, the depth format.
+struct PassKit<'a> {
+    dev: &'a wgpu::Device,
+    module: wgpu::ShaderModule,
+    pipeline_layout: wgpu::PipelineLayout,
+    vertex_layout: wgpu::VertexBufferLayout<'static>,
+    format: wgpu::TextureFormat,
+}
+
+impl PassKit<'_> {
+    fn pipeline(&self, spec: PassSpec<'_>) -> wgpu::RenderPipeline {
+        let buffers = [Some(self.vertex_layout.clone())];
+        let targets = [Some(spec.color)];
+        self.dev
+            .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(spec.label),
+                layout: Some(&self.pipeline_layout),
+                vertex: wgpu::VertexState {
+                    module: &self.module,
+                    entry_point: Some(spec.vs),
+                    compilation_options: Default::default(),
+                    buffers: if spec.vs == "vs_fullscreen" {
+                        &[]
+                    } else {
+                        &buffers
+                    },
+                },
+                primitive: wgpu::PrimitiveState {
+                    topology: spec.topology,
+                    cull_mode: spec.cull_mode,
+                    unclipped_depth: spec.unclipped,
+                    ..Default::default()
+                },
+                depth_stencil: Some(wgpu::DepthStencilState {
+                    format: self.format,
+                    depth_write_enabled: Some(spec.depth_write),
+                    depth_compare: Some(spec.depth_compare),
+                    stencil: spec.stencil,
+                    bias: Default::default(),
+                }),
+                multisample: Default::default(),
+                fragment: Some(wgpu::FragmentState {
+                    module: &self.module,
+                    entry_point: Some(spec.fs),
+                    compilation_options: Default::default(),
+                    targets: &targets,
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+    }
+}
+
+/// A stencil state counting with `front` and `back`.
+fn counting(front: wgpu::StencilFaceState, back: wgpu::StencilFaceState) -> wgpu::StencilState {
+    wgpu::StencilState {
+        front,
+        back,
+        read_mask: 0xff,
+        write_mask: 0xff,
+    }
+}
+
 impl VolumePasses {
     /// Builds the pipelines for depth-stencil targets of the GPU's format and colour
     /// targets of `debug_format` (the debug views).
@@ -335,12 +434,11 @@ impl VolumePasses {
             label: Some("shadow volumes"),
             source: wgpu::ShaderSource::Wgsl(shaders::SHADOW_VOLUME.into()),
         });
-        use wgpu::ShaderStages as S;
         let layout = dev.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("shadow volumes"),
             entries: &[wgpu::BindGroupLayoutEntry {
                 binding: 0,
-                visibility: S::VERTEX_FRAGMENT,
+                visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
                 ty: wgpu::BindingType::Buffer {
                     ty: wgpu::BufferBindingType::Uniform,
                     has_dynamic_offset: true,
@@ -356,66 +454,19 @@ impl VolumePasses {
             bind_group_layouts: &[Some(&layout)],
             immediate_size: 0,
         });
-        let vertex_layout = wgpu::VertexBufferLayout {
-            array_stride: 16,
-            step_mode: wgpu::VertexStepMode::Vertex,
-            attributes: &wgpu::vertex_attr_array![0 => Float32x4],
+        let kit = PassKit {
+            dev,
+            module,
+            pipeline_layout,
+            vertex_layout: wgpu::VertexBufferLayout {
+                array_stride: 16,
+                step_mode: wgpu::VertexStepMode::Vertex,
+                attributes: &VERTEX_ATTRIBUTES,
+            },
+            format: gpu.depth_stencil_format(),
         };
         use wgpu::CompareFunction as C;
         use wgpu::StencilOperation as Op;
-        let format = gpu.depth_stencil_format();
-        let make = |label: &str,
-                    vs: &str,
-                    fs: &str,
-                    topology: wgpu::PrimitiveTopology,
-                    unclipped: bool,
-                    cull_mode: Option<wgpu::Face>,
-                    depth_compare: C,
-                    stencil: wgpu::StencilState,
-                    color: wgpu::ColorTargetState| {
-            let buffers = [Some(vertex_layout.clone())];
-            let targets = [Some(color)];
-            dev.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some(label),
-                layout: Some(&pipeline_layout),
-                vertex: wgpu::VertexState {
-                    module: &module,
-                    entry_point: Some(vs),
-                    compilation_options: Default::default(),
-                    buffers: if vs == "vs_fullscreen" { &[] } else { &buffers },
-                },
-                primitive: wgpu::PrimitiveState {
-                    topology,
-                    cull_mode,
-                    unclipped_depth: unclipped,
-                    ..Default::default()
-                },
-                depth_stencil: Some(wgpu::DepthStencilState {
-                    format,
-                    depth_write_enabled: Some(false),
-                    depth_compare: Some(depth_compare),
-                    stencil,
-                    bias: Default::default(),
-                }),
-                multisample: Default::default(),
-                fragment: Some(wgpu::FragmentState {
-                    module: &module,
-                    entry_point: Some(fs),
-                    compilation_options: Default::default(),
-                    targets: &targets,
-                }),
-                multiview_mask: None,
-                cache: None,
-            })
-        };
-        let counting =
-            |front: wgpu::StencilFaceState, back: wgpu::StencilFaceState| wgpu::StencilState {
-                front,
-                back,
-                read_mask: 0xff,
-                write_mask: 0xff,
-            };
-        let tri = wgpu::PrimitiveTopology::TriangleList;
         let no_colour = wgpu::ColorTargetState {
             format: MASK_FORMAT,
             blend: None,
@@ -426,65 +477,51 @@ impl VolumePasses {
         // bias, 16 steps, left 3.6 % of the pixels wrong with the camera inside a volume
         // (the sides through the eye plane, depth-clamped, got a huge bias); the same
         // bias without the clamp, or the shader's with it, 0 %.
-        let zpass = make(
-            "shadow volumes z-pass",
-            "vs_volume",
-            "fs_count",
-            tri,
-            false,
-            None,
-            C::Less,
-            counting(
+        let zpass = kit.pipeline(PassSpec {
+            depth_compare: C::Less,
+            stencil: counting(
                 stencil_face(C::Always, Op::Keep, Op::IncrementWrap),
                 stencil_face(C::Always, Op::Keep, Op::DecrementWrap),
             ),
-            no_colour.clone(),
-        );
-        let zfail = make(
-            "shadow volumes z-fail",
-            "vs_volume",
-            "fs_count",
-            tri,
-            gpu.has_depth_clamp(),
-            None,
-            C::Less,
-            counting(
+            ..PassSpec::triangles(
+                "shadow volumes z-pass",
+                "vs_volume",
+                "fs_count",
+                no_colour.clone(),
+            )
+        });
+        let zfail = kit.pipeline(PassSpec {
+            unclipped: gpu.has_depth_clamp(),
+            depth_compare: C::Less,
+            stencil: counting(
                 stencil_face(C::Always, Op::DecrementWrap, Op::Keep),
                 stencil_face(C::Always, Op::IncrementWrap, Op::Keep),
             ),
-            no_colour.clone(),
-        );
+            ..PassSpec::triangles("shadow volumes z-fail", "vs_volume", "fs_count", no_colour)
+        });
         let not_zero = stencil_face(C::NotEqual, Op::Keep, Op::Keep);
-        let mark = make(
-            "shadow mask",
-            "vs_fullscreen",
-            "fs_mark",
-            tri,
-            false,
-            None,
-            C::Always,
-            wgpu::StencilState {
+        let mark = kit.pipeline(PassSpec {
+            stencil: wgpu::StencilState {
                 front: not_zero,
                 back: not_zero,
                 read_mask: 0xff,
                 write_mask: 0,
             },
-            MASK_FORMAT.into(),
-        );
-        // The surfaces drawn again where they are the surface seen (the same vertex shader
-        // gives the same depth), marking them: only their front sides, or only their backs.
-        let mark_side = |label: &str, cull: wgpu::Face| {
-            make(
-                label,
-                "vs_surface",
+            ..PassSpec::triangles(
+                "shadow mask",
+                "vs_fullscreen",
                 "fs_mark",
-                tri,
-                false,
-                Some(cull),
-                C::Equal,
-                Default::default(),
                 MASK_FORMAT.into(),
             )
+        });
+        // The surfaces drawn again where they are the surface seen (the same vertex shader
+        // gives the same depth), marking them: only their front sides, or only their backs.
+        let mark_side = |label, cull| {
+            kit.pipeline(PassSpec {
+                cull_mode: Some(cull),
+                depth_compare: C::Equal,
+                ..PassSpec::triangles(label, "vs_surface", "fs_mark", MASK_FORMAT.into())
+            })
         };
         let mark_fronts = mark_side("shadow mask: front sides", wgpu::Face::Back);
         let mark_backs = mark_side("shadow mask: back sides", wgpu::Face::Front);
@@ -493,54 +530,34 @@ impl VolumePasses {
             blend: Some(wgpu::BlendState::ALPHA_BLENDING),
             write_mask: wgpu::ColorWrites::ALL,
         };
-        let debug_volume = make(
-            "debug: shadow volumes",
-            "vs_volume",
-            "fs_debug_volume",
-            tri,
-            gpu.has_depth_clamp(),
-            None,
-            C::LessEqual,
-            Default::default(),
-            blend.clone(),
-        );
-        let debug_edge = make(
-            "debug: silhouette edges",
-            "vs_volume",
-            "fs_debug_edge",
-            wgpu::PrimitiveTopology::LineList,
-            false,
-            None,
-            C::Always,
-            Default::default(),
-            blend,
-        );
-        let surface = dev.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("plan surfaces"),
-            layout: Some(&pipeline_layout),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vs_surface"),
-                compilation_options: Default::default(),
-                buffers: &[Some(vertex_layout.clone())],
-            },
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format,
-                depth_write_enabled: Some(true),
-                depth_compare: Some(C::Less),
-                stencil: Default::default(),
-                bias: Default::default(),
-            }),
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_surface"),
-                compilation_options: Default::default(),
-                targets: &[Some(MASK_FORMAT.into())],
-            }),
-            multiview_mask: None,
-            cache: None,
+        let debug_volume = kit.pipeline(PassSpec {
+            unclipped: gpu.has_depth_clamp(),
+            depth_compare: C::LessEqual,
+            ..PassSpec::triangles(
+                "debug: shadow volumes",
+                "vs_volume",
+                "fs_debug_volume",
+                blend.clone(),
+            )
+        });
+        let debug_edge = kit.pipeline(PassSpec {
+            topology: wgpu::PrimitiveTopology::LineList,
+            ..PassSpec::triangles(
+                "debug: silhouette edges",
+                "vs_volume",
+                "fs_debug_edge",
+                blend,
+            )
+        });
+        let surface = kit.pipeline(PassSpec {
+            depth_compare: C::Less,
+            depth_write: true,
+            ..PassSpec::triangles(
+                "plan surfaces",
+                "vs_surface",
+                "fs_surface",
+                MASK_FORMAT.into(),
+            )
         });
         VolumePasses {
             surface,

@@ -244,7 +244,7 @@ fn standard_ldt_refuses_a_number_no_rounding_fits() {
         err.reason.contains("2500000 does not fit EULUMDAT's 6"),
         "{err}"
     );
-    assert!(err.to_string().contains("--exact"), "{err}");
+    assert!(err.to_string().contains("`exact`"), "{err}");
     // The exact writer keeps it.
     assert!(data.to_ldt_string().contains("2500000\r\n"));
 }

@@ -20,20 +20,25 @@ fn peak_memory(separator: &str) -> String {
 }
 
 impl Prepared {
-    /// The preparation's lines: adaptive subdivision's result (when asked for), then its
-    /// stages' times — `load_s` to load the scene, `prepared_s` from the command's start to
-    /// the end of the preparation — the triangles and the peak memory.
-    pub fn summary(&self, load_s: f64, prepared_s: f64) -> Vec<String> {
+    /// Adaptive subdivision's result (when asked for): elements by size and the CPU time
+    /// of the splits.
+    pub fn adaptive_line(&self) -> Option<String> {
         let rscene = self.scene();
-        let mut lines = Vec::new();
-        if self.options().adaptive > 0 {
-            lines.push(format!(
+        (self.options().adaptive > 0).then(|| {
+            format!(
                 "{} (the splits decided in {:.2} s of CPU)",
                 adaptive_summary(&rscene.elements),
                 rscene.subdivision_seconds
-            ));
-        }
-        lines.push(format!(
+            )
+        })
+    }
+
+    /// The preparation's line: its stages' times — `load_s` to load the scene,
+    /// `prepared_s` from the command's start to the end of the preparation — the
+    /// triangles and the peak memory.
+    pub fn summary(&self, load_s: f64, prepared_s: f64) -> String {
+        let rscene = self.scene();
+        format!(
             "prepared in {prepared_s:.2} s — load {load_s:.2} s, {}elements and atlas {:.2} s, {}luminaires' direct light {:.2} s; {} triangles{}",
             match self.options().hierarchy {
                 Hierarchy::None => String::new(),
@@ -48,8 +53,7 @@ impl Prepared {
             self.times.direct_light,
             self.triangle_count(),
             peak_memory(", "),
-        ));
-        lines
+        )
     }
 }
 
