@@ -461,7 +461,7 @@ fn radiosity(
     }
     settings.shadows = goniolight::render::ShadowSettings::with(parse_shadows(shadows, &scene)?);
     let gpu = goniolight::gpu::Gpu::shared().map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
-    let aspect = settings.width as f64 / settings.height.max(1) as f64;
+    let aspect = settings.aspect();
     let cancel = AtomicBool::new(false);
     let mut failed: Option<PyErr> = None;
     let mut events = |e: Event| observe(py, e, progress.as_ref(), &cancel, &mut failed);

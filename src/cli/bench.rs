@@ -480,7 +480,7 @@ fn run_radiosity_view(
         };
     }
     let shown = crate::render::RenderSettings::from_display(&scene.display);
-    let aspect = shown.width as f64 / shown.height.max(1) as f64;
+    let aspect = shown.aspect();
     let point = ViewPoint::new(&camera, aspect).ok_or_else(|| {
         CliError::input(anyhow::anyhow!(
             "{}: the camera is orthographic; give --eye and --look-at",

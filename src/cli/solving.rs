@@ -139,7 +139,7 @@ pub fn solve(
     started: Instant,
 ) -> Result<Solution, CliError> {
     let load_s = started.elapsed().as_secs_f64();
-    let aspect = settings.width as f64 / settings.height.max(1) as f64;
+    let aspect = settings.aspect();
     let gpu = Gpu::shared()?;
     let cancel = super::interrupt::interrupt_flag();
     let mut progress = Progress {

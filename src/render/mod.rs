@@ -76,6 +76,12 @@ pub struct RenderSettings {
 }
 
 impl RenderSettings {
+    /// The image's width over its height (a zero height counts as 1): the aspect the
+    /// camera's view, and a view-driven solve's importance, are made for.
+    pub fn aspect(&self) -> f64 {
+        self.width as f64 / self.height.max(1) as f64
+    }
+
     /// The light model the image is drawn with: in shaded mode Catmull-Rom comes from the
     /// cube maps ([`crate::render::ldt::cube`]: one filtered fetch per light, the cost of a
     /// point light), in illuminance mode — where the pixels are lux — from the exact spline;
@@ -330,6 +336,15 @@ mod tests {
     use crate::photometry::Interp;
     use crate::scene::{DisplayEntry, Mode, Palette, Tonemap};
     use crate::shadow::ShadowTechnique;
+
+    #[test]
+    fn the_aspect_is_width_over_height_and_survives_a_zero_height() {
+        let mut s = RenderSettings::from_display(&DisplayEntry::default());
+        (s.width, s.height) = (1280, 720);
+        assert_eq!(s.aspect(), 1280.0 / 720.0);
+        s.height = 0;
+        assert_eq!(s.aspect(), 1280.0);
+    }
 
     #[test]
     fn the_viewers_choices_go_into_the_scene_file_and_come_back() {
