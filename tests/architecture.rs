@@ -835,3 +835,44 @@ fn a_planted_flag_in_a_library_string_is_found() {
     let planted = "/// `--lat` in a comment\nlet a = x--y;\nErr(\"use --indirect radiosity\")\n    \"or a smaller --map-size)\",\n#[cfg(test)]\n\"--in-tests\"\n";
     assert_eq!(flags_named_in(planted), vec![3, 4]);
 }
+
+/// Lines of `text` whose code, outside comments, uses `anyhow` (a type, a macro or an
+/// import).
+fn anyhow_uses_in(text: &str) -> Vec<usize> {
+    text.lines()
+        .enumerate()
+        .filter(|(_, line)| {
+            let code = line.split("//").next().unwrap_or("");
+            code.contains("anyhow::") || code.contains("anyhow!") || code.contains("use anyhow")
+        })
+        .map(|(i, _)| i + 1)
+        .collect()
+}
+
+/// The library's errors are types a caller can match (`thiserror` enums naming the file or
+/// the field): `anyhow` belongs to the front ends, which only add context and print. The
+/// manifest backs this up: `anyhow` is a dependency of the `cli` and `viewer` features only.
+#[test]
+fn the_library_returns_typed_errors_not_anyhow() {
+    let offences = library_offences(anyhow_uses_in, &[]);
+    assert!(
+        offences.is_empty(),
+        "the library uses anyhow (return a thiserror type naming the file or field):\n{}",
+        offences.join("\n")
+    );
+    let manifest = std::fs::read_to_string(common::root().join("Cargo.toml")).unwrap();
+    let line = manifest
+        .lines()
+        .find(|l| l.starts_with("anyhow ="))
+        .expect("anyhow in [dependencies]");
+    assert!(
+        line.contains("optional = true"),
+        "anyhow must stay optional (the cli and viewer features'): {line}"
+    );
+}
+
+#[test]
+fn a_planted_anyhow_use_is_found() {
+    let planted = "// anyhow::Result in a comment\nuse anyhow::Context;\nfn f() -> anyhow::Result<()> {\n    Err(anyhow!(\"no\"))\n}\n";
+    assert_eq!(anyhow_uses_in(planted), vec![2, 3, 4]);
+}

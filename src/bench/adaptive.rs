@@ -64,7 +64,7 @@ pub fn run(
     level: u32,
     stop: &StopAt,
     mut progress: impl FnMut(&str),
-) -> anyhow::Result<Vec<AdaptiveBenchRow>> {
+) -> Result<Vec<AdaptiveBenchRow>, super::BenchError> {
     // With normal maps, the scene without them first (one copy, only then).
     let with_maps = scene.materials.iter().any(|m| m.normal_map.is_some());
     let flat = with_maps.then(|| {
@@ -125,7 +125,7 @@ pub fn run(
                 normals_seconds: rscene.receiving_seconds,
                 direct_seconds: prepared.times.direct_light,
                 solve_seconds: log.last().map_or(0.0, |p| p.seconds),
-                shots: session.solver().shots,
+                shots: session.solver().stats.shots,
                 convergence: log.last().map_or(0.0, |p| p.convergence),
             });
         }

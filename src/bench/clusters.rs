@@ -48,7 +48,10 @@ pub const MODELS: [(&str, &str, &str, f64); 3] = [
 ];
 
 /// Builds the hierarchy of each model under `shared`; `progress` is told each name.
-pub fn run(shared: &Path, mut progress: impl FnMut(&str)) -> anyhow::Result<Vec<ClusterBenchRow>> {
+pub fn run(
+    shared: &Path,
+    mut progress: impl FnMut(&str),
+) -> Result<Vec<ClusterBenchRow>, super::BenchError> {
     let mut rows = Vec::new();
     for (model, rel, up, scale) in MODELS {
         progress(model);

@@ -4,6 +4,7 @@
 
 pub mod adaptive;
 pub mod clusters;
+mod error;
 pub mod radiosity;
 pub mod radiosity_report;
 pub mod radiosity_view;
@@ -13,6 +14,8 @@ pub mod render;
 pub mod report;
 pub mod shadow_profile;
 pub mod silhouette;
+
+pub use error::BenchError;
 
 /// The median of `v` (the mean of the two middle values for an even count); NaN when empty.
 pub fn median(mut v: Vec<f64>) -> f64 {

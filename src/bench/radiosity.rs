@@ -140,7 +140,7 @@ pub fn run(
     plan: RadiosityBenchPlan,
     configs: &[RadiosityBenchConfig],
     mut progress: impl FnMut(&RadiosityBenchConfig, f64),
-) -> anyhow::Result<Vec<RadiosityBenchRow>> {
+) -> Result<Vec<RadiosityBenchRow>, super::BenchError> {
     let RadiosityBenchPlan {
         elements,
         texel_density,
@@ -188,7 +188,7 @@ pub fn run(
             ..GpuSettings::default()
         };
         if let Some(why) = raster.refusal(rscene.has_masked_casters()) {
-            anyhow::bail!("{why}");
+            return Err(super::BenchError::Refused(why.into()));
         }
         let settings = SolverSettings {
             ambient,
@@ -219,10 +219,11 @@ pub fn run(
             ambient: format!("{ambient:?}").to_lowercase(),
             cell_power,
             map_size,
-            maps: solver.drawn,
+            maps: solver.stats.drawn,
             chunk_culling,
             raster: solver.raster().name().to_string(),
-            triangles_per_map: solver.triangles_drawn as f64 / solver.drawn.max(1) as f64,
+            triangles_per_map: solver.stats.triangles_drawn as f64
+                / solver.stats.drawn.max(1) as f64,
             visibility_triangles: solver.visibility_triangles(),
             shooters: shooter_count,
             shooters_seconds,
@@ -234,16 +235,17 @@ pub fn run(
             seconds_90: reach(0.9).map(|p| p.seconds),
             shots_99: reach(0.99).map(|p| p.shot),
             seconds_99: reach(0.99).map(|p| p.seconds),
-            ms_per_shot: 1000.0 * seconds / solver.shots.max(1) as f64,
+            ms_per_shot: 1000.0 * seconds / solver.stats.shots.max(1) as f64,
             seconds,
-            shots: solver.shots,
+            shots: solver.stats.shots,
             convergence: log.last().map_or(0.0, |p| p.convergence),
-            phase_seconds: solver.times,
+            phase_seconds: solver.stats.times,
             plan_cache_hits: {
-                let c = &solver.plan_cache;
+                let c = &solver.stats.plan_cache;
                 c.hits as f64 / (c.hits + c.misses).max(1) as f64
             },
-            receivers_per_map: solver.receiver_threads as f64 / solver.drawn.max(1) as f64,
+            receivers_per_map: solver.stats.receiver_threads as f64
+                / solver.stats.drawn.max(1) as f64,
             gpu_pass_seconds,
         });
     }

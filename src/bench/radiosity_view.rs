@@ -9,6 +9,7 @@ use std::time::Instant;
 
 use glam::DVec3;
 
+use super::BenchError;
 use crate::gpu::Gpu;
 use crate::radiosity::gpu::{GpuSettings, GpuSolver};
 use crate::radiosity::initial::{InitialState, LuminaireLight};
@@ -267,7 +268,7 @@ pub fn run(
     point: &ViewPoint,
     plan: ViewBenchPlan,
     mut progress: impl FnMut(&str),
-) -> anyhow::Result<ViewBench> {
+) -> Result<ViewBench, BenchError> {
     let settings = SolverSettings::default();
     let mut shadows = crate::render::ShadowSettings::default();
     crate::render::limits::check_scene(gpu, scene, &mut shadows)?;
@@ -282,14 +283,18 @@ pub fn run(
         ..GpuSettings::default()
     };
     if let Some(why) = plan.raster.refusal(rscene.has_masked_casters()) {
-        anyhow::bail!("{why}");
+        return Err(BenchError::Refused(why.into()));
     }
     // Driving by the view starts from its weights: timed, and charged to the driven drives.
     let started = Instant::now();
     let weights = view::view_weights(&rscene, point);
     let view_weights_seconds = started.elapsed().as_secs_f64();
     let elements_seen = weights.iter().filter(|&&w| w > 0.0).count();
-    anyhow::ensure!(elements_seen > 0, "the camera sees no surface of the scene");
+    if elements_seen == 0 {
+        return Err(BenchError::Refused(
+            "the camera sees no surface of the scene".into(),
+        ));
+    }
 
     progress("reference");
     let started = Instant::now();
@@ -363,7 +368,7 @@ struct Drives<'a> {
 impl Drives<'_> {
     /// One run of `drive` from the direct light until the shot light and the displayed
     /// image are within the tolerance (or the time limit).
-    fn run(&self, drive: Drive) -> anyhow::Result<ViewBenchRow> {
+    fn run(&self, drive: Drive) -> Result<ViewBenchRow, BenchError> {
         let Drives {
             gpu,
             scene: rscene,
@@ -424,9 +429,10 @@ impl Drives<'_> {
             }
             if error_shot <= plan.tolerance && row.seconds_shot.is_none() {
                 row.seconds_shot = Some(clock);
-                row.shots_shot = Some(solver.shots);
-                row.phase_seconds = solver.times;
-                row.receivers_per_map = solver.receiver_threads as f64 / solver.drawn.max(1) as f64;
+                row.shots_shot = Some(solver.stats.shots);
+                row.phase_seconds = solver.stats.times;
+                row.receivers_per_map =
+                    solver.stats.receiver_threads as f64 / solver.stats.drawn.max(1) as f64;
                 row.gpu_pass_seconds = solver.gpu_pass_seconds()?;
             }
             row.final_error = error_shown;
@@ -437,7 +443,7 @@ impl Drives<'_> {
             let t = Instant::now();
             let one = StopAt {
                 converge: 1.0,
-                max_shots: Some(solver.shots + 1),
+                max_shots: Some(solver.stats.shots + 1),
                 time_budget: None,
             };
             let (reason, _) = solver.solve(&one, &AtomicBool::new(false), |_| {})?;
@@ -446,9 +452,9 @@ impl Drives<'_> {
                 break;
             }
         }
-        row.maps = solver.drawn;
+        row.maps = solver.stats.drawn;
         row.maps_reused = solver.maps_reused();
-        row.shots = solver.shots;
+        row.shots = solver.stats.shots;
         Ok(row)
     }
 }

@@ -88,7 +88,7 @@ pub fn run(
     rays_per_kind: usize,
     brute_rays: usize,
     mut progress: impl FnMut(usize),
-) -> Result<Vec<RaycastBenchRow>, String> {
+) -> Result<Vec<RaycastBenchRow>, super::BenchError> {
     let none = IgnoredTriangles::default();
     let mut rows = Vec::new();
     for mesh in meshes {
@@ -104,14 +104,16 @@ pub fn run(
         );
         for (p, l) in few_shadow {
             if bvh.in_shadow(l, *p, eps, &none) != raycast::in_shadow(mesh, l, *p, eps) {
-                return Err(format!("shadow ray from {p}: BVH and brute force disagree"));
+                return Err(super::BenchError::Disagree(format!(
+                    "shadow ray from {p}: BVH and brute force disagree"
+                )));
             }
         }
         for &(o, d) in few_hit {
             if bvh.first_hit(o, d, 0.0) != raycast::first_hit(mesh, o, d, 0.0) {
-                return Err(format!(
+                return Err(super::BenchError::Disagree(format!(
                     "ray from {o} along {d}: BVH and brute force disagree"
-                ));
+                )));
             }
         }
         let mut blocked = 0usize;

@@ -176,7 +176,7 @@ pub fn run(
     plan: BenchPlan,
     tessellations: &[(u32, u32)],
     mut progress: impl FnMut(usize, usize),
-) -> Result<Vec<RenderBenchRow>, anyhow::Error> {
+) -> Result<Vec<RenderBenchRow>, super::BenchError> {
     let all = bench_luminaires(root)?;
     let renderer = Renderer::new(gpu);
     let targets = Targets::new(gpu, plan.width, plan.height);

@@ -72,11 +72,11 @@ pub fn run(
     queries: usize,
     depth: u32,
     mut progress: impl FnMut(&str),
-) -> Result<Vec<SilhouetteBenchRow>, String> {
+) -> Result<Vec<SilhouetteBenchRow>, super::BenchError> {
     let mut rows = Vec::new();
     for (name, mesh) in meshes {
         progress(name);
-        let sm = SilhouetteMesh::new(mesh, name, 1e-9).map_err(|e| e.to_string())?;
+        let sm = SilhouetteMesh::new(mesh, name, 1e-9)?;
         let t0 = Instant::now();
         let tree = Hextree::build(&sm, depth);
         let build_s = t0.elapsed().as_secs_f64();
@@ -89,7 +89,9 @@ pub fn run(
                 > FALLBACK_FRACTION) as usize;
             let (a, b) = (sm.brute(light), tree.query(&sm, light));
             if a.sorted() != b.sorted() || a.sorted() != tree.traverse(&sm, light).sorted() {
-                return Err(format!("{name}: brute force and hextree disagree"));
+                return Err(super::BenchError::Disagree(format!(
+                    "{name}: brute force and hextree disagree"
+                )));
             }
             edges += a.edges.len();
         }

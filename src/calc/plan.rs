@@ -11,7 +11,7 @@ use plotters::prelude::*;
 
 use super::stats::GridStats;
 use crate::photometry::isocandela::round_levels;
-use crate::photometry::plot::{nice_ceiling, png_bytes, svg_string, DrawResult};
+use crate::photometry::plot::{nice_ceiling, png_bytes, svg_string, DrawError, DrawResult};
 use crate::scene::grid::{CalcGrid, GridKind};
 use crate::scene::Palette;
 
@@ -106,7 +106,7 @@ impl Plan<'_> {
     /// The isolux lines at round levels between the grid's minimum and maximum, over the
     /// regular lattice of its points (points left out by an outline or border take the
     /// value of the nearest point kept; lines through them are dropped).
-    pub fn isolux(&self) -> Result<IsoluxLines, String> {
+    pub fn isolux(&self) -> Result<IsoluxLines, DrawError> {
         let uv: Vec<DVec2> = self
             .grid
             .points
@@ -164,7 +164,7 @@ impl Plan<'_> {
             .x_step(du)
             .y_step(dv)
             .lines(&filled, &levels)
-            .map_err(|e| format!("isolux lines: {e:?}"))?;
+            .map_err(|e| DrawError::new("the isolux lines", format!("{e:?}")))?;
         let inside = |x: f64, y: f64| {
             let (i, j) = (
                 ((x - lo.x) / du).round().clamp(0.0, (nu - 1) as f64) as usize,
@@ -188,12 +188,12 @@ impl Plan<'_> {
     }
 
     /// Renders as PNG bytes.
-    pub fn png(&self) -> Result<Vec<u8>, String> {
+    pub fn png(&self) -> Result<Vec<u8>, DrawError> {
         png_bytes(WIDTH, HEIGHT, "the plan", |root| self.draw(root))
     }
 
     /// Renders as SVG.
-    pub fn svg(&self) -> Result<String, String> {
+    pub fn svg(&self) -> Result<String, DrawError> {
         svg_string(WIDTH, HEIGHT, "the plan", |root| self.draw(root))
     }
 

@@ -353,7 +353,7 @@ fn run_raycast(as_json: bool, rays: usize, brute_rays: usize, scale: f64) -> Res
     let rows = rbench::run(&meshes, rays, brute_rays, |n| {
         eprintln!("benchmarking {n} triangles …")
     })
-    .map_err(|e| CliError::failure(anyhow::anyhow!(e)))?;
+    .map_err(CliError::failure)?;
     println!("{}", rbench::report(&rows).text(as_json));
     Ok(())
 }

@@ -269,9 +269,9 @@ fn write_grids<'c>(
         write_atomic(&dir.join(&csv), calc.grid_csv(k).as_bytes()).map_err(CliError::failure)?;
         let plan = calc.plan(k, args.palette, args.steps, args.values);
         let stem = csv.trim_end_matches(".csv");
-        let png = plan.png().map_err(|e| CliError::failure(anyhow!(e)))?;
+        let png = plan.png().map_err(CliError::failure)?;
         write_atomic(&dir.join(format!("{stem}.png")), &png).map_err(CliError::failure)?;
-        let svg = plan.svg().map_err(|e| CliError::failure(anyhow!(e)))?;
+        let svg = plan.svg().map_err(CliError::failure)?;
         write_atomic(&dir.join(format!("{stem}.svg")), svg.as_bytes())
             .map_err(CliError::failure)?;
         let kind = format!("{:?}", g.entry.kind).to_lowercase();

@@ -400,7 +400,7 @@ pub fn run(a: ProfileArgs) -> Result<(), CliError> {
     let bar = indicatif::ProgressBar::new(steps as u64);
     bar.set_style(
         indicatif::ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} steps, {eta} left")
-            .map_err(|e| CliError::failure(anyhow!(e)))?,
+            .map_err(CliError::failure)?,
     );
     bar.set_message("shadow profile");
     // Ctrl-C stops between steps; nothing is written for an unfinished study.
@@ -431,7 +431,7 @@ pub fn run(a: ProfileArgs) -> Result<(), CliError> {
     };
     let summaries = study
         .write(&days, staging.dir(), &files)
-        .map_err(|e| CliError::failure(anyhow!(e)))?;
+        .map_err(CliError::failure)?;
     // Complete or none: a Ctrl-C while writing leaves nothing.
     if cancel.load(std::sync::atomic::Ordering::SeqCst) {
         return Err(CliError::failure(anyhow!(

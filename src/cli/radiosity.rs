@@ -168,8 +168,7 @@ pub fn run(args: RadiosityArgs) -> Result<(), CliError> {
         );
         let folder = path.parent().filter(|p| !p.as_os_str().is_empty());
         folder
-            .map_or(Ok(()), std::fs::create_dir_all)
-            .map_err(anyhow::Error::from)
+            .map_or(Ok(()), crate::io::create_dir)
             .and_then(|()| write_atomic(path, &bytes))
             .map_err(|e| CliError::input(anyhow!("--export {}: {e:#}", path.display())))?;
         eprintln!("wrote {} ({} kB)", path.display(), bytes.len() >> 10);

@@ -100,7 +100,7 @@ pub fn run_bench(as_json: bool, queries: usize, depth: u32, scale: f64) -> Resul
     let rows = bench::run(&meshes, queries, depth, |name| {
         eprintln!("benchmarking {name} …")
     })
-    .map_err(|e| CliError::failure(anyhow::anyhow!(e)))?;
+    .map_err(CliError::failure)?;
     println!("{}", bench::report(&rows).text(as_json));
     Ok(())
 }

@@ -125,7 +125,7 @@ pub fn run(args: ViewArgs) -> Result<(), CliError> {
     if args.frames.is_some() || args.screenshot.is_some() {
         println!(
             "{}",
-            serde_json::to_string(&summary).map_err(|e| CliError::failure(anyhow!(e)))?
+            serde_json::to_string(&summary).map_err(CliError::failure)?
         );
     }
     Ok(())

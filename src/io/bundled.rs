@@ -5,8 +5,6 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::Context;
-
 /// The bundled scene, relative to the data root (a checkout or the extracted cache).
 pub const DEFAULT_SCENE: &str = "assets/scenes/furnished_room.toml";
 
@@ -54,17 +52,28 @@ const FILES: &[(&str, &[u8])] = &[
     ),
 ];
 
+/// Why the bundled scene could not be found or extracted.
+#[derive(Debug, thiserror::Error)]
+pub enum BundledError {
+    /// No folder to extract it into.
+    #[error(
+        "the bundled scene needs a cache folder: set GONIOLIGHT_CACHE_DIR, XDG_CACHE_HOME or HOME"
+    )]
+    NoCacheFolder,
+    /// Writing one of its files failed.
+    #[error(transparent)]
+    Write(#[from] super::WriteError),
+}
+
 /// The bundled scene's file: the checkout's when [`super::data_root`] holds it, else the
 /// copy extracted into [`cache_dir`] (written on first use, rewritten if changed).
-pub fn default_scene() -> anyhow::Result<PathBuf> {
+pub fn default_scene() -> Result<PathBuf, BundledError> {
     let checkout = super::data_root().join(DEFAULT_SCENE);
     if checkout.is_file() {
         return Ok(checkout);
     }
-    let dir = cache_dir().context(
-        "the bundled scene needs a cache folder: set GONIOLIGHT_CACHE_DIR, XDG_CACHE_HOME or HOME",
-    )?;
-    extract(&dir)
+    let dir = cache_dir().ok_or(BundledError::NoCacheFolder)?;
+    Ok(extract(&dir)?)
 }
 
 /// The folder the bundled scene is extracted to: `$GONIOLIGHT_CACHE_DIR`, else
@@ -76,15 +85,14 @@ pub fn cache_dir() -> Option<PathBuf> {
 
 /// Writes the bundled scene's files under `dir` (each atomically, only where missing or
 /// different) and returns the scene file's path.
-pub fn extract(dir: &Path) -> anyhow::Result<PathBuf> {
+pub fn extract(dir: &Path) -> Result<PathBuf, super::WriteError> {
     for (rel, bytes) in FILES {
         let path = dir.join(rel);
         if std::fs::read(&path).is_ok_and(|old| old == *bytes) {
             continue;
         }
         if let Some(parent) = path.parent() {
-            std::fs::create_dir_all(parent)
-                .with_context(|| format!("creating {}", parent.display()))?;
+            super::create_dir(parent)?;
         }
         super::write_atomic(&path, bytes)?;
     }

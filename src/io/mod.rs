@@ -5,11 +5,11 @@ pub mod bundled;
 pub mod exact;
 pub mod limits;
 pub mod outputs;
+mod write;
 
-use std::io::Write;
+pub use write::{create_dir, write_atomic, WriteError};
+
 use std::path::Path;
-
-use anyhow::Context;
 
 /// Text made safe inside HTML and SVG (elements and quoted attributes).
 pub fn xml_escape(s: &str) -> String {
@@ -48,30 +48,6 @@ pub fn wrap_words(s: &str, width: usize) -> Vec<String> {
         }
     }
     lines
-}
-
-/// Writes `bytes` to `path` through a temporary file in the same folder and a rename, so a
-/// failure never leaves a half-written output behind.
-///
-/// A path that exists and is not a regular file (a FIFO, a device, a folder) is refused:
-/// the rename would replace the node itself (as root, `/dev/null`).
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
-    let mut check = outputs::OutputCheck::new();
-    check.output(path);
-    check.check()?;
-    let tmp = outputs::temporary_beside(path, "tmp")
-        .with_context(|| format!("{}: not a file path", path.display()))?;
-    let result = (|| -> std::io::Result<()> {
-        let mut f = std::fs::File::create(&tmp)?;
-        f.write_all(bytes)?;
-        f.sync_all()?;
-        std::fs::rename(&tmp, path)
-    })();
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    outputs::finished(&tmp);
-    result.with_context(|| format!("writing {}", path.display()))
 }
 
 /// The folder holding the bundled data (`assets/`, `luminaires/`): `$GONIOLIGHT_DATA_DIR`

@@ -337,8 +337,11 @@ impl Staging {
     /// Moves every file written into the target folder, after checking that none would
     /// replace an input or something other than a regular file (then nothing is moved).
     /// Returns the files' final paths.
-    pub fn commit(mut self) -> anyhow::Result<Vec<PathBuf>> {
-        let files = self.files()?;
+    pub fn commit(mut self) -> Result<Vec<PathBuf>, super::WriteError> {
+        use super::WriteError;
+        let files = self
+            .files()
+            .map_err(|e| WriteError::io("reading", &self.root, e))?;
         let mut check = OutputCheck::new();
         for i in &self.inputs {
             check.input(i);
@@ -351,20 +354,23 @@ impl Staging {
             check.output(target);
         }
         check.check()?;
-        std::fs::create_dir_all(&self.target)?;
+        super::create_dir(&self.target)?;
         let mut moved = Vec::with_capacity(files.len());
         for f in &files {
             let to = self.target.join(f);
             if let Some(parent) = to.parent() {
-                std::fs::create_dir_all(parent)?;
+                super::create_dir(parent)?;
             }
-            std::fs::rename(self.root.join(f), &to)?;
+            std::fs::rename(self.root.join(f), &to)
+                .map_err(|e| WriteError::io("moving", &to, e))?;
             moved.push(to);
         }
         for (staged, target) in outside {
             // Another file system: written whole beside the target, then renamed.
             if std::fs::rename(staged, target).is_err() {
-                super::write_atomic(target, &std::fs::read(staged)?)?;
+                let bytes =
+                    std::fs::read(staged).map_err(|e| WriteError::io("reading", staged, e))?;
+                super::write_atomic(target, &bytes)?;
             }
             moved.push(target.clone());
         }

@@ -10,7 +10,7 @@ use plotters::prelude::*;
 
 use super::grid::Interp;
 use super::isocandela::{gamma_reach, isocandela_map, round_levels, IsocandelaMap};
-use super::plot::{png_bytes, rgb_image, svg_string, DrawResult};
+use super::plot::{png_bytes, rgb_image, svg_string, DrawError, DrawResult};
 use super::Luminaire;
 
 const WIDTH: u32 = 1100;
@@ -123,17 +123,17 @@ impl Diagram<'_> {
     }
 
     /// Renders as pixels (what the viewer shows; the PNG holds the same).
-    pub fn rgb(&self, kind: DiagramKind) -> Result<image::RgbImage, String> {
+    pub fn rgb(&self, kind: DiagramKind) -> Result<image::RgbImage, DrawError> {
         rgb_image(WIDTH, HEIGHT, "the diagram", |root| self.draw(root, kind))
     }
 
     /// Renders as PNG bytes.
-    pub fn png(&self, kind: DiagramKind) -> Result<Vec<u8>, String> {
+    pub fn png(&self, kind: DiagramKind) -> Result<Vec<u8>, DrawError> {
         png_bytes(WIDTH, HEIGHT, "the diagram", |root| self.draw(root, kind))
     }
 
     /// Renders as SVG.
-    pub fn svg(&self, kind: DiagramKind) -> Result<String, String> {
+    pub fn svg(&self, kind: DiagramKind) -> Result<String, DrawError> {
         svg_string(WIDTH, HEIGHT, "the diagram", |root| self.draw(root, kind))
     }
 
@@ -179,7 +179,7 @@ impl Diagram<'_> {
 
     /// The isocandela lines at round levels below the peak, over the directions where the
     /// luminaire gives more than 0.5 % of it.
-    pub fn isocandela(&self) -> Result<IsocandelaMap, String> {
+    pub fn isocandela(&self) -> Result<IsocandelaMap, DrawError> {
         let d = &self.lum.distribution;
         let sample = |c: f64, g: f64| d.sample(c, g, self.interp);
         let peak = self.lum.summary().max_intensity;

@@ -64,6 +64,9 @@ pub enum PhotometryError {
         /// What is wrong with it, and what would do.
         problem: String,
     },
+    /// A diagram could not be drawn.
+    #[error(transparent)]
+    Draw(#[from] super::plot::DrawError),
 }
 
 impl PhotometryError {
@@ -75,6 +78,7 @@ impl PhotometryError {
             PhotometryError::Parse(_)
             | PhotometryError::Invalid(_)
             | PhotometryError::Field { .. } => true,
+            PhotometryError::Draw(_) => false,
         }
     }
 }

@@ -7,7 +7,7 @@
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::plot::DrawResult;
+use super::plot::{DrawError, DrawResult};
 
 /// One isocandela level and its lines in the plan (degrees of γ along each axis).
 #[derive(Debug, Clone)]
@@ -61,7 +61,7 @@ pub fn isocandela_map(
     levels: &[f64],
     gamma_limit: f64,
     step_deg: f64,
-) -> Result<IsocandelaMap, String> {
+) -> Result<IsocandelaMap, DrawError> {
     let n = (2.0 * gamma_limit / step_deg).round() as usize + 1;
     let coord = |i: usize| -gamma_limit + i as f64 * step_deg;
     let mut values = Vec::with_capacity(n * n);
@@ -84,7 +84,7 @@ pub fn isocandela_map(
         .x_step(step_deg)
         .y_step(step_deg)
         .lines(&values, levels)
-        .map_err(|e| format!("isocandela lines: {e:?}"))?;
+        .map_err(|e| DrawError::new("the isocandela lines", format!("{e:?}")))?;
     Ok(IsocandelaMap {
         gamma_limit,
         lines: lines

@@ -8,7 +8,7 @@ use plotters::prelude::*;
 use plotters::style::FontStyle;
 
 use super::grid::{angle_eq, Grid, Interp};
-use crate::io::write_atomic;
+use crate::io::{write_atomic, WriteError};
 
 /// The bundled font (DejaVu Sans, Bitstream Vera licence, see `assets/fonts/`).
 pub static FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
@@ -43,22 +43,43 @@ pub type DrawResult = Result<(), Box<dyn std::error::Error>>;
 /// The drawing area of a bitmap.
 pub type BitMapArea<'a> = DrawingArea<BitMapBackend<'a>, plotters::coord::Shift>;
 
+/// Why a picture could not be drawn or encoded: `what` names the picture ("the polar
+/// diagram"), `why` is the drawing backend's or encoder's message.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("drawing {what}: {why}")]
+pub struct DrawError {
+    /// The picture.
+    pub what: String,
+    /// The backend's or encoder's message.
+    pub why: String,
+}
+
+impl DrawError {
+    /// `what` could not be drawn: `why`.
+    pub fn new(what: &str, why: impl std::fmt::Display) -> DrawError {
+        DrawError {
+            what: what.to_string(),
+            why: why.to_string(),
+        }
+    }
+}
+
 /// Draws on a white `width` × `height` bitmap; `what` names the picture in the error.
 pub fn rgb_image(
     width: u32,
     height: u32,
     what: &str,
     draw: impl FnOnce(&BitMapArea) -> DrawResult,
-) -> Result<image::RgbImage, String> {
+) -> Result<image::RgbImage, DrawError> {
     register_font();
     let mut buf = vec![255u8; (width * height * 3) as usize];
     {
         let root = BitMapBackend::with_buffer(&mut buf, (width, height)).into_drawing_area();
         draw(&root)
             .and_then(|()| root.present().map_err(Into::into))
-            .map_err(|e| format!("drawing {what}: {e}"))?;
+            .map_err(|e| DrawError::new(what, e))?;
     }
-    Ok(image::RgbImage::from_raw(width, height, buf).ok_or("image buffer size")?)
+    Ok(image::RgbImage::from_raw(width, height, buf).expect("a buffer of width × height × 3"))
 }
 
 /// Draws on a white `width` × `height` bitmap and encodes it as PNG; `what` names the
@@ -68,11 +89,11 @@ pub fn png_bytes(
     height: u32,
     what: &str,
     draw: impl FnOnce(&BitMapArea) -> DrawResult,
-) -> Result<Vec<u8>, String> {
+) -> Result<Vec<u8>, DrawError> {
     let img = rgb_image(width, height, what, draw)?;
     let mut png = Vec::new();
     img.write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
-        .map_err(|e| e.to_string())?;
+        .map_err(|e| DrawError::new(what, e))?;
     Ok(png)
 }
 
@@ -82,15 +103,15 @@ pub fn svg_string(
     height: u32,
     what: &str,
     draw: impl FnOnce(&DrawingArea<SVGBackend, plotters::coord::Shift>) -> DrawResult,
-) -> Result<String, String> {
+) -> Result<String, DrawError> {
     register_font();
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (width, height)).into_drawing_area();
-        root.fill(&WHITE).map_err(|e| e.to_string())?;
+        root.fill(&WHITE).map_err(|e| DrawError::new(what, e))?;
         draw(&root)
             .and_then(|()| root.present().map_err(Into::into))
-            .map_err(|e| format!("drawing {what}: {e}"))?;
+            .map_err(|e| DrawError::new(what, e))?;
     }
     Ok(svg)
 }
@@ -129,25 +150,27 @@ pub fn nice_ceiling(v: f64) -> f64 {
 
 impl PolarPlot<'_> {
     /// Renders the diagram to PNG bytes.
-    pub fn render_png(&self) -> Result<Vec<u8>, String> {
+    pub fn render_png(&self) -> Result<Vec<u8>, DrawError> {
         png_bytes(WIDTH, HEIGHT, "the polar diagram", |root| self.draw(root))
     }
 
     /// Renders the diagram as SVG (the same drawing as the PNG, as vectors).
-    pub fn render_svg(&self) -> Result<String, String> {
+    pub fn render_svg(&self) -> Result<String, DrawError> {
         svg_string(WIDTH, HEIGHT, "the polar diagram", |root| self.draw(root))
     }
 
     /// Renders and writes the diagram (atomically): SVG when `path` ends in `.svg` (any
     /// case), else PNG.
-    pub fn save(&self, path: &Path) -> anyhow::Result<()> {
+    pub fn save(&self, path: &Path) -> Result<(), WriteError> {
         let svg = path
             .extension()
             .is_some_and(|e| e.eq_ignore_ascii_case("svg"));
         let bytes = if svg {
-            self.render_svg().map_err(anyhow::Error::msg)?.into_bytes()
+            self.render_svg()
+                .map_err(|e| WriteError::encode(path, e))?
+                .into_bytes()
         } else {
-            self.render_png().map_err(anyhow::Error::msg)?
+            self.render_png().map_err(|e| WriteError::encode(path, e))?
         };
         write_atomic(path, &bytes)
     }

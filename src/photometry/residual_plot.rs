@@ -7,7 +7,7 @@ use plotters::prelude::*;
 use super::catalogue::median;
 use super::check::CheckReport;
 use super::grid::Interp;
-use super::plot::{png_bytes, style, svg_string, DrawResult};
+use super::plot::{png_bytes, style, svg_string, DrawError, DrawResult};
 
 /// The heat map's colour for angles that were not hidden (kept measured values).
 const NOT_HIDDEN: RGBColor = RGBColor(165, 165, 165);
@@ -17,7 +17,7 @@ const SIDE: u32 = 230;
 
 /// The RMS of each method's residuals at each γ angle, as an SVG line chart with the
 /// legend beside it; `title` names the file.
-pub fn gamma_error_svg(report: &CheckReport, title: &str) -> Result<String, String> {
+pub fn gamma_error_svg(report: &CheckReport, title: &str) -> Result<String, DrawError> {
     let gammas = distinct(report.residuals.iter().map(|r| r.gamma_deg));
     // rms[m][k]: method m at gammas[k].
     let rms: Vec<Vec<f64>> = (0..Interp::ALL.len())
@@ -100,7 +100,7 @@ fn legend(side: &DrawingArea<SVGBackend, Shift>, report: &CheckReport) -> DrawRe
 /// A C × γ heat map of every residual, one panel per method on one shared diverging
 /// scale (clipped at the 99th percentile of |error|), with the colour bar beside; angles
 /// that were not hidden are grey. PNG bytes.
-pub fn heat_map_png(report: &CheckReport, title: &str) -> Result<Vec<u8>, String> {
+pub fn heat_map_png(report: &CheckReport, title: &str) -> Result<Vec<u8>, DrawError> {
     let res = &report.residuals;
     let cs = distinct(res.iter().map(|r| r.c_deg));
     let gs = distinct(res.iter().map(|r| r.gamma_deg));

@@ -30,6 +30,23 @@ use super::scene::RadiosityScene;
 use crate::render::lightmap::LightMap;
 use crate::scene::file::Bake;
 
+/// Why the solved scene could not be exported as glTF.
+#[derive(Debug, thiserror::Error)]
+pub enum ExportError {
+    /// The binary chunk would pass the 4 GB that a GLB's 32-bit length holds.
+    #[error("the solved scene needs {mb} MB, more than a glTF binary holds (4 GB)")]
+    TooLarge {
+        /// The size it needs, MB.
+        mb: usize,
+    },
+    /// The glTF JSON or binary container could not be written.
+    #[error("encoding the glTF: {0}")]
+    Gltf(String),
+    /// The light map could not be encoded as PNG.
+    #[error("encoding the light map: {0}")]
+    LightMap(String),
+}
+
 /// One corner's baked values.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BakedCorner {
@@ -241,17 +258,17 @@ impl GlbBuilder {
         })
     }
 
-    fn finish(mut self) -> anyhow::Result<Vec<u8>> {
+    fn finish(mut self) -> Result<Vec<u8>, ExportError> {
         self.bin.resize(self.bin.len().next_multiple_of(4), 0);
         // A GLB states its length in 32 bits.
         if self.bin.len() > (u32::MAX as usize) - (64 << 20) {
-            anyhow::bail!(
-                "the solved scene needs {} MB, more than a glTF binary holds (4 GB)",
-                self.bin.len() >> 20
-            );
+            return Err(ExportError::TooLarge {
+                mb: self.bin.len() >> 20,
+            });
         }
         self.root.buffers[0].byte_length = USize64::from(self.bin.len());
-        let json = json::serialize::to_vec(&self.root)?;
+        let json =
+            json::serialize::to_vec(&self.root).map_err(|e| ExportError::Gltf(e.to_string()))?;
         let glb = gltf::binary::Glb {
             header: gltf::binary::Header {
                 magic: *b"glTF",
@@ -261,7 +278,7 @@ impl GlbBuilder {
             json: Cow::Owned(json),
             bin: Some(Cow::Owned(self.bin)),
         };
-        Ok(glb.to_vec()?)
+        glb.to_vec().map_err(|e| ExportError::Gltf(e.to_string()))
     }
 }
 
@@ -272,7 +289,7 @@ pub fn glb(
     map: &LightMap,
     plan: &BakePlan,
     material_names: &[String],
-) -> anyhow::Result<Vec<u8>> {
+) -> Result<Vec<u8>, ExportError> {
     let baked = bake(scene, map, plan);
     let white = white_point(scene, map);
     let mut b = GlbBuilder::new();
@@ -355,9 +372,12 @@ pub fn glb(
             extensions: Some(json::extensions::material::Material {
                 unlit: Some(json::extensions::material::Unlit {}),
             }),
-            extras: Some(serde_json::value::to_raw_value(&serde_json::json!({
-                "bake": match bake { Bake::Map => "map", Bake::Vertex => "vertex" },
-            }))?),
+            extras: Some(
+                serde_json::value::to_raw_value(&serde_json::json!({
+                    "bake": match bake { Bake::Map => "map", Bake::Vertex => "vertex" },
+                }))
+                .map_err(|e| ExportError::Gltf(e.to_string()))?,
+            ),
             ..Default::default()
         });
         primitives.push(json::mesh::Primitive {
@@ -391,11 +411,14 @@ pub fn glb(
     b.root.scene = Some(scene_index);
     b.root.extensions_used = vec!["KHR_materials_unlit".into()];
     b.root.asset.generator = Some(format!("goniolight {}", env!("CARGO_PKG_VERSION")));
-    b.root.asset.extras = Some(serde_json::value::to_raw_value(&serde_json::json!({
-        "white_lm_per_m2": white,
-        "units": "metres, +Y up; _RADIOSITY lm/m², _ILLUMINANCE lux",
-        "introduced_triangles": plan.introduced,
-    }))?);
+    b.root.asset.extras = Some(
+        serde_json::value::to_raw_value(&serde_json::json!({
+            "white_lm_per_m2": white,
+            "units": "metres, +Y up; _RADIOSITY lm/m², _ILLUMINANCE lux",
+            "introduced_triangles": plan.introduced,
+        }))
+        .map_err(|e| ExportError::Gltf(e.to_string()))?,
+    );
     b.finish()
 }
 
@@ -405,7 +428,7 @@ fn lightmap_texture(
     b: &mut GlbBuilder,
     map: &LightMap,
     white: f64,
-) -> anyhow::Result<json::Index<json::Texture>> {
+) -> Result<json::Index<json::Texture>, ExportError> {
     let png = lightmap_png(map, white)?;
     let image_view = b.view(&png, None);
     let image = b.root.push(json::Image {
@@ -436,7 +459,7 @@ fn lightmap_texture(
 }
 
 /// The light map as an sRGB PNG at white point `white`.
-fn lightmap_png(map: &LightMap, white: f64) -> anyhow::Result<Vec<u8>> {
+fn lightmap_png(map: &LightMap, white: f64) -> Result<Vec<u8>, ExportError> {
     let srgb = |c: f32| {
         let l = (c as f64 / white).clamp(0.0, 1.0);
         let s = if l <= 0.003_130_8 {
@@ -452,8 +475,9 @@ fn lightmap_png(map: &LightMap, white: f64) -> anyhow::Result<Vec<u8>> {
         .flat_map(|t| [srgb(t[0]), srgb(t[1]), srgb(t[2])])
         .collect();
     let img = image::RgbImage::from_raw(map.width, map.height, pixels)
-        .ok_or_else(|| anyhow::anyhow!("light-map size mismatch"))?;
+        .expect("a light map holds width × height texels");
     let mut out = std::io::Cursor::new(Vec::new());
-    img.write_to(&mut out, image::ImageFormat::Png)?;
+    img.write_to(&mut out, image::ImageFormat::Png)
+        .map_err(|e| ExportError::LightMap(e.to_string()))?;
     Ok(out.into_inner())
 }

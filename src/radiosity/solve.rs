@@ -166,7 +166,7 @@ impl GpuSolver<'_> {
         let unshot = self.measured(&s);
         let initial = *run.scale.get_or_insert(unshot);
         let point = ConvergencePoint {
-            shot: self.shots,
+            shot: self.stats.shots,
             seconds: run.seconds + started.elapsed().as_secs_f64(),
             shooter: s.shooter,
             unshot_power: s.unshot_power,
@@ -184,7 +184,7 @@ impl GpuSolver<'_> {
             Some(StopReason::Converged)
         } else if s.shooter.is_none() {
             Some(StopReason::NothingLeft)
-        } else if stop.max_shots.is_some_and(|m| self.shots >= m) {
+        } else if stop.max_shots.is_some_and(|m| self.stats.shots >= m) {
             Some(StopReason::ShotLimit)
         } else if stop
             .time_budget

@@ -38,12 +38,13 @@ impl Scene {
     }
 
     /// The scene as TOML text for a file at `dest`.
-    pub fn to_toml(&self, dest: &Path) -> anyhow::Result<String> {
-        Ok(toml::to_string_pretty(&self.to_file(dest))?)
+    pub fn to_toml(&self, dest: &Path) -> Result<String, crate::io::WriteError> {
+        toml::to_string_pretty(&self.to_file(dest))
+            .map_err(|e| crate::io::WriteError::encode(dest, e))
     }
 
     /// Writes the scene to `dest` (atomically: a failed write leaves no partial file).
-    pub fn save(&self, dest: &Path) -> anyhow::Result<()> {
+    pub fn save(&self, dest: &Path) -> Result<(), crate::io::WriteError> {
         let text = self.to_toml(dest)?;
         crate::io::write_atomic(dest, text.as_bytes())
     }

@@ -11,14 +11,14 @@ use serde_json::json;
 use super::colours::time_colour;
 use super::shadow_profile::{Profile, ProfileStep, SURFACE_GROUND, SURFACE_MODEL};
 use crate::io::xml_escape;
-use crate::photometry::plot::nice_ceiling;
+use crate::photometry::plot::{nice_ceiling, DrawError};
 
 /// Polygons (outer ring then holes), model file's plan coordinates, metres.
 pub type Polygons = Vec<Vec<Vec<DVec2>>>;
 
 /// The outline of the cells where `inside` holds: pixel squares traced at their edges'
 /// midpoints, so a polygon's area equals its cells' area up to the corners it cuts.
-pub fn trace(profile: &Profile, inside: impl Fn(usize) -> bool) -> Result<Polygons, String> {
+pub fn trace(profile: &Profile, inside: impl Fn(usize) -> bool) -> Result<Polygons, DrawError> {
     let n = profile.resolution as usize;
     let cell = profile.extent_m / n as f64;
     // Rows from the south edge up, so y grows with the row.
@@ -36,7 +36,7 @@ pub fn trace(profile: &Profile, inside: impl Fn(usize) -> bool) -> Result<Polygo
         .x_step(cell)
         .y_step(cell)
         .contours(&values, &[0.5])
-        .map_err(|e| format!("tracing outlines: {e:?}"))?;
+        .map_err(|e| DrawError::new("the shadow outlines", format!("{e:?}")))?;
     Ok(contours
         .into_iter()
         .flat_map(|c| c.into_inner().0 .0)
@@ -69,14 +69,14 @@ pub fn area_m2(polygons: &Polygons) -> f64 {
 }
 
 /// The ground shadow of `step` (outside the footprint).
-pub fn step_outline(profile: &Profile, step: &ProfileStep) -> Result<Polygons, String> {
+pub fn step_outline(profile: &Profile, step: &ProfileStep) -> Result<Polygons, DrawError> {
     trace(profile, |k| {
         step.in_shadow(k) && profile.surface[k] == SURFACE_GROUND
     })
 }
 
 /// The model's footprint seen from above.
-pub fn footprint_outline(profile: &Profile) -> Result<Polygons, String> {
+pub fn footprint_outline(profile: &Profile) -> Result<Polygons, DrawError> {
     trace(profile, |k| profile.surface[k] == SURFACE_MODEL)
 }
 
@@ -101,7 +101,7 @@ fn round_mm(v: f64) -> f64 {
 /// `outlines.geojson`: a FeatureCollection with the footprint (`"kind": "footprint"`) and
 /// one MultiPolygon per step (`"kind": "shadow"`, `time`, `azimuth_deg`, `elevation_deg`,
 /// `area_m2` as the traced polygons' area).
-pub fn outlines_geojson(profile: &Profile) -> Result<String, String> {
+pub fn outlines_geojson(profile: &Profile) -> Result<String, DrawError> {
     let footprint = footprint_outline(profile)?;
     let mut features = vec![json!({
         "type": "Feature",
@@ -148,7 +148,7 @@ pub fn outlines_svg(
     profile: &Profile,
     title: &str,
     north_offset_deg: f64,
-) -> Result<String, String> {
+) -> Result<String, DrawError> {
     const SIZE: f64 = 800.0;
     const SIDE: f64 = 220.0;
     const HEAD: f64 = 50.0;

@@ -8,7 +8,6 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use anyhow::Context;
 use serde_json::json;
 
 pub use super::colours::{hours_colour, time_colour};
@@ -20,7 +19,7 @@ use super::shadow_profile::{
     HoursMetric, Profile, ProfileStep, SURFACE_GROUND, SURFACE_MODEL, SURFACE_NONE,
 };
 use super::surface_output::{write_surfaces, FacadeSummary, PointResult, SurfaceResults};
-use crate::io::write_atomic;
+use crate::io::{create_dir, write_atomic, WriteError};
 use crate::render::legend::with_legend_panel;
 use crate::render::output::write_image;
 
@@ -383,8 +382,8 @@ pub fn write_study(
     profile: &Profile,
     dir: &Path,
     out: &StudyOutput,
-) -> anyhow::Result<StudySummary> {
-    std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+) -> Result<StudySummary, WriteError> {
+    create_dir(dir)?;
     let labels = &out.labels;
     let framed = |body: &image::RgbaImage, what: &str| {
         let mut l = labels.clone();
@@ -414,18 +413,15 @@ pub fn write_study(
         hours_csv(profile, &hours).as_bytes(),
     )?;
     write_image(&dir.join("hours.exr"), &hours_exr(profile, &hours))?;
-    write_atomic(
-        &dir.join("outlines.geojson"),
-        outlines_geojson(profile)
-            .map_err(anyhow::Error::msg)?
-            .as_bytes(),
-    )?;
+    let geojson = dir.join("outlines.geojson");
+    let text = outlines_geojson(profile).map_err(|e| WriteError::encode(&geojson, e))?;
+    write_atomic(&geojson, text.as_bytes())?;
     let svg = outlines_svg(
         profile,
         &format!("Shadow outlines — {}, {}", labels.title, labels.subtitle),
         labels.north_offset_deg,
     )
-    .map_err(anyhow::Error::msg)?;
+    .map_err(|e| WriteError::encode(&dir.join("outlines.svg"), e))?;
     write_atomic(&dir.join("outlines.svg"), svg.as_bytes())?;
     if let Some(t) = out.threshold_h {
         write_image(
@@ -447,13 +443,13 @@ pub fn write_study(
             hours_scale(profile),
         )?;
     }
-    write_atomic(
-        &dir.join("study.json"),
-        serde_json::to_string_pretty(&json!(summary))?.as_bytes(),
-    )?;
+    let study_json = dir.join("study.json");
+    let text = serde_json::to_string_pretty(&json!(summary))
+        .map_err(|e| WriteError::encode(&study_json, e))?;
+    write_atomic(&study_json, text.as_bytes())?;
     if out.step_images {
         let steps = dir.join("steps");
-        std::fs::create_dir_all(&steps).with_context(|| format!("creating {}", steps.display()))?;
+        create_dir(&steps)?;
         for s in &profile.steps {
             let name = format!("{}.png", s.time.format("%H%M"));
             write_image(&steps.join(name), &step_frame(profile, s, labels))?;
@@ -467,12 +463,14 @@ pub fn write_study(
 
 /// The day's animation: one framed plan per step, half a second each, looping; frames
 /// wider than 720 pixels are scaled down.
-pub fn write_gif(profile: &Profile, labels: &PlanLabels, path: &Path) -> anyhow::Result<()> {
+pub fn write_gif(profile: &Profile, labels: &PlanLabels, path: &Path) -> Result<(), WriteError> {
     use image::codecs::gif::{GifEncoder, Repeat};
     let mut bytes = Vec::new();
     {
         let mut encoder = GifEncoder::new_with_speed(&mut bytes, 20);
-        encoder.set_repeat(Repeat::Infinite)?;
+        encoder
+            .set_repeat(Repeat::Infinite)
+            .map_err(|e| WriteError::encode(path, e))?;
         for s in &profile.steps {
             let mut frame = step_frame(profile, s, labels);
             if frame.width() > 720 {
@@ -487,7 +485,7 @@ pub fn write_gif(profile: &Profile, labels: &PlanLabels, path: &Path) -> anyhow:
                     0,
                     image::Delay::from_numer_denom_ms(500, 1),
                 ))
-                .with_context(|| format!("encoding {}", path.display()))?;
+                .map_err(|e| WriteError::encode(path, e))?;
         }
     }
     write_atomic(path, &bytes)

@@ -6,7 +6,6 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use anyhow::{bail, Context};
 use glam::DVec2;
 
 use super::shadow_profile::{Profile, SURFACE_NONE};
@@ -101,25 +100,66 @@ fn ring_contains(ring: &[DVec2], p: DVec2) -> bool {
     inside
 }
 
+/// Why analysis areas could not be read.
+#[derive(Debug, thiserror::Error)]
+pub enum AreasError {
+    /// The file could not be read.
+    #[error("reading {}: {source}", path.display())]
+    Read {
+        /// The file.
+        path: std::path::PathBuf,
+        /// The system's error.
+        #[source]
+        source: std::io::Error,
+    },
+    /// The file is not the GeoJSON of polygons that an analysis area is.
+    #[error("{}: {source}", path.display())]
+    Invalid {
+        /// The file.
+        path: std::path::PathBuf,
+        /// What is wrong, naming the field.
+        #[source]
+        source: GeoJsonError,
+    },
+}
+
+/// What is wrong with a GeoJSON text of analysis areas, naming the field
+/// (`features[2].geometry.type`).
+#[derive(Debug, thiserror::Error, PartialEq, Eq)]
+#[error("{0}")]
+pub struct GeoJsonError(pub String);
+
 /// Reads analysis areas from a GeoJSON FeatureCollection (or one Feature) of Polygon and
 /// MultiPolygon geometries in the model file's plan coordinates, metres.
-pub fn read_areas(path: &Path) -> anyhow::Result<Vec<AnalysisArea>> {
-    let text = crate::io::read_text_limited(path, crate::io::MAX_TEXT_BYTES)
-        .with_context(|| format!("reading {}", path.display()))?;
-    parse_areas(&text).with_context(|| format!("{}", path.display()))
+pub fn read_areas(path: &Path) -> Result<Vec<AnalysisArea>, AreasError> {
+    let text = crate::io::read_text_limited(path, crate::io::MAX_TEXT_BYTES).map_err(|source| {
+        AreasError::Read {
+            path: path.to_path_buf(),
+            source,
+        }
+    })?;
+    parse_areas(&text).map_err(|source| AreasError::Invalid {
+        path: path.to_path_buf(),
+        source,
+    })
 }
 
 /// Parses analysis areas from GeoJSON text (see [`read_areas`]).
-pub fn parse_areas(text: &str) -> anyhow::Result<Vec<AnalysisArea>> {
-    let v: serde_json::Value = serde_json::from_str(text).context("not JSON")?;
+pub fn parse_areas(text: &str) -> Result<Vec<AnalysisArea>, GeoJsonError> {
+    let v: serde_json::Value =
+        serde_json::from_str(text).map_err(|e| GeoJsonError(format!("not JSON: {e}")))?;
     let features: Vec<&serde_json::Value> = match v["type"].as_str() {
         Some("FeatureCollection") => v["features"]
             .as_array()
-            .context("`features` is not a list")?
+            .ok_or_else(|| GeoJsonError("`features` is not a list".into()))?
             .iter()
             .collect(),
         Some("Feature") => vec![&v],
-        other => bail!("`type` is {other:?}, not \"FeatureCollection\" or \"Feature\""),
+        other => {
+            return Err(GeoJsonError(format!(
+                "`type` is {other:?}, not \"FeatureCollection\" or \"Feature\""
+            )))
+        }
     };
     let mut areas = Vec::new();
     for (k, f) in features.iter().enumerate() {
@@ -132,41 +172,51 @@ pub fn parse_areas(text: &str) -> anyhow::Result<Vec<AnalysisArea>> {
             Some("Polygon") => vec![rings(&g["coordinates"], &at)?],
             Some("MultiPolygon") => g["coordinates"]
                 .as_array()
-                .with_context(|| format!("{at}.geometry.coordinates is not a list"))?
+                .ok_or_else(|| GeoJsonError(format!("{at}.geometry.coordinates is not a list")))?
                 .iter()
                 .map(|p| rings(p, &at))
-                .collect::<anyhow::Result<_>>()?,
-            other => bail!("{at}.geometry.type is {other:?}, not Polygon or MultiPolygon"),
+                .collect::<Result<_, _>>()?,
+            other => {
+                return Err(GeoJsonError(format!(
+                    "{at}.geometry.type is {other:?}, not Polygon or MultiPolygon"
+                )))
+            }
         };
         areas.push(AnalysisArea { name, polygons });
     }
     if areas.is_empty() {
-        bail!("no features");
+        return Err(GeoJsonError("no features".into()));
     }
     Ok(areas)
 }
 
-fn rings(v: &serde_json::Value, at: &str) -> anyhow::Result<Vec<Vec<DVec2>>> {
-    let bad = || format!("{at}.geometry.coordinates: a polygon is a list of rings of [x, y]");
-    let rings = v.as_array().with_context(bad)?;
+fn rings(v: &serde_json::Value, at: &str) -> Result<Vec<Vec<DVec2>>, GeoJsonError> {
+    let bad = || {
+        GeoJsonError(format!(
+            "{at}.geometry.coordinates: a polygon is a list of rings of [x, y]"
+        ))
+    };
+    let rings = v.as_array().ok_or_else(bad)?;
     let mut out = Vec::new();
     for ring in rings {
         let points = ring
             .as_array()
-            .with_context(bad)?
+            .ok_or_else(bad)?
             .iter()
             .map(|p| match (p[0].as_f64(), p[1].as_f64()) {
                 (Some(x), Some(y)) if x.is_finite() && y.is_finite() => Ok(DVec2::new(x, y)),
-                _ => Err(anyhow::anyhow!(bad())),
+                _ => Err(bad()),
             })
-            .collect::<anyhow::Result<Vec<_>>>()?;
+            .collect::<Result<Vec<_>, _>>()?;
         if points.len() < 3 {
-            bail!("{at}: a ring has fewer than 3 points");
+            return Err(GeoJsonError(format!(
+                "{at}: a ring has fewer than 3 points"
+            )));
         }
         out.push(points);
     }
     if out.is_empty() {
-        bail!("{at}: a polygon without rings");
+        return Err(GeoJsonError(format!("{at}: a polygon without rings")));
     }
     Ok(out)
 }
@@ -211,4 +261,64 @@ pub fn surface_mean(profile: &Profile, hours: &[f32]) -> f64 {
         .filter(|(&s, _)| s != SURFACE_NONE)
         .fold((0.0, 0usize), |(s, c), (_, &h)| (s + h as f64, c + 1));
     sum / count.max(1) as f64
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const SQUARE: &str = r#"{"type": "Feature", "properties": {"name": "garden"},
+        "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [4, 0], [4, 3], [0, 3]]]}}"#;
+
+    #[test]
+    fn a_polygon_feature_is_an_area_with_its_name() {
+        let areas = parse_areas(SQUARE).unwrap();
+        assert_eq!(areas.len(), 1);
+        assert_eq!(areas[0].name, "garden");
+        assert!(areas[0].contains(DVec2::new(2.0, 1.5)));
+        assert!(!areas[0].contains(DVec2::new(5.0, 1.5)));
+    }
+
+    #[test]
+    fn errors_name_the_field_that_is_wrong() {
+        let cases = [
+            ("[1, 2", "not JSON"),
+            (r#"{"type": "Point"}"#, "`type` is Some(\"Point\")"),
+            (
+                r#"{"type": "FeatureCollection", "features": 3}"#,
+                "`features` is not a list",
+            ),
+            (
+                r#"{"type": "FeatureCollection", "features": []}"#,
+                "no features",
+            ),
+            (
+                r#"{"type": "FeatureCollection", "features": [{"geometry": {"type": "Line"}}]}"#,
+                "features[0].geometry.type is Some(\"Line\")",
+            ),
+            (
+                r#"{"type": "Feature", "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [1, 1]]]}}"#,
+                "features[0]: a ring has fewer than 3 points",
+            ),
+            (
+                r#"{"type": "Feature", "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [1, "a"], [2, 2]]]}}"#,
+                "features[0].geometry.coordinates: a polygon is a list of rings",
+            ),
+        ];
+        for (text, expected) in cases {
+            let e = parse_areas(text).unwrap_err();
+            assert!(e.0.starts_with(expected), "{text}: {e}");
+        }
+    }
+
+    #[test]
+    fn a_file_error_names_the_file() {
+        let e = read_areas(Path::new("/nonexistent/areas.geojson")).unwrap_err();
+        assert!(matches!(e, AreasError::Read { .. }), "{e:?}");
+        assert!(
+            e.to_string()
+                .starts_with("reading /nonexistent/areas.geojson: "),
+            "{e}"
+        );
+    }
 }

@@ -40,8 +40,8 @@ pub enum ProfileError {
     #[error(transparent)]
     Sun(#[from] crate::sun::SunError),
     /// A file of the study could not be written.
-    #[error("{0:#}")]
-    Output(anyhow::Error),
+    #[error(transparent)]
+    Output(#[from] crate::io::WriteError),
     /// The GPU failed.
     #[error(transparent)]
     Gpu(#[from] GpuError),

@@ -10,7 +10,7 @@ use super::mask::ObstructionMask;
 use super::output::StudySummary;
 use super::shadow_profile::{Profile, ProfileSpec};
 use super::sunpath::{Projection, SunPathDiagram};
-use crate::io::write_atomic;
+use crate::io::{write_atomic, WriteError};
 
 /// The sun-path diagram of the study's site with this date's steps marked, stereographic
 /// (`sunpath.svg`) and cylindrical (`sunpath-cylindrical.svg`), and one per window point with the sky the model hides from it
@@ -22,7 +22,7 @@ pub fn write_sun_path(
     dir: &Path,
     labels: &PlanLabels,
     masks: &[ObstructionMask],
-) -> anyhow::Result<()> {
+) -> Result<(), WriteError> {
     let suns: Vec<_> = profile
         .steps
         .iter()
@@ -39,8 +39,9 @@ pub fn write_sun_path(
         projection: Projection::Cylindrical,
     };
     let write = |diagram: &SunPathDiagram, name: &str| {
-        let svg = diagram.svg().map_err(anyhow::Error::msg)?;
-        write_atomic(&dir.join(name), svg.as_bytes())
+        let path = dir.join(name);
+        let svg = diagram.svg().map_err(|e| WriteError::encode(&path, e))?;
+        write_atomic(&path, svg.as_bytes())
     };
     write(&diagram, "sunpath-cylindrical.svg")?;
     diagram.projection = Projection::Stereographic;
@@ -91,7 +92,7 @@ fn file_safe(name: &str) -> String {
 pub fn write_dates_table(
     dir: &Path,
     summaries: &[(NaiveDate, StudySummary)],
-) -> anyhow::Result<()> {
+) -> Result<(), WriteError> {
     use std::fmt::Write as _;
     let mut csv = String::from("date,metric,period_h,sun_up_h,mean_h,threshold_h,pass_fraction\n");
     for (date, s) in summaries {
@@ -111,10 +112,9 @@ pub fn write_dates_table(
         .iter()
         .map(|(d, s)| serde_json::json!({ "date": d.to_string(), "study": s }))
         .collect();
-    write_atomic(
-        &dir.join("dates.json"),
-        serde_json::to_string_pretty(&json)?.as_bytes(),
-    )
+    let path = dir.join("dates.json");
+    let text = serde_json::to_string_pretty(&json).map_err(|e| WriteError::encode(&path, e))?;
+    write_atomic(&path, text.as_bytes())
 }
 
 #[cfg(test)]

@@ -129,12 +129,12 @@ pub struct SunPathDiagram {
 }
 
 impl SunPathDiagram {
-    fn position(&self, utc: DateTime<Utc>) -> Result<(f64, f64), String> {
+    fn position(&self, utc: DateTime<Utc>) -> Result<(f64, f64), crate::sun::SunError> {
         let opts = SunOptions {
             north_offset_deg: 0.0,
             ..self.sun
         };
-        let p = sun::position(&self.site, utc, &opts).map_err(|e| e.to_string())?;
+        let p = sun::position(&self.site, utc, &opts)?;
         Ok((p.azimuth_deg, p.elevation_deg))
     }
 
@@ -149,7 +149,7 @@ impl SunPathDiagram {
     }
 
     /// The day's path above the horizon in pieces (SVG points), every 5 minutes of UTC.
-    fn day_path(&self, date: NaiveDate) -> Result<Vec<Vec<(f64, f64)>>, String> {
+    fn day_path(&self, date: NaiveDate) -> Result<Vec<Vec<(f64, f64)>>, crate::sun::SunError> {
         let start = date.and_time(NaiveTime::MIN).and_utc()
             - chrono::Duration::seconds(self.standard_offset() as i64);
         let mut pieces: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
@@ -168,7 +168,7 @@ impl SunPathDiagram {
     }
 
     /// The diagram as SVG.
-    pub fn svg(&self) -> Result<String, String> {
+    pub fn svg(&self) -> Result<String, crate::sun::SunError> {
         let mut s = String::new();
         let _ = writeln!(
             s,
@@ -201,7 +201,7 @@ impl SunPathDiagram {
     }
 
     /// The date arcs, the hour lines and the study's suns.
-    fn paths(&self, s: &mut String) -> Result<(), String> {
+    fn paths(&self, s: &mut String) -> Result<(), crate::sun::SunError> {
         // Date arcs: the 21st of every month.
         for month in 1..=12 {
             let Some(date) = NaiveDate::from_ymd_opt(self.year, month, 21) else {

@@ -6,13 +6,12 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use anyhow::Context;
 use glam::DVec3;
 
 use super::annotate::{framed, Frame, PlanLabels};
 use super::colours::hours_colour;
 use super::surfaces::{en17037_level, Facade, WindowPoint};
-use crate::io::write_atomic;
+use crate::io::{create_dir, write_atomic, WriteError};
 use crate::render::legend::with_legend_panel;
 use crate::render::output::write_image;
 
@@ -146,15 +145,14 @@ pub fn write_surfaces(
     origin: glam::DVec2,
     ground_z: f64,
     scale_h: f32,
-) -> anyhow::Result<(Vec<FacadeSummary>, Vec<PointResult>)> {
+) -> Result<(Vec<FacadeSummary>, Vec<PointResult>), WriteError> {
     let to_file = |p: DVec3| DVec3::new(p.x + origin.x, p.y + origin.y, p.z - ground_z);
     let north = labels.north_offset_deg;
     let (facades, points) = surface_summaries(results, north);
     if !results.facades.is_empty() {
         let mut csv = String::from("facade,faces_deg,x,y,z,hours\n");
         let images = dir.join("facades");
-        std::fs::create_dir_all(&images)
-            .with_context(|| format!("creating {}", images.display()))?;
+        create_dir(&images)?;
         for (f, summary) in results.facades.iter().zip(&facades) {
             let (id, faces) = (summary.id, summary.faces_deg);
             let (nu, _) = f.cells;

@@ -215,7 +215,7 @@ pub fn write_model_view(
     metric: HoursMetric,
     labels: &PlanLabels,
     dir: &Path,
-) -> anyhow::Result<()> {
+) -> Result<(), crate::io::WriteError> {
     let hours = v.hours(metric);
     write_image(
         &dir.join("model.png"),

@@ -241,7 +241,7 @@ impl FramePainter {
         }
         bytes.chunks_exact_mut(4).for_each(|p| p[3] = 255);
         let image = image::RgbaImage::from_raw(w, h, bytes).context("capture size mismatch")?;
-        crate::render::output::write_image(path, &image)
+        Ok(crate::render::output::write_image(path, &image)?)
     }
 }
 

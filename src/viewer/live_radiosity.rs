@@ -195,7 +195,7 @@ impl Job<'_> {
     fn show(&self, session: &Session, seconds: f64, convergence: f64) -> Result<(), String> {
         let light_map = session.light_map().map_err(|e| err(&e))?;
         self.send(RadiosityUpdate::Progress {
-            shots: session.solver().shots,
+            shots: session.solver().stats.shots,
             seconds,
             convergence,
             light_map: Some(Arc::new(light_map)),
@@ -306,7 +306,7 @@ impl Job<'_> {
                 last_shown = Some(Instant::now());
             } else {
                 self.send(RadiosityUpdate::Progress {
-                    shots: session.solver().shots,
+                    shots: session.solver().stats.shots,
                     seconds,
                     convergence,
                     light_map: None,

@@ -53,7 +53,7 @@ pub fn datasheet_image(
         interp,
         lamp_flux_lm: None,
     };
-    let img = diagram.rgb(kind)?;
+    let img = diagram.rgb(kind).map_err(|e| e.to_string())?;
     let size = [img.width() as usize, img.height() as usize];
     Ok(egui::ColorImage::from_rgb(size, img.as_raw()))
 }

@@ -62,8 +62,8 @@ pub fn solve_with(
     Solved {
         radiosity,
         illuminance,
-        shots: solver.shots,
-        drawn: solver.drawn,
+        shots: solver.stats.shots,
+        drawn: solver.stats.drawn,
     }
 }
 

@@ -447,7 +447,7 @@ fn furnace_on_the_gpu(gpu: &goniolight::gpu::Gpu, r: &RadiosityScene, raster: Ra
     assert_eq!(solver.raster(), raster);
     let start = solver.select().unwrap().unshot_power;
     let mut remaining = start;
-    while solver.shots < 500 && remaining > 1e-4 * start {
+    while solver.stats.shots < 500 && remaining > 1e-4 * start {
         match solver.step().unwrap() {
             Some(s) => remaining = s.unshot_power,
             None => break,
@@ -465,7 +465,7 @@ fn furnace_on_the_gpu(gpu: &goniolight::gpu::Gpu, r: &RadiosityScene, raster: Ra
         .fold(0.0, f64::max);
     eprintln!(
         "GPU furnace ({raster:?}): {} shots, worst {:.3} %, illuminance worst {:.3} %",
-        solver.shots,
+        solver.stats.shots,
         100.0 * worst,
         100.0 * worst_lux
     );
@@ -528,11 +528,11 @@ fn ambient_overshooting_on_the_gpu_converges_in_fewer_shots() {
                 .fold(0.0, f64::max);
             eprintln!(
                 "GPU furnace, {hierarchy:?}, {ambient:?}: {} shots, worst {:.3} %",
-                solver.shots,
+                solver.stats.shots,
                 100.0 * worst
             );
             assert!(worst < 0.005, "{hierarchy:?} {ambient:?}: {worst}");
-            shots.push(solver.shots);
+            shots.push(solver.stats.shots);
         }
         assert!(
             (shots[1] as f64) < 0.9 * shots[0] as f64,
@@ -994,8 +994,8 @@ fn faces_that_draw_only_the_chunks_they_can_see_give_the_same_solution() {
             };
             let mut solver = GpuSolver::new(&gpu, &r, &start, settings, gpu_settings);
             let first = shoot_the_same_shooters(&mut solver, first);
-            let maps = solver.drawn as u64;
-            let per_map = solver.triangles_drawn as f64 / maps as f64;
+            let maps = solver.stats.drawn as u64;
+            let per_map = solver.stats.triangles_drawn as f64 / maps as f64;
             let mesh = solver.visibility_triangles();
             (solver.radiosity().unwrap(), per_map, mesh, first)
         };
@@ -1172,7 +1172,7 @@ fn light_stays_in_its_closed_room_with_either_map() {
         solver
             .solve(&stop, &std::sync::atomic::AtomicBool::new(false), |_| {})
             .unwrap();
-        assert_eq!(solver.shots, 24);
+        assert_eq!(solver.stats.shots, 24);
         let b = solver.radiosity().unwrap();
         let leaked = (0..r.elements.len())
             .filter(|&e| in_b(e))

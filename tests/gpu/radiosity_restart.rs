@@ -75,7 +75,7 @@ fn a_moved_and_dimmed_luminaire_relit_in_place_equals_a_fresh_solve() {
     let mut solver = GpuSolver::new(&gpu, &r, &old, settings, gpu_settings);
     solver.solve(&stop(), &cancel, |_| {}).unwrap();
     let before = solver.radiosity().unwrap();
-    let shots_before = solver.shots;
+    let shots_before = solver.stats.shots;
     solver.relight(&old, &new).unwrap();
     let scale = solver.start_power(&new.radiosity).0;
     let (reason, _) = solver
@@ -99,8 +99,8 @@ fn a_moved_and_dimmed_luminaire_relit_in_place_equals_a_fresh_solve() {
         "relit after {} + {} shots, fresh {} shots: radiosity {:.3} %, illuminance {:.3} % \
          off (unchanged {:.1} %)",
         shots_before,
-        solver.shots - shots_before,
-        fresh.shots,
+        solver.stats.shots - shots_before,
+        fresh.stats.shots,
         100.0 * off,
         100.0 * off_lux,
         100.0 * stale

@@ -146,7 +146,7 @@ fn converges_to_the_global_one_in_view(
         eprintln!(
             "{drive:?}: {} shots, {} maps, view error {:.4} (shot light alone {:.4})",
             log.len() - 1,
-            solver.drawn,
+            solver.stats.drawn,
             error,
             shot_only
         );
@@ -230,7 +230,7 @@ impl DrivenRoom {
         undo(&mut solver);
         let (_, log) = solver.solve(&stop(1.0, 8), &no_cancel(), |_| {}).unwrap();
         assert_eq!(log.len() - 1, 8);
-        solver.drawn
+        solver.stats.drawn
     }
 }
 
@@ -428,7 +428,7 @@ fn a_sibling_solver_solves_as_one_built_afresh() {
         let solve = |mut solver: GpuSolver| {
             solver.fix_batch(4);
             solver.solve(&stop(1.0, 8), &no_cancel(), |_| {}).unwrap();
-            (solver.radiosity().unwrap(), solver.drawn)
+            (solver.radiosity().unwrap(), solver.stats.drawn)
         };
         let (sibling, drawn) = solve(light.sibling(&initial, settings, other));
         let (fresh, fresh_drawn) = solve(GpuSolver::new(&gpu, &r, &initial, settings, other));
@@ -447,7 +447,7 @@ fn a_sibling_solver_solves_as_one_built_afresh() {
         .iter()
         .zip(&emission)
         .all(|(a, b)| (*a - *b).length() <= 1e-6 * b.length()));
-    assert_eq!(light.shots, 0);
+    assert_eq!(light.stats.shots, 0);
 }
 
 /// Two closed 2 × 1.5 × 1 m rooms 10 m apart, every wall emitting and reflecting (no
@@ -663,9 +663,12 @@ fn receivers_that_hold_are_given_what_they_held_back() {
         unshot < 0.95 * want,
         "held light is not in the unshot: {unshot} vs {want}"
     );
-    let drawn = held.drawn;
+    let drawn = held.stats.drawn;
     assert_eq!(held.set_reception(&everyone).unwrap(), 0);
-    assert_eq!(held.drawn, drawn, "a chart that held had a map drawn again");
+    assert_eq!(
+        held.stats.drawn, drawn,
+        "a chart that held had a map drawn again"
+    );
     assert_eq!(held.holding_charts(), 0);
     // The same maps, the sums in another order: every element to rounding, illuminance
     // and the light left to shoot too.
@@ -761,7 +764,7 @@ fn receivers_that_wait_are_given_the_shots_they_missed() {
             "the waiting charts missed light: {missed}"
         );
         assert_eq!(waiting.missed_shots(), 12);
-        let drawn = waiting.drawn;
+        let drawn = waiting.stats.drawn;
         eprintln!("{drawn} maps drawn, store {store} bytes");
         let given = waiting.set_receiving(&vec![true; el.charts.len()]).unwrap();
         assert_eq!(given, 12);
@@ -770,7 +773,7 @@ fn receivers_that_wait_are_given_the_shots_they_missed() {
         if store > 0 {
             // The very maps the shots were received through: nothing drawn, and every
             // element gets what it would have had (to rounding).
-            assert_eq!(waiting.drawn, drawn, "a kept map was drawn again");
+            assert_eq!(waiting.stats.drawn, drawn, "a kept map was drawn again");
             assert!(waiting.maps_reused() > 0);
             let off = differ(&caught_up, &expected, 1e-5);
             assert_eq!(off, 0, "{off} elements differ with kept maps");
@@ -778,7 +781,7 @@ fn receivers_that_wait_are_given_the_shots_they_missed() {
             // Drawn again in batches of their own, a map's place in the atlas differs
             // from the one the other solver drew, and a texel at a depth edge may flip:
             // one element in a thousand may differ by more than 1 %.
-            assert!(waiting.drawn > drawn);
+            assert!(waiting.stats.drawn > drawn);
             assert_eq!(waiting.maps_reused(), 0);
             let flipped = differ(&caught_up, &expected, 1e-2);
             eprintln!(

@@ -299,7 +299,7 @@ fn furnace_shots_stopped_after_a_batch_still_give_e_over_one_minus_rho() {
         .fold(0.0, f64::max);
     eprintln!(
         "furnace, one shooter of six pieces: {} shots ({stopped} stopped after a batch), worst {:.3} %",
-        solver.shots,
+        solver.stats.shots,
         100.0 * worst
     );
     assert!(stopped > 0, "no shot was stopped");

@@ -151,14 +151,17 @@ fn gpu_solve(
     assert_eq!(solver.raster(), raster, "never another rasterizer silently");
     let start = solver.select().unwrap().unshot_power;
     let mut remaining = start;
-    while solver.shots < 5000 && remaining > (1.0 - converge) * start {
+    while solver.stats.shots < 5000 && remaining > (1.0 - converge) * start {
         match solver.step().unwrap() {
             Some(s) => remaining = s.unshot_power,
             None => break,
         }
     }
     if !r.specular.is_empty() {
-        assert!(solver.virtual_drawn > 0, "virtual cells drew their maps");
+        assert!(
+            solver.stats.virtual_drawn > 0,
+            "virtual cells drew their maps"
+        );
     }
     solver.radiosity_and_illuminance().unwrap()
 }

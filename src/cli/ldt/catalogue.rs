@@ -77,8 +77,8 @@ fn write_residuals(
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
-    let svg = gamma_error_svg(report, &title).map_err(|e| CliError::failure(anyhow!(e)))?;
-    let png = heat_map_png(report, &title).map_err(|e| CliError::failure(anyhow!(e)))?;
+    let svg = gamma_error_svg(report, &title).map_err(CliError::failure)?;
+    let png = heat_map_png(report, &title).map_err(CliError::failure)?;
     write_atomic(&csv, report.residuals_csv().as_bytes()).map_err(CliError::failure)?;
     write_atomic(&dir.join(format!("{stem}-gamma.svg")), svg.as_bytes())
         .map_err(CliError::failure)?;

@@ -116,7 +116,7 @@ pub(super) fn run(args: &PlotArgs) -> Result<(), CliError> {
         } else {
             diagram.png(args.kind)
         }
-        .map_err(|e| CliError::failure(anyhow::anyhow!(e)))?;
+        .map_err(CliError::failure)?;
         write_atomic(target, &bytes).map_err(CliError::failure)
     })
 }

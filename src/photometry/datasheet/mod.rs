@@ -87,8 +87,7 @@ pub fn sheet(
     ]
     .into_iter()
     .map(|kind| diagram.svg(kind))
-    .collect::<Result<Vec<_>, _>>()
-    .map_err(PhotometryError::Invalid)?;
+    .collect::<Result<Vec<_>, _>>()?;
     Ok(Sheet {
         name,
         subtitle,

@@ -20,6 +20,17 @@ use super::super::shooters::ShotPlan;
 use super::{cell_planes, GpuSolver, ShotTimes};
 use crate::gpu::GpuError;
 
+/// The perspective-driven part of a solver: receivers that wait and the shots they
+/// missed, the area of interest's stages, and the maps kept for their catch-up.
+pub(super) struct Perspective {
+    /// Receivers that wait, and the shots they missed.
+    pub(super) deferral: Option<Deferral>,
+    /// The area of interest's stages.
+    pub(super) stages: Option<Stages>,
+    /// The maps of the cells shot while receivers waited, for their catch-up.
+    pub(super) map_store: super::map_store::MapStore,
+}
+
 /// A shot some waiting receiver missed.
 pub(super) struct MissedShot {
     shooter: usize,
@@ -121,7 +132,7 @@ impl GpuSolver<'_> {
         let wanted: Vec<Reception> = (0..self.upload.receivers.len())
             .map(|k| reception[el.chart[self.upload.receivers.range(k).0 as usize] as usize])
             .collect();
-        let deferral = self.deferral.get_or_insert_with(|| Deferral {
+        let deferral = self.perspective.deferral.get_or_insert_with(|| Deferral {
             reception: vec![Reception::Receives; wanted.len()],
             held_back: false,
             missed_from: vec![0; wanted.len()],
@@ -160,11 +171,11 @@ impl GpuSolver<'_> {
             self.allocate_held_back();
         }
         self.release_held_back(&released);
-        let deferral = self.deferral.as_mut().expect("set above");
+        let deferral = self.perspective.deferral.as_mut().expect("set above");
         let mut given = 0;
         let missed = std::mem::take(&mut deferral.missed);
         // The shots' own phases are not counted twice.
-        let before = self.times;
+        let before = self.stats.times;
         for (from, charts) in &joining {
             let boxes = self.upload.receivers.subset(charts);
             for shot in &missed[*from..] {
@@ -173,15 +184,15 @@ impl GpuSolver<'_> {
                 }
             }
         }
-        self.times = ShotTimes {
+        self.stats.times = ShotTimes {
             catch_up: before.catch_up + started.elapsed().as_secs_f64(),
             ..before
         };
-        let deferral = self.deferral.as_mut().expect("set above");
+        let deferral = self.perspective.deferral.as_mut().expect("set above");
         if !deferral.any_waiting() {
             // Nobody waits: nothing missed needs keeping, nor do its maps.
             deferral.missed_from.fill(0);
-            self.map_store.clear();
+            self.perspective.map_store.clear();
         } else {
             deferral.missed = missed;
         }
@@ -190,13 +201,17 @@ impl GpuSolver<'_> {
 
     /// Gives the held-back buffer a record per element (zero), once.
     fn allocate_held_back(&mut self) {
-        let deferral = self.deferral.as_mut().expect("receivers deferred");
+        let deferral = self
+            .perspective
+            .deferral
+            .as_mut()
+            .expect("receivers deferred");
         if deferral.held_back {
             return;
         }
         deferral.held_back = true;
         let size = 16 * self.scene.elements.len().max(1) as u64;
-        self.shared_buffers[HELD_BACK_BINDING] =
+        self.buffers.shared_buffers[HELD_BACK_BINDING] =
             self.gpu.device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("held back"),
                 size,
@@ -205,13 +220,18 @@ impl GpuSolver<'_> {
                     | wgpu::BufferUsages::COPY_SRC,
                 mapped_at_creation: false,
             });
-        self.shared = super::shared_bind_group(self.gpu, &self.pipelines, &self.shared_buffers);
+        self.buffers.shared =
+            super::shared_bind_group(self.gpu, &self.pipelines, &self.buffers.shared_buffers);
     }
 
     /// Adds what the receiver charts `charts` held back to their radiosity and unshot
     /// radiosity, and clears it.
     fn release_held_back(&mut self, charts: &[usize]) {
-        let allocated = self.deferral.as_ref().is_some_and(|d| d.held_back);
+        let allocated = self
+            .perspective
+            .deferral
+            .as_ref()
+            .is_some_and(|d| d.held_back);
         if !allocated || charts.is_empty() {
             return;
         }
@@ -221,7 +241,7 @@ impl GpuSolver<'_> {
         self.dispatch(
             &mut enc,
             &self.pipelines.release_held_back,
-            self.culled.1,
+            self.batching.culled.1,
             64,
         );
         self.gpu.queue.submit([enc.finish()]);
@@ -253,7 +273,7 @@ impl GpuSolver<'_> {
             })
             .collect();
         self.set_reception(&stages[0])?;
-        self.stages = Some(Stages {
+        self.perspective.stages = Some(Stages {
             stages,
             at: 0,
             start: None,
@@ -268,7 +288,7 @@ impl GpuSolver<'_> {
     /// stage, to [`WIDEN_LAST_AT`] of the first stage's), or nothing left to shoot. True
     /// when it widened (select again: what joined has light to shoot).
     pub fn widen_if_due(&mut self, s: &super::Selection) -> Result<bool, GpuError> {
-        let Some(stages) = &mut self.stages else {
+        let Some(stages) = &mut self.perspective.stages else {
             return Ok(false);
         };
         if stages.at + 1 >= stages.stages.len() {
@@ -291,14 +311,18 @@ impl GpuSolver<'_> {
 
     /// Whether every chart receives (no area of interest, or its last stage).
     pub fn area_is_whole(&self) -> bool {
-        self.stages
+        self.perspective
+            .stages
             .as_ref()
             .is_none_or(|s| s.at + 1 >= s.stages.len())
     }
 
     /// The area of interest's stage (0: the narrowest) and how many there are.
     pub fn area_stage(&self) -> Option<(usize, usize)> {
-        self.stages.as_ref().map(|s| (s.at, s.stages.len()))
+        self.perspective
+            .stages
+            .as_ref()
+            .map(|s| (s.at, s.stages.len()))
     }
 
     /// Per element, the unshot radiosity (rgb, lm/m²) with what it holds back added: all
@@ -310,9 +334,9 @@ impl GpuSolver<'_> {
     /// unshot radiosity is read back.
     pub fn unshot_to_come(&self) -> Result<Vec<glam::DVec3>, GpuError> {
         let mut unshot = self.unshot()?;
-        let holding = self.deferral.as_ref();
+        let holding = self.perspective.deferral.as_ref();
         if holding.is_some_and(|d| d.held_back && d.any_not_receiving()) {
-            let held = self.read_rgb(&self.shared_buffers[HELD_BACK_BINDING])?;
+            let held = self.read_rgb(&self.buffers.shared_buffers[HELD_BACK_BINDING])?;
             for (u, h) in unshot.iter_mut().zip(held) {
                 *u += h;
             }
@@ -331,14 +355,17 @@ impl GpuSolver<'_> {
     }
 
     fn charts_that(&self, reception: Reception) -> usize {
-        self.deferral.as_ref().map_or(0, |d| {
+        self.perspective.deferral.as_ref().map_or(0, |d| {
             d.reception.iter().filter(|&&r| r == reception).count()
         })
     }
 
     /// Shots kept for waiting receivers.
     pub fn missed_shots(&self) -> usize {
-        self.deferral.as_ref().map_or(0, |d| d.missed.len())
+        self.perspective
+            .deferral
+            .as_ref()
+            .map_or(0, |d| d.missed.len())
     }
 
     /// Keeps shot `cells` of shooter `s` for the receivers that waited (none: nothing
@@ -355,7 +382,7 @@ impl GpuSolver<'_> {
         if cells.is_empty() {
             return;
         }
-        if let Some(d) = &mut self.deferral {
+        if let Some(d) = &mut self.perspective.deferral {
             d.missed.push(MissedShot {
                 shooter: s,
                 plan,
@@ -376,9 +403,11 @@ impl GpuSolver<'_> {
         shot: &MissedShot,
         (boxes, charts): (&ReceiverBoxes, &[usize]),
     ) -> Result<bool, GpuError> {
-        self.gpu
-            .queue
-            .write_buffer(&self.patch_delta, 0, bytemuck::cast_slice(&shot.delta));
+        self.gpu.queue.write_buffer(
+            &self.buffers.patch_delta,
+            0,
+            bytemuck::cast_slice(&shot.delta),
+        );
         // Only the cells with one of `charts` in front of them are drawn again, and only
         // those charts receive (as when it was first shot: the culling's own test).
         let joining = |planes: &[(glam::DVec3, glam::DVec3, f64)]| -> Vec<usize> {
@@ -411,7 +440,7 @@ impl GpuSolver<'_> {
             0..0,
             super::shot::CellMaps::Restore(&kept),
         )?;
-        self.drawn += kept.iter().filter(|k| k.is_none()).count();
+        self.stats.drawn += kept.iter().filter(|k| k.is_none()).count();
         Ok(true)
     }
 }

@@ -204,7 +204,10 @@ pub struct Selection {
     pub weighted_power: f64,
 }
 
-/// A solution in progress on the GPU.
+/// A solution in progress on the GPU, in parts each owned by a stage: the buffers and
+/// their bind group ([`setup`]), the shooters' records and how the selection weighs them
+/// ([`GpuSolver::select`]), the batching of a shot's cells ([`shot`]), the
+/// perspective-driven state ([`deferred`]) and the counters ([`ShotStats`]).
 pub struct GpuSolver<'a> {
     gpu: &'a Gpu,
     scene: &'a RadiosityScene,
@@ -212,35 +215,33 @@ pub struct GpuSolver<'a> {
     gpu_settings: GpuSettings,
     /// Built once per device ([`Gpu::cached`]).
     pipelines: std::sync::Arc<Pipelines>,
-    params: wgpu::Buffer,
-    radiosity: wgpu::Buffer,
-    unshot: wgpu::Buffer,
-    selection: wgpu::Buffer,
-    shooter_power: wgpu::Buffer,
-    shooter_elements: wgpu::Buffer,
-    patches: wgpu::Buffer,
-    shared: wgpu::BindGroup,
-    /// The buffers `shared` binds, binding by binding (it is bound again when the
-    /// held-back buffer grows: [`deferred`]).
-    shared_buffers: Vec<wgpu::Buffer>,
+    /// The solution's and the shot's buffers, and the bind group over them.
+    buffers: setup::Buffers,
     /// What solvers of this scene share: shooters, element records, visibility mesh,
     /// receivers' boxes ([`GpuSolver::sibling`]).
     upload: setup::SceneUpload,
-    /// The first selection's total unshot power, lm (the oracle's scale).
-    initial_power: Option<f64>,
-    /// The last selection's shooter power, lm.
-    last_power: f64,
+    /// The shooters' records and the selection's weights.
+    choice: ShooterChoice,
     /// The compute rasterizer, where the maps are drawn by compute shaders.
     compute_raster: Option<raster::ComputeRaster>,
-    /// Visibility-mesh triangles drawn so far, over all faces of all maps.
-    pub triangles_drawn: u64,
     /// The visibility maps of a batch.
     atlas: VisibilityAtlas,
-    /// Shots so far.
-    pub shots: usize,
+    /// How a shot's cells are cut into batches, and the current batch's receivers.
+    batching: shot::Batching,
+    /// Perspective-driven radiosity: waiting receivers, stages and stored maps.
+    perspective: deferred::Perspective,
+    /// The GPU's timestamps around each batch's passes ([`GpuSolver::time_passes`]).
+    timers: Option<timers::PassTimers>,
+    /// What the shots did so far, and where their time went.
+    pub stats: ShotStats,
+}
+
+/// The shooters' records as uploaded and how the selection weighs them.
+struct ShooterChoice {
     /// The shooters' records as uploaded (their weights in `[2]`).
     shooter_info: Vec<ShooterRecord>,
-    shooter_buf: wgpu::Buffer,
+    /// Shooters of more than [`SMALL_SHOOTER`] elements (a workgroup sums each).
+    large_shooters: u32,
     /// Whether the selection weighs the shooters ([`GpuSolver::set_shooter_weights`]).
     weighted: bool,
     /// Per piece of the shooters, the share of its unshot power the cells' oracle sizes
@@ -249,27 +250,19 @@ pub struct GpuSolver<'a> {
     /// The link search's receivers in boxes of a few elements with their reach scales
     /// ([`GpuSolver::set_receiver_weights`]; none: the charts', every scale 1).
     link_receivers: Option<crate::radiosity::links::ReceiverBoxes>,
-    /// Receivers that wait, and the shots they missed (perspective-driven radiosity).
-    deferral: Option<deferred::Deferral>,
-    /// The area of interest's stages (perspective-driven radiosity).
-    stages: Option<deferred::Stages>,
-    /// Patches in the next batch of a shot: adapted so a batch takes about
-    /// [`BATCH_SECONDS`] (between 1 and [`PATCHES_PER_BATCH`]).
-    batch: usize,
-    /// What a batch should take, seconds ([`BATCH_SECONDS`] unless set).
-    batch_seconds: f64,
-    /// Whether `batch` stays as set ([`GpuSolver::fix_batch`]).
-    fixed_batch: bool,
-    /// Per cell of the shot: rgb unshot radiosity it shoots.
-    patch_delta: wgpu::Buffer,
-    /// The shot's receiver ranges and threads (every element of them) …
-    culled: (u32, u32),
-    /// … and the ranges themselves (first element, count, 1 where they hold).
-    batch_ranges: Vec<(u32, u32, u32)>,
-    /// The receivers by patch, for each drawn cell's own receivers.
-    receiver_groups: crate::radiosity::cell_receivers::ReceiverGroups,
-    /// Shooters of more than [`SMALL_SHOOTER`] elements (a workgroup sums each).
-    large_shooters: u32,
+    /// The first selection's total unshot power, lm (the oracle's scale).
+    initial_power: Option<f64>,
+    /// The last selection's shooter power, lm.
+    last_power: f64,
+}
+
+/// What the shots of a [`GpuSolver`] did so far, and where their time went.
+#[derive(Debug)]
+pub struct ShotStats {
+    /// Shots so far.
+    pub shots: usize,
+    /// Visibility-mesh triangles drawn so far, over all faces of all maps.
+    pub triangles_drawn: u64,
     /// Receiver threads dispatched so far (elements in front of the shooters, per map).
     pub receiver_threads: u64,
     /// Visibility maps drawn so far (one per drawn cell or patch).
@@ -277,16 +270,12 @@ pub struct GpuSolver<'a> {
     /// Cells or patches whose visibility map was skipped so far: no receiver takes light
     /// from them (behind the shooter, or linked to a coarser or finer cell).
     pub skipped: usize,
+    /// Virtual cells' visibility maps drawn so far (mirrors and clear glass).
+    pub virtual_drawn: usize,
     /// Where the shots' time went so far (wall clock on the calling thread).
     pub times: ShotTimes,
     /// The shooting units planned so far, for shots that repeat their layout.
     pub plan_cache: PlanCache,
-    /// The GPU's timestamps around each batch's passes ([`GpuSolver::time_passes`]).
-    timers: Option<timers::PassTimers>,
-    /// The maps of the cells shot while receivers waited, for their catch-up.
-    map_store: map_store::MapStore,
-    /// Virtual cells' visibility maps drawn so far (mirrors and clear glass).
-    pub virtual_drawn: usize,
 }
 
 /// The longest edge of the stereographic map's mesh, as a fraction of the scene's
@@ -361,16 +350,16 @@ impl<'a> GpuSolver<'a> {
             mean_reflectance: self.scene.mean_reflectance as f32,
             clear_first: clear.start,
             clear_count: clear.len() as u32,
-            range_count: self.culled.0,
-            range_total: self.culled.1,
+            range_count: self.batching.culled.0,
+            range_total: self.batching.culled.1,
             range_first: self.upload.max_patches as u32,
-            large_shooters: self.large_shooters,
+            large_shooters: self.choice.large_shooters,
             receiving_normals: u32::from(!self.scene.receiving_normals.is_empty()),
             _pad: 0,
         };
         self.gpu
             .queue
-            .write_buffer(&self.params, 0, bytemuck::bytes_of(&p));
+            .write_buffer(&self.buffers.params, 0, bytemuck::bytes_of(&p));
     }
 
     /// Runs `pipeline` over `threads` threads in groups of `group` (a group per item for
@@ -384,7 +373,7 @@ impl<'a> GpuSolver<'a> {
     ) {
         let mut pass = enc.begin_compute_pass(&Default::default());
         pass.set_pipeline(pipeline);
-        pass.set_bind_group(0, &self.shared, &[]);
+        pass.set_bind_group(0, &self.buffers.shared, &[]);
         dispatch_groups(&mut pass, threads.div_ceil(group));
     }
 
@@ -398,34 +387,36 @@ impl<'a> GpuSolver<'a> {
         self.dispatch(
             &mut enc,
             &self.pipelines.large_shooter_sums,
-            self.large_shooters,
+            self.choice.large_shooters,
             1,
         );
         self.dispatch(&mut enc, &self.pipelines.select, 1, 1);
         // Only the 48-byte selection record comes back.
         enc.copy_buffer_to_buffer(
-            &self.shooter_power,
+            &self.buffers.shooter_power,
             16 * shooters as u64,
-            &self.selection,
+            &self.buffers.selection,
             0,
             48,
         );
         self.gpu.queue.submit([enc.finish()]);
-        let v = self.gpu.read_f32(&self.selection)?;
-        lap(&mut self.times.select, &mut clock);
+        let v = self.gpu.read_f32(&self.buffers.selection)?;
+        lap(&mut self.stats.times.select, &mut clock);
         let index = v[0].to_bits();
         let shooter = (index != u32::MAX && v[1] > 0.0).then_some(index as usize);
         // The shader's choice is by weighted power; the shot's cells are sized by the
         // power itself.
-        let weight = shooter.map_or(1.0, |k| f32::from_bits(self.shooter_info[k][2]));
+        let weight = shooter.map_or(1.0, |k| f32::from_bits(self.choice.shooter_info[k][2]));
         let selection = Selection {
             shooter,
             power: (v[1] / weight) as f64,
             unshot_power: v[2] as f64,
             weighted_power: v[3] as f64,
         };
-        self.initial_power.get_or_insert(selection.unshot_power);
-        self.last_power = selection.power;
+        self.choice
+            .initial_power
+            .get_or_insert(selection.unshot_power);
+        self.choice.last_power = selection.power;
         Ok(selection)
     }
 
@@ -433,15 +424,15 @@ impl<'a> GpuSolver<'a> {
     /// selection and in [`Selection::weighted_power`]: importance-driven shooting.
     pub fn set_shooter_weights(&mut self, weights: &[f64]) {
         assert_eq!(weights.len(), self.upload.shooters.len());
-        for (record, w) in self.shooter_info.iter_mut().zip(weights) {
+        for (record, w) in self.choice.shooter_info.iter_mut().zip(weights) {
             record[2] = (w.max(0.0) as f32).to_bits();
         }
         self.gpu.queue.write_buffer(
-            &self.shooter_buf,
+            &self.buffers.shooter_buf,
             0,
-            bytemuck::cast_slice(&self.shooter_info),
+            bytemuck::cast_slice(&self.choice.shooter_info),
         );
-        self.weighted = true;
+        self.choice.weighted = true;
     }
 
     /// Sizes each piece's cells by `weights` (one per piece of the shooters, in (0, 1])
@@ -449,7 +440,7 @@ impl<'a> GpuSolver<'a> {
     /// light they shoot matters little to the view.
     pub fn set_cell_weights(&mut self, weights: Vec<f64>) {
         assert_eq!(weights.len(), self.upload.shooters.pieces.len());
-        self.cell_weights = Some(weights);
+        self.choice.cell_weights = Some(weights);
     }
 
     /// Gives each receiver its share of the link error, `weights` (one per element, in
@@ -465,16 +456,16 @@ impl<'a> GpuSolver<'a> {
             .iter()
             .map(|w| w.clamp(LEAST_RECEIVER_WEIGHT, 1.0).sqrt())
             .collect();
-        self.receiver_groups.set_scales(&scale);
+        self.batching.receiver_groups.set_scales(&scale);
         let gpu_scale: Vec<f32> = scale.iter().map(|&s| s as f32).collect();
         if !gpu_scale.is_empty() {
             self.gpu.queue.write_buffer(
-                &self.shared_buffers[REACH_SCALE_BINDING],
+                &self.buffers.shared_buffers[REACH_SCALE_BINDING],
                 0,
                 bytemuck::cast_slice(&gpu_scale),
             );
         }
-        self.link_receivers = Some(crate::radiosity::links::ReceiverBoxes::of_elements(
+        self.choice.link_receivers = Some(crate::radiosity::links::ReceiverBoxes::of_elements(
             self.scene, &scale,
         ));
     }
@@ -483,7 +474,7 @@ impl<'a> GpuSolver<'a> {
     /// at most that): a shot stopped by [`GpuSolver::shoot_until`] overruns its stop by
     /// at most about one batch (the viewer's per-frame budget).
     pub fn set_batch_seconds(&mut self, seconds: f64) {
-        self.batch_seconds = seconds.clamp(1e-3, BATCH_SECONDS);
+        self.batching.batch_seconds = seconds.clamp(1e-3, BATCH_SECONDS);
     }
 
     /// Shoots `cells` cells per batch from now on, whatever they take (at least 1, at
@@ -493,8 +484,8 @@ impl<'a> GpuSolver<'a> {
     /// the atlas may flip a texel along an edge seen at a grazing angle: a receiver
     /// there may differ by a percent between runs, the total by about 10⁻⁷.)
     pub fn fix_batch(&mut self, cells: usize) {
-        self.batch = cells.clamp(1, PATCHES_PER_BATCH);
-        self.fixed_batch = true;
+        self.batching.batch = cells.clamp(1, PATCHES_PER_BATCH);
+        self.batching.fixed_batch = true;
     }
 
     /// The scene it solves.
@@ -505,13 +496,13 @@ impl<'a> GpuSolver<'a> {
     /// The share of the elements each visibility map's receive pass took in, on average
     /// (the rest culled as behind or outside the shooter), 0..=1.
     pub fn receiver_share(&self) -> f64 {
-        let maps = (self.drawn + self.virtual_drawn).max(1) as f64;
-        self.receiver_threads as f64 / (maps * self.scene.elements.len().max(1) as f64)
+        let maps = (self.stats.drawn + self.stats.virtual_drawn).max(1) as f64;
+        self.stats.receiver_threads as f64 / (maps * self.scene.elements.len().max(1) as f64)
     }
 
     /// Whether the selection weighs the shooters.
     pub fn is_weighted(&self) -> bool {
-        self.weighted
+        self.choice.weighted
     }
 
     /// Triangles each visibility map draws (the casters with CAD fans merged).
@@ -533,15 +524,15 @@ impl<'a> GpuSolver<'a> {
     /// Keeps this many bytes of maps at most for the catch-up of waiting receivers (0:
     /// none; missed cells are then drawn again), dropping what is kept now.
     pub fn set_map_store_bytes(&mut self, bytes: u64) {
-        self.map_store = map_store::MapStore::new(bytes);
-        if let Some(d) = &mut self.deferral {
+        self.perspective.map_store = map_store::MapStore::new(bytes);
+        if let Some(d) = &mut self.perspective.deferral {
             d.forget_kept_maps();
         }
     }
 
     /// Maps copied back from the kept maps for a catch-up so far (not drawn).
     pub fn maps_reused(&self) -> usize {
-        self.map_store.reused
+        self.perspective.map_store.reused
     }
 
     /// Times each batch's visibility and receive passes by the GPU's own clock from now
@@ -587,12 +578,12 @@ impl<'a> GpuSolver<'a> {
 
     /// Radiosity per element.
     pub fn radiosity(&self) -> Result<Vec<DVec3>, GpuError> {
-        self.read_rgb(&self.radiosity)
+        self.read_rgb(&self.buffers.radiosity)
     }
 
     /// Radiosity (RGB, lm/m²) and received illuminance (lux) per element.
     pub fn radiosity_and_illuminance(&self) -> Result<(Vec<DVec3>, Vec<f64>), GpuError> {
-        let v = self.gpu.read_f32(&self.radiosity)?;
+        let v = self.gpu.read_f32(&self.buffers.radiosity)?;
         Ok(v.chunks_exact(4)
             .map(|c| (Vec3::new(c[0], c[1], c[2]).as_dvec3(), c[3] as f64))
             .unzip())
@@ -600,7 +591,7 @@ impl<'a> GpuSolver<'a> {
 
     /// Unshot radiosity per element.
     pub fn unshot(&self) -> Result<Vec<DVec3>, GpuError> {
-        self.read_rgb(&self.unshot)
+        self.read_rgb(&self.buffers.unshot)
     }
 }
 

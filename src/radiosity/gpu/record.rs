@@ -280,7 +280,7 @@ impl<'a> GpuSolver<'a> {
                     .visible(view, self.gpu_settings.chunk_culling, &mut ranges);
                 for &(first, count) in &ranges {
                     work.push(tile, first, count);
-                    self.triangles_drawn += u64::from(count / 3);
+                    self.stats.triangles_drawn += u64::from(count / 3);
                 }
             }
             compute.record(
@@ -354,11 +354,11 @@ impl<'a> GpuSolver<'a> {
                     .visible(view, self.gpu_settings.chunk_culling, &mut ranges);
                 for &(first, count) in &ranges {
                     pass.draw_indexed(first..first + count, 0, 0..1);
-                    self.triangles_drawn += u64::from(count / 3);
+                    self.stats.triangles_drawn += u64::from(count / 3);
                 }
                 if let Some(masked) = &self.upload.masked {
                     masked.draw(&mut pass, clipped);
-                    self.triangles_drawn += u64::from(masked.triangle_count());
+                    self.stats.triangles_drawn += u64::from(masked.triangle_count());
                     pass.set_vertex_buffer(0, self.upload.vertices.slice(..));
                 }
             }
@@ -367,7 +367,9 @@ impl<'a> GpuSolver<'a> {
         for (k, slot) in stored.iter().enumerate() {
             if let &Some(at) = slot {
                 let cell = (k as u32 * faces_per_cell, at, faces_per_cell);
-                self.map_store.copy_cell(enc, &self.atlas, cell, false);
+                self.perspective
+                    .map_store
+                    .copy_cell(enc, &self.atlas, cell, false);
             }
         }
         let mut pass = enc.begin_compute_pass(&wgpu::ComputePassDescriptor {
@@ -375,14 +377,14 @@ impl<'a> GpuSolver<'a> {
             timestamp_writes: queries.as_ref().map(|q| q.receive()),
         });
         pass.set_pipeline(&self.pipelines.receive);
-        pass.set_bind_group(0, &self.shared, &[]);
+        pass.set_bind_group(0, &self.buffers.shared, &[]);
         for k in 0..cells.len() as u64 {
             // The real cells first, then their virtual cells.
             if k == drawn.len() as u64 {
                 pass.set_pipeline(&self.pipelines.receive_through_windows);
             }
             let threads = receivers[k as usize][2];
-            self.receiver_threads += u64::from(threads);
+            self.stats.receiver_threads += u64::from(threads);
             if threads > 0 {
                 pass.set_bind_group(1, &shot_bind, &[(k * SHOT_STRIDE) as u32]);
                 dispatch_groups(&mut pass, threads.div_ceil(64));
@@ -405,7 +407,7 @@ impl<'a> GpuSolver<'a> {
         let mut runs: Vec<cell_receivers::ReceiverRecord> = Vec::new();
         // The batch's ranges whole, for the virtual cells.
         let mut threads = 0;
-        for &(first, count, hold) in &self.batch_ranges {
+        for &(first, count, hold) in &self.batching.batch_ranges {
             runs.push([first, threads, count, hold]);
             threads += count;
         }
@@ -417,11 +419,11 @@ impl<'a> GpuSolver<'a> {
                 continue;
             }
             let start = runs.len();
-            let own = self.receiver_groups.cell_records(
+            let own = self.batching.receiver_groups.cell_records(
                 (plan, links),
                 cell.patch,
                 tolerance,
-                &self.batch_ranges,
+                &self.batching.batch_ranges,
                 &mut runs,
             );
             receivers.push(match own {

@@ -20,8 +20,8 @@ impl GpuSolver<'_> {
     pub fn relight(&mut self, old: &InitialState, new: &InitialState) -> Result<(), GpuError> {
         let n = self.scene.elements.len();
         assert!(old.radiosity.len() == n && new.radiosity.len() == n);
-        let mut lit = self.gpu.read_f32(&self.radiosity)?;
-        let mut unshot = self.gpu.read_f32(&self.unshot)?;
+        let mut lit = self.gpu.read_f32(&self.buffers.radiosity)?;
+        let mut unshot = self.gpu.read_f32(&self.buffers.unshot)?;
         for e in 0..n {
             let d = (new.radiosity[e] - old.radiosity[e]).as_vec3();
             let lux = (new.illuminance[e] - old.illuminance[e]) as f32;
@@ -33,9 +33,9 @@ impl GpuSolver<'_> {
             }
         }
         let queue = &self.gpu.queue;
-        queue.write_buffer(&self.radiosity, 0, bytemuck::cast_slice(&lit));
-        queue.write_buffer(&self.unshot, 0, bytemuck::cast_slice(&unshot));
-        self.initial_power = Some(self.start_power(&new.radiosity).0);
+        queue.write_buffer(&self.buffers.radiosity, 0, bytemuck::cast_slice(&lit));
+        queue.write_buffer(&self.buffers.unshot, 0, bytemuck::cast_slice(&unshot));
+        self.choice.initial_power = Some(self.start_power(&new.radiosity).0);
         Ok(())
     }
 
@@ -59,7 +59,7 @@ impl GpuSolver<'_> {
         let shooter_of = &self.upload.shooters.element_shooter;
         (0..el.len()).fold((0.0, 0.0), |(plain, weighted), e| {
             let p = luminance(radiosity[e]).abs() * el.area[e];
-            let w = f32::from_bits(self.shooter_info[shooter_of[e] as usize][2]) as f64;
+            let w = f32::from_bits(self.choice.shooter_info[shooter_of[e] as usize][2]) as f64;
             (plain + p, weighted + w * p)
         })
     }

@@ -4,11 +4,13 @@
 
 use wgpu::util::DeviceExt;
 
+use super::deferred::Perspective;
 use super::pipelines::{shared_bind_group, Pipelines};
+use super::shot::Batching;
 use super::{
     faces_per_cell, map_store, masked, raster, v4, virtual_cells, ElementRecord, GpuSettings,
-    GpuSolver, MeshChunks, Raster, ShooterRecord, ShotTimes, SolveParams, Visibility,
-    BATCH_SECONDS, DEFAULT_MAP_STORE_BYTES, FIRST_BATCH, SMALL_SHOOTER,
+    GpuSolver, MeshChunks, Raster, ShooterChoice, ShooterRecord, ShotStats, ShotTimes, SolveParams,
+    Visibility, BATCH_SECONDS, DEFAULT_MAP_STORE_BYTES, FIRST_BATCH, SMALL_SHOOTER,
     STEREOGRAPHIC_EDGE_FRACTION,
 };
 use crate::geometry::split::split_long_edges;
@@ -273,58 +275,166 @@ impl<'a> GpuSolver<'a> {
         settings: SolverSettings,
         gpu_settings: GpuSettings,
     ) -> GpuSolver<'a> {
-        let shooters = &upload.shooters;
-        let el = &scene.elements;
-        let n = el.len();
-        debug_assert!((0..n).all(|e| {
+        debug_assert!((0..scene.elements.len()).all(|e| {
+            let shooters = &upload.shooters;
             let k = shooters.element_shooter[e] as usize;
             scene.reflectance[shooters.material[k]] == scene.element_reflectance(e)
         }));
-        let start: Vec<[f32; 4]> = initial.radiosity.iter().map(|b| v4(*b, 0.0)).collect();
-        let start_lit: Vec<[f32; 4]> = (0..n)
-            .map(|e| v4(initial.radiosity[e], initial.illuminance[e] as f32))
-            .collect();
-        let mut shooter_info: Vec<ShooterRecord> = (0..shooters.len())
-            .map(|k| {
-                let r = scene.reflectance[shooters.material[k]].as_vec3();
-                let t = scene.transmittance[shooters.material[k]].as_vec3();
-                [
-                    shooters.first[k],
-                    shooters.count[k],
-                    // The shooter's weight in the selection (1: its power alone).
-                    1f32.to_bits(),
-                    shooters.first_piece[k],
-                    r.x.to_bits(),
-                    r.y.to_bits(),
-                    r.z.to_bits(),
-                    (shooters.area[k] as f32).to_bits(),
-                    t.x.to_bits(),
-                    t.y.to_bits(),
-                    t.z.to_bits(),
-                    0,
-                ]
-            })
-            .collect();
-        // Shooters of more than SMALL_SHOOTER elements are summed by a workgroup each:
-        // listed after the shooters (range.z: the shooter).
-        let large: Vec<ShooterRecord> = (0..shooters.len())
-            .filter(|&k| shooters.count[k] > SMALL_SHOOTER)
-            .map(|k| {
-                let mut record = shooter_info[k];
-                record[2] = k as u32;
-                record
-            })
-            .collect();
-        let large_shooters = large.len() as u32;
-        shooter_info.extend(large);
+        let (mut shooter_info, large_shooters) = shooter_records(scene, &upload.shooters);
         let mut gpu_settings = gpu_settings;
         // Virtual cells shoot to every receiver their window shows: no links (a cell a
         // link leaves undrawn could light receivers through a mirror).
         if !scene.specular.is_empty() || !upload.links_fit {
             gpu_settings.link_error = 0.0;
         }
-        let max_patches = upload.max_patches;
         let pipelines = gpu.cached(|| Pipelines::new(gpu));
+        let buffers = Buffers::new(gpu, &pipelines, scene, &upload, initial, &shooter_info);
+        // The large shooters' second records live on the GPU only.
+        shooter_info.truncate(upload.shooters.len());
+        gpu_settings.raster = gpu_settings.raster.resolve(gpu, upload.masked.is_some());
+        let compute_raster = (gpu_settings.raster == Raster::Compute).then(|| {
+            raster::ComputeRaster::new(gpu, gpu.cached(|| raster::RasterPipelines::new(gpu)))
+        });
+        let atlas = VisibilityAtlas::new(
+            gpu,
+            gpu_settings.map_size,
+            FIRST_BATCH as u32 * faces_per_cell(gpu_settings.visibility),
+        );
+        let receiver_groups = crate::radiosity::cell_receivers::ReceiverGroups::new(scene);
+        let solver = GpuSolver {
+            gpu,
+            scene,
+            settings,
+            gpu_settings,
+            pipelines,
+            buffers,
+            upload,
+            choice: ShooterChoice {
+                shooter_info,
+                large_shooters,
+                weighted: false,
+                cell_weights: None,
+                link_receivers: None,
+                initial_power: None,
+                last_power: 0.0,
+            },
+            compute_raster,
+            atlas,
+            batching: Batching {
+                batch: FIRST_BATCH,
+                batch_seconds: BATCH_SECONDS,
+                fixed_batch: false,
+                culled: (0, 0),
+                batch_ranges: Vec::new(),
+                receiver_groups,
+            },
+            perspective: Perspective {
+                deferral: None,
+                stages: None,
+                map_store: map_store::MapStore::new(DEFAULT_MAP_STORE_BYTES),
+            },
+            timers: None,
+            stats: ShotStats {
+                shots: 0,
+                triangles_drawn: 0,
+                receiver_threads: 0,
+                drawn: 0,
+                skipped: 0,
+                virtual_drawn: 0,
+                times: ShotTimes::default(),
+                plan_cache: PlanCache::new(DEFAULT_PLAN_CACHE_BYTES),
+            },
+        };
+        solver.write_params(u32::MAX, 0, 0, 0..0);
+        solver
+    }
+}
+
+/// The shooters' records as the shader reads them (weight 1), then a second record of
+/// each shooter of more than [`SMALL_SHOOTER`] elements (summed by a workgroup each;
+/// `[2]` the shooter); and how many of those there are.
+fn shooter_records(scene: &RadiosityScene, shooters: &Shooters) -> (Vec<ShooterRecord>, u32) {
+    let mut records: Vec<ShooterRecord> = (0..shooters.len())
+        .map(|k| {
+            let r = scene.reflectance[shooters.material[k]].as_vec3();
+            let t = scene.transmittance[shooters.material[k]].as_vec3();
+            [
+                shooters.first[k],
+                shooters.count[k],
+                // The shooter's weight in the selection (1: its power alone).
+                1f32.to_bits(),
+                shooters.first_piece[k],
+                r.x.to_bits(),
+                r.y.to_bits(),
+                r.z.to_bits(),
+                (shooters.area[k] as f32).to_bits(),
+                t.x.to_bits(),
+                t.y.to_bits(),
+                t.z.to_bits(),
+                0,
+            ]
+        })
+        .collect();
+    let large: Vec<ShooterRecord> = (0..shooters.len())
+        .filter(|&k| shooters.count[k] > SMALL_SHOOTER)
+        .map(|k| {
+            let mut record = records[k];
+            record[2] = k as u32;
+            record
+        })
+        .collect();
+    let count = large.len() as u32;
+    records.extend(large);
+    (records, count)
+}
+
+/// A solver's own GPU buffers (its solution, the shooters' records and sums, the shot's
+/// cells) and the bind group over them with the scene's shared element buffers.
+pub(super) struct Buffers {
+    /// The uniform [`SolveParams`].
+    pub(super) params: wgpu::Buffer,
+    /// Per element: rgb radiosity and the illuminance in `w`.
+    pub(super) radiosity: wgpu::Buffer,
+    /// Per element: rgb unshot radiosity.
+    pub(super) unshot: wgpu::Buffer,
+    /// The selection's record (the chosen shooter and the power sums).
+    pub(super) selection: wgpu::Buffer,
+    /// Per shooter its unshot power, then the selection's record.
+    pub(super) shooter_power: wgpu::Buffer,
+    /// The shooters' elements, shooter by shooter.
+    pub(super) shooter_elements: wgpu::Buffer,
+    /// The shot's cells, then per chart in front of the shooter its receivers' range.
+    pub(super) patches: wgpu::Buffer,
+    /// The bind group over `shared_buffers`.
+    pub(super) shared: wgpu::BindGroup,
+    /// The buffers `shared` binds, binding by binding (it is bound again when the
+    /// held-back buffer grows: [`super::deferred`]).
+    pub(super) shared_buffers: Vec<wgpu::Buffer>,
+    /// Per cell of the shot: rgb unshot radiosity it shoots.
+    pub(super) patch_delta: wgpu::Buffer,
+    /// The shooters' records (writable: the selection's weights change).
+    pub(super) shooter_buf: wgpu::Buffer,
+}
+
+impl Buffers {
+    /// The buffers of a solver of `scene` over `upload`, starting from `initial`, with the
+    /// shooters' `records` ([`shooter_records`]).
+    fn new(
+        gpu: &Gpu,
+        pipelines: &Pipelines,
+        scene: &RadiosityScene,
+        upload: &SceneUpload,
+        initial: &InitialState,
+        records: &[ShooterRecord],
+    ) -> Buffers {
+        let shooters = &upload.shooters;
+        let el = &scene.elements;
+        let n = el.len();
+        let start: Vec<[f32; 4]> = initial.radiosity.iter().map(|b| v4(*b, 0.0)).collect();
+        let start_lit: Vec<[f32; 4]> = (0..n)
+            .map(|e| v4(initial.radiosity[e], initial.illuminance[e] as f32))
+            .collect();
+        let max_patches = upload.max_patches;
         let params = gpu.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("radiosity params"),
             size: std::mem::size_of::<SolveParams>() as u64,
@@ -340,8 +450,7 @@ impl<'a> GpuSolver<'a> {
         let radiosity = storage(gpu, "radiosity", bytemuck::cast_slice(&start_lit), true);
         let unshot = storage(gpu, "unshot", bytemuck::cast_slice(&start), true);
         // Writable: the selection's weights change (view-driven shooting).
-        let shooter_buf = storage(gpu, "shooters", bytemuck::cast_slice(&shooter_info), true);
-        shooter_info.truncate(shooters.len());
+        let shooter_buf = storage(gpu, "shooters", bytemuck::cast_slice(records), true);
         // The selection record follows the shooters' sums.
         let shooter_power = storage(
             gpu,
@@ -350,8 +459,7 @@ impl<'a> GpuSolver<'a> {
             true,
         );
         let selection = storage(gpu, "selection", &[0u8; 48], true);
-        // The shot's cells, then per chart in front of the shooter its receivers' range.
-        let patch_buf = storage(
+        let patches = storage(
             gpu,
             "patches",
             &vec![0u8; 16 * (max_patches + el.charts.len().max(1))],
@@ -373,7 +481,7 @@ impl<'a> GpuSolver<'a> {
         let reach_scale = storage(
             gpu,
             "reach scale",
-            bytemuck::cast_slice(&vec![1f32; el.len().max(1)]),
+            bytemuck::cast_slice(&vec![1f32; n.max(1)]),
             true,
         );
         let [element_points, element_normals, element_receiving] = upload.elements.clone();
@@ -385,7 +493,7 @@ impl<'a> GpuSolver<'a> {
             unshot.clone(),
             shooter_buf.clone(),
             shooter_power.clone(),
-            patch_buf.clone(),
+            patches.clone(),
             patch_delta.clone(),
             element_normals,
             held,
@@ -393,64 +501,19 @@ impl<'a> GpuSolver<'a> {
             held_back,
             reach_scale,
         ];
-        let shared = shared_bind_group(gpu, &pipelines, &shared_buffers);
-        gpu_settings.raster = gpu_settings.raster.resolve(gpu, upload.masked.is_some());
-        let compute_raster = (gpu_settings.raster == Raster::Compute).then(|| {
-            raster::ComputeRaster::new(gpu, gpu.cached(|| raster::RasterPipelines::new(gpu)))
-        });
-        let atlas = VisibilityAtlas::new(
-            gpu,
-            gpu_settings.map_size,
-            FIRST_BATCH as u32 * faces_per_cell(gpu_settings.visibility),
-        );
-        let receiver_groups = crate::radiosity::cell_receivers::ReceiverGroups::new(scene);
-        let solver = GpuSolver {
-            gpu,
-            scene,
-            settings,
-            gpu_settings,
-            pipelines,
+        let shared = shared_bind_group(gpu, pipelines, &shared_buffers);
+        Buffers {
             params,
             radiosity,
             unshot,
             selection,
             shooter_power,
             shooter_elements,
-            patches: patch_buf,
+            patches,
             shared,
             shared_buffers,
-            upload,
-            initial_power: None,
-            last_power: 0.0,
-            compute_raster,
-            triangles_drawn: 0,
-            atlas,
-            shots: 0,
-            shooter_info,
-            shooter_buf,
-            weighted: false,
-            cell_weights: None,
-            link_receivers: None,
-            deferral: None,
-            stages: None,
-            batch: FIRST_BATCH,
-            batch_seconds: BATCH_SECONDS,
-            fixed_batch: false,
             patch_delta,
-            culled: (0, 0),
-            batch_ranges: Vec::new(),
-            receiver_groups,
-            large_shooters,
-            receiver_threads: 0,
-            timers: None,
-            map_store: map_store::MapStore::new(DEFAULT_MAP_STORE_BYTES),
-            drawn: 0,
-            skipped: 0,
-            times: ShotTimes::default(),
-            plan_cache: PlanCache::new(DEFAULT_PLAN_CACHE_BYTES),
-            virtual_drawn: 0,
-        };
-        solver.write_params(u32::MAX, 0, 0, 0..0);
-        solver
+            shooter_buf,
+        }
     }
 }

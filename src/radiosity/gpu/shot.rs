@@ -11,6 +11,23 @@ use crate::radiosity::atlas::VisibilityAtlas;
 use crate::radiosity::links::{Links, LINK_LEVELS};
 use crate::radiosity::shooters::{cell_planes, PlannedPatch, ShotPlan};
 
+/// How a shot's cells are cut into batches, and the receivers of the batch at work.
+pub(super) struct Batching {
+    /// Patches in the next batch of a shot: adapted so a batch takes about
+    /// [`super::BATCH_SECONDS`] (between 1 and [`PATCHES_PER_BATCH`]).
+    pub(super) batch: usize,
+    /// What a batch should take, seconds ([`super::BATCH_SECONDS`] unless set).
+    pub(super) batch_seconds: f64,
+    /// Whether `batch` stays as set ([`GpuSolver::fix_batch`]).
+    pub(super) fixed_batch: bool,
+    /// The shot's receiver ranges and threads (every element of them) …
+    pub(super) culled: (u32, u32),
+    /// … and the ranges themselves (first element, count, 1 where they hold).
+    pub(super) batch_ranges: Vec<(u32, u32, u32)>,
+    /// The receivers by patch, for each drawn cell's own receivers.
+    pub(super) receiver_groups: crate::radiosity::cell_receivers::ReceiverGroups,
+}
+
 /// How a batch's cells get their visibility maps.
 #[derive(Clone, Copy)]
 pub(super) enum CellMaps<'a> {
@@ -66,7 +83,7 @@ impl<'a> GpuSolver<'a> {
     /// radiosity is gathered there (before any is cleared), and — when there are coarse
     /// cells — read back for the links' oracle.
     fn plan(&mut self, s: usize) -> Result<(ShotPlan, Links, Vec<[f32; 4]>), GpuError> {
-        let initial = self.initial_power.unwrap_or(0.0);
+        let initial = self.choice.initial_power.unwrap_or(0.0);
         let budget = self.gpu_settings.cell_power * initial;
         let levels = if self.gpu_settings.link_error > 0.0 {
             LINK_LEVELS
@@ -77,24 +94,24 @@ impl<'a> GpuSolver<'a> {
         let mut power = self.piece_powers(s)?;
         // Importance-weighted refinement: the cells' oracle sees a piece's power times its
         // weight.
-        if let Some(w) = &self.cell_weights {
+        if let Some(w) = &self.choice.cell_weights {
             for (p, k) in power.iter_mut().zip(self.upload.shooters.pieces_of(s)) {
                 *p *= w[k];
             }
         }
-        lap(&mut self.times.piece_powers, &mut clock);
+        lap(&mut self.stats.times.piece_powers, &mut clock);
         let plan = self.upload.shooters.plan_shot(
             self.scene,
             s,
             &power,
             budget,
             levels,
-            &mut self.plan_cache,
+            &mut self.stats.plan_cache,
         );
-        lap(&mut self.times.plan, &mut clock);
+        lap(&mut self.stats.times.plan, &mut clock);
         let first = self.upload.shooters.first[s];
         self.gpu.queue.write_buffer(
-            &self.shooter_elements,
+            &self.buffers.shooter_elements,
             4 * first as u64,
             bytemuck::cast_slice(&plan.order),
         );
@@ -112,7 +129,7 @@ impl<'a> GpuSolver<'a> {
             .collect();
         self.gpu
             .queue
-            .write_buffer(&self.patches, 0, bytemuck::cast_slice(&patches));
+            .write_buffer(&self.buffers.patches, 0, bytemuck::cast_slice(&patches));
         let cells = plan.patches.len() as u32;
         self.write_params(s as u32, 0, cells, 0..0);
         let mut enc = self.gpu.device.create_command_encoder(&Default::default());
@@ -121,11 +138,15 @@ impl<'a> GpuSolver<'a> {
         // Read back for the links' oracle, and to be shot again later when receivers
         // wait (perspective-driven radiosity).
         let coarse = plan.patches.iter().any(|p| p.level > 0);
-        let waiting = self.deferral.as_ref().is_some_and(|d| d.any_waiting());
+        let waiting = self
+            .perspective
+            .deferral
+            .as_ref()
+            .is_some_and(|d| d.any_waiting());
         let delta: Vec<[f32; 4]> = if coarse || waiting {
             let d = self
                 .gpu
-                .read_f32_prefix(&self.patch_delta, 16 * cells as u64)?;
+                .read_f32_prefix(&self.buffers.patch_delta, 16 * cells as u64)?;
             d.chunks_exact(4)
                 .map(|c| [c[0], c[1], c[2], c[3]])
                 .collect()
@@ -137,14 +158,15 @@ impl<'a> GpuSolver<'a> {
         } else {
             vec![0.0; plan.patches.len()]
         };
-        lap(&mut self.times.gather, &mut clock);
+        lap(&mut self.stats.times.gather, &mut clock);
         let epsilon = self.gpu_settings.link_error * initial / self.scene.total_area.max(1e-300);
         let receivers = self
+            .choice
             .link_receivers
             .as_ref()
             .unwrap_or(&self.upload.receivers);
         let links = crate::radiosity::links::link(&plan, &radiosity, receivers, epsilon);
-        lap(&mut self.times.links, &mut clock);
+        lap(&mut self.stats.times.links, &mut clock);
         Ok((plan, links, delta))
     }
 
@@ -154,11 +176,11 @@ impl<'a> GpuSolver<'a> {
     fn piece_powers(&mut self, s: usize) -> Result<Vec<f64>, GpuError> {
         let pieces = self.upload.shooters.pieces_of(s);
         if pieces.len() == 1 {
-            return Ok(vec![self.last_power]);
+            return Ok(vec![self.choice.last_power]);
         }
         let first = self.upload.shooters.first[s];
         self.gpu.queue.write_buffer(
-            &self.shooter_elements,
+            &self.buffers.shooter_elements,
             4 * first as u64,
             bytemuck::cast_slice(self.upload.shooters.elements_of(s)),
         );
@@ -171,7 +193,7 @@ impl<'a> GpuSolver<'a> {
             .collect();
         self.gpu
             .queue
-            .write_buffer(&self.patches, 0, bytemuck::cast_slice(&records));
+            .write_buffer(&self.buffers.patches, 0, bytemuck::cast_slice(&records));
         let count = records.len() as u32;
         self.write_params(s as u32, 0, count, 0..0);
         let mut enc = self.gpu.device.create_command_encoder(&Default::default());
@@ -179,7 +201,7 @@ impl<'a> GpuSolver<'a> {
         self.gpu.queue.submit([enc.finish()]);
         let sums = self
             .gpu
-            .read_f32_prefix(&self.patch_delta, 16 * u64::from(count))?;
+            .read_f32_prefix(&self.buffers.patch_delta, 16 * u64::from(count))?;
         Ok(sums
             .chunks_exact(4)
             .map(|d| unshot_magnitude(&[d[0], d[1], d[2], d[3]]))
@@ -219,7 +241,7 @@ impl<'a> GpuSolver<'a> {
             // its receivers are culled to the front of any of their planes. Batches of
             // one facing were each one GPU round trip per cell on a curved model (2.5 ms
             // a cell on an H200 whatever the map size: the cathedral's shots).
-            while t < tops.len() && (t == from || drawn.len() < self.batch) {
+            while t < tops.len() && (t == from || drawn.len() < self.batching.batch) {
                 drawn.extend((tops[t]..subtree_end(t)).filter(|&k| links.drawn[k]));
                 t += 1;
             }
@@ -231,46 +253,46 @@ impl<'a> GpuSolver<'a> {
             let imaged: Vec<PlannedPatch> =
                 images.iter().flatten().map(|v| v.planned.clone()).collect();
             let waiting = self.cull(&plan.patches[tops[from]..subtree_end(t - 1)], &imaged);
-            lap(&mut self.times.cull, &mut clock);
+            lap(&mut self.stats.times.cull, &mut clock);
             let clear = if from == 0 { 0..plan.shot } else { 0..0 };
-            let maps = if waiting && self.map_store.is_enabled() {
+            let maps = if waiting && self.perspective.map_store.is_enabled() {
                 CellMaps::DrawAndKeep
             } else {
                 CellMaps::Draw
             };
             let batch = (drawn.as_slice(), images.as_slice());
             let (submitted, slots) = self.shoot_batch(s, &plan, &links, batch, clear, maps)?;
-            lap(&mut self.times.record, &mut clock);
+            lap(&mut self.stats.times.record, &mut clock);
             if waiting {
                 missed.extend_from_slice(&drawn);
                 kept.extend(slots);
             }
             let cells: usize = (tops[from]..subtree_end(t - 1)).count();
-            self.drawn += drawn.len();
-            self.virtual_drawn += imaged.len();
-            self.skipped += cells - drawn.len();
+            self.stats.drawn += drawn.len();
+            self.stats.virtual_drawn += imaged.len();
+            self.stats.skipped += cells - drawn.len();
             if t < tops.len() {
                 if let Some(index) = previous.replace(submitted) {
                     self.gpu.wait_for(index)?;
                 }
-                lap(&mut self.times.batch_wait, &mut clock);
+                lap(&mut self.stats.times.batch_wait, &mut clock);
                 // Twice as many next time while well under the target, half when over.
                 let took = started.elapsed().as_secs_f64();
-                if self.fixed_batch {
-                } else if took < 0.5 * self.batch_seconds {
-                    self.batch = (self.batch * 2).min(PATCHES_PER_BATCH);
-                } else if took > self.batch_seconds {
-                    self.batch = (self.batch / 2).max(1);
+                if self.batching.fixed_batch {
+                } else if took < 0.5 * self.batching.batch_seconds {
+                    self.batching.batch = (self.batching.batch * 2).min(PATCHES_PER_BATCH);
+                } else if took > self.batching.batch_seconds {
+                    self.batching.batch = (self.batching.batch / 2).max(1);
                 }
                 if stop() {
                     self.restore(s, tops[t], plan.patches.len());
-                    self.shots += 1;
+                    self.stats.shots += 1;
                     self.defer(s, plan, links, delta, missed, kept);
                     return Ok(false);
                 }
             }
         }
-        self.shots += 1;
+        self.stats.shots += 1;
         self.defer(s, plan, links, delta, missed, kept);
         Ok(true)
     }
@@ -289,7 +311,11 @@ impl<'a> GpuSolver<'a> {
     /// hold into the held-back buffer ([`GpuSolver::set_reception`]). True when some
     /// chart in front waits.
     fn cull(&mut self, patches: &[PlannedPatch], imaged: &[PlannedPatch]) -> bool {
-        let deferral = self.deferral.as_ref().filter(|d| d.any_not_receiving());
+        let deferral = self
+            .perspective
+            .deferral
+            .as_ref()
+            .filter(|d| d.any_not_receiving());
         // Exact where receivers wait or hold (perspective-driven: what is skipped is
         // caught up later), else by groups of charts: a superset, far cheaper on many
         // tiny charts.
@@ -327,7 +353,7 @@ impl<'a> GpuSolver<'a> {
     /// [`ReceiverBoxes::merged_ranges`](crate::radiosity::links::ReceiverBoxes::merged_ranges).
     pub(super) fn set_receivers(&mut self, charts: &[usize], holding: &[usize]) {
         let mut threads = 0u32;
-        self.batch_ranges.clear();
+        self.batching.batch_ranges.clear();
         let records: Vec<[u32; 4]> = [(charts, 0), (holding, 1)]
             .into_iter()
             .flat_map(|(charts, hold)| {
@@ -338,7 +364,7 @@ impl<'a> GpuSolver<'a> {
                     .map(move |range| (range, hold))
             })
             .map(|((first, count), hold)| {
-                self.batch_ranges.push((first, count, hold));
+                self.batching.batch_ranges.push((first, count, hold));
                 let r = [first, threads, 0, hold];
                 threads += count;
                 r
@@ -346,12 +372,12 @@ impl<'a> GpuSolver<'a> {
             .collect();
         if !records.is_empty() {
             self.gpu.queue.write_buffer(
-                &self.patches,
+                &self.buffers.patches,
                 16 * self.upload.max_patches as u64,
                 bytemuck::cast_slice(&records),
             );
         }
-        self.culled = (records.len() as u32, threads);
+        self.batching.culled = (records.len() as u32, threads);
     }
 
     /// Gives the elements of the top cells among patches `first..end` of shooter `s`'s
@@ -403,12 +429,17 @@ impl<'a> GpuSolver<'a> {
             self.record_part(&mut enc, plan, links, batch, part_stored.unwrap_or(&[]))?;
             if matches!(maps, CellMaps::DrawAndKeep) {
                 for k in 0..part.len() as u32 {
-                    let slot = self
-                        .map_store
-                        .allocate(self.gpu, &mut enc, self.atlas.size, faces);
+                    let slot = self.perspective.map_store.allocate(
+                        self.gpu,
+                        &mut enc,
+                        self.atlas.size,
+                        faces,
+                    );
                     if let Some(at) = slot {
                         let cell = (k * faces, at, faces);
-                        self.map_store.copy_cell(&mut enc, &self.atlas, cell, true);
+                        self.perspective
+                            .map_store
+                            .copy_cell(&mut enc, &self.atlas, cell, true);
                     }
                     slots.push(slot);
                 }

@@ -114,18 +114,18 @@ impl Session<'_> {
             ));
         }
         let last = self.log().last().copied();
-        let drawn = solver.drawn + solver.virtual_drawn;
+        let drawn = solver.stats.drawn + solver.stats.virtual_drawn;
         lines.push(format!(
             "{} shots, {:.2} % converged ({}) in {:.2} s (+{prepared_s:.2} s to prepare); {drawn} visibility maps drawn{}, {} cells skipped (no receiver takes light from them); receivers culled to {:.0} % of the elements per map{}",
-            solver.shots,
+            solver.stats.shots,
             100.0 * last.map_or(1.0, |p| p.convergence),
             self.stopped().unwrap_or(StopReason::Cancelled),
             last.map_or(0.0, |p| p.seconds),
-            match solver.virtual_drawn {
+            match solver.stats.virtual_drawn {
                 0 => String::new(),
                 n => format!(" ({n} of them cells' images through mirrors and glass)"),
             },
-            solver.skipped,
+            solver.stats.skipped,
             100.0 * solver.receiver_share(),
             peak_memory("; "),
         ));

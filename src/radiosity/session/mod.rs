@@ -627,7 +627,7 @@ impl Solution {
         scene: &Scene,
         choice: BakeChoice,
         budget: Option<u64>,
-    ) -> anyhow::Result<(Vec<u8>, BakePlan, LightMap)> {
+    ) -> Result<(Vec<u8>, BakePlan, LightMap), super::export::ExportError> {
         let names: Vec<String> = scene.materials.iter().map(|m| m.name.clone()).collect();
         let material_bake: Vec<_> = scene.materials.iter().map(|m| m.bake).collect();
         let rscene = &self.prepared.rscene;
