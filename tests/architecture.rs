@@ -876,3 +876,82 @@ fn a_planted_anyhow_use_is_found() {
     let planted = "// anyhow::Result in a comment\nuse anyhow::Context;\nfn f() -> anyhow::Result<()> {\n    Err(anyhow!(\"no\"))\n}\n";
     assert_eq!(anyhow_uses_in(planted), vec![2, 3, 4]);
 }
+
+/// The longest a function of the library may grow, in lines from its `fn` to its closing
+/// brace (the issue that split the long ones set it; a longer one is split while touched).
+const MAX_FUNCTION_LINES: usize = 150;
+
+/// Functions of `text` (with bodies) longer than `max` lines: `(line of fn, name, lines)`.
+/// A function ends at the first line after its signature that is its indentation and `}`
+/// (rustfmt's layout).
+fn long_functions(text: &str, max: usize) -> Vec<(usize, String, usize)> {
+    let lines: Vec<&str> = text.lines().collect();
+    let mut out = Vec::new();
+    for (i, line) in lines.iter().enumerate() {
+        let code = line.trim_start();
+        let indent = &line[..line.len() - code.len()];
+        let after_qualifiers = code
+            .trim_start_matches("pub(crate) ")
+            .trim_start_matches("pub(super) ")
+            .trim_start_matches("pub ")
+            .trim_start_matches("const ")
+            .trim_start_matches("unsafe ");
+        let Some(rest) = after_qualifiers.strip_prefix("fn ") else {
+            continue;
+        };
+        let name: String = rest
+            .chars()
+            .take_while(|c| c.is_alphanumeric() || *c == '_')
+            .collect();
+        // The signature ends at the first line with `{` (a body) or `;` (none).
+        let Some(open) =
+            (i..lines.len()).find(|&k| lines[k].contains('{') || lines[k].ends_with(';'))
+        else {
+            continue;
+        };
+        if !lines[open].contains('{') || lines[open].trim_end().ends_with('}') {
+            continue;
+        }
+        let close = format!("{indent}}}");
+        if let Some(end) = (open + 1..lines.len()).find(|&k| lines[k] == close) {
+            let n = end - i + 1;
+            if n > max {
+                out.push((i + 1, name, n));
+            }
+        }
+    }
+    out
+}
+
+/// No function of the crate (library and front ends) is longer than
+/// [`MAX_FUNCTION_LINES`]: long ones were split into steps that each have a name.
+#[test]
+fn no_function_is_longer_than_the_limit() {
+    let root = common::root();
+    let mut offences = Vec::new();
+    for f in rust_files(&root.join("src")) {
+        let text = std::fs::read_to_string(&f).unwrap();
+        for (line, name, n) in long_functions(&text, MAX_FUNCTION_LINES) {
+            let rel = f.strip_prefix(&root).unwrap().display().to_string();
+            offences.push(format!("{rel}:{line} fn {name}: {n} lines"));
+        }
+    }
+    assert!(
+        offences.is_empty(),
+        "functions over {MAX_FUNCTION_LINES} lines (split them into named steps):\n{}",
+        offences.join("\n")
+    );
+}
+
+#[test]
+fn a_planted_long_function_is_found() {
+    let body = "    let x = 1;\n".repeat(5);
+    let planted = format!(
+        "fn short() {{}}\n\npub(super) fn long(\n    a: u32,\n) -> u32 {{\n{body}    a\n}}\n\nfn decl();\n    fn inner() {{\n{body}    }}\n"
+    );
+    assert_eq!(
+        long_functions(&planted, 6),
+        vec![(3, "long".to_string(), 10), (15, "inner".to_string(), 7)]
+    );
+    assert!(long_functions(&planted, 10).is_empty());
+}

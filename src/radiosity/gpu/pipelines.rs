@@ -50,72 +50,10 @@ pub(super) fn shared_bind_group(
 
 impl Pipelines {
     pub(super) fn new(gpu: &Gpu) -> Pipelines {
-        use wgpu::BufferBindingType as B;
         let dev = &gpu.device;
-        let compute = wgpu::ShaderStages::COMPUTE;
-        let kinds = [
-            B::Uniform,
-            B::Storage { read_only: true },
-            B::Storage { read_only: true },
-            B::Storage { read_only: false },
-            B::Storage { read_only: false },
-            B::Storage { read_only: true },
-            B::Storage { read_only: false },
-            B::Storage { read_only: true },
-            B::Storage { read_only: false },
-            B::Storage { read_only: true },
-            B::Storage { read_only: false },
-            B::Storage { read_only: true },
-            B::Storage { read_only: false },
-            B::Storage { read_only: true },
-        ];
-        let entries: Vec<_> = kinds
-            .iter()
-            .enumerate()
-            .map(|(i, &k)| entry(i as u32, compute, buffer_binding(k, false)))
-            .collect();
-        let shared_layout = dev.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("radiosity"),
-            entries: &entries,
-        });
-        let shot_layout = dev.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("radiosity shot"),
-            entries: &[
-                entry(0, compute, buffer_binding(B::Uniform, true)),
-                entry(
-                    1,
-                    compute,
-                    wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                        multisampled: false,
-                    },
-                ),
-                entry(
-                    2,
-                    compute,
-                    buffer_binding(B::Storage { read_only: true }, false),
-                ),
-                entry(
-                    3,
-                    compute,
-                    buffer_binding(B::Storage { read_only: true }, false),
-                ),
-                entry(
-                    4,
-                    compute,
-                    buffer_binding(B::Storage { read_only: true }, false),
-                ),
-            ],
-        });
-        let face_layout = dev.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("visibility face"),
-            entries: &[entry(
-                0,
-                wgpu::ShaderStages::VERTEX_FRAGMENT,
-                buffer_binding(B::Uniform, true),
-            )],
-        });
+        let shared_layout = shared_layout(dev);
+        let shot_layout = shot_layout(dev);
+        let face_layout = face_layout(dev);
         let module = dev.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("radiosity"),
             source: wgpu::ShaderSource::Wgsl(crate::gpu::shaders::radiosity().into()),
@@ -162,33 +100,7 @@ impl Pipelines {
         };
         let visibility = visibility_pipeline("fs_visibility");
         let visibility_clipped = visibility_pipeline("fs_visibility_clipped");
-        let clear_tile = dev.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("visibility tile clear"),
-            layout: Some(&vis_layout),
-            vertex: wgpu::VertexState {
-                module: &vis_module,
-                entry_point: Some("vs_clear"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: atlas::DEPTH_FORMAT,
-                depth_write_enabled: Some(true),
-                depth_compare: Some(wgpu::CompareFunction::Always),
-                stencil: Default::default(),
-                bias: Default::default(),
-            }),
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &vis_module,
-                entry_point: Some("fs_clear"),
-                compilation_options: Default::default(),
-                targets: &[Some(atlas::MAP_FORMAT.into())],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        let clear_tile = clear_tile_pipeline(dev, &vis_layout, &vis_module);
         Pipelines {
             clear_tile,
             shooter_sums: compute_pipeline("shooter_sums", &shared_only),
@@ -207,4 +119,123 @@ impl Pipelines {
             vis_module,
         }
     }
+}
+
+/// Bind group 0 of every compute pass: the buffers of [`shared_bind_group`], binding by
+/// binding (uniform parameters, then storage read-only or read-write as radiosity.wgsl
+/// declares them).
+fn shared_layout(dev: &wgpu::Device) -> wgpu::BindGroupLayout {
+    use wgpu::BufferBindingType as B;
+    let compute = wgpu::ShaderStages::COMPUTE;
+    let kinds = [
+        B::Uniform,
+        B::Storage { read_only: true },
+        B::Storage { read_only: true },
+        B::Storage { read_only: false },
+        B::Storage { read_only: false },
+        B::Storage { read_only: true },
+        B::Storage { read_only: false },
+        B::Storage { read_only: true },
+        B::Storage { read_only: false },
+        B::Storage { read_only: true },
+        B::Storage { read_only: false },
+        B::Storage { read_only: true },
+        B::Storage { read_only: false },
+        B::Storage { read_only: true },
+    ];
+    let entries: Vec<_> = kinds
+        .iter()
+        .enumerate()
+        .map(|(i, &k)| entry(i as u32, compute, buffer_binding(k, false)))
+        .collect();
+    dev.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("radiosity"),
+        entries: &entries,
+    })
+}
+
+/// Bind group 1 of the receive passes: the shot's record (at a dynamic offset), the
+/// visibility atlas, the shot records, the windows' corners and the receiver runs.
+fn shot_layout(dev: &wgpu::Device) -> wgpu::BindGroupLayout {
+    use wgpu::BufferBindingType as B;
+    let compute = wgpu::ShaderStages::COMPUTE;
+    dev.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("radiosity shot"),
+        entries: &[
+            entry(0, compute, buffer_binding(B::Uniform, true)),
+            entry(
+                1,
+                compute,
+                wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                    view_dimension: wgpu::TextureViewDimension::D2,
+                    multisampled: false,
+                },
+            ),
+            entry(
+                2,
+                compute,
+                buffer_binding(B::Storage { read_only: true }, false),
+            ),
+            entry(
+                3,
+                compute,
+                buffer_binding(B::Storage { read_only: true }, false),
+            ),
+            entry(
+                4,
+                compute,
+                buffer_binding(B::Storage { read_only: true }, false),
+            ),
+        ],
+    })
+}
+
+/// The visibility passes' bind group: one face's record at a dynamic offset.
+fn face_layout(dev: &wgpu::Device) -> wgpu::BindGroupLayout {
+    use wgpu::BufferBindingType as B;
+    dev.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("visibility face"),
+        entries: &[entry(
+            0,
+            wgpu::ShaderStages::VERTEX_FRAGMENT,
+            buffer_binding(B::Uniform, true),
+        )],
+    })
+}
+
+/// Clears one tile of the atlas (depth and distance), drawn as a triangle over its
+/// viewport.
+fn clear_tile_pipeline(
+    dev: &wgpu::Device,
+    vis_layout: &wgpu::PipelineLayout,
+    vis_module: &wgpu::ShaderModule,
+) -> wgpu::RenderPipeline {
+    dev.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some("visibility tile clear"),
+        layout: Some(vis_layout),
+        vertex: wgpu::VertexState {
+            module: vis_module,
+            entry_point: Some("vs_clear"),
+            compilation_options: Default::default(),
+            buffers: &[],
+        },
+        primitive: wgpu::PrimitiveState::default(),
+        depth_stencil: Some(wgpu::DepthStencilState {
+            format: atlas::DEPTH_FORMAT,
+            depth_write_enabled: Some(true),
+            depth_compare: Some(wgpu::CompareFunction::Always),
+            stencil: Default::default(),
+            bias: Default::default(),
+        }),
+        multisample: Default::default(),
+        fragment: Some(wgpu::FragmentState {
+            module: vis_module,
+            entry_point: Some("fs_clear"),
+            compilation_options: Default::default(),
+            targets: &[Some(atlas::MAP_FORMAT.into())],
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
 }

@@ -3,11 +3,14 @@
 
 use glam::Mat4;
 
+use super::pipelines::Pipelines;
+use super::setup::SceneUpload;
 use super::Visibility;
 use super::{
     dispatch_groups, faces_per_cell, raster, v4, virtual_cells, GpuSolver, TileView, FACE_STRIDE,
 };
-use crate::gpu::GpuError;
+use crate::gpu::{Gpu, GpuError};
+use crate::radiosity::atlas::VisibilityAtlas;
 use crate::radiosity::cell_receivers;
 use crate::radiosity::form_factor::FormFactorKind;
 use crate::radiosity::links::{Links, LINK_LEVELS};
@@ -211,32 +214,18 @@ impl<'a> GpuSolver<'a> {
         (drawn, images): (&[usize], &[Vec<virtual_cells::VirtualCell>]),
         stored: &[Option<u32>],
     ) -> Result<(), GpuError> {
-        let mut cells: Vec<BatchCell<'_>> = drawn
-            .iter()
-            .map(|&patch| BatchCell { patch, image: None })
-            .collect();
-        for (k, (&patch, list)) in drawn.iter().zip(images).enumerate() {
-            let first = cells.len();
-            for v in list {
-                let parent = match v.parent {
-                    0 => k,
-                    j => first + j - 1,
-                };
-                cells.push(BatchCell {
-                    patch,
-                    image: Some((v, parent as u32)),
-                });
-            }
-        }
+        let cells = batch_cells(drawn, images);
         let (runs, receivers) = self.cell_receivers(plan, links, &cells);
         let (shots, faces, views) = self.shot_records(plan, links, &cells, &receivers);
         let faces_per_cell = faces_per_cell(self.gpu_settings.visibility);
         // Kept maps go back into their tiles; those tiles are not drawn.
-        let restored = |tile: u32| {
-            stored
-                .get((tile / faces_per_cell) as usize)
-                .is_some_and(|s| s.is_some())
-        };
+        let restored: Vec<bool> = (0..views.len() as u32)
+            .map(|tile| {
+                stored
+                    .get((tile / faces_per_cell) as usize)
+                    .is_some_and(|s| s.is_some())
+            })
+            .collect();
         let queries = match &mut self.timers {
             Some(t) => Some(t.next_batch(self.gpu)?),
             None => None,
@@ -249,13 +238,6 @@ impl<'a> GpuSolver<'a> {
         let face_buf = self
             .gpu
             .buffer_with("faces", &faces, U::UNIFORM | U::STORAGE);
-        fn binding(buffer: &wgpu::Buffer, size: usize) -> wgpu::BindingResource<'_> {
-            wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-                buffer,
-                offset: 0,
-                size: wgpu::BufferSize::new(size as u64),
-            })
-        }
         let shot_bind = self.gpu.bind_group(
             "shot",
             &self.pipelines.shot_layout,
@@ -267,102 +249,30 @@ impl<'a> GpuSolver<'a> {
                 (4, runs.as_entire_binding()),
             ],
         );
-        let mut ranges = Vec::new();
-        if let Some(compute) = &mut self.compute_raster {
-            let mut work = raster::RasterWork::new();
-            for (tile, view) in views.iter().enumerate() {
-                let tile = tile as u32;
-                if restored(tile) {
-                    continue;
-                }
-                self.upload
-                    .chunks
-                    .visible(view, self.gpu_settings.chunk_culling, &mut ranges);
-                for &(first, count) in &ranges {
-                    work.push(tile, first, count);
-                    self.stats.triangles_drawn += u64::from(count / 3);
-                }
-            }
-            compute.record(
-                self.gpu,
+        let maps = MapPass {
+            gpu: self.gpu,
+            pipelines: &self.pipelines,
+            atlas: &self.atlas,
+            upload: &self.upload,
+            chunk_culling: self.gpu_settings.chunk_culling,
+            views: &views,
+            restored: &restored,
+        };
+        self.stats.triangles_drawn += match &mut self.compute_raster {
+            Some(compute) => maps.record_compute(
+                compute,
                 enc,
-                &self.atlas,
-                (&self.upload.vertices, &self.upload.vertex_indices),
                 &face_buf,
-                &work,
-                views.len() as u32,
                 queries.as_ref().map(|q| q.maps_compute()),
-            );
-        } else {
-            let face_bind = self.gpu.bind_group(
-                "faces",
-                &self.pipelines.face_layout,
-                &[(0, binding(&face_buf, std::mem::size_of::<FaceGpu>()))],
-            );
-            // Kept, not cleared: each tile is cleared by its own draw (and a discarded
-            // depth would be cleared whole by wgpu before the next load).
-            let kept = wgpu::Operations {
-                load: wgpu::LoadOp::Load,
-                store: wgpu::StoreOp::Store,
-            };
-            let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("visibility"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: &self.atlas.view,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: kept,
-                })],
-                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: &self.atlas.depth_view,
-                    depth_ops: Some(wgpu::Operations {
-                        load: wgpu::LoadOp::Load,
-                        store: wgpu::StoreOp::Store,
-                    }),
-                    stencil_ops: None,
-                }),
-                timestamp_writes: queries.as_ref().map(|q| q.maps()),
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
-            pass.set_vertex_buffer(0, self.upload.vertices.slice(..));
-            pass.set_index_buffer(
-                self.upload.vertex_indices.slice(..),
-                wgpu::IndexFormat::Uint32,
-            );
-            let size = self.atlas.size;
-            for (tile, view) in views.iter().enumerate() {
-                let tile = tile as u32;
-                if restored(tile) {
-                    continue;
-                }
-                let (x, y) = self.atlas.origin(tile);
-                pass.set_viewport(x as f32, y as f32, size as f32, size as f32, 0.0, 1.0);
-                pass.set_scissor_rect(x, y, size, size);
-                pass.set_bind_group(0, &face_bind, &[(u64::from(tile) * FACE_STRIDE) as u32]);
-                pass.set_pipeline(&self.pipelines.clear_tile);
-                pass.draw(0..3, 0..1);
+            ),
+            None => maps.record_render(
+                enc,
+                &face_buf,
                 // A virtual cell's tiles follow the real cells'.
-                let clipped = tile / faces_per_cell >= drawn.len() as u32;
-                pass.set_pipeline(if clipped {
-                    &self.pipelines.visibility_clipped
-                } else {
-                    &self.pipelines.visibility
-                });
-                self.upload
-                    .chunks
-                    .visible(view, self.gpu_settings.chunk_culling, &mut ranges);
-                for &(first, count) in &ranges {
-                    pass.draw_indexed(first..first + count, 0, 0..1);
-                    self.stats.triangles_drawn += u64::from(count / 3);
-                }
-                if let Some(masked) = &self.upload.masked {
-                    masked.draw(&mut pass, clipped);
-                    self.stats.triangles_drawn += u64::from(masked.triangle_count());
-                    pass.set_vertex_buffer(0, self.upload.vertices.slice(..));
-                }
-            }
-        }
+                drawn.len() as u32 * faces_per_cell,
+                queries.as_ref().map(|q| q.maps()),
+            ),
+        };
         // After the maps: the compute rasterizer writes every tile of the batch.
         for (k, slot) in stored.iter().enumerate() {
             if let &Some(at) = slot {
@@ -440,5 +350,171 @@ impl<'a> GpuSolver<'a> {
             wgpu::BufferUsages::STORAGE,
         );
         (buffer, receivers)
+    }
+}
+
+/// A buffer bound from its start, `size` bytes (a dynamic-offset uniform's one record).
+fn binding(buffer: &wgpu::Buffer, size: usize) -> wgpu::BindingResource<'_> {
+    wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+        buffer,
+        offset: 0,
+        size: wgpu::BufferSize::new(size as u64),
+    })
+}
+
+/// A batch's cells: the drawn (real) cells in order, then each one's virtual cells
+/// ([`virtual_cells`]), each with the batch record of the cell it images (its real cell,
+/// or the virtual cell before it in the chain).
+fn batch_cells<'c>(
+    drawn: &[usize],
+    images: &'c [Vec<virtual_cells::VirtualCell>],
+) -> Vec<BatchCell<'c>> {
+    let mut cells: Vec<BatchCell<'c>> = drawn
+        .iter()
+        .map(|&patch| BatchCell { patch, image: None })
+        .collect();
+    for (k, (&patch, list)) in drawn.iter().zip(images).enumerate() {
+        let first = cells.len();
+        for v in list {
+            let parent = match v.parent {
+                0 => k,
+                j => first + j - 1,
+            };
+            cells.push(BatchCell {
+                patch,
+                image: Some((v, parent as u32)),
+            });
+        }
+    }
+    cells
+}
+
+/// What drawing a batch's visibility maps reads from its solver: the tiles' views and
+/// which of them a kept map restores (those are not drawn).
+struct MapPass<'s> {
+    gpu: &'s Gpu,
+    pipelines: &'s Pipelines,
+    atlas: &'s VisibilityAtlas,
+    upload: &'s SceneUpload,
+    chunk_culling: bool,
+    views: &'s [TileView],
+    restored: &'s [bool],
+}
+
+impl MapPass<'_> {
+    /// Draws the tiles with the compute rasterizer; returns the triangles drawn.
+    fn record_compute(
+        &self,
+        compute: &mut raster::ComputeRaster,
+        enc: &mut wgpu::CommandEncoder,
+        face_buf: &wgpu::Buffer,
+        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) -> u64 {
+        let (mut ranges, mut triangles) = (Vec::new(), 0);
+        let mut work = raster::RasterWork::new();
+        for (tile, view) in self.views.iter().enumerate() {
+            if self.restored[tile] {
+                continue;
+            }
+            self.upload
+                .chunks
+                .visible(view, self.chunk_culling, &mut ranges);
+            for &(first, count) in &ranges {
+                work.push(tile as u32, first, count);
+                triangles += u64::from(count / 3);
+            }
+        }
+        compute.record(
+            self.gpu,
+            enc,
+            self.atlas,
+            (&self.upload.vertices, &self.upload.vertex_indices),
+            face_buf,
+            &work,
+            self.views.len() as u32,
+            timestamps,
+        );
+        triangles
+    }
+
+    /// Draws the tiles in one render pass, each cleared by its own draw; tiles from
+    /// `clipped_from` on (the virtual cells') draw nothing beyond their clip plane.
+    /// Returns the triangles drawn.
+    fn record_render(
+        &self,
+        enc: &mut wgpu::CommandEncoder,
+        face_buf: &wgpu::Buffer,
+        clipped_from: u32,
+        timestamps: Option<wgpu::RenderPassTimestampWrites<'_>>,
+    ) -> u64 {
+        let (mut ranges, mut triangles) = (Vec::new(), 0);
+        let face_bind = self.gpu.bind_group(
+            "faces",
+            &self.pipelines.face_layout,
+            &[(0, binding(face_buf, std::mem::size_of::<FaceGpu>()))],
+        );
+        // Kept, not cleared: each tile is cleared by its own draw (and a discarded
+        // depth would be cleared whole by wgpu before the next load).
+        let kept = wgpu::Operations {
+            load: wgpu::LoadOp::Load,
+            store: wgpu::StoreOp::Store,
+        };
+        let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("visibility"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: &self.atlas.view,
+                depth_slice: None,
+                resolve_target: None,
+                ops: kept,
+            })],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: &self.atlas.depth_view,
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Load,
+                    store: wgpu::StoreOp::Store,
+                }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: timestamps,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_vertex_buffer(0, self.upload.vertices.slice(..));
+        pass.set_index_buffer(
+            self.upload.vertex_indices.slice(..),
+            wgpu::IndexFormat::Uint32,
+        );
+        let size = self.atlas.size;
+        for (tile, view) in self.views.iter().enumerate() {
+            if self.restored[tile] {
+                continue;
+            }
+            let tile = tile as u32;
+            let (x, y) = self.atlas.origin(tile);
+            pass.set_viewport(x as f32, y as f32, size as f32, size as f32, 0.0, 1.0);
+            pass.set_scissor_rect(x, y, size, size);
+            pass.set_bind_group(0, &face_bind, &[(u64::from(tile) * FACE_STRIDE) as u32]);
+            pass.set_pipeline(&self.pipelines.clear_tile);
+            pass.draw(0..3, 0..1);
+            let clipped = tile >= clipped_from;
+            pass.set_pipeline(if clipped {
+                &self.pipelines.visibility_clipped
+            } else {
+                &self.pipelines.visibility
+            });
+            self.upload
+                .chunks
+                .visible(view, self.chunk_culling, &mut ranges);
+            for &(first, count) in &ranges {
+                pass.draw_indexed(first..first + count, 0, 0..1);
+                triangles += u64::from(count / 3);
+            }
+            if let Some(masked) = &self.upload.masked {
+                masked.draw(&mut pass, clipped);
+                triangles += u64::from(masked.triangle_count());
+                pass.set_vertex_buffer(0, self.upload.vertices.slice(..));
+            }
+        }
+        triangles
     }
 }
