@@ -955,3 +955,52 @@ fn a_planted_long_function_is_found() {
     );
     assert!(long_functions(&planted, 10).is_empty());
 }
+
+/// The viewer's files that hold its state and background work, which draw nothing: the
+/// panels (`panels.rs`, `luminaires.rs`, `work.rs`, `viewport_ui.rs`, …) draw them.
+const VIEWER_STATE_FILES: [&str; 7] = [
+    "app.rs",
+    "background.rs",
+    "camera.rs",
+    "files.rs",
+    "jobs.rs",
+    "live_radiosity.rs",
+    "sun.rs",
+];
+
+/// Lines of `text` that draw egui widgets (take an `egui::Ui`), outside comments.
+fn egui_drawing_in(text: &str) -> Vec<usize> {
+    text.lines()
+        .enumerate()
+        .filter(|(_, line)| {
+            let code = line.split("//").next().unwrap_or("");
+            code.contains("egui::Ui") || code.contains("ui: &mut Ui")
+        })
+        .map(|(i, _)| i + 1)
+        .collect()
+}
+
+/// `ViewerApp`'s state is apart from its egui panels: the state files take no `egui::Ui`.
+#[test]
+fn the_viewers_state_draws_no_panel() {
+    let dir = common::root().join("src/viewer");
+    let mut offences = Vec::new();
+    for name in VIEWER_STATE_FILES {
+        let text = std::fs::read_to_string(dir.join(name)).expect("a viewer state file");
+        for line in egui_drawing_in(&text) {
+            offences.push(format!("src/viewer/{name}:{line}"));
+        }
+    }
+    assert!(
+        offences.is_empty(),
+        "the viewer's state files draw egui widgets (move the drawing to a panel file):\n{}",
+        offences.join("\n")
+    );
+}
+
+#[test]
+fn a_planted_panel_in_the_state_is_found() {
+    let planted =
+        "// fn panel(ui: &mut egui::Ui)\npub fn panel(&mut self, ui: &mut egui::Ui) {\n}\n";
+    assert_eq!(egui_drawing_in(planted), vec![2]);
+}

@@ -4,6 +4,7 @@
 //! radiosity solver uses it without touching the GPU.
 
 pub mod specular;
+pub mod sun;
 
 use std::io::{BufRead, Read};
 

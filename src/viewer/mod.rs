@@ -5,6 +5,7 @@
 
 pub mod app;
 mod app_files;
+mod background;
 pub mod camera;
 pub mod files;
 pub mod frame;
@@ -12,6 +13,7 @@ mod headless;
 pub mod jobs;
 pub mod live_radiosity;
 pub mod luminaires;
+mod panels;
 pub mod photometry_sheet;
 pub mod sun;
 pub mod viewport_gpu;

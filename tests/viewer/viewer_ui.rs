@@ -273,7 +273,7 @@ fn the_sun_adds_a_light_and_switches_to_shadow_volumes() {
         .distribution
         .candela(0.0, 90.0, Interp::CatmullRom, sun.multiplier)
         / to_sun.length_squared();
-    let expected = goniolight::viewer::sun::clear_sky_direct_normal_lux(p.elevation_deg);
+    let expected = goniolight::lighting::sun::clear_sky_direct_normal_lux(p.elevation_deg);
     assert!((lux / expected - 1.0).abs() < 1e-9, "{lux} vs {expected}");
     // Turning it off takes it out of the view again.
     let revision = h.state().revision;
@@ -675,14 +675,14 @@ fn sunlit_roofs_get_the_clear_sky_illuminance() {
     app.sun.enabled = true;
     app.sun.minutes = 13.0 * 60.0;
     let p = app.sun.position().unwrap();
-    let expected = goniolight::viewer::sun::clear_sky_direct_normal_lux(p.elevation_deg)
+    let expected = goniolight::lighting::sun::clear_sky_direct_normal_lux(p.elevation_deg)
         * p.elevation_deg.to_radians().sin();
     // Straight down on the site: roofs and ground are horizontal and face the sky.
     let (lo, hi) = app.scene.bounds();
     app.camera.yaw_deg = 90.0;
     app.camera.pitch_deg = -89.0;
     app.camera.frame(lo, hi);
-    let normal = goniolight::viewer::sun::clear_sky_direct_normal_lux(p.elevation_deg);
+    let normal = goniolight::lighting::sun::clear_sky_direct_normal_lux(p.elevation_deg);
     let renderer = goniolight::render::Renderer::new(&gpu);
     let mut dark = Vec::new();
     for technique in [ShadowTechnique::None, ShadowTechnique::Volumes] {
