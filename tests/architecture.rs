@@ -596,18 +596,22 @@ fn a_planted_shooting_loop_is_found() {
     );
 }
 
-/// The printing macros `text` calls outside comments, with their line numbers.
-fn prints_in(text: &str) -> Vec<usize> {
+/// The numbers (from 1) of the lines of `text` whose code, before any `//` comment, holds
+/// one of `needles`.
+fn lines_whose_code_holds(text: &str, needles: &[&str]) -> Vec<usize> {
     text.lines()
         .enumerate()
         .filter(|(_, line)| {
             let code = line.split("//").next().unwrap_or("");
-            ["println!", "eprintln!", "print!(", "eprint!("]
-                .iter()
-                .any(|m| code.contains(m))
+            needles.iter().any(|n| code.contains(n))
         })
         .map(|(i, _)| i + 1)
         .collect()
+}
+
+/// The printing macros `text` calls outside comments, with their line numbers.
+fn prints_in(text: &str) -> Vec<usize> {
+    lines_whose_code_holds(text, &["println!", "eprintln!", "print!(", "eprint!("])
 }
 
 /// The library's files outside the front ends (`cli/`, `viewer/`, the binary) with their
@@ -661,14 +665,7 @@ fn a_planted_print_is_found() {
 /// Lines of `text` that lay out a Markdown table by hand (a `|---` rule or a
 /// `println!("| …`): the library's `bench::report::Table` lays them out.
 fn hand_made_tables_in(text: &str) -> Vec<usize> {
-    text.lines()
-        .enumerate()
-        .filter(|(_, l)| {
-            let code = l.split("//").next().unwrap_or("");
-            code.contains("\"|---") || code.contains("println!(\"|")
-        })
-        .map(|(k, _)| k + 1)
-        .collect()
+    lines_whose_code_holds(text, &["\"|---", "println!(\"|"])
 }
 
 #[test]
@@ -839,14 +836,7 @@ fn a_planted_flag_in_a_library_string_is_found() {
 /// Lines of `text` whose code, outside comments, uses `anyhow` (a type, a macro or an
 /// import).
 fn anyhow_uses_in(text: &str) -> Vec<usize> {
-    text.lines()
-        .enumerate()
-        .filter(|(_, line)| {
-            let code = line.split("//").next().unwrap_or("");
-            code.contains("anyhow::") || code.contains("anyhow!") || code.contains("use anyhow")
-        })
-        .map(|(i, _)| i + 1)
-        .collect()
+    lines_whose_code_holds(text, &["anyhow::", "anyhow!", "use anyhow"])
 }
 
 /// The library's errors are types a caller can match (`thiserror` enums naming the file or
@@ -970,14 +960,7 @@ const VIEWER_STATE_FILES: [&str; 7] = [
 
 /// Lines of `text` that draw egui widgets (take an `egui::Ui`), outside comments.
 fn egui_drawing_in(text: &str) -> Vec<usize> {
-    text.lines()
-        .enumerate()
-        .filter(|(_, line)| {
-            let code = line.split("//").next().unwrap_or("");
-            code.contains("egui::Ui") || code.contains("ui: &mut Ui")
-        })
-        .map(|(i, _)| i + 1)
-        .collect()
+    lines_whose_code_holds(text, &["egui::Ui", "ui: &mut Ui"])
 }
 
 /// `ViewerApp`'s state is apart from its egui panels: the state files take no `egui::Ui`.
@@ -1003,4 +986,104 @@ fn a_planted_panel_in_the_state_is_found() {
     let planted =
         "// fn panel(ui: &mut egui::Ui)\npub fn panel(&mut self, ui: &mut egui::Ui) {\n}\n";
     assert_eq!(egui_drawing_in(planted), vec![2]);
+}
+
+/// The files of `src/cli/` that several commands share; every other file there is a
+/// command (or `mod.rs`, which dispatches to them).
+const CLI_HELPERS: [&str; 8] = [
+    "args",
+    "error",
+    "image",
+    "indirect",
+    "interrupt",
+    "scene_input",
+    "solver_args",
+    "solving",
+];
+
+/// The sibling modules of `src/cli/` that `text` (a file directly in `src/cli/`) names
+/// through `super::`.
+fn cli_siblings_named(text: &str) -> BTreeSet<String> {
+    let mut out = BTreeSet::new();
+    for line in text.lines() {
+        let code = line.split("//").next().unwrap_or("");
+        let mut rest = code;
+        while let Some(at) = rest.find("super::") {
+            rest = &rest[at + "super::".len()..];
+            let name: String = rest
+                .chars()
+                .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
+                .collect();
+            if !name.is_empty() && name != "super" {
+                out.insert(name);
+            }
+        }
+    }
+    out
+}
+
+/// The offences of one command file: the other commands it names (`bench` may name its
+/// own subcommands' files, `bench_*`).
+fn commands_named_by(file: &str, text: &str, commands: &BTreeSet<String>) -> Vec<String> {
+    cli_siblings_named(text)
+        .into_iter()
+        .filter(|m| commands.contains(m) && m != file)
+        .filter(|m| !(file == "bench" && m.starts_with("bench_")))
+        .collect()
+}
+
+/// The commands of `cli/` are one flat floor: a command reaches another command's code
+/// never, only the shared helpers ([`CLI_HELPERS`]) and the library.
+#[test]
+fn no_command_reaches_into_another() {
+    let dir = common::root().join("src/cli");
+    let mut files = BTreeMap::new();
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        let name = path.file_stem().unwrap().to_string_lossy().into_owned();
+        let text = if path.is_dir() {
+            std::fs::read_to_string(path.join("mod.rs")).unwrap()
+        } else {
+            std::fs::read_to_string(&path).unwrap()
+        };
+        files.insert(name, text);
+    }
+    let commands: BTreeSet<String> = files
+        .keys()
+        .filter(|n| *n != "mod" && !CLI_HELPERS.contains(&n.as_str()))
+        .cloned()
+        .collect();
+    let mut offences = Vec::new();
+    for (name, text) in &files {
+        if name == "mod" {
+            continue;
+        }
+        for other in commands_named_by(name, text, &commands) {
+            offences.push(format!("src/cli/{name}: uses the command {other}"));
+        }
+    }
+    for helper in CLI_HELPERS {
+        assert!(
+            files.contains_key(helper),
+            "{helper} is no longer in src/cli/"
+        );
+    }
+    assert!(
+        offences.is_empty(),
+        "commands reach into other commands (move what they share into a helper or the library):\n{}",
+        offences.join("\n")
+    );
+}
+
+#[test]
+fn a_planted_command_reaching_into_another_is_found() {
+    let commands: BTreeSet<String> = ["demo", "ldt", "bench", "bench_profile", "render"]
+        .map(String::from)
+        .into();
+    let planted = "use super::error::CliError;\nuse super::ldt::{write_plot};\n// super::render in a comment\nlet x = super::bench_profile::run();\n";
+    assert_eq!(
+        commands_named_by("demo", planted, &commands),
+        vec!["bench_profile".to_string(), "ldt".to_string()]
+    );
+    assert!(commands_named_by("bench", "super::bench_profile::run()", &commands).is_empty());
 }

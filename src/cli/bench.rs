@@ -4,7 +4,6 @@
 use clap::Subcommand;
 
 use super::error::CliError;
-use super::silhouette;
 use crate::bench::render as render_bench;
 use crate::gpu::Gpu;
 
@@ -209,7 +208,7 @@ pub fn run(cmd: BenchCommand) -> Result<(), CliError> {
             queries,
             depth,
             scale,
-        } => silhouette::run_bench(json, queries, depth, scale),
+        } => super::bench_silhouette::run(json, queries, depth, scale),
         BenchCommand::Render {
             json,
             frames,

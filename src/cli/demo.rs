@@ -14,10 +14,10 @@ use clap::Args;
 
 use super::error::CliError;
 use super::image::{render_to_files, ImageOptions};
-use super::ldt::{print_check, write_plot};
 use crate::gpu::Gpu;
 use crate::io::write_atomic;
-use crate::photometry::{check, Luminaire};
+use crate::photometry::polar_diagram::write_polar_diagram;
+use crate::photometry::{check, check_text, Luminaire};
 use crate::render::Renderer;
 use crate::scene::{DisplayIndirect, Mode};
 
@@ -126,10 +126,10 @@ pub fn run(args: DemoArgs) -> Result<(), CliError> {
     );
     let (dc, dg) = (15.0, 5.0);
     let report = check::downsample(&lum.distribution, dc, dg)?;
-    print_check(&report, false);
+    print!("{}", check_text::check_table(&report));
     let json = serde_json::to_string_pretty(&report).map_err(CliError::failure)?;
     write_atomic(&dir.join("check.json"), json.as_bytes()).map_err(CliError::failure)?;
-    write_plot(
+    write_polar_diagram(
         &lum,
         "sample_18.ldt (lab measurement)",
         &dir.join("polar.png"),

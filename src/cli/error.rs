@@ -147,6 +147,16 @@ pub(crate) fn flags_in(text: &str) -> String {
     out
 }
 
+impl From<crate::photometry::polar_diagram::PolarDiagramError> for CliError {
+    fn from(e: crate::photometry::polar_diagram::PolarDiagramError) -> CliError {
+        use crate::photometry::polar_diagram::PolarDiagramError as E;
+        match e {
+            E::Downsample(e) => CliError::from(e),
+            E::Write(e) => CliError::failure(e),
+        }
+    }
+}
+
 impl From<PhotometryError> for CliError {
     fn from(e: PhotometryError) -> CliError {
         let bad_input = e.is_bad_input();

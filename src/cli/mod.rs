@@ -6,6 +6,7 @@ mod batch;
 mod bench;
 mod bench_adaptive;
 mod bench_profile;
+mod bench_silhouette;
 mod calc;
 mod demo;
 mod error;

@@ -6,7 +6,6 @@ use clap::Args;
 use serde_json::json;
 
 use super::error::CliError;
-use crate::bench::silhouette as bench;
 use crate::geometry::obj::read_obj;
 use crate::shadow::{Hextree, Light, SilhouetteMesh};
 
@@ -86,21 +85,5 @@ pub fn run(a: SilhouetteArgs) -> Result<(), CliError> {
             println!("{i} {j}");
         }
     }
-    Ok(())
-}
-
-/// Runs `bench silhouette`.
-pub fn run_bench(as_json: bool, queries: usize, depth: u32, scale: f64) -> Result<(), CliError> {
-    if queries == 0 || !(scale > 0.0 && scale <= 1.0) {
-        return Err(CliError::input(anyhow::anyhow!(
-            "--queries must be > 0 and --scale in (0, 1]"
-        )));
-    }
-    let meshes = bench::bench_meshes(scale);
-    let rows = bench::run(&meshes, queries, depth, |name| {
-        eprintln!("benchmarking {name} …")
-    })
-    .map_err(CliError::failure)?;
-    println!("{}", bench::report(&rows).text(as_json));
     Ok(())
 }

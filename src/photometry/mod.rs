@@ -18,6 +18,7 @@ pub mod isocandela;
 pub mod ldt_writer;
 pub mod luminance;
 pub mod plot;
+pub mod polar_diagram;
 pub mod residual_plot;
 pub mod summary;
 pub mod symmetry;

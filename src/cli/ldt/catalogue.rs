@@ -86,7 +86,7 @@ fn write_residuals(
 }
 
 /// Prints a check report as JSON or as a table.
-pub(in crate::cli) fn print_check(report: &CheckReport, as_json: bool) {
+fn print_check(report: &CheckReport, as_json: bool) {
     if as_json {
         println!(
             "{}",

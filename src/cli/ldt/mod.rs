@@ -13,15 +13,13 @@ mod plot;
 mod report;
 mod ugr;
 
-pub(super) use catalogue::print_check;
 use inputs::{Inputs, OutputNames};
 
 use super::error::CliError;
 use crate::io::write_atomic;
-use crate::photometry::check::{self, LeaveOut};
+use crate::photometry::check::LeaveOut;
 use crate::photometry::ies::write_ies;
 use crate::photometry::info::{csv_line, CATALOGUE_COLUMNS};
-use crate::photometry::plot::PolarPlot;
 use crate::photometry::{Interp, Luminaire};
 
 /// Luminaire file subcommands. Each takes one or more files or directories (walked for
@@ -308,34 +306,6 @@ fn sample(files: &[PathBuf], interp: Interp) -> Result<(), CliError> {
         .write_all(out.as_bytes())
         .map_err(CliError::failure)?;
     inputs.finish()
-}
-
-/// Writes the polar diagram of `lum`, optionally from a downsampled copy.
-pub(super) fn write_plot(
-    lum: &Luminaire,
-    title: &str,
-    out: &Path,
-    downsample: Option<(f64, f64)>,
-) -> Result<(), CliError> {
-    let measured = lum.distribution.grid();
-    let coarse;
-    let (curves, title) = match downsample {
-        Some((dc, dg)) => {
-            coarse = check::downsampled_grid(&lum.distribution, dc, dg)?;
-            (
-                &coarse,
-                format!("{title} — curves from {dc}° × {dg}° samples, all measured values marked"),
-            )
-        }
-        None => (measured, title.to_string()),
-    };
-    let plot = PolarPlot {
-        title,
-        curves,
-        measured,
-        methods: vec![Interp::Bilinear, Interp::CatmullRom, Interp::Monotone],
-    };
-    plot.save(out).map_err(CliError::failure)
 }
 
 /// Refuses an output that is the input itself, or that lacks one of `exts`, before any

@@ -5,10 +5,11 @@ use std::path::PathBuf;
 
 use clap::Args;
 
-use super::{parse_pair, write_each, write_plot, CliError, Outputs};
+use super::{parse_pair, write_each, CliError, Outputs};
 use crate::io::write_atomic;
 use crate::photometry::datasheet_plot::{Diagram, DiagramKind};
 use crate::photometry::luminance::lamp_set_flux;
+use crate::photometry::polar_diagram::write_polar_diagram;
 use crate::photometry::Interp;
 
 /// A picture format, by its extension.
@@ -93,7 +94,7 @@ pub(super) fn run(args: &PlotArgs) -> Result<(), CliError> {
             .map(|n| n.to_string_lossy().into_owned())
             .unwrap_or_default();
         if args.downsample.is_some() {
-            return write_plot(lum, &name, target, args.downsample);
+            return Ok(write_polar_diagram(lum, &name, target, args.downsample)?);
         }
         let lamp_flux_lm = match args.lamp_set {
             Some(k) => {
