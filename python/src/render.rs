@@ -119,13 +119,13 @@ pub fn render(
     let scene = scene.scene(py)?;
     let display = scene.display.overlay(&over);
     display.check().map_err(value_error)?;
-    if ![1, 3, 5].contains(&supersample) {
-        return Err(value_error(format!(
-            "supersample {supersample} must be 1, 3 or 5"
-        )));
-    }
-    let mut settings = RenderSettings::from_display(&display);
-    settings.supersample = supersample;
+    let quality = goniolight::render::quality::RenderQuality {
+        supersample,
+        shadow_map_size: None,
+    };
+    let mut settings = quality
+        .apply(RenderSettings::from_display(&display))
+        .map_err(value_error)?;
     settings.read_hdr = true;
     let map = solution.map(|s| s.light_map());
     if map.is_some() {

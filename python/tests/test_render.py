@@ -100,7 +100,7 @@ def test_bad_values_name_the_display_key(tmp_path):
         goniolight.render(BOX, width=0)
     with pytest.raises(ValueError, match=r"display\.lux_max -5 must be a positive number"):
         goniolight.render(BOX, lux_max=-5)
-    with pytest.raises(ValueError, match=r"supersample 2 must be 1, 3 or 5"):
+    with pytest.raises(ValueError, match=r"`supersample` 2 must be 1, 3 or 5"):
         goniolight.render(BOX, supersample=2)
     r = goniolight.render(BOX, width=32, height=24, supersample=1)
     r.save(tmp_path / "a.png", tmp_path / "a.exr")

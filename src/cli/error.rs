@@ -99,6 +99,8 @@ const FLAGS_OF_FIELDS: &[(&str, &str)] = &[
     ("view_at", "--view-at"),
     ("shadows", "--shadows"),
     ("texel_density", "--texel-density"),
+    ("supersample", "--supersample"),
+    ("shadow_map_size", "--shadow-map-size"),
     ("display.width", "--width"),
     ("display.height", "--height"),
     ("display.exposure", "--exposure"),

@@ -7,16 +7,15 @@ use std::time::Instant;
 use anyhow::anyhow;
 use clap::Args;
 
-use super::error::CliError;
+use super::error::{flags_in, CliError};
 use super::scene_input::warn_once;
 use crate::gpu::Gpu;
 use crate::photometry::Interp;
 use crate::render::lightmap::LightMap;
 use crate::render::output::{linear_image, write_image};
+use crate::render::quality::RenderQuality;
 use crate::render::scene_frame::{render_scene, SceneFrame};
-use crate::render::{
-    RenderSettings, RenderedFrame, Renderer, ShadowTechnique, VolumeTest, MAX_IMAGE_SIZE,
-};
+use crate::render::{RenderSettings, RenderedFrame, Renderer, ShadowTechnique, VolumeTest};
 use crate::scene::{DisplayEntry, Mode, Palette, Scene, Tonemap};
 use crate::shadow::SilhouetteMethod;
 
@@ -102,22 +101,13 @@ impl ImageOptions {
     pub fn settings(&self, scene: &Scene) -> Result<RenderSettings, CliError> {
         let display = scene.display.overlay(&self.display());
         display.check()?;
-        let mut s = RenderSettings::from_display(&display);
-        if let Some(size) = self.shadow_map_size {
-            if !(16..=MAX_IMAGE_SIZE).contains(&size) {
-                return Err(CliError::input(anyhow!(
-                    "--shadow-map-size {size} is not in 16..={MAX_IMAGE_SIZE}"
-                )));
-            }
-            s.shadows.map_size = size;
-        }
-        if ![1, 3, 5].contains(&self.supersample) {
-            return Err(CliError::input(anyhow!(
-                "--supersample {} must be 1, 3 or 5 (an odd count has a sample at the pixel centre)",
-                self.supersample
-            )));
-        }
-        s.supersample = self.supersample;
+        let quality = RenderQuality {
+            supersample: self.supersample,
+            shadow_map_size: self.shadow_map_size,
+        };
+        let mut s = quality
+            .apply(RenderSettings::from_display(&display))
+            .map_err(|e| CliError::input(anyhow!(flags_in(&e.to_string()))))?;
         s.shadows.volume_test = self.volume_test;
         s.shadows.silhouette = self.silhouettes;
         s.shadows.show_volumes = self.show_volumes;

@@ -15,6 +15,7 @@ pub mod mipmaps;
 pub mod output;
 pub mod paraboloid;
 pub mod passes;
+pub mod quality;
 pub mod scene_frame;
 pub mod shadows;
 pub mod targets;

@@ -473,6 +473,20 @@ fn render_of_a_bad_scene_exits_2_and_writes_nothing() {
         let (code, _, err) = run_cli(&all, "");
         assert_eq!(code, 2, "{args:?}: {err}");
     }
+    // The render-quality options are checked by the library and named by their flags.
+    for (args, said) in [
+        (["--supersample", "2"], "--supersample 2 must be 1, 3 or 5"),
+        (
+            ["--shadow-map-size", "8"],
+            "--shadow-map-size 8 is not in 16..=8192",
+        ),
+    ] {
+        let mut all = vec!["render", good.to_str().unwrap(), "--out", "x.png"];
+        all.extend(args.iter());
+        let (code, _, err) = run_cli(&all, "");
+        assert_eq!(code, 2, "{args:?}: {err}");
+        assert!(err.contains(said), "{args:?}: {err}");
+    }
     // Bad point lines for `illuminance`.
     let (code, _, err) = run_cli(
         &["illuminance", good.to_str().unwrap(), "--cpu"],
