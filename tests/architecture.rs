@@ -1087,3 +1087,106 @@ fn a_planted_command_reaching_into_another_is_found() {
     );
     assert!(commands_named_by("bench", "super::bench_profile::run()", &commands).is_empty());
 }
+
+/// Words that name a quantity of light or time in the commands' code.
+const LIGHT_AND_TIME: [&str; 6] = ["lux", "luminance", "cd_m2", "seconds", "secs", "millis"];
+
+/// `code` with the contents of its string literals blanked (a `-` in `"room-illuminance"`
+/// is no subtraction).
+fn without_strings(code: &str) -> String {
+    let mut out = String::with_capacity(code.len());
+    let (mut inside, mut escaped) = (false, false);
+    for c in code.chars() {
+        if inside {
+            if escaped {
+                escaped = false;
+            } else if c == '\\' {
+                escaped = true;
+            } else if c == '"' {
+                inside = false;
+                out.push(c);
+            }
+            continue;
+        }
+        if c == '"' {
+            inside = true;
+        }
+        out.push(c);
+    }
+    out
+}
+
+/// Lines of `text` where a word naming light or time ([`LIGHT_AND_TIME`]) is an operand of
+/// `+ - * /` (the operator right before the word, or right after it and any call's
+/// parentheses), outside comments and strings.
+fn arithmetic_on_light_or_time(text: &str) -> Vec<usize> {
+    let is_word = |c: char| c.is_ascii_alphanumeric() || c == '_' || c == '.';
+    let mut out = Vec::new();
+    for (i, line) in text.lines().enumerate() {
+        let code = without_strings(line.split("//").next().unwrap_or(""));
+        let chars: Vec<char> = code.chars().collect();
+        let mut k = 0;
+        let mut hit = false;
+        while k < chars.len() {
+            if !is_word(chars[k]) {
+                k += 1;
+                continue;
+            }
+            let start = k;
+            while k < chars.len() && (is_word(chars[k]) || chars[k] == '(' || chars[k] == ')') {
+                k += 1;
+            }
+            let token: String = chars[start..k].iter().collect();
+            if !LIGHT_AND_TIME.iter().any(|w| token.contains(w)) || token.ends_with(".len()") {
+                continue;
+            }
+            let before = chars[..start].iter().rev().find(|c| !c.is_whitespace());
+            let after = chars[k..].iter().find(|c| !c.is_whitespace());
+            let arithmetic = |c: Option<&char>| c.is_some_and(|c| "+-*/".contains(*c));
+            let arrow = chars[k..]
+                .iter()
+                .collect::<String>()
+                .trim_start()
+                .starts_with("->");
+            if arithmetic(before) || (arithmetic(after) && !arrow) {
+                hit = true;
+            }
+        }
+        if hit {
+            out.push(i + 1);
+        }
+    }
+    out
+}
+
+/// The commands do no arithmetic on lux, luminance or time: a summary or a converted value
+/// is a library function (`radiosity::session::describe`, `photometry::check_text`, …).
+#[test]
+fn the_commands_do_no_arithmetic_on_light_or_time() {
+    let root = common::root();
+    let mut offences = Vec::new();
+    for f in rust_files(&root.join("src/cli")) {
+        let text = std::fs::read_to_string(&f).unwrap();
+        for line in arithmetic_on_light_or_time(&text) {
+            let rel = f.strip_prefix(&root).unwrap().display().to_string();
+            offences.push(format!("{rel}:{line}"));
+        }
+    }
+    assert!(
+        offences.is_empty(),
+        "the commands compute with light or time (make it a library function):\n{}",
+        offences.join("\n")
+    );
+}
+
+#[test]
+fn planted_arithmetic_on_light_or_time_is_found() {
+    let planted = "let ms = t.elapsed().as_secs_f64() * 1e3;\n\
+        let total = direct_lux + reflected;\n\
+        let half = 0.5 * self.luminance;\n\
+        let name = \"room-illuminance\"; // lux - 1\n\
+        let n = lux.len() * 12;\n\
+        fn lux(x: f64) -> f64 {\n\
+        let ms = t.elapsed().as_millis();\n";
+    assert_eq!(arithmetic_on_light_or_time(planted), vec![1, 2, 3]);
+}

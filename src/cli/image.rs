@@ -141,7 +141,7 @@ pub fn render_to_files(
     for w in &warnings {
         warn_once(&scene.path, w);
     }
-    let ms = started.elapsed().as_secs_f64() * 1e3;
+    let ms = started.elapsed().as_millis();
     write_image(png, &frame.image).map_err(CliError::failure)?;
     if let Some(exr) = exr {
         let linear = linear_image(&frame, settings.width, settings.height)
@@ -149,7 +149,7 @@ pub fn render_to_files(
         write_image(exr, &linear).map_err(CliError::failure)?;
     }
     let report = format!(
-        "{}: {} triangles, {} luminaires, {}×{} in {ms:.0} ms; {what} → {}{}",
+        "{}: {} triangles, {} luminaires, {}×{} in {ms} ms; {what} → {}{}",
         scene.path.display(),
         scene.triangle_count(),
         scene.luminaires.len(),

@@ -3,7 +3,6 @@
 use std::path::PathBuf;
 
 use anyhow::anyhow;
-use chrono::Timelike;
 use clap::Args;
 
 use super::error::CliError;
@@ -84,13 +83,12 @@ pub fn run(args: ViewArgs) -> Result<(), CliError> {
             return bad(format!("--screenshot {}: must end in .png", s.display()));
         }
     }
-    let sun_minutes = match &args.sun {
+    let sun_time = match &args.sun {
         None => None,
-        Some(t) => {
-            let time = chrono::NaiveTime::parse_from_str(t.trim(), "%H:%M")
-                .map_err(|e| CliError::input(anyhow!("--sun {t:?}: not a time HH:MM ({e})")))?;
-            Some(f64::from(time.num_seconds_from_midnight()) / 60.0)
-        }
+        Some(t) => Some(
+            chrono::NaiveTime::parse_from_str(t.trim(), "%H:%M")
+                .map_err(|e| CliError::input(anyhow!("--sun {t:?}: not a time HH:MM ({e})")))?,
+        ),
     };
     if let Some(t) = args.time {
         if !t.is_finite() {
@@ -109,7 +107,7 @@ pub fn run(args: ViewArgs) -> Result<(), CliError> {
         add: args.add.clone(),
         up: args.up,
         mode: args.mode,
-        sun_minutes,
+        sun_time,
         time_s: args.time,
         indirect: args.indirect,
         drive: args.drive,

@@ -61,8 +61,8 @@ pub struct StartOptions {
     pub up: crate::scene::UpAxis,
     /// Mode at start (default: the scene's).
     pub mode: Option<crate::scene::Mode>,
-    /// Turn the sun on at this local time, minutes after midnight, with shadow volumes.
-    pub sun_minutes: Option<f64>,
+    /// Turn the sun on at this local time, with shadow volumes.
+    pub sun_time: Option<chrono::NaiveTime>,
     /// Hold effect lights at this animation time, seconds (default: they turn).
     pub time_s: Option<f64>,
     /// Indirect light at start (default: the scene's `display.indirect`, else none).
@@ -117,8 +117,8 @@ pub fn start(options: StartOptions) -> Result<window::RunSummary, ViewerError> {
         app.effects_time_s = t;
         app.animate_effects = false;
     }
-    if let Some(minutes) = options.sun_minutes {
-        app.sun.minutes = minutes;
+    if let Some(time) = options.sun_time {
+        app.sun.set_time(time);
         app.sun.enabled = true;
         app.display.shadows.technique = crate::shadow::ShadowTechnique::Volumes;
     }

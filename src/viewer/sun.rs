@@ -83,6 +83,11 @@ impl SunControls {
         crate::sun::position(&site, utc, &self.options()).map_err(|e| e.to_string())
     }
 
+    /// Sets the local time of day.
+    pub fn set_time(&mut self, time: NaiveTime) {
+        self.minutes = f64::from(time.num_seconds_from_midnight()) / 60.0;
+    }
+
     /// Advances the animated time by `dt_s` seconds (wrapping at midnight).
     pub fn advance(&mut self, dt_s: f64) {
         if self.animate {
@@ -120,5 +125,7 @@ mod tests {
         a.advance(1.0);
         assert!((a.minutes - 60.0).abs() < 1e-9);
         assert_eq!(a.time_label(), "01:00");
+        a.set_time(NaiveTime::from_hms_opt(14, 30, 0).unwrap());
+        assert_eq!((a.minutes, a.time_label()), (870.0, "14:30".to_string()));
     }
 }
