@@ -469,14 +469,7 @@ fn run_radiosity_view(
         crate::bench::radiosity_view::row_of_rooms(&super::scene_input::load_scene(&path)?, rooms);
     let mut camera = scene.camera;
     if let Some((e, l, fov)) = eye {
-        camera = crate::scene::camera::Camera {
-            up: if (l - e).normalize().cross(glam::DVec3::Z).length() < 1e-6 {
-                glam::DVec3::Y
-            } else {
-                glam::DVec3::Z
-            },
-            ..crate::scene::camera::Camera::perspective(e, l, fov)
-        };
+        camera = crate::scene::camera::Camera::perspective(e, l, fov);
     }
     let shown = crate::render::RenderSettings::from_display(&scene.display);
     let aspect = shown.aspect();

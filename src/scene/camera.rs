@@ -42,10 +42,16 @@ pub struct Camera {
 impl Camera {
     /// A perspective camera; `far` covers a scene of `extent` metres.
     pub fn perspective(position: DVec3, look_at: DVec3, fov_deg: f64) -> Camera {
+        // +Z up, or +Y when the camera looks straight up or down (+Z would be degenerate).
+        let vertical = (look_at - position)
+            .normalize_or_zero()
+            .cross(DVec3::Z)
+            .length()
+            < 1e-6;
         Camera {
             position,
             look_at,
-            up: DVec3::Z,
+            up: if vertical { DVec3::Y } else { DVec3::Z },
             projection: Projection::Perspective { fov_deg },
             near: 0.05,
             far: 1000.0,
@@ -204,5 +210,20 @@ impl Camera {
     /// World → clip, f32 for the GPU.
     pub fn view_projection(&self, aspect: f64) -> Mat4 {
         (self.projection(aspect) * self.view()).as_mat4()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_perspective_camera_is_z_up_unless_it_looks_straight_up_or_down() {
+        let level = Camera::perspective(DVec3::ZERO, DVec3::new(1.0, 2.0, 0.5), 60.0);
+        assert_eq!(level.up, DVec3::Z);
+        for z in [-3.0, 3.0] {
+            let vertical = Camera::perspective(DVec3::ZERO, DVec3::new(0.0, 0.0, z), 60.0);
+            assert_eq!(vertical.up, DVec3::Y);
+        }
     }
 }
