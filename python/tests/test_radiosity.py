@@ -124,6 +124,27 @@ def test_calc_equals_the_calc_command(tmp_path, flags, kwargs):
         assert v.size == grid["points"] and v.min() == grid["emin"]
 
 
+def test_calc_judges_en12464_areas_as_the_command(tmp_path):
+    scene = ROOT / "assets" / "scenes" / "box_room_en12464.toml"
+    expected = calc_command(scene, tmp_path, *COARSE_FLAGS)
+    got = goniolight.calc(scene, solver=COARSE)
+    for g in got["grids"]:
+        g.pop("values")
+    got["scene"] = expected["scene"]
+    assert got == expected
+    # The desk: Em, U0, UGR, Ra and its surrounding's and background's Em and U0; the
+    # room: its activity area's Em and U0, four walls' and the ceiling's.
+    verdicts = got["requirements"]
+    assert len(verdicts) == 8 + 2 + 2 * 5
+    desk = {(r["part"], r["quantity"]): r for r in verdicts if r["area"] == "desk"}
+    assert desk[("background", "Em")]["required"] == pytest.approx(200 / 3)
+    assert desk[("task", "UGR")]["achieved"] == got["observers"][0]["ugr"]
+    assert desk[("task", "Ra")]["pass"] is None
+    walls = [r for r in verdicts if r["part"] == "wall"]
+    assert [r["grid"] for r in walls[::2]] == [f"office wall {k}" for k in (1, 2, 3, 4)]
+    assert got["method"]["standards"][0].startswith("EN 12464-1:2021")
+
+
 def test_calc_with_radiosity_equals_the_command_and_names_bad_options(tmp_path):
     expected = calc_command(BOX_CALC, tmp_path, "--indirect", "radiosity",
                             "--converge", "0.9", "--texel-density", "4")

@@ -13,6 +13,7 @@ use serde_json::json;
 use super::directions::{combine, surface_points};
 use super::glare::{background_point, check_outside, observer_glare, ObserverGlare};
 use super::plan::Plan;
+use super::requirements::{judge, Verdict};
 use super::{grid_stats, CalcGrid, CalcSettings, GridStats};
 use crate::gpu::{Gpu, GpuError};
 use crate::io::limits::MAX_TOTAL_POINTS;
@@ -128,6 +129,12 @@ pub fn csv_name(grid_name: &str) -> String {
         .collect();
     format!("{stem}.csv")
 }
+
+/// The standard `[[area]]`s are judged by.
+pub const STANDARD_12464: &str = "EN 12464-1:2021 (task area, immediate surrounding, background)";
+
+/// How grid points are placed.
+pub const GRID_RULE: &str = "points at the centres of equal cells; spacing as given, or EN 12464-1's p = 0.2 · 5^log10(d) over the grid's longer side d";
 
 /// A calculation checked and ready to run.
 pub struct Request<'s> {
@@ -303,7 +310,7 @@ impl<'s> Request<'s> {
                 }
             })
             .collect();
-        let glare = scene
+        let glare: Vec<ObserverGlare> = scene
             .observers
             .iter()
             .zip(&background)
@@ -312,6 +319,8 @@ impl<'s> Request<'s> {
                     .map_err(|e| CalcError::Scene(format!("observer {:?}: {e}", o.entry.name)))
             })
             .collect::<Result<_, _>>()?;
+        let stats: Vec<GridStats> = grids.iter().map(|g| g.stats).collect();
+        let requirements = judge(scene, &stats, &glare, convergence.is_none());
         let light = match convergence {
             Some(c) => vec![
                 "direct + interreflected".to_string(),
@@ -329,6 +338,7 @@ impl<'s> Request<'s> {
             cpu: self.options.cpu,
             grids,
             glare,
+            requirements,
             light,
             warnings,
         })
@@ -379,6 +389,8 @@ pub struct Calculation<'s> {
     pub grids: Vec<GridResult>,
     /// Per observer of the scene, in order.
     pub glare: Vec<ObserverGlare>,
+    /// Every requirement of the scene's areas, judged (in the areas' order).
+    pub requirements: Vec<Verdict>,
     /// What light the values hold, in words (one or two short lines).
     pub light: Vec<String>,
     /// What the caller should be told (options named in backquotes), e.g. a paraboloid
@@ -443,7 +455,43 @@ impl Calculation<'_> {
             "convergence": self.convergence,
             "grids": (0..self.grids.len()).map(|k| self.grid_json(k)).collect::<Vec<_>>(),
             "observers": observers,
+            "requirements": self.requirements,
+            "method": self.method_json(),
         })
+    }
+
+    /// How the values were found, for a reviewer to reproduce them: the software, the
+    /// standards judged, the grid rule, the maintenance factor, the light and how it was
+    /// computed.
+    pub fn method_json(&self) -> serde_json::Value {
+        let standards: Vec<&str> = if self.scene.areas.is_empty() {
+            Vec::new()
+        } else {
+            vec![STANDARD_12464]
+        };
+        json!({
+            "software": format!("goniolight {}", env!("CARGO_PKG_VERSION")),
+            "standards": standards,
+            "grid_rule": GRID_RULE,
+            "maintenance_factor": self.maintenance_factor,
+            "values": "maintained: computed × maintenance factor",
+            "light": self.light.join(" "),
+            "solver": match self.convergence {
+                Some(c) => json!({"name": "progressive radiosity", "convergence": c}),
+                None => serde_json::Value::Null,
+            },
+            "shadows": self.shadows_text(),
+            "interp": self.interp.name(),
+            "device": if self.cpu { "cpu" } else { "gpu" },
+        })
+    }
+
+    fn shadows_text(&self) -> &'static str {
+        match (self.shadows, self.cpu) {
+            (ShadowTechnique::None, _) => "no shadows",
+            (ShadowTechnique::Paraboloid, false) => "paraboloid shadow maps",
+            _ => "exact shadows (a ray from each point to each luminaire)",
+        }
     }
 
     /// Grid `k`'s CSV: `x,y,z,lux` with a header, one row per point (coordinates exact,
@@ -489,6 +537,12 @@ impl Calculation<'_> {
                     (o.eye, o.forward, format!("{} UGR {ugr}", o.entry.name))
                 })
                 .collect(),
+            areas: scene
+                .areas
+                .iter()
+                .filter(|a| a.entry.kind != crate::scene::area::AreaKind::Room)
+                .map(|a| (a.outline.clone(), a.entry.name.clone()))
+                .collect(),
             light: self.light.clone(),
             palette: (
                 palette.or(scene.display.palette).unwrap_or_default(),
@@ -499,29 +553,26 @@ impl Calculation<'_> {
     }
 
     /// The report's settings table: scene, maintenance factor, light, interpolation,
-    /// device.
-    pub fn report_settings(&self, scene_label: &str) -> [(&'static str, String); 5] {
-        [
+    /// device, and with areas the standard and the grid rule.
+    pub fn report_settings(&self, scene_label: &str) -> Vec<(&'static str, String)> {
+        let mut rows = vec![
             ("scene", scene_label.to_string()),
             ("maintenance factor", self.maintenance_factor.to_string()),
             (
                 "light",
-                format!(
-                    "{}; {}",
-                    self.light.join(" "),
-                    match (self.shadows, self.cpu) {
-                        (ShadowTechnique::None, _) => "no shadows",
-                        (ShadowTechnique::Paraboloid, false) => "paraboloid shadow maps",
-                        _ => "exact shadows (a ray from each point to each luminaire)",
-                    }
-                ),
+                format!("{}; {}", self.light.join(" "), self.shadows_text()),
             ),
             ("interpolation", self.interp.name().to_string()),
             (
                 "computed on",
                 if self.cpu { "CPU" } else { "GPU" }.to_string(),
             ),
-        ]
+        ];
+        if !self.scene.areas.is_empty() {
+            rows.push(("standard", STANDARD_12464.to_string()));
+            rows.push(("grid rule", GRID_RULE.to_string()));
+        }
+        rows
     }
 }
 

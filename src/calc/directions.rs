@@ -22,6 +22,7 @@ pub fn normals(grid: &CalcGrid) -> Vec<DVec3> {
     let step = std::f64::consts::TAU / CYLINDER_DIRECTIONS as f64;
     match (grid.entry.kind, grid.facing) {
         (GridKind::Horizontal, _) => vec![DVec3::Z],
+        (GridKind::Ceiling, _) => vec![DVec3::NEG_Z],
         (GridKind::Vertical, Some(f)) => vec![f],
         (GridKind::Cylindrical, _) => (0..CYLINDER_DIRECTIONS)
             .map(|k| horizontal((k as f64 + 0.5) * step))

@@ -7,6 +7,7 @@ pub mod directions;
 pub mod glare;
 pub mod plan;
 pub mod report;
+pub mod requirements;
 pub mod stats;
 
 pub use crate::scene::grid::{CalcGrid, CalcSettings, GridEntry, GridKind};

@@ -6,7 +6,9 @@
 //! front (along the wall to the right, height up).
 
 use glam::{DVec2, DVec3};
+use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
+use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 
 use super::stats::GridStats;
@@ -34,6 +36,9 @@ pub struct Plan<'a> {
     pub luminaires: Vec<(DVec3, String)>,
     /// The observers: eye, line of sight and label (drawn on horizontal grids).
     pub observers: Vec<(DVec3, DVec3, String)>,
+    /// The EN 12464-1 task areas and areas (not rooms): outline in plan and name (drawn on
+    /// horizontal grids).
+    pub areas: Vec<(Vec<[f64; 2]>, String)>,
     /// What light the values hold, for the statistics box: one or two short lines
     /// ("direct light only"; "direct + interreflected", "radiosity 99.0 % converged").
     pub light: Vec<String>,
@@ -286,14 +291,19 @@ impl Plan<'_> {
                 self.colour(v, top).filled(),
             )
         }))?;
+        let closed = |o: &[[f64; 2]]| -> Vec<(f64, f64)> {
+            o.iter().chain(o.first()).map(|p| (p[0], p[1])).collect()
+        };
         chart.draw_series(std::iter::once(PathElement::new(
-            outline
-                .iter()
-                .chain(outline.first())
-                .map(|p| (p[0], p[1]))
-                .collect::<Vec<_>>(),
+            closed(&outline),
             BLACK.stroke_width(2),
         )))?;
+        if let Some(hole) = &self.grid.entry.exclude {
+            chart.draw_series(std::iter::once(PathElement::new(
+                closed(hole),
+                BLACK.stroke_width(1),
+            )))?;
+        }
         let label = ("sans-serif", 13).into_font();
         for (level, pieces) in self.isolux()? {
             for piece in &pieces {
@@ -318,6 +328,12 @@ impl Plan<'_> {
                 Text::new(format!("{v:.0}"), (c.x, c.y), small.clone())
             }))?;
         }
+        // On the floor's plans: the areas and the observers; on a ceiling's only the
+        // luminaires.
+        let floor = !matches!(self.grid.entry.kind, GridKind::Vertical | GridKind::Ceiling);
+        if floor {
+            self.draw_areas(&mut chart, scale)?;
+        }
         if self.grid.entry.kind != GridKind::Vertical {
             for (position, name) in &self.luminaires {
                 let (x, y) = (position.x, position.y);
@@ -341,32 +357,81 @@ impl Plan<'_> {
                     ("sans-serif", 13).into_font().color(&BLACK),
                 )))?;
             }
-            let blue = RGBColor(20, 60, 200);
-            for (eye, forward, name) in &self.observers {
-                let (x, y) = (eye.x, eye.y);
-                if !(lo[0]..hi[0]).contains(&x) || !(lo[1]..hi[1]).contains(&y) {
-                    continue;
-                }
-                // The eye as a filled triangle pointing along the line of sight, 24 px long.
-                let f = DVec2::new(forward.x, forward.y).normalize_or_zero() / scale;
-                let side = f.perp();
-                let tip = (x + 16.0 * f.x, y + 16.0 * f.y);
-                chart.draw_series(std::iter::once(Polygon::new(
-                    vec![
-                        tip,
-                        (x - 8.0 * f.x + 7.0 * side.x, y - 8.0 * f.y + 7.0 * side.y),
-                        (x - 8.0 * f.x - 7.0 * side.x, y - 8.0 * f.y - 7.0 * side.y),
-                    ],
-                    blue.filled(),
-                )))?;
-                chart.draw_series(std::iter::once(Text::new(
-                    name.clone(),
-                    (x + 10.0 / scale, y - 12.0 / scale),
-                    ("sans-serif", 13).into_font().color(&blue),
-                )))?;
+            if floor {
+                self.draw_observers(&mut chart, (lo, hi), scale)?;
             }
         }
         Ok(scale)
+    }
+
+    /// The observers: each eye as a filled triangle along its line of sight, labelled.
+    fn draw_observers<DB: DrawingBackend>(
+        &self,
+        chart: &mut ChartContext<'_, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+        (lo, hi): ([f64; 2], [f64; 2]),
+        scale: f64,
+    ) -> DrawResult
+    where
+        DB::ErrorType: 'static,
+    {
+        let blue = RGBColor(20, 60, 200);
+        for (eye, forward, name) in &self.observers {
+            let (x, y) = (eye.x, eye.y);
+            if !(lo[0]..hi[0]).contains(&x) || !(lo[1]..hi[1]).contains(&y) {
+                continue;
+            }
+            // The eye as a filled triangle pointing along the line of sight, 24 px long.
+            let f = DVec2::new(forward.x, forward.y).normalize_or_zero() / scale;
+            let side = f.perp();
+            let tip = (x + 16.0 * f.x, y + 16.0 * f.y);
+            chart.draw_series(std::iter::once(Polygon::new(
+                vec![
+                    tip,
+                    (x - 8.0 * f.x + 7.0 * side.x, y - 8.0 * f.y + 7.0 * side.y),
+                    (x - 8.0 * f.x - 7.0 * side.x, y - 8.0 * f.y - 7.0 * side.y),
+                ],
+                blue.filled(),
+            )))?;
+            chart.draw_series(std::iter::once(Text::new(
+                name.clone(),
+                (x + 10.0 / scale, y - 12.0 / scale),
+                ("sans-serif", 13).into_font().color(&blue),
+            )))?;
+        }
+        Ok(())
+    }
+
+    /// The task areas: a dashed purple outline with the area's name inside its first
+    /// corner.
+    fn draw_areas<DB: DrawingBackend>(
+        &self,
+        chart: &mut ChartContext<'_, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+        scale: f64,
+    ) -> DrawResult
+    where
+        DB::ErrorType: 'static,
+    {
+        let purple = RGBColor(128, 0, 140);
+        for (outline, name) in &self.areas {
+            let closed: Vec<(f64, f64)> = outline
+                .iter()
+                .chain(outline.first())
+                .map(|p| (p[0], p[1]))
+                .collect();
+            chart.draw_series(std::iter::once(DashedPathElement::new(
+                closed,
+                8,
+                5,
+                purple.stroke_width(2),
+            )))?;
+            let (lo, hi) = crate::geometry::polygon::bounds(outline);
+            chart.draw_series(std::iter::once(Text::new(
+                name.clone(),
+                (lo[0] + 4.0 / scale, hi[1] - 4.0 / scale),
+                ("sans-serif", 13).into_font().color(&purple),
+            )))?;
+        }
+        Ok(())
     }
 
     fn draw_side<DB: DrawingBackend>(
@@ -437,17 +502,22 @@ impl Plan<'_> {
             font.clone(),
         ))?;
         let note = ("sans-serif", 12).into_font().color(&RGBColor(90, 90, 90));
-        let lines = match self.grid.entry.kind {
+        let mut lines = match self.grid.entry.kind {
             GridKind::Vertical => vec!["seen from the front of the wall"],
-            _ if self.observers.is_empty() => {
-                vec!["plan: x to the right, y up", "○ luminaires (plan position)"]
-            }
-            _ => vec![
-                "plan: x to the right, y up",
+            GridKind::Ceiling => vec![
+                "plan seen from above: x to the right, y up",
                 "○ luminaires (plan position)",
-                "▶ observers (eye, line of sight), UGR",
             ],
+            _ => vec!["plan: x to the right, y up", "○ luminaires (plan position)"],
         };
+        if !matches!(self.grid.entry.kind, GridKind::Vertical | GridKind::Ceiling) {
+            if !self.observers.is_empty() {
+                lines.push("▶ observers (eye, line of sight), UGR");
+            }
+            if !self.areas.is_empty() {
+                lines.push("- - task areas and areas (EN 12464-1)");
+            }
+        }
         for (k, line) in lines
             .into_iter()
             .chain(["isolux lines at round values"])

@@ -1,8 +1,10 @@
 //! The calculation's report (`calc --report report.html`): one self-contained HTML page a designer hands over — the
-//! settings used, the luminaires, and per grid its statistics and plan (inline SVG).
+//! settings used, the luminaires, the verification of the EN 12464-1 areas (a table,
+//! green where met, red where not), and per grid its statistics and plan (inline SVG).
 
 use std::fmt::Write as _;
 
+use crate::calc::requirements::Verdict;
 use crate::calc::GridStats;
 use crate::io::xml_escape as escape;
 use crate::scene::Scene;
@@ -33,8 +35,46 @@ pub struct ReportObserver<'a> {
 
 const STYLE: &str = "body{font-family:sans-serif;max-width:1200px;margin:2em auto;color:#222}\
 table{border-collapse:collapse;margin:.5em 0 1.5em}td,th{padding:2px 10px;border-bottom:1px solid #ddd;text-align:left}\
-th{background:#f3f3f3}td.n{text-align:right;font-variant-numeric:tabular-nums}\
+th{background:#f3f3f3}td.n{text-align:right;font-variant-numeric:tabular-nums;white-space:nowrap}\
+tr.pass td.v{background:#d6f5d6;color:#135e13}tr.fail td.v{background:#f9d4d4;color:#8a1010}\
+tr.unknown td.v{background:#fff1c2;color:#6b5200}td.v{font-weight:bold}td.b{color:#666;font-size:85%}\
 svg{max-width:100%;height:auto}footer{color:#777;font-size:80%;margin-top:2em}";
+
+/// The verification table: one row per requirement, its outcome coloured.
+fn verification(h: &mut String, verdicts: &[Verdict]) {
+    if verdicts.is_empty() {
+        return;
+    }
+    let failed = verdicts.iter().filter(|v| v.pass != Some(true)).count();
+    let _ = write!(
+        h,
+        "<h2>Verification (EN 12464-1)</h2><p>{}</p><table><tr><th>area</th><th>part</th><th>quantity</th><th>required</th><th>achieved (maintained)</th><th>result</th><th>limit from</th></tr>",
+        if failed == 0 {
+            format!("All {} requirements are met.", verdicts.len())
+        } else {
+            format!("{failed} of {} requirements are not met or not known.", verdicts.len())
+        }
+    );
+    for v in verdicts {
+        let basis = match &v.note {
+            Some(n) => format!("{} — {n}", v.basis),
+            None => v.basis.clone(),
+        };
+        let _ = write!(
+            h,
+            "<tr class=\"{}\"><td>{}</td><td>{}</td><td>{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"v\">{}</td><td class=\"b\">{}</td></tr>",
+            v.outcome(),
+            escape(&v.area),
+            v.part.label(),
+            v.quantity.name(),
+            escape(&v.limit_text()),
+            escape(&v.achieved_text()),
+            v.outcome(),
+            escape(&basis)
+        );
+    }
+    h.push_str("</table>");
+}
 
 /// The report page.
 pub fn report_html(
@@ -42,6 +82,7 @@ pub fn report_html(
     settings: &[(&str, String)],
     grids: &[ReportGrid],
     observers: &[ReportObserver],
+    verdicts: &[Verdict],
 ) -> String {
     let title = scene
         .path
@@ -80,7 +121,9 @@ pub fn report_html(
             p.z
         );
     }
-    h.push_str("</table><h2>Calculation surfaces</h2><table><tr><th>grid</th><th>kind</th><th>points</th><th>Em (lx)</th><th>Emin (lx)</th><th>Emax (lx)</th><th>U0</th><th>g2</th></tr>");
+    h.push_str("</table>");
+    verification(&mut h, verdicts);
+    h.push_str("<h2>Calculation surfaces</h2><table><tr><th>grid</th><th>kind</th><th>points</th><th>Em (lx)</th><th>Emin (lx)</th><th>Emax (lx)</th><th>U0</th><th>g2</th></tr>");
     for g in grids {
         let s = &g.stats;
         let _ = write!(

@@ -177,6 +177,7 @@ pub fn run(args: CalcArgs) -> Result<(), CliError> {
             g.luminaires.len()
         );
     }
+    print_verdicts(&calc.requirements);
     let label = args.scene.display().to_string();
     let text = serde_json::to_string_pretty(&calc.json(&label)).map_err(CliError::failure)?;
     write_atomic(&staging.dir().join("calc.json"), text.as_bytes()).map_err(CliError::failure)?;
@@ -195,7 +196,13 @@ pub fn run(args: CalcArgs) -> Result<(), CliError> {
         let settings = calc.report_settings(&label);
         (
             path,
-            report_html(&scene, &settings, &report_grids, &observers),
+            report_html(
+                &scene,
+                &settings,
+                &report_grids,
+                &observers,
+                &calc.requirements,
+            ),
         )
     });
     // Complete or none: the last chance for Ctrl-C to leave nothing.
@@ -216,6 +223,29 @@ pub fn run(args: CalcArgs) -> Result<(), CliError> {
         calc.glare.len()
     );
     Ok(())
+}
+
+/// Prints the verification of the areas: one line per requirement.
+fn print_verdicts(verdicts: &[crate::calc::requirements::Verdict]) {
+    if verdicts.is_empty() {
+        return;
+    }
+    println!(
+        "{:<20} {:<12} {:<8} {:>12} {:>14}  result",
+        "area", "part", "quantity", "required", "achieved"
+    );
+    for v in verdicts {
+        println!(
+            "{:<20} {:<12} {:<8} {:>12} {:>14}  {}{}",
+            printable(&v.area),
+            v.part.label(),
+            v.quantity.name(),
+            v.limit_text(),
+            v.achieved_text(),
+            v.outcome(),
+            v.note.as_ref().map_or(String::new(), |n| format!(" ({n})"))
+        );
+    }
 }
 
 /// The error of a run stopped by Ctrl-C (or SIGTERM) before its outputs were written.

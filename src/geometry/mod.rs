@@ -4,6 +4,7 @@ pub mod adjacency;
 pub mod generate;
 pub mod howell;
 pub mod obj;
+pub mod polygon;
 pub mod simplify;
 pub mod split;
 pub mod weld;

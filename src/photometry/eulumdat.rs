@@ -123,6 +123,16 @@ impl Eulumdat {
         self.lamp_sets.iter().any(|s| s.count < 0)
     }
 
+    /// The colour rendering index Ra the file states: the lowest over its lamp sets, none
+    /// where a set states none ([`super::colour_rendering::ra_of`]).
+    pub fn colour_rendering_ra(&self) -> Option<f64> {
+        self.lamp_sets
+            .iter()
+            .map(|s| super::colour_rendering::ra_of(&s.cri))
+            .try_fold(f64::INFINITY, |lo, ra| ra.map(|r| lo.min(r)))
+            .filter(|r| r.is_finite())
+    }
+
     /// Sum of the lamp fluxes of all sets, lm.
     pub fn lamp_flux_lm(&self) -> f64 {
         self.lamp_sets.iter().map(|s| s.flux_lm).sum()

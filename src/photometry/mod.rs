@@ -5,6 +5,7 @@
 pub mod catalogue;
 pub mod check;
 pub mod check_text;
+pub mod colour_rendering;
 pub mod datasheet;
 pub mod datasheet_plot;
 pub mod distribution;

@@ -36,6 +36,14 @@
 //! name = "opal"
 //! diffuse_transmittance = 0.3
 //!
+//! [[area]]                      # EN 12464-1 task area with requirements: see [`super::area`]
+//! name = "desk"
+//! corner = [1.0, 1.0]
+//! size = [1.6, 0.8]
+//! height = 0.75
+//! em = 500
+//! u0 = 0.6
+//!
 //! [[observer]]                  # glare (UGR) at an eye: see [`super::observer`]
 //! name = "desk"
 //! position = [1.5, 2.0, 1.2]
@@ -90,6 +98,10 @@ pub struct SceneFile {
     /// Calculation surfaces (virtual: they neither block nor reflect light).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub grid: Vec<super::grid::GridEntry>,
+    /// EN 12464-1 areas with their requirements (task areas with their surrounding and
+    /// background), judged by `goniolight calc`.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub area: Vec<super::area::AreaEntry>,
     /// Settings of `goniolight calc`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub calc: Option<super::grid::CalcSettings>,

@@ -11,12 +11,15 @@
 //! height = 0.8          # metres above z = 0 (vertical: of the bottom edge)
 //! spacing = 0.5         # metres, or "en12464" (the default)
 //! border = 0.0          # band excluded along the outline, metres
-//! kind = "horizontal"   # "vertical", "cylindrical", "semicylindrical"
+//! exclude = [[x, y], …] # a polygon left out (a column), metres
+//! kind = "horizontal"   # "vertical", "ceiling" (facing down), "cylindrical", "semicylindrical"
 //! normal = [0.0, -1.0, 0.0]  # vertical: the wall's front; semicylindrical: the facing
 //! ```
 
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
+
+use crate::geometry::polygon::{self, distance_to_outline, inside};
 
 /// What a grid's points measure.
 #[derive(
@@ -29,6 +32,8 @@ pub enum GridKind {
     Horizontal,
     /// Illuminance on a vertical plane facing `normal`.
     Vertical,
+    /// Illuminance on a horizontal plane facing down (a ceiling's).
+    Ceiling,
     /// Cylindrical illuminance: the mean of the vertical illuminance over all horizontal
     /// directions (EN 12464-1's E_z).
     Cylindrical,
@@ -80,6 +85,14 @@ pub struct GridEntry {
         deserialize_with = "crate::io::exact::option_vec"
     )]
     pub outline: Option<Vec<[f64; 2]>>,
+    /// A polygon in plan left out of the grid (a column, a task area inside its
+    /// surrounding), metres.
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "crate::io::exact::option_vec"
+    )]
+    pub exclude: Option<Vec<[f64; 2]>>,
     /// Height above z = 0 (vertical grids: of the bottom edge), metres.
     #[serde(default = "default_height")]
     pub height: f64,
@@ -138,36 +151,40 @@ fn centres(start: f64, length: f64, n: usize) -> impl Iterator<Item = f64> {
     (0..n).map(move |i| start + (i as f64 + 0.5) * length / n as f64)
 }
 
-fn inside(polygon: &[[f64; 2]], x: f64, y: f64) -> bool {
-    let mut inside = false;
-    let mut j = polygon.len() - 1;
-    for i in 0..polygon.len() {
-        let ([xi, yi], [xj, yj]) = (polygon[i], polygon[j]);
-        if (yi > y) != (yj > y) && x < (xj - xi) * (y - yi) / (yj - yi) + xi {
-            inside = !inside;
-        }
-        j = i;
-    }
-    inside
-}
-
-fn distance_to_outline(polygon: &[[f64; 2]], x: f64, y: f64) -> f64 {
-    let mut best = f64::INFINITY;
-    for i in 0..polygon.len() {
-        let (a, b) = (polygon[i], polygon[(i + 1) % polygon.len()]);
-        let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
-        let len2 = dx * dx + dy * dy;
-        let t = if len2 > 0.0 {
-            (((x - a[0]) * dx + (y - a[1]) * dy) / len2).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        best = best.min((x - a[0] - t * dx).hypot(y - a[1] - t * dy));
-    }
-    best
-}
-
 impl GridEntry {
+    /// The outline in the grid's own 2D frame (plan; vertical: along the wall, up),
+    /// checked. Errors name the key and what is wrong.
+    pub fn plan_outline(&self) -> Result<Vec<[f64; 2]>, (String, String)> {
+        let bad = |key: &str, msg: String| Err((key.to_string(), msg));
+        match (&self.outline, self.corner, self.size) {
+            (Some(o), None, None) => {
+                if self.kind == GridKind::Vertical {
+                    return bad(
+                        "outline",
+                        "a vertical grid is a rectangle: give corner and size".into(),
+                    );
+                }
+                if o.len() < 3 || o.iter().flatten().any(|v| !v.is_finite()) {
+                    return bad("outline", "give at least three finite [x, y] points".into());
+                }
+                Ok(o.clone())
+            }
+            (None, Some(c), Some(s)) => {
+                if !c.iter().all(|v| v.is_finite()) {
+                    return bad("corner", format!("{c:?}: give two finite coordinates"));
+                }
+                if !(s.iter().all(|v| v.is_finite()) && s[0] > 0.0 && s[1] > 0.0) {
+                    return bad("size", format!("{s:?}: give two positive lengths"));
+                }
+                Ok(polygon::rectangle(c, s))
+            }
+            _ => bad(
+                "corner",
+                "give corner and size, or outline (not both)".into(),
+            ),
+        }
+    }
+
     /// The grid's points. Errors name the key (relative to this grid) and what is wrong.
     pub fn resolve(&self) -> Result<CalcGrid, (String, String)> {
         let bad = |key: &str, msg: String| Err((key.to_string(), msg));
@@ -209,50 +226,17 @@ impl GridEntry {
             }
             (_, None) => None,
         };
-        // The outline in the grid's own 2D frame (plan; vertical: along the wall, up).
-        let polygon: Vec<[f64; 2]> = match (&self.outline, self.corner, self.size) {
-            (Some(o), None, None) => {
-                if self.kind == GridKind::Vertical {
-                    return bad(
-                        "outline",
-                        "a vertical grid is a rectangle: give corner and size".into(),
-                    );
-                }
-                if o.len() < 3 || o.iter().flatten().any(|v| !v.is_finite()) {
-                    return bad("outline", "give at least three finite [x, y] points".into());
-                }
-                o.clone()
+        let polygon = self.plan_outline()?;
+        let exclude = match &self.exclude {
+            Some(_) if self.kind == GridKind::Vertical => {
+                return bad("exclude", "only grids in plan leave a polygon out".into())
             }
-            (None, Some(c), Some(s)) => {
-                if !c.iter().all(|v| v.is_finite()) {
-                    return bad("corner", format!("{c:?}: give two finite coordinates"));
-                }
-                if !(s.iter().all(|v| v.is_finite()) && s[0] > 0.0 && s[1] > 0.0) {
-                    return bad("size", format!("{s:?}: give two positive lengths"));
-                }
-                vec![
-                    c,
-                    [c[0] + s[0], c[1]],
-                    [c[0] + s[0], c[1] + s[1]],
-                    [c[0], c[1] + s[1]],
-                ]
+            Some(o) if o.len() < 3 || o.iter().flatten().any(|v| !v.is_finite()) => {
+                return bad("exclude", "give at least three finite [x, y] points".into())
             }
-            _ => {
-                return bad(
-                    "corner",
-                    "give corner and size, or outline (not both)".into(),
-                )
-            }
+            other => other.as_deref(),
         };
-        let (lo, hi) = polygon.iter().fold(
-            ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]),
-            |(lo, hi), p| {
-                (
-                    [lo[0].min(p[0]), lo[1].min(p[1])],
-                    [hi[0].max(p[0]), hi[1].max(p[1])],
-                )
-            },
-        );
+        let (lo, hi) = polygon::bounds(&polygon);
         let extent = [hi[0] - lo[0], hi[1] - lo[1]];
         let longer = extent[0].max(extent[1]);
         let p = match &self.spacing {
@@ -277,7 +261,8 @@ impl GridEntry {
         for v in centres(lo[1], extent[1], n[1]) {
             for u in centres(lo[0], extent[0], n[0]) {
                 let keep = (rectangle || inside(&polygon, u, v))
-                    && (self.border == 0.0 || distance_to_outline(&polygon, u, v) >= self.border);
+                    && (self.border == 0.0 || distance_to_outline(&polygon, u, v) >= self.border)
+                    && !exclude.is_some_and(|x| inside(x, u, v));
                 if keep {
                     plan.push([u, v]);
                 }
@@ -286,7 +271,7 @@ impl GridEntry {
         if plan.is_empty() {
             return bad(
                 "border",
-                "no point is left inside the outline and its border".into(),
+                "no point is left inside the outline, its border and what it leaves out".into(),
             );
         }
         let points = plan
@@ -378,6 +363,7 @@ mod tests {
             corner: Some([0.0, 0.0]),
             size: Some(size),
             outline: None,
+            exclude: None,
             height: 0.8,
             spacing: Spacing::default(),
             border: 0.0,

@@ -5,6 +5,7 @@
 //! γ = 0 along −Z and C0 along +X; [`PlacedLuminaire::rotation`] maps it to the world.
 
 pub mod alpha;
+pub mod area;
 pub mod back_faces;
 pub mod bump;
 pub mod camera;
@@ -71,8 +72,11 @@ pub struct Scene {
     /// The `[[model]]` entries, their paths resolved against the scene file's folder
     /// (what [`Scene::save`] writes back).
     pub models: Vec<file::ModelEntry>,
-    /// Calculation surfaces, with their points (virtual: no geometry).
+    /// Calculation surfaces, with their points (virtual: no geometry): the `[[grid]]`s,
+    /// then the grids of the `[[area]]`s.
     pub grids: Vec<grid::CalcGrid>,
+    /// EN 12464-1 areas with their requirements (`[[area]]`); their grids are in `grids`.
+    pub areas: Vec<area::Area>,
     /// `[calc]` settings.
     pub calc: grid::CalcSettings,
     /// Observers rated for glare (`[[observer]]`).
@@ -131,6 +135,125 @@ fn resolve_grids(
                 .map_err(|(key, msg)| SceneError::new(path, format!("grid[{i}].{key}"), msg))
         },
     )
+}
+
+/// The `[[area]]` entries: each area's grids appended to `grids` (names must differ
+/// from every grid's), its requirements; a background that the surrounding leaves no
+/// room for is left out with a warning.
+fn resolve_areas(
+    path: &Path,
+    entries: &[area::AreaEntry],
+    models: &area::ModelExtent,
+    grids: &mut Vec<grid::CalcGrid>,
+    warnings: &mut Vec<String>,
+) -> Result<Vec<area::Area>, SceneError> {
+    let resolved = resolve_named(
+        path,
+        entries,
+        "area",
+        |e| &e.name,
+        |e, i| {
+            e.resolve(models)
+                .map_err(|(key, msg)| SceneError::new(path, format!("area[{i}].{key}"), msg))
+        },
+    )?;
+    let mut names: std::collections::HashSet<String> = grids
+        .iter()
+        .map(|g| g.entry.name.trim().to_lowercase())
+        .collect();
+    let mut areas = Vec::with_capacity(entries.len());
+    for (i, (entry, plan)) in entries.iter().zip(resolved).enumerate() {
+        let area::AreaPlan {
+            outline,
+            grids: parts,
+            mut requirements,
+        } = plan;
+        let mut indices = Vec::new();
+        for (part, g) in parts {
+            if !names.insert(g.name.trim().to_lowercase()) {
+                return Err(SceneError::new(
+                    path,
+                    format!("area[{i}].name"),
+                    format!(
+                        "its grid {:?} has the name of another grid; rename the area",
+                        g.name
+                    ),
+                ));
+            }
+            match g.resolve() {
+                Ok(resolved) => {
+                    indices.push((part, grids.len()));
+                    grids.push(resolved);
+                }
+                Err((key, _)) if part == area::AreaPart::Background && key == "border" => {
+                    requirements.retain(|r| r.part != part);
+                    warnings.push(format!(
+                        "area {:?}: its immediate surrounding leaves no background in the room",
+                        entry.name
+                    ));
+                }
+                Err((key, msg)) => {
+                    return Err(SceneError::new(
+                        path,
+                        format!("area[{i}] ({}).{key}", g.name),
+                        msg,
+                    ))
+                }
+            }
+        }
+        areas.push(area::Area {
+            entry: entry.clone(),
+            outline,
+            grids: indices,
+            requirements,
+        });
+    }
+    Ok(areas)
+}
+
+/// An area's UGR limit needs observers, and the observers it names must exist.
+fn check_area_observers(
+    path: &Path,
+    areas: &[area::Area],
+    observers: &[Observer],
+) -> Result<(), SceneError> {
+    for (i, a) in areas.iter().enumerate() {
+        if a.entry.ugr_l.is_some() && observers.is_empty() {
+            return Err(SceneError::new(
+                path,
+                format!("area[{i}].ugr_l"),
+                "UGR is rated at an eye: add an [[observer]] looking across the area",
+            ));
+        }
+        for name in a.entry.observers.iter().flatten() {
+            if !observers.iter().any(|o| o.entry.name.trim() == name.trim()) {
+                return Err(SceneError::new(
+                    path,
+                    format!("area[{i}].observers"),
+                    format!("{name:?} names no [[observer]]"),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The models' extent in plan (a rectangle) and their top, if there are models.
+fn model_extent(meshes: &[SceneMesh]) -> area::ModelExtent {
+    let (lo, hi) = meshes.iter().flat_map(|m| m.positions.iter()).fold(
+        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+        |(lo, hi), p| (lo.min(p.as_dvec3()), hi.max(p.as_dvec3())),
+    );
+    if !(lo.x < hi.x && lo.y < hi.y) {
+        return area::ModelExtent::default();
+    }
+    area::ModelExtent {
+        outline: Some(crate::geometry::polygon::rectangle(
+            [lo.x, lo.y],
+            [hi.x - lo.x, hi.y - lo.y],
+        )),
+        top: Some(hi.z),
+    }
 }
 
 /// The `[[observer]]` entries, resolved; names must differ (each names a row of the
@@ -250,11 +373,14 @@ impl Scene {
             None => Camera::framing(bounds, &luminaires),
         };
         check_display(path, &parsed.display)?;
-        let grids = resolve_grids(path, &parsed.grid)?;
+        let mut grids = resolve_grids(path, &parsed.grid)?;
+        let extent = model_extent(&meshes);
+        let areas = resolve_areas(path, &parsed.area, &extent, &mut grids, &mut warnings)?;
         let calc = parsed.calc.unwrap_or_default();
         grid::CalcSettings::check(calc.maintenance_factor)
             .map_err(|m| SceneError::new(path, "calc.maintenance_factor", m))?;
         let observers = resolve_observers(path, &parsed.observer)?;
+        check_area_observers(path, &areas, &observers)?;
         Ok(Scene {
             path: path.to_path_buf(),
             meshes,
@@ -271,6 +397,7 @@ impl Scene {
                 })
                 .collect(),
             grids,
+            areas,
             calc,
             observers,
             material_overrides: parsed.material,
@@ -303,6 +430,7 @@ impl Scene {
             models: Vec::new(),
             grids: Vec::new(),
             calc: Default::default(),
+            areas: Vec::new(),
             observers: Vec::new(),
             material_overrides: Vec::new(),
             warnings: Vec::new(),

@@ -30,7 +30,14 @@ impl Scene {
                 .collect(),
             camera: Some(camera_entry(&self.camera)),
             display: self.display.clone(),
-            grid: self.grids.iter().map(|g| g.entry.clone()).collect(),
+            grid: self
+                .grids
+                .iter()
+                .enumerate()
+                .filter(|(k, _)| !self.areas.iter().any(|a| a.grids.iter().any(|g| g.1 == *k)))
+                .map(|(_, g)| g.entry.clone())
+                .collect(),
+            area: self.areas.iter().map(|a| a.entry.clone()).collect(),
             calc: (self.calc != Default::default()).then_some(self.calc),
             observer: self.observers.iter().map(|o| o.entry.clone()).collect(),
             material: self.material_overrides.clone(),

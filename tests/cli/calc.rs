@@ -13,12 +13,12 @@ use glam::DVec3;
 use goniolight::photometry::{Interp, Luminaire};
 use serde_json::Value;
 
-fn s(p: &Path) -> &str {
+pub(crate) fn s(p: &Path) -> &str {
     p.to_str().unwrap()
 }
 
 /// A scene file in `dir` with the box room, its luminaire and `extra` TOML.
-fn room_scene(dir: &Path, extra: &str) -> std::path::PathBuf {
+pub(crate) fn room_scene(dir: &Path, extra: &str) -> std::path::PathBuf {
     let path = dir.join("room.toml");
     let model = root().join("assets/scenes/box_room.obj");
     let lum = luminaire("eulumdat-plot/sample_06_isym1.ldt");
@@ -311,6 +311,7 @@ fn isolux_lines_lie_within_one_spacing_of_the_analytic_radius() {
         corner: Some([-3.0, -3.0]),
         size: Some([6.0, 6.0]),
         outline: None,
+        exclude: None,
         height: 0.0,
         spacing: Spacing::Metres(0.25),
         border: 0.0,
@@ -330,6 +331,7 @@ fn isolux_lines_lie_within_one_spacing_of_the_analytic_radius() {
         maintenance_factor: 1.0,
         luminaires: Vec::new(),
         observers: Vec::new(),
+        areas: Vec::new(),
         light: vec!["direct light only".into()],
         palette: (Default::default(), 0),
         values_at_points: false,
@@ -390,9 +392,12 @@ fn total_light_and_glare_at_observers() {
     assert!(err.contains("--indirect radiosity"), "{err}");
     assert!(!out.exists(), "nothing written");
 
+    // Two areas judged on UGR: one at "door" only, and the room at every observer (with
+    // its walls and ceiling).
+    let areas = "[[area]]\nname = \"desk\"\nkind = \"area\"\ncorner = [2.0, 1.0]\nsize = [2.0, 2.0]\nspacing = 1.0\nugr_l = 19\nobservers = [\"door\"]\n\n[[area]]\nname = \"room\"\nkind = \"room\"\ncorner = [0.0, 0.0]\nsize = [6.0, 4.0]\nspacing = 1.0\nugr_l = 10\n";
     let scene = room_scene(
         tmp.path(),
-        &format!("[calc]\nindirect = \"radiosity\"\n\n{grid}\n{observers}"),
+        &format!("[calc]\nindirect = \"radiosity\"\n\n{grid}\n{observers}\n{areas}"),
     );
     let out = tmp.path().join("out");
     let (code, stdout, err) = run_cli(&["calc", s(&scene), "--out", s(&out)], "");
@@ -456,6 +461,52 @@ fn total_light_and_glare_at_observers() {
     let ugr = 8.0 * (0.25 / lb * l * l * omega / (p * p)).log10();
     let got = door["ugr"].as_f64().unwrap();
     assert!((got - ugr).abs() < 0.05, "UGR {got} vs {ugr} by hand");
+    // The room's walls and ceiling: their values are `radiosity --points` at their points
+    // facing into the room, and their verdicts judge their statistics.
+    for (name, normal) in [("room-wall-1", "0 1 0"), ("room-ceiling", "0 0 -1")] {
+        let rows = calc_csv_rows(&out.join(format!("{name}.csv")));
+        let stdin: String = rows
+            .iter()
+            .map(|r| format!("{} {} {} {normal}\n", r[0], r[1], r[2]))
+            .collect();
+        let (code, lux, err) = run_cli(
+            &["radiosity", s(&scene), "--points", "--shadows", "volumes"],
+            &stdin,
+        );
+        assert_eq!(code, 0, "{err}");
+        for (row, l) in rows.iter().zip(lux.lines()) {
+            let l: f64 = l.parse().unwrap();
+            assert!(
+                (row[3] - l).abs() <= 1e-4 * l.max(1.0),
+                "{name}: {row:?} vs {l}"
+            );
+        }
+    }
+    let wall = doc["grids"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|g| g["name"] == "room wall 1")
+        .unwrap();
+    assert_eq!(wall["kind"], "vertical");
+    let verdicts = doc["requirements"].as_array().unwrap();
+    let wall_em = verdicts
+        .iter()
+        .find(|v| v["grid"] == "room wall 1" && v["quantity"] == "Em")
+        .unwrap();
+    assert_eq!(wall_em["required"], 50.0);
+    assert_eq!(wall_em["achieved"], wall["em"]);
+    assert_eq!(wall_em["pass"], wall["em"].as_f64().unwrap() >= 50.0);
+    // UGR, 4 walls and the ceiling (Em and U0 each) of the room; UGR of the desk.
+    assert_eq!(verdicts.len(), 1 + 1 + 2 * 5);
+    // The areas' UGR_L: the highest UGR of their observers ("window" sees nothing).
+    for (k, limit) in [(0, 19.0), (1, 10.0)] {
+        let v = &doc["requirements"][k];
+        assert_eq!(v["quantity"], "UGR");
+        assert_eq!(v["achieved"].as_f64().unwrap(), got, "{v}");
+        assert_eq!(v["required"].as_f64().unwrap(), limit);
+        assert_eq!(v["pass"].as_bool().unwrap(), got <= limit, "{v}");
+    }
     assert_eq!(door["luminaires"].as_array().unwrap().len(), 1);
     // UGR is rated on the initial light: a maintenance factor changes the lux, not UGR.
     let maintained = tmp.path().join("maintained");

@@ -11,6 +11,7 @@ mod gpu_common;
 #[path = "../common/svg.rs"]
 mod svg_common;
 
+mod areas;
 mod batch;
 mod calc;
 mod catalogue;

@@ -385,9 +385,10 @@ fn fuzz_angle_lists() {
     });
 }
 
-/// The scene's tables that name outputs and glare: `[[grid]]`, `[[observer]]`,
+/// The scene's tables that name outputs and glare: `[[grid]]`, `[[area]]`, `[[observer]]`,
 /// `[[material]]` (seeds: the bundled calculation scene with each table added). What is
-/// accepted must be computable: grids of finite points within the per-grid cap, observers
+/// accepted must be computable: grids of finite points within the per-grid cap (the
+/// areas' too), areas with finite limits and outlines, observers
 /// with a finite eye and a unit line of sight, materials that send back at most what they
 /// receive, no name twice.
 #[test]
@@ -400,6 +401,9 @@ fn fuzz_scene_tables() {
         "[[observer]]\nname = \"door\"\nposition = [0.5, 0.5, 1.6]\ndirection = [1.0, 0.3, 0.0]\n",
         "[[grid]]\nname = \"outline\"\noutline = [[0.5, 0.5], [3.0, 0.5], [2.0, 3.0]]\nheight = 0.8\nspacing = 0.25\n",
         "[[grid]]\nname = \"wall\"\nkind = \"vertical\"\ncorner = [0.0, 0.0]\nsize = [3.0, 2.0]\nnormal = [0.0, 1.0, 0.0]\n",
+        "[[area]]\nname = \"desk\"\ncorner = [1.0, 1.0]\nsize = [1.6, 0.8]\nheight = 0.75\nem = 500\nu0 = 0.6\nra = 80\n",
+        "[[area]]\nname = \"hall\"\nkind = \"area\"\noutline = [[0.5, 0.5], [3.0, 0.5], [2.0, 3.0]]\nem = 100\nez = 50\nugr_l = 22\n",
+        "[[area]]\nname = \"bench\"\noutline = [[1, 1], [2, 1], [2, 2]]\nroom = [[0, 0], [6, 0], [6, 2], [3, 2], [3, 4], [0, 4]]\nem = 300\nsurrounding_width = 1\nbackground_width = 4\n",
     ];
     let mut seeds = vec![base.clone().into_bytes()];
     seeds.extend(tables.iter().map(|t| format!("{base}\n{t}").into_bytes()));
@@ -422,6 +426,17 @@ fn fuzz_scene_tables() {
             }
             if !names.insert(g.entry.name.trim().to_lowercase()) {
                 return Err(format!("accepted grid {:?} twice", g.entry.name));
+            }
+        }
+        for a in &scene.areas {
+            if a.grids.iter().any(|(_, k)| *k >= scene.grids.len())
+                || a.requirements.iter().any(|r| !r.required.is_finite())
+                || a.outline.iter().flatten().any(|v| !v.is_finite())
+            {
+                return Err(format!(
+                    "accepted area {:?} with unusable grids or limits",
+                    a.entry.name
+                ));
             }
         }
         for o in &scene.observers {
