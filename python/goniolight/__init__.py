@@ -395,16 +395,18 @@ def radiosity(scene: Union[PathLike, Scene], *, converge: float = 0.99, max_shot
 def calc(scene: Union[PathLike, Scene], *, maintenance_factor: Optional[float] = None, cpu: bool = False,
          interp: str = "catmull-rom", shadows: str = "volumes", indirect: Optional[str] = None,
          max_points: Optional[int] = None, solver: Optional[dict] = None,
-         progress=None) -> dict:
+         progress=None, emergency: bool = False) -> dict:
     """The scene's calculation surfaces and observers, as ``goniolight calc`` computes
     them: the dict of its ``calc.json`` (``grids`` with ``em``, ``emin``, ``emax``,
-    ``u0``, ``g2``, …; ``observers`` with ``ugr``; ``indirect``, ``convergence``), each
+    ``u0``, ``g2``, …; ``observers`` with ``ugr``; ``requirements``, the verdicts of the
+    scene's EN 12464-1 areas; ``method``; ``indirect``, ``convergence``), each
     grid also with ``values`` (the maintained lux at its points, a NumPy array in the
     order of its CSV). Keywords are the command's flags: ``maintenance_factor`` (default
     the scene's), ``cpu``, ``interp``, ``shadows``, ``indirect`` (``"none"`` or
-    ``"radiosity"``; default the scene's), ``max_points``; ``solver`` is a dict of
-    :func:`radiosity`'s options for the interreflected light; ``progress(shot,
-    convergence)`` sees its solve.
+    ``"radiosity"``; default the scene's), ``max_points``, ``emergency`` (EN 1838: the
+    luminaires at their emergency output, direct light, the ``[[emergency]]`` areas
+    judged); ``solver`` is a dict of :func:`radiosity`'s options for the interreflected
+    light; ``progress(shot, convergence)`` sees its solve.
 
     >>> import goniolight
     >>> doc = goniolight.calc("assets/scenes/box_room_calc.toml",
@@ -416,7 +418,7 @@ def calc(scene: Union[PathLike, Scene], *, maintenance_factor: Optional[float] =
     """
     text, values = _native.calc_json(
         _scene_arg(scene), maintenance_factor, bool(cpu), interp, shadows, indirect,
-        max_points, json.dumps(solver or {}), progress)
+        max_points, json.dumps(solver or {}), progress, bool(emergency))
     doc = json.loads(text)
     for grid, v in zip(doc["grids"], values):
         grid["values"] = np.asarray(v, dtype=float)

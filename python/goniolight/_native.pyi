@@ -87,7 +87,8 @@ def calc_json(scene: _Scene, maintenance_factor: Optional[float] = None, cpu: bo
               interp: str = "catmull-rom", shadows: str = "volumes",
               indirect: Optional[str] = None, max_points: Optional[int] = None,
               radiosity_json: str = "{}",
-              progress: _Progress = None) -> Tuple[str, list[list[float]]]: ...
+              progress: _Progress = None,
+              emergency: bool = False) -> Tuple[str, list[list[float]]]: ...
 def sun_study(model: _Path, latitude: float, longitude: float, dates: Sequence[str],
               start: str, end: str, step: int, tz: Optional[str] = None,
               north_offset: float = 0.0, extent: Optional[float] = None,

@@ -495,7 +495,7 @@ fn radiosity(
 /// fields of `goniolight::calc::compute::CalcOptions` but `radiosity`, which
 /// `radiosity_json` holds (those left out take their defaults).
 #[pyfunction]
-#[pyo3(signature = (scene, maintenance_factor=None, cpu=false, interp="catmull-rom", shadows="volumes", indirect=None, max_points=None, radiosity_json="{}", progress=None))]
+#[pyo3(signature = (scene, maintenance_factor=None, cpu=false, interp="catmull-rom", shadows="volumes", indirect=None, max_points=None, radiosity_json="{}", progress=None, emergency=false))]
 #[allow(clippy::too_many_arguments)]
 fn calc_json(
     py: Python<'_>,
@@ -508,10 +508,20 @@ fn calc_json(
     max_points: Option<usize>,
     radiosity_json: &str,
     progress: Option<Bound<'_, PyAny>>,
+    emergency: bool,
 ) -> PyResult<(String, Vec<Vec<f64>>)> {
     use goniolight::calc::compute::{compute, CalcError, CalcOptions};
     let label = scene.path().display().to_string();
     let loaded = scene.scene(py)?;
+    let loaded = match emergency {
+        true if indirect == Some("radiosity") => {
+            return Err(value_error(
+                "emergency is direct light only (EN 1838): leave out indirect",
+            ))
+        }
+        true => loaded.in_emergency().map_err(value_error)?,
+        false => loaded,
+    };
     let indirect = indirect
         .map(|name| {
             serde_json::from_value(serde_json::Value::from(name))

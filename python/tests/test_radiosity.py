@@ -145,6 +145,21 @@ def test_calc_judges_en12464_areas_as_the_command(tmp_path):
     assert got["method"]["standards"][0].startswith("EN 12464-1:2021")
 
 
+def test_calc_emergency_equals_the_command(tmp_path):
+    scene = ROOT / "assets" / "scenes" / "box_room_en12464.toml"
+    expected = calc_command(scene, tmp_path, "--emergency")
+    got = goniolight.calc(scene, emergency=True)
+    for g in got["grids"]:
+        g.pop("values")
+    got["scene"] = expected["scene"]
+    assert got == expected
+    assert got["method"]["emergency"] is True
+    assert got["method"]["standards"] == ["EN 1838:2013"]
+    assert {r["area"] for r in got["requirements"]} == {"escape route", "extinguisher", "L1", "L2"}
+    with pytest.raises(ValueError, match="direct light only"):
+        goniolight.calc(scene, emergency=True, indirect="radiosity")
+
+
 def test_calc_with_radiosity_equals_the_command_and_names_bad_options(tmp_path):
     expected = calc_command(BOX_CALC, tmp_path, "--indirect", "radiosity",
                             "--converge", "0.9", "--texel-density", "4")

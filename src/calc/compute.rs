@@ -130,9 +130,6 @@ pub fn csv_name(grid_name: &str) -> String {
     format!("{stem}.csv")
 }
 
-/// The standard `[[area]]`s are judged by.
-pub const STANDARD_12464: &str = "EN 12464-1:2021 (task area, immediate surrounding, background)";
-
 /// How grid points are placed.
 pub const GRID_RULE: &str = "points at the centres of equal cells; spacing as given, or EN 12464-1's p = 0.2 · 5^log10(d) over the grid's longer side d";
 
@@ -320,7 +317,12 @@ impl<'s> Request<'s> {
             })
             .collect::<Result<_, _>>()?;
         let stats: Vec<GridStats> = grids.iter().map(|g| g.stats).collect();
-        let requirements = judge(scene, &stats, &glare, convergence.is_none());
+        let requirements = judge(
+            scene,
+            &stats,
+            &glare,
+            (convergence.is_none(), self.options.interp),
+        );
         let light = match convergence {
             Some(c) => vec![
                 "direct + interreflected".to_string(),
@@ -464,14 +466,10 @@ impl Calculation<'_> {
     /// standards judged, the grid rule, the maintenance factor, the light and how it was
     /// computed.
     pub fn method_json(&self) -> serde_json::Value {
-        let standards: Vec<&str> = if self.scene.areas.is_empty() {
-            Vec::new()
-        } else {
-            vec![STANDARD_12464]
-        };
         json!({
             "software": format!("goniolight {}", env!("CARGO_PKG_VERSION")),
-            "standards": standards,
+            "standards": self.standards(),
+            "emergency": self.is_emergency(),
             "grid_rule": GRID_RULE,
             "maintenance_factor": self.maintenance_factor,
             "values": "maintained: computed × maintenance factor",
@@ -484,6 +482,25 @@ impl Calculation<'_> {
             "interp": self.interp.name(),
             "device": if self.cpu { "cpu" } else { "gpu" },
         })
+    }
+
+    /// The standards the scene's areas are judged by, each once.
+    pub fn standards(&self) -> Vec<&'static str> {
+        let mut out: Vec<&'static str> = Vec::new();
+        for a in &self.scene.areas {
+            if !out.contains(&a.standard.name()) {
+                out.push(a.standard.name());
+            }
+        }
+        out
+    }
+
+    /// Whether this is the emergency lighting ([`Scene::in_emergency`]).
+    pub fn is_emergency(&self) -> bool {
+        self.scene
+            .areas
+            .iter()
+            .any(|a| a.standard == crate::scene::area::Standard::En1838)
     }
 
     fn shadows_text(&self) -> &'static str {
@@ -540,7 +557,9 @@ impl Calculation<'_> {
             areas: scene
                 .areas
                 .iter()
-                .filter(|a| a.entry.kind != crate::scene::area::AreaKind::Room)
+                .filter(|a| {
+                    a.entry.kind != crate::scene::area::AreaKind::Room && a.outline.len() >= 3
+                })
                 .map(|a| (a.outline.clone(), a.entry.name.clone()))
                 .collect(),
             light: self.light.clone(),
@@ -569,8 +588,15 @@ impl Calculation<'_> {
             ),
         ];
         if !self.scene.areas.is_empty() {
-            rows.push(("standard", STANDARD_12464.to_string()));
+            rows.push(("standard", self.standards().join(", ")));
             rows.push(("grid rule", GRID_RULE.to_string()));
+        }
+        if self.is_emergency() {
+            rows.push((
+                "emergency",
+                "the luminaires with an emergency output at it, direct light only (EN 1838)"
+                    .to_string(),
+            ));
         }
         rows
     }

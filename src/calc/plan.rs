@@ -36,8 +36,8 @@ pub struct Plan<'a> {
     pub luminaires: Vec<(DVec3, String)>,
     /// The observers: eye, line of sight and label (drawn on horizontal grids).
     pub observers: Vec<(DVec3, DVec3, String)>,
-    /// The EN 12464-1 task areas and areas (not rooms): outline in plan and name (drawn on
-    /// horizontal grids).
+    /// The areas judged by a standard (EN 12464-1 task areas and areas, not rooms; EN 1838
+    /// routes and areas): outline in plan and name (drawn on horizontal grids).
     pub areas: Vec<(Vec<[f64; 2]>, String)>,
     /// What light the values hold, for the statistics box: one or two short lines
     /// ("direct light only"; "direct + interreflected", "radiosity 99.0 % converged").
@@ -515,7 +515,7 @@ impl Plan<'_> {
                 lines.push("▶ observers (eye, line of sight), UGR");
             }
             if !self.areas.is_empty() {
-                lines.push("- - task areas and areas (EN 12464-1)");
+                lines.push("- - areas (EN 12464-1, EN 1838)");
             }
         }
         for (k, line) in lines

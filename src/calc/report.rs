@@ -46,9 +46,12 @@ fn verification(h: &mut String, verdicts: &[Verdict]) {
         return;
     }
     let failed = verdicts.iter().filter(|v| v.pass != Some(true)).count();
+    let mut standards: Vec<&str> = verdicts.iter().map(|v| v.standard).collect();
+    standards.dedup();
     let _ = write!(
         h,
-        "<h2>Verification (EN 12464-1)</h2><p>{}</p><table><tr><th>area</th><th>part</th><th>quantity</th><th>required</th><th>achieved (maintained)</th><th>result</th><th>limit from</th></tr>",
+        "<h2>Verification ({})</h2><p>{}</p><table><tr><th>area</th><th>part</th><th>quantity</th><th>required</th><th>achieved (maintained)</th><th>result</th><th>limit from</th></tr>",
+        escape(&standards.join(", ")),
         if failed == 0 {
             format!("All {} requirements are met.", verdicts.len())
         } else {

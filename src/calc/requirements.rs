@@ -7,6 +7,7 @@ use serde::Serialize;
 
 use super::glare::ObserverGlare;
 use super::stats::GridStats;
+use crate::photometry::Interp;
 use crate::scene::area::{Area, AreaPart, Quantity, Requirement};
 use crate::scene::Scene;
 
@@ -21,6 +22,8 @@ pub struct Verdict {
     pub grid: Option<String>,
     /// The quantity.
     pub quantity: Quantity,
+    /// The standard it is judged by.
+    pub standard: &'static str,
     /// Its unit (`lx`, or empty for a ratio or an index).
     pub unit: &'static str,
     /// The limit: at least this, or for UGR at most this.
@@ -74,12 +77,13 @@ impl Verdict {
     }
 }
 
-/// A value of `quantity` with the decimals a reader needs: U0 three, lux and UGR one,
-/// Ra none.
+/// A value of `quantity` with the decimals a reader needs: ratios three, lux, UGR and
+/// Emax/Emin one (lux below 10 two), Ra and candela none.
 fn number(quantity: Quantity, v: f64) -> String {
     match quantity {
-        Quantity::U0 => format!("{v:.3}"),
-        Quantity::Ra => format!("{v:.0}"),
+        Quantity::U0 | Quantity::G2 => format!("{v:.3}"),
+        Quantity::Ra | Quantity::GlareIntensity => format!("{v:.0}"),
+        Quantity::Emin | Quantity::Em if v < 10.0 => format!("{v:.2}"),
         _ => format!("{v:.1}"),
     }
 }
@@ -87,19 +91,20 @@ fn number(quantity: Quantity, v: f64) -> String {
 /// Every requirement of every area of `scene`, judged against the grids' results
 /// (`grids`: their statistics, in the scene's order) and the observers' glare (`glare`);
 /// `direct_only` when the values hold no interreflected light (walls and ceilings are
-/// then noted: their light is mostly interreflected).
+/// then noted: their light is mostly interreflected); `interp` samples the luminaires'
+/// intensities (EN 1838's glare limits).
 pub fn judge(
     scene: &Scene,
     grids: &[GridStats],
     glare: &[ObserverGlare],
-    direct_only: bool,
+    (direct_only, interp): (bool, Interp),
 ) -> Vec<Verdict> {
     scene
         .areas
         .iter()
         .flat_map(|area| {
             area.requirements.iter().map(move |r| {
-                let mut v = judge_one(scene, area, r, grids, glare);
+                let mut v = judge_one(scene, area, r, (grids, glare), interp);
                 if direct_only && matches!(r.part, AreaPart::Wall(_) | AreaPart::Ceiling) {
                     v.note.get_or_insert_with(|| {
                         "direct light only: walls and ceilings are lit mostly by interreflected light (indirect radiosity)".into()
@@ -115,21 +120,36 @@ fn judge_one(
     scene: &Scene,
     area: &Area,
     r: &Requirement,
-    grids: &[GridStats],
-    glare: &[ObserverGlare],
+    (grids, glare): (&[GridStats], &[ObserverGlare]),
+    interp: Interp,
 ) -> Verdict {
     let grid = match r.quantity {
         Quantity::Ugr | Quantity::Ra => None,
         _ => area.grid_of(r.part),
     };
+    let stat = |f: fn(&GridStats) -> f64| (grid.map(|k| f(&grids[k])), None);
     let (achieved, note) = match r.quantity {
-        Quantity::Em | Quantity::Ez => (grid.map(|k| grids[k].em), None),
-        Quantity::U0 => (grid.map(|k| grids[k].u0), None),
+        Quantity::Em | Quantity::Ez => stat(|s| s.em),
+        Quantity::U0 => stat(|s| s.u0),
+        Quantity::Emin => stat(|s| s.emin),
+        Quantity::G2 => stat(|s| s.g2),
+        Quantity::MaxToMin => match grid.map(|k| grids[k]) {
+            Some(s) if s.emin > 0.0 => (Some(s.emax / s.emin), None),
+            _ => (
+                None,
+                Some("Emin is 0 lx: the ratio is unbounded".to_string()),
+            ),
+        },
         Quantity::Ugr => highest_ugr(scene, area, glare),
         Quantity::Ra => lowest_ra(scene),
+        Quantity::GlareIntensity => match r.part {
+            AreaPart::Luminaire(k) => (Some(glare_zone_peak(&scene.luminaires[k], interp)), None),
+            _ => (None, None),
+        },
     };
     let pass = match (r.quantity, achieved) {
         (Quantity::Ugr, None) => Some(true),
+        (Quantity::MaxToMin, None) => Some(false),
         (_, None) => None,
         (q, Some(v)) if q.is_upper_limit() => Some(v <= r.required),
         (_, Some(v)) => Some(v >= r.required),
@@ -140,15 +160,36 @@ fn judge_one(
         grid: grid.map(|k| scene.grids[k].entry.name.clone()),
         quantity: r.quantity,
         unit: match r.quantity {
-            Quantity::Em | Quantity::Ez => "lx",
+            Quantity::Em | Quantity::Ez | Quantity::Emin => "lx",
+            Quantity::GlareIntensity => "cd",
             _ => "",
         },
+        standard: area.standard.name(),
         required: r.required,
         achieved,
         pass,
         basis: r.derived.unwrap_or("given").to_string(),
         note,
     }
+}
+
+/// The highest intensity (cd) of `luminaire` 60–90° from the downward vertical: every
+/// 2.5° round, every 1° from 60° to 90°.
+fn glare_zone_peak(luminaire: &crate::scene::PlacedLuminaire, interp: Interp) -> f64 {
+    let mut peak: f64 = 0.0;
+    for c in 0..144 {
+        let azimuth = (c as f64 * 2.5).to_radians();
+        for g in 60..=90 {
+            let down = (g as f64).to_radians();
+            let dir = glam::DVec3::new(
+                down.sin() * azimuth.cos(),
+                down.sin() * azimuth.sin(),
+                -down.cos(),
+            );
+            peak = peak.max(luminaire.intensity_toward(dir, interp));
+        }
+    }
+    peak
 }
 
 /// The highest UGR at the area's observers (all of the scene's unless it names some).

@@ -68,6 +68,11 @@ pub struct CalcArgs {
     /// luminance): `radiosity`. Default: the scene's `calc.indirect`, else none.
     #[arg(long, value_enum)]
     pub indirect: Option<Indirect>,
+    /// Emergency lighting (EN 1838): the luminaires with an emergency output
+    /// (`emergency_flux_lm`, `ballast_lumen_factor`) at it, the others dark, direct light
+    /// only; the scene's `[[emergency]]` areas judged in place of its grids and areas.
+    #[arg(long, conflicts_with = "indirect")]
+    pub emergency: bool,
     /// The most points over all grids together (each costs memory and about 100 bytes
     /// of files); a run above it is refused before any work.
     #[arg(long, value_name = "N", default_value_t = MAX_TOTAL_POINTS)]
@@ -149,6 +154,10 @@ fn check_outputs(args: &CalcArgs, scene: &Scene) -> Result<(), CliError> {
 pub fn run(args: CalcArgs) -> Result<(), CliError> {
     let started = std::time::Instant::now();
     let scene = scene_at(load_scene(&args.scene)?, args.time)?;
+    let scene = match args.emergency {
+        true => scene.in_emergency()?,
+        false => scene,
+    };
     let options = args.options()?;
     let request = Request::new(&scene, &options).map_err(calc_error)?;
     check_outputs(&args, &scene)?;

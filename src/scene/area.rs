@@ -49,7 +49,7 @@ pub enum AreaKind {
 }
 
 /// `[[area]]` as written in the scene file.
-#[derive(Debug, Clone, Deserialize, Serialize, PartialEq, schemars::JsonSchema)]
+#[derive(Debug, Clone, Default, Deserialize, Serialize, PartialEq, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct AreaEntry {
     /// The area's name (and its grids' names).
@@ -204,6 +204,12 @@ pub enum AreaPart {
     Wall(usize),
     /// A room's ceiling.
     Ceiling,
+    /// An escape route's centre line (EN 1838).
+    CentreLine,
+    /// An escape route's central band (EN 1838).
+    CentralBand,
+    /// An emergency luminaire (by index into the scene's luminaires), for its glare.
+    Luminaire(usize),
 }
 
 impl Serialize for AreaPart {
@@ -222,6 +228,9 @@ impl AreaPart {
             AreaPart::Cylindrical => "cylindrical",
             AreaPart::Wall(_) => "wall",
             AreaPart::Ceiling => "ceiling",
+            AreaPart::CentreLine => "centre line",
+            AreaPart::CentralBand => "central band",
+            AreaPart::Luminaire(_) => "luminaire",
         }
     }
 
@@ -243,12 +252,15 @@ impl AreaPart {
             AreaPart::Cylindrical => " Ez".into(),
             AreaPart::Wall(k) => format!(" wall {}", k + 1),
             AreaPart::Ceiling => " ceiling".into(),
+            AreaPart::CentreLine => " centre line".into(),
+            AreaPart::CentralBand => " central band".into(),
+            AreaPart::Luminaire(k) => format!(" L{}", k + 1),
         }
     }
 }
 
 /// A quantity a requirement is set on.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Quantity {
     /// Maintained mean illuminance, lx.
     Em,
@@ -257,10 +269,23 @@ pub enum Quantity {
     /// Maintained mean cylindrical illuminance, lx.
     Ez,
     /// The highest UGR at the observers.
-    #[serde(rename = "UGR")]
     Ugr,
     /// The lowest colour rendering index of the luminaires.
     Ra,
+    /// Minimum illuminance, lx.
+    Emin,
+    /// Emax/Emin (at most: EN 1838's 40:1).
+    MaxToMin,
+    /// Emin/Emax.
+    G2,
+    /// The highest intensity 60–90° from the downward vertical, cd (at most).
+    GlareIntensity,
+}
+
+impl Serialize for Quantity {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(self.name())
+    }
 }
 
 impl Quantity {
@@ -272,12 +297,19 @@ impl Quantity {
             Quantity::Ez => "Ez",
             Quantity::Ugr => "UGR",
             Quantity::Ra => "Ra",
+            Quantity::Emin => "Emin",
+            Quantity::MaxToMin => "Emax/Emin",
+            Quantity::G2 => "g2",
+            Quantity::GlareIntensity => "I 60-90°",
         }
     }
 
     /// Whether the achieved value must be at most the limit (UGR) rather than at least.
     pub fn is_upper_limit(self) -> bool {
-        self == Quantity::Ugr
+        matches!(
+            self,
+            Quantity::Ugr | Quantity::MaxToMin | Quantity::GlareIntensity
+        )
     }
 }
 
@@ -295,12 +327,33 @@ pub struct Requirement {
     pub derived: Option<&'static str>,
 }
 
+/// The standard an area is judged by.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Standard {
+    /// EN 12464-1:2021, lighting of indoor work places.
+    En12464,
+    /// EN 1838:2013, emergency lighting.
+    En1838,
+}
+
+impl Standard {
+    /// The standard as a reviewer names it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Standard::En12464 => "EN 12464-1:2021",
+            Standard::En1838 => "EN 1838:2013",
+        }
+    }
+}
+
 /// An area ready to compute: its grids (indices into the scene's grids) and its
 /// requirements.
 #[derive(Debug, Clone)]
 pub struct Area {
-    /// The entry it came from.
+    /// The entry it came from (an emergency area's: its name, kind `area`).
     pub entry: AreaEntry,
+    /// The standard it is judged by.
+    pub standard: Standard,
     /// The task area's outline in plan.
     pub outline: Vec<[f64; 2]>,
     /// Each part's grid, as an index into [`super::Scene::grids`].

@@ -44,6 +44,12 @@
 //! em = 500
 //! u0 = 0.6
 //!
+//! [[emergency]]                 # EN 1838 escape route etc.: see [`super::emergency`]
+//! name = "corridor"
+//! kind = "route"
+//! line = [[0.5, 1.0], [5.5, 1.0]]
+//! width = 1.0
+//!
 //! [[observer]]                  # glare (UGR) at an eye: see [`super::observer`]
 //! name = "desk"
 //! position = [1.5, 2.0, 1.2]
@@ -98,6 +104,10 @@ pub struct SceneFile {
     /// Calculation surfaces (virtual: they neither block nor reflect light).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub grid: Vec<super::grid::GridEntry>,
+    /// EN 1838 emergency lighting: escape routes, open areas, high-risk task areas and
+    /// safety equipment, judged by `goniolight calc --emergency`.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub emergency: Vec<super::emergency::EmergencyEntry>,
     /// EN 12464-1 areas with their requirements (task areas with their surrounding and
     /// background), judged by `goniolight calc`.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
@@ -288,6 +298,14 @@ pub struct LuminaireEntry {
         deserialize_with = "crate::io::exact::option_vec"
     )]
     pub sector_colors: Option<Vec<[f64; 3]>>,
+    /// Emergency lighting (`calc --emergency`): the luminaire's rated emergency output,
+    /// lm. Luminaires without it (or `ballast_lumen_factor`) are dark in emergency mode.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub emergency_flux_lm: Option<f64>,
+    /// Emergency lighting: the emergency output as a fraction of the declared flux (the
+    /// ballast lumen factor), in (0, 1].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ballast_lumen_factor: Option<f64>,
 }
 
 /// Most C sectors an effect light may colour.

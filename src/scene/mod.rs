@@ -10,6 +10,7 @@ pub mod back_faces;
 pub mod bump;
 pub mod camera;
 pub mod display;
+pub mod emergency;
 pub mod file;
 pub mod grid;
 pub mod materials;
@@ -77,6 +78,9 @@ pub struct Scene {
     pub grids: Vec<grid::CalcGrid>,
     /// EN 12464-1 areas with their requirements (`[[area]]`); their grids are in `grids`.
     pub areas: Vec<area::Area>,
+    /// EN 1838 emergency areas (`[[emergency]]`), resolved; their grids are computed in
+    /// the scene's emergency mode only ([`Scene::in_emergency`]).
+    pub emergency: Vec<emergency::EmergencyPlan>,
     /// `[calc]` settings.
     pub calc: grid::CalcSettings,
     /// Observers rated for glare (`[[observer]]`).
@@ -203,6 +207,7 @@ fn resolve_areas(
         }
         areas.push(area::Area {
             entry: entry.clone(),
+            standard: area::Standard::En12464,
             outline,
             grids: indices,
             requirements,
@@ -380,6 +385,17 @@ impl Scene {
         grid::CalcSettings::check(calc.maintenance_factor)
             .map_err(|m| SceneError::new(path, "calc.maintenance_factor", m))?;
         let observers = resolve_observers(path, &parsed.observer)?;
+        let emergency = resolve_named(
+            path,
+            &parsed.emergency,
+            "emergency",
+            |e| &e.name,
+            |e, i| {
+                e.resolve().map_err(|(key, msg)| {
+                    SceneError::new(path, format!("emergency[{i}].{key}"), msg)
+                })
+            },
+        )?;
         check_area_observers(path, &areas, &observers)?;
         Ok(Scene {
             path: path.to_path_buf(),
@@ -398,6 +414,7 @@ impl Scene {
                 .collect(),
             grids,
             areas,
+            emergency,
             calc,
             observers,
             material_overrides: parsed.material,
@@ -431,6 +448,7 @@ impl Scene {
             grids: Vec::new(),
             calc: Default::default(),
             areas: Vec::new(),
+            emergency: Vec::new(),
             observers: Vec::new(),
             material_overrides: Vec::new(),
             warnings: Vec::new(),

@@ -14,6 +14,8 @@ use crate::photometry::{angles_to_direction, direction_to_angles, Interp, LdtTex
 /// A luminaire in the scene.
 #[derive(Debug, Clone)]
 pub struct PlacedLuminaire {
+    /// Its output in emergency mode (`calc --emergency`), if it has one.
+    pub emergency: Option<EmergencyOutput>,
     /// Display name.
     pub name: String,
     /// The luminaire file.
@@ -67,7 +69,71 @@ fn luminance_one(scene: &Path, key: &str, c: [f64; 3]) -> Result<DVec3, SceneErr
 /// Rec. 709 / sRGB luminance weights.
 pub const LUMINANCE_WEIGHTS: DVec3 = DVec3::new(0.2126, 0.7152, 0.0722);
 
+/// A luminaire's output in emergency mode.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum EmergencyOutput {
+    /// The rated emergency flux, lm.
+    Flux(f64),
+    /// The ballast lumen factor: the emergency flux over the declared flux.
+    Factor(f64),
+}
+
+/// The smallest emergency output accepted, as a ballast lumen factor (and as a fraction
+/// of the declared flux).
+pub const MIN_EMERGENCY_FACTOR: f64 = 1e-6;
+
+/// The `emergency_flux_lm` / `ballast_lumen_factor` of a `[[luminaire]]` whose file
+/// declares `declared_lm`, checked: an emergency output is at most the normal one.
+fn emergency_output(
+    scene: &Path,
+    key: &str,
+    e: &LuminaireEntry,
+    declared_lm: f64,
+) -> Result<Option<EmergencyOutput>, SceneError> {
+    match (e.emergency_flux_lm, e.ballast_lumen_factor) {
+        (Some(_), Some(_)) => Err(SceneError::new(
+            scene,
+            format!("{key}.ballast_lumen_factor"),
+            "give emergency_flux_lm or ballast_lumen_factor, not both",
+        )),
+        (Some(f), None)
+            if !(f.is_finite()
+                && f >= MIN_EMERGENCY_FACTOR * declared_lm
+                && f <= declared_lm
+                && declared_lm > 0.0) =>
+        {
+            Err(SceneError::new(
+                scene,
+                format!("{key}.emergency_flux_lm"),
+                format!("{f}: give the emergency output in lumens, more than 0 and at most the luminaire's declared {declared_lm:.0} lm"),
+            ))
+        }
+        (None, Some(b)) if !(b.is_finite() && (MIN_EMERGENCY_FACTOR..=1.0).contains(&b)) => {
+            Err(SceneError::new(
+                scene,
+                format!("{key}.ballast_lumen_factor"),
+                format!("{b}: a ballast lumen factor is more than 0 and at most 1"),
+            ))
+        }
+        (Some(f), None) => Ok(Some(EmergencyOutput::Flux(f))),
+        (None, Some(b)) => Ok(Some(EmergencyOutput::Factor(b))),
+        (None, None) => Ok(None),
+    }
+}
+
 impl PlacedLuminaire {
+    /// The multiplier of its declared flux in emergency mode, if it has an emergency
+    /// output: the ballast lumen factor, or the emergency flux over the declared flux.
+    pub fn emergency_multiplier(&self) -> Option<f64> {
+        match self.emergency? {
+            EmergencyOutput::Factor(b) => Some(b),
+            EmergencyOutput::Flux(f) => {
+                let declared = self.luminaire.summary().flux_lm;
+                (declared > 0.0).then(|| f / declared)
+            }
+        }
+    }
+
     /// Builds a placed luminaire from its scene entry (`key` is e.g. `luminaire[0]`).
     pub(super) fn from_entry(
         scene: &Path,
@@ -156,6 +222,7 @@ impl PlacedLuminaire {
             .enumerate()
             .map(|(k, &c)| luminance_one(scene, &format!("{key}.sector_colors[{k}]"), c))
             .collect::<Result<Vec<_>, _>>()?;
+        let emergency = emergency_output(scene, key, e, luminaire.summary().flux_lm)?;
         let rotation = euler_xyz_deg(euler) * aim_frame(aim.map(|a| a.0), e.roll);
         let texture = LdtTexture::from_distribution(&luminaire.distribution);
         let name = e.name.clone().unwrap_or_else(|| {
@@ -164,6 +231,7 @@ impl PlacedLuminaire {
                 .unwrap_or_default()
         });
         Ok(PlacedLuminaire {
+            emergency,
             name,
             file,
             luminaire,
@@ -186,6 +254,7 @@ impl PlacedLuminaire {
     pub fn new(name: &str, luminaire: Luminaire, position: DVec3) -> PlacedLuminaire {
         let texture = LdtTexture::from_distribution(&luminaire.distribution);
         PlacedLuminaire {
+            emergency: None,
             name: name.into(),
             file: PathBuf::from(name),
             luminaire,

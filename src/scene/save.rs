@@ -8,6 +8,7 @@ use glam::{DMat3, DVec3};
 
 use super::file::{CameraEntry, LuminaireEntry, ModelEntry, SceneFile};
 use super::placement::aim_frame;
+use super::placement::EmergencyOutput;
 use super::{Camera, Housing, PlacedLuminaire, Projection, Scene};
 
 impl Scene {
@@ -38,6 +39,7 @@ impl Scene {
                 .map(|(_, g)| g.entry.clone())
                 .collect(),
             area: self.areas.iter().map(|a| a.entry.clone()).collect(),
+            emergency: self.emergency.iter().map(|e| e.entry.clone()).collect(),
             calc: (self.calc != Default::default()).then_some(self.calc),
             observer: self.observers.iter().map(|o| o.entry.clone()).collect(),
             material: self.material_overrides.clone(),
@@ -97,6 +99,14 @@ fn luminaire_entry(dir: &Path, l: &PlacedLuminaire, housing: Option<&Housing>) -
         spin_deg_per_s: (l.spin_deg_per_s != 0.0).then_some(l.spin_deg_per_s),
         sector_colors: (!l.sector_colors.is_empty())
             .then(|| l.sector_colors.iter().map(|c| c.to_array()).collect()),
+        emergency_flux_lm: match l.emergency {
+            Some(EmergencyOutput::Flux(f)) => Some(f),
+            _ => None,
+        },
+        ballast_lumen_factor: match l.emergency {
+            Some(EmergencyOutput::Factor(f)) => Some(f),
+            _ => None,
+        },
     }
 }
 

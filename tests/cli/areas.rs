@@ -131,7 +131,7 @@ fn task_area_requirements_are_judged_on_its_grids_and_flip_at_the_limit() {
         "{stdout}"
     );
     let html = std::fs::read_to_string(&report).unwrap();
-    assert!(html.contains("Verification (EN 12464-1)"));
+    assert!(html.contains("Verification (EN 12464-1:2021)"));
     assert!(html.contains("<tr class=\"unknown\">"));
 
     // The task's Em a hundredth of a lux above and below what it achieves.

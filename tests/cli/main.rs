@@ -18,6 +18,7 @@ mod catalogue;
 mod cli;
 mod datasheet_plot;
 mod docs;
+mod emergency;
 mod faults;
 mod fuzz_crashes;
 mod luminance;

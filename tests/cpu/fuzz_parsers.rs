@@ -385,7 +385,8 @@ fn fuzz_angle_lists() {
     });
 }
 
-/// The scene's tables that name outputs and glare: `[[grid]]`, `[[area]]`, `[[observer]]`,
+/// The scene's tables that name outputs and glare: `[[grid]]`, `[[area]]`, `[[emergency]]`
+/// (and a luminaire's emergency output), `[[observer]]`,
 /// `[[material]]` (seeds: the bundled calculation scene with each table added). What is
 /// accepted must be computable: grids of finite points within the per-grid cap (the
 /// areas' too), areas with finite limits and outlines, observers
@@ -403,6 +404,8 @@ fn fuzz_scene_tables() {
         "[[grid]]\nname = \"wall\"\nkind = \"vertical\"\ncorner = [0.0, 0.0]\nsize = [3.0, 2.0]\nnormal = [0.0, 1.0, 0.0]\n",
         "[[area]]\nname = \"desk\"\ncorner = [1.0, 1.0]\nsize = [1.6, 0.8]\nheight = 0.75\nem = 500\nu0 = 0.6\nra = 80\n",
         "[[area]]\nname = \"hall\"\nkind = \"area\"\noutline = [[0.5, 0.5], [3.0, 0.5], [2.0, 3.0]]\nem = 100\nez = 50\nugr_l = 22\n",
+        "[[emergency]]\nname = \"route\"\nkind = \"route\"\nline = [[0, 1], [3, 1], [5, 3]]\nwidth = 1.5\n\n[[emergency]]\nname = \"x\"\nkind = \"point\"\nposition = [0.1, 2, 1.2]\nnormal = [1, 0, 0]\n\n[[luminaire]]\nfile = \"../../luminaires/eulumdat-plot/sample_06_isym1.ldt\"\nposition = [2, 2, 2.9]\nemergency_flux_lm = 250\n",
+        "[[emergency]]\nname = \"hall\"\nkind = \"open-area\"\ncorner = [0, 0]\nsize = [6, 4]\n\n[[emergency]]\nname = \"saw\"\nkind = \"high-risk\"\noutline = [[1, 1], [2, 1], [2, 2]]\nem = 300\n",
         "[[area]]\nname = \"bench\"\noutline = [[1, 1], [2, 1], [2, 2]]\nroom = [[0, 0], [6, 0], [6, 2], [3, 2], [3, 4], [0, 4]]\nem = 300\nsurrounding_width = 1\nbackground_width = 4\n",
     ];
     let mut seeds = vec![base.clone().into_bytes()];
@@ -437,6 +440,25 @@ fn fuzz_scene_tables() {
                     "accepted area {:?} with unusable grids or limits",
                     a.entry.name
                 ));
+            }
+        }
+        if let Ok(emergency) = scene.in_emergency() {
+            let usable = emergency
+                .grids
+                .iter()
+                .all(|g| !g.points.is_empty() && g.points.iter().all(|p| p.is_finite()))
+                && emergency.areas.iter().all(|a| {
+                    a.requirements.iter().all(|r| r.required.is_finite())
+                        && a.grids.iter().all(|(_, k)| *k < emergency.grids.len())
+                })
+                && emergency
+                    .luminaires
+                    .iter()
+                    .all(|l| l.multiplier.is_finite() && l.multiplier > 0.0);
+            if !usable {
+                return Err(
+                    "accepted an emergency scene with unusable grids, limits or outputs".into(),
+                );
             }
         }
         for o in &scene.observers {
