@@ -40,6 +40,12 @@ tr.pass td.v{background:#d6f5d6;color:#135e13}tr.fail td.v{background:#f9d4d4;co
 tr.unknown td.v{background:#fff1c2;color:#6b5200}td.v{font-weight:bold}td.b{color:#666;font-size:85%}\
 svg{max-width:100%;height:auto}footer{color:#777;font-size:80%;margin-top:2em}";
 
+/// A luminaire's dimming as a reader writes it: at most four decimals, zeros dropped.
+fn dimming(m: f64) -> String {
+    let s = format!("{m:.4}");
+    s.trim_end_matches('0').trim_end_matches('.').to_string()
+}
+
 /// The verification table: one row per requirement, its outcome coloured.
 fn verification(h: &mut String, verdicts: &[Verdict]) {
     if verdicts.is_empty() {
@@ -118,7 +124,7 @@ pub fn report_html(
             escape(l.luminaire.data.luminaire_name.trim()),
             s.lamp_flux_lm,
             s.flux_lm * l.multiplier,
-            l.multiplier,
+            dimming(l.multiplier),
             p.x,
             p.y,
             p.z

@@ -409,14 +409,32 @@ fn total_light_and_glare_at_observers() {
     assert_eq!(doc["grids"][0]["indirect"], true);
 
     // The grid against `radiosity --points` at the same points; the eye of "door"
-    // (facing its line of sight) last.
+    // (facing its line of sight) next; then the room's first wall and its ceiling, facing
+    // into the room (one solve for all).
     let rows = calc_csv_rows(&out.join("work-plane.csv"));
     assert_eq!(rows.len(), 24);
-    let mut stdin: String = rows
-        .iter()
-        .map(|r| format!("{} {} {} 0 0 1\n", r[0], r[1], r[2]))
-        .collect();
+    let at = |rows: &[[f64; 4]], normal: &str| -> String {
+        rows.iter()
+            .map(|r| format!("{} {} {} {normal}\n", r[0], r[1], r[2]))
+            .collect()
+    };
+    let surfaces = [
+        (
+            "room-wall-1",
+            calc_csv_rows(&out.join("room-wall-1.csv")),
+            "0 1 0",
+        ),
+        (
+            "room-ceiling",
+            calc_csv_rows(&out.join("room-ceiling.csv")),
+            "0 0 -1",
+        ),
+    ];
+    let mut stdin = at(&rows, "0 0 1");
     stdin.push_str("0.5 2.0 1.2 1 0 0\n");
+    for (_, surface, normal) in &surfaces {
+        stdin.push_str(&at(surface, normal));
+    }
     let (code, total, err) = run_cli(
         &["radiosity", s(&scene), "--points", "--shadows", "volumes"],
         &stdin,
@@ -463,25 +481,17 @@ fn total_light_and_glare_at_observers() {
     assert!((got - ugr).abs() < 0.05, "UGR {got} vs {ugr} by hand");
     // The room's walls and ceiling: their values are `radiosity --points` at their points
     // facing into the room, and their verdicts judge their statistics.
-    for (name, normal) in [("room-wall-1", "0 1 0"), ("room-ceiling", "0 0 -1")] {
-        let rows = calc_csv_rows(&out.join(format!("{name}.csv")));
-        let stdin: String = rows
-            .iter()
-            .map(|r| format!("{} {} {} {normal}\n", r[0], r[1], r[2]))
-            .collect();
-        let (code, lux, err) = run_cli(
-            &["radiosity", s(&scene), "--points", "--shadows", "volumes"],
-            &stdin,
-        );
-        assert_eq!(code, 0, "{err}");
-        for (row, l) in rows.iter().zip(lux.lines()) {
-            let l: f64 = l.parse().unwrap();
+    let mut next = 25;
+    for (name, surface, _) in &surfaces {
+        for (row, l) in surface.iter().zip(&total[next..]) {
             assert!(
                 (row[3] - l).abs() <= 1e-4 * l.max(1.0),
                 "{name}: {row:?} vs {l}"
             );
         }
+        next += surface.len();
     }
+    assert_eq!(next, total.len());
     let wall = doc["grids"]
         .as_array()
         .unwrap()
