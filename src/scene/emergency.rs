@@ -42,8 +42,8 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::area::{AreaPart, Quantity, Requirement};
 use super::grid::{GridEntry, GridKind, Spacing};
+use super::requirement::{AreaPart, Quantity, Requirement};
 use crate::geometry::polygon;
 
 /// What an emergency area is.

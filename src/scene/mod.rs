@@ -18,6 +18,7 @@ pub mod model;
 pub mod observer;
 pub mod palette;
 pub mod placement;
+pub mod requirement;
 pub mod save;
 
 use std::path::{Path, PathBuf};
