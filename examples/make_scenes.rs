@@ -526,6 +526,35 @@ fn glass_partition() -> Obj {
     o
 }
 
+/// The 6 × 4 × 3 m box room with a window 2.4 × 1.5 m (sill 0.9 m) in its south wall
+/// (y = 0), glazed with one pane: the daylight example.
+fn side_lit_room() -> Obj {
+    let (x, y, z) = (6.0, 4.0, 3.0);
+    let (w0, w1, sill, head) = (1.8, 4.2, 0.9, 2.4);
+    let p = |x: f64, z: f64| DVec3::new(x, 0.0, z);
+    let mut o = Obj::default();
+    o.object("floor", "floor");
+    o.level(x, y, 0.0, true);
+    o.object("ceiling", "ceiling");
+    o.level(x, y, z, false);
+    o.object("walls", "wall");
+    o.wall((0.0, 0.0), (0.0, y), z);
+    o.wall((x, y), (x, 0.0), z);
+    o.wall((0.0, y), (x, y), z);
+    // The south wall round the window, facing in (+Y).
+    for (a0, a1, b0, b1) in [
+        (0.0, w0, 0.0, z),
+        (w1, x, 0.0, z),
+        (w0, w1, 0.0, sill),
+        (w0, w1, head, z),
+    ] {
+        o.quad([p(a1, b0), p(a0, b0), p(a0, b1), p(a1, b1)], 1.0);
+    }
+    o.object("window", "glass");
+    o.quad([p(w1, sill), p(w0, sill), p(w0, head), p(w1, head)], 1.0);
+    o
+}
+
 /// The perforated panel: white, its holes from `map_d` (the rest of the materials are
 /// [`ROOM_MTL`]'s).
 const PERFORATED_MTL: &str = "newmtl perforated
@@ -807,6 +836,8 @@ fn main() -> anyhow::Result<()> {
         "glass_partition",
         &format!("{ROOM_MTL}{GLASS_MTL}"),
     )?;
+
+    side_lit_room().write_with_mtl(&scenes, "side_lit_room", &format!("{ROOM_MTL}{GLASS_MTL}"))?;
 
     let mut stage = Obj::default();
     stage.room(size, "floor", "wall", "wall", "ceiling");

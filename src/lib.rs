@@ -36,6 +36,7 @@ pub mod bench;
 pub mod calc;
 #[cfg(feature = "cli")]
 pub mod cli;
+pub mod daylight;
 pub mod geometry;
 #[cfg(feature = "gpu")]
 pub mod gpu;

@@ -281,16 +281,22 @@ def sun_position(lat: float, lon: float, times: Union[str, Iterable], tz: Option
 
 def illuminance(scene: Union[PathLike, Scene], points, *, interp: str = "catmull-rom",
                 shadows: Optional[str] = None, cpu: bool = False,
+                sky: Optional[str] = None, time: Optional[str] = None,
                 return_device: bool = False):
     """Direct illuminance (lux) at points of a scene file.
 
     ``points``: an N × 6 array of ``x y z nx ny nz`` (metres, world frame). Computed on the
     GPU with the renderer's lighting code; without a GPU adapter (or with ``cpu=True``) by
     the CPU reference, with a RuntimeWarning. ``shadows``: none, paraboloid or volumes
-    (default: the scene's). With ``return_device=True`` also returns ``"gpu"`` or ``"cpu"``.
+    (default: the scene's). The scene's ``[sky]`` adds daylight (sky, ground and sun through
+    the model's openings and glazing, on the CPU); ``sky`` (``"cie-overcast"``,
+    ``"cie-clear"``, ``"cie:1"`` … ``"cie:15"``, ``"uniform"``) and ``time`` (local time at
+    its ``[site]``) replace its model and time, as ``illuminance --sky --time`` do. With
+    ``return_device=True`` also returns ``"gpu"`` or ``"cpu"``.
     """
     pts = np.ascontiguousarray(np.atleast_2d(np.asarray(points, dtype=float)))
-    lux, on_gpu = _native.illuminance(_scene_arg(scene), pts, interp, shadows, bool(cpu))
+    lux, on_gpu = _native.illuminance(_scene_arg(scene), pts, interp, shadows, bool(cpu),
+                                      sky, time)
     if return_device:
         return lux, ("gpu" if on_gpu else "cpu")
     return lux

@@ -246,9 +246,12 @@ fn sun_positions_json(
 }
 
 /// Direct illuminance (lux) at points (an N × 6 array of x y z nx ny nz) in a scene file,
-/// on the GPU unless `cpu`; returns the lux and whether the GPU computed them.
+/// on the GPU unless `cpu`, with the daylight of the scene's `[sky]` (or of `sky`, a model
+/// name, at `time`, a local time at its `[site]`, as `illuminance --sky --time`); returns
+/// the lux and whether the GPU computed them.
 #[pyfunction]
-#[pyo3(signature = (scene, points, interp="catmull-rom", shadows=None, cpu=false))]
+#[pyo3(signature = (scene, points, interp="catmull-rom", shadows=None, cpu=false, sky=None, time=None))]
+#[allow(clippy::too_many_arguments)]
 fn illuminance<'py>(
     py: Python<'py>,
     scene: SceneArg<'_>,
@@ -256,12 +259,17 @@ fn illuminance<'py>(
     interp: &str,
     shadows: Option<&str>,
     cpu: bool,
+    sky: Option<&str>,
+    time: Option<&str>,
 ) -> PyResult<(Bound<'py, PyArray1<f64>>, bool)> {
     use goniolight::gpu::{Gpu, GpuError};
     use goniolight::render::illuminance::scene_illuminance;
     let method = parse_interp(interp)?;
     let pts = surface_points(&points)?;
     let scene = scene.scene(py)?;
+    let scene = scene
+        .with_sky(sky, time)
+        .map_err(|e| value_error(e.to_string()))?;
     let technique = parse_shadows(shadows, &scene)?;
     let gpu = if cpu {
         None

@@ -148,6 +148,22 @@ def test_illuminance_equals_the_illuminance_command():
         goniolight.illuminance(SCENE, np.zeros((3, 5)))
 
 
+def test_illuminance_with_daylight_equals_the_command():
+    side_lit = SCENE.parent / "side_lit_room.toml"
+    pts = np.array([[3.0, y, 0.85, 0.0, 0.0, 1.0] for y in (1.0, 2.0, 3.0)])
+    text = "".join(" ".join(repr(float(v)) for v in p) + "\n" for p in pts)
+    for extra, kwargs in [((), {}), (("--sky", "cie:12", "--time", "2026-06-21T13:00"),
+                                     {"sky": "cie:12", "time": "2026-06-21T13:00"})]:
+        args = ["illuminance", str(side_lit), "--cpu", *extra]
+        expected = np.asarray([float(v) for v in cli(*args, stdin=text).split()])
+        lux = goniolight.illuminance(side_lit, pts, cpu=True, **kwargs)
+        np.testing.assert_allclose(lux, expected, rtol=0, atol=5e-7)
+        # Daylight falls off away from the window.
+        assert lux[0] > lux[1] > lux[2] > 10.0
+    with pytest.raises(ValueError, match="cie:15"):
+        goniolight.illuminance(side_lit, pts, cpu=True, sky="cie:16")
+
+
 @pytest.mark.parametrize("shr", [0.25, 1.0])
 def test_ugr_table_equals_ldt_ugr_json(shr):
     expected = json.loads(cli("ldt", "ugr", str(SAMPLE), "--json", "--shr", str(shr)))

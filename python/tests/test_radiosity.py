@@ -13,6 +13,8 @@ from test_goniolight import ROOT, cli
 
 BOX_CALC = ROOT / "assets" / "scenes" / "box_room_calc.toml"
 FURNISHED = ROOT / "assets" / "scenes" / "furnished_room.toml"
+# Lit by its [sky] alone: the daylight through its window, interreflected.
+SIDE_LIT = ROOT / "assets" / "scenes" / "side_lit_room.toml"
 # Coarse and not fully converged: the same work on both sides, and quick on lavapipe.
 FLAGS = {"converge": 0.9, "texel_density": 4.0}
 
@@ -30,7 +32,8 @@ def command_lux(scene, pts, **flags):
     return np.asarray([float(v) for v in cli(*args, stdin=text).split()])
 
 
-@pytest.mark.parametrize("scene", [BOX_CALC, FURNISHED], ids=["box_room_calc", "furnished_room"])
+@pytest.mark.parametrize("scene", [BOX_CALC, FURNISHED, SIDE_LIT],
+                         ids=["box_room_calc", "furnished_room", "side_lit_room"])
 def test_lux_at_points_equals_radiosity_points(scene):
     pts = grid_points()
     expected = command_lux(scene, pts, **FLAGS)

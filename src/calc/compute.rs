@@ -10,6 +10,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use serde_json::json;
 
+use super::daylight::DaylightGrids;
 use super::directions::{combine, surface_points};
 use super::glare::{background_point, check_outside, observer_glare, ObserverGlare};
 use super::plan::Plan;
@@ -130,12 +131,21 @@ pub fn csv_name(grid_name: &str) -> String {
     format!("{stem}.csv")
 }
 
+/// The file of a grid's daylight-factor plan beside its CSV `csv` (`desk.csv` →
+/// `desk-df.png`).
+pub fn df_plan_name(csv: &str, extension: &str) -> String {
+    format!("{}-df.{extension}", csv.trim_end_matches(".csv"))
+}
+
 /// How grid points are placed.
 pub const GRID_RULE: &str = "points at the centres of equal cells; spacing as given, or EN 12464-1's p = 0.2 · 5^log10(d) over the grid's longer side d";
 
 /// A calculation checked and ready to run.
 pub struct Request<'s> {
     scene: &'s Scene,
+    /// What lights the request when it is not the scene as it is: the luminaires alone
+    /// (a scene with a sky), or the sky alone ([`Request::daylight`]).
+    lighting: Option<Scene>,
     options: &'s CalcOptions,
     /// The maintenance factor applied.
     pub maintenance_factor: f64,
@@ -217,6 +227,7 @@ impl<'s> Request<'s> {
         }
         Ok(Request {
             scene,
+            lighting: scene.daylight.is_some().then(|| scene.without_daylight()),
             options,
             maintenance_factor: mf,
             indirect,
@@ -224,21 +235,87 @@ impl<'s> Request<'s> {
         })
     }
 
-    /// The luminaires' direct illuminance at every grid point (per grid, per point and
-    /// direction), on `gpu` (`None`: the CPU); `cancel` stops between grids.
+    /// What lights this request: the scene, its luminaires alone (a scene with a sky:
+    /// the sky is [`Request::daylight`]'s), or its sky alone.
+    pub fn lighting_scene(&self) -> &Scene {
+        self.lighting.as_ref().unwrap_or(self.scene)
+    }
+
+    /// Whether the interreflected light is to be solved: radiosity asked for and
+    /// something in the lighting scene gives light (without any, it is exactly zero).
+    pub fn solves(&self) -> bool {
+        self.indirect == Indirect::Radiosity && self.lighting_scene().has_light()
+    }
+
+    /// The interreflected light where [`Request::solves`] is false: radiosity asked for
+    /// and nothing gives light, so zero everywhere, exactly (converged).
+    pub fn unlit_interreflection(&self) -> Option<(Vec<f64>, f64)> {
+        (self.indirect == Indirect::Radiosity && !self.solves())
+            .then(|| (vec![0.0; self.gather_points().len()], 1.0))
+    }
+
+    /// The request for the scene's daylight alone (its sky; no luminaires, no emitting
+    /// surfaces, not maintained), the same grids and light asked for; `None` without a sky.
+    pub fn daylight(&self) -> Option<Request<'s>> {
+        self.scene.daylight.as_ref()?;
+        Some(Request {
+            scene: self.scene,
+            lighting: Some(self.scene.daylight_only()),
+            options: self.options,
+            maintenance_factor: 1.0,
+            indirect: self.indirect,
+            grid_points: self.grid_points.clone(),
+        })
+    }
+
+    /// The daylight of a [`Request::daylight`] request from its direct light and, with
+    /// radiosity, the interreflected light at [`Request::gather_points`]: per grid and
+    /// point (directions combined), with the daylight factor under the CIE overcast sky.
+    pub fn finish_daylight(
+        self,
+        direct: Direct,
+        interreflected: Option<(Vec<f64>, f64)>,
+    ) -> Result<DaylightGrids, CalcError> {
+        let mut at = 0;
+        let mut lux = Vec::with_capacity(direct.lux.len());
+        for (g, mut values) in self.scene.grids.iter().zip(direct.lux) {
+            if let Some((inter, _)) = &interreflected {
+                for v in values.iter_mut() {
+                    *v += inter[at];
+                    at += 1;
+                }
+            }
+            usable_lux(&mut values).map_err(|u| unusable(&g.entry.name, u))?;
+            lux.push(
+                combine(g, &values)
+                    .into_iter()
+                    .map(|v| v.max(0.0))
+                    .collect(),
+            );
+        }
+        Ok(DaylightGrids::new(
+            self.scene,
+            lux,
+            interreflected.map(|(_, c)| c),
+        ))
+    }
+
+    /// The direct illuminance at every grid point (per grid, per point and direction) of
+    /// what lights the request ([`Request::lighting_scene`]), on `gpu` (`None`: the CPU);
+    /// `cancel` stops between grids.
     pub fn direct(&self, gpu: Option<&Gpu>, cancel: &AtomicBool) -> Result<Direct, CalcError> {
         let mut shadows = crate::render::ShadowSettings::with(self.options.shadows);
         let mut lux = Vec::with_capacity(self.grid_points.len());
+        let scene = self.lighting_scene();
         for (g, points) in self.scene.grids.iter().zip(&self.grid_points) {
             if cancel.load(Ordering::SeqCst) {
                 return Err(CalcError::Cancelled);
             }
-            let direct =
-                scene_illuminance(gpu, self.scene, points, self.options.interp, &mut shadows)
-                    .map_err(|e| match e {
-                        IlluminanceError::Gpu(g) => CalcError::Gpu(g),
-                        IlluminanceError::Unusable(u) => unusable(&g.entry.name, u),
-                    })?;
+            let direct = scene_illuminance(gpu, scene, points, self.options.interp, &mut shadows)
+                .map_err(|e| match e {
+                IlluminanceError::Gpu(g) => CalcError::Gpu(g),
+                IlluminanceError::Unusable(u) => unusable(&g.entry.name, u),
+            })?;
             lux.push(direct);
         }
         Ok(Direct {
@@ -343,9 +420,14 @@ impl<'s> Request<'s> {
             requirements,
             light,
             warnings,
+            daylight: None,
         })
     }
 }
+
+/// The interreflected light at [`Request::gather_points`] with the solution's
+/// convergence; `None` without radiosity.
+pub type Gathered = Option<(Vec<f64>, f64)>;
 
 /// The luminaires' direct light at the grids' points ([`Request::direct`]).
 #[derive(Debug, Clone)]
@@ -398,9 +480,45 @@ pub struct Calculation<'s> {
     /// What the caller should be told (options named in backquotes), e.g. a paraboloid
     /// tessellation made coarser to fit the GPU.
     pub warnings: Vec<String>,
+    /// The scene's daylight, included in [`Calculation::grids`]' values
+    /// ([`Calculation::add_daylight`]).
+    pub daylight: Option<DaylightGrids>,
 }
 
 impl Calculation<'_> {
+    /// Adds the scene's daylight to the luminaires' maintained values: every grid's
+    /// values and statistics, and the requirements judged again on them.
+    pub fn add_daylight(&mut self, daylight: DaylightGrids) {
+        for (g, day) in self.grids.iter_mut().zip(&daylight.lux) {
+            for (v, d) in g.values.iter_mut().zip(day) {
+                *v += d;
+            }
+            g.stats = grid_stats(&g.values);
+        }
+        let stats: Vec<GridStats> = self.grids.iter().map(|g| g.stats).collect();
+        self.requirements = judge(
+            self.scene,
+            &stats,
+            &self.glare,
+            (self.convergence.is_none(), self.interp),
+        );
+        let solved = daylight
+            .convergence
+            .map(|c| format!("(radiosity, {:.1} % converged)", 100.0 * c));
+        if self.scene.has_electric_light() {
+            self.light.push(format!("+ daylight: {}", daylight.sky));
+        } else {
+            // Nothing but the sky gives light: its solution is the calculation's.
+            self.convergence = daylight.convergence;
+            self.light = vec![format!("daylight: {}", daylight.sky)];
+            match solved {
+                Some(s) => self.light.extend(["direct + interreflected".into(), s]),
+                None => self.light.push("direct light only".into()),
+            }
+        }
+        self.daylight = Some(daylight);
+    }
+
     /// The scene's grids with their results.
     pub fn grid_results(&self) -> impl Iterator<Item = (&CalcGrid, &GridResult)> {
         self.scene.grids.iter().zip(&self.grids)
@@ -411,7 +529,7 @@ impl Calculation<'_> {
         let g = &self.scene.grids[k];
         let s = self.grids[k].stats;
         let csv = csv_name(&g.entry.name);
-        json!({
+        let mut entry = json!({
             "name": g.entry.name,
             "kind": g.entry.kind,
             "points": s.points,
@@ -425,7 +543,20 @@ impl Calculation<'_> {
             "spacing_m": g.spacing,
             "plans": [csv.replace(".csv", ".png"), csv.replace(".csv", ".svg")],
             "csv": csv,
-        })
+        });
+        if let Some(d) = &self.daylight {
+            let day = grid_stats(&d.lux[k]);
+            entry["daylight"] =
+                json!({"em": day.em, "emin": day.emin, "emax": day.emax, "u0": day.u0});
+            if let Some(f) = &d.factor_stats {
+                entry["daylight_factor"] = json!(f[k]);
+                entry["plans"].as_array_mut().expect("plans").extend([
+                    json!(df_plan_name(&csv, "png")),
+                    json!(df_plan_name(&csv, "svg")),
+                ]);
+            }
+        }
+        entry
     }
 
     /// The whole `calc.json` document; `scene_label` is how the scene file is named
@@ -472,7 +603,17 @@ impl Calculation<'_> {
             "emergency": self.is_emergency(),
             "grid_rule": GRID_RULE,
             "maintenance_factor": self.maintenance_factor,
-            "values": "maintained: computed × maintenance factor",
+            "values": match &self.daylight {
+                Some(_) => "the luminaires' light × maintenance factor, plus daylight (not scaled)",
+                None => "maintained: computed × maintenance factor",
+            },
+            "daylight": self.daylight.as_ref().map(|d| json!({
+                "sky": d.sky,
+                "convergence": d.convergence,
+                "daylight_factor": d.factor.is_some(),
+                "glazing": "one pane of uncoated glass, n = 1.52 (Fresnel, as Radiance's glass)",
+                "method": "the sky and ground seen from each point through openings and glazing (128 × 512 rays), the sun's disc (19 rays); interreflections by radiosity",
+            })),
             "light": self.light.join(" "),
             "solver": match self.convergence {
                 Some(c) => json!({"name": "progressive radiosity", "convergence": c}),
@@ -512,12 +653,25 @@ impl Calculation<'_> {
     }
 
     /// Grid `k`'s CSV: `x,y,z,lux` with a header, one row per point (coordinates exact,
-    /// so the points can be fed back to `illuminance`).
+    /// so the points can be fed back to `illuminance`); with the daylight factor a `df`
+    /// column (per cent).
     pub fn grid_csv(&self, k: usize) -> String {
         let g = &self.scene.grids[k];
-        let mut out = String::from("x,y,z,lux\n");
-        for (p, v) in g.points.iter().zip(&self.grids[k].values) {
-            out.push_str(&format!("{},{},{},{v:.6}\n", p.x, p.y, p.z));
+        let factor = self
+            .daylight
+            .as_ref()
+            .and_then(|d| d.factor.as_ref())
+            .map(|f| &f[k]);
+        let mut out = String::from(match factor {
+            Some(_) => "x,y,z,lux,df\n",
+            None => "x,y,z,lux\n",
+        });
+        for (i, (p, v)) in g.points.iter().zip(&self.grids[k].values).enumerate() {
+            out.push_str(&format!("{},{},{},{v:.6}", p.x, p.y, p.z));
+            if let Some(f) = factor {
+                out.push_str(&format!(",{:.6}", f[i]));
+            }
+            out.push('\n');
         }
         out
     }
@@ -568,7 +722,34 @@ impl Calculation<'_> {
                 steps.or(scene.display.steps).unwrap_or(0),
             ),
             values_at_points,
+            north_offset_deg: scene
+                .daylight
+                .as_ref()
+                .and_then(|d| d.site.as_ref())
+                .map(|s| s.north_offset_deg),
+            daylight_factor: None,
         }
+    }
+
+    /// Grid `k`'s daylight-factor plan (as [`Calculation::plan`], the values per cent);
+    /// `None` without a daylight factor (no CIE overcast sky).
+    pub fn df_plan(
+        &self,
+        k: usize,
+        palette: Option<Palette>,
+        steps: Option<u32>,
+        values_at_points: bool,
+    ) -> Option<Plan<'_>> {
+        let d = self.daylight.as_ref()?;
+        let (factor, stats) = (d.factor.as_ref()?, d.factor_stats.as_ref()?);
+        let lux = self.plan(k, palette, steps, values_at_points);
+        Some(Plan {
+            values: &factor[k],
+            stats: grid_stats(&factor[k]),
+            light: vec![d.sky.clone()],
+            daylight_factor: Some(stats[k]),
+            ..lux
+        })
     }
 
     /// The report's settings table: scene, maintenance factor, light, interpolation,
@@ -587,6 +768,15 @@ impl Calculation<'_> {
                 if self.cpu { "CPU" } else { "GPU" }.to_string(),
             ),
         ];
+        if let Some(d) = &self.daylight {
+            rows.push((
+                "daylight",
+                format!(
+                    "{}; added to the luminaires' maintained light (not scaled)",
+                    d.sky
+                ),
+            ));
+        }
         if !self.scene.areas.is_empty() {
             rows.push(("standard", self.standards().join(", ")));
             rows.push(("grid rule", GRID_RULE.to_string()));
@@ -604,7 +794,9 @@ impl Calculation<'_> {
 
 /// Runs a calculation of `scene` with `options` start to end: the direct light (on the
 /// shared GPU unless `options.cpu`), the radiosity solution and its gather where asked
-/// (`events` sees the solve's progress), the results. `cancel` stops it with an error.
+/// (`events` sees the solve's progress), the results; with a sky, the same again for the
+/// daylight alone, added to the luminaires' maintained light. `cancel` stops it with an
+/// error.
 pub fn compute<'s>(
     scene: &'s Scene,
     options: &'s CalcOptions,
@@ -617,33 +809,51 @@ pub fn compute<'s>(
     } else {
         Some(Gpu::shared()?)
     };
-    let direct = request.direct(gpu.as_ref(), cancel)?;
-    let mut solver_warning = None;
-    let interreflected = match (request.indirect, &gpu) {
-        (Indirect::Radiosity, Some(gpu)) => {
-            let mut settings = crate::render::RenderSettings::from_display(&scene.display);
-            settings.shadows = crate::render::ShadowSettings::with(options.shadows);
-            let setup = session::Setup {
-                scene,
-                options: &options.radiosity,
-                interp: options.interp,
-                shadows: &mut settings.shadows,
-                view: None,
-            };
-            let solution = session::solve(gpu, setup, cancel, events)?;
-            if solution.stop() == crate::radiosity::solve::StopReason::Cancelled {
-                return Err(CalcError::Cancelled);
-            }
-            let points = request.gather_points();
-            let lux = solution.interreflected_lux(&points, cancel, &|_| {})?;
-            solver_warning = settings.shadows.warning();
-            Some((lux, solution.convergence()))
-        }
-        _ => None,
-    };
+    let daylight = request.daylight();
+    let (direct, interreflected, warning) = light_of(&request, gpu.as_ref(), cancel, events)?;
     let mut calc = request.finish(direct, interreflected)?;
-    if let Some(w) = solver_warning.filter(|w| !calc.warnings.contains(w)) {
+    if let Some(day) = daylight {
+        let (direct, interreflected, _) = light_of(&day, gpu.as_ref(), cancel, events)?;
+        calc.add_daylight(day.finish_daylight(direct, interreflected)?);
+    }
+    if let Some(w) = warning.filter(|w| !calc.warnings.contains(w)) {
         calc.warnings.push(w);
     }
     Ok(calc)
+}
+
+/// The direct light of `request` and, where it solves, the interreflected light at its
+/// gather points with the solution's convergence; and what the solver's shadows warn of.
+fn light_of(
+    request: &Request,
+    gpu: Option<&Gpu>,
+    cancel: &AtomicBool,
+    events: &mut dyn FnMut(Event),
+) -> Result<(Direct, Gathered, Option<String>), CalcError> {
+    let direct = request.direct(gpu, cancel)?;
+    let (Some(gpu), true) = (gpu, request.solves()) else {
+        return Ok((direct, request.unlit_interreflection(), None));
+    };
+    let scene = request.lighting_scene();
+    let options = request.options;
+    let mut settings = crate::render::RenderSettings::from_display(&scene.display);
+    settings.shadows = crate::render::ShadowSettings::with(options.shadows);
+    let setup = session::Setup {
+        scene,
+        options: &options.radiosity,
+        interp: options.interp,
+        shadows: &mut settings.shadows,
+        view: None,
+    };
+    let solution = session::solve(gpu, setup, cancel, events)?;
+    if solution.stop() == crate::radiosity::solve::StopReason::Cancelled {
+        return Err(CalcError::Cancelled);
+    }
+    let points = request.gather_points();
+    let lux = solution.interreflected_lux(&points, cancel, &|_| {})?;
+    Ok((
+        direct,
+        Some((lux, solution.convergence())),
+        settings.shadows.warning(),
+    ))
 }

@@ -3,6 +3,7 @@
 
 #[cfg(feature = "gpu")]
 pub mod compute;
+pub mod daylight;
 pub mod directions;
 pub mod glare;
 pub mod plan;

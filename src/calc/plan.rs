@@ -11,6 +11,7 @@ use plotters::coord::Shift;
 use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 
+use super::daylight::FactorStats;
 use super::stats::GridStats;
 use crate::photometry::isocandela::round_levels;
 use crate::photometry::plot::{nice_ceiling, png_bytes, svg_string, DrawError, DrawResult};
@@ -46,7 +47,18 @@ pub struct Plan<'a> {
     pub palette: (Palette, u32),
     /// Print the value at every point.
     pub values_at_points: bool,
+    /// Angle from the plan's +Y clockwise to true north, degrees, where the scene has a
+    /// `[site]` (a north arrow on horizontal plans).
+    pub north_offset_deg: Option<f64>,
+    /// With the daylight factor's statistics, the values are daylight factors (per cent)
+    /// rather than lux: the plan's title, lines (at 0.5, 1, 2, 5, 10 … %), scale and
+    /// statistics say so.
+    pub daylight_factor: Option<FactorStats>,
 }
+
+/// The levels of a daylight-factor plan's lines, per cent (the usual 1/2/5 % bands and
+/// their neighbours).
+pub const DF_LEVELS: [f64; 7] = [0.5, 1.0, 2.0, 5.0, 10.0, 20.0, 50.0];
 
 /// A lux value as a label: whole lux from 10 up, two decimals below (zeros dropped).
 fn lux_label(v: f64) -> String {
@@ -56,6 +68,27 @@ fn lux_label(v: f64) -> String {
         let s = format!("{v:.2}");
         s.trim_end_matches('0').trim_end_matches('.').to_string()
     }
+}
+
+/// Where on a line (`piece`, plan metres) its label goes: the vertex farthest from the
+/// labels already `placed` (the middle one when there are none), so that lines that
+/// crowd together in one place are labelled where they part.
+fn label_spot(piece: &[[f64; 2]], placed: &[[f64; 2]]) -> [f64; 2] {
+    let middle = piece[piece.len() / 2];
+    let clearance = |p: &[f64; 2]| {
+        placed
+            .iter()
+            .map(|q| (p[0] - q[0]).hypot(p[1] - q[1]))
+            .fold(f64::INFINITY, f64::min)
+    };
+    if placed.is_empty() {
+        return middle;
+    }
+    piece
+        .iter()
+        .copied()
+        .max_by(|a, b| clearance(a).total_cmp(&clearance(b)))
+        .unwrap_or(middle)
 }
 
 /// Ticks of a colour scale from 0 to `top` at a round step (1, 2, 2.5 or 5 × 10^k) giving
@@ -159,10 +192,13 @@ impl Plan<'_> {
         if nu < 2 || nv < 2 {
             return Ok(Vec::new());
         }
-        let levels: Vec<f64> = round_levels(self.stats.emax)
-            .into_iter()
-            .filter(|&l| l > self.stats.emin)
-            .collect();
+        let levels: Vec<f64> = match self.daylight_factor {
+            Some(_) => DF_LEVELS.to_vec(),
+            None => round_levels(self.stats.emax),
+        }
+        .into_iter()
+        .filter(|&l| l > self.stats.emin && l <= self.stats.emax)
+        .collect();
         let lines = contour::ContourBuilder::new(nu, nv, true)
             .x_origin(lo.x - du / 2.0)
             .y_origin(lo.y - dv / 2.0)
@@ -202,6 +238,14 @@ impl Plan<'_> {
         svg_string(WIDTH, HEIGHT, "the plan", |root| self.draw(root))
     }
 
+    /// A value as a label: lux as [`lux_label`], daylight factors with a % sign.
+    fn label(&self, v: f64) -> String {
+        match self.daylight_factor {
+            Some(_) => format!("{} %", lux_label(v)),
+            None => lux_label(v),
+        }
+    }
+
     fn colour(&self, lux: f64, top: f64) -> RGBColor {
         let (palette, steps) = self.palette;
         let [r, g, b] = palette.srgb8((lux / top) as f32, steps);
@@ -216,8 +260,12 @@ impl Plan<'_> {
         let (head, body) = root.split_vertically(56);
         let e = &self.grid.entry;
         let kind = format!("{:?}", e.kind).to_lowercase();
+        let what = match self.daylight_factor {
+            Some(_) => "daylight factor (%, CIE overcast sky)",
+            None => "illuminance (lx, maintained)",
+        };
         head.draw(&Text::new(
-            format!("{} — {kind} illuminance (lx, maintained)", e.name),
+            format!("{} — {kind} {what}", e.name),
             (20, 16),
             ("sans-serif", 22).into_font(),
         ))?;
@@ -305,6 +353,7 @@ impl Plan<'_> {
             )))?;
         }
         let label = ("sans-serif", 13).into_font();
+        let mut placed: Vec<[f64; 2]> = Vec::new();
         for (level, pieces) in self.isolux()? {
             for piece in &pieces {
                 chart.draw_series(LineSeries::new(
@@ -313,9 +362,10 @@ impl Plan<'_> {
                 ))?;
             }
             if let Some(longest) = pieces.iter().max_by_key(|p| p.len()) {
-                let [x, y] = longest[longest.len() / 2];
+                let [x, y] = label_spot(longest, &placed);
+                placed.push([x, y]);
                 chart.draw_series(std::iter::once(Text::new(
-                    lux_label(level),
+                    self.label(level),
                     (x, y),
                     label.clone(),
                 )))?;
@@ -325,7 +375,11 @@ impl Plan<'_> {
             let small = ("sans-serif", 11).into_font();
             chart.draw_series(self.grid.points.iter().zip(self.values).map(|(&p, &v)| {
                 let c = self.plane_coords(p);
-                Text::new(format!("{v:.0}"), (c.x, c.y), small.clone())
+                let text = match self.daylight_factor {
+                    Some(_) => format!("{v:.1}"),
+                    None => format!("{v:.0}"),
+                };
+                Text::new(text, (c.x, c.y), small.clone())
             }))?;
         }
         // On the floor's plans: the areas and the observers; on a ceiling's only the
@@ -445,19 +499,29 @@ impl Plan<'_> {
     {
         let s = &self.stats;
         let font = ("sans-serif", 15).into_font();
-        let mut rows = vec![
-            format!("Em    {:.1} lx", s.em),
-            format!("Emin  {:.1} lx", s.emin),
-            format!("Emax  {:.1} lx", s.emax),
-            format!("U0 = Emin/Em  {:.2}", s.u0),
-            format!("g2 = Emin/Emax  {:.2}", s.g2),
-            format!("maintenance factor {}", self.maintenance_factor),
+        let mut rows = match self.daylight_factor {
+            Some(f) => vec![
+                format!("DF mean    {:.2} %", f.mean),
+                format!("DF median  {:.2} %", f.median),
+                format!("DF min  {:.2} %, max {:.2} %", f.min, f.max),
+                format!("U0 = min/mean  {:.2}", f.u0),
+            ],
+            None => vec![
+                format!("Em    {:.1} lx", s.em),
+                format!("Emin  {:.1} lx", s.emin),
+                format!("Emax  {:.1} lx", s.emax),
+                format!("U0 = Emin/Em  {:.2}", s.u0),
+                format!("g2 = Emin/Emax  {:.2}", s.g2),
+                format!("maintenance factor {}", self.maintenance_factor),
+            ],
+        };
+        rows.extend([
             format!(
                 "{} points, {:.2} × {:.2} m",
                 s.points, self.grid.spacing[0], self.grid.spacing[1]
             ),
             format!("height {} m", self.grid.entry.height),
-        ];
+        ]);
         rows.extend(self.light.iter().cloned());
         for (k, row) in rows.iter().enumerate() {
             side.draw(&Text::new(
@@ -467,8 +531,13 @@ impl Plan<'_> {
             ))?;
         }
         // The colour scale: a vertical bar with lux ticks.
-        let (x0, y0, bar_h) = (14, 270, 320);
-        side.draw(&Text::new("lx", (x0, y0 - 22), font.clone()))?;
+        let (x0, y0, bar_h) = (14, 300, 300);
+        let unit = if self.daylight_factor.is_some() {
+            "%"
+        } else {
+            "lx"
+        };
+        side.draw(&Text::new(unit, (x0, y0 - 22), font.clone()))?;
         for k in 0..bar_h {
             let t = 1.0 - k as f64 / bar_h as f64;
             side.draw(&Rectangle::new(
@@ -480,7 +549,7 @@ impl Plan<'_> {
         for v in scale_ticks(top) {
             let y = y0 + bar_h - (bar_h as f64 * v / top).round() as i32;
             side.draw(&PathElement::new([(x0 + 26, y), (x0 + 32, y)], BLACK))?;
-            side.draw(&Text::new(lux_label(v), (x0 + 36, y - 7), font.clone()))?;
+            side.draw(&Text::new(self.label(v), (x0 + 36, y - 7), font.clone()))?;
         }
         // The scale bar: a round length near 100 pixels.
         let metres = nice_ceiling(100.0 / px_per_m);
@@ -504,12 +573,12 @@ impl Plan<'_> {
         let note = ("sans-serif", 12).into_font().color(&RGBColor(90, 90, 90));
         let mut lines = match self.grid.entry.kind {
             GridKind::Vertical => vec!["seen from the front of the wall"],
-            GridKind::Ceiling => vec![
-                "plan seen from above: x to the right, y up",
-                "○ luminaires (plan position)",
-            ],
-            _ => vec!["plan: x to the right, y up", "○ luminaires (plan position)"],
+            GridKind::Ceiling => vec!["plan seen from above: x to the right, y up"],
+            _ => vec!["plan: x to the right, y up"],
         };
+        if self.grid.entry.kind != GridKind::Vertical && !self.luminaires.is_empty() {
+            lines.push("○ luminaires (plan position)");
+        }
         if !matches!(self.grid.entry.kind, GridKind::Vertical | GridKind::Ceiling) {
             if !self.observers.is_empty() {
                 lines.push("▶ observers (eye, line of sight), UGR");
@@ -518,11 +587,24 @@ impl Plan<'_> {
                 lines.push("- - areas (EN 12464-1, EN 1838)");
             }
         }
-        for (k, line) in lines
-            .into_iter()
-            .chain(["isolux lines at round values"])
-            .enumerate()
+        let contours = match self.daylight_factor {
+            Some(_) => "lines at DF 0.5, 1, 2, 5, 10, 20 %",
+            None => "isolux lines at round values",
+        };
+        if let (
+            Some(north),
+            GridKind::Horizontal | GridKind::Cylindrical | GridKind::Semicylindrical,
+        ) = (self.north_offset_deg, self.grid.entry.kind)
         {
+            crate::photometry::plot::draw_north_arrow(
+                side,
+                (x0 + length + 120, y),
+                22.0,
+                north,
+                font.color(&BLACK),
+            )?;
+        }
+        for (k, line) in lines.into_iter().chain([contours]).enumerate() {
             side.draw(&Text::new(line, (x0, y + 40 + 16 * k as i32), note.clone()))?;
         }
         Ok(())
@@ -531,7 +613,15 @@ impl Plan<'_> {
 
 #[cfg(test)]
 mod tests {
-    use super::scale_ticks;
+    use super::{label_spot, scale_ticks};
+
+    #[test]
+    fn labels_go_where_the_lines_part() {
+        let line = [[0.0, 0.0], [1.0, 0.0], [2.0, 0.0], [3.0, 0.0]];
+        assert_eq!(label_spot(&line, &[]), [2.0, 0.0]);
+        assert_eq!(label_spot(&line, &[[0.0, 0.1]]), [3.0, 0.0]);
+        assert_eq!(label_spot(&line, &[[0.0, 0.1], [2.9, 0.1]]), [1.0, 0.0]);
+    }
 
     #[test]
     fn colour_scale_ticks_are_round() {

@@ -4,6 +4,7 @@
 
 use std::fmt::Write as _;
 
+use crate::calc::daylight::FactorStats;
 use crate::calc::requirements::Verdict;
 use crate::calc::GridStats;
 use crate::io::xml_escape as escape;
@@ -19,6 +20,8 @@ pub struct ReportGrid<'a> {
     pub stats: GridStats,
     /// Its plan, as an SVG document.
     pub plan_svg: String,
+    /// Its daylight factor's statistics and plan (SVG), under the CIE overcast sky.
+    pub daylight_factor: Option<(FactorStats, String)>,
 }
 
 /// One observer's part of the report.
@@ -81,6 +84,29 @@ fn verification(h: &mut String, verdicts: &[Verdict]) {
             v.outcome(),
             escape(&basis)
         );
+    }
+    h.push_str("</table>");
+}
+
+/// The daylight factor table (CIE overcast sky), where the grids have one.
+fn daylight_factors(h: &mut String, grids: &[ReportGrid]) {
+    if grids.iter().all(|g| g.daylight_factor.is_none()) {
+        return;
+    }
+    h.push_str("<h2>Daylight factor (CIE standard overcast sky)</h2><table><tr><th>grid</th><th>mean (%)</th><th>median (%)</th><th>min (%)</th><th>max (%)</th><th>U0 (min/mean)</th></tr>");
+    for g in grids {
+        if let Some((f, _)) = &g.daylight_factor {
+            let _ = write!(
+                h,
+                "<tr><td>{}</td><td class=\"n\">{:.2}</td><td class=\"n\">{:.2}</td><td class=\"n\">{:.2}</td><td class=\"n\">{:.2}</td><td class=\"n\">{:.2}</td></tr>",
+                escape(g.name),
+                f.mean,
+                f.median,
+                f.min,
+                f.max,
+                f.u0
+            );
+        }
     }
     h.push_str("</table>");
 }
@@ -149,6 +175,7 @@ pub fn report_html(
         );
     }
     h.push_str("</table>");
+    daylight_factors(&mut h, grids);
     if !observers.is_empty() {
         h.push_str("<h2>Glare at observers (UGR, CIE 117)</h2><table><tr><th>observer</th><th>eye (m)</th><th>line of sight</th><th>background L<sub>b</sub> (cd/m²)</th><th>luminaires counted</th><th>UGR</th></tr>");
         for o in observers {
@@ -174,6 +201,13 @@ pub fn report_html(
     }
     for g in grids {
         let _ = write!(h, "<h2>{}</h2><div>{}</div>", escape(g.name), g.plan_svg);
+        if let Some((_, svg)) = &g.daylight_factor {
+            let _ = write!(
+                h,
+                "<h2>{}: daylight factor</h2><div>{svg}</div>",
+                escape(g.name)
+            );
+        }
     }
     let _ = write!(
         h,

@@ -14,7 +14,7 @@ use super::error::flags_in;
 use super::error::CliError;
 use super::scene_input::{load_scene, scene_at};
 use super::solver_args::SolverArgs;
-use crate::calc::compute::{csv_name, CalcError, CalcOptions, Calculation, Request};
+use crate::calc::compute::{csv_name, df_plan_name, CalcError, CalcOptions, Calculation, Request};
 use crate::calc::report::{report_html, ReportGrid, ReportObserver};
 use crate::gpu::Gpu;
 use crate::io::limits::MAX_TOTAL_POINTS;
@@ -132,11 +132,17 @@ fn check_outputs(args: &CalcArgs, scene: &Scene) -> Result<(), CliError> {
         outputs.input(f);
     }
     outputs.output(args.out.join("calc.json"));
+    let factor = crate::calc::daylight::has_daylight_factor(scene);
     for g in &scene.grids {
         let csv = csv_name(&g.entry.name);
         let stem = csv.trim_end_matches(".csv");
         for name in [csv.clone(), format!("{stem}.png"), format!("{stem}.svg")] {
             outputs.output(args.out.join(name));
+        }
+        if factor {
+            for ext in ["png", "svg"] {
+                outputs.output(args.out.join(df_plan_name(&csv, ext)));
+            }
         }
     }
     if let Some(report) = &args.report {
@@ -163,12 +169,17 @@ pub fn run(args: CalcArgs) -> Result<(), CliError> {
     check_outputs(&args, &scene)?;
     let cancel = super::interrupt::interrupt_flag();
     let gpu = if args.cpu { None } else { Some(Gpu::shared()?) };
-    let direct = request.direct(gpu.as_ref(), &cancel).map_err(calc_error)?;
-    let interreflected = match request.indirect {
-        Indirect::Radiosity => Some(interreflected_lux(&args, &scene, &request, started)?),
-        Indirect::None => None,
-    };
-    let calc = request.finish(direct, interreflected).map_err(calc_error)?;
+    let daylight = request.daylight();
+    let (direct, interreflected) = light_of(&args, &request, gpu.as_ref(), started)?;
+    let mut calc = request.finish(direct, interreflected).map_err(calc_error)?;
+    if let Some(day) = daylight {
+        eprintln!("daylight: the scene's [sky] alone");
+        let (direct, interreflected) = light_of(&args, &day, gpu.as_ref(), started)?;
+        calc.add_daylight(
+            day.finish_daylight(direct, interreflected)
+                .map_err(calc_error)?,
+        );
+    }
     for w in &calc.warnings {
         super::scene_input::warn_once(&scene.path, w);
     }
@@ -265,15 +276,32 @@ fn interrupted(cancel: &AtomicBool) -> Result<(), CliError> {
     Ok(())
 }
 
+/// The direct light of `request` and, where it solves, the interreflected light at its
+/// gather points with the solution's convergence.
+fn light_of(
+    args: &CalcArgs,
+    request: &Request,
+    gpu: Option<&Gpu>,
+    started: std::time::Instant,
+) -> Result<(crate::calc::compute::Direct, crate::calc::compute::Gathered), CliError> {
+    let cancel = super::interrupt::interrupt_flag();
+    let direct = request.direct(gpu, &cancel).map_err(calc_error)?;
+    let interreflected = match request.solves() {
+        true => Some(interreflected_lux(args, request, started)?),
+        false => request.unlit_interreflection(),
+    };
+    Ok((direct, interreflected))
+}
+
 /// The interreflected illuminance at the request's gather points from a radiosity
-/// solution of `scene` with the command's solver options (the luminaires' light on the
+/// solution of what lights it with the command's solver options (the light on the
 /// elements with its shadows and interpolation), and the solution's convergence.
 fn interreflected_lux(
     args: &CalcArgs,
-    scene: &Scene,
     request: &Request,
     started: std::time::Instant,
 ) -> Result<(Vec<f64>, f64), CliError> {
+    let scene = request.lighting_scene();
     let mut settings = crate::render::RenderSettings::from_display(&scene.display);
     settings.light_model = crate::render::LightModel::Ldt(args.interp);
     settings.shadows = ShadowSettings::with(args.shadows);
@@ -313,6 +341,15 @@ fn write_grids<'c>(
         let svg = plan.svg().map_err(CliError::failure)?;
         write_atomic(&dir.join(format!("{stem}.svg")), svg.as_bytes())
             .map_err(CliError::failure)?;
+        let mut daylight_factor = None;
+        if let Some(df) = calc.df_plan(k, args.palette, args.steps, args.values) {
+            let png = df.png().map_err(CliError::failure)?;
+            write_atomic(&dir.join(df_plan_name(&csv, "png")), &png).map_err(CliError::failure)?;
+            let svg = df.svg().map_err(CliError::failure)?;
+            write_atomic(&dir.join(df_plan_name(&csv, "svg")), svg.as_bytes())
+                .map_err(CliError::failure)?;
+            daylight_factor = df.daylight_factor.map(|f| (f, svg));
+        }
         let kind = format!("{:?}", g.entry.kind).to_lowercase();
         println!(
             "{:<24} {:>15} {:>7} {:>9.1} {:>9.1} {:>9.1} {:>6.2} {:>6.2}",
@@ -325,11 +362,18 @@ fn write_grids<'c>(
             s.u0,
             s.g2
         );
+        if let Some((f, _)) = &daylight_factor {
+            println!(
+                "{:<24} daylight factor: mean {:.2} %, median {:.2} %, min {:.2} %, max {:.2} %, U0 {:.2}",
+                "", f.mean, f.median, f.min, f.max, f.u0
+            );
+        }
         report_grids.push(ReportGrid {
             name: &g.entry.name,
             kind,
             stats: s,
             plan_svg: svg,
+            daylight_factor,
         });
     }
     Ok(report_grids)

@@ -15,7 +15,7 @@ use crate::render::ShadowTechnique;
 /// Options of `illuminance`.
 #[derive(Debug, Args)]
 pub struct IlluminanceArgs {
-    /// The scene file (TOML); its luminaires are used.
+    /// The scene file (TOML); its luminaires and its `[sky]` light the points.
     pub scene: PathBuf,
     /// Compute on the CPU (the reference) instead of with the renderer's WGSL code.
     #[arg(long)]
@@ -28,9 +28,16 @@ pub struct IlluminanceArgs {
     /// point toward each luminaire); `--cpu` always ray casts unless `none`.
     #[arg(long, value_enum)]
     pub shadows: Option<ShadowTechnique>,
-    /// Seconds since the start of the animation (effect lights turned this far).
+    /// Seconds since the start of the animation (effect lights turned this far), or a
+    /// local date and time at the scene's `[site]` (`2026-03-21T12:00`): the time of its
+    /// `[sky]` (the sun's position).
     #[arg(long)]
-    pub time: Option<f64>,
+    pub time: Option<String>,
+    /// The sky, replacing the scene's `[sky] model`: `cie-overcast`, `cie-clear`, `cie:1`
+    /// … `cie:15` or `uniform` (a scene without `[sky]` gets 10 000 lx of it, no sun).
+    /// Daylight reaches the points through the model's openings and glazing.
+    #[arg(long, value_name = "MODEL")]
+    pub sky: Option<String>,
     /// Output: one lux value per line (`plain`), or each point with its value as CSV
     /// (`x,y,z,nx,ny,nz,lux` with a header) or JSON (`[{"position", "normal", "lux"}]`).
     #[arg(long, value_enum, default_value = "plain")]
@@ -50,7 +57,14 @@ pub enum PointsFormat {
 
 /// Runs `illuminance`.
 pub fn run(args: IlluminanceArgs) -> Result<(), CliError> {
-    let scene = scene_at(load_scene(&args.scene)?, args.time)?;
+    let seconds = args
+        .time
+        .as_deref()
+        .and_then(|t| t.trim().parse::<f64>().ok());
+    let sky_time = args.time.as_deref().filter(|_| seconds.is_none());
+    let scene = scene_at(load_scene(&args.scene)?, seconds)?
+        .with_sky(args.sky.as_deref(), sky_time)
+        .map_err(|e| CliError::input(anyhow::anyhow!("--sky/--time: {e}")))?;
     let points = read_points(std::io::stdin().lock(), "stdin")?;
     let technique = args.shadows.or(scene.display.shadows).unwrap_or_default();
     let gpu = if args.cpu { None } else { Some(Gpu::shared()?) };

@@ -51,7 +51,8 @@ pub enum Command {
     Demo(demo::DemoArgs),
     /// Render a scene (shaded or false-colour illuminance) to PNG and optionally EXR.
     Render(render::RenderArgs),
-    /// Read "x y z nx ny nz" lines from stdin and print the direct illuminance (lux) at each.
+    /// Read "x y z nx ny nz" lines from stdin and print the direct illuminance (lux) at each
+    /// (the luminaires' and the daylight of the scene's `[sky]`).
     Illuminance(illuminance::IlluminanceArgs),
     /// Lighting calculations on the scene's `[[grid]]` surfaces and `[[observer]]`s:
     /// maintained illuminance at every point (direct, or total with `--indirect

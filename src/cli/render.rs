@@ -64,6 +64,17 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
     }
     outputs.check()?;
     let mut settings = args.image.settings(&scene)?;
+    if scene.daylight.is_some() {
+        if settings.mode == crate::scene::Mode::Illuminance {
+            return Err(CliError::input(anyhow!(
+                "{}: render does not draw daylight yet, so its lux would leave out the scene's [sky]; `goniolight illuminance` and `goniolight radiosity --points` give daylight at points (or remove [sky])",
+                args.scene.display()
+            )));
+        }
+        eprintln!(
+            "warning: render does not draw the scene's [sky] yet (the luminaires alone are shown)"
+        );
+    }
     let choice = args.indirect.choice(&scene, DisplayIndirect::None);
     let map = light_map(
         &args.scene,

@@ -40,6 +40,37 @@ pub struct PolarPlot<'a> {
 /// A drawing's result: plotters' backends have their own error types.
 pub type DrawResult = Result<(), Box<dyn std::error::Error>>;
 
+/// Draws a north arrow in a circle of radius `r` pixels round `centre`, pointing
+/// `north_deg` clockwise from the drawing's up, with "N" written left of the circle in
+/// `font`.
+pub fn draw_north_arrow<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    (cx, cy): (i32, i32),
+    r: f64,
+    north_deg: f64,
+    font: TextStyle,
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    let a = north_deg.to_radians();
+    let (dx, dy) = (a.sin(), -a.cos());
+    let tip = (cx + (r * dx) as i32, cy + (r * dy) as i32);
+    let tail = (cx - (r * dx) as i32, cy - (r * dy) as i32);
+    area.draw(&Circle::new((cx, cy), r as i32 + 4, BLACK))?;
+    area.draw(&PathElement::new([tail, tip], BLACK.stroke_width(3)))?;
+    let side = (-dy, dx);
+    let barb = |sign: f64| {
+        (
+            tip.0 - (12.0 * dx + sign * 7.0 * side.0) as i32,
+            tip.1 - (12.0 * dy + sign * 7.0 * side.1) as i32,
+        )
+    };
+    area.draw(&Polygon::new(
+        vec![tip, barb(1.0), barb(-1.0)],
+        BLACK.filled(),
+    ))?;
+    area.draw(&Text::new("N", (cx - r as i32 - 26, cy - 9), font))?;
+    Ok(())
+}
+
 /// The drawing area of a bitmap.
 pub type BitMapArea<'a> = DrawingArea<BitMapBackend<'a>, plotters::coord::Shift>;
 

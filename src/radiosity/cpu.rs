@@ -108,7 +108,10 @@ impl<'a> CpuSolver<'a> {
             .iter()
             .map(|p| self.direct(p.position, p.normal))
             .collect();
-        let state = InitialState::with_direct(self.scene, &samples.direct(&at_samples));
+        let mut state = InitialState::with_direct(self.scene, &samples.direct(&at_samples));
+        if let Some(daylight) = super::initial::daylight_direct(self.scene) {
+            state.add_direct(self.scene, &daylight);
+        }
         for (e, (b, lux)) in state.radiosity.iter().zip(&state.illuminance).enumerate() {
             let gained = *b - self.scene.element_emission(e);
             self.radiosity[e] += gained;

@@ -62,6 +62,16 @@ impl InitialState {
         }
     }
 
+    /// Adds the direct light `extra` (reflected from the front, transmitted from the
+    /// back) to the state: radiosity is linear in its sources.
+    pub fn add_direct(&mut self, scene: &RadiosityScene, extra: &DirectLight) {
+        let added = InitialState::with_direct(scene, extra);
+        for (e, (b, lux)) in added.radiosity.iter().zip(&added.illuminance).enumerate() {
+            self.radiosity[e] += *b - scene.element_emission(e);
+            self.illuminance[e] += lux;
+        }
+    }
+
     /// The luminaires' shot on the GPU: direct illuminance at every element (averaged
     /// over its samples near a luminaire) with `shadows` (paraboloid maps for the
     /// luminaires' own visibility, by default).
@@ -82,6 +92,16 @@ impl InitialState {
             &samples.direct(&direct),
         ))
     }
+}
+
+/// The scene's direct daylight on every element (one sample at its centre, each side
+/// that receives; [`crate::daylight::points::ELEMENT_CELLS`] rays), grey; `None` without a
+/// sky.
+pub fn daylight_direct(scene: &RadiosityScene) -> Option<DirectLight> {
+    let samples = DirectSamples::near(scene, &[]);
+    let lux = scene.daylight_at(&samples.points, crate::daylight::points::ELEMENT_CELLS)?;
+    let grey: Vec<DVec3> = lux.iter().map(|d| DVec3::splat(d.total())).collect();
+    Some(samples.direct(&grey))
 }
 
 /// Adds to `direct` (one per point) the luminaires' light at `points` by way of mirrors

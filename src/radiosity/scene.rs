@@ -13,7 +13,11 @@ use super::elements::{
 use super::shadow_edges::LuminaireShadowEdges;
 use super::specular::SpecularSurfaces;
 use super::Hierarchy;
+use crate::daylight::glazing::Glazing;
+use crate::daylight::points::{daylight_at_points, scene_glazing, DaylightAtPoint, Obstructions};
+use crate::daylight::sky::Sky;
 use crate::geometry::Mesh;
+use crate::lighting::SurfacePoint;
 use crate::scene::{PlacedLuminaire, Scene};
 use crate::shadow::{Cutouts, IgnoredTriangles, TriangleBvh};
 
@@ -64,6 +68,15 @@ pub struct RadiosityScene {
     /// The area-weighted mean of what a surface sends back out, reflectance plus
     /// transmittance (luminance), for the ambient term.
     pub mean_reflectance: f64,
+    /// The scene's sky and the glazing of each of [`Self::casters`]' triangles, if the
+    /// scene has daylight ([`crate::daylight`]).
+    pub daylight: Option<(Sky, Vec<Option<Glazing>>)>,
+}
+
+/// The sky of `scene` and the glazing of its caster triangles, if it has daylight.
+fn daylight_of(scene: &Scene) -> Option<(Sky, Vec<Option<Glazing>>)> {
+    let d = scene.daylight.as_ref()?;
+    Some((d.sky.clone(), scene_glazing(scene)))
 }
 
 /// The visibility mesh, its hierarchy, how many of its triangles are solid (they come
@@ -229,6 +242,7 @@ impl RadiosityScene {
             specular,
             total_area: 0.0,
             mean_reflectance: 0.0,
+            daylight: daylight_of(source),
         };
         if let Some(cutouts) = &scene.cutouts {
             super::coverage::apply(&mut scene.elements, cutouts);
@@ -246,6 +260,24 @@ impl RadiosityScene {
             .sum();
         scene.mean_reflectance = (reflected / scene.total_area.max(1e-300)).min(0.999);
         Ok(scene)
+    }
+
+    /// The direct daylight (sky, ground and sun through the openings and glazing) at
+    /// `points`, each point's hemisphere in `cells`
+    /// ([`crate::daylight::points::daylight_at_points`]); `None` without a sky.
+    pub fn daylight_at(
+        &self,
+        points: &[SurfacePoint],
+        cells: (usize, usize),
+    ) -> Option<Vec<DaylightAtPoint>> {
+        let (sky, glazing) = self.daylight.as_ref()?;
+        let obstructions = Obstructions {
+            mesh: &self.casters,
+            bvh: self.caster_bvh(),
+            glazing,
+            eps: self.self_hit_epsilon,
+        };
+        Some(daylight_at_points(sky, Some(&obstructions), points, cells))
     }
 
     /// The luminaires' light through the mirrors and clear glass ([`super::specular`]).

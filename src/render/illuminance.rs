@@ -35,7 +35,10 @@ pub enum IlluminanceError {
 /// check may coarsen its paraboloid tessellation: [`ShadowSettings::warning`]): on `gpu`
 /// with the renderer's own lighting code, or by the CPU twin when `gpu` is `None`
 /// (ray-cast shadows unless `none`); with shadows, plus the light mirrors and clear glass
-/// pass on (ray-cast, [`SceneWindows`]). Every value is checked ([`crate::lighting::usable_lux`]).
+/// pass on (ray-cast, [`SceneWindows`]); plus the daylight of the scene's `[sky]` (sky,
+/// ground and sun through its openings and glazing, always on the CPU:
+/// [`crate::daylight::points::scene_daylight`]). Every value is checked
+/// ([`crate::lighting::usable_lux`]).
 pub fn scene_illuminance(
     gpu: Option<&Gpu>,
     scene: &Scene,
@@ -49,6 +52,11 @@ pub fn scene_illuminance(
         if let Some(windows) = SceneWindows::new(scene) {
             let light = windows.light(&scene.luminaires);
             light.add_lux_at_points(points, &mut lux, interp);
+        }
+    }
+    if let Some(daylight) = crate::daylight::points::scene_daylight(scene, points) {
+        for (v, d) in lux.iter_mut().zip(daylight) {
+            *v += d.total();
         }
     }
     crate::lighting::usable_lux(&mut lux)?;

@@ -392,7 +392,8 @@ impl super::Scene {
     /// output, each at it (numbered L1, L2, … among themselves); the `[[emergency]]`
     /// areas as its grids and areas, and each emergency luminaire's glare limit as an
     /// area named after it; no `[[grid]]`, `[[area]]` or observer (their requirements
-    /// are for the normal lighting); direct light only.
+    /// are for the normal lighting); direct light only; no daylight (EN 1838 is judged
+    /// without it: the mains fail at night too).
     pub fn in_emergency(&self) -> Result<super::Scene, super::SceneError> {
         use super::area::{Area, AreaEntry, AreaKind, Standard};
         let err = |key: &str, msg: &str| super::SceneError::new(&self.path, key, msg);
@@ -418,6 +419,7 @@ impl super::Scene {
         scene.areas.clear();
         scene.observers.clear();
         scene.calc.indirect = None;
+        scene.daylight = None;
         let named = |name: &str, kind| AreaEntry {
             name: name.to_string(),
             kind,

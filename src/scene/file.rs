@@ -121,6 +121,12 @@ pub struct SceneFile {
     /// Overrides of the models' MTL materials, by name ([`super::materials`]).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub material: Vec<MaterialEntry>,
+    /// Where the building is: for the sun's position (`[sky] time`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub site: Option<super::daylight::SiteEntry>,
+    /// The sky and sun lighting the scene through its openings ([`crate::daylight`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sky: Option<super::daylight::SkyEntry>,
 }
 
 /// A colour as the scene file writes it: one number (grey) or linear RGB.

@@ -9,6 +9,7 @@ pub mod area;
 pub mod back_faces;
 pub mod bump;
 pub mod camera;
+pub mod daylight;
 pub mod display;
 pub mod emergency;
 pub mod file;
@@ -86,6 +87,8 @@ pub struct Scene {
     pub calc: grid::CalcSettings,
     /// Observers rated for glare (`[[observer]]`).
     pub observers: Vec<Observer>,
+    /// The sky and sun of `[site]` and `[sky]`, if the scene has daylight.
+    pub daylight: Option<daylight::SceneDaylight>,
     /// The `[[material]]` overrides as written (already applied to `materials`).
     pub material_overrides: Vec<file::MaterialEntry>,
     /// What loading worked around rather than refused (a model's missing MTL file, its
@@ -398,6 +401,7 @@ impl Scene {
             },
         )?;
         check_area_observers(path, &areas, &observers)?;
+        let daylight = daylight::resolve(path, parsed.site.as_ref(), parsed.sky.as_ref())?;
         Ok(Scene {
             path: path.to_path_buf(),
             meshes,
@@ -418,6 +422,7 @@ impl Scene {
             emergency,
             calc,
             observers,
+            daylight,
             material_overrides: parsed.material,
             warnings,
         })
@@ -451,6 +456,7 @@ impl Scene {
             areas: Vec::new(),
             emergency: Vec::new(),
             observers: Vec::new(),
+            daylight: None,
             material_overrides: Vec::new(),
             warnings: Vec::new(),
         }

@@ -43,6 +43,8 @@ impl Scene {
             calc: (self.calc != Default::default()).then_some(self.calc),
             observer: self.observers.iter().map(|o| o.entry.clone()).collect(),
             material: self.material_overrides.clone(),
+            site: self.daylight.as_ref().and_then(|d| d.site.clone()),
+            sky: self.daylight.as_ref().map(|d| d.entry.clone()),
         }
     }
 

@@ -235,31 +235,7 @@ fn draw_frame<DB: DrawingBackend>(
     let Some(north) = frame.north_offset_deg else {
         return Ok(());
     };
-    let (cx, cy) = (arrow_x, TOP as i32 / 2);
-    let a = north.to_radians();
-    let (dx, dy) = (a.sin(), -a.cos());
-    let r = 30.0;
-    let tip = (cx + (r * dx) as i32, cy + (r * dy) as i32);
-    let tail = (cx - (r * dx) as i32, cy - (r * dy) as i32);
-    root.draw(&Circle::new((cx, cy), r as i32 + 4, BLACK))?;
-    root.draw(&PathElement::new([tail, tip], BLACK.stroke_width(3)))?;
-    let side = (-dy, dx);
-    root.draw(&Polygon::new(
-        vec![
-            tip,
-            (
-                tip.0 - (12.0 * dx + 7.0 * side.0) as i32,
-                tip.1 - (12.0 * dy + 7.0 * side.1) as i32,
-            ),
-            (
-                tip.0 - (12.0 * dx - 7.0 * side.0) as i32,
-                tip.1 - (12.0 * dy - 7.0 * side.1) as i32,
-            ),
-        ],
-        BLACK.filled(),
-    ))?;
-    root.draw(&Text::new("N", (cx - r as i32 - 26, cy - 9), black))?;
-    Ok(())
+    crate::photometry::plot::draw_north_arrow(root, (arrow_x, TOP as i32 / 2), 30.0, north, black)
 }
 
 /// A metre axis tick's label: `v` on the grid of `step` (so that summed steps print as

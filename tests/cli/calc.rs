@@ -335,6 +335,8 @@ fn isolux_lines_lie_within_one_spacing_of_the_analytic_radius() {
         light: vec!["direct light only".into()],
         palette: (Default::default(), 0),
         values_at_points: false,
+        north_offset_deg: None,
+        daylight_factor: None,
     };
     let lines = plan.isolux().unwrap();
     assert!(lines.len() >= 4, "{} levels", lines.len());

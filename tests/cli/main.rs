@@ -17,6 +17,7 @@ mod calc;
 mod catalogue;
 mod cli;
 mod datasheet_plot;
+mod daylight;
 mod docs;
 mod emergency;
 mod faults;

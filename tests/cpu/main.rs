@@ -8,6 +8,7 @@
 mod common;
 
 mod clusters;
+mod daylight;
 mod fuzz_parsers;
 mod interpolation_props;
 mod photometry_details;

@@ -150,6 +150,9 @@ pub struct Prepared {
     rscene: RadiosityScene,
     light: LuminaireLight,
     initial: InitialState,
+    /// The scene's direct daylight on the elements (kept for relighting: the luminaires
+    /// change, the sky does not).
+    daylight: Option<super::initial::DirectLight>,
     options: Options,
     interp: Interp,
     shadows: ShadowSettings,
@@ -207,13 +210,18 @@ impl Prepared {
         events(Event::Stage(Stage::DirectLight));
         let started = Instant::now();
         let light = LuminaireLight::new(gpu, scene, interp);
-        let initial = InitialState::from_luminaires_gpu(gpu, &light, &rscene, shadows)?;
+        let mut initial = InitialState::from_luminaires_gpu(gpu, &light, &rscene, shadows)?;
+        let daylight = super::initial::daylight_direct(&rscene);
+        if let Some(d) = &daylight {
+            initial.add_direct(&rscene, d);
+        }
         checkpoint(cancel, Stage::DirectLight)?;
         let prepared = Prepared {
             gpu: gpu.clone(),
             rscene,
             light,
             initial,
+            daylight,
             options: options.clone(),
             interp,
             shadows: shadows.clone(),
@@ -406,7 +414,10 @@ impl<'p> Session<'p> {
     pub fn relight(&mut self, scene: &Scene, interp: Interp) -> Result<(), SessionError> {
         let p = self.prepared;
         let light = LuminaireLight::new(&p.gpu, scene, interp);
-        let new = InitialState::from_luminaires_gpu(&p.gpu, &light, &p.rscene, &p.shadows)?;
+        let mut new = InitialState::from_luminaires_gpu(&p.gpu, &light, &p.rscene, &p.shadows)?;
+        if let Some(d) = &p.daylight {
+            new.add_direct(&p.rscene, d);
+        }
         let old = self.relit.as_ref().map_or(&p.initial, |r| &r.1);
         self.solver.relight(old, &new)?;
         // The area of interest starts again around the view.
@@ -592,8 +603,8 @@ impl Solution {
         })
     }
 
-    /// The luminaires' direct illuminance at `points` with their shadows, and what
-    /// mirrors and clear glass pass on, lux.
+    /// The luminaires' direct illuminance at `points` with their shadows, what mirrors
+    /// and clear glass pass on, and the scene's direct daylight, lux.
     pub fn direct_lux(&self, points: &[SurfacePoint]) -> Result<Vec<f64>, SessionError> {
         let p = &self.prepared;
         let light = self.solved.relit.as_ref().unwrap_or(&p.light);
@@ -601,6 +612,12 @@ impl Solution {
         p.rscene
             .specular_light()
             .add_lux_at_points(points, &mut lux, p.interp);
+        let cells = crate::daylight::points::HEMISPHERE_CELLS;
+        if let Some(daylight) = p.rscene.daylight_at(points, cells) {
+            for (v, d) in lux.iter_mut().zip(daylight) {
+                *v += d.total();
+            }
+        }
         usable_lux(&mut lux)?;
         Ok(lux)
     }
