@@ -6,6 +6,7 @@
 
 use serde::Serialize;
 
+use super::stats::grid_stats;
 use crate::daylight::SkyDistribution;
 use crate::scene::Scene;
 
@@ -24,8 +25,10 @@ pub struct FactorStats {
     pub u0: f64,
 }
 
-/// The statistics of `values` (at least one), per cent.
+/// The statistics of `values` (at least one), per cent: a grid's statistics
+/// ([`grid_stats`]) with the median.
 pub fn factor_stats(values: &[f64]) -> FactorStats {
+    let s = grid_stats(values);
     let mut sorted = values.to_vec();
     sorted.sort_by(f64::total_cmp);
     let n = sorted.len();
@@ -34,13 +37,12 @@ pub fn factor_stats(values: &[f64]) -> FactorStats {
     } else {
         0.5 * (sorted[n / 2 - 1] + sorted[n / 2])
     };
-    let mean = sorted.iter().sum::<f64>() / n as f64;
     FactorStats {
-        mean,
+        mean: s.em,
         median,
-        min: sorted[0],
-        max: sorted[n - 1],
-        u0: if mean > 0.0 { sorted[0] / mean } else { 0.0 },
+        min: s.emin,
+        max: s.emax,
+        u0: s.u0,
     }
 }
 
