@@ -555,6 +555,20 @@ fn side_lit_room() -> Obj {
     o
 }
 
+/// The site of the planning example (`sunlight_site`): an existing terrace of three
+/// storeys (30 × 10 × 9 m, its south face at y = 0) and, with `proposed`, a new
+/// nine-storey block 12 m to its south (14 × 10 × 27 m).
+fn sunlight_site(proposed: bool) -> Obj {
+    let mut o = Obj::default();
+    o.object("existing_terrace", "wall");
+    o.cuboid(DVec3::new(0.0, 0.0, 0.0), DVec3::new(30.0, 10.0, 9.0));
+    if proposed {
+        o.object("new_block", "wall");
+        o.cuboid(DVec3::new(9.0, -22.0, 0.0), DVec3::new(23.0, -12.0, 27.0));
+    }
+    o
+}
+
 /// The perforated panel: white, its holes from `map_d` (the rest of the materials are
 /// [`ROOM_MTL`]'s).
 const PERFORATED_MTL: &str = "newmtl perforated
@@ -838,6 +852,8 @@ fn main() -> anyhow::Result<()> {
     )?;
 
     side_lit_room().write_with_mtl(&scenes, "side_lit_room", &format!("{ROOM_MTL}{GLASS_MTL}"))?;
+    sunlight_site(true).write_with_mtl(&scenes, "sunlight_site", ROOM_MTL)?;
+    sunlight_site(false).write_with_mtl(&scenes, "sunlight_site_existing", ROOM_MTL)?;
 
     let mut stage = Obj::default();
     stage.room(size, "floor", "wall", "wall", "ceiling");

@@ -43,6 +43,7 @@ pub mod gpu;
 pub mod io;
 pub mod lighting;
 pub mod photometry;
+pub mod planning;
 #[cfg(feature = "gpu")]
 pub mod radiosity;
 #[cfg(feature = "gpu")]
@@ -54,3 +55,4 @@ pub mod study;
 pub mod sun;
 #[cfg(feature = "viewer")]
 pub mod viewer;
+pub mod weather;

@@ -722,11 +722,7 @@ impl Calculation<'_> {
                 steps.or(scene.display.steps).unwrap_or(0),
             ),
             values_at_points,
-            north_offset_deg: scene
-                .daylight
-                .as_ref()
-                .and_then(|d| d.site.as_ref())
-                .map(|s| s.north_offset_deg),
+            north_offset_deg: scene.site.as_ref().map(|s| s.north_offset_deg),
             daylight_factor: None,
         }
     }

@@ -23,6 +23,7 @@ mod silhouette;
 mod solver_args;
 mod solving;
 mod sun;
+mod sunlight;
 #[cfg(feature = "viewer")]
 mod view;
 
@@ -67,6 +68,10 @@ pub enum Command {
     /// Sun-path shadow profile of an OBJ model over a period: profile.png, hours.png,
     /// profile.csv.
     Profile(profile::ProfileArgs),
+    /// The planning tests of a scene's windows and open spaces: VSC, annual and winter
+    /// probable sunlight hours (BRE 209), EN 17037 sunlight exposure, 2 hours of sun on
+    /// 21 March; `sunlight.json`, CSVs, a plan and a report.
+    Sunlight(sunlight::SunlightArgs),
     /// Silhouette edges of an OBJ model for a point or directional light.
     Silhouette(silhouette::SilhouetteArgs),
     /// Run a list of command lines (a TOML jobs file) in one process, optionally one shard
@@ -94,6 +99,7 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         Command::Illuminance(args) => illuminance::run(args),
         Command::Calc(args) => calc::run(args),
         Command::Sun(args) => sun::run(args),
+        Command::Sunlight(args) => sunlight::run(args),
         Command::Silhouette(args) => silhouette::run(args),
         Command::Profile(args) => profile::run(args),
         Command::Radiosity(args) => radiosity::run(args),

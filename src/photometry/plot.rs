@@ -335,3 +335,14 @@ impl PolarPlot<'_> {
         Ok(())
     }
 }
+
+/// A round step (1, 2 or 5 × 10^k) giving about `count` intervals over `span`.
+pub fn round_step(span: f64, count: f64) -> f64 {
+    let raw = (span / count).max(1e-9);
+    let magnitude = 10f64.powf(raw.log10().floor());
+    [1.0, 2.0, 5.0, 10.0]
+        .into_iter()
+        .map(|m| m * magnitude)
+        .find(|&s| s >= raw)
+        .unwrap_or(10.0 * magnitude)
+}

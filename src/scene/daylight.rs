@@ -155,9 +155,8 @@ pub fn resolve(
     }))
 }
 
-/// The instant of `text` at `site` and the unit vector toward the sun then, in the scene's
-/// frame.
-fn sun_at(site: &SiteEntry, text: &str) -> Result<(DateTime<Utc>, DVec3), (&'static str, String)> {
+/// The site of `[site]` (checked) and its zone, if it names one; errors name the key.
+pub fn site_of(site: &SiteEntry) -> Result<(Site, Option<Zone>), (&'static str, String)> {
     let where_ = Site::new(site.latitude, site.longitude, site.elevation_m).map_err(|e| {
         let key = match &e {
             crate::sun::SunError::Invalid { field, .. } => match *field {
@@ -175,14 +174,21 @@ fn sun_at(site: &SiteEntry, text: &str) -> Result<(DateTime<Utc>, DVec3), (&'sta
         .map(Zone::parse)
         .transpose()
         .map_err(|e| ("site.timezone", e.to_string()))?;
-    let (utc, _) =
-        crate::sun::parse_time(text, zone.as_ref()).map_err(|e| ("sky.time", e.to_string()))?;
     if !site.north_offset_deg.is_finite() {
         return Err((
             "site.north_offset_deg",
             format!("{} is not an angle", site.north_offset_deg),
         ));
     }
+    Ok((where_, zone))
+}
+
+/// The instant of `text` at `site` and the unit vector toward the sun then, in the scene's
+/// frame.
+fn sun_at(site: &SiteEntry, text: &str) -> Result<(DateTime<Utc>, DVec3), (&'static str, String)> {
+    let (where_, zone) = site_of(site)?;
+    let (utc, _) =
+        crate::sun::parse_time(text, zone.as_ref()).map_err(|e| ("sky.time", e.to_string()))?;
     let options = SunOptions {
         north_offset_deg: site.north_offset_deg,
         ..SunOptions::default()

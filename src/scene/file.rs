@@ -127,6 +127,12 @@ pub struct SceneFile {
     /// The sky and sun lighting the scene through its openings ([`crate::daylight`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub sky: Option<super::daylight::SkyEntry>,
+    /// `[[window]]`: window reference points of the planning tests.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub window: Vec<super::planning::WindowEntry>,
+    /// `[[open_space]]`: gardens and open spaces of the planning tests.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub open_space: Vec<super::planning::OpenSpaceEntry>,
 }
 
 /// A colour as the scene file writes it: one number (grey) or linear RGB.

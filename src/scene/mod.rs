@@ -19,6 +19,7 @@ pub mod model;
 pub mod observer;
 pub mod palette;
 pub mod placement;
+pub mod planning;
 pub mod requirement;
 pub mod save;
 
@@ -89,6 +90,10 @@ pub struct Scene {
     pub observers: Vec<Observer>,
     /// The sky and sun of `[site]` and `[sky]`, if the scene has daylight.
     pub daylight: Option<daylight::SceneDaylight>,
+    /// `[site]`: where the building is (the sun's positions, the plans' north).
+    pub site: Option<daylight::SiteEntry>,
+    /// The planning tests' `[[window]]`s and `[[open_space]]`s.
+    pub planning: planning::PlanningPlaces,
     /// The `[[material]]` overrides as written (already applied to `materials`).
     pub material_overrides: Vec<file::MaterialEntry>,
     /// What loading worked around rather than refused (a model's missing MTL file, its
@@ -143,6 +148,39 @@ fn resolve_grids(
                 .map_err(|(key, msg)| SceneError::new(path, format!("grid[{i}].{key}"), msg))
         },
     )
+}
+
+/// The `[[window]]` and `[[open_space]]` entries; names must differ within each (each
+/// names a row of the planning tests).
+fn resolve_planning(
+    path: &Path,
+    windows: &[planning::WindowEntry],
+    open_spaces: &[planning::OpenSpaceEntry],
+) -> Result<planning::PlanningPlaces, SceneError> {
+    let windows = resolve_named(
+        path,
+        windows,
+        "window",
+        |e| &e.name,
+        |e, i| {
+            e.resolve()
+                .map_err(|(key, msg)| SceneError::new(path, format!("window[{i}].{key}"), msg))
+        },
+    )?;
+    let open_spaces = resolve_named(
+        path,
+        open_spaces,
+        "open_space",
+        |e| &e.name,
+        |e, i| {
+            e.resolve()
+                .map_err(|(key, msg)| SceneError::new(path, format!("open_space[{i}].{key}"), msg))
+        },
+    )?;
+    Ok(planning::PlanningPlaces {
+        windows,
+        open_spaces,
+    })
 }
 
 /// The `[[area]]` entries: each area's grids appended to `grids` (names must differ
@@ -402,6 +440,7 @@ impl Scene {
         )?;
         check_area_observers(path, &areas, &observers)?;
         let daylight = daylight::resolve(path, parsed.site.as_ref(), parsed.sky.as_ref())?;
+        let planning = resolve_planning(path, &parsed.window, &parsed.open_space)?;
         Ok(Scene {
             path: path.to_path_buf(),
             meshes,
@@ -423,6 +462,8 @@ impl Scene {
             calc,
             observers,
             daylight,
+            site: parsed.site,
+            planning,
             material_overrides: parsed.material,
             warnings,
         })
@@ -457,6 +498,8 @@ impl Scene {
             emergency: Vec::new(),
             observers: Vec::new(),
             daylight: None,
+            site: None,
+            planning: Default::default(),
             material_overrides: Vec::new(),
             warnings: Vec::new(),
         }

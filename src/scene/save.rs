@@ -43,7 +43,19 @@ impl Scene {
             calc: (self.calc != Default::default()).then_some(self.calc),
             observer: self.observers.iter().map(|o| o.entry.clone()).collect(),
             material: self.material_overrides.clone(),
-            site: self.daylight.as_ref().and_then(|d| d.site.clone()),
+            site: self.site.clone(),
+            window: self
+                .planning
+                .windows
+                .iter()
+                .map(|w| w.entry.clone())
+                .collect(),
+            open_space: self
+                .planning
+                .open_spaces
+                .iter()
+                .map(|o| o.entry.clone())
+                .collect(),
             sky: self.daylight.as_ref().map(|d| d.entry.clone()),
         }
     }

@@ -6,6 +6,7 @@ pub mod cutout;
 pub mod hextree;
 pub mod raycast;
 pub mod silhouette;
+pub mod sun_rays;
 pub mod technique;
 pub mod volume;
 

@@ -31,4 +31,5 @@ mod scene;
 mod silhouette_cli;
 mod sun;
 mod sun_study;
+mod sunlight;
 mod ugr;
