@@ -37,7 +37,7 @@ import numpy as np
 from . import _native
 
 __all__ = ["Scene", "Luminaire", "read", "ugr_table", "luminance_table", "datasheet", "sun_position",
-           "illuminance", "radiosity", "Radiosity", "calc", "sun_study", "SunStudy", "render", "Rendering",
+           "illuminance", "radiosity", "Radiosity", "calc", "sunlight", "sun_study", "SunStudy", "render", "Rendering",
            "INTERPOLATIONS"]
 
 #: The interpolation methods, as the command line names them.
@@ -428,6 +428,43 @@ def calc(scene: Union[PathLike, Scene], *, maintenance_factor: Optional[float] =
     doc = json.loads(text)
     for grid, v in zip(doc["grids"], values):
         grid["values"] = np.asarray(v, dtype=float)
+    return doc
+
+
+def sunlight(scene: Union[PathLike, Scene], *, baseline: Union[PathLike, Scene, None] = None,
+             weather: Optional[PathLike] = None, date=None, en17037_date=None,
+             year: Optional[int] = None, step: float = 5.0, min_elevation: float = 0.0) -> dict:
+    """The planning tests of the scene's ``[[window]]`` and ``[[open_space]]`` tables, as
+    ``goniolight sunlight`` runs them: the dict of its ``sunlight.json`` (``windows``
+    with ``vsc``, ``apsh``, ``wpsh``, ``en17037_hours``, ``en17037_rating``, ``baseline``
+    and ``pass``; ``areas`` with ``sunlit_fraction_2h`` and ``pass``; ``method``), each
+    area also with ``hours`` (its points' hours of sun on the day, a NumPy array in the
+    order of its CSV). Keywords are the command's flags: ``baseline`` (the existing
+    situation's scene), ``weather`` (an EPW file, for APSH and WPSH), ``date`` and
+    ``en17037_date`` (``"2026-03-21"`` or a ``datetime.date``), ``year``, ``step``
+    (minutes), ``min_elevation`` (degrees). Bad input raises ValueError naming the
+    keyword or the scene key.
+
+    >>> import goniolight
+    >>> doc = goniolight.sunlight("assets/scenes/sunlight_site.toml",
+    ...                           baseline="assets/scenes/sunlight_site_existing.toml",
+    ...                           year=2026)
+    >>> w = doc["windows"][0]
+    >>> w["name"], w["vsc"], w["baseline"]["vsc"], w["pass"]["vsc"]
+    ('flat A ground floor', 26.5, 39.62, False)
+    >>> doc["areas"][0]["hours"].shape
+    (4800,)
+    """
+    def day(d):
+        return None if d is None else (d if isinstance(d, str) else d.isoformat())
+
+    text, hours = _native.sunlight_json(
+        _scene_arg(scene), None if baseline is None else _scene_arg(baseline),
+        None if weather is None else os.fspath(weather), day(date), day(en17037_date), year,
+        float(step), float(min_elevation))
+    doc = json.loads(text)
+    for area, h in zip(doc["areas"], hours):
+        area["hours"] = np.asarray(h, dtype=float)
     return doc
 
 

@@ -16,6 +16,7 @@ use goniolight::radiosity::bake::BakeChoice;
 use goniolight::radiosity::session::{Options, SessionError, Solution};
 use goniolight::shadow::ShadowTechnique;
 
+mod planning;
 mod render;
 mod scene;
 mod sun_study;
@@ -609,5 +610,6 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<render::NativeRendering>()?;
     m.add_function(wrap_pyfunction!(render::render, m)?)?;
     m.add_function(wrap_pyfunction!(sun_study::sun_study, m)?)?;
+    m.add_function(wrap_pyfunction!(planning::sunlight_json, m)?)?;
     Ok(())
 }

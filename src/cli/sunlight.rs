@@ -5,7 +5,7 @@
 use std::path::PathBuf;
 
 use anyhow::anyhow;
-use chrono::{Datelike, NaiveDate};
+use chrono::NaiveDate;
 use clap::Args;
 
 use super::error::CliError;
@@ -17,8 +17,7 @@ use crate::planning::output::{open_space_csv, sunlight_json, window_rows, window
 use crate::planning::plan::site_plan_svg;
 use crate::planning::report::report_html;
 use crate::planning::verdicts::en17037_level;
-use crate::planning::{assess, PlanningError, SunlightOptions, DEFAULT_STEP_MIN};
-use crate::weather::read_epw;
+use crate::planning::{assess, PlanningError, SunlightOptions, SunlightRequest, DEFAULT_STEP_MIN};
 
 /// Options of `sunlight`.
 #[derive(Debug, Args)]
@@ -56,37 +55,16 @@ pub struct SunlightArgs {
 }
 
 impl SunlightArgs {
-    /// The options of the library's tests.
-    fn options(&self) -> Result<SunlightOptions, CliError> {
-        let year = self.year.unwrap_or_else(|| chrono::Utc::now().year());
-        let march_21 = NaiveDate::from_ymd_opt(year, 3, 21)
-            .ok_or_else(|| CliError::input(anyhow!("--year {year} is not a year")))?;
-        let en17037_date = self.en17037_date.unwrap_or(march_21);
-        let (m, d) = (en17037_date.month(), en17037_date.day());
-        if !((2..=3).contains(&m) && (m == 2 || d <= 21)) {
-            eprintln!(
-                "warning: --en17037-date {en17037_date}: EN 17037 takes a day from 1 February to 21 March"
-            );
+    /// The library's request.
+    fn request(&self) -> SunlightRequest<'_> {
+        SunlightRequest {
+            weather: self.weather.as_deref(),
+            date: self.date,
+            en17037_date: self.en17037_date,
+            year: self.year,
+            step_min: Some(self.step),
+            min_elevation_deg: Some(self.min_elevation),
         }
-        if !(0.0..90.0).contains(&self.min_elevation) {
-            return Err(CliError::input(anyhow!(
-                "--min-elevation {}: give degrees from 0 to 90",
-                self.min_elevation
-            )));
-        }
-        let weather = match &self.weather {
-            Some(path) => {
-                Some(read_epw(path).map_err(|e| CliError::input(anyhow!("--weather {e}")))?)
-            }
-            None => None,
-        };
-        Ok(SunlightOptions {
-            weather,
-            open_space_date: self.date.unwrap_or(march_21),
-            en17037_date,
-            step_min: self.step,
-            min_elevation_deg: self.min_elevation,
-        })
     }
 }
 
@@ -96,9 +74,9 @@ fn planning_error(e: PlanningError) -> CliError {
         PlanningError::Cancelled => CliError::failure(anyhow!("interrupted: nothing written")),
         PlanningError::Input { key, message } => {
             let flag = match key.as_str() {
-                "step" => "--step".to_string(),
+                "step" | "year" | "weather" => format!("--{key}"),
+                "min_elevation" => "--min-elevation".to_string(),
                 "date" => "--date/--en17037-date".to_string(),
-                "weather" => "--weather".to_string(),
                 _ => key,
             };
             CliError::input(anyhow!("{flag}: {message}"))
@@ -110,7 +88,11 @@ fn planning_error(e: PlanningError) -> CliError {
 pub fn run(args: SunlightArgs) -> Result<(), CliError> {
     let scene = load_scene(&args.scene)?;
     let baseline = args.baseline.as_deref().map(load_scene).transpose()?;
-    let options = args.options()?;
+    let (options, warnings) =
+        SunlightOptions::from_request(&args.request()).map_err(planning_error)?;
+    for w in warnings {
+        eprintln!("warning: {w}");
+    }
     let mut inputs = scene.input_files();
     inputs.extend(baseline.iter().flat_map(|b| b.input_files()));
     inputs.extend(args.weather.iter().cloned());

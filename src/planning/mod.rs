@@ -59,6 +59,66 @@ pub struct SunlightOptions {
 /// Minutes between the suns of a day, by default.
 pub const DEFAULT_STEP_MIN: f64 = 5.0;
 
+/// What a front end asks for, as the command line's options (`None`: the default).
+#[derive(Debug, Clone, Default)]
+pub struct SunlightRequest<'a> {
+    /// `--weather`: an EPW file.
+    pub weather: Option<&'a std::path::Path>,
+    /// `--date`: the gardens' day (default 21 March of `year`).
+    pub date: Option<NaiveDate>,
+    /// `--en17037-date` (default 21 March of `year`).
+    pub en17037_date: Option<NaiveDate>,
+    /// `--year` of the default days (default this year).
+    pub year: Option<i32>,
+    /// `--step`, minutes (default [`DEFAULT_STEP_MIN`]).
+    pub step_min: Option<f64>,
+    /// `--min-elevation`, degrees (default 0).
+    pub min_elevation_deg: Option<f64>,
+}
+
+impl SunlightOptions {
+    /// The options of `request` (the weather file read), and warnings; errors name the
+    /// option (`weather`, `year`, `step`, `min_elevation`).
+    pub fn from_request(
+        request: &SunlightRequest,
+    ) -> Result<(SunlightOptions, Vec<String>), PlanningError> {
+        use chrono::Datelike;
+        let year = request.year.unwrap_or_else(|| chrono::Utc::now().year());
+        let march_21 = NaiveDate::from_ymd_opt(year, 3, 21)
+            .ok_or_else(|| PlanningError::input("year", format!("{year} is not a year")))?;
+        let en17037_date = request.en17037_date.unwrap_or(march_21);
+        let mut warnings = Vec::new();
+        let (m, d) = (en17037_date.month(), en17037_date.day());
+        if !(m == 2 || (m == 3 && d <= 21)) {
+            warnings.push(format!(
+                "EN 17037 takes a day from 1 February to 21 March, not {en17037_date}"
+            ));
+        }
+        let min_elevation_deg = request.min_elevation_deg.unwrap_or(0.0);
+        if !(0.0..90.0).contains(&min_elevation_deg) {
+            return Err(PlanningError::input(
+                "min_elevation",
+                format!("{min_elevation_deg}: give degrees from 0 to 90"),
+            ));
+        }
+        let step_min = request.step_min.unwrap_or(DEFAULT_STEP_MIN);
+        check_step(step_min)?;
+        let weather = request
+            .weather
+            .map(crate::weather::read_epw)
+            .transpose()
+            .map_err(|e| PlanningError::input("weather", e.to_string()))?;
+        let options = SunlightOptions {
+            weather,
+            open_space_date: request.date.unwrap_or(march_21),
+            en17037_date,
+            step_min,
+            min_elevation_deg,
+        };
+        Ok((options, warnings))
+    }
+}
+
 /// Why the planning tests could not run.
 #[derive(Debug, Clone, PartialEq)]
 pub enum PlanningError {
@@ -221,12 +281,7 @@ pub fn assess(
             "the days of the tests are local days: give the site's time zone",
         )
     })?;
-    if !(options.step_min > 0.0 && options.step_min <= 60.0) {
-        return Err(PlanningError::input(
-            "step",
-            format!("{} minutes: give 0 < step ≤ 60", options.step_min),
-        ));
-    }
+    check_step(options.step_min)?;
     let sun_options = SunOptions {
         north_offset_deg: entry.north_offset_deg,
         ..SunOptions::default()
@@ -274,6 +329,18 @@ pub fn assess(
         options: options.clone(),
         warnings,
     })
+}
+
+/// An error unless 0 < `step_min` ≤ 60.
+fn check_step(step_min: f64) -> Result<(), PlanningError> {
+    if step_min > 0.0 && step_min <= 60.0 {
+        Ok(())
+    } else {
+        Err(PlanningError::input(
+            "step",
+            format!("{step_min} minutes: give 0 < step ≤ 60"),
+        ))
+    }
 }
 
 /// Warnings about a weather file far from the site.
