@@ -1,5 +1,5 @@
 //! Mutation fuzzing of every reader on stable Rust, time-boxed: luminaire files (LDT and
-//! IES), OBJ meshes, MTL materials, scene TOML and the point and angle lists read from
+//! IES), OBJ meshes, MTL materials, scene TOML, EPW weather files and the point and angle lists read from
 //! stdin. Seeds are the real
 //! files (bundled luminaires, the wild corpus in `../shared`, the bundled scenes); each
 //! case applies a few structure-aware mutations (extreme numbers in place of numbers,
@@ -520,5 +520,57 @@ fn fuzz_jobs_files() {
                 e.message()
             )),
         }
+    });
+}
+
+#[test]
+fn fuzz_epw_reader() {
+    use goniolight::planning::suns::ProbableSun;
+    use goniolight::sun::{Site, SunOptions};
+    use goniolight::weather::epw::{parse_epw, BUNDLED_EPW};
+    let full = std::fs::read_to_string(common::root().join(BUNDLED_EPW)).unwrap();
+    // The header and the first two days, and the header and a summer noon: mutations of
+    // a whole year would spend the budget on copying.
+    let lines: Vec<&str> = full.lines().collect();
+    let seeds = vec![
+        lines[..56].join("\n").into_bytes(),
+        [&lines[..8], &lines[4200..4204]]
+            .concat()
+            .join("\n")
+            .into_bytes(),
+    ];
+    let site = Site::new(41.98, -87.92, 0.0).unwrap();
+    fuzz("epw", "epw", &seeds, |bytes| {
+        let text = String::from_utf8_lossy(bytes);
+        let Ok(weather) = parse_epw(Path::new("f.epw"), &text) else {
+            return Ok(());
+        };
+        let l = &weather.location;
+        if !(l.latitude.abs() <= 90.0 && l.longitude.abs() <= 180.0 && l.time_zone_h.abs() <= 14.0)
+        {
+            return Err(format!("accepted location {l:?}"));
+        }
+        for h in &weather.hours {
+            let fields = [
+                h.global_horizontal_w,
+                h.direct_normal_w,
+                h.diffuse_horizontal_w,
+                h.global_horizontal_lux,
+                h.direct_normal_lux,
+                h.diffuse_horizontal_lux,
+            ];
+            if fields
+                .iter()
+                .flatten()
+                .any(|v| !(v.is_finite() && *v >= 0.0))
+                || !(1..=24).contains(&h.hour)
+            {
+                return Err(format!("accepted hour {h:?}"));
+            }
+            let _ = h.utc_midpoint(l.time_zone_h);
+        }
+        // What is accepted goes on to the sun's positions without a panic.
+        let _ = ProbableSun::of(&weather, &site, &SunOptions::default());
+        Ok(())
     });
 }
