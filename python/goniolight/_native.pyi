@@ -93,7 +93,8 @@ def sunlight_json(scene: _Scene, baseline: Optional[_Scene] = None,
                   weather: Optional[_Path] = None, date: Optional[str] = None,
                   en17037_date: Optional[str] = None, year: Optional[int] = None,
                   step: Optional[float] = None,
-                  min_elevation: Optional[float] = None) -> Tuple[str, list[list[float]]]: ...
+                  min_elevation: Optional[float] = None,
+                  points: Optional[_Path] = None) -> Tuple[str, list[list[float]]]: ...
 def sun_study(model: _Path, latitude: float, longitude: float, dates: Sequence[str],
               start: str, end: str, step: int, tz: Optional[str] = None,
               north_offset: float = 0.0, extent: Optional[float] = None,

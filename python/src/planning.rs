@@ -6,7 +6,9 @@ use std::sync::atomic::AtomicBool;
 
 use chrono::NaiveDate;
 use goniolight::planning::output::sunlight_json as document;
-use goniolight::planning::{assess, PlanningError, SunlightOptions, SunlightRequest};
+use goniolight::planning::{
+    add_points_file, assess, PlanningError, SunlightOptions, SunlightRequest,
+};
 use pyo3::exceptions::{PyKeyboardInterrupt, PyValueError};
 use pyo3::prelude::*;
 
@@ -34,7 +36,7 @@ fn date(keyword: &str, text: Option<&str>) -> PyResult<Option<NaiveDate>> {
 /// `goniolight sunlight` of a scene: the `sunlight.json` document as JSON text (the scene
 /// and baseline named as given) and each open space's hours of sun per point.
 #[pyfunction]
-#[pyo3(signature = (scene, baseline=None, weather=None, date=None, en17037_date=None, year=None, step=None, min_elevation=None))]
+#[pyo3(signature = (scene, baseline=None, weather=None, date=None, en17037_date=None, year=None, step=None, min_elevation=None, points=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn sunlight_json(
     py: Python<'_>,
@@ -46,6 +48,7 @@ pub fn sunlight_json(
     year: Option<i32>,
     step: Option<f64>,
     min_elevation: Option<f64>,
+    points: Option<PathBuf>,
 ) -> PyResult<(String, Vec<Vec<f64>>)> {
     let label = scene.path().display().to_string();
     let baseline_label = baseline.as_ref().map(|b| b.path().display().to_string());
@@ -59,7 +62,10 @@ pub fn sunlight_json(
     };
     let (options, warnings): (SunlightOptions, _) =
         SunlightOptions::from_request(&request).map_err(planning_error)?;
-    let loaded = scene.scene(py)?;
+    let mut loaded = scene.scene(py)?;
+    if let Some(points) = &points {
+        add_points_file(&mut loaded, points).map_err(planning_error)?;
+    }
     let before = baseline.map(|b| b.scene(py)).transpose()?;
     let cancel = AtomicBool::new(false);
     let assessment = assess(&loaded, before.as_ref(), &options, &cancel).map_err(planning_error)?;

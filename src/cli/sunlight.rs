@@ -17,7 +17,9 @@ use crate::planning::output::{open_space_csv, sunlight_json, window_rows, window
 use crate::planning::plan::site_plan_svg;
 use crate::planning::report::report_html;
 use crate::planning::verdicts::en17037_level;
-use crate::planning::{assess, PlanningError, SunlightOptions, SunlightRequest, DEFAULT_STEP_MIN};
+use crate::planning::{
+    add_points_file, assess, PlanningError, SunlightOptions, SunlightRequest, DEFAULT_STEP_MIN,
+};
 
 /// Options of `sunlight`.
 #[derive(Debug, Args)]
@@ -28,6 +30,10 @@ pub struct SunlightArgs {
     /// report.html.
     #[arg(long)]
     pub out: PathBuf,
+    /// More window reference points: a `profile --points` file (`[[point]]` tables with
+    /// name, position, normal).
+    #[arg(long)]
+    pub points: Option<PathBuf>,
     /// An EPW weather file for the probable sunlight hours (APSH, WPSH).
     #[arg(long)]
     pub weather: Option<PathBuf>,
@@ -74,7 +80,7 @@ fn planning_error(e: PlanningError) -> CliError {
         PlanningError::Cancelled => CliError::failure(anyhow!("interrupted: nothing written")),
         PlanningError::Input { key, message } => {
             let flag = match key.as_str() {
-                "step" | "year" | "weather" => format!("--{key}"),
+                "step" | "year" | "weather" | "points" => format!("--{key}"),
                 "min_elevation" => "--min-elevation".to_string(),
                 "date" => "--date/--en17037-date".to_string(),
                 _ => key,
@@ -86,7 +92,10 @@ fn planning_error(e: PlanningError) -> CliError {
 
 /// Runs `sunlight`.
 pub fn run(args: SunlightArgs) -> Result<(), CliError> {
-    let scene = load_scene(&args.scene)?;
+    let mut scene = load_scene(&args.scene)?;
+    if let Some(points) = &args.points {
+        add_points_file(&mut scene, points).map_err(planning_error)?;
+    }
     let baseline = args.baseline.as_deref().map(load_scene).transpose()?;
     let (options, warnings) =
         SunlightOptions::from_request(&args.request()).map_err(planning_error)?;
@@ -96,6 +105,7 @@ pub fn run(args: SunlightArgs) -> Result<(), CliError> {
     let mut inputs = scene.input_files();
     inputs.extend(baseline.iter().flat_map(|b| b.input_files()));
     inputs.extend(args.weather.iter().cloned());
+    inputs.extend(args.points.iter().cloned());
     check_outputs(&args, &scene, &inputs)?;
     let cancel = super::interrupt::interrupt_flag();
     let assessment = assess(&scene, baseline.as_ref(), &options, &cancel).map_err(|e| match e {

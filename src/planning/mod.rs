@@ -331,6 +331,17 @@ pub fn assess(
     })
 }
 
+/// Adds to `scene`'s windows those of the `profile --points` file at `path` (`[[point]]`
+/// tables: name, position, normal); errors (key `points`) name the file and the point.
+pub fn add_points_file(scene: &mut Scene, path: &std::path::Path) -> Result<(), PlanningError> {
+    let text = crate::io::read_text_limited(path, crate::io::MAX_TEXT_BYTES)
+        .map_err(|e| PlanningError::input("points", format!("{}: {e}", path.display())))?;
+    scene
+        .planning
+        .add_points(&text)
+        .map_err(|m| PlanningError::input("points", format!("{}: {m}", path.display())))
+}
+
 /// An error unless 0 < `step_min` ≤ 60.
 fn check_step(step_min: f64) -> Result<(), PlanningError> {
     if step_min > 0.0 && step_min <= 60.0 {

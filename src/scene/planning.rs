@@ -157,4 +157,40 @@ impl PlanningPlaces {
     pub fn is_empty(&self) -> bool {
         self.windows.is_empty() && self.open_spaces.is_empty()
     }
+
+    /// Adds the windows of a `profile --points` file's text (`[[point]]` tables with a
+    /// window's keys: name, position, normal); errors name the point and key, or a name
+    /// that a window has already (ignoring case and surrounding blanks).
+    pub fn add_points(&mut self, text: &str) -> Result<(), String> {
+        let file: PointsFile = toml::from_str(text).map_err(|e| e.to_string())?;
+        if file.point.is_empty() {
+            return Err("no [[point]]".into());
+        }
+        for (k, entry) in file.point.iter().enumerate() {
+            let window = entry
+                .resolve()
+                .map_err(|(key, msg)| format!("point[{k}].{key}: {msg}"))?;
+            let name = entry.name.trim().to_lowercase();
+            if self
+                .windows
+                .iter()
+                .any(|w| w.entry.name.trim().to_lowercase() == name)
+            {
+                return Err(format!(
+                    "point[{k}].name: {:?} names a window already; give each its own name",
+                    entry.name
+                ));
+            }
+            self.windows.push(window);
+        }
+        Ok(())
+    }
+}
+
+/// A `profile --points` file: `[[point]]` tables with a window's keys.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct PointsFile {
+    #[serde(default)]
+    point: Vec<WindowEntry>,
 }

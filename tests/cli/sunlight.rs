@@ -468,3 +468,60 @@ fn bundled_site_example_judges_the_terrace_before_and_after() {
         svg::save_png(&picture, &Path::new(&dir).join("sunlight-site-plan.png"));
     }
 }
+
+/// `--points` adds the windows of a `profile --points` file to the scene's: judged as they
+/// are; a name the scene has already, or a point without a direction, is refused naming
+/// the file and the point.
+#[test]
+fn points_file_adds_windows() {
+    let tmp = tempfile::tempdir().unwrap();
+    let path = scene(tmp.path(), "block", &[BLOCK], LONDON, WINDOWS);
+    let points = tmp.path().join("windows.toml");
+    std::fs::write(
+        &points,
+        "[[point]]\nname = \"west\"\nposition = [0.0, 4.0, 1.5]\nnormal = [-1, 0, 0]\n",
+    )
+    .unwrap();
+    let out = tmp.path().join("out");
+    let json = sunlight(&path, &out, &["--points", points.to_str().unwrap()]);
+    let names: Vec<&str> = json["windows"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|w| w["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(names, ["south", "north", "west"]);
+    assert!((window(&json, "west")["vsc"].as_f64().unwrap() - 39.62).abs() <= 0.2);
+    for (text, needle) in [
+        (
+            "[[point]]\nname = \"South\"\nposition = [0.0, 4.0, 1.5]\nnormal = [-1, 0, 0]\n",
+            "point[0].name: \"South\" names a window already",
+        ),
+        (
+            "[[point]]\nname = \"w\"\nposition = [0.0, 4.0, 1.5]\nnormal = [0, 0, 0]\n",
+            "point[0].normal",
+        ),
+    ] {
+        std::fs::write(&points, text).unwrap();
+        let out = tmp.path().join("refused");
+        let (code, _, stderr) = run_cli(
+            &[
+                "sunlight",
+                path.to_str().unwrap(),
+                "--points",
+                points.to_str().unwrap(),
+                "--out",
+                out.to_str().unwrap(),
+            ],
+            "",
+        );
+        assert_eq!(code, 2, "{stderr}");
+        assert!(
+            stderr.contains("--points")
+                && stderr.contains("windows.toml")
+                && stderr.contains(needle),
+            "{stderr}"
+        );
+        assert!(!out.exists());
+    }
+}
