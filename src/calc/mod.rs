@@ -7,6 +7,7 @@ pub mod daylight;
 pub mod directions;
 pub mod glare;
 pub mod plan;
+pub mod plan_dxf;
 pub mod report;
 pub mod requirements;
 pub mod stats;

@@ -111,7 +111,7 @@ pub type IsoluxLines = Vec<(f64, Vec<Vec<[f64; 2]>>)>;
 
 impl Plan<'_> {
     /// The grid's points in the plan's 2D frame (metres).
-    fn plane_coords(&self, p: DVec3) -> DVec2 {
+    pub(crate) fn plane_coords(&self, p: DVec3) -> DVec2 {
         match (self.grid.entry.kind, self.grid.facing) {
             (GridKind::Vertical, Some(f)) => {
                 let along = DVec3::Z.cross(f);
@@ -123,7 +123,7 @@ impl Plan<'_> {
     }
 
     /// The outline in the plan's frame.
-    fn outline(&self) -> Vec<[f64; 2]> {
+    pub(crate) fn outline(&self) -> Vec<[f64; 2]> {
         let e = &self.grid.entry;
         match (e.kind, &e.outline, e.corner, e.size) {
             (GridKind::Vertical, _, _, Some(s)) => {
@@ -239,7 +239,7 @@ impl Plan<'_> {
     }
 
     /// A value as a label: lux as [`lux_label`], daylight factors with a % sign.
-    fn label(&self, v: f64) -> String {
+    pub(crate) fn label(&self, v: f64) -> String {
         match self.daylight_factor {
             Some(_) => format!("{} %", lux_label(v)),
             None => lux_label(v),

@@ -15,6 +15,7 @@ use super::error::CliError;
 use super::scene_input::{load_scene, scene_at};
 use super::solver_args::SolverArgs;
 use crate::calc::compute::{csv_name, df_plan_name, CalcError, CalcOptions, Calculation, Request};
+use crate::calc::plan_dxf::plan_dxf;
 use crate::calc::report::{report_html, ReportGrid, ReportObserver};
 use crate::gpu::Gpu;
 use crate::io::limits::MAX_TOTAL_POINTS;
@@ -59,6 +60,11 @@ pub struct CalcArgs {
     /// Print the value at every point on the plans.
     #[arg(long)]
     pub values: bool,
+    /// Also write each plan as DXF (R12, metres) for CAD: NAME.dxf (and NAME-df.dxf with
+    /// a daylight factor) with the outline, the isolux lines and their values, the value
+    /// at every point and the luminaires, each on its layer.
+    #[arg(long)]
+    pub dxf: bool,
     /// Also write one self-contained HTML page: settings, luminaires, each grid's
     /// statistics and plan (its folder must exist, or be the --out folder).
     #[arg(long, value_name = "FILE.html")]
@@ -139,8 +145,16 @@ fn check_outputs(args: &CalcArgs, scene: &Scene) -> Result<(), CliError> {
         for name in [csv.clone(), format!("{stem}.png"), format!("{stem}.svg")] {
             outputs.output(args.out.join(name));
         }
+        if args.dxf {
+            outputs.output(args.out.join(format!("{stem}.dxf")));
+        }
         if factor {
-            for ext in ["png", "svg"] {
+            let exts = if args.dxf {
+                &["png", "svg", "dxf"][..]
+            } else {
+                &["png", "svg"][..]
+            };
+            for ext in exts {
                 outputs.output(args.out.join(df_plan_name(&csv, ext)));
             }
         }
@@ -235,10 +249,11 @@ pub fn run(args: CalcArgs) -> Result<(), CliError> {
             .map_err(|e| CliError::input(anyhow!("--report {}: {e:#}", path.display())))?;
     }
     println!(
-        "maintenance factor {}; {}; wrote {} and, per grid, a CSV and a plan (PNG, SVG); {} grid(s), {} observer(s)",
+        "maintenance factor {}; {}; wrote {} and, per grid, a CSV and a plan (PNG, SVG{}); {} grid(s), {} observer(s)",
         calc.maintenance_factor,
         calc.light.join(" "),
         args.out.join("calc.json").display(),
+        if args.dxf { ", DXF" } else { "" },
         calc.grids.len(),
         calc.glare.len()
     );
@@ -341,6 +356,11 @@ fn write_grids<'c>(
         let svg = plan.svg().map_err(CliError::failure)?;
         write_atomic(&dir.join(format!("{stem}.svg")), svg.as_bytes())
             .map_err(CliError::failure)?;
+        if args.dxf {
+            let dxf = plan_dxf(&plan).map_err(CliError::failure)?;
+            write_atomic(&dir.join(format!("{stem}.dxf")), dxf.as_bytes())
+                .map_err(CliError::failure)?;
+        }
         let mut daylight_factor = None;
         if let Some(df) = calc.df_plan(k, args.palette, args.steps, args.values) {
             let png = df.png().map_err(CliError::failure)?;
@@ -348,6 +368,11 @@ fn write_grids<'c>(
             let svg = df.svg().map_err(CliError::failure)?;
             write_atomic(&dir.join(df_plan_name(&csv, "svg")), svg.as_bytes())
                 .map_err(CliError::failure)?;
+            if args.dxf {
+                let dxf = plan_dxf(&df).map_err(CliError::failure)?;
+                write_atomic(&dir.join(df_plan_name(&csv, "dxf")), dxf.as_bytes())
+                    .map_err(CliError::failure)?;
+            }
             daylight_factor = df.daylight_factor.map(|f| (f, svg));
         }
         let kind = format!("{:?}", g.entry.kind).to_lowercase();

@@ -633,3 +633,71 @@ fn report_opens_in_a_real_browser() {
         keep.display()
     );
 }
+
+/// `--dxf` writes each plan as DXF R12 beside its SVG: one value text per CSV row (to
+/// 0.1 lx), the outline, the isolux lines with their values in extended data, the
+/// luminaire inserted; without the flag there is none. (ezdxf reads it back in
+/// `python/tests/test_dxf.py`.)
+#[test]
+fn calc_dxf_writes_the_plan_for_cad() {
+    let tmp = tempfile::tempdir().unwrap();
+    let scene = common::box_room_scene(
+        tmp.path(),
+        "room",
+        "eulumdat-plot/sample_06_isym1.ldt",
+        "position = [3.0, 2.0, 2.95]\n[[grid]]\nname = \"work plane\"\ncorner = [0.5, 0.5]\nsize = [5.0, 3.0]\nheight = 0.8\nspacing = 0.5\n",
+    );
+    let out = tmp.path().join("out");
+    let args = [
+        "calc",
+        scene.to_str().unwrap(),
+        "--cpu",
+        "--dxf",
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    let (code, stdout, stderr) = run_cli(&args, "");
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    assert!(stdout.contains("PNG, SVG, DXF"), "{stdout}");
+    let dxf = std::fs::read_to_string(out.join("work-plane.dxf")).unwrap();
+    let rows = calc_csv_rows(&out.join("work-plane.csv"));
+    assert!(dxf.starts_with("  0\nSECTION\n  2\nHEADER\n  9\n$ACADVER\n  1\nAC1009\n"));
+    assert!(dxf.ends_with("  0\nEOF\n"));
+    let pairs: Vec<(&str, &str)> = dxf
+        .lines()
+        .collect::<Vec<_>>()
+        .chunks(2)
+        .map(|c| (c[0].trim(), c[1]))
+        .collect();
+    // Each VALUES text's string follows its layer; collect them in order.
+    let mut values = Vec::new();
+    for w in pairs.windows(8) {
+        if w[0] == ("0", "TEXT") && w[1] == ("8", "VALUES") {
+            let text = w.iter().find(|p| p.0 == "1").unwrap().1;
+            values.push(text.parse::<f64>().unwrap());
+        }
+    }
+    assert_eq!(values.len(), rows.len());
+    for (v, r) in values.iter().zip(&rows) {
+        assert!((v - r[3]).abs() <= 0.051, "{v} vs {}", r[3]);
+    }
+    assert_eq!(
+        pairs.iter().filter(|p| **p == ("2", "LUMINAIRE")).count(),
+        2
+    ); // block + insert
+    assert!(pairs.iter().filter(|p| **p == ("8", "ISOLUX")).count() > 2);
+    // Without the flag: no DXF.
+    let again = tmp.path().join("again");
+    let (code, _, _) = run_cli(
+        &[
+            "calc",
+            scene.to_str().unwrap(),
+            "--cpu",
+            "--out",
+            again.to_str().unwrap(),
+        ],
+        "",
+    );
+    assert_eq!(code, 0);
+    assert!(!again.join("work-plane.dxf").exists());
+}
