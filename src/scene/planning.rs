@@ -158,19 +158,12 @@ impl PlanningPlaces {
         self.windows.is_empty() && self.open_spaces.is_empty()
     }
 
-    /// Adds the windows of a `profile --points` file's text (`[[point]]` tables with a
-    /// window's keys: name, position, normal); errors name the point and key, or a name
-    /// that a window has already (ignoring case and surrounding blanks).
+    /// Adds the windows of a `profile --points` file's text ([`parse_window_points`]);
+    /// errors name the point and key, or a name that a window has already (ignoring case
+    /// and surrounding blanks).
     pub fn add_points(&mut self, text: &str) -> Result<(), String> {
-        let file: PointsFile = toml::from_str(text).map_err(|e| e.to_string())?;
-        if file.point.is_empty() {
-            return Err("no [[point]]".into());
-        }
-        for (k, entry) in file.point.iter().enumerate() {
-            let window = entry
-                .resolve()
-                .map_err(|(key, msg)| format!("point[{k}].{key}: {msg}"))?;
-            let name = entry.name.trim().to_lowercase();
+        for (k, window) in parse_window_points(text)?.into_iter().enumerate() {
+            let name = window.entry.name.trim().to_lowercase();
             if self
                 .windows
                 .iter()
@@ -178,13 +171,31 @@ impl PlanningPlaces {
             {
                 return Err(format!(
                     "point[{k}].name: {:?} names a window already; give each its own name",
-                    entry.name
+                    window.entry.name
                 ));
             }
             self.windows.push(window);
         }
         Ok(())
     }
+}
+
+/// The windows of a `profile --points` file's text: `[[point]]` tables with a window's
+/// keys (name, position, normal), at least one; errors name the point and key.
+pub fn parse_window_points(text: &str) -> Result<Vec<Window>, String> {
+    let file: PointsFile = toml::from_str(text).map_err(|e| e.to_string())?;
+    if file.point.is_empty() {
+        return Err("no [[point]]".into());
+    }
+    file.point
+        .iter()
+        .enumerate()
+        .map(|(k, entry)| {
+            entry
+                .resolve()
+                .map_err(|(key, msg)| format!("point[{k}].{key}: {msg}"))
+        })
+        .collect()
 }
 
 /// A `profile --points` file: `[[point]]` tables with a window's keys.

@@ -240,34 +240,15 @@ pub fn facade_hours(rays: &SunRays, facades: &mut [Facade]) {
     }
 }
 
-/// A window point of an EN 17037-style check.
-#[derive(Debug, Clone, serde::Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct WindowPoint {
-    /// Its name.
-    pub name: String,
-    /// Position, metres, in the model's plan coordinates (x, y as the file gives them for
-    /// a Z-up file) and height.
-    #[serde(deserialize_with = "crate::io::exact::array")]
-    pub position: [f64; 3],
-    /// The window's outward normal.
-    #[serde(deserialize_with = "crate::io::exact::array")]
-    pub normal: [f64; 3],
-}
-
-/// The points file: `[[point]]` tables.
-#[derive(Debug, serde::Deserialize)]
-#[serde(deny_unknown_fields)]
-struct PointsFile {
-    point: Vec<WindowPoint>,
-}
+/// A window point of an EN 17037-style check: a `[[point]]` of a points file, with the
+/// keys of the planning tests' `[[window]]`.
+pub use crate::scene::planning::WindowEntry as WindowPoint;
 
 /// Reads `[[point]]` tables (name, position, normal) from TOML; every error names the
 /// point and key.
 pub fn parse_points(text: &str) -> Result<Vec<WindowPoint>, String> {
-    let file: PointsFile = toml::from_str(text).map_err(|e| e.to_string())?;
-    check_points(&file.point)?;
-    Ok(file.point)
+    let windows = crate::scene::planning::parse_window_points(text)?;
+    Ok(windows.into_iter().map(|w| w.entry).collect())
 }
 
 /// An error naming the first point (`point[k].normal`, `point[k].position`) whose normal
