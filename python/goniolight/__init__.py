@@ -434,7 +434,8 @@ def calc(scene: Union[PathLike, Scene], *, maintenance_factor: Optional[float] =
 def sunlight(scene: Union[PathLike, Scene], *, baseline: Union[PathLike, Scene, None] = None,
              weather: Optional[PathLike] = None, date=None, en17037_date=None,
              year: Optional[int] = None, step: float = 5.0, min_elevation: float = 0.0,
-             points: Optional[PathLike] = None) -> dict:
+             points: Optional[PathLike] = None, areas: Optional[PathLike] = None,
+             area_spacing: float = 0.25) -> dict:
     """The planning tests of the scene's ``[[window]]`` and ``[[open_space]]`` tables, as
     ``goniolight sunlight`` runs them: the dict of its ``sunlight.json`` (``windows``
     with ``vsc``, ``apsh``, ``wpsh``, ``en17037_hours``, ``en17037_rating``, ``baseline``
@@ -444,7 +445,8 @@ def sunlight(scene: Union[PathLike, Scene], *, baseline: Union[PathLike, Scene, 
     situation's scene), ``weather`` (an EPW file, for APSH and WPSH), ``date`` and
     ``en17037_date`` (``"2026-03-21"`` or a ``datetime.date``), ``year``, ``step``
     (minutes), ``min_elevation`` (degrees), ``points`` (a ``profile --points`` file of
-    more windows). Bad input raises ValueError naming the keyword or the scene key.
+    more windows), ``areas`` (a GeoJSON file of more open spaces, as ``profile --areas``)
+    and ``area_spacing`` (metres between their points). Bad input raises ValueError naming the keyword or the scene key.
 
     >>> import goniolight
     >>> doc = goniolight.sunlight("assets/scenes/sunlight_site.toml",
@@ -462,7 +464,8 @@ def sunlight(scene: Union[PathLike, Scene], *, baseline: Union[PathLike, Scene, 
     text, hours = _native.sunlight_json(
         _scene_arg(scene), None if baseline is None else _scene_arg(baseline),
         None if weather is None else os.fspath(weather), day(date), day(en17037_date), year,
-        float(step), float(min_elevation), None if points is None else os.fspath(points))
+        float(step), float(min_elevation), None if points is None else os.fspath(points),
+        None if areas is None else os.fspath(areas), float(area_spacing))
     doc = json.loads(text)
     for area, h in zip(doc["areas"], hours):
         area["hours"] = np.asarray(h, dtype=float)

@@ -94,7 +94,8 @@ def sunlight_json(scene: _Scene, baseline: Optional[_Scene] = None,
                   en17037_date: Optional[str] = None, year: Optional[int] = None,
                   step: Optional[float] = None,
                   min_elevation: Optional[float] = None,
-                  points: Optional[_Path] = None) -> Tuple[str, list[list[float]]]: ...
+                  points: Optional[_Path] = None, areas: Optional[_Path] = None,
+                  area_spacing: Optional[float] = None) -> Tuple[str, list[list[float]]]: ...
 def sun_study(model: _Path, latitude: float, longitude: float, dates: Sequence[str],
               start: str, end: str, step: int, tz: Optional[str] = None,
               north_offset: float = 0.0, extent: Optional[float] = None,

@@ -7,7 +7,7 @@ use std::sync::atomic::AtomicBool;
 use chrono::NaiveDate;
 use goniolight::planning::output::sunlight_json as document;
 use goniolight::planning::{
-    add_points_file, assess, PlanningError, SunlightOptions, SunlightRequest,
+    add_areas_file, add_points_file, assess, PlanningError, SunlightOptions, SunlightRequest,
 };
 use pyo3::exceptions::{PyKeyboardInterrupt, PyValueError};
 use pyo3::prelude::*;
@@ -36,7 +36,7 @@ fn date(keyword: &str, text: Option<&str>) -> PyResult<Option<NaiveDate>> {
 /// `goniolight sunlight` of a scene: the `sunlight.json` document as JSON text (the scene
 /// and baseline named as given) and each open space's hours of sun per point.
 #[pyfunction]
-#[pyo3(signature = (scene, baseline=None, weather=None, date=None, en17037_date=None, year=None, step=None, min_elevation=None, points=None))]
+#[pyo3(signature = (scene, baseline=None, weather=None, date=None, en17037_date=None, year=None, step=None, min_elevation=None, points=None, areas=None, area_spacing=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn sunlight_json(
     py: Python<'_>,
@@ -49,6 +49,8 @@ pub fn sunlight_json(
     step: Option<f64>,
     min_elevation: Option<f64>,
     points: Option<PathBuf>,
+    areas: Option<PathBuf>,
+    area_spacing: Option<f64>,
 ) -> PyResult<(String, Vec<Vec<f64>>)> {
     let label = scene.path().display().to_string();
     let baseline_label = baseline.as_ref().map(|b| b.path().display().to_string());
@@ -65,6 +67,11 @@ pub fn sunlight_json(
     let mut loaded = scene.scene(py)?;
     if let Some(points) = &points {
         add_points_file(&mut loaded, points).map_err(planning_error)?;
+    }
+    if let Some(areas) = &areas {
+        let spacing =
+            area_spacing.unwrap_or(goniolight::scene::planning::DEFAULT_OPEN_SPACE_SPACING);
+        add_areas_file(&mut loaded, areas, spacing).map_err(planning_error)?;
     }
     let before = baseline.map(|b| b.scene(py)).transpose()?;
     let cancel = AtomicBool::new(false);

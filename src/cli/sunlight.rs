@@ -18,7 +18,8 @@ use crate::planning::plan::site_plan_svg;
 use crate::planning::report::report_html;
 use crate::planning::verdicts::en17037_level;
 use crate::planning::{
-    add_points_file, assess, PlanningError, SunlightOptions, SunlightRequest, DEFAULT_STEP_MIN,
+    add_areas_file, add_points_file, assess, PlanningError, SunlightOptions, SunlightRequest,
+    DEFAULT_STEP_MIN,
 };
 
 /// Options of `sunlight`.
@@ -34,6 +35,13 @@ pub struct SunlightArgs {
     /// name, position, normal).
     #[arg(long)]
     pub points: Option<PathBuf>,
+    /// More open spaces: analysis areas as `profile --areas` takes them (GeoJSON Polygon
+    /// and MultiPolygon features named by `properties.name`), on the ground at z = 0.
+    #[arg(long, value_name = "FILE.geojson")]
+    pub areas: Option<PathBuf>,
+    /// Metres between the points of the --areas.
+    #[arg(long, default_value_t = crate::scene::planning::DEFAULT_OPEN_SPACE_SPACING)]
+    pub area_spacing: f64,
     /// An EPW weather file for the probable sunlight hours (APSH, WPSH).
     #[arg(long)]
     pub weather: Option<PathBuf>,
@@ -80,7 +88,7 @@ fn planning_error(e: PlanningError) -> CliError {
         PlanningError::Cancelled => CliError::failure(anyhow!("interrupted: nothing written")),
         PlanningError::Input { key, message } => {
             let flag = match key.as_str() {
-                "step" | "year" | "weather" | "points" => format!("--{key}"),
+                "step" | "year" | "weather" | "points" | "areas" => format!("--{key}"),
                 "min_elevation" => "--min-elevation".to_string(),
                 "date" => "--date/--en17037-date".to_string(),
                 _ => key,
@@ -96,6 +104,9 @@ pub fn run(args: SunlightArgs) -> Result<(), CliError> {
     if let Some(points) = &args.points {
         add_points_file(&mut scene, points).map_err(planning_error)?;
     }
+    if let Some(areas) = &args.areas {
+        add_areas_file(&mut scene, areas, args.area_spacing).map_err(planning_error)?;
+    }
     let baseline = args.baseline.as_deref().map(load_scene).transpose()?;
     let (options, warnings) =
         SunlightOptions::from_request(&args.request()).map_err(planning_error)?;
@@ -106,6 +117,7 @@ pub fn run(args: SunlightArgs) -> Result<(), CliError> {
     inputs.extend(baseline.iter().flat_map(|b| b.input_files()));
     inputs.extend(args.weather.iter().cloned());
     inputs.extend(args.points.iter().cloned());
+    inputs.extend(args.areas.iter().cloned());
     check_outputs(&args, &scene, &inputs)?;
     let cancel = super::interrupt::interrupt_flag();
     let assessment = assess(&scene, baseline.as_ref(), &options, &cancel).map_err(|e| match e {

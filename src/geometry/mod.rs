@@ -1,6 +1,7 @@
 //! Indexed triangle meshes, OBJ geometry, vertex welding and edge adjacency.
 
 pub mod adjacency;
+pub mod areas;
 pub mod generate;
 pub mod howell;
 pub mod obj;

@@ -342,6 +342,43 @@ pub fn add_points_file(scene: &mut Scene, path: &std::path::Path) -> Result<(), 
         .map_err(|m| PlanningError::input("points", format!("{}: {m}", path.display())))
 }
 
+/// Adds to `scene`'s open spaces the analysis areas of the GeoJSON file at `path` (as the
+/// sun study's `--areas`: Polygon and MultiPolygon features named by `properties.name`,
+/// on the ground at z = 0), their points `spacing` m apart; errors (key `areas`) name the
+/// file and the feature.
+pub fn add_areas_file(
+    scene: &mut Scene,
+    path: &std::path::Path,
+    spacing: f64,
+) -> Result<(), PlanningError> {
+    use crate::scene::planning::OpenSpace;
+    let err = |m: String| PlanningError::input("areas", m);
+    let areas = crate::geometry::areas::read_areas(path).map_err(|e| err(e.to_string()))?;
+    for (k, area) in areas.iter().enumerate() {
+        let space = OpenSpace::from_area(area, spacing).map_err(|m| {
+            err(format!(
+                "{}: features[{k}] ({:?}): {m}",
+                path.display(),
+                area.name
+            ))
+        })?;
+        let name = area.name.trim().to_lowercase();
+        let open_spaces = &mut scene.planning.open_spaces;
+        if open_spaces
+            .iter()
+            .any(|o| o.entry.name.trim().to_lowercase() == name)
+        {
+            return Err(err(format!(
+                "{}: features[{k}]: {:?} names an open space already; give each its own name",
+                path.display(),
+                area.name
+            )));
+        }
+        open_spaces.push(space);
+    }
+    Ok(())
+}
+
 /// An error unless 0 < `step_min` ≤ 60.
 fn check_step(step_min: f64) -> Result<(), PlanningError> {
     if step_min > 0.0 && step_min <= 60.0 {

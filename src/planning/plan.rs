@@ -174,19 +174,20 @@ fn open_space(
         );
         k = end;
     }
-    let outline = o.grid.entry.plan_outline().unwrap_or_default();
-    let pts: Vec<String> = outline
-        .iter()
-        .map(|p| {
-            let (x, y) = frame.px(DVec2::from_array(*p));
-            format!("{x:.1},{y:.1}")
-        })
-        .collect();
-    let _ = writeln!(
-        svg,
-        "\n<polygon points=\"{}\" fill=\"none\" stroke=\"#222\" stroke-width=\"1.5\"/>",
-        pts.join(" ")
-    );
+    for outline in &o.outlines {
+        let pts: Vec<String> = outline
+            .iter()
+            .map(|p| {
+                let (x, y) = frame.px(DVec2::from_array(*p));
+                format!("{x:.1},{y:.1}")
+            })
+            .collect();
+        let _ = writeln!(
+            svg,
+            "\n<polygon points=\"{}\" fill=\"none\" stroke=\"#222\" stroke-width=\"1.5\"/>",
+            pts.join(" ")
+        );
+    }
     let centre = points.iter().fold(DVec3::ZERO, |a, p| a + *p) / points.len().max(1) as f64;
     let (x, y) = frame.px(centre.truncate());
     let _ = writeln!(

@@ -114,16 +114,93 @@ pub struct OpenSpaceEntry {
 /// An open space ready to judge: its points on the ground, one per equal cell.
 #[derive(Debug, Clone)]
 pub struct OpenSpace {
-    /// The entry as written.
+    /// The entry as written (for an area read from GeoJSON: its name, its first outline).
     pub entry: OpenSpaceEntry,
     /// The points (cell centres inside the outline), as a horizontal grid.
     pub grid: CalcGrid,
+    /// The outlines drawn on plans: the outline, or every ring of an area's polygons.
+    pub outlines: Vec<Vec<[f64; 2]>>,
+}
+
+impl OpenSpace {
+    /// The open space of an analysis area (GeoJSON; holes and several polygons allowed)
+    /// on the ground at z = 0: the centres of `spacing` m cells inside it; an error when
+    /// none is.
+    pub fn from_area(
+        area: &crate::geometry::areas::AnalysisArea,
+        spacing: f64,
+    ) -> Result<OpenSpace, String> {
+        if !(spacing.is_finite() && spacing > 0.0) {
+            return Err(format!("{spacing}: give metres > 0"));
+        }
+        let rings: Vec<Vec<[f64; 2]>> = area
+            .polygons
+            .iter()
+            .flatten()
+            .map(|ring| ring.iter().map(|p| p.to_array()).collect())
+            .collect();
+        let (lo, hi) = crate::geometry::polygon::bounds(&rings.concat());
+        let n = [0, 1].map(|i| ((hi[i] - lo[i]) / spacing).ceil().max(1.0) as usize);
+        if n[0].saturating_mul(n[1]) > super::grid::MAX_POINTS {
+            return Err(format!(
+                "{} × {} points; at most {} per area",
+                n[0],
+                n[1],
+                super::grid::MAX_POINTS
+            ));
+        }
+        let mut points = Vec::new();
+        for j in 0..n[1] {
+            for i in 0..n[0] {
+                let p = glam::DVec2::new(
+                    lo[0] + (i as f64 + 0.5) * spacing,
+                    lo[1] + (j as f64 + 0.5) * spacing,
+                );
+                if area.contains(p) {
+                    points.push(DVec3::new(p.x, p.y, 0.0));
+                }
+            }
+        }
+        if points.is_empty() {
+            return Err(format!("no point of a {spacing} m grid lies inside"));
+        }
+        let entry = OpenSpaceEntry {
+            name: area.name.clone(),
+            corner: None,
+            size: None,
+            outline: rings.first().cloned(),
+            height: 0.0,
+            spacing: Some(spacing),
+        };
+        let grid = CalcGrid {
+            entry: entry.grid_entry(),
+            points,
+            spacing: [spacing, spacing],
+            facing: None,
+        };
+        Ok(OpenSpace {
+            entry,
+            grid,
+            outlines: rings,
+        })
+    }
 }
 
 impl OpenSpaceEntry {
     /// The open space's points, or the key (relative to this entry) and what is wrong.
     pub fn resolve(&self) -> Result<OpenSpace, (String, String)> {
-        let grid = GridEntry {
+        let grid = self.grid_entry().resolve()?;
+        let outline = grid.entry.plan_outline()?;
+        Ok(OpenSpace {
+            entry: self.clone(),
+            grid,
+            outlines: vec![outline],
+        })
+    }
+
+    /// The horizontal grid the entry describes.
+    fn grid_entry(&self) -> GridEntry {
+        GridEntry {
             name: self.name.clone(),
             corner: self.corner,
             size: self.size,
@@ -135,11 +212,6 @@ impl OpenSpaceEntry {
             kind: GridKind::Horizontal,
             normal: None,
         }
-        .resolve()?;
-        Ok(OpenSpace {
-            entry: self.clone(),
-            grid,
-        })
     }
 }
 

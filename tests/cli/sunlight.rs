@@ -525,3 +525,91 @@ fn points_file_adds_windows() {
         assert!(!out.exists());
     }
 }
+
+/// `--areas` takes the sun study's GeoJSON areas as open spaces: the BRE garden as a
+/// polygon gets the share its `[[open_space]]` twin gets, point for point; with a hole,
+/// the points in the hole are left out and the share is that of the rest.
+#[test]
+fn geojson_areas_are_open_spaces() {
+    let tmp = tempfile::tempdir().unwrap();
+    let garden = "[[open_space]]\nname = \"garden\"\ncorner = [-10.0, 0.0]\nsize = [20.0, 20.0]\nspacing = 0.5\n";
+    let wall = ("wall", [-100.0, -0.3, 0.0], [100.0, 0.0, 10.0]);
+    let path = scene(tmp.path(), "garden", &[wall], LONDON, garden);
+    let square = "[[-10, 0], [10, 0], [10, 20], [-10, 20], [-10, 0]]";
+    let hole = "[[-5, 5], [5, 5], [5, 15], [-5, 15], [-5, 5]]";
+    let areas = tmp.path().join("areas.geojson");
+    std::fs::write(
+        &areas,
+        format!(
+            r#"{{"type": "FeatureCollection", "features": [
+            {{"type": "Feature", "properties": {{"name": "garden twin"}}, "geometry": {{"type": "Polygon", "coordinates": [{square}]}}}},
+            {{"type": "Feature", "properties": {{"name": "ring"}}, "geometry": {{"type": "MultiPolygon", "coordinates": [[{square}, {hole}]]}}}}]}}"#
+        ),
+    )
+    .unwrap();
+    let out = tmp.path().join("out");
+    let json = sunlight(
+        &path,
+        &out,
+        &[
+            "--date",
+            "2026-03-21",
+            "--areas",
+            areas.to_str().unwrap(),
+            "--area-spacing",
+            "0.5",
+        ],
+    );
+    let areas_json = json["areas"].as_array().unwrap();
+    assert_eq!(areas_json.len(), 3);
+    let (garden, twin, ring) = (&areas_json[0], &areas_json[1], &areas_json[2]);
+    assert_eq!(twin["points"], 1600);
+    assert_eq!(twin["sunlit_fraction_2h"], garden["sunlit_fraction_2h"]);
+    assert_eq!(ring["points"], 1200);
+    assert_eq!(ring["area_m2"].as_f64().unwrap(), 300.0);
+    // The ring's share from the garden's own points outside the hole.
+    let csv = std::fs::read_to_string(out.join("open-space-garden.csv")).unwrap();
+    let (mut lit, mut all) = (0, 0);
+    for line in csv.lines().skip(1) {
+        let v: Vec<f64> = line.split(',').map(|x| x.parse().unwrap()).collect();
+        if (-5.0..=5.0).contains(&v[0]) && (5.0..=15.0).contains(&v[1]) {
+            continue;
+        }
+        all += 1;
+        lit += (v[3] >= 2.0 - 1e-9) as usize;
+    }
+    assert_eq!(all, 1200);
+    let share = ring["sunlit_fraction_2h"].as_f64().unwrap();
+    assert!(
+        (share - lit as f64 / 1200.0).abs() < 1e-4,
+        "{share} vs {lit}/1200"
+    );
+    let picture = svg::render(&out.join("plan.svg"));
+    if let Some(dir) = std::env::var_os("GONIOLIGHT_KEEP_PICTURES") {
+        svg::save_png(&picture, &Path::new(&dir).join("sunlight-areas-plan.png"));
+    }
+    // A name an open space has already is refused.
+    std::fs::write(
+        &areas,
+        format!(r#"{{"type": "Feature", "properties": {{"name": "Garden"}}, "geometry": {{"type": "Polygon", "coordinates": [{square}]}}}}"#),
+    )
+    .unwrap();
+    let refused = tmp.path().join("refused");
+    let (code, _, stderr) = run_cli(
+        &[
+            "sunlight",
+            path.to_str().unwrap(),
+            "--areas",
+            areas.to_str().unwrap(),
+            "--out",
+            refused.to_str().unwrap(),
+        ],
+        "",
+    );
+    assert_eq!(code, 2, "{stderr}");
+    assert!(
+        stderr.contains("--areas") && stderr.contains("names an open space already"),
+        "{stderr}"
+    );
+    assert!(!refused.exists());
+}
