@@ -54,8 +54,10 @@ pub struct SkyEntry {
     /// `cie-overcast` (the traditional CIE standard overcast sky), `cie-clear` (general
     /// sky 12), `cie:1` … `cie:15` (ISO 15469 general skies) or `uniform`.
     pub model: String,
-    /// The sky's illuminance on an unobstructed horizontal plane, lux.
-    pub diffuse_horizontal_lux: f64,
+    /// The sky's illuminance on an unobstructed horizontal plane, lux (with `weather`:
+    /// the weather file's).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub diffuse_horizontal_lux: Option<f64>,
     /// The sun's illuminance on the horizontal plane, lux (0 or absent: no sun).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub direct_horizontal_lux: Option<f64>,
@@ -68,7 +70,8 @@ pub struct SkyEntry {
     /// Reflectance of the ground below the horizon (default 0.2).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub ground_reflectance: Option<f64>,
-    /// A weather file (EPW), for the Perez sky and annual metrics: not read yet.
+    /// A weather file (EPW): the sky's and the sun's illuminances of the hour holding
+    /// `time` (its illuminance fields; relative to the scene file's folder).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub weather: Option<String>,
 }
@@ -96,14 +99,6 @@ pub fn resolve(
         return Ok(None);
     };
     let err = |key: &str, message: String| SceneError::new(path, key, message);
-    if entry.weather.is_some() {
-        return Err(err(
-            "sky.weather",
-            "weather files (the Perez sky, annual metrics) are not read yet: give a CIE sky \
-             and its illuminances"
-                .into(),
-        ));
-    }
     let distribution = SkyDistribution::parse(&entry.model).map_err(|m| err("sky.model", m))?;
     let (instant, sun_direction) = match &entry.time {
         None => (None, None),
@@ -118,22 +113,22 @@ pub fn resolve(
             (Some(utc), Some(direction))
         }
     };
-    let sun = match (entry.direct_horizontal_lux, entry.direct_normal_lux) {
-        (Some(_), Some(_)) => {
-            return Err(err(
-                "sky.direct_normal_lux",
-                "give the sun's illuminance once: direct_horizontal_lux or direct_normal_lux"
-                    .into(),
-            ))
+    let mut entry = entry.clone();
+    let (diffuse_horizontal_lux, sun) = match &entry.weather {
+        None => given_light(&entry).map_err(|(k, m)| err(k, m))?,
+        Some(file) => {
+            let file = path.parent().unwrap_or(Path::new("")).join(file);
+            let light =
+                weather_light(&file, &entry, instant, sun_direction).map_err(|(k, m)| err(k, m))?;
+            // Saved elsewhere, the scene still finds its weather file.
+            entry.weather = Some(file.to_string_lossy().into_owned());
+            light
         }
-        (Some(h), None) => Some(SunIlluminance::Horizontal(h)),
-        (None, Some(n)) => Some(SunIlluminance::Normal(n)),
-        (None, None) => None,
     };
     let input = SkyInput {
         distribution,
         sun_direction,
-        diffuse_horizontal_lux: entry.diffuse_horizontal_lux,
+        diffuse_horizontal_lux,
         sun,
         ground_reflectance: entry
             .ground_reflectance
@@ -149,10 +144,97 @@ pub fn resolve(
     })?;
     Ok(Some(SceneDaylight {
         site: site.cloned(),
-        entry: entry.clone(),
+        entry,
         instant,
         sky,
     }))
+}
+
+/// The sky's diffuse horizontal illuminance and the sun's as the entry gives them.
+fn given_light(entry: &SkyEntry) -> Result<(f64, Option<SunIlluminance>), (&'static str, String)> {
+    let diffuse = entry.diffuse_horizontal_lux.ok_or((
+        "sky.diffuse_horizontal_lux",
+        "give the sky's diffuse horizontal illuminance (lux), or a weather file and a time"
+            .to_string(),
+    ))?;
+    let sun = match (entry.direct_horizontal_lux, entry.direct_normal_lux) {
+        (Some(_), Some(_)) => {
+            return Err((
+                "sky.direct_normal_lux",
+                "give the sun's illuminance once: direct_horizontal_lux or direct_normal_lux"
+                    .into(),
+            ))
+        }
+        (Some(h), None) => Some(SunIlluminance::Horizontal(h)),
+        (None, Some(n)) => Some(SunIlluminance::Normal(n)),
+        (None, None) => None,
+    };
+    Ok((diffuse, sun))
+}
+
+/// The sky's diffuse horizontal illuminance and the sun's direct normal illuminance of
+/// the weather `file`'s hour that holds `instant` (the file's records are hours of its own
+/// zone's standard time, each ending at its hour); no sun while the sun is below the
+/// horizon (`sun_direction`).
+fn weather_light(
+    file: &Path,
+    entry: &SkyEntry,
+    instant: Option<DateTime<Utc>>,
+    sun_direction: Option<DVec3>,
+) -> Result<(f64, Option<SunIlluminance>), (&'static str, String)> {
+    use chrono::{Datelike, Timelike};
+    if entry.diffuse_horizontal_lux.is_some()
+        || entry.direct_horizontal_lux.is_some()
+        || entry.direct_normal_lux.is_some()
+    {
+        return Err((
+            "sky.weather",
+            "the weather file gives the illuminances: leave out diffuse_horizontal_lux and the \
+             sun's"
+                .into(),
+        ));
+    }
+    let instant = instant.ok_or((
+        "sky.time",
+        "a weather file's hour needs a time (and a [site])".to_string(),
+    ))?;
+    let weather = crate::weather::read_epw(file).map_err(|e| ("sky.weather", e.to_string()))?;
+    let offset = chrono::Duration::seconds((weather.location.time_zone_h * 3600.0).round() as i64);
+    // The hour ending at or after the instant: 12:00 is in hour 12 (11:00–12:00).
+    let local = instant.naive_utc() + offset - chrono::Duration::nanoseconds(1);
+    let (month, day, hour) = (local.month(), local.day(), local.hour() + 1);
+    let record = weather
+        .hours
+        .iter()
+        .find(|h| (h.month, h.day, h.hour) == (month, day, hour))
+        .ok_or_else(|| {
+            (
+                "sky.weather",
+                format!(
+                    "{}: no record for {month:02}-{day:02} hour {hour}",
+                    file.display()
+                ),
+            )
+        })?;
+    let missing = |what: &str| {
+        (
+            "sky.weather",
+            format!(
+                "{}: {month:02}-{day:02} hour {hour} has no {what} illuminance (999999): deriving \
+                 it from irradiance (Perez 1990 luminous efficacy) is not implemented yet",
+                file.display()
+            ),
+        )
+    };
+    let diffuse = record
+        .diffuse_horizontal_lux
+        .ok_or_else(|| missing("diffuse horizontal"))?;
+    let direct = record
+        .direct_normal_lux
+        .ok_or_else(|| missing("direct normal"))?;
+    let sun_up = sun_direction.is_some_and(|d| d.z > 0.0);
+    let sun = (direct > 0.0 && sun_up).then_some(SunIlluminance::Normal(direct));
+    Ok((diffuse, sun))
 }
 
 /// The site of `[site]` (checked) and its zone, if it names one; errors name the key.
@@ -214,7 +296,7 @@ impl super::Scene {
             (Some(d), _) => d.entry.clone(),
             (None, Some(m)) => SkyEntry {
                 model: m.to_string(),
-                diffuse_horizontal_lux: DEFAULT_DIFFUSE_LUX,
+                diffuse_horizontal_lux: Some(DEFAULT_DIFFUSE_LUX),
                 direct_horizontal_lux: None,
                 direct_normal_lux: None,
                 time: None,
@@ -336,6 +418,8 @@ mod tests {
                 "[sky]\nmodel = \"uniform\"\ndiffuse_horizontal_lux = 1\nweather = \"a.epw\"\n",
                 "sky.weather",
             ),
+            ("[sky]\nmodel = \"uniform\"\nweather = \"a.epw\"\n", "sky.time"),
+            ("[sky]\nmodel = \"uniform\"\n", "sky.diffuse_horizontal_lux"),
             (
                 "[sky]\nmodel = \"uniform\"\ndiffuse_horizontal_lux = 1\nground_reflectance = 2\n",
                 "sky.ground_reflectance",

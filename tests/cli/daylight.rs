@@ -368,3 +368,79 @@ fn calc_adds_daylight_to_the_maintained_light_of_the_luminaires() {
         assert!((b[4] - d[4]).abs() < 1e-6, "{} vs {}", b[4], d[4]);
     }
 }
+
+/// `[sky] weather` with a `time`: the sky's and the sun's illuminances are those of the
+/// weather file's hour that holds the time (read here from the file's fields 17 and 18,
+/// local standard time, the hour ending at its number); the daylight at points equals that
+/// of the same sky given by its numbers; the sun is left out while it is down.
+#[test]
+fn a_weather_file_gives_the_sky_its_hour_s_illuminances() {
+    let tmp = tempfile::tempdir().unwrap();
+    let epw = root().join("assets/weather/USA_IL_Chicago.OHare.Intl.AP.725300_TMY3.epw");
+    let write = |name: &str, sky: &str| {
+        let path = tmp.path().join(name);
+        std::fs::write(
+            &path,
+            format!(
+                "[[model]]\npath = {:?}\nup = \"z\"\n[site]\nlatitude = 41.98\nlongitude = -87.92\ntimezone = \"-06:00\"\n[sky]\nmodel = \"cie:12\"\ntime = \"2026-06-21T13:30\"\n{sky}",
+                root().join("assets/scenes/side_lit_room.obj").display().to_string()
+            ),
+        )
+        .unwrap();
+        path
+    };
+    // 13:30 standard time is in the record of 21 June, hour 14 (13:00–14:00).
+    let text = std::fs::read_to_string(&epw).unwrap();
+    let row: Vec<f64> = text
+        .lines()
+        .skip(8)
+        .map(|l| {
+            l.split(',')
+                .map(|f| f.parse::<f64>().unwrap_or(f64::NAN))
+                .collect::<Vec<_>>()
+        })
+        .find(|f| (f[1], f[2], f[3]) == (6.0, 21.0, 14.0))
+        .unwrap();
+    let (direct_normal, diffuse) = (row[17], row[18]);
+    assert!(
+        direct_normal > 0.0 && diffuse > 0.0,
+        "{direct_normal} {diffuse}"
+    );
+    let from_file = Scene::load(&write(
+        "weather.toml",
+        &format!("weather = {:?}\n", epw.display().to_string()),
+    ))
+    .unwrap();
+    let sky = &from_file.daylight.as_ref().unwrap().sky;
+    assert_eq!(sky.diffuse_horizontal_lux, diffuse);
+    assert_eq!(sky.sun.unwrap().normal_lux, direct_normal);
+    let given = Scene::load(&write(
+        "given.toml",
+        &format!("diffuse_horizontal_lux = {diffuse}\ndirect_normal_lux = {direct_normal}\n"),
+    ))
+    .unwrap();
+    assert_same(&expected(&from_file), &expected(&given), "weather vs given");
+    // Saved elsewhere, the scene keeps finding its weather file.
+    let elsewhere = tmp.path().join("sub");
+    std::fs::create_dir(&elsewhere).unwrap();
+    from_file.save(&elsewhere.join("copy.toml")).unwrap();
+    let copy = Scene::load(&elsewhere.join("copy.toml")).unwrap();
+    assert_eq!(copy.daylight.unwrap().sky.diffuse_horizontal_lux, diffuse);
+    // At night: no sun (and the file's night sky).
+    let night = write(
+        "night.toml",
+        &format!("weather = {:?}\n", epw.display().to_string()),
+    )
+    .to_str()
+    .unwrap()
+    .to_string();
+    let text = std::fs::read_to_string(&night)
+        .unwrap()
+        .replace("13:30", "23:30");
+    std::fs::write(&night, text).unwrap();
+    // A cie:12 sky needs the sun above the horizon: the night is refused by key.
+    let e = Scene::load(std::path::Path::new(&night))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("sky."), "{e}");
+}
