@@ -79,7 +79,14 @@ pub fn sunlight_json(
     for w in warnings.iter().chain(&assessment.warnings) {
         warn::<pyo3::exceptions::PyUserWarning>(py, w)?;
     }
-    let json = document(&loaded, &assessment, &label, baseline_label.as_deref());
+    let rows = goniolight::planning::output::window_rows(&loaded, &assessment);
+    let json = document(
+        &loaded,
+        &assessment,
+        &rows,
+        &label,
+        baseline_label.as_deref(),
+    );
     let text = serde_json::to_string(&json).map_err(|e| PyValueError::new_err(e.to_string()))?;
     let hours = assessment
         .proposed

@@ -399,7 +399,9 @@ fn run_radiosity(
             "{:?}, hierarchy {:?}, ambient {:?}",
             config.visibility, config.hierarchy, config.ambient
         ));
-        bar.set_position((c.clamp(0.0, 1.0) * 1000.0) as u64);
+        bar.set_position(crate::radiosity::session::Session::progress_position(
+            c, 1000,
+        ));
     })
     .map_err(CliError::failure)?;
     bar.finish_and_clear();

@@ -31,6 +31,9 @@ struct Progress<'a> {
     error: Option<CliError>,
 }
 
+/// Steps of the convergence bar.
+const BAR_STEPS: u64 = 10_000;
+
 fn style(template: &str) -> Result<indicatif::ProgressStyle, CliError> {
     indicatif::ProgressStyle::with_template(template).map_err(|e| CliError::failure(anyhow!(e)))
 }
@@ -76,7 +79,7 @@ impl Progress<'_> {
                 for line in session.shooting_summary() {
                     eprintln!("{}: {}", self.label.display(), flags_in(&line));
                 }
-                let bar = indicatif::ProgressBar::new(10_000);
+                let bar = indicatif::ProgressBar::new(BAR_STEPS);
                 bar.set_style(style(
                     "radiosity [{bar:40}] {msg} ({elapsed_precise}, Ctrl-C stops and writes)",
                 )?);
@@ -84,7 +87,7 @@ impl Progress<'_> {
             }
             Event::Shot(p) => {
                 if let Some(bar) = &self.bar {
-                    bar.set_position((p.convergence.clamp(0.0, 1.0) * 10_000.0) as u64);
+                    bar.set_position(Session::progress_position(p.convergence, BAR_STEPS));
                     bar.set_message(Session::progress_line(p.convergence, p.shot));
                 }
             }

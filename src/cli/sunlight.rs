@@ -132,7 +132,13 @@ pub fn run(args: SunlightArgs) -> Result<(), CliError> {
     let label = args.scene.display().to_string();
     let baseline_label = args.baseline.as_ref().map(|b| b.display().to_string());
     let rows = window_rows(&scene, &assessment);
-    let json = sunlight_json(&scene, &assessment, &label, baseline_label.as_deref());
+    let json = sunlight_json(
+        &scene,
+        &assessment,
+        &rows,
+        &label,
+        baseline_label.as_deref(),
+    );
     let title = format!("Sunlight and skylight — {label}");
     let svg = site_plan_svg(&scene, &assessment.proposed, &rows, &title);
     let html = report_html(&scene, &assessment, &rows, &svg, &title, &json["method"]);

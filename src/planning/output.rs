@@ -63,15 +63,16 @@ fn round(v: f64, digits: i32) -> f64 {
     (v * f).round() / f
 }
 
-/// `sunlight.json` of `assessment` of `scene` (`label` names the scene, `baseline_label`
-/// the baseline's).
+/// `sunlight.json` of `assessment` of `scene`, its windows' `rows` ([`window_rows`])
+/// (`label` names the scene, `baseline_label` the baseline's).
 pub fn sunlight_json(
     scene: &Scene,
     assessment: &SunlightAssessment,
+    rows: &[WindowRow],
     label: &str,
     baseline_label: Option<&str>,
 ) -> Value {
-    let windows: Vec<Value> = window_rows(scene, assessment)
+    let windows: Vec<Value> = rows
         .iter()
         .map(|r| {
             let figures = |f: &super::WindowFigures| {

@@ -220,8 +220,9 @@ fn weather_light(
         (
             "sky.weather",
             format!(
-                "{}: {month:02}-{day:02} hour {hour} has no {what} illuminance (999999): deriving \
-                 it from irradiance (Perez 1990 luminous efficacy) is not implemented yet",
+                "{}: {month:02}-{day:02} hour {hour} has no {what} illuminance (999999), and \
+                 goniolight derives none from irradiance: give a weather file with \
+                 illuminance fields (TMY3 files have them) or the sky's illuminances",
                 file.display()
             ),
         )

@@ -93,6 +93,12 @@ impl Session<'_> {
         lines
     }
 
+    /// How far along a progress bar of `steps` a solve at `convergence` (0 … 1) is: the
+    /// bar's position, clamped to the bar.
+    pub fn progress_position(convergence: f64, steps: u64) -> u64 {
+        (convergence.clamp(0.0, 1.0) * steps as f64) as u64
+    }
+
     /// The progress line of the shooting: `12.34 % converged, 56 shots`.
     pub fn progress_line(convergence: f64, shots: usize) -> String {
         format!("{:.2} % converged, {shots} shots", 100.0 * convergence)
