@@ -65,14 +65,14 @@ pub enum Command {
     /// Solve the scene's interreflected light (GPU progressive radiosity): rendering,
     /// light-map atlas, convergence log; with --points the total lux at points from stdin.
     Radiosity(radiosity::RadiosityArgs),
-    /// Sun-path shadow profile of an OBJ model over a period: profile.png, hours.png,
+    /// Sun-path shadow profile of an OBJ or glTF model over a period: profile.png, hours.png,
     /// profile.csv.
     Profile(profile::ProfileArgs),
     /// The planning tests of a scene's windows and open spaces: VSC, annual and winter
     /// probable sunlight hours (BRE 209), EN 17037 sunlight exposure, 2 hours of sun on
     /// 21 March; `sunlight.json`, CSVs, a plan and a report.
     Sunlight(sunlight::SunlightArgs),
-    /// Silhouette edges of an OBJ model for a point or directional light.
+    /// Silhouette edges of an OBJ or glTF model for a point or directional light.
     Silhouette(silhouette::SilhouetteArgs),
     /// Run a list of command lines (a TOML jobs file) in one process, optionally one shard
     /// of it (`--shard K/N`), with a JSON summary.
@@ -80,7 +80,7 @@ pub enum Command {
     /// Benchmarks that print tables of ratios measured side by side.
     #[command(subcommand)]
     Bench(bench::BenchCommand),
-    /// The interactive viewer: a scene (TOML) or an OBJ model, luminaires, sun, shadows,
+    /// The interactive viewer: a scene (TOML) or an OBJ or glTF model, luminaires, sun, shadows,
     /// radiosity. `--frames N [--screenshot out.png]` renders N frames and exits.
     #[cfg(feature = "viewer")]
     View(view::ViewArgs),

@@ -25,7 +25,7 @@ use crate::study::{SunStudy, SunStudyOptions};
 /// Options of `profile`.
 #[derive(Debug, Args)]
 pub struct ProfileArgs {
-    /// The model (OBJ), metres; the ground is its lowest point.
+    /// The model (OBJ or glTF: .gltf, .glb), metres; the ground is its lowest point.
     pub model: PathBuf,
     /// Latitude, degrees north.
     #[arg(long, allow_hyphen_values = true)]
@@ -91,7 +91,7 @@ pub struct ProfileArgs {
     /// metres; `properties.name` names them): their passing fractions in study.json.
     #[arg(long, requires = "threshold")]
     pub areas: Option<PathBuf>,
-    /// Only these objects cast shadows (OBJ `o`/`g` names, comma-separated, `*` matches
+    /// Only these objects cast shadows (OBJ `o`/`g` names or glTF node names, comma-separated, `*` matches
     /// any run of characters); the others still receive them (a new building's shadow on
     /// the existing ones).
     #[arg(long, value_delimiter = ',')]

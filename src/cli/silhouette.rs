@@ -6,7 +6,7 @@ use clap::Args;
 use serde_json::json;
 
 use super::error::CliError;
-use crate::geometry::obj::read_obj;
+use crate::geometry::read_model_objects;
 use crate::shadow::{Hextree, Light, SilhouetteMesh};
 
 pub use crate::shadow::SilhouetteMethod as Method;
@@ -14,7 +14,7 @@ pub use crate::shadow::SilhouetteMethod as Method;
 /// Options of `silhouette`.
 #[derive(Debug, Args)]
 pub struct SilhouetteArgs {
-    /// The model (OBJ), read as is (no up-axis change).
+    /// The model (OBJ or glTF), read as is (no up-axis change).
     pub model: PathBuf,
     /// Homogeneous light X,Y,Z,W: W = 1 a point light, W = 0 a direction toward the light.
     #[arg(long, allow_hyphen_values = true, value_parser = parse_light)]
@@ -28,7 +28,7 @@ pub struct SilhouetteArgs {
     /// Weld vertices closer than this fraction of the bounding-box diagonal.
     #[arg(long, default_value_t = 1e-9)]
     pub weld: f64,
-    /// Print JSON {"count", "edges"} with 0-based OBJ vertex indices.
+    /// Print JSON {"count", "edges"} with 0-based vertex indices (the OBJ's own numbering).
     #[arg(long)]
     pub json: bool,
 }
@@ -56,7 +56,7 @@ pub fn run(a: SilhouetteArgs) -> Result<(), CliError> {
             a.weld
         )));
     }
-    let mesh = read_obj(&a.model)?;
+    let (mesh, _) = read_model_objects(&a.model)?;
     let name = a.model.display().to_string();
     let sm = SilhouetteMesh::new(&mesh, &name, a.weld)?;
     if sm.degenerate > 0 {

@@ -11,7 +11,7 @@ use crate::viewer::{start, window::WindowOptions, StartOptions};
 /// Options of `view`.
 #[derive(Debug, Args)]
 pub struct ViewArgs {
-    /// A scene file (TOML) or an OBJ model (default: the bundled furnished room).
+    /// A scene file (TOML) or an OBJ or glTF model (default: the bundled furnished room).
     pub path: Option<PathBuf>,
     /// Render this many frames, then exit (with --screenshot: 3 unless given).
     #[arg(long)]
@@ -33,7 +33,7 @@ pub struct ViewArgs {
     /// Luminaire files to add to the scene at start (as if dropped on the window).
     #[arg(long = "add", value_name = "LDT|IES")]
     pub add: Vec<PathBuf>,
-    /// Up axis of an OBJ model given as PATH: y (most exporters) or z.
+    /// Up axis of an OBJ or glTF model given as PATH: y (most exporters) or z.
     #[arg(long, value_enum, default_value = "y")]
     pub up: crate::scene::UpAxis,
     /// Mode at start: shaded or illuminance (default: the scene's).

@@ -3,6 +3,7 @@
 pub mod adjacency;
 pub mod areas;
 pub mod generate;
+pub mod gltf_file;
 pub mod howell;
 pub mod obj;
 pub mod polygon;
@@ -58,6 +59,19 @@ pub fn unit(v: DVec3) -> Option<DVec3> {
         return None;
     }
     Some((v / scale).normalize())
+}
+
+/// Reads a model file's triangles with each triangle's object: an OBJ ([`obj`]'s `o`/`g`
+/// names, the file's vertex numbering) or a glTF ([`gltf_file`]'s node names, every node
+/// transform applied, in the file's +Y-up frame).
+pub fn read_model_objects(
+    path: &std::path::Path,
+) -> Result<(Mesh, obj::ObjObjects), GeometryError> {
+    if gltf_file::is_gltf(path) {
+        Ok(gltf_file::read(path)?.mesh_with_nodes())
+    } else {
+        obj::read_obj_objects(path)
+    }
 }
 
 /// A triangle mesh: positions and counter-clockwise triangles (outward normals).

@@ -4,7 +4,7 @@
 
 use glam::DVec3;
 
-use crate::photometry::{Distribution, Eulumdat, Format, Luminaire, Symmetry};
+use crate::photometry::Luminaire;
 use crate::scene::{PlacedLuminaire, Scene};
 use crate::sun::SunPosition;
 
@@ -44,45 +44,10 @@ pub fn clear_sky_sun(scene: &Scene, position: &SunPosition) -> Option<PlacedLumi
     })
 }
 
-/// An isotropic luminaire of 1000 cd at 1000 lm (what the sun light is scaled from).
+/// An isotropic luminaire of 1000 cd (what the sun light is scaled from).
 fn isotropic() -> Luminaire {
-    let data = Eulumdat {
-        company: "goniolight".into(),
-        ityp: 1,
-        symmetry: Symmetry::Rotational,
-        dc: 0.0,
-        dg: 90.0,
-        report_number: String::new(),
-        luminaire_name: "sun".into(),
-        luminaire_number: String::new(),
-        file_name: "sun".into(),
-        date_user: String::new(),
-        dimensions: Default::default(),
-        dff_percent: 50.0,
-        lorl_percent: 100.0,
-        conversion_factor: 1.0,
-        tilt_deg: 0.0,
-        lamp_sets: vec![crate::photometry::eulumdat::LampSet {
-            count: 1,
-            lamp_type: "sun".into(),
-            flux_lm: 1000.0,
-            color: String::new(),
-            cri: String::new(),
-            watts: 0.0,
-        }],
-        direct_ratios: [0.0; 10],
-        c_angles: vec![0.0],
-        gamma_angles: vec![0.0, 90.0, 180.0],
-        intensities: vec![vec![1000.0; 3]],
-    };
-    let (distribution, warnings) = Distribution::from_eulumdat(&data);
-    Luminaire {
-        format: Format::Eulumdat,
-        data,
-        ies: None,
-        distribution,
-        warnings,
-    }
+    crate::photometry::synthetic::rotational("sun", &[0.0, 90.0, 180.0], &[1000.0; 3])
+        .expect("a constant positive intensity is a valid distribution")
 }
 
 /// The sun as a light for a scene centred at `center` of radius `radius` metres: an

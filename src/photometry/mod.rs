@@ -23,6 +23,7 @@ pub mod polar_diagram;
 pub mod residual_plot;
 pub mod summary;
 pub mod symmetry;
+pub mod synthetic;
 pub mod text;
 pub mod texture;
 pub mod type_b;

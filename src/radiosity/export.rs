@@ -371,6 +371,7 @@ pub fn glb(
             },
             extensions: Some(json::extensions::material::Material {
                 unlit: Some(json::extensions::material::Unlit {}),
+                ..Default::default()
             }),
             extras: Some(
                 serde_json::value::to_raw_value(&serde_json::json!({

@@ -205,9 +205,9 @@ pub enum Scale {
 #[derive(Debug, Clone, Deserialize, Serialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ModelEntry {
-    /// OBJ file, relative to the scene file.
+    /// OBJ or glTF (`.gltf`, `.glb`) file, relative to the scene file.
     pub path: String,
-    /// The OBJ's up axis.
+    /// The file's up axis (glTF files are +Y up).
     #[serde(default)]
     pub up: UpAxis,
     /// Translation in metres (applied last).
@@ -233,6 +233,22 @@ pub struct ModelEntry {
     /// Per MTL material name, how its surfaces are baked (over `bake`).
     #[serde(default, skip_serializing_if = "std::collections::BTreeMap::is_empty")]
     pub bake_materials: std::collections::BTreeMap<String, Bake>,
+    /// glTF models: whether the file's lights (`KHR_lights_punctual` point and spot,
+    /// `EXT_lights_ies`) become luminaires (default true).
+    #[serde(default = "yes", skip_serializing_if = "is_true")]
+    pub import_lights: bool,
+    /// glTF models: per light node name, an `.ldt` or `.ies` file (relative to the scene
+    /// file) placed and aimed by that node instead of the file's light.
+    #[serde(default, skip_serializing_if = "std::collections::BTreeMap::is_empty")]
+    pub light_files: std::collections::BTreeMap<String, String>,
+}
+
+fn yes() -> bool {
+    true
+}
+
+fn is_true(b: &bool) -> bool {
+    *b
 }
 
 /// How a solved surface carries its light in the exported scene (Edström §5.3).

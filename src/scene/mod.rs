@@ -13,6 +13,7 @@ pub mod daylight;
 pub mod display;
 pub mod emergency;
 pub mod file;
+pub mod gltf_model;
 pub mod grid;
 pub mod materials;
 pub mod model;
@@ -370,20 +371,21 @@ impl Scene {
         let dir = path.parent().unwrap_or(Path::new("")).to_path_buf();
         let mut materials = vec![Material::default()];
         let (mut meshes, mut warnings) = (Vec::new(), Vec::new());
+        let mut model_lights = Vec::new();
         for (i, entry) in parsed.model.iter().enumerate() {
             let key = format!("model[{i}]");
-            let sinks = (&mut materials, &mut warnings);
+            let sinks = (&mut materials, &mut warnings, &mut model_lights);
             meshes.extend(model::load_model(path, &key, &dir, entry, sinks)?);
         }
         materials::apply(&parsed.material, &mut materials)
             .map_err(|(key, message)| SceneError::new(path, key, message))?;
-        if parsed.luminaire.len() > MAX_LUMINAIRES {
+        if parsed.luminaire.len() + model_lights.len() > MAX_LUMINAIRES {
             return Err(SceneError::new(
                 path,
                 "luminaire",
                 format!(
-                    "{} luminaires; goniolight places at most {MAX_LUMINAIRES} in one scene",
-                    parsed.luminaire.len()
+                    "{} luminaires (the models' lights counted); goniolight places at most {MAX_LUMINAIRES} in one scene",
+                    parsed.luminaire.len() + model_lights.len()
                 ),
             ));
         }
@@ -403,6 +405,7 @@ impl Scene {
             })
             .collect::<Result<Vec<_>, _>>()?;
         let mut luminaires = luminaires;
+        luminaires.extend(model_lights);
         for (i, l) in luminaires.iter_mut().enumerate() {
             if let Some(h) = &mut l.housing {
                 h.meshes = find_housing(

@@ -225,15 +225,23 @@ pub fn euler_xyz_deg(deg: [f64; 3]) -> DMat3 {
         * DMat3::from_rotation_x(deg[0].to_radians())
 }
 
-/// Loads the OBJ of `entry`; its materials are appended to `materials`, and what the
-/// loading worked around (a missing MTL file, triangles without area, a capped
-/// transmittance) to `warnings`.
+/// What loading a model adds to besides its meshes: the scene's materials, its warnings
+/// and the luminaires of the model's own lights (glTF).
+pub(super) type ModelSinks<'a> = (
+    &'a mut Vec<Material>,
+    &'a mut Vec<String>,
+    &'a mut Vec<super::PlacedLuminaire>,
+);
+
+/// Loads the OBJ or glTF of `entry`; its materials are appended to `materials`, its
+/// lights (glTF) to `lights`, and what the loading worked around (a missing MTL file,
+/// triangles without area, a capped transmittance) to `warnings`.
 pub(super) fn load_model(
     scene: &Path,
     key: &str,
     dir: &Path,
     entry: &ModelEntry,
-    (materials, warnings): (&mut Vec<Material>, &mut Vec<String>),
+    (materials, warnings, lights): ModelSinks,
 ) -> Result<Vec<SceneMesh>, SceneError> {
     let path_key = format!("{key}.path");
     for (k, v) in [
@@ -262,6 +270,18 @@ pub(super) fn load_model(
             scene,
             path_key,
             format!("cannot read model {}: no such file", obj.display()),
+        ));
+    }
+    if crate::geometry::gltf_file::is_gltf(&obj) {
+        let content = super::gltf_model::load(scene, key, &obj, entry, (materials, warnings))?;
+        lights.extend(content.lights);
+        return Ok(content.meshes);
+    }
+    if entry.light_files.keys().next().is_some() || !entry.import_lights {
+        return Err(SceneError::new(
+            scene,
+            format!("{key}.light_files"),
+            "only glTF models have lights: light_files and import_lights are for .gltf and .glb files",
         ));
     }
     let options = ReadOptions {
@@ -344,7 +364,7 @@ pub(super) fn load_model(
 /// Sets `bake` on the materials `entry` appended (from `first`): `bake_materials` by
 /// name, else `bake`. Returns the material for faces without one: the default, or a copy
 /// of it carrying `bake`.
-fn bake_overrides(
+pub(super) fn bake_overrides(
     scene: &Path,
     key: &str,
     entry: &ModelEntry,

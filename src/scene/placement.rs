@@ -40,6 +40,9 @@ pub struct PlacedLuminaire {
     /// Effect light: one colour (luminance 1) per equal C sector of its own frame; empty:
     /// `color` everywhere.
     pub sector_colors: Vec<DVec3>,
+    /// The model node whose light this is (glTF lights): it comes back with the model
+    /// and is not saved as a `[[luminaire]]`.
+    pub model_light: Option<String>,
 }
 
 /// A luminaire's own body: the model object(s) named `name` at the luminaire.
@@ -247,6 +250,7 @@ impl PlacedLuminaire {
             }),
             spin_deg_per_s,
             sector_colors,
+            model_light: None,
         })
     }
 
@@ -266,6 +270,7 @@ impl PlacedLuminaire {
             housing: None,
             spin_deg_per_s: 0.0,
             sector_colors: Vec::new(),
+            model_light: None,
         }
     }
 

@@ -27,6 +27,7 @@ impl Scene {
             luminaire: self
                 .luminaires
                 .iter()
+                .filter(|l| l.model_light.is_none())
                 .map(|l| luminaire_entry(dir, l, self.housing_in_reach(l)))
                 .collect(),
             camera: Some(camera_entry(&self.camera)),

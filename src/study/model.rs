@@ -78,7 +78,7 @@ pub struct StudyModel {
     pub warnings: Vec<String>,
 }
 
-/// Reads an OBJ model, turns it to the world's +Z up and, when `casters` names objects
+/// Reads an OBJ or glTF model, turns it to the world's +Z up and, when `casters` names objects
 /// (`o`/`g` names, `*` matches any run of characters), puts their triangles first: the
 /// rest receive shadows but cast none. Refused (field `casters`) when a pattern matches no
 /// object (the message lists the names) or the objects named have no triangle with area.
@@ -88,7 +88,7 @@ pub fn load_components(
     casters: &[String],
 ) -> Result<StudyModel, super::ProfileError> {
     use super::ProfileError;
-    let (mut mesh, objects) = crate::geometry::obj::read_obj_objects(path)?;
+    let (mut mesh, objects) = crate::geometry::read_model_objects(path)?;
     if up == UpAxis::Y {
         for p in &mut mesh.positions {
             *p = glam::DVec3::new(p.x, -p.z, p.y);

@@ -480,7 +480,7 @@ impl ViewerApp {
     }
 
     /// Opens whatever `path` is by its extension: a luminaire is added, a scene or an
-    /// OBJ model replaces the scene.
+    /// OBJ or glTF model replaces the scene.
     pub fn open_any(&mut self, path: &Path) {
         let ext = path
             .extension()
@@ -490,9 +490,9 @@ impl ViewerApp {
             "ldt" | "ies" => {
                 self.add_luminaire(path);
             }
-            "toml" | "obj" => self.open_scene(path),
+            "toml" | "obj" | "gltf" | "glb" => self.open_scene(path),
             _ => self.error(format!(
-                "{}: not a luminaire (.ldt, .ies), scene (.toml) or model (.obj)",
+                "{}: not a luminaire (.ldt, .ies), scene (.toml) or model (.obj, .gltf, .glb)",
                 path.display()
             )),
         }

@@ -61,12 +61,14 @@ impl RecentFiles {
     }
 }
 
-/// Loads a scene file, or wraps an OBJ model in a scene with a camera that frames it.
+/// Loads a scene file, or wraps an OBJ or glTF model in a scene with a camera that
+/// frames it.
 pub fn load_scene_or_model(path: &Path, up: UpAxis) -> Result<Scene, SceneError> {
-    let is_obj = path
+    let is_model = path
         .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("obj"));
-    if !is_obj {
+        .is_some_and(|e| e.eq_ignore_ascii_case("obj"))
+        || crate::geometry::gltf_file::is_gltf(path);
+    if !is_model {
         return Scene::load(path);
     }
     let absolute = std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf());
@@ -137,7 +139,7 @@ impl Dialog {
                         .add_filter("Luminaires (EULUMDAT, IES)", &["ldt", "LDT", "ies", "IES"])
                         .pick_file(),
                     DialogPurpose::Open => d
-                        .add_filter("Scenes and models", &["toml", "obj"])
+                        .add_filter("Scenes and models", &["toml", "obj", "gltf", "glb"])
                         .pick_file(),
                     DialogPurpose::SaveAs => d
                         .add_filter("Scene", &["toml"])

@@ -10,6 +10,7 @@ mod common;
 mod clusters;
 mod daylight;
 mod fuzz_parsers;
+mod gltf_models;
 mod interpolation_props;
 mod photometry_details;
 mod photometry_files;
