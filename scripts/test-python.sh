@@ -17,7 +17,7 @@ if [ ! -x "$venv/bin/python" ]; then
   python3 -m venv "$venv"
 fi
 "$venv/bin/python" -m pip install --quiet --upgrade pip
-"$venv/bin/python" -m pip install --quiet pytest numpy "eulumdat-ugr==1.0.2" "ezdxf==1.4.5"
+"$venv/bin/python" -m pip install --quiet pytest numpy "eulumdat-ugr==1.0.2" "ezdxf==1.4.5" "trimesh==4.5.3"
 
 from_build=""
 if [ "${1:-}" = "--from-build" ]; then

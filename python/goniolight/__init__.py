@@ -94,6 +94,11 @@ class Scene:
         return self._native.triangles
 
     @property
+    def area(self) -> float:
+        """The area of the model's triangles, m² (one side each)."""
+        return self._native.area
+
+    @property
     def luminaires(self) -> int:
         """Placed luminaires."""
         return self._native.luminaires

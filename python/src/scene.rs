@@ -57,6 +57,12 @@ impl NativeScene {
         self.scene.triangle_count()
     }
 
+    /// The area of the model's triangles, m².
+    #[getter]
+    fn area(&self) -> f64 {
+        self.scene.surface_area()
+    }
+
     /// Placed luminaires.
     #[getter]
     fn luminaires(&self) -> usize {

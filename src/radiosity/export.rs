@@ -15,6 +15,9 @@
 //!   the exact values of the element that covers it (the light-map texel under the corner,
 //!   nudged into its triangle), and `TEXCOORD_0`, the corner's place in the atlas.
 //!
+//! - The luminaires: `EXT_lights_ies` lights with their profiles and `KHR_lights_punctual`
+//!   fallbacks ([`lights`]).
+//!
 //! goniolight's frame is metres with +Z up; glTF's is +Y up: (x, y, z) → (x, z, −y).
 
 use std::borrow::Cow;
@@ -24,6 +27,8 @@ use glam::{DVec2, DVec3, Vec2};
 use gltf::json;
 use json::validation::Checked::Valid;
 use json::validation::USize64;
+
+mod lights;
 
 use super::bake::BakePlan;
 use super::scene::RadiosityScene;
@@ -289,6 +294,7 @@ pub fn glb(
     map: &LightMap,
     plan: &BakePlan,
     material_names: &[String],
+    luminaires: &[crate::scene::PlacedLuminaire],
 ) -> Result<Vec<u8>, ExportError> {
     let baked = bake(scene, map, plan);
     let white = white_point(scene, map);
@@ -398,6 +404,7 @@ pub fn glb(
         primitives,
         weights: None,
     });
+    let light_nodes = lights::add(&mut b, luminaires);
     let node = b.root.push(json::Node {
         mesh: Some(mesh),
         name: Some("scene".into()),
@@ -407,10 +414,12 @@ pub fn glb(
         extensions: None,
         extras: None,
         name: Some("radiosity solution".into()),
-        nodes: vec![node],
+        nodes: [vec![node], light_nodes].concat(),
     });
     b.root.scene = Some(scene_index);
-    b.root.extensions_used = vec!["KHR_materials_unlit".into()];
+    b.root
+        .extensions_used
+        .insert(0, "KHR_materials_unlit".into());
     b.root.asset.generator = Some(format!("goniolight {}", env!("CARGO_PKG_VERSION")));
     b.root.asset.extras = Some(
         serde_json::value::to_raw_value(&serde_json::json!({

@@ -477,6 +477,19 @@ impl Scene {
         self.meshes.iter().map(|m| m.indices.len() / 3).sum()
     }
 
+    /// The area of all its triangles, m² (one side each).
+    pub fn surface_area(&self) -> f64 {
+        self.meshes
+            .iter()
+            .flat_map(|m| {
+                m.indices.chunks_exact(3).map(|t| {
+                    let [a, b, c] = [t[0], t[1], t[2]].map(|i| m.positions[i as usize].as_dvec3());
+                    (b - a).cross(c - a).length() / 2.0
+                })
+            })
+            .sum()
+    }
+
     /// A scene made in code (tests, benchmarks): `meshes` with `materials` under
     /// `luminaires`, seen by `camera`, with the default display and no models, grids,
     /// observers or material overrides. `name` stands for the file in messages.

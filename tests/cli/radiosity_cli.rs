@@ -922,3 +922,71 @@ fn export_bake_vertex_refines_triangles_to_the_light_maps_texels() {
         "{introduced} (at least {fewest})"
     );
 }
+
+/// `--export` writes the luminaires as `EXT_lights_ies` lights (with `KHR_lights_punctual`
+/// fallbacks): the exported file read back as a model gives the same direct lux at points
+/// as the scene it came from, for an aimed, rolled, dimmed and tinted luminaire without
+/// symmetry and a plain one.
+#[test]
+fn exported_luminaires_come_back_with_the_same_direct_lux() {
+    let dir = tempfile::tempdir().unwrap();
+    let scenes = root().join("assets/scenes");
+    let text = format!(
+        "[[model]]\npath = {:?}\nup = \"z\"\n\n\
+         [[luminaire]]\nfile = {:?}\nposition = [3.0, 2.0, 2.95]\n\n\
+         [[luminaire]]\nfile = {:?}\nposition = [1.5, 1.0, 2.5]\naim = [0.3, 0.2, -1.0]\nroll = 25.0\nmultiplier = 0.7\ncolor = [1.0, 0.6, 0.3]\n",
+        scenes.join("box_room.obj"),
+        root().join("luminaires/eulumdat-plot/sample_06_isym1.ldt"),
+        root().join("luminaires/effects/disco.ldt"),
+    );
+    let scene = dir.path().join("room.toml");
+    std::fs::write(&scene, text).unwrap();
+    let glb = dir.path().join("room.glb");
+    let args = [
+        "radiosity",
+        scene.to_str().unwrap(),
+        "--max-shots",
+        "2",
+        "--out-dir",
+    ];
+    let out = dir.path().join("out");
+    let (code, _, stderr) = run_cli(
+        &[
+            &args[..],
+            &[out.to_str().unwrap(), "--export", glb.to_str().unwrap()],
+        ]
+        .concat(),
+        "",
+    );
+    assert_eq!(code, 0, "{stderr}");
+    let back = dir.path().join("back.toml");
+    std::fs::write(&back, format!("[[model]]\npath = {glb:?}\n")).unwrap();
+    let loaded = goniolight::scene::Scene::load(&back).unwrap();
+    assert_eq!(
+        loaded.luminaires.len(),
+        2,
+        "the KHR fallbacks are not placed twice"
+    );
+    let points: String = (0..24)
+        .map(|k| {
+            let (x, y) = (0.3 + 0.23 * k as f64, 0.2 + 0.15 * ((k * 7) % 24) as f64);
+            format!("{x} {y} 0.8 0 0 1\n{x} {y} 1.2 1 0 0\n")
+        })
+        .collect();
+    let lux = |s: &Path| -> Vec<f64> {
+        let (code, out, err) = run_cli(
+            &["illuminance", s.to_str().unwrap(), "--shadows", "none"],
+            &points,
+        );
+        assert_eq!(code, 0, "{err}");
+        out.lines().map(|l| l.trim().parse().unwrap()).collect()
+    };
+    let (before, after) = (lux(&scene), lux(&back));
+    assert_eq!(before.len(), 48);
+    for (k, (a, b)) in before.iter().zip(&after).enumerate() {
+        assert!(
+            (a - b).abs() <= 1e-3 * a.max(1.0),
+            "point {k}: {a} lx before, {b} lx after"
+        );
+    }
+}

@@ -295,6 +295,46 @@ fn fuzz_obj_reader() {
 }
 
 #[test]
+fn fuzz_gltf_reader() {
+    use crate::gltf_models::{document, FLOOR, FLOOR_TRIANGLES};
+    use goniolight::geometry::gltf_file::parse;
+    use serde_json::json;
+    let cornell = common::shared_dir().join("models/gltf/CornellBox/CornellBox.glb");
+    let lights = json!({"KHR_lights_punctual": {"lights": [
+        {"type": "spot", "intensity": 50.0, "spot": {"innerConeAngle": 0.2, "outerConeAngle": 0.5}}
+    ]}});
+    let nodes = json!([{"translation": [0.0, 2.0, 0.0], "rotation": [0.0, 0.0, 0.0, 1.0],
+                        "children": [], "extensions": {"KHR_lights_punctual": {"light": 0}}}]);
+    let text = document(&FLOOR, &FLOOR_TRIANGLES, nodes, lights).to_string();
+    let seeds = vec![std::fs::read(cornell).unwrap(), text.into_bytes()];
+    let no_files = |uri: &str| -> Result<Vec<u8>, String> { Err(format!("{uri}: no files here")) };
+    for seed in &seeds {
+        // The seeds themselves read: mutations start from valid files.
+        assert!(parse("seed", seed, &no_files).is_ok());
+    }
+    fuzz("gltf", "gltf", &seeds, |bytes| {
+        let Ok(model) = parse("f.gltf", bytes, &no_files) else {
+            return Ok(());
+        };
+        for p in &model.primitives {
+            let n = p.positions.len();
+            if p.triangles.iter().flatten().any(|&i| i as usize >= n) {
+                return Err(format!("a triangle indexes past the {n} vertices"));
+            }
+            if p.positions.iter().any(|v| !v.is_finite()) {
+                return Err("a position is not finite".into());
+            }
+        }
+        for l in &model.lights {
+            if !(l.position.is_finite() && l.frame.is_finite()) {
+                return Err(format!("light {:?} is not finite", l.node));
+            }
+        }
+        Ok(())
+    });
+}
+
+#[test]
 fn fuzz_scene_files() {
     let dir = common::root().join("assets/scenes");
     let mut files = Vec::new();

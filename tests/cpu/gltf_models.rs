@@ -15,7 +15,7 @@ use crate::common;
 
 /// A glTF document with one buffer (a data URI) holding `positions` (f32 xyz) and then
 /// `indices` (u32), one mesh of them on node 0, and `more_nodes` after it.
-fn document(
+pub(crate) fn document(
     positions: &[[f32; 3]],
     indices: &[u32],
     more_nodes: Value,
@@ -64,13 +64,13 @@ fn document(
 }
 
 /// A 10 × 10 m floor at glTF y = 0 (the world's z = 0), facing up.
-const FLOOR: [[f32; 3]; 4] = [
+pub(crate) const FLOOR: [[f32; 3]; 4] = [
     [-5.0, 0.0, 5.0],
     [5.0, 0.0, 5.0],
     [5.0, 0.0, -5.0],
     [-5.0, 0.0, -5.0],
 ];
-const FLOOR_TRIANGLES: [u32; 6] = [0, 1, 2, 0, 2, 3];
+pub(crate) const FLOOR_TRIANGLES: [u32; 6] = [0, 1, 2, 0, 2, 3];
 /// −90° about glTF X: the node's −Z (where lights point) turned to glTF −Y, down.
 const POINTING_DOWN: [f64; 4] = [
     -std::f64::consts::FRAC_1_SQRT_2,

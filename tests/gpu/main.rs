@@ -19,6 +19,7 @@ mod adaptive;
 mod alpha_masks;
 mod charts;
 mod cie171;
+mod gltf_emissive;
 mod gpu_ldt;
 mod hierarchy;
 mod links;

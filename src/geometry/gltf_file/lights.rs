@@ -139,7 +139,9 @@ pub(super) fn placed(
         color,
         kind,
     };
-    if let Some(l) = node.light() {
+    // A node with both carries the KHR light as the fallback of its IES profile.
+    let ies = node.extension_value("EXT_lights_ies");
+    if let Some(l) = node.light().filter(|_| ies.is_none()) {
         let candela = f64::from(l.intensity());
         if !(candela.is_finite() && (0.0..=MAX_CANDELA).contains(&candela)) {
             return Err(format!(
@@ -170,7 +172,7 @@ pub(super) fn placed(
         };
         out.push(light(l.color().map(f64::from), kind));
     }
-    if let Some(ext) = node.extension_value("EXT_lights_ies") {
+    if let Some(ext) = ies {
         let index = ext
             .get("light")
             .and_then(Value::as_u64)

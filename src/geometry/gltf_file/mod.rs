@@ -89,7 +89,7 @@ pub fn parse(
     read_uri: &dyn Fn(&str) -> Result<Vec<u8>, String>,
 ) -> Result<GltfModel, GeometryError> {
     let invalid = |message: String| GeometryError::Invalid(format!("{name}: {message}"));
-    let gltf = gltf::Gltf::from_slice(bytes).map_err(|e| invalid(format!("not glTF 2.0: {e}")))?;
+    let gltf = checked_document(bytes).map_err(|e| invalid(format!("not glTF 2.0: {e}")))?;
     let data = buffers::load(&gltf, read_uri).map_err(invalid)?;
     let doc = &gltf.document;
     let mut model = GltfModel::default();
@@ -120,6 +120,38 @@ pub fn parse(
         ));
     }
     Ok(model)
+}
+
+/// The document, parsed and validated by the `gltf` crate after the checks its parser
+/// and validator leave out (they would panic): a GLB header's length below the header's
+/// own, and a primitive's POSITION naming an accessor that does not exist.
+fn checked_document(bytes: &[u8]) -> Result<gltf::Gltf, String> {
+    if bytes.starts_with(b"glTF") {
+        let length = bytes
+            .get(8..12)
+            .map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]));
+        if length.is_none_or(|n| n < 12) {
+            return Err("the GLB header's length is shorter than the header".into());
+        }
+    }
+    let unchecked = gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| e.to_string())?;
+    let root = unchecked.document.as_json();
+    for (m, mesh) in root.meshes.iter().enumerate() {
+        for (k, p) in mesh.primitives.iter().enumerate() {
+            let bad = p
+                .attributes
+                .values()
+                .find(|a| a.value() >= root.accessors.len());
+            if let Some(a) = bad {
+                return Err(format!(
+                    "meshes[{m}].primitives[{k}]: accessor {} does not exist",
+                    a.value()
+                ));
+            }
+        }
+    }
+    drop(unchecked);
+    gltf::Gltf::from_slice(bytes).map_err(|e| e.to_string())
 }
 
 /// Walks the node hierarchy, placing meshes and lights.

@@ -650,7 +650,7 @@ impl Solution {
         let rscene = &self.prepared.rscene;
         let plan = bake::plan(rscene, &material_bake, choice, budget);
         let map = self.light_map();
-        let bytes = super::export::glb(rscene, &map, &plan, &names)?;
+        let bytes = super::export::glb(rscene, &map, &plan, &names, &scene.luminaires)?;
         Ok((bytes, plan, map))
     }
 }
