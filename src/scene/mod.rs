@@ -374,8 +374,15 @@ impl Scene {
         let mut model_lights = Vec::new();
         for (i, entry) in parsed.model.iter().enumerate() {
             let key = format!("model[{i}]");
-            let sinks = (&mut materials, &mut warnings, &mut model_lights);
-            meshes.extend(model::load_model(path, &key, &dir, entry, sinks)?);
+            let file = model::checked_entry(path, &key, &dir, entry)?;
+            let sinks = (&mut materials, &mut warnings);
+            if crate::geometry::gltf_file::is_gltf(&file) {
+                let content = gltf_model::load(path, &key, &file, entry, sinks)?;
+                meshes.extend(content.meshes);
+                model_lights.extend(content.lights);
+            } else {
+                meshes.extend(model::load_obj(path, &key, &file, entry, sinks)?);
+            }
         }
         materials::apply(&parsed.material, &mut materials)
             .map_err(|(key, message)| SceneError::new(path, key, message))?;

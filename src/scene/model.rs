@@ -225,24 +225,13 @@ pub fn euler_xyz_deg(deg: [f64; 3]) -> DMat3 {
         * DMat3::from_rotation_x(deg[0].to_radians())
 }
 
-/// What loading a model adds to besides its meshes: the scene's materials, its warnings
-/// and the luminaires of the model's own lights (glTF).
-pub(super) type ModelSinks<'a> = (
-    &'a mut Vec<Material>,
-    &'a mut Vec<String>,
-    &'a mut Vec<super::PlacedLuminaire>,
-);
-
-/// Loads the OBJ or glTF of `entry`; its materials are appended to `materials`, its
-/// lights (glTF) to `lights`, and what the loading worked around (a missing MTL file,
-/// triangles without area, a capped transmittance) to `warnings`.
-pub(super) fn load_model(
+/// Checks `entry`'s transform and that its file exists; returns the file.
+pub(super) fn checked_entry(
     scene: &Path,
     key: &str,
     dir: &Path,
     entry: &ModelEntry,
-    (materials, warnings, lights): ModelSinks,
-) -> Result<Vec<SceneMesh>, SceneError> {
+) -> Result<PathBuf, SceneError> {
     let path_key = format!("{key}.path");
     for (k, v) in [
         ("translation", entry.translation),
@@ -272,11 +261,20 @@ pub(super) fn load_model(
             format!("cannot read model {}: no such file", obj.display()),
         ));
     }
-    if crate::geometry::gltf_file::is_gltf(&obj) {
-        let content = super::gltf_model::load(scene, key, &obj, entry, (materials, warnings))?;
-        lights.extend(content.lights);
-        return Ok(content.meshes);
-    }
+    Ok(obj)
+}
+
+/// Loads the OBJ `obj` of `entry` (checked by [`checked_entry`]); its materials are
+/// appended to `materials`, and what the loading worked around (a missing MTL file,
+/// triangles without area, a capped transmittance) to `warnings`.
+pub(super) fn load_obj(
+    scene: &Path,
+    key: &str,
+    obj: &Path,
+    entry: &ModelEntry,
+    (materials, warnings): (&mut Vec<Material>, &mut Vec<String>),
+) -> Result<Vec<SceneMesh>, SceneError> {
+    let path_key = format!("{key}.path");
     if entry.light_files.keys().next().is_some() || !entry.import_lights {
         return Err(SceneError::new(
             scene,
@@ -292,7 +290,7 @@ pub(super) fn load_model(
         models,
         materials: mtl,
         ..
-    } = obj_file::read(&obj, options)
+    } = obj_file::read(obj, options)
         .map_err(|e| SceneError::new(scene, &path_key, e.to_string()))?;
     let obj_dir = obj.parent().unwrap_or(Path::new("")).to_path_buf();
     let first_material = materials.len();
