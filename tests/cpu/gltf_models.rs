@@ -344,3 +344,121 @@ fn broken_gltf_files_are_refused_with_the_element_at_fault() {
         );
     }
 }
+
+/// A 2 × 2 PNG (as a data URI) whose left column is solid and right column a hole.
+fn half_holes_png() -> String {
+    let img = image::RgbaImage::from_fn(2, 2, |x, _| {
+        if x == 0 {
+            image::Rgba([200, 100, 50, 255])
+        } else {
+            image::Rgba([0, 0, 0, 0])
+        }
+    });
+    let mut png = std::io::Cursor::new(Vec::new());
+    img.write_to(&mut png, image::ImageFormat::Png).unwrap();
+    format!(
+        "data:image/png;base64,{}",
+        base64::engine::general_purpose::STANDARD.encode(png.into_inner())
+    )
+}
+
+#[test]
+fn materials_become_reflectance_glass_holes_and_emitters() {
+    let tmp = tempfile::tempdir().unwrap();
+    let textured = json!({"index": 0});
+    let cases = [
+        (
+            json!({"pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.4, 0.3, 1.0]}}),
+            "plain",
+        ),
+        (
+            json!({"pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.9, 0.9, 1.0], "roughnessFactor": 0.0},
+                "extensions": {"KHR_materials_transmission": {"transmissionFactor": 0.8}}}),
+            "glass",
+        ),
+        (
+            json!({"pbrMetallicRoughness": {"baseColorFactor": [1.0, 1.0, 1.0, 1.0], "roughnessFactor": 0.6},
+                "extensions": {"KHR_materials_transmission": {"transmissionFactor": 0.5}}}),
+            "frosted",
+        ),
+        (
+            json!({"pbrMetallicRoughness": {"baseColorTexture": textured}, "alphaMode": "MASK", "alphaCutoff": 0.5}),
+            "mask",
+        ),
+        (
+            json!({"pbrMetallicRoughness": {"baseColorTexture": textured}}),
+            "opaque",
+        ),
+        (
+            json!({"emissiveFactor": [1.0, 0.5, 0.0],
+                "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 2.0}}}),
+            "emitter",
+        ),
+    ];
+    for (material, name) in cases {
+        let mut doc = document(&FLOOR, &FLOOR_TRIANGLES, json!([]), json!({}));
+        doc["materials"] = json!([material]);
+        doc["materials"][0]["name"] = json!(name);
+        doc["meshes"][0]["primitives"][0]["material"] = json!(0);
+        doc["images"] = json!([{"uri": half_holes_png()}]);
+        doc["textures"] = json!([{"source": 0}]);
+        let used = [
+            "KHR_materials_transmission",
+            "KHR_materials_emissive_strength",
+        ];
+        doc["extensionsUsed"] = json!(used);
+        let scene = scene_with(tmp.path(), &format!("{name}.gltf"), &doc, "").unwrap();
+        let m = &scene.materials[scene.meshes[0].material];
+        assert_eq!(m.name, name);
+        let close =
+            |a: glam::Vec3, b: [f32; 3]| (a - glam::Vec3::from(b)).abs().max_element() < 1e-5;
+        match name {
+            "plain" => assert!(close(m.diffuse_reflectance(), [0.5, 0.4, 0.3])),
+            "glass" => {
+                assert!(close(m.specular_transmittance, [0.72; 3]), "{m:?}");
+                assert!(close(m.diffuse_reflectance(), [0.18; 3]), "{m:?}");
+            }
+            "frosted" => {
+                assert!(
+                    close(m.diffuse_transmittance, [0.5; 3])
+                        && m.specular_transmittance == glam::Vec3::ZERO
+                )
+            }
+            "mask" => {
+                let mask = m.alpha_mask.as_ref().expect("MASK cuts holes");
+                assert_eq!(mask.solid_fraction(), 0.5);
+                // The mean of the solid texels, sRGB decoded.
+                let srgb = |c: f32| goniolight::scene::palette::srgb_to_linear(c as u8);
+                assert!(
+                    close(m.texture_mean(), [srgb(200.0), srgb(100.0), srgb(50.0)]),
+                    "{}",
+                    m.texture_mean()
+                );
+            }
+            "opaque" => assert!(m.alpha_mask.is_none(), "OPAQUE ignores alpha"),
+            _ => assert!(close(
+                m.emission,
+                [2.0 * std::f32::consts::PI, std::f32::consts::PI, 0.0]
+            )),
+        }
+    }
+}
+
+#[test]
+fn a_node_tree_that_instances_without_end_is_refused() {
+    let tmp = tempfile::tempdir().unwrap();
+    let mut doc = document(&FLOOR, &FLOOR_TRIANGLES, json!([]), json!({}));
+    // Node k has node k + 1 twice as children: 2^40 floors from a few lines.
+    let mut nodes = vec![json!({"mesh": 0, "children": [1, 1]})];
+    for k in 1..40 {
+        nodes.push(json!({"mesh": 0, "children": [k + 1, k + 1]}));
+    }
+    nodes.push(json!({"mesh": 0}));
+    doc["nodes"] = json!(nodes);
+    doc["scenes"] = json!([{"nodes": [0]}]);
+    let err = scene_with(tmp.path(), "tree.gltf", &doc, "").unwrap_err();
+    assert!(
+        err.contains("more than") && err.contains("instances counted"),
+        "{err}"
+    );
+}
