@@ -22,6 +22,7 @@ mod docs;
 mod emergency;
 mod faults;
 mod fuzz_crashes;
+mod gltf_cli;
 mod luminance;
 mod malformed;
 mod outputs_and_limits;
