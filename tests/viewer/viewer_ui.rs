@@ -357,6 +357,20 @@ fn an_obj_model_opens_framed_with_no_lights() {
     h.get_by_label_contains("No lights");
 }
 
+/// A glTF model opens as an OBJ does, its own lights placed (the shared Khronos lamp's
+/// five point lights), and `open_any` takes it by its extension.
+#[test]
+fn a_gltf_model_opens_framed_with_its_lights() {
+    let lamp = common::shared_dir().join("models/gltf/LightsPunctualLamp/LightsPunctualLamp.gltf");
+    let scene = load_scene_or_model(&lamp, goniolight::scene::UpAxis::Y).unwrap();
+    assert_eq!(scene.luminaires.len(), 5);
+    assert_eq!(scene.triangle_count(), 6_000);
+    let mut a = app("box_room.toml");
+    a.open_any(&lamp);
+    assert!(a.last_error().is_none(), "{:?}", a.last_error());
+    assert_eq!(a.scene.luminaires.len(), 5);
+}
+
 #[test]
 fn background_jobs_without_a_gpu_say_so() {
     let mut a = app("box_room.toml");
