@@ -558,7 +558,7 @@ def sun_study(model: PathLike, site, dates, *, start="08:00", end="16:00", step:
               model_view: bool = False, view_from: Optional[Sequence[float]] = None,
               view_at: Optional[Sequence[float]] = None,
               view_size: Sequence[int] = (1200, 900), progress=None) -> SunStudy:
-    """A sun study of an OBJ model, as ``goniolight profile`` runs it: the keywords are
+    """A sun study of an OBJ or glTF model, as ``goniolight profile`` runs it: the keywords are
     its flags (``start``/``end`` are ``--from``/``--to``, ``step`` minutes).
 
     ``site`` is a dict with the scene file's ``[site]`` keys (``latitude``,

@@ -149,3 +149,19 @@ def test_a_wrong_up_axis_is_a_user_warning(tmp_path):
                              "10:00", "--to", "14:00", "--step", "120", "--resolution", "32",
                              "--out", str(tmp_path / "out"))
     assert "pass --up z" in err
+
+
+def test_a_glb_model_gives_the_study_of_its_obj(tmp_path):
+    """The same box as GLB (trimesh's conversion, Y up as glTF is) gives the same hours."""
+    import trimesh  # noqa: E402  (installed by scripts/test-python.sh)
+    mesh = trimesh.load(str(BOX), force="mesh", process=False, maintain_order=True)
+    # The OBJ is Z up: turn it to glTF's Y up, (x, y, z) → (x, z, −y).
+    mesh.vertices = mesh.vertices[:, [0, 2, 1]] * [1.0, 1.0, -1.0]
+    glb = tmp_path / "box.glb"
+    mesh.export(str(glb))
+    args = dict(start="08:00", end="16:00", step=60, metric="sun", resolution=64)
+    from_obj = goniolight.sun_study(BOX, VIENNA, DATES, up="z", **args)
+    from_glb = goniolight.sun_study(glb, VIENNA, DATES, **args)
+    for day in range(len(DATES)):
+        assert from_obj.hours(day).max() > 0
+        np.testing.assert_array_equal(from_glb.hours(day), from_obj.hours(day))
