@@ -136,11 +136,12 @@ fn meshes(
                     })
                     .filter(|n| *n != Vec3::ZERO)
                     .unwrap_or(face);
-                // glTF's texture origin is the image's top left, OBJ's its bottom left.
-                let uv = p.uvs.as_ref().map_or(Vec2::ZERO, |uv| {
-                    let [u, v] = uv[i as usize];
-                    Vec2::new(u, 1.0 - v)
-                });
+                // glTF's texture origin is the image's top left, as the renderer and
+                // the alpha masks sample (row 0 the image's top row).
+                let uv = p
+                    .uvs
+                    .as_ref()
+                    .map_or(Vec2::ZERO, |uv| Vec2::from(uv[i as usize]));
                 mesh.indices.push(mesh.positions.len() as u32);
                 mesh.positions.push(corners[k].as_vec3());
                 mesh.normals.push(normal);

@@ -462,3 +462,58 @@ fn a_node_tree_that_instances_without_end_is_refused() {
         "{err}"
     );
 }
+
+/// glTF's texture coordinates have their origin at the image's top left, as the renderer
+/// and the alpha masks sample: they are kept as they are (v = 0.25 is the top row).
+#[test]
+fn texture_coordinates_keep_the_top_left_origin() {
+    let tmp = tempfile::tempdir().unwrap();
+    let mut doc = document(&FLOOR, &FLOOR_TRIANGLES, json!([]), json!({}));
+    let uv: Vec<u8> = [[0.3f32, 0.25]; 4]
+        .iter()
+        .flatten()
+        .flat_map(|v| v.to_le_bytes())
+        .collect();
+    doc["buffers"].as_array_mut().unwrap().push(json!({
+        "byteLength": uv.len(),
+        "uri": format!("data:application/octet-stream;base64,{}", base64::engine::general_purpose::STANDARD.encode(&uv))
+    }));
+    doc["bufferViews"]
+        .as_array_mut()
+        .unwrap()
+        .push(json!({"buffer": 1, "byteLength": uv.len()}));
+    doc["accessors"]
+        .as_array_mut()
+        .unwrap()
+        .push(json!({"bufferView": 2, "componentType": 5126, "count": 4, "type": "VEC2"}));
+    doc["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = json!(2);
+    // Top row solid, bottom row holes.
+    let img = image::RgbaImage::from_fn(2, 2, |_, y| {
+        image::Rgba([90, 90, 90, if y == 0 { 255 } else { 0 }])
+    });
+    let mut png = std::io::Cursor::new(Vec::new());
+    img.write_to(&mut png, image::ImageFormat::Png).unwrap();
+    let uri = format!(
+        "data:image/png;base64,{}",
+        base64::engine::general_purpose::STANDARD.encode(png.into_inner())
+    );
+    doc["images"] = json!([{"uri": uri}]);
+    doc["textures"] = json!([{"source": 0}]);
+    doc["materials"] =
+        json!([{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}, "alphaMode": "MASK"}]);
+    doc["meshes"][0]["primitives"][0]["material"] = json!(0);
+    let scene = scene_with(tmp.path(), "uv.gltf", &doc, "").unwrap();
+    let mesh = &scene.meshes[0];
+    assert!(
+        mesh.uvs
+            .iter()
+            .all(|uv| (*uv - glam::Vec2::new(0.3, 0.25)).length() < 1e-6),
+        "{:?}",
+        mesh.uvs
+    );
+    let mask = scene.materials[mesh.material].alpha_mask.as_ref().unwrap();
+    assert!(
+        mask.solid_at(mesh.uvs[0]),
+        "v = 0.25 is the texture's solid top row"
+    );
+}
