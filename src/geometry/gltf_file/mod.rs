@@ -122,7 +122,7 @@ pub fn parse(
     Ok(model)
 }
 
-/// The document, parsed and validated by the `gltf` crate after the checks its parser
+/// The document, parsed once and validated by the `gltf` crate after the checks its parser
 /// and validator leave out (they would panic): a GLB header's length below the header's
 /// own, and a primitive's POSITION naming an accessor that does not exist.
 fn checked_document(bytes: &[u8]) -> Result<gltf::Gltf, String> {
@@ -150,8 +150,17 @@ fn checked_document(bytes: &[u8]) -> Result<gltf::Gltf, String> {
             }
         }
     }
-    drop(unchecked);
-    gltf::Gltf::from_slice(bytes).map_err(|e| e.to_string())
+    // The crate's own validation, run on the document already parsed (not a second parse).
+    use gltf::json::validation::Validate;
+    let mut errors = Vec::new();
+    root.validate(root, gltf::json::Path::new, &mut |path, error| {
+        errors.push(format!("{}: {error}", path()));
+    });
+    if errors.is_empty() {
+        Ok(unchecked)
+    } else {
+        Err(format!("validation: {}", errors.join("; ")))
+    }
 }
 
 /// Walks the node hierarchy, placing meshes and lights.
