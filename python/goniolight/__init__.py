@@ -195,12 +195,19 @@ class Luminaire:
         return t
 
     def write(self, path: PathLike) -> None:
-        """Writes the file as EULUMDAT or IES, chosen by the extension (.ldt or .ies)."""
+        """Writes the file as EULUMDAT, IES, TM-33-23 XML or ATLA S001 JSON, chosen by the
+        extension (.ldt, .ies, .xml, .json), as ``goniolight ldt convert`` does."""
         path = os.fspath(path)
         ext = os.path.splitext(path)[1].lower().lstrip(".")
-        if ext not in ("ldt", "ies"):
-            raise ValueError(f"{path}: the extension must be .ldt or .ies")
+        if ext not in ("ldt", "ies", "xml", "json"):
+            raise ValueError(f"{path}: the extension must be .ldt, .ies, .xml or .json")
         _write_text(path, self._native.to_text(ext))
+
+    def losses(self, format: str) -> list:
+        """What writing the file as ``format`` (``"ldt"``, ``"ies"``, ``"xml"`` for
+        TM-33-23, ``"json"`` for ATLA S001) loses, in words (the notes ``ldt convert``
+        prints)."""
+        return self._native.losses(format)
 
     def datasheet(self, out: PathLike, lamp_set: int = 1) -> None:
         """Writes the one-page datasheet (``goniolight ldt report``: summary, polar,
@@ -219,7 +226,8 @@ class Luminaire:
 
 
 def read(path: PathLike) -> Luminaire:
-    """Reads an ``.ldt`` or ``.ies`` file (ValueError naming file and line when malformed)."""
+    """Reads an ``.ldt``, ``.ies`` or TM-33 / ATLA (``.xml``, ``.json``) file (ValueError
+    naming file and line when malformed)."""
     return Luminaire(_native.read(os.fspath(path)))
 
 

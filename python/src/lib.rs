@@ -10,7 +10,7 @@ use pyo3::prelude::*;
 
 use goniolight::lighting::SurfacePoint;
 use goniolight::photometry::check::{self, LeaveOut};
-use goniolight::photometry::ies::write_ies;
+use goniolight::photometry::convert;
 use goniolight::photometry::{Interp, Luminaire};
 use goniolight::radiosity::bake::BakeChoice;
 use goniolight::radiosity::session::{Options, SessionError, Solution};
@@ -44,6 +44,15 @@ fn parse_interp(name: &str) -> PyResult<Interp> {
 }
 
 /// A lamp set number as the command line takes it (1-based).
+/// The output format an extension names.
+fn output_format(ext: &str) -> PyResult<convert::OutputFormat> {
+    convert::OutputFormat::of_path(std::path::Path::new(&format!("x.{ext}"))).ok_or_else(|| {
+        value_error(format!(
+            "format {ext:?}: ldt, ies, xml (TM-33-23) or json (ATLA S001)"
+        ))
+    })
+}
+
 fn lamp_set_arg(lamp_set: Option<usize>) -> PyResult<Option<usize>> {
     match lamp_set {
         Some(0) => Err(value_error("lamp_set 0: lamp sets count from 1")),
@@ -181,13 +190,18 @@ impl NativeLuminaire {
         Ok(datasheet::page(&sheet, svg))
     }
 
-    /// The file's data as EULUMDAT (`"ldt"`) or IES LM-63-2002 (`"ies"`) text.
+    /// The file's data as EULUMDAT (`"ldt"`, every number exact), IES LM-63-2002
+    /// (`"ies"`), TM-33-23 XML (`"xml"`) or ATLA S001 JSON (`"json"`) text.
     fn to_text(&self, format: &str) -> PyResult<String> {
-        match format {
-            "ldt" => Ok(self.lum.data.to_ldt_string()),
-            "ies" => Ok(write_ies(&self.lum.data, self.lum.source_label())),
-            other => Err(value_error(format!("format {other:?}: ldt or ies"))),
-        }
+        let to = output_format(format)?;
+        convert::convert(&self.lum, to, true)
+            .map(|c| c.text)
+            .map_err(value_error)
+    }
+
+    /// What converting to `format` (`"ldt"`, `"ies"`, `"xml"`, `"json"`) loses, in words.
+    fn losses(&self, format: &str) -> PyResult<Vec<String>> {
+        Ok(convert::losses(&self.lum, output_format(format)?))
     }
 
     /// Warnings collected while reading.

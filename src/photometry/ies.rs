@@ -393,23 +393,7 @@ pub fn write_ies(ldt: &Eulumdat, source: &str) -> String {
         .map(|s| s.count.abs())
         .sum::<i32>()
         .max(1);
-    let horizontal: Vec<f64> = match ldt.symmetry {
-        Symmetry::Rotational => vec![0.0],
-        Symmetry::C0C180 => planes.iter().map(|p| p.0).filter(|&c| c <= 180.0).collect(),
-        Symmetry::Quadrant => planes.iter().map(|p| p.0).filter(|&c| c <= 90.0).collect(),
-        Symmetry::C90C270 => planes
-            .iter()
-            .map(|p| p.0)
-            .filter(|&c| (90.0..=270.0).contains(&c))
-            .collect(),
-        Symmetry::None => planes.iter().map(|p| p.0).chain([360.0]).collect(),
-    };
-    // Irregular C lists of a symmetric file may not span LM-63's ranges: list them all.
-    let horizontal = if horizontal_symmetry(&horizontal).is_ok() {
-        horizontal
-    } else {
-        planes.iter().map(|p| p.0).chain([360.0]).collect()
-    };
+    let horizontal = lm63_horizontal(ldt.symmetry, &planes);
     let to_cd = lamp_flux / 1000.0;
     let row = |c: f64| -> Vec<f64> {
         let p = planes
@@ -501,8 +485,30 @@ fn whole(src: &SourceText<'_>, t: Token, lo: i64, hi: i64) -> Result<i64, ParseE
     Ok(t.value as i64)
 }
 
+/// The horizontal angles an LM-63 (or TM-33) file stores for `planes` (the full circle of
+/// a file with `symmetry`): the symmetry's range, or every plane and 360° where irregular C
+/// lists do not span that range.
+pub(crate) fn lm63_horizontal(symmetry: Symmetry, planes: &[(f64, Vec<f64>)]) -> Vec<f64> {
+    let horizontal: Vec<f64> = match symmetry {
+        Symmetry::Rotational => vec![0.0],
+        Symmetry::C0C180 => planes.iter().map(|p| p.0).filter(|&c| c <= 180.0).collect(),
+        Symmetry::Quadrant => planes.iter().map(|p| p.0).filter(|&c| c <= 90.0).collect(),
+        Symmetry::C90C270 => planes
+            .iter()
+            .map(|p| p.0)
+            .filter(|&c| (90.0..=270.0).contains(&c))
+            .collect(),
+        Symmetry::None => planes.iter().map(|p| p.0).chain([360.0]).collect(),
+    };
+    if horizontal_symmetry(&horizontal).is_ok() {
+        horizontal
+    } else {
+        planes.iter().map(|p| p.0).chain([360.0]).collect()
+    }
+}
+
 /// The symmetry implied by the horizontal angle range of a Type C file.
-fn horizontal_symmetry(h: &[f64]) -> Result<Symmetry, String> {
+pub(crate) fn horizontal_symmetry(h: &[f64]) -> Result<Symmetry, String> {
     let first = h[0];
     let last = h[h.len() - 1];
     let sym = match (first, last) {

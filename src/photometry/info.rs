@@ -3,6 +3,7 @@
 
 use serde_json::json;
 
+use super::spectral::{SpectralSummary, Spectrum};
 use super::{LdtTexture, Luminaire};
 
 impl Luminaire {
@@ -16,7 +17,7 @@ impl Luminaire {
         // The values as stored (expanded by the symmetry), the same table `ldt convert`
         // writes; the distribution may have averaged unequal pole values for sampling.
         let intensities: Vec<Vec<f64>> = lum.data.expanded().into_iter().map(|p| p.1).collect();
-        json!({
+        let mut info = json!({
             "format": lum.format,
             "source": lum.source_label(),
             "symmetry": lum.data.symmetry.isym(),
@@ -43,7 +44,49 @@ impl Luminaire {
             "field_angle_deg": s.field_angle_deg,
             "hemisphere": tex.hemisphere,
             "warnings": lum.warnings,
-        })
+        });
+        if let Some(tm33) = lum.tm33_json() {
+            info["tm33"] = tm33;
+        }
+        info
+    }
+
+    /// The spectrum of a TM-33 / ATLA file (the first emitter's that has one) and its
+    /// figures for the whole luminaire's flux and input power.
+    pub fn spectral_summary(&self) -> Option<(&Spectrum, SpectralSummary)> {
+        let (_, spectrum) = self.tm33.as_ref()?.spectrum()?;
+        let watts: f64 = self.data.lamp_sets.iter().map(|s| s.watts).sum();
+        let flux = self.distribution.flux_lm();
+        Some((spectrum, spectrum.summary(flux, Some(watts))))
+    }
+
+    /// What a TM-33 / ATLA file holds beyond the EULUMDAT model, as JSON (none for other
+    /// files): its dialect, emitters, luminous openings (metres) and spectral figures.
+    fn tm33_json(&self) -> Option<serde_json::Value> {
+        let doc = self.tm33.as_ref()?;
+        let emitters: Vec<serde_json::Value> = doc
+            .emitters
+            .iter()
+            .map(|e| {
+                json!({
+                    "description": e.description,
+                    "quantity": e.quantity,
+                    "rated_lumens": e.rated_lumens,
+                    "input_watts": e.input_watts,
+                    "cct_k": e.cct_k,
+                    "ra": e.ra,
+                    "has_intensity": e.intensity.is_some(),
+                    "spectrum": e.spectrum,
+                })
+            })
+            .collect();
+        Some(json!({
+            "dialect": doc.dialect,
+            "laboratory": doc.header.laboratory,
+            "emitters": emitters,
+            "openings": doc.openings(),
+            "spectral": self.spectral_summary().map(|(_, s)| s),
+        }))
     }
 }
 

@@ -6,6 +6,7 @@ pub mod catalogue;
 pub mod check;
 pub mod check_text;
 pub mod colour_rendering;
+pub mod convert;
 pub mod datasheet;
 pub mod datasheet_plot;
 pub mod distribution;
@@ -21,11 +22,13 @@ pub mod luminance;
 pub mod plot;
 pub mod polar_diagram;
 pub mod residual_plot;
+pub mod spectral;
 pub mod summary;
 pub mod symmetry;
 pub mod synthetic;
 pub mod text;
 pub mod texture;
+pub mod tm33;
 pub mod type_b;
 pub mod ugr;
 
@@ -39,6 +42,7 @@ pub use ies::IesFile;
 pub use summary::Summary;
 pub use symmetry::Symmetry;
 pub use texture::LdtTexture;
+pub use tm33::Tm33;
 
 /// The format a luminaire file came in.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
@@ -48,6 +52,8 @@ pub enum Format {
     Eulumdat,
     /// IES LM-63 `.ies`.
     Ies,
+    /// ANSI/IES TM-33-23 or ATLA S001, XML or JSON.
+    Tm33,
 }
 
 /// A loaded luminaire file: its data in the EULUMDAT model, the full-sphere distribution
@@ -60,6 +66,8 @@ pub struct Luminaire {
     pub data: Eulumdat,
     /// The IES file as read, for IES input.
     pub ies: Option<IesFile>,
+    /// The TM-33 / ATLA document as read, for such input (spectra, emitters, openings).
+    pub tm33: Option<Tm33>,
     /// The full-sphere distribution.
     pub distribution: Distribution,
     /// Notes about what was accepted with a repair.
@@ -67,25 +75,37 @@ pub struct Luminaire {
 }
 
 impl Luminaire {
-    /// Reads `.ldt` or `.ies` bytes; the format is told by `name`'s extension, or by the
-    /// content (an `IES…` first line) when the name has neither.
+    /// Reads `.ldt`, `.ies`, or TM-33 / ATLA `.xml` / `.json` bytes; the format is told by
+    /// `name`'s extension, or by the content (an `IES…` first line; `<` or `{` for TM-33)
+    /// when the name has none of these.
     pub fn from_bytes(name: &str, bytes: &[u8]) -> Result<Luminaire, PhotometryError> {
         // The extension decides; the content only where there is none to go by (an LDT
         // whose company line starts with "IES" is still an LDT).
         let lower = name.to_ascii_lowercase();
-        let looks_ies = if lower.ends_with(".ies") {
-            true
+        let format = if lower.ends_with(".ies") {
+            Format::Ies
         } else if lower.ends_with(".ldt") {
-            false
+            Format::Eulumdat
+        } else if lower.ends_with(".xml") || lower.ends_with(".json") || tm33::looks_like(bytes) {
+            Format::Tm33
+        } else if bytes.starts_with(b"IES") || bytes.starts_with(b"\xEF\xBB\xBFIES") {
+            Format::Ies
         } else {
-            bytes.starts_with(b"IES") || bytes.starts_with(b"\xEF\xBB\xBFIES")
+            Format::Eulumdat
         };
-        let (format, data, ies, mut warnings) = if looks_ies {
+        let stem = Path::new(name)
+            .file_name()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        let mut tm33_doc = None;
+        let (format, data, ies, mut warnings) = if format == Format::Tm33 {
+            let parsed = Tm33::parse(name, bytes)?;
+            let mut warnings = parsed.warnings;
+            let ldt = parsed.data.to_eulumdat(name, &stem, &mut warnings)?;
+            tm33_doc = Some(parsed.data);
+            (Format::Tm33, ldt, None, warnings)
+        } else if format == Format::Ies {
             let parsed = IesFile::parse(name, bytes)?;
-            let stem = Path::new(name)
-                .file_name()
-                .map(|s| s.to_string_lossy().into_owned())
-                .unwrap_or_default();
             let ldt = parsed.data.to_eulumdat(&stem);
             (Format::Ies, ldt, Some(parsed.data), parsed.warnings)
         } else {
@@ -98,6 +118,7 @@ impl Luminaire {
             format,
             data,
             ies,
+            tm33: tm33_doc,
             distribution,
             warnings,
         };
@@ -110,6 +131,7 @@ impl Luminaire {
         let (field, line) = match self.format {
             Format::Eulumdat => ("intensities × conversion factor", 24),
             Format::Ies => ("candela × multiplier × ballast factor ÷ lamp lumens", 0),
+            Format::Tm33 => ("intensities × Multiplier ÷ rated lumens", 0),
         };
         let grid = self.distribution.grid();
         if let Some(v) = grid.values().iter().find(|v| !v.is_finite()) {
@@ -164,18 +186,22 @@ impl Luminaire {
         Ok(self)
     }
 
-    /// Where the data came from, for the labels of converted files: "EULUMDAT", "IES" or
-    /// "IES Type B" / "IES Type A".
+    /// Where the data came from, for the labels of converted files: "EULUMDAT", "IES",
+    /// "IES Type B" / "IES Type A", or the TM-33 dialect ("TM-33-23 XML", "ATLA S001 JSON" …).
     pub fn source_label(&self) -> &'static str {
+        if let Some(doc) = &self.tm33 {
+            return doc.dialect.label();
+        }
         match (self.format, self.ies.as_ref().map(|f| f.photometric_type)) {
             (Format::Eulumdat, _) => "EULUMDAT",
             (Format::Ies, Some(2)) => "IES Type B",
             (Format::Ies, Some(3)) => "IES Type A",
             (Format::Ies, _) => "IES",
+            (Format::Tm33, _) => "TM-33",
         }
     }
 
-    /// Reads a `.ldt` or `.ies` file.
+    /// Reads a `.ldt`, `.ies` or TM-33 / ATLA (`.xml`, `.json`) file.
     pub fn load(path: &Path) -> Result<Luminaire, PhotometryError> {
         let name = path.display().to_string();
         let bytes =

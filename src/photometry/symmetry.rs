@@ -30,6 +30,17 @@ impl Symmetry {
         })
     }
 
+    /// The symmetry in words ("symmetric about the C0–C180 plane").
+    pub fn describe(self) -> &'static str {
+        match self {
+            Symmetry::None => "no symmetry",
+            Symmetry::Rotational => "rotationally symmetric",
+            Symmetry::C0C180 => "symmetric about the C0–C180 plane",
+            Symmetry::C90C270 => "symmetric about the C90–C270 plane",
+            Symmetry::Quadrant => "symmetric about both planes",
+        }
+    }
+
     /// The EULUMDAT indicator.
     pub fn isym(self) -> u8 {
         match self {

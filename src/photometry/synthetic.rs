@@ -73,6 +73,7 @@ pub fn rotational(name: &str, gamma_deg: &[f64], candela: &[f64]) -> Option<Lumi
         format: Format::Eulumdat,
         data,
         ies: None,
+        tm33: None,
         distribution,
         warnings,
     })

@@ -237,8 +237,9 @@ pub struct ModelEntry {
     /// `EXT_lights_ies`) become luminaires (default true).
     #[serde(default = "yes", skip_serializing_if = "is_true")]
     pub import_lights: bool,
-    /// glTF models: per light node name, an `.ldt` or `.ies` file (relative to the scene
-    /// file) placed and aimed by that node instead of the file's light.
+    /// glTF models: per light node name, a luminaire file (`.ldt`, `.ies`, TM-33 `.xml` or
+    /// ATLA `.json`; relative to the scene file) placed and aimed by that node instead of
+    /// the file's light.
     #[serde(default, skip_serializing_if = "std::collections::BTreeMap::is_empty")]
     pub light_files: std::collections::BTreeMap<String, String>,
 }
@@ -265,7 +266,8 @@ pub enum Bake {
 #[derive(Debug, Clone, Deserialize, Serialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct LuminaireEntry {
-    /// `.ldt` or `.ies` file, relative to the scene file.
+    /// `.ldt`, `.ies`, TM-33-23 / ATLA S001 `.xml` or `.json` file, relative to the scene
+    /// file.
     pub file: String,
     /// Photometric centre in metres.
     #[serde(deserialize_with = "crate::io::exact::array")]

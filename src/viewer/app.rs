@@ -487,12 +487,12 @@ impl ViewerApp {
             .map(|e| e.to_string_lossy().to_ascii_lowercase())
             .unwrap_or_default();
         match ext.as_str() {
-            "ldt" | "ies" => {
+            "ldt" | "ies" | "xml" | "json" => {
                 self.add_luminaire(path);
             }
             "toml" | "obj" | "gltf" | "glb" => self.open_scene(path),
             _ => self.error(format!(
-                "{}: not a luminaire (.ldt, .ies), scene (.toml) or model (.obj, .gltf, .glb)",
+                "{}: not a luminaire (.ldt, .ies, TM-33 .xml/.json), scene (.toml) or model (.obj, .gltf, .glb)",
                 path.display()
             )),
         }

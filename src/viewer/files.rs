@@ -136,7 +136,10 @@ impl Dialog {
                 }
                 let picked = match purpose {
                     DialogPurpose::AddLuminaire => d
-                        .add_filter("Luminaires (EULUMDAT, IES)", &["ldt", "LDT", "ies", "IES"])
+                        .add_filter(
+                            "Luminaires (EULUMDAT, IES, TM-33, ATLA)",
+                            &["ldt", "LDT", "ies", "IES", "xml", "XML", "json", "JSON"],
+                        )
                         .pick_file(),
                     DialogPurpose::Open => d
                         .add_filter("Scenes and models", &["toml", "obj", "gltf", "glb"])

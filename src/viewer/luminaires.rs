@@ -31,7 +31,7 @@ impl ViewerApp {
             let label = ui.label("Path");
             ui.add(
                 egui::TextEdit::singleline(&mut self.add_path)
-                    .hint_text("a .ldt or .ies file")
+                    .hint_text("a .ldt, .ies or TM-33 .xml/.json file")
                     .desired_width(170.0),
             )
             .labelled_by(label.id);

@@ -149,7 +149,7 @@ impl ViewerApp {
                 hint,
                 egui::Label::new(
                     egui::RichText::new(
-                        "No lights: add a luminaire (drop an .ldt or .ies file here) or turn on the sun",
+                        "No lights: add a luminaire (drop an .ldt, .ies or TM-33 file here) or turn on the sun",
                     )
                     .size(16.0)
                     .color(egui::Color32::from_gray(220)),

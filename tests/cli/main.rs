@@ -33,4 +33,5 @@ mod silhouette_cli;
 mod sun;
 mod sun_study;
 mod sunlight;
+mod tm33_cli;
 mod ugr;

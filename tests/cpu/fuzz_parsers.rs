@@ -1,5 +1,5 @@
-//! Mutation fuzzing of every reader on stable Rust, time-boxed: luminaire files (LDT and
-//! IES), OBJ meshes, MTL materials, scene TOML, EPW weather files and the point and angle lists read from
+//! Mutation fuzzing of every reader on stable Rust, time-boxed: luminaire files (LDT, IES,
+//! TM-33 / ATLA XML and JSON), OBJ meshes, MTL materials, scene TOML, EPW weather files and the point and angle lists read from
 //! stdin. Seeds are the real
 //! files (bundled luminaires, the wild corpus in `../shared`, the bundled scenes); each
 //! case applies a few structure-aware mutations (extreme numbers in place of numbers,
@@ -23,6 +23,7 @@ use std::time::{Duration, Instant};
 
 use goniolight::geometry::obj::{parse_mtl, parse_obj};
 use goniolight::lighting::{read_angles, read_points};
+use goniolight::photometry::convert::{convert, OutputFormat};
 use goniolight::photometry::ies::write_ies;
 use goniolight::photometry::{Interp, Luminaire};
 use goniolight::scene::Scene;
@@ -231,9 +232,12 @@ fn luminaire_is_usable(name: &str, bytes: &[u8]) -> Result<(), String> {
     }
     let _ = lum.summary();
     let peak = d.max_intensity().0 * lamp / 1000.0;
+    let tm33 = |to| convert(&lum, to, false).map(|c| c.text).unwrap_or_default();
     for (ext, text) in [
         ("ldt", lum.data.to_ldt_string()),
         ("ies", write_ies(&lum.data, lum.source_label())),
+        ("xml", tm33(OutputFormat::Tm33)),
+        ("json", tm33(OutputFormat::Atla)),
     ] {
         let back = Luminaire::from_bytes(&format!("w.{ext}"), text.as_bytes())
             .map_err(|e| format!("its {ext} is refused: {e}"))?;
@@ -271,6 +275,25 @@ fn fuzz_luminaire_readers_and_writers() {
         // The same bytes through both readers (the extension is only a hint).
         luminaire_is_usable("f.ldt", bytes)?;
         luminaire_is_usable("f.ies", bytes)
+    });
+}
+
+#[test]
+fn fuzz_tm33_reader() {
+    let mut files = Vec::new();
+    files_under(
+        &common::shared_dir().join("luminaires/tm33"),
+        &["xml", "json"],
+        &mut files,
+    );
+    let seeds = read_all(files);
+    for seed in &seeds {
+        // The seeds themselves read: mutations start from valid files.
+        Luminaire::from_bytes("seed.xml", seed).unwrap();
+    }
+    fuzz("tm33", "xml", &seeds, |bytes| {
+        luminaire_is_usable("f.xml", bytes)?;
+        luminaire_is_usable("f.json", bytes)
     });
 }
 

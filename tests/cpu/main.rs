@@ -19,4 +19,5 @@ mod real_meshes;
 mod roundtrip;
 mod sample18;
 mod silhouette;
+mod tm33_files;
 mod wild_corpus;

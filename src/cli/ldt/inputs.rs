@@ -1,5 +1,5 @@
 //! The files an `ldt` command works on — files as named, directories walked for `.ldt` and
-//! `.ies` files (sorted by path) — and the bookkeeping of a catalogue run: a failed file is
+//! `.ies` files and TM-33 / ATLA `.xml` / `.json` documents (sorted by path) — and the bookkeeping of a catalogue run: a failed file is
 //! reported on standard error and the others go on; the command exits 2 at the end.
 
 use std::collections::HashMap;
@@ -32,7 +32,7 @@ impl Inputs {
             }
             match walk(path) {
                 Ok(found) if found.is_empty() => failures.report(CliError::input(anyhow!(
-                    "{}: no .ldt or .ies file in this directory",
+                    "{}: no .ldt, .ies or TM-33 file in this directory",
                     path.display()
                 ))),
                 Ok(found) => files.extend(found),
@@ -102,12 +102,15 @@ impl Failures {
     }
 }
 
-/// The `.ldt` and `.ies` files under `dir` (any depth, any letter case), sorted.
+/// The `.ldt` and `.ies` files under `dir` (any depth, any letter case), and the `.xml` and
+/// `.json` files among them that are TM-33 or ATLA documents, sorted.
 fn walk(dir: &Path) -> Result<Vec<PathBuf>, CliError> {
     let mut found = Vec::new();
     for entry in walkdir::WalkDir::new(dir).sort_by_file_name() {
         let entry = entry.map_err(|e| CliError::input(anyhow!("{}: {e}", dir.display())))?;
-        if entry.file_type().is_file() && is_luminaire(entry.path()) {
+        if entry.file_type().is_file()
+            && (is_luminaire(entry.path()) || is_tm33_document(entry.path()))
+        {
             found.push(entry.into_path());
         }
     }
@@ -119,6 +122,20 @@ pub(super) fn is_luminaire(path: &Path) -> bool {
     path.extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase())
         .is_some_and(|e| e == "ldt" || e == "ies")
+}
+
+/// True for a `.xml` or `.json` file whose beginning names a TM-33 or ATLA document.
+fn is_tm33_document(path: &Path) -> bool {
+    let ext = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    if !matches!(ext.as_deref(), Some("xml" | "json")) {
+        return false;
+    }
+    let mut head = Vec::new();
+    std::fs::File::open(path)
+        .and_then(|f| std::io::Read::read_to_end(&mut std::io::Read::take(f, 4096), &mut head))
+        .is_ok_and(|_| crate::photometry::tm33::names_itself(&head))
 }
 
 /// Output names in one folder for many inputs: `stem.ext`, refusing a second input whose

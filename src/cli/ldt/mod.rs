@@ -18,16 +18,17 @@ use inputs::{Inputs, OutputNames};
 use super::error::CliError;
 use crate::io::write_atomic;
 use crate::photometry::check::LeaveOut;
-use crate::photometry::ies::write_ies;
+use crate::photometry::convert::OutputFormat;
 use crate::photometry::info::{csv_line, CATALOGUE_COLUMNS};
 use crate::photometry::{Interp, Luminaire};
 
 /// Luminaire file subcommands. Each takes one or more files or directories (walked for
-/// `.ldt` and `.ies` files); with several, a file that fails is reported and the others go
+/// `.ldt` and `.ies` files and TM-33 / ATLA documents); with several, a file that fails is reported and the others go
 /// on, and the command exits 2 at the end.
 #[derive(Debug, Subcommand)]
 pub enum LdtCommand {
-    /// Print the data and photometric summary of .ldt or .ies files.
+    /// Print the data and photometric summary of .ldt, .ies or TM-33 / ATLA (.xml, .json)
+    /// files (with their spectral figures: melanopic DER, PPF).
     Info {
         /// Luminaire files or directories.
         #[arg(required = true)]
@@ -101,17 +102,18 @@ pub enum LdtCommand {
     /// Write a one-page datasheet as one self-contained HTML file: summary, polar and
     /// cartesian diagrams, UGR table, luminance table, warnings.
     Report(report::ReportArgs),
-    /// Convert between EULUMDAT and IES (the output's extension, or --to, picks the format).
+    /// Convert between EULUMDAT, IES, TM-33-23 XML and ATLA S001 JSON (the output's
+    /// extension, or --to, picks the format); notes what the target format cannot hold.
     Convert {
         /// Luminaire files or directories.
         #[arg(required = true)]
         files: Vec<PathBuf>,
-        /// Output .ldt or .ies (one input file).
+        /// Output .ldt, .ies, .xml (TM-33-23) or .json (ATLA S001) (one input file).
         #[arg(long, conflicts_with_all = ["out_dir", "to"])]
         out: Option<PathBuf>,
         /// The format to write for each input: next to it, or into --out-dir, named after it.
         #[arg(long, value_enum, required_unless_present = "out")]
-        to: Option<FileType>,
+        to: Option<OutputFormat>,
         /// Write the converted files here instead of next to their inputs.
         #[arg(long, requires = "to")]
         out_dir: Option<PathBuf>,
@@ -120,30 +122,6 @@ pub enum LdtCommand {
         #[arg(long)]
         exact: bool,
     },
-}
-
-/// A luminaire file type, by its extension.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-pub enum FileType {
-    /// EULUMDAT.
-    Ldt,
-    /// IES LM-63.
-    Ies,
-}
-
-impl FileType {
-    fn ext(self) -> &'static str {
-        match self {
-            FileType::Ldt => "ldt",
-            FileType::Ies => "ies",
-        }
-    }
-
-    /// True when `path` has this type's extension (any letter case).
-    fn is(self, path: &Path) -> bool {
-        path.extension()
-            .is_some_and(|e| e.eq_ignore_ascii_case(self.ext()))
-    }
 }
 
 /// Options of `ldt check`.
@@ -337,7 +315,7 @@ fn check_output(input: &Path, out: &Path, exts: &[&str]) -> Result<(), CliError>
 fn convert(
     files: &[PathBuf],
     out: Option<&Path>,
-    to: Option<FileType>,
+    to: Option<OutputFormat>,
     out_dir: Option<&Path>,
     exact: bool,
 ) -> Result<(), CliError> {
@@ -348,7 +326,7 @@ fn convert(
     inputs.each(|file| {
         let target = match (out, to) {
             (Some(out), _) => out.to_path_buf(),
-            (None, Some(to)) if out_dir.is_none() && to.is(file) => {
+            (None, Some(to)) if out_dir.is_none() && OutputFormat::of_path(file) == Some(to) => {
                 eprintln!(
                     "note: {}: already .{}; left as it is",
                     file.display(),
@@ -359,30 +337,28 @@ fn convert(
             (None, Some(to)) => names.claim(file, out_dir, to.ext())?,
             (None, None) => {
                 return Err(CliError::input(anyhow::anyhow!(
-                    "say where to write: --out FILE.ldt|FILE.ies, or --to ldt|ies"
+                    "say where to write: --out FILE.ldt|.ies|.xml|.json, or --to ldt|ies|tm33|atla"
                 )))
             }
         };
-        check_output(file, &target, &["ldt", "ies"])?;
+        check_output(file, &target, &["ldt", "ies", "xml", "json"])?;
         let lum = load(file)?;
-        let ies = target
-            .extension()
-            .is_some_and(|e| e.eq_ignore_ascii_case("ies"));
-        let text = if ies {
-            write_ies(&lum.data, lum.source_label())
-        } else if exact {
-            lum.data.to_ldt_string()
-        } else {
-            let ldt = lum.data.to_ldt_standard().map_err(|e| {
-                let message = super::error::flags_in(&e.to_string());
-                CliError::input(anyhow::anyhow!("{}: {message}", file.display()))
-            })?;
-            for note in &ldt.notes {
-                eprintln!("note: {}: {note}", target.display());
-            }
-            ldt.text
-        };
-        write_atomic(&target, text.as_bytes()).map_err(CliError::failure)
+        let format = OutputFormat::of_path(&target).expect("checked extension");
+        let converted = crate::photometry::convert::convert(&lum, format, exact).map_err(|e| {
+            let message = super::error::flags_in(&e.to_string());
+            CliError::input(anyhow::anyhow!("{}: {message}", file.display()))
+        })?;
+        for note in &converted.notes {
+            eprintln!("note: {}: {note}", target.display());
+        }
+        for lost in &converted.losses {
+            eprintln!(
+                "note: {}: {} cannot hold {lost}",
+                target.display(),
+                format.label()
+            );
+        }
+        write_atomic(&target, converted.text.as_bytes()).map_err(CliError::failure)
     })?;
     inputs.finish()
 }

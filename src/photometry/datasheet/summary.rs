@@ -40,7 +40,7 @@ pub fn summary_rows(
             "{}, Isym {} ({}), {} C planes × {} γ angles{}",
             lum.source_label(),
             d.symmetry.isym(),
-            symmetry_words(d.symmetry),
+            d.symmetry.describe(),
             grid.c_angles().len(),
             grid.gamma_angles().len(),
             if d.is_absolute() {
@@ -137,18 +137,67 @@ pub fn summary_rows(
             ),
         );
     }
+    tm33_rows(lum, &mut row);
     Ok(rows)
 }
 
-/// What each symmetry means, in words.
-fn symmetry_words(s: crate::photometry::Symmetry) -> &'static str {
-    use crate::photometry::Symmetry::*;
-    match s {
-        None => "no symmetry",
-        Rotational => "rotationally symmetric",
-        C0C180 => "symmetric about the C0–C180 plane",
-        C90C270 => "symmetric about the C90–C270 plane",
-        Quadrant => "symmetric about both planes",
+/// The rows only a TM-33 / ATLA file fills: emitters, luminous openings, the spectrum and
+/// what it says (melanopic DER; PPF and photon efficacy).
+fn tm33_rows(lum: &Luminaire, row: &mut impl FnMut(&str, String)) {
+    let Some(doc) = &lum.tm33 else {
+        return;
+    };
+    let with_data = doc
+        .emitters
+        .iter()
+        .filter(|e| e.intensity.is_some())
+        .count();
+    if doc.emitters.len() > 1 {
+        row(
+            "emitters",
+            format!(
+                "{} ({with_data} with intensity data, summed)",
+                doc.emitters.len()
+            ),
+        );
+    }
+    let openings = doc.openings();
+    if !openings.is_empty() {
+        let list: Vec<String> = openings
+            .iter()
+            .map(|o| {
+                format!(
+                    "{} × {} mm at ({}, {}) mm",
+                    round_to(o.length_m * 1000.0, 1),
+                    round_to(o.width_m * 1000.0, 1),
+                    round_to(o.length_offset_m * 1000.0, 1),
+                    round_to(o.width_offset_m * 1000.0, 1)
+                )
+            })
+            .collect();
+        row("openings", list.join("; "));
+    }
+    if let Some((spectrum, figures)) = lum.spectral_summary() {
+        let w = &spectrum.wavelengths_nm;
+        row(
+            "spectrum",
+            format!(
+                "{}–{} nm, {} values; melanopic DER {:.3}; {:.0} lm/W of radiation",
+                round_to(w[0], 1),
+                round_to(w[w.len() - 1], 1),
+                w.len(),
+                figures.melanopic_der,
+                figures.luminous_efficacy_of_radiation_lm_per_w
+            ),
+        );
+        if let Some(ppf) = figures.ppf_umol_per_s {
+            let efficacy = figures
+                .photon_efficacy_umol_per_j
+                .map_or(String::new(), |e| {
+                    format!(", photon efficacy {e:.2} µmol/J")
+                });
+            row("PPF", format!("{ppf:.1} µmol/s (400–700 nm){efficacy}"));
+        }
     }
 }
 
