@@ -49,14 +49,7 @@ pub(super) fn read(name: &str, text: &str) -> Result<Tm33, ParseError> {
                     .unwrap_or("")
                     .to_string()
             };
-            Header {
-                manufacturer: text(&["Manufacturer"]),
-                catalog_number: text(&["CatalogNumber"]),
-                description: text(&["Description"]),
-                laboratory: text(&["Laboratory"]),
-                report_number: text(&["ReportNumber"]),
-                report_date: text(&["ReportDate", "TestDate"]),
-            }
+            Header::from_lookup(text)
         })
         .unwrap_or_default();
     let mut dimensions_m = [0.0; 3];

@@ -100,6 +100,22 @@ pub struct Header {
     pub report_date: String,
 }
 
+impl Header {
+    /// The header from `text`, which gives the text of the first element (or key) of the
+    /// names it is given that the file has ("" if none): the names are those of all
+    /// dialects.
+    fn from_lookup(text: impl Fn(&[&str]) -> String) -> Header {
+        Header {
+            manufacturer: text(&["Manufacturer"]),
+            catalog_number: text(&["CatalogNumber"]),
+            description: text(&["Description"]),
+            laboratory: text(&["Laboratory"]),
+            report_number: text(&["ReportNumber"]),
+            report_date: text(&["ReportDate", "TestDate"]),
+        }
+    }
+}
+
 /// One emitter: a light source with its own data.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Emitter {

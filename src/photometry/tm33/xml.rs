@@ -108,15 +108,7 @@ impl Reader<'_> {
     }
 
     fn header(&self, h: Node) -> Header {
-        let text = |names: &[&str]| child(h, names).map(element_text).unwrap_or_default();
-        Header {
-            manufacturer: text(&["Manufacturer"]),
-            catalog_number: text(&["CatalogNumber"]),
-            description: text(&["Description"]),
-            laboratory: text(&["Laboratory"]),
-            report_number: text(&["ReportNumber"]),
-            report_date: text(&["ReportDate", "TestDate"]),
-        }
+        Header::from_lookup(|names| child(h, names).map(element_text).unwrap_or_default())
     }
 
     fn dimensions(&self, d: Node) -> Result<[f64; 3], ParseError> {
