@@ -119,9 +119,13 @@ fn check_plot_report_and_catalogues_take_tm33_files() {
     let html = dir.path().join("sheet.html");
     let (code, _, err) = run_cli(&["ldt", "report", s(&file), "--out", s(&html)], "");
     assert_eq!(code, 0, "{err}");
-    assert!(std::fs::read_to_string(&html)
-        .unwrap()
-        .contains("Full Spectrum Horticultural LED Panel"));
+    let sheet = std::fs::read_to_string(&html).unwrap();
+    assert!(sheet.contains("Full Spectrum Horticultural LED Panel"));
+    // The datasheet's summary carries the spectral figures.
+    assert!(
+        sheet.contains("melanopic DER") && sheet.contains("PPF"),
+        "no spectral rows"
+    );
     // A folder walk finds the 13 TM-33 documents beside the LDT (not the licence texts).
     let (code, out, err) = run_cli(
         &[

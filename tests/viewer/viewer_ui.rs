@@ -371,6 +371,20 @@ fn a_gltf_model_opens_framed_with_its_lights() {
     assert_eq!(a.scene.luminaires.len(), 5);
 }
 
+/// A TM-33 or ATLA file is added as a luminaire by `open_any`, as an LDT is.
+#[test]
+fn a_tm33_file_is_added_as_a_luminaire() {
+    let mut a = app("box_room.toml");
+    let before = a.scene.luminaires.len();
+    for name in ["tm33-23_minimal.xml", "sample-luminaire.json"] {
+        a.open_any(&common::shared_dir().join("luminaires/tm33").join(name));
+        assert!(a.last_error().is_none(), "{name}: {:?}", a.last_error());
+    }
+    assert_eq!(a.scene.luminaires.len(), before + 2);
+    let added = &a.scene.luminaires[before + 1];
+    assert_eq!(added.luminaire.tm33.as_ref().unwrap().emitters.len(), 1);
+}
+
 #[test]
 fn background_jobs_without_a_gpu_say_so() {
     let mut a = app("box_room.toml");
