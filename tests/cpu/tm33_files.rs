@@ -363,3 +363,57 @@ fn emitters_on_one_grid_are_summed_and_others_refused() {
         "{e}"
     );
 }
+
+#[test]
+fn a_type_b_table_reads_as_the_same_table_in_an_ies_file() {
+    // A floodlight-like Type B table: H and V every 15° over −90…90°.
+    let angles: Vec<f64> = (-6..=6).map(|k| 15.0 * f64::from(k)).collect();
+    let cd = |h: f64, v: f64| 10.0 + 500.0 * h.to_radians().cos().powi(2) * v.to_radians().cos();
+    let mut rows = String::new();
+    for &h in &angles {
+        for &v in &angles {
+            rows.push_str(&format!(
+                "<IntensityData horz=\"{h}\" vert=\"{v}\">{}</IntensityData>\n",
+                cd(h, v)
+            ));
+        }
+    }
+    let tm33 = format!(
+        "<IESTM33-22><Emitter><Quantity>1</Quantity><LuminousData><PhotometryType>CIE _ B</PhotometryType><AbsolutePhotometry>true</AbsolutePhotometry>\n{rows}</LuminousData></Emitter></IESTM33-22>"
+    );
+    let list = |a: &[f64]| {
+        a.iter()
+            .map(|x| x.to_string())
+            .collect::<Vec<_>>()
+            .join(" ")
+    };
+    let mut ies = format!(
+        "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 {n} {n} 2 2 0 0 0\n1 1 0\n{}\n{}\n",
+        list(&angles),
+        list(&angles),
+        n = angles.len()
+    );
+    for &h in &angles {
+        let row: Vec<f64> = angles.iter().map(|&v| cd(h, v)).collect();
+        ies.push_str(&list(&row));
+        ies.push('\n');
+    }
+    let a = Luminaire::from_bytes("b.xml", tm33.as_bytes()).unwrap();
+    let b = Luminaire::from_bytes("b.ies", ies.as_bytes()).unwrap();
+    assert!(a
+        .warnings
+        .iter()
+        .any(|w| w.contains("Type B photometry converted")));
+    for c in [0.0, 30.0, 90.0, 200.0, 315.0] {
+        for g in [0.0, 20.0, 45.0, 80.0, 120.0] {
+            let (x, y) = (
+                a.distribution.candela(c, g, Interp::Bilinear, 1.0),
+                b.distribution.candela(c, g, Interp::Bilinear, 1.0),
+            );
+            assert!((x - y).abs() <= 1e-9 * y.max(1.0), "C{c} γ{g}: {x} vs {y}");
+        }
+    }
+    // Along the beam axis (H = V = 0, γ = 0 after the turn): 510 cd.
+    let axis = a.distribution.candela(0.0, 0.0, Interp::Bilinear, 1.0);
+    assert!((axis - 510.0).abs() < 1e-6, "{axis}");
+}

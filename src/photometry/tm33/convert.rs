@@ -79,7 +79,14 @@ impl Tm33 {
                 with_data.len()
             ));
         }
-        stored_symmetry(name, first, warnings)?;
+        if first.photometry_type == 'C' {
+            stored_symmetry(name, first, warnings)?;
+        } else {
+            warnings.push(format!(
+                "Type {} photometry converted to the C-γ frame (docs/src/design/photometry.md: beam axis at γ = 0)",
+                first.photometry_type
+            ));
+        }
         let ies = self.as_ies(&with_data, absolute, candela);
         let mut ldt = ies.to_eulumdat(file_name);
         if !absolute && !self.dialect.per_klm() && ldt.lorl_percent < 10.0 {
@@ -172,7 +179,11 @@ impl Tm33 {
                 lumens / f64::from(lamps)
             },
             multiplier: 1.0,
-            photometric_type: 1,
+            photometric_type: match t.photometry_type {
+                'B' => 2,
+                'A' => 3,
+                _ => 1,
+            },
             units: 2,
             size: [width, length, height],
             ballast_factor: 1.0,
@@ -185,46 +196,34 @@ impl Tm33 {
     }
 }
 
-/// Type C only; vertical angles in 0–180°; horizontal angles a range that LM-63 knows (0,
-/// 0–90, 0–180, 90–270, 0–360).
+/// At least two vertical angles; Type C: vertical angles in 0–180°, horizontal angles a
+/// range that LM-63 knows (0, 0–90, 0–180, 90–270, 0–360); Types B and A: angles in
+/// −90–90°, starting at −90° or 0° (as LM-63 allows).
 fn check_angles(name: &str, t: &Intensity) -> Result<(), ParseError> {
-    if t.photometry_type != 'C' {
-        return Err(ParseError::new(
-            name,
-            t.line,
-            format!(
-                "Type {} photometry is not read from TM-33 files (only Type C)",
-                t.photometry_type
-            ),
-        ));
-    }
+    let fail = |m: String| ParseError::new(name, t.line, m);
     if t.vertical.len() < 2 {
-        return Err(ParseError::new(
-            name,
-            t.line,
-            format!(
-                "one vertical angle ({}°): a distribution needs at least two",
-                show(t.vertical[0])
-            ),
-        ));
+        return Err(fail(format!(
+            "one vertical angle ({}°): a distribution needs at least two",
+            show(t.vertical[0])
+        )));
+    }
+    if t.photometry_type != 'C' {
+        let inside = |a: &[f64]| a.iter().all(|x| (-90.0..=90.0).contains(x));
+        if !(inside(&t.vertical) && inside(&t.horizontal)) {
+            return Err(fail(format!(
+                "Type {} angles must lie in -90–90°",
+                t.photometry_type
+            )));
+        }
+        return crate::photometry::type_b::check_ranges(&t.vertical, &t.horizontal).map_err(fail);
     }
     if t.vertical.iter().any(|v| !(0.0..=180.0).contains(v)) {
-        return Err(ParseError::new(
-            name,
-            t.line,
-            "vertical angles must lie in 0–180°",
-        ));
+        return Err(fail("vertical angles must lie in 0–180°".into()));
     }
     if t.horizontal.iter().any(|h| !(0.0..=360.0).contains(h)) {
-        return Err(ParseError::new(
-            name,
-            t.line,
-            "horizontal angles must lie in 0–360°",
-        ));
+        return Err(fail("horizontal angles must lie in 0–360°".into()));
     }
-    horizontal_symmetry(&t.horizontal)
-        .map(|_| ())
-        .map_err(|m| ParseError::new(name, t.line, m))
+    horizontal_symmetry(&t.horizontal).map(|_| ()).map_err(fail)
 }
 
 /// The symmetry the stored angles imply; a declared symmetry that says otherwise is noted
