@@ -46,7 +46,7 @@ fn parse_interp(name: &str) -> PyResult<Interp> {
 /// A lamp set number as the command line takes it (1-based).
 /// The output format an extension names.
 fn output_format(ext: &str) -> PyResult<convert::OutputFormat> {
-    convert::OutputFormat::of_path(std::path::Path::new(&format!("x.{ext}"))).ok_or_else(|| {
+    convert::OutputFormat::of_ext(ext).ok_or_else(|| {
         value_error(format!(
             "format {ext:?}: ldt, ies, xml (TM-33-23) or json (ATLA S001)"
         ))

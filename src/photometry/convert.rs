@@ -34,7 +34,11 @@ impl OutputFormat {
 
     /// The format a path's extension names (any letter case).
     pub fn of_path(path: &Path) -> Option<OutputFormat> {
-        let ext = path.extension()?.to_string_lossy().to_ascii_lowercase();
+        OutputFormat::of_ext(&path.extension()?.to_string_lossy())
+    }
+
+    /// The format an extension (without the dot, any letter case) names.
+    pub fn of_ext(ext: &str) -> Option<OutputFormat> {
         [
             OutputFormat::Ldt,
             OutputFormat::Ies,
@@ -42,7 +46,7 @@ impl OutputFormat {
             OutputFormat::Atla,
         ]
         .into_iter()
-        .find(|f| f.ext() == ext)
+        .find(|f| f.ext().eq_ignore_ascii_case(ext))
     }
 
     /// The format's name.

@@ -384,7 +384,6 @@ impl IesFile {
 /// Writes `ldt` as an IES LM-63-2002 file (Type C, metres, TILT=NONE); `source` names
 /// where the data came from ("EULUMDAT", "IES Type B", …) in an `[OTHER]` line.
 pub fn write_ies(ldt: &Eulumdat, source: &str) -> String {
-    let planes = ldt.expanded();
     let lamp_flux = ldt.lamp_flux_lm();
     let absolute = ldt.is_absolute();
     let lamps: i32 = ldt
@@ -393,15 +392,7 @@ pub fn write_ies(ldt: &Eulumdat, source: &str) -> String {
         .map(|s| s.count.abs())
         .sum::<i32>()
         .max(1);
-    let horizontal = lm63_horizontal(ldt.symmetry, &planes);
-    let to_cd = lamp_flux / 1000.0;
-    let row = |c: f64| -> Vec<f64> {
-        let p = planes
-            .iter()
-            .find(|p| angle_eq(p.0, c))
-            .expect("angle taken from the planes");
-        p.1.iter().map(|v| v * to_cd).collect()
-    };
+    let (horizontal, candela) = lm63_candela(ldt);
     let mut out = String::from("IESNA:LM-63-2002\r\n");
     let mut kw = |k: &str, v: &str| {
         if !v.trim().is_empty() {
@@ -447,8 +438,8 @@ pub fn write_ies(ldt: &Eulumdat, source: &str) -> String {
     ));
     write_values(&mut out, &ldt.gamma_angles);
     write_values(&mut out, &horizontal);
-    for &h in &horizontal {
-        write_values(&mut out, &row(h));
+    for row in &candela {
+        write_values(&mut out, row);
     }
     out
 }
@@ -483,6 +474,25 @@ fn whole(src: &SourceText<'_>, t: Token, lo: i64, hi: i64) -> Result<i64, ParseE
         ));
     }
     Ok(t.value as i64)
+}
+
+/// The horizontal angles an LM-63 (or TM-33) file stores for `ldt` and the candela at each
+/// (cd/klm × the lamp flux), one row per horizontal angle: the table both formats write.
+pub(crate) fn lm63_candela(ldt: &Eulumdat) -> (Vec<f64>, Vec<Vec<f64>>) {
+    let planes = ldt.expanded();
+    let horizontal = lm63_horizontal(ldt.symmetry, &planes);
+    let to_cd = ldt.lamp_flux_lm() / 1000.0;
+    let candela = horizontal
+        .iter()
+        .map(|&c| {
+            let p = planes
+                .iter()
+                .find(|p| angle_eq(p.0, c))
+                .expect("angle taken from the planes");
+            p.1.iter().map(|v| v * to_cd).collect()
+        })
+        .collect();
+    (horizontal, candela)
 }
 
 /// The horizontal angles an LM-63 (or TM-33) file stores for `planes` (the full circle of

@@ -6,27 +6,14 @@ use serde_json::json;
 
 use super::{Dialect, Emitter, Header, Intensity, Opening, Tm33};
 use crate::photometry::eulumdat::Eulumdat;
-use crate::photometry::grid::angle_eq;
-use crate::photometry::ies::lm63_horizontal;
+use crate::photometry::ies::lm63_candela;
 use crate::photometry::symmetry::Symmetry;
 
 /// A document of one emitter holding `ldt`'s distribution, names, dimensions and lamps
 /// (all lamp sets as one emitter); `dialect` is what it will be written as.
 pub fn from_eulumdat(ldt: &Eulumdat, dialect: Dialect) -> Tm33 {
-    let planes = ldt.expanded();
-    let horizontal = lm63_horizontal(ldt.symmetry, &planes);
+    let (horizontal, values) = lm63_candela(ldt);
     let lamp_flux = ldt.lamp_flux_lm();
-    let to_cd = lamp_flux / 1000.0;
-    let values: Vec<Vec<f64>> = horizontal
-        .iter()
-        .map(|&c| {
-            let p = planes
-                .iter()
-                .find(|p| angle_eq(p.0, c))
-                .expect("angle taken from the planes");
-            p.1.iter().map(|v| v * to_cd).collect()
-        })
-        .collect();
     let absolute = ldt.is_absolute();
     let stored = crate::photometry::ies::horizontal_symmetry(&horizontal).unwrap_or(Symmetry::None);
     let intensity = Intensity {
